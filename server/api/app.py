@@ -1,0 +1,32 @@
+"""The FastAPI application: versioned JSON API under /api/v1, pages, and our own static assets."""
+from pathlib import Path
+
+import plotly
+from fastapi import APIRouter, FastAPI
+from fastapi.middleware.gzip import GZipMiddleware
+from fastapi.staticfiles import StaticFiles
+
+from .content import REPO_ROOT
+from .routers import kinematics, mechanisms, pages, scenes
+
+API_PREFIX = "/api/v1"
+PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
+
+
+def create_app() -> FastAPI:
+    app = FastAPI(title="Mechanism Dynamics Lab API", version="1.0.0",
+                  description="Kinematics and dynamics of planar linkages for the theory of machines and "
+                              "mechanisms. SI units throughout; angles in radians.",
+                  openapi_url=f"{API_PREFIX}/openapi.json", docs_url=None, redoc_url=None)
+    api = APIRouter(prefix=API_PREFIX)
+    for module in (mechanisms, kinematics, scenes):
+        api.include_router(module.router)
+    app.include_router(api)
+    app.include_router(pages.router)
+    app.add_middleware(GZipMiddleware, minimum_size=1000)
+    app.mount("/static", StaticFiles(directory=REPO_ROOT / "web" / "static"), name="static")
+    app.mount("/vendor/plotly", StaticFiles(directory=PLOTLY_DIR), name="plotly")
+    return app
+
+
+app = create_app()

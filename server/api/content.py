@@ -1,0 +1,96 @@
+"""Scenes (lessons) and interface texts, read from content/ as data: no Python per lesson."""
+from __future__ import annotations
+
+import json
+from functools import lru_cache
+from pathlib import Path
+
+from pydantic import BaseModel, Field
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+CONTENT_DIR = REPO_ROOT / "content"
+LANGUAGES = ("ru", "uk", "en")
+DEFAULT_LANGUAGE = "ru"
+
+Text = dict[str, str]
+
+
+class Slider(BaseModel):
+    """A slider sets params[param] = value × params[scale] (or value itself when scale is empty)."""
+
+    id: str
+    param: str
+    scale: str = ""
+    min: float
+    max: float
+    step: float
+    default: float
+    label: Text
+    english: Text | None = Field(default=None, description="the other convention shown beside the slider")
+    log: bool = False
+
+
+class Toggle(BaseModel):
+    id: str
+    param: str
+    options: list[float]
+    default: float
+    label: Text
+    option_labels: list[Text]
+
+
+class Variant(BaseModel):
+    """One mechanism set-up offered in a scene."""
+
+    id: str
+    mechanism: str
+    label: Text
+    text: Text
+    fixed: dict[str, float] = {}
+    sliders: list[Slider] = []
+    toggles: list[Toggle] = []
+    overlay: Slider | None = None
+    overlay_values: list[float] = []
+    panels: list[str]
+
+
+class Scene(BaseModel):
+    id: str
+    order: int
+    source: Text
+    title: Text
+    summary: Text
+    text: Text
+    outputs: list[str]
+    panels: dict[str, dict]
+    variants: list[Variant]
+
+
+def _check_languages(texts: dict, where: str) -> None:
+    missing = [lang for lang in LANGUAGES if not texts.get(lang)]
+    if missing:
+        raise ValueError(f"{where}: missing translation {missing}")
+
+
+@lru_cache(maxsize=1)
+def scenes() -> dict[str, Scene]:
+    """All scenes in content/scenes, ordered, each checked to carry all three languages."""
+    loaded = []
+    for path in sorted((CONTENT_DIR / "scenes").glob("*.json")):
+        scene = Scene.model_validate_json(path.read_text(encoding="utf-8"))
+        for key in ("title", "summary", "text", "source"):
+            _check_languages(getattr(scene, key), f"{path.name}: {key}")
+        for variant in scene.variants:
+            _check_languages(variant.label, f"{path.name}: {variant.id}.label")
+        loaded.append(scene)
+    return {s.id: s for s in sorted(loaded, key=lambda s: s.order)}
+
+
+@lru_cache(maxsize=len(LANGUAGES))
+def interface_texts(lang: str) -> dict[str, str]:
+    """Interface strings of one language (content/i18n/<lang>.json)."""
+    return json.loads((CONTENT_DIR / "i18n" / f"{lang}.json").read_text(encoding="utf-8"))
+
+
+def language(requested: str | None) -> str:
+    return requested if requested in LANGUAGES else DEFAULT_LANGUAGE

@@ -1,0 +1,31 @@
+"""HTML pages: the start page listing the scenes, and one page per scene."""
+from pathlib import Path
+
+from fastapi import APIRouter, HTTPException, Request
+from fastapi.responses import HTMLResponse
+from fastapi.templating import Jinja2Templates
+
+from ..content import LANGUAGES, REPO_ROOT, interface_texts, language, scenes
+
+templates = Jinja2Templates(directory=Path(REPO_ROOT, "web", "templates"))
+router = APIRouter(include_in_schema=False)
+
+
+def _context(request: Request, lang: str | None) -> dict:
+    lang = language(lang)
+    return {"request": request, "lang": lang, "languages": LANGUAGES, "t": interface_texts(lang)}
+
+
+@router.get("/", response_class=HTMLResponse)
+def index(request: Request, lang: str | None = None):
+    return templates.TemplateResponse(request, "index.html", _context(request, lang) | {"scenes": scenes().values()})
+
+
+@router.get("/scenes/{scene_id}", response_class=HTMLResponse)
+def scene_page(request: Request, scene_id: str, lang: str | None = None):
+    scene = scenes().get(scene_id)
+    if scene is None:
+        raise HTTPException(404, f"no scene '{scene_id}'")
+    needs_plotly = any(panel.get("kind") == "plot" for panel in scene.panels.values())
+    return templates.TemplateResponse(request, "scene.html", _context(request, lang) | {
+        "scene": scene, "scene_json": scene.model_dump_json(), "needs_plotly": needs_plotly})

@@ -1,0 +1,76 @@
+"""Request and response models of the JSON API: declared once, they are the OpenAPI documentation."""
+from __future__ import annotations
+
+import math
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from ..core.kinematics import MAX_POINTS
+
+MAX_ANGLE = 1000.0
+MechanismName = Literal["sine", "slider_crank", "slotted_link", "four_bar"]
+
+
+class ParamInfo(BaseModel):
+    name: str = Field(description="parameter name as used in `params`")
+    unit: str = Field(description="SI unit ('m' for lengths, '1' for ratios and switches)")
+    description: str
+    default: float
+    minimum: float = Field(description="smallest value the scene offers")
+    maximum: float = Field(description="largest value the scene offers")
+    integer: bool = Field(description="true for switches such as the assembly mode")
+
+
+class OutputInfo(BaseModel):
+    name: str
+    unit: str
+    description: str
+
+
+class MechanismInfo(BaseModel):
+    name: MechanismName
+    title: str
+    conventions: str = Field(description="frame, angle origin, sense of rotation and λ definitions, in words")
+    params: list[ParamInfo]
+    outputs: list[OutputInfo]
+
+
+class KinematicsRequest(BaseModel):
+    """Kinematics of one mechanism over a set of crank angles."""
+
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [
+        {"mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3, "e": 0.0}, "n": 361,
+         "outputs": ["s", "u31", "du31", "u21", "du21", "joints"]}]})
+
+    mechanism: MechanismName = Field(description="which mechanism")
+    params: dict[str, float] = Field(default_factory=dict, description=(
+        "lengths in metres and switches; missing ones take the defaults of GET /api/v1/mechanisms"))
+    phi: list[float] | None = Field(default=None, max_length=MAX_POINTS,
+                                    description="crank angles in radians (give this or `n`)")
+    n: int | None = Field(default=None, ge=2, le=MAX_POINTS,
+                          description="number of equally spaced angles over one closed cycle, 0…cycle")
+    outputs: list[str] = Field(min_length=1, max_length=40, description=(
+        "names of the outputs wanted, e.g. s, u31, du31, s2, u21, du21, chi21, v_s2, a_s2, joints, special, "
+        "harmonics, info; each mechanism lists its own"))
+
+    @model_validator(mode="after")
+    def one_grid(self):
+        if (self.phi is None) == (self.n is None):
+            raise ValueError("give exactly one of `phi` (angles in radians) or `n` (number of points)")
+        if self.phi is not None and not all(math.isfinite(x) and abs(x) <= MAX_ANGLE for x in self.phi):
+            raise ValueError(f"every angle in `phi` must be a finite number of radians, |φ| ≤ {MAX_ANGLE:g}")
+        return self
+
+
+class KinematicsResponse(BaseModel):
+    mechanism: MechanismName
+    params: dict[str, float] = Field(description="the complete parameter set used (defaults filled in)")
+    cycle: float = Field(description="length of one kinematic cycle in φ, rad (2π, or 4π for a change-point "
+                                     "four-bar without stroke limiter)")
+    phi: list[float] = Field(description="crank angles, rad")
+    outputs: dict[str, Any] = Field(description=(
+        "exactly the requested outputs: arrays over phi (null where undefined), joints as "
+        "{name: [[x, y], …]}, special positions as a list"))
+    units: dict[str, str] = Field(description="unit of each returned output")
+    warnings: list[str] = Field(description="sentences about singular or near-singular positions")

@@ -1,0 +1,96 @@
+"""One entry point for the kinematics of any mechanism: validated parameters in, requested outputs out.
+
+The result holds only what was asked for.  Values that are undefined at a singular
+position (NaN) are kept as NaN here; :func:`finite_or_none` at the edge turns them
+into nulls, and the result carries a warning saying where and why.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .harmonics import harmonics
+from .mechanisms import MECHANISMS, GeometryError
+
+MAX_POINTS = 10001
+ARRAY_OUTPUTS_2D = ("v_s2", "a_s2")
+
+
+@dataclass
+class KinematicsResult:
+    """Crank angles, the requested outputs (SI units) and warnings in words."""
+
+    mechanism: str
+    params: dict[str, float]
+    cycle: float
+    phi: np.ndarray
+    outputs: dict[str, object] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+
+def crank_angles(cycle: float, n: int) -> np.ndarray:
+    """n equally spaced angles over one closed cycle, both ends included: 0, …, cycle."""
+    return np.linspace(0.0, cycle, n)
+
+
+def compute_kinematics(mechanism: str, params: dict[str, float], outputs: list[str],
+                       phi: np.ndarray | None = None, n: int | None = None) -> KinematicsResult:
+    """Evaluate ``outputs`` of ``mechanism`` at ``phi`` (rad) or on ``n`` points over one cycle.
+
+    Raises GeometryError (field, reason) for unknown outputs, bad sizes and geometry
+    that cannot be assembled.
+    """
+    mech = MECHANISMS[mechanism]
+    known = {o.name for o in mech.outputs} | {"harmonics", "info"}
+    for i, name in enumerate(outputs):
+        if name not in known:
+            raise GeometryError(f"outputs.{i}", f"'{name}' is not an output of {mechanism}; "
+                                                f"available: {', '.join(sorted(known))}")
+    p = mech.check(params)
+    cycle = mech.cycle(p)
+    if phi is None:
+        if n is None or not 2 <= n <= MAX_POINTS:
+            raise GeometryError("n", f"give between 2 and {MAX_POINTS} points")
+        phi = crank_angles(cycle, n)
+    elif not 1 <= phi.size <= MAX_POINTS:
+        raise GeometryError("phi", f"give between 1 and {MAX_POINTS} angles")
+    wanted = set(outputs)
+    result = KinematicsResult(mechanism, p, cycle, phi)
+    ev = mech.evaluate(p, phi, wanted)
+    result.warnings.extend(ev.warnings)
+    for name in outputs:
+        if name == "joints":
+            result.outputs[name] = ev.joints
+        elif name == "special":
+            result.outputs[name] = [sp.as_dict() for sp in mech.special_positions(p)]
+        elif name == "harmonics":
+            result.outputs[name] = harmonics(mech, p, "u31")
+        elif name == "info":
+            result.outputs[name] = mech.describe(p)
+        else:
+            result.outputs[name] = ev.values[name]
+    result.warnings.extend(proximity_warnings(mechanism, p, mech))
+    return result
+
+
+def proximity_warnings(mechanism: str, p: dict[str, float], mech) -> list[str]:
+    """Sentences for configurations close to a singular one (large but finite transfer functions)."""
+    notes = []
+    if mechanism == "slider_crank":
+        margin = p["l2"] - p["l1"] - abs(p["e"])
+        if margin < 0.1 * p["l1"]:
+            notes.append(f"Near the assembly limit: l₂ − l₁ − |e| = {margin:.3g} m. The rod swings up to "
+                         f"{np.degrees(np.arcsin((p['l1'] + abs(p['e'])) / p['l2'])):.1f}°, u₂₁ and u′₃₁ grow large "
+                         "where the rod is nearly perpendicular to the guide.")
+    elif mechanism == "slotted_link":
+        lam = p["l0"] / p["l1"]
+        if lam != 1 and abs(lam - 1) < 0.1:
+            notes.append(f"λ = {lam:.3g} is close to 1: near φ = 180° the block passes close to the lever pivot, "
+                         f"u₃₁ reaches {1 / abs(1 - lam):.3g} and u′₃₁ is very large.")
+    elif mechanism == "four_bar":
+        mu = mech.describe(p)["min_transmission_angle"]
+        if mech.change_point(p) is None and mu < np.radians(10):
+            notes.append(f"The smallest transmission angle is {np.degrees(mu):.2f}°: the linkage is close to a "
+                         "change point, and the transfer functions are large there.")
+    return notes

@@ -1,0 +1,223 @@
+"""Hinged four-bar: crank 1, coupler 2, rocker 3, frame 0; seed 000 §2.5, seed 003 (3)–(10).
+
+A at the origin, D at (l₀, 0); φ from AD, counter-clockwise, B = l₁(cos φ, sin φ).
+The diagonal (Zinoviev) method of seed 000 gives the rocker angle ψ = φ₃ from +x at D:
+
+    d² = l₀² + l₁² − 2l₀l₁cos φ,   γ = atan2(−l₁sin φ, l₀ − l₁cos φ)         (2.38), (2.39)
+    φ₃ = π + γ − σψ₁,  cos ψ₁ = (l₃² + d² − l₂²)/(2l₃d)                     (2.40), (2.41)
+
+σ = +1 is the textbook's assembly (seed 003's "+" sign in (4)); σ = −1 the other one.
+The radicand of sin ψ₁ factorises exactly as 4l₃²d² − (l₃² + d² − l₂²)² = P·Q with
+
+    P = (l₂ + l₃)² − (l₀ + l₁)² + 4l₀l₁cos²(φ/2),   Q = (l₀ − l₁)² − (l₂ − l₃)² + 4l₀l₁sin²(φ/2),
+
+so the crank turns fully iff P₀ = P(π) ≥ 0 and Q₀ = Q(0) ≥ 0.  P₀ = 0 or Q₀ = 0 is a
+change-point ("special") four-bar, (2.45)–(2.47): sin φ/√(PQ) is then 0/0 at the
+change point and is evaluated in the half-angle form of (2.52), (2.53), e.g.
+sin φ/√Q = cos(φ/2)/√(l₀l₁) for Q₀ = 0.  Without a stroke limiter the rocker keeps its
+direction through the change point and the cycle is 4π; with the limiter it rebounds,
+the cycle is 2π and u₃₁ jumps there.
+
+    u₃₁ = γ′ + σ·K·sin φ/√(PQ),  γ′ = l₁(l₁ − l₀cos φ)/d²,  K = l₀l₁(d² + l₂² − l₃²)/d²
+                                                  (2.42*, the corrected form; (2.42) is misprinted)
+    u₂₁ = Re[(l₃u₃₁e^{iφ₃} − l₁e^{iφ}) e^{−iφ₂}]/l₂          (loop closure (3) differentiated, = (7))
+    u′₃₁ = γ″ + σ·d/dφ[K sin φ/√(PQ)]                        (analytic; the textbook gives none)
+    u′₂₁ = Im[(l₁e^{iφ} + l₃(iu′₃₁ − u₃₁²)e^{iφ₃}) e^{−iφ₂}]/l₂
+
+These agree with seed 003's (7), (8) with the corrected sign u₃₁ = +l₁sin(φ₁−φ₂)/(l₃sin(φ₃−φ₂))
+and stay finite at the change points, where (7), (8) are 0/0.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .base import (Evaluation, GeometryError, OutputSpec, ParamSpec, SpecialPosition, crossings, point,
+                   wrap_angle)
+from .mechanism import Mechanism
+
+CHANGE_POINT_TOL = 1e-9
+
+
+def grashof_class(l0: float, l1: float, l2: float, l3: float) -> str:
+    """Grashof class of the linkage with frame l₀ and input crank l₁."""
+    lengths = sorted([l0, l1, l2, l3])
+    s_plus_l, p_plus_q = lengths[0] + lengths[3], lengths[1] + lengths[2]
+    if abs(s_plus_l - p_plus_q) <= CHANGE_POINT_TOL * p_plus_q:
+        return "change_point"
+    if s_plus_l > p_plus_q:
+        return "non_grashof"
+    shortest = min(l0, l1, l2, l3)
+    if shortest == l1:
+        return "crank_rocker"
+    if shortest == l0:
+        return "double_crank"
+    return "double_rocker"
+
+
+class FourBar(Mechanism):
+    name = "four_bar"
+    title = "Hinged four-bar"
+    conventions = ("Crank pivot A at the origin, rocker pivot D at (l₀, 0). φ from AD, counter-clockwise. "
+                   "s = rocker angle φ₃ from +x at D (rad); s2 = coupler angle φ₂ from +x (rad). "
+                   "λ₀ = l₀/l₁, λ₂ = l₂/l₁, λ₃ = l₃/l₁. assembly = +1 is the textbook's branch (2.41), −1 the "
+                   "other. For change-point linkages limiter = 1 puts a stroke limiter at the change point "
+                   "(cycle 2π), limiter = 0 lets the rocker pass through (cycle 4π).")
+    params = (
+        ParamSpec("l0", "m", "frame AD", 0.4, 0.001, 10.0),
+        ParamSpec("l1", "m", "crank AB", 0.1, 0.001, 10.0),
+        ParamSpec("l2", "m", "coupler BC", 0.35, 0.001, 10.0),
+        ParamSpec("l3", "m", "rocker DC", 0.3, 0.001, 10.0),
+        ParamSpec("assembly", "1", "assembly mode: +1 textbook branch (2.41), −1 the mirror branch", 1, -1, 1, True),
+        ParamSpec("limiter", "1", "1: stroke limiter at the change point (special four-bars only)", 0, 0, 1, True),
+        ParamSpec("a2", "1", "centre of mass S2 as a fraction of BC from B", 0.5, 0.0, 1.0),
+    )
+    extra_outputs = (OutputSpec("mu", "rad", "transmission angle μ between coupler and rocker, 0…π"),)
+
+    # --- validity -----------------------------------------------------------------
+    @staticmethod
+    def _p0_q0(p):
+        l0, l1, l2, l3 = p["l0"], p["l1"], p["l2"], p["l3"]
+        scale = (l0 + l1 + l2 + l3) ** 2
+        p0 = (l2 + l3) ** 2 - (l0 + l1) ** 2
+        q0 = (l0 - l1) ** 2 - (l2 - l3) ** 2
+        p0 = 0.0 if abs(p0) <= CHANGE_POINT_TOL * scale else p0
+        q0 = 0.0 if abs(q0) <= CHANGE_POINT_TOL * scale else q0
+        return p0, q0
+
+    def check_geometry(self, p):
+        if p["assembly"] == 0:
+            raise GeometryError("assembly", "must be +1 or −1", "assembly_sign")
+        p0, q0 = self._p0_q0(p)
+        if p0 < 0:
+            raise GeometryError("l2", "the crank cannot turn fully: l₀ + l₁ > l₂ + l₃, the linkage cannot "
+                                      "reach φ = 180° (crank pointing away from D)",
+                                "four_bar_no_full_turn_pi")
+        if q0 < 0:
+            raise GeometryError("l2", "the crank cannot turn fully: |l₀ − l₁| < |l₂ − l₃|, the linkage cannot "
+                                      "reach φ = 0° (crank pointing towards D)",
+                                "four_bar_no_full_turn_0")
+        if abs(p["l0"] - p["l1"]) <= CHANGE_POINT_TOL * p["l0"]:
+            raise GeometryError("l0", "l₀ = l₁: the crank pin would pass through the rocker pivot D",
+                                "four_bar_through_pivot")
+
+    def change_point(self, p) -> float | None:
+        """Crank angle of the change point: 0 when Q₀ = 0 (schemes 1, 2), π when P₀ = 0 (scheme 3)."""
+        p0, q0 = self._p0_q0(p)
+        if q0 == 0.0:
+            return 0.0
+        if p0 == 0.0:
+            return np.pi
+        return None
+
+    def cycle(self, p):
+        return 4 * np.pi if self.change_point(p) is not None and not p["limiter"] else 2 * np.pi
+
+    # --- kinematics ---------------------------------------------------------------
+    def evaluate(self, p, phi_in, wanted):
+        l0, l1, l2, l3, sigma, a2 = (p[k] for k in ("l0", "l1", "l2", "l3", "assembly", "a2"))
+        p0, q0 = self._p0_q0(p)
+        cp = self.change_point(p)
+        phi = phi_in
+        if cp is not None and p["limiter"]:
+            phi = cp + np.mod(phi_in - cp, 2 * np.pi)   # restart the branch after each impact
+        half_s, half_c = np.sin(phi / 2), np.cos(phi / 2)
+        sin, cos = np.sin(phi), np.cos(phi)
+        k = 2 * np.sqrt(l0 * l1)
+        d2 = l0**2 + l1**2 - 2 * l0 * l1 * cos
+        big_p = p0 + 4 * l0 * l1 * half_c**2
+        big_q = q0 + 4 * l0 * l1 * half_s**2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            # signed square roots: in half-angle form at a change point (branch continues through it)
+            root_q = k * half_s if q0 == 0.0 else np.sqrt(big_q)
+            root_p = -k * half_c if p0 == 0.0 else np.sqrt(big_p)
+            q = np.full_like(phi, 1 / k) if q0 == 0.0 else half_s / np.sqrt(big_q)
+            pp = np.full_like(phi, -1 / k) if p0 == 0.0 else half_c / np.sqrt(big_p)
+            dq = 0 * phi if q0 == 0.0 else half_c / (2 * np.sqrt(big_q)) - half_s * l0 * l1 * sin / big_q**1.5
+            dpp = 0 * phi if p0 == 0.0 else -half_s / (2 * np.sqrt(big_p)) + half_c * l0 * l1 * sin / big_p**1.5
+
+            gamma = np.arctan2(-l1 * sin, l0 - l1 * cos)
+            big_n = l3**2 + d2 - l2**2
+            psi1 = np.arctan2(sigma * root_q * root_p, big_n)
+            phi3 = np.pi + gamma - psi1
+            bx, by = l1 * cos, l1 * sin
+            cx, cy = l0 + l3 * np.cos(phi3), l3 * np.sin(phi3)
+            phi2 = np.arctan2(cy - by, cx - bx)
+
+            dgamma = l1 * (l1 - l0 * cos) / d2
+            ddgamma = l0 * l1 * sin * (d2 - 2 * l1 * (l1 - l0 * cos)) / d2**2
+            kk = l0 * l1 * (d2 + l2**2 - l3**2) / d2
+            dkk = -2 * (l0 * l1) ** 2 * (l2**2 - l3**2) * sin / d2**2
+            ratio = 2 * q * pp                       # = sin φ /√(PQ), signed along the branch
+            dratio = 2 * (dq * pp + q * dpp)
+            u31 = dgamma + sigma * kk * ratio
+            du31 = ddgamma + sigma * (dkk * ratio + kk * dratio)
+
+        e1, e2, e3 = np.exp(1j * phi), np.exp(1j * phi2), np.exp(1j * phi3)
+        u21 = ((l3 * u31 * e3 - l1 * e1) / e2).real / l2
+        du21 = ((l1 * e1 + l3 * (1j * du31 - u31**2) * e3) / e2).imag / l2
+        v_s2 = 1j * l1 * e1 + 1j * a2 * l2 * u21 * e2
+        a_s2 = -l1 * e1 + a2 * l2 * (1j * du21 - u21**2) * e2
+        ordered = np.all(np.diff(phi_in) > 0) if phi_in.size > 1 else False
+        ev = Evaluation(phi_in)
+        ev.values = {
+            "s": np.unwrap(phi3) if ordered and not p["limiter"] else phi3,
+            "u31": u31, "du31": du31,
+            "s2": np.unwrap(phi2) if ordered and not p["limiter"] else phi2,
+            "u21": u21, "du21": du21,
+            "chi21": np.abs(v_s2), "v_s2": point(v_s2.real, v_s2.imag), "a_s2": point(a_s2.real, a_s2.imag),
+            "mu": np.arccos(np.clip(np.cos(phi3 - phi2), -1.0, 1.0)),
+        }
+        if "joints" in wanted:
+            ev.joints = {"A": point(0 * phi, 0 * phi), "B": point(bx, by), "C": point(cx, cy),
+                         "D": point(l0 + 0 * phi, 0 * phi),
+                         "S2": point(bx + a2 * (cx - bx), by + a2 * (cy - by))}
+        return ev
+
+    # --- special positions --------------------------------------------------------
+    def transmission_extremes(self, p):
+        """cos μ = (l₂² + l₃² − d²)/(2l₂l₃) is extreme where d is: φ = 0 (d = |l₀ − l₁|) and φ = π."""
+        l0, l1, l2, l3 = p["l0"], p["l1"], p["l2"], p["l3"]
+        out = []
+        for phi, d in ((0.0, abs(l0 - l1)), (np.pi, l0 + l1)):
+            mu = np.arccos(np.clip((l2**2 + l3**2 - d**2) / (2 * l2 * l3), -1, 1))
+            out.append((phi, float(min(mu, np.pi - mu))))
+        return out
+
+    def special_positions(self, p):
+        cycle = self.cycle(p)
+        positions = []
+        cp = self.change_point(p)
+        if cp is not None:
+            note = ("stroke limiter: the rocker hits it and rebounds, u₃₁ jumps" if p["limiter"]
+                    else "the rocker passes through on the other branch")
+            for phi in np.arange(cp, cp + cycle - 1e-9, 2 * np.pi):
+                positions.append(SpecialPosition("change_point", wrap_angle(phi, cycle),
+                                                 f"all four joints in line (change point); {note}"))
+        u31 = lambda x: self.evaluate(p, x, set()).values["u31"]
+        lo = 0.0 if cp is None else cp + 1e-7
+        for phi in crossings(u31, lo, lo + cycle - 2e-7):
+            s = float(self.evaluate(p, np.array([phi]), set()).values["s"][0])
+            positions.append(SpecialPosition("rocker_extreme", wrap_angle(phi, cycle),
+                                             "rocker at an extreme position: crank and coupler in line, u₃₁ = 0", s))
+        phi_mu, mu = min(self.transmission_extremes(p), key=lambda t: t[1])
+        positions.append(SpecialPosition("min_transmission_angle", phi_mu,
+                                         f"smallest transmission angle μ = {np.degrees(mu):.2f}°", mu))
+        return sorted(positions, key=lambda sp: sp.phi)
+
+    def describe(self, p):
+        l0, l1, l2, l3 = p["l0"], p["l1"], p["l2"], p["l3"]
+        cls = grashof_class(l0, l1, l2, l3)
+        info = {"grashof_class": cls, "lambda0": l0 / l1, "lambda2": l2 / l1, "lambda3": l3 / l1,
+                "min_transmission_angle": min(m for _, m in self.transmission_extremes(p))}
+        cp = self.change_point(p)
+        if cp is not None:
+            info["change_point"] = cp
+            info["scheme"] = self.scheme(p)
+        return info
+
+    def scheme(self, p) -> int:
+        """Textbook scheme of a change-point four-bar: 1 coupler longest, 2 rocker longest, 3 frame longest."""
+        p0, q0 = self._p0_q0(p)
+        if p0 == 0.0:
+            return 3
+        return 1 if p["l2"] > p["l3"] else 2

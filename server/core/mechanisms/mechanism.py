@@ -1,0 +1,71 @@
+"""Abstract mechanism: the shared part of the interface and output selection."""
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+
+import numpy as np
+
+from .base import (COMMON_OUTPUTS, TWO_PI, Evaluation, GeometryError, OutputSpec, ParamSpec,
+                   SpecialPosition)
+
+
+class Mechanism(ABC):
+    """A planar linkage driven by crank 1 through the generalised coordinate φ (rad).
+
+    Subclasses give ``name``, ``title``, ``params``, ``conventions`` and implement
+    :meth:`check`, :meth:`positions` and :meth:`special_positions`.
+    """
+
+    name: str
+    title: str
+    conventions: str
+    params: tuple[ParamSpec, ...]
+    extra_outputs: tuple[OutputSpec, ...] = ()
+
+    @property
+    def outputs(self) -> tuple[OutputSpec, ...]:
+        return COMMON_OUTPUTS + self.extra_outputs
+
+    def defaults(self) -> dict[str, float]:
+        return {p.name: p.default for p in self.params}
+
+    def check(self, params: dict[str, float]) -> dict[str, float]:
+        """Fill defaults, check ranges; return the complete parameter set or raise GeometryError."""
+        full = self.defaults() | {k: float(v) for k, v in params.items()}
+        for spec in self.params:
+            value = full[spec.name]
+            if not np.isfinite(value):
+                raise GeometryError(spec.name, "must be a finite number", "not_finite")
+            if spec.integer and value != round(value):
+                raise GeometryError(spec.name, "must be a whole number", "not_integer")
+            if spec.unit == "m" and value < 0 and spec.minimum >= 0:
+                raise GeometryError(spec.name, "a length cannot be negative", "negative_length")
+            if not spec.minimum <= value <= spec.maximum:
+                raise GeometryError(spec.name, f"must lie between {spec.minimum:g} and {spec.maximum:g} {spec.unit}",
+                                    "out_of_range", minimum=spec.minimum, maximum=spec.maximum)
+        unknown = set(full) - {p.name for p in self.params}
+        if unknown:
+            raise GeometryError(sorted(unknown)[0], f"not a parameter of the {self.name} mechanism",
+                                "unknown_param")
+        self.check_geometry(full)
+        return full
+
+    @abstractmethod
+    def check_geometry(self, p: dict[str, float]) -> None:
+        """Raise GeometryError when the linkage cannot be assembled or the crank cannot turn fully."""
+
+    def cycle(self, p: dict[str, float]) -> float:
+        """Length of one kinematic cycle in φ (rad): 2π unless the mechanism says otherwise."""
+        return TWO_PI
+
+    @abstractmethod
+    def evaluate(self, p: dict[str, float], phi: np.ndarray, wanted: set[str]) -> Evaluation:
+        """Compute the wanted outputs at crank angles ``phi`` (rad)."""
+
+    @abstractmethod
+    def special_positions(self, p: dict[str, float]) -> list[SpecialPosition]:
+        """Dead centres, rocker extremes and similar positions within one cycle."""
+
+    def describe(self, p: dict[str, float]) -> dict:
+        """Words about the configuration (class, type of motion) for the scene header."""
+        return {}

@@ -1,0 +1,52 @@
+"""Sine (Scotch-yoke) mechanism, seed 000 §2.2, Fig. 2.1.
+
+Crank 1 (length l₁) turns about O; block 2 on the crank pin A slides in the slot of
+yoke 3, which translates along x.  φ = 0 with the crank pointing to −x (yoke at its
+left extreme), φ grows clockwise in the drawing (A = (−l₁cos φ, l₁sin φ)).
+
+    x = l₁(1 − cos φ)       (2.1)     y = l₁ sin φ      (2.2)
+    u₃₁ = l₁ sin φ          (2.3)     u′₃₁ = l₁ cos φ   (2.4)
+    u₂₁ = l₁ cos φ          (2.5)     u′₂₁ = −l₁ sin φ  (2.6)
+
+x is the yoke travel from φ = 0; y is the block's travel in the slot, so u₂₁ is the
+sliding-velocity analog V₂₃/ω₁ that reduces slot friction to the crank.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .base import Evaluation, ParamSpec, SpecialPosition, point
+from .mechanism import Mechanism
+
+
+class Sine(Mechanism):
+    name = "sine"
+    title = "Sine (Scotch-yoke) mechanism"
+    conventions = ("Crank pivot O at the origin, x to the right, y up. φ = 0: crank along −x, yoke at its "
+                   "left extreme; φ grows clockwise. s = x = l₁(1 − cos φ) is the yoke travel (m); "
+                   "s2 = y = l₁ sin φ is the block's travel along the slot (m).")
+    params = (ParamSpec("l1", "m", "crank length OA", 0.1, 0.01, 1.0),)
+
+    def check_geometry(self, p):
+        """Any crank length in the offered range works: the yoke follows the pin everywhere."""
+
+    def evaluate(self, p, phi, wanted):
+        l1 = p["l1"]
+        c, s = np.cos(phi), np.sin(phi)
+        ev = Evaluation(phi)
+        ev.values = {
+            "s": l1 * (1 - c), "u31": l1 * s, "du31": l1 * c,
+            "s2": l1 * s, "u21": l1 * c, "du21": -l1 * s,
+            # S2 (block) sits on the crank pin A = (−l₁cos φ, l₁sin φ)
+            "chi21": np.full_like(phi, l1),
+            "v_s2": point(l1 * s, l1 * c), "a_s2": point(l1 * c, -l1 * s),
+        }
+        if "joints" in wanted:
+            ev.joints = {"O": point(0 * phi, 0 * phi), "A": point(-l1 * c, l1 * s),
+                         "yoke": point(-l1 * c, 0 * phi)}
+        return ev
+
+    def special_positions(self, p):
+        l1 = p["l1"]
+        return [SpecialPosition("dead_centre", 0.0, "yoke at its left extreme, u₃₁ = 0", 0.0),
+                SpecialPosition("dead_centre", np.pi, "yoke at its right extreme, u₃₁ = 0", 2 * l1)]

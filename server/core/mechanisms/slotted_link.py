@@ -1,0 +1,101 @@
+"""Slotted-link (кулисный) mechanism: crank 1, block 2, slotted lever 3; seed 000 §2.4.
+
+Crank pivot A at the origin, lever pivot C at (0, −l₀) directly below it.  φ = 0 with
+crank and lever vertical and B above A (l_BC = l₀ + l₁); φ and the lever angle ψ grow
+clockwise from the vertical, B = (l₁sin φ, l₁cos φ).  λ = l₀/l₁ (pivot distance/crank):
+λ < 1 rotating lever, λ > 1 oscillating (quick-return) lever, λ = 1 special.
+
+    ψ = arctan(sin φ/(λ + cos φ))                                     (2.33)
+    y = l₁(1 + λ − √(1 + λ² + 2λ cos φ))  (block travel along the lever)  (2.34)
+    u₃₁ = (1 + λ cos φ)/(1 + λ² + 2λ cos φ)                              (2.27)
+    u′₃₁ = λ(1 − λ²) sin φ/(1 + λ² + 2λ cos φ)²                          (2.28)
+    u₂₁ = l₁λ sin φ/√(1 + λ² + 2λ cos φ)                                 (2.31)
+    u′₂₁ = l₁λ/√D · (cos φ + λ sin²φ/D),  D = 1 + λ² + 2λ cos φ           (2.32)
+
+At λ = 1 and φ = π the block sits on the lever pivot (D = 0): u₂₁, u′₂₁ and ψ are
+undefined there (the textbook's jamming position, §3.3).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .base import Evaluation, ParamSpec, SpecialPosition, point
+from .mechanism import Mechanism
+
+
+class SlottedLink(Mechanism):
+    name = "slotted_link"
+    title = "Slotted-link (кулисный) mechanism"
+    conventions = ("Crank pivot A at the origin, lever pivot C at (0, −l₀). φ = 0: crank and lever vertical, "
+                   "block B above A; φ and ψ grow clockwise. s = lever angle ψ (rad); s2 = block travel y along "
+                   "the lever from φ = 0 (m). λ = l₀/l₁: λ < 1 rotating lever, λ > 1 oscillating "
+                   "(quick-return) lever.")
+    params = (
+        ParamSpec("l0", "m", "distance AC between the crank and lever pivots", 0.05, 0.001, 10.0),
+        ParamSpec("l1", "m", "crank length AB", 0.1, 0.01, 1.0),
+    )
+
+    def check_geometry(self, p):
+        """Every λ = l₀/l₁ > 0 assembles; λ = 1 has one undefined position, reported when evaluated."""
+
+    def evaluate(self, p, phi, wanted):
+        l0, l1 = p["l0"], p["l1"]
+        lam = l0 / l1
+        c, s = np.cos(phi), np.sin(phi)
+        # D = l_BC²/l₁², written as (1 − λ)² + 4λcos²(φ/2) so that it is exact near λ = 1, φ = π
+        d2 = (1 - lam) ** 2 + 4 * lam * np.cos(phi / 2) ** 2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            root = np.sqrt(d2)
+            if lam > 1:
+                psi = np.arctan2(s, lam + c)
+            else:  # rotating lever: ψ = φ − arg(1 + λe^{−iφ}) stays continuous
+                psi = phi - np.arctan2(lam * s, 1 + lam * c)
+            values = {
+                "s": psi,
+                "u31": (1 + lam * c) / d2,
+                "du31": lam * (1 - lam**2) * s / d2**2,
+                "s2": l1 * (1 + lam - root),
+                "u21": l1 * lam * s / root,
+                "du21": l1 * lam / root * (c + lam * s**2 / d2),
+            }
+        values["chi21"] = np.full_like(phi, l1)       # S2 = block on the crank pin B
+        values["v_s2"] = point(l1 * c, -l1 * s)
+        values["a_s2"] = point(-l1 * s, -l1 * c)
+        ev = Evaluation(phi, values)
+        singular = d2 < 1e-24
+        if singular.any():
+            for key in ("s", "u31", "du31", "u21", "du21"):
+                values[key] = np.where(singular, np.nan, values[key])
+            ev.warnings.append("λ = 1 and φ = 180°: the block is on the lever pivot C, the lever's position and "
+                               "the block's sliding speed are undefined there (theoretical jamming, seed 000 §3.3).")
+        if "joints" in wanted:
+            lever = l0 + l1  # drawn lever length: reaches B in every position
+            ev.joints = {"A": point(0 * phi, 0 * phi), "B": point(l1 * s, l1 * c), "C": point(0 * phi, -l0 + 0 * phi),
+                         "lever_end": point(lever * np.sin(psi), -l0 + lever * np.cos(psi))}
+        return ev
+
+    def special_positions(self, p):
+        lam = p["l0"] / p["l1"]
+        if lam > 1:
+            psi_max = np.arcsin(1 / lam)
+            return [
+                SpecialPosition("rocker_extreme", np.pi / 2 + psi_max,
+                                "lever at its extreme +ψ_max: u₃₁ = 0, end of the working stroke", psi_max),
+                SpecialPosition("rocker_extreme", 1.5 * np.pi - psi_max,
+                                "lever at its extreme −ψ_max: u₃₁ = 0, end of the return stroke", -psi_max),
+            ]
+        if lam == 1:
+            return [SpecialPosition("jamming", np.pi, "block on the lever pivot: u₂₁ undefined, jamming with dry friction")]
+        return [SpecialPosition("fastest_lever", np.pi, "lever fastest: u₃₁ = 1/(1 − λ)", 1 / (1 - lam)),
+                SpecialPosition("slowest_lever", 0.0, "lever slowest: u₃₁ = 1/(1 + λ)", 1 / (1 + lam))]
+
+    def describe(self, p):
+        lam = p["l0"] / p["l1"]
+        info = {"lambda": lam}
+        if lam > 1:
+            psi_max = np.arcsin(1 / lam)
+            info |= {"motion": "oscillating lever (quick return)", "swing": 2 * psi_max,
+                     "time_ratio": (np.pi + 2 * psi_max) / (np.pi - 2 * psi_max)}
+        else:
+            info |= {"motion": "rotating lever" if lam < 1 else "lever turns at half the crank speed"}
+        return info
