@@ -9,6 +9,7 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 from ..core.kinematics import MAX_POINTS
 
 MAX_ANGLE = 1000.0
+Language = Literal["ru", "uk", "en"]
 MechanismName = Literal["sine", "slider_crank", "slotted_link", "four_bar"]
 
 

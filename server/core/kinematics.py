@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .harmonics import harmonics
-from .mechanisms import MECHANISMS, GeometryError
+from .mechanisms import MECHANISMS, GeometryError, Notice
 
 MAX_POINTS = 10001
 ARRAY_OUTPUTS_2D = ("v_s2", "a_s2")
@@ -26,7 +26,7 @@ class KinematicsResult:
     cycle: float
     phi: np.ndarray
     outputs: dict[str, object] = field(default_factory=dict)
-    warnings: list[str] = field(default_factory=list)
+    warnings: list[Notice] = field(default_factory=list)
 
 
 def crank_angles(cycle: float, n: int) -> np.ndarray:
@@ -74,23 +74,29 @@ def compute_kinematics(mechanism: str, params: dict[str, float], outputs: list[s
     return result
 
 
-def proximity_warnings(mechanism: str, p: dict[str, float], mech) -> list[str]:
+def proximity_warnings(mechanism: str, p: dict[str, float], mech) -> list[Notice]:
     """Sentences for configurations close to a singular one (large but finite transfer functions)."""
     notes = []
     if mechanism == "slider_crank":
         margin = p["l2"] - p["l1"] - abs(p["e"])
         if margin < 0.1 * p["l1"]:
-            notes.append(f"Near the assembly limit: l₂ − l₁ − |e| = {margin:.3g} m. The rod swings up to "
-                         f"{np.degrees(np.arcsin((p['l1'] + abs(p['e'])) / p['l2'])):.1f}°, u₂₁ and u′₃₁ grow large "
-                         "where the rod is nearly perpendicular to the guide.")
+            angle = np.degrees(np.arcsin((p["l1"] + abs(p["e"])) / p["l2"]))
+            notes.append(Notice("slider_crank_near_limit",
+                                f"Near the assembly limit: l₂ − l₁ − |e| = {margin:.3g} m. The rod swings up to "
+                                f"{angle:.1f}°, u₂₁ and u′₃₁ grow large where the rod is nearly perpendicular to "
+                                "the guide.", {"margin": margin, "angle": angle}))
     elif mechanism == "slotted_link":
         lam = p["l0"] / p["l1"]
         if lam != 1 and abs(lam - 1) < 0.1:
-            notes.append(f"λ = {lam:.3g} is close to 1: near φ = 180° the block passes close to the lever pivot, "
-                         f"u₃₁ reaches {1 / abs(1 - lam):.3g} and u′₃₁ is very large.")
+            notes.append(Notice("slotted_near_one",
+                                f"λ = {lam:.3g} is close to 1: near φ = 180° the block passes close to the lever "
+                                f"pivot, u₃₁ reaches {1 / abs(1 - lam):.3g} and u′₃₁ is very large.",
+                                {"lam": lam, "peak": 1 / abs(1 - lam)}))
     elif mechanism == "four_bar":
         mu = mech.describe(p)["min_transmission_angle"]
         if mech.change_point(p) is None and mu < np.radians(10):
-            notes.append(f"The smallest transmission angle is {np.degrees(mu):.2f}°: the linkage is close to a "
-                         "change point, and the transfer functions are large there.")
+            notes.append(Notice("four_bar_small_mu",
+                                f"The smallest transmission angle is {np.degrees(mu):.2f}°: the linkage is close to "
+                                "a change point, and the transfer functions are large there.",
+                                {"mu": float(np.degrees(mu))}))
     return notes

@@ -1,12 +1,13 @@
 """POST /api/v1/kinematics: position functions and transfer functions over crank angles."""
 import numpy as np
-from fastapi import APIRouter
+from fastapi import APIRouter, Query
 
 from ...core.kinematics import compute_kinematics
-from ...core.mechanisms import MECHANISMS, GeometryError
+from ...core.mechanisms import MECHANISMS, GeometryError, Notice
 from ..errors import unprocessable
 from ..json_safe import count_undefined, finite_or_none
-from ..schemas import KinematicsRequest, KinematicsResponse
+from ..messages import translate
+from ..schemas import KinematicsRequest, KinematicsResponse, Language
 
 router = APIRouter(tags=["kinematics"])
 
@@ -14,19 +15,22 @@ router = APIRouter(tags=["kinematics"])
 @router.post("/kinematics", response_model=KinematicsResponse,
              summary="Position functions, u₃₁, u′₃₁, u₂₁, u′₂₁, joints and special positions",
              responses={422: {"description": "invalid input: the field and the reason"}})
-def kinematics(request: KinematicsRequest) -> KinematicsResponse:
+def kinematics(request: KinematicsRequest,
+               lang: Language = Query("en", description="language of the warnings: ru, uk or en")) -> KinematicsResponse:
     try:
         result = compute_kinematics(request.mechanism, request.params, request.outputs,
                                     phi=None if request.phi is None else np.asarray(request.phi, float), n=request.n)
     except GeometryError as error:
         raise unprocessable(error) from None
-    warnings = list(result.warnings)
+    notices = list(result.warnings)
     for name, value in result.outputs.items():
         bad = count_undefined(value)
         if bad:
-            warnings.append(f"{name}: undefined at {bad} point(s), sent as null (singular position).")
+            notices.append(Notice("undefined_points", f"{name}: undefined at {bad} point(s), sent as null "
+                                  "(singular position).", {"output": name, "count": bad}))
     units = {o.name: o.unit for o in MECHANISMS[request.mechanism].outputs}
     return KinematicsResponse(
         mechanism=result.mechanism, params=result.params, cycle=result.cycle,
         phi=finite_or_none(result.phi), outputs=finite_or_none(result.outputs),
-        units={name: units.get(name, "") for name in result.outputs}, warnings=warnings)
+        units={name: units.get(name, "") for name in result.outputs},
+        warnings=[translate(notice, lang) for notice in notices])

@@ -33,6 +33,15 @@ class GeometryError(ValueError):
 
 
 @dataclass(frozen=True)
+class Notice:
+    """A warning in words: English ``text``, plus ``code`` and ``context`` for other languages."""
+
+    code: str
+    text: str
+    context: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
 class ParamSpec:
     """One geometric parameter: name, unit, meaning and the range the scene offers."""
 
@@ -75,7 +84,7 @@ class Evaluation:
     phi: np.ndarray
     values: dict[str, np.ndarray] = field(default_factory=dict)
     joints: dict[str, np.ndarray] = field(default_factory=dict)
-    warnings: list[str] = field(default_factory=list)
+    warnings: list[Notice] = field(default_factory=list)
 
 
 COMMON_OUTPUTS = (

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Evaluation, GeometryError, OutputSpec, ParamSpec, SpecialPosition, point, wrap_angle
+from .base import Evaluation, GeometryError, Notice, OutputSpec, ParamSpec, SpecialPosition, point, wrap_angle
 from .mechanism import Mechanism
 
 APPROXIMATIONS = ("u31_approx", "du31_approx", "u21_approx", "du21_approx")
@@ -102,10 +102,11 @@ class SliderCrank(Mechanism):
             if len(phi) else 0.0
             for key, val in approx.items()}
         if p["e"] != 0.0:
-            ev.warnings.append("The approximations (2.16), (2.17*) are derived for the central crank-slider "
-                               "(e = 0); with an offset they ignore e.")
+            ev.warnings.append(Notice("approx_offset", "The approximations (2.16), (2.17*) are derived for the "
+                                      "central crank-slider (e = 0); with an offset they ignore e."))
         if lam <= 3:
-            ev.warnings.append(f"The approximations (2.16), (2.17*) assume λ > 3 (λ² ≫ 1); here λ = {lam:.3g}.")
+            ev.warnings.append(Notice("approx_small_lambda", f"The approximations (2.16), (2.17*) assume λ > 3 "
+                                      f"(λ² ≫ 1); here λ = {lam:.3g}.", {"lam": lam}))
 
     def special_positions(self, p):
         l1, l2, e = p["l1"], p["l2"], p["e"]

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Evaluation, ParamSpec, SpecialPosition, point
+from .base import Evaluation, Notice, ParamSpec, SpecialPosition, point
 from .mechanism import Mechanism
 
 
@@ -66,8 +66,9 @@ class SlottedLink(Mechanism):
         if singular.any():
             for key in ("s", "u31", "du31", "u21", "du21"):
                 values[key] = np.where(singular, np.nan, values[key])
-            ev.warnings.append("λ = 1 and φ = 180°: the block is on the lever pivot C, the lever's position and "
-                               "the block's sliding speed are undefined there (theoretical jamming, seed 000 §3.3).")
+            ev.warnings.append(Notice("slotted_jamming", "λ = 1 and φ = 180°: the block is on the lever pivot C, the "
+                                      "lever's position and the block's sliding speed are undefined there "
+                                      "(theoretical jamming, seed 000 §3.3)."))
         if "joints" in wanted:
             lever = l0 + l1  # drawn lever length: reaches B in every position
             ev.joints = {"A": point(0 * phi, 0 * phi), "B": point(l1 * s, l1 * c), "C": point(0 * phi, -l0 + 0 * phi),
