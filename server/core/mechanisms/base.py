@@ -9,10 +9,7 @@ about HTTP or the browser.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable
-
 import numpy as np
-from scipy.optimize import brentq
 
 TWO_PI = 2.0 * np.pi
 
@@ -100,24 +97,6 @@ COMMON_OUTPUTS = (
     OutputSpec("joints", "m", "joint coordinates (x, y) for drawing the linkage to scale"),
     OutputSpec("special", "rad", "special positions: dead centres, rocker extremes, change points, smallest μ"),
 )
-
-
-def crossings(func: Callable[[np.ndarray], np.ndarray], start: float, stop: float,
-              n: int = 2881) -> list[float]:
-    """Roots of a smooth function on [start, stop): sign changes on a grid refined by Brent's method."""
-    grid = np.linspace(start, stop, n)
-    values = func(grid)
-    roots: list[float] = []
-    for i in range(n - 1):
-        a, b = values[i], values[i + 1]
-        if not (np.isfinite(a) and np.isfinite(b)):
-            continue
-        if a == 0.0:
-            roots.append(float(grid[i]))
-        elif a * b < 0.0:
-            roots.append(brentq(lambda x: float(func(np.array([x]))[0]), grid[i], grid[i + 1],
-                                xtol=1e-14, rtol=1e-14))
-    return roots
 
 
 def wrap_angle(phi: float, cycle: float = TWO_PI) -> float:

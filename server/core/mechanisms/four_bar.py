@@ -31,8 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import (Evaluation, GeometryError, OutputSpec, ParamSpec, SpecialPosition, crossings, point,
-                   wrap_angle)
+from .base import Evaluation, GeometryError, OutputSpec, ParamSpec, SpecialPosition, point, wrap_angle
 from .mechanism import Mechanism
 
 CHANGE_POINT_TOL = 1e-9
@@ -183,6 +182,35 @@ class FourBar(Mechanism):
             out.append((phi, float(min(mu, np.pi - mu))))
         return out
 
+    def rocker_extremes(self, p) -> list[tuple[float, float]]:
+        """Crank angles where u₃₁ = 0: A, B, C in line, AC = l₂ + l₁ (extended) or l₂ − l₁ (folded).
+
+        In triangle ACD the angle at A is α = arccos((l₀² + AC² − l₃²)/(2l₀AC)); B lies on AC
+        (φ = ±α) or on its extension beyond A (φ = π ± α).  Of these candidates the ones on the
+        chosen branch are those where the computed C is at distance AC from A; a change point,
+        where all four joints line up, is no extreme (u₃₁ ≠ 0 there) and drops out.
+        """
+        l0, l1, l2, l3 = p["l0"], p["l1"], p["l2"], p["l3"]
+        cycle = self.cycle(p)
+        candidates, reach = [], []
+        for ac, turn in ((l2 + l1, 0.0), (abs(l2 - l1), 0.0 if l2 < l1 else np.pi)):
+            cos_a = (l0**2 + ac**2 - l3**2) / (2 * l0 * ac)
+            if ac == 0 or abs(cos_a) > 1:
+                continue   # that line-up cannot be assembled: the output rotates fully
+            alpha = np.arccos(cos_a)
+            for phi in (turn + alpha, turn - alpha):
+                for lap in np.arange(0.0, cycle - 1e-9, 2 * np.pi):
+                    candidates.append(wrap_angle(phi + lap, cycle))
+                    reach.append(ac)
+        if not candidates:
+            return []
+        ev = self.evaluate(p, np.array(candidates), {"joints"})
+        ac_found = np.hypot(*ev.joints["C"].T)
+        scale = l0 + l1 + l2 + l3
+        rows = zip(candidates, reach, ac_found, ev.values["s"], ev.values["u31"])
+        return sorted((phi, float(s)) for phi, ac, found, s, u31 in rows
+                      if abs(found - ac) <= 1e-9 * scale and abs(u31) < 1e-6)
+
     def special_positions(self, p):
         cycle = self.cycle(p)
         positions = []
@@ -193,11 +221,8 @@ class FourBar(Mechanism):
             for phi in np.arange(cp, cp + cycle - 1e-9, 2 * np.pi):
                 positions.append(SpecialPosition("change_point", wrap_angle(phi, cycle),
                                                  f"all four joints in line (change point); {note}"))
-        u31 = lambda x: self.evaluate(p, x, set()).values["u31"]
-        lo = 0.0 if cp is None else cp + 1e-7
-        for phi in crossings(u31, lo, lo + cycle - 2e-7):
-            s = float(self.evaluate(p, np.array([phi]), set()).values["s"][0])
-            positions.append(SpecialPosition("rocker_extreme", wrap_angle(phi, cycle),
+        for phi, s in self.rocker_extremes(p):
+            positions.append(SpecialPosition("rocker_extreme", phi,
                                              "rocker at an extreme position: crank and coupler in line, u₃₁ = 0", s))
         phi_mu, mu = min(self.transmission_extremes(p), key=lambda t: t[1])
         positions.append(SpecialPosition("min_transmission_angle", phi_mu,
