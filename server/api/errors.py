@@ -1,7 +1,11 @@
 """HTTP 422 in FastAPI's own error format for errors the numeric core reports."""
-from fastapi import HTTPException
+from fastapi import HTTPException, Request
+from fastapi.encoders import jsonable_encoder
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import JSONResponse
 
 from ..core.mechanisms import GeometryError
+from .json_safe import finite_or_none
 
 REQUEST_FIELDS = ("outputs", "phi", "n")
 
@@ -15,3 +19,12 @@ def unprocessable(error: GeometryError) -> HTTPException:
     return HTTPException(status_code=422, detail=[{
         "loc": loc, "msg": error.reason, "type": "geometry_error",
         "ctx": {"code": error.code, **error.context}}])
+
+
+async def validation_error(request: Request, error: RequestValidationError) -> JSONResponse:
+    """FastAPI's own 422 body, with NaN/Infinity echoed from the request (``"input"``) sent as null.
+
+    The default handler echoes the offending input; a body such as ``{"phi": [NaN]}`` (accepted by
+    Python's JSON parser) would otherwise make the error response itself fail to serialise (HTTP 500).
+    """
+    return JSONResponse(status_code=422, content={"detail": finite_or_none(jsonable_encoder(error.errors()))})
