@@ -2,7 +2,7 @@
 # Install what the tests need (Python packages; Debian's chromium when it is missing), then run the whole suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python3 -m pip install --quiet --disable-pip-version-check -e ".[test]"
+python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore -e ".[test]"
 if ! command -v /usr/bin/chromium >/dev/null 2>&1; then
     if [ "$(id -u)" -eq 0 ]; then apt-get update -qq && apt-get install -y -qq chromium >/dev/null
     else sudo apt-get update -qq && sudo apt-get install -y -qq chromium >/dev/null; fi
