@@ -4,7 +4,7 @@ from __future__ import annotations
 import math
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from ..core.kinematics import MAX_POINTS
 
@@ -55,12 +55,18 @@ class KinematicsRequest(BaseModel):
         "names of the outputs wanted, e.g. s, u31, du31, s2, u21, du21, chi21, v_s2, a_s2, joints, special, "
         "harmonics, info; each mechanism lists its own"))
 
+    @field_validator("phi")
+    @classmethod
+    def finite_angles(cls, phi):
+        """Reported at loc ["body", "phi"]: NaN, ±Infinity and absurdly large angles."""
+        if phi is not None and not all(math.isfinite(x) and abs(x) <= MAX_ANGLE for x in phi):
+            raise ValueError(f"every angle in `phi` must be a finite number of radians, |φ| ≤ {MAX_ANGLE:g}")
+        return phi
+
     @model_validator(mode="after")
     def one_grid(self):
         if (self.phi is None) == (self.n is None):
             raise ValueError("give exactly one of `phi` (angles in radians) or `n` (number of points)")
-        if self.phi is not None and not all(math.isfinite(x) and abs(x) <= MAX_ANGLE for x in self.phi):
-            raise ValueError(f"every angle in `phi` must be a finite number of radians, |φ| ≤ {MAX_ANGLE:g}")
         return self
 
 
