@@ -111,6 +111,11 @@ class FourBar(Mechanism):
     def cycle(self, p):
         return 4 * np.pi if self.change_point(p) is not None and not p["limiter"] else 2 * np.pi
 
+    def jumps(self, p):
+        """With a stroke limiter the rocker rebounds at the change point: u₃₁ jumps there (seed 000, Fig. 2.9b)."""
+        cp = self.change_point(p)
+        return [cp] if cp is not None and p["limiter"] else []
+
     # --- kinematics ---------------------------------------------------------------
     def evaluate(self, p, phi_in, wanted):
         l0, l1, l2, l3, sigma, a2 = (p[k] for k in ("l0", "l1", "l2", "l3", "assembly", "a2"))

@@ -58,6 +58,10 @@ class Mechanism(ABC):
         """Length of one kinematic cycle in φ (rad): 2π unless the mechanism says otherwise."""
         return TWO_PI
 
+    def jumps(self, p: dict[str, float]) -> list[float]:
+        """Crank angles (rad) where the transfer functions jump (a stroke limiter); none by default."""
+        return []
+
     @abstractmethod
     def evaluate(self, p: dict[str, float], phi: np.ndarray, wanted: set[str]) -> Evaluation:
         """Compute the wanted outputs at crank angles ``phi`` (rad)."""
