@@ -1,0 +1,1 @@
+"""Machine dynamics on the one-mass model: reduction, loads, motors and the equation of motion."""

@@ -1,0 +1,74 @@
+"""The textbook's successive approximations of the friction forces, step by step (seed 000 §3.1, §3.2).
+
+Sine mechanism, yoke 3 (Fig. 3.1): (R₂₃)₀ = P_c; then F_T2 = f R₂₃ (block in the slot),
+R₀₃ = F_T2, F_T3 = f R₀₃ (yoke in its guide), R₂₃ = P_c + F_T3, so
+(R₂₃)_n = P_c Σ_{i=0}^{n} f^{2i} → P_c/(1 − f²); the ratio of the series is f².
+Crank-slider, group 2–3 (Fig. 3.3): (R₀₃)₀ = P_c tan ψ; F_T = f R₀₃;
+R₀₃ = (P_c + F_T) tan ψ, so (F_T)_k = P_c Σ_{i=1}^{k} (f tan ψ)^i (3.24) → P_c f tan ψ/(1 − f tan ψ);
+the ratio is f|tan ψ|.  A ratio ≥ 1 means the series diverges: self-locking.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..mechanisms import MECHANISMS
+
+DIVERGED = 1e9   # a force this many times the load: the series has visibly run away
+
+
+@dataclass
+class IterationLog:
+    """Each approximation's forces (N), the relative change, and whether the series converges."""
+
+    ratio: float
+    steps: list[dict] = field(default_factory=list)
+    converged: bool = False
+    limit: dict = field(default_factory=dict)
+
+
+def friction_iteration(mechanism: str, params: dict[str, float], phi: float, force: float, f: float,
+                       tolerance: float = 1e-6, max_steps: int = 30) -> IterationLog:
+    """Run the approximations at crank angle φ (rad) until the relative change is below ``tolerance``."""
+    if mechanism == "sine":
+        ratio = f**2
+        log = IterationLog(ratio)
+        r23 = force
+        log.steps.append({"n": 0, "R23": r23, "F_T2": 0.0, "F_T3": 0.0, "R03": 0.0, "change": None})
+        for n in range(1, max_steps + 1):
+            f_t2 = f * r23
+            r03 = f_t2
+            f_t3 = f * r03
+            new = force + f_t3
+            change = abs(new - r23) / abs(new) if new else 0.0
+            r23 = new
+            log.steps.append({"n": n, "R23": r23, "F_T2": f_t2, "F_T3": f_t3, "R03": r03, "change": change})
+            if change < tolerance or r23 > DIVERGED * force:
+                break
+        if ratio < 1:
+            log.limit = {"R23": force / (1 - ratio)}
+    elif mechanism == "slider_crank":
+        values = MECHANISMS[mechanism].evaluate(params, np.array([phi]), set()).values
+        tan_psi = abs(float(np.tan(values["s2"][0])))
+        ratio = f * tan_psi
+        log = IterationLog(ratio)
+        f_t, r03 = 0.0, force * tan_psi
+        log.steps.append({"n": 0, "F_T": 0.0, "R03": r03, "R12": force * np.sqrt(1 + tan_psi**2), "change": None})
+        for n in range(1, max_steps + 1):
+            new = f * r03
+            change = abs(new - f_t) / abs(new) if new else 0.0
+            f_t = new
+            r03 = (force + f_t) * tan_psi
+            log.steps.append({"n": n, "F_T": f_t, "R03": r03, "R12": (force + f_t) * np.sqrt(1 + tan_psi**2),
+                              "change": change})
+            if change < tolerance or f_t > DIVERGED * force:
+                break
+        if ratio < 1:
+            log.limit = {"F_T": force * ratio / (1 - ratio)}
+    else:
+        raise ValueError(f"the textbook iterates friction forces only for the sine mechanism and the crank-slider, "
+                         f"not for {mechanism}")
+    last = log.steps[-1]["change"]
+    log.converged = ratio < 1 and last is not None and last < tolerance
+    return log

@@ -1,0 +1,122 @@
+"""Fixed-step RK4 in the crank angle for the energy form of the equation of motion.
+
+    dT/dφ = F(φ, T) = M_φ(φ) + M_ω(ω, φ),   ω = √(2T/J(φ))          seed 000 (1.9), (1.13)
+    dS/dφ = ∂F/∂T · S,   ∂F/∂T = (∂M_ω/∂ω)/(J ω)                       variational equation
+
+The nodes are fixed in φ, so every φ-dependent quantity is tabulated in one vectorised
+call on the step and half-step nodes; the loop does scalar arithmetic only.  When F does
+not depend on T (moments of φ alone) the scheme is Simpson's rule applied to the energy
+integral (1.9): T(φ) = T₀ + ∫ (M_д − M_c) dφ.  Time follows from dt = dφ/ω (1.11) by
+Simpson's rule per step.  A start from rest is singular in t (ω ∝ √(φ − φ₀)); that first
+step is integrated in time instead, where the equation is regular.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from .machine import Machine
+
+
+REST_STEPS = 16   # steps integrated in time after a start from rest: T ≈ aφ − cφ^{3/2} is not smooth in φ there
+
+
+def leave_rest(machine: Machine, phi: np.ndarray, t0: float) -> tuple[list[float], list[float]]:
+    """T and t at the step nodes ``phi`` after a start from rest at phi[0]: J ω̇ = M − ½J′ω², φ̇ = ω
+    in time, regular at ω = 0 (unlike dT/dφ, whose solution has a φ^{3/2} term), by scipy's DOP853."""
+    def rhs(_, y):
+        tables = machine.tables(np.array([y[0]]))
+        moment = tables.net_phi[0]
+        if machine.speed_dependent:
+            moment += machine.speed_moment(y[1], tables.sliding[0])[0]
+        return [y[1], (moment - 0.5 * tables.dJ[0] * y[1] ** 2) / tables.J[0]]
+
+    def passing(node):
+        def event(_, y):
+            return y[0] - node
+        event.terminal = node == phi[-1]
+        return event
+    start = machine.tables(phi[:1])
+    scale = math.sqrt(2 * (phi[-1] - phi[0]) * start.J[0] / max(abs(rhs(0, [phi[0], 0.0])[1]) * start.J[0], 1e-300))
+    solution = solve_ivp(rhs, (0.0, 100 * scale + 1.0), [phi[0], 0.0], method="DOP853", rtol=1e-12, atol=1e-14,
+                         events=[passing(node) for node in phi[1:]])
+    reached = [k for k, e in enumerate(solution.t_events) if e.size and solution.y_events[k][0][1] > 0]
+    reached = reached[:next((n for n, k in enumerate(reached) if k != n), len(reached))]   # contiguous from the start
+    omega = np.array([float(solution.y_events[k][0][1]) for k in reached])
+    J = machine.tables(phi[1:len(reached) + 1]).J
+    return (0.5 * J * omega**2).tolist(), [t0 + float(solution.t_events[k][0]) for k in reached]
+
+
+@dataclass
+class Run:
+    """T, ω, t at the step nodes; S = dT(end)/dT₀; where the run stopped if it stalled."""
+
+    phi: np.ndarray
+    T: np.ndarray
+    omega: np.ndarray
+    t: np.ndarray
+    sensitivity: float
+    stall_phi: float | None = None
+
+
+def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0) -> Run:
+    """Integrate over the nodes of ``tables`` (2·steps + 1 nodes, step and half-step) from T₀."""
+    J = tables.J.tolist()
+    base = tables.net_phi.tolist()
+    sliding = tables.sliding.tolist()
+    phi = tables.phi
+    h = float(phi[2] - phi[0])
+    speed = machine.speed_dependent
+    speed_moment = machine.speed_moment
+
+    def rate(j: int, T: float) -> tuple[float, float]:
+        omega = math.sqrt(2.0 * T / J[j]) if T > 0.0 else 0.0
+        if not speed:
+            return base[j], 0.0
+        moment, slope = speed_moment(omega, sliding[j])
+        return base[j] + moment, (slope / (J[j] * omega) if omega > 0.0 else 0.0)
+
+    T_nodes, t_nodes = [T0], [t0]
+    S, T, t = 1.0, T0, t0
+    stall, first = None, 0
+    if T0 == 0.0:
+        first = min(REST_STEPS, steps)
+        T_rest, t_rest = leave_rest(machine, phi[0:2 * first + 1:2], t0)
+        T_nodes += T_rest
+        t_nodes += t_rest
+        T, t = T_nodes[-1], t_nodes[-1]
+        if len(T_rest) < first:            # came to rest again before the first few steps
+            stall, first = float(phi[2 * len(T_rest)]), steps
+    for k in range(first, steps):
+        j = 2 * k
+        f1, g1 = rate(j, T)
+        f2, g2 = rate(j + 1, T + 0.5 * h * f1)
+        f3, g3 = rate(j + 1, T + 0.5 * h * f2)
+        f4, g4 = rate(j + 2, T + h * f3)
+        T_new = T + h * (f1 + 2 * f2 + 2 * f3 + f4) / 6
+        if T_new <= 0.0 or min(T + 0.5 * h * f1, T + 0.5 * h * f2) < 0.0:
+            stall = float(phi[j])
+            break
+        s1 = g1 * S
+        s2 = g2 * (S + 0.5 * h * s1)
+        s3 = g3 * (S + 0.5 * h * s2)
+        s4 = g4 * (S + h * s3)
+        S += h * (s1 + 2 * s2 + 2 * s3 + s4) / 6
+        w0 = math.sqrt(2 * T / J[j])
+        w1 = math.sqrt(2 * T_new / J[j + 2])
+        if w0 == 0.0:           # leaving rest: T grows linearly, ∫dφ/ω = 2h/ω(h)
+            t += 2 * h / w1
+        else:                   # Simpson, with T at mid-step from the cubic Hermite interpolant
+            T_mid = 0.5 * (T + T_new) + h * (f1 - f4) / 8
+            w_half = math.sqrt(2 * max(T_mid, 0.0) / J[j + 1])
+            t += h * (1 / w0 + 4 / w_half + 1 / w1) / 6
+        T = T_new
+        T_nodes.append(T)
+        t_nodes.append(t)
+    T_arr = np.array(T_nodes)
+    J_nodes = tables.J[0:2 * len(T_nodes) - 1:2]
+    return Run(phi=phi[0:2 * len(T_nodes) - 1:2], T=T_arr, omega=np.sqrt(2 * T_arr / J_nodes), t=np.array(t_nodes),
+               sensitivity=S, stall_phi=stall)

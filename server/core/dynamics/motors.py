@@ -1,0 +1,113 @@
+"""Driving moment M_д(φ, ω) of the motor, reduced to the crank shaft (ω in rad/s of the crank).
+
+With the transmission ratio i = ω_motor/ω₁ a motor torque M(ω_m) at ω_m = iω reduces
+to i·M(iω) (power equality, seed 000 (1.17)).  Characteristics:
+
+    constant     M = M₀
+    linear       M = M₀ − b ω_m                                       seed 000 §3.1
+    induction    M = M_н (ω_с − ω_m)/(ω_с − ω_н)  (stable branch, linearised)  seed 004 (L30)
+    kloss        M = 2M_к/(s/s_к + s_к/s),  s = (ω_с − ω_m)/ω_с      standard addition, not in the lecture
+    indicator    M = −p(x) A_p u₃₁ of the crank-slider's piston        seed 004 §10.6 (L15)–(L17)
+
+The indicator diagram gives p/p_max at 11 equally spaced piston positions x/H from top dead
+centre for the expansion and the compression stroke; p between them by monotone (PCHIP)
+interpolation.  φ = 0 is the inner (bottom) dead centre: a two-stroke cycle compresses on
+0…π and expands on π…2π; a four-stroke cycle then exhausts and draws in at zero gauge pressure.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.interpolate import PchipInterpolator
+
+from ..mechanisms import MECHANISMS
+
+KINDS = ("constant", "linear", "induction", "kloss", "indicator")
+INDICATOR_POINTS = 11
+
+
+def polytropic_diagram(clearance: float = 0.1, exponent: float = 1.3,
+                       p_ratio_intake: float = 0.1 / 4.4) -> tuple[list[float], list[float]]:
+    """An assumed, plausible indicator diagram (p/p_max) of expansion and compression over x/H = 0…1."""
+    x = np.linspace(0.0, 1.0, INDICATOR_POINTS)
+    expansion = (clearance / (clearance + x)) ** exponent
+    compression = p_ratio_intake * ((1 + clearance) / (clearance + x)) ** exponent
+    return expansion.round(4).tolist(), compression.round(4).tolist()
+
+
+@dataclass(frozen=True)
+class Motor:
+    """Motor characteristic; torques in N·m and speeds in rad/s at the motor shaft."""
+
+    kind: str = "constant"
+    M0: float = 0.0                 # constant / linear: stall torque
+    b: float = 0.0                  # linear: slope, N·m·s/rad
+    M_nominal: float = 0.0          # induction: nominal torque M_н
+    omega_nominal: float = 0.0      # induction: nominal speed ω_н
+    omega_sync: float = 0.0         # induction, kloss: synchronous speed ω_с
+    M_max: float = 0.0              # kloss: breakdown torque M_к
+    s_critical: float = 0.1         # kloss: critical slip s_к
+    p_max: float = 0.0              # indicator: maximum cylinder pressure, Pa
+    piston_diameter: float = 0.0    # indicator: m
+    expansion: tuple[float, ...] = field(default_factory=lambda: tuple(polytropic_diagram()[0]))
+    compression: tuple[float, ...] = field(default_factory=lambda: tuple(polytropic_diagram()[1]))
+    strokes: int = 2                # indicator: 2 or 4 strokes per cycle
+
+    @property
+    def speed_dependent(self) -> bool:
+        return self.kind in ("linear", "induction", "kloss")
+
+    def cycle(self) -> float:
+        return 2 * np.pi * (self.strokes // 2) if self.kind == "indicator" else 2 * np.pi
+
+    def max_torque(self) -> float:
+        """The largest torque the characteristic offers at the motor shaft (for the stall check)."""
+        if self.kind in ("constant", "linear"):
+            return self.M0
+        if self.kind == "induction":
+            return self.M_nominal * self.omega_sync / (self.omega_sync - self.omega_nominal)
+        if self.kind == "kloss":
+            return self.M_max
+        return np.inf
+
+    def torque(self, w):
+        """Motor-shaft torque M and its slope dM/dω_m at motor speed ω_m (float or array)."""
+        if self.kind == "constant":
+            return self.M0 + 0 * w, 0 * w
+        if self.kind == "linear":
+            return self.M0 - self.b * w, -self.b + 0 * w
+        if self.kind == "induction":
+            slope = -self.M_nominal / (self.omega_sync - self.omega_nominal)
+            return slope * (w - self.omega_sync), slope + 0 * w
+        if self.kind == "kloss":
+            s, sk = (self.omega_sync - w) / self.omega_sync, self.s_critical
+            denominator = s * s + sk * sk
+            torque = 2 * self.M_max * s * sk / denominator
+            return torque, -2 * self.M_max * sk * (sk * sk - s * s) / denominator**2 / self.omega_sync
+        raise ValueError(f"the {self.kind} motor has no speed characteristic")
+
+
+def driving_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray,
+                   omega: np.ndarray | float, gear_ratio: float = 1.0) -> np.ndarray:
+    """M_д at crank angles φ and crank speed ω, reduced to the crank shaft (N·m)."""
+    if motor.kind != "indicator":
+        return gear_ratio * motor.torque(gear_ratio * np.asarray(omega, float) + 0 * phi)[0]
+    return indicator_moment(motor, mechanism, params, phi)
+
+
+def indicator_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray) -> np.ndarray:
+    """M_д = F·V_qC·cos(F, V) with F = p A_p on the piston (seed 004 (L17)); gas pushes towards the crank."""
+    if mechanism != "slider_crank":
+        raise ValueError("an indicator diagram drives a crank-slider (piston engine) only")
+    mech = MECHANISMS[mechanism]
+    values = mech.evaluate(params, phi, set()).values
+    stroke = next(sp.value for sp in mech.special_positions(params) if sp.kind == "dead_centre" and sp.value)
+    x = np.clip((stroke - values["s"]) / stroke, 0.0, 1.0)      # piston travel from top dead centre, x/H
+    grid = np.linspace(0.0, 1.0, INDICATOR_POINTS)
+    expansion = PchipInterpolator(grid, motor.expansion)(x)
+    compression = PchipInterpolator(grid, motor.compression)(x)
+    phase = np.mod(phi, motor.cycle()) / np.pi                  # stroke number 0, 1, (2, 3)
+    ratio = np.select([phase < 1, phase < 2], [compression, expansion], 0.0)
+    area = np.pi * motor.piston_diameter**2 / 4
+    return -motor.p_max * ratio * area * values["u31"]

@@ -1,0 +1,97 @@
+"""Reduced moment of inertia J(φ) and dJ/dφ of a machine, reduced to the crank shaft.
+
+Kinetic-energy equality (seed 000 (1.1)–(1.5), seed 002 (3.22)–(3.23)):
+
+    J(φ) = J_rotor·i² + J₁ + Σ_links [ m_k |V_qSk|² + J_Sk u_k1² ]
+
+with V_qS = dr_S/dφ the velocity analog of a centre of mass, u_k1 = ω_k/ω₁ and
+i = ω_motor/ω₁ the transmission ratio.  Differentiating (seed 002, [derived]):
+
+    dJ/dφ = 2 Σ [ m_k V_qSk · V′_qSk + J_Sk u_k1 u′_k1 ]
+
+Both come from the closed-form transfer functions of the kinematics core, so dJ/dφ
+is analytic, never a finite difference.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..mechanisms import MECHANISMS
+
+
+@dataclass(frozen=True)
+class Inertias:
+    """Masses (kg) and moments of inertia (kg·m²) of the machine's links.
+
+    J1: crank with its shaft and gears, about the crank axis; m2, J_S2: link 2 (rod,
+    coupler or block) mass and inertia about its centre of mass S2; m3: slider/yoke
+    mass (sine, crank-slider); J3: lever/rocker inertia about its pivot (slotted link,
+    four-bar); J_rotor: motor rotor; gear_ratio i = ω_motor/ω_crank.
+    """
+
+    J1: float = 0.0
+    m2: float = 0.0
+    J_S2: float = 0.0
+    m3: float = 0.0
+    J3: float = 0.0
+    J_rotor: float = 0.0
+    gear_ratio: float = 1.0
+
+
+@dataclass
+class ReducedInertia:
+    """J(φ), dJ/dφ and the contribution of each link (kg·m²)."""
+
+    J: np.ndarray
+    dJ: np.ndarray
+    parts: dict[str, np.ndarray]
+
+    @property
+    def mean(self) -> float:
+        """J̄ over a uniform closed grid (trapezoid on a periodic function)."""
+        return float(np.mean(self.J[:-1])) if self.J.size > 1 else float(self.J[0])
+
+
+# link 2 rotates with u21, except the slotted link's block, which turns with the lever (ω₂ = ω₃)
+LINK2_ROTATION = {"sine": None, "slider_crank": "u21", "slotted_link": "u31", "four_bar": "u21"}
+LINK3_MOTION = {"sine": "translation", "slider_crank": "translation", "slotted_link": "rotation",
+                "four_bar": "rotation"}
+
+
+def reduced_inertia(mechanism: str, params: dict[str, float], inertias: Inertias,
+                    phi: np.ndarray) -> ReducedInertia:
+    """J(φ) and dJ/dφ reduced to the crank, from closed-form velocity and acceleration analogs."""
+    values = MECHANISMS[mechanism].evaluate(params, phi, set()).values
+    v, a = values["v_s2"], values["a_s2"]
+    constant = inertias.J1 + inertias.J_rotor * inertias.gear_ratio**2
+    parts = {"constant": np.full_like(phi, constant),
+             "link2_translation": inertias.m2 * np.sum(v * v, axis=1)}
+    d_parts = {"link2_translation": 2 * inertias.m2 * np.sum(v * a, axis=1)}
+    rotation = LINK2_ROTATION[mechanism]
+    if rotation:
+        u, du = values[rotation], values["d" + rotation]
+        parts["link2_rotation"] = inertias.J_S2 * u**2
+        d_parts["link2_rotation"] = 2 * inertias.J_S2 * u * du
+    link3 = inertias.m3 if LINK3_MOTION[mechanism] == "translation" else inertias.J3
+    parts["link3"] = link3 * values["u31"] ** 2
+    d_parts["link3"] = 2 * link3 * values["u31"] * values["du31"]
+    return ReducedInertia(J=sum(parts.values()), dJ=sum(d_parts.values()), parts=parts)
+
+
+def textbook_inertia_approximation(mechanism: str, params: dict[str, float], inertias: Inertias,
+                                   phi: np.ndarray) -> np.ndarray | None:
+    """The textbook's closed forms where it gives them (crank-slider rod mass neglected).
+
+    Crank-slider, λ² ≫ 1 (3.36): J ≈ J₁ + m₃l₁² sin²φ (1 − cos φ/λ)²;
+    sine mechanism (3.18), exact: J = J₁ + m₂l₁² + m₃l₁² sin²φ.
+    """
+    l1 = params["l1"]
+    constant = inertias.J1 + inertias.J_rotor * inertias.gear_ratio**2
+    if mechanism == "slider_crank":
+        lam = params["l2"] / l1
+        return constant + inertias.m3 * l1**2 * np.sin(phi) ** 2 * (1 - np.cos(phi) / lam) ** 2
+    if mechanism == "sine":
+        return constant + inertias.m2 * l1**2 + inertias.m3 * l1**2 * np.sin(phi) ** 2
+    return None
