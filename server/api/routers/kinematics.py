@@ -1,6 +1,7 @@
 """POST /api/v1/kinematics: position functions and transfer functions over crank angles."""
 import numpy as np
 from fastapi import APIRouter, Query
+from fastapi.responses import JSONResponse
 
 from ...core.kinematics import compute_kinematics
 from ...core.mechanisms import MECHANISMS, GeometryError, Notice
@@ -29,8 +30,10 @@ def kinematics(request: KinematicsRequest,
             notices.append(Notice("undefined_points", f"{name}: undefined at {bad} point(s), sent as null "
                                   "(singular position).", {"output": name, "count": bad}))
     units = {o.name: o.unit for o in MECHANISMS[request.mechanism].outputs}
-    return KinematicsResponse(
+    body = KinematicsResponse.model_construct(
         mechanism=result.mechanism, params=result.params, cycle=result.cycle,
         phi=finite_or_none(result.phi), outputs=finite_or_none(result.outputs),
         units={name: units.get(name, "") for name in result.outputs},
         warnings=[translate(notice, lang) for notice in notices])
+    # Built from checked numbers: skip re-validating thousands of floats, refuse NaN on the way out.
+    return JSONResponse(body.__dict__)
