@@ -12,6 +12,7 @@ rtol·ω; that estimate is reported with the method, steps and run time.
 """
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 
@@ -28,6 +29,14 @@ NEWTON_MAX = 30
 MAX_CYCLES = 200
 
 
+class NoMotion(Exception):
+    """The machine has no motion of the kind asked for; ``notice`` says why in words."""
+
+    def __init__(self, code: str, text: str, **context):
+        super().__init__(text)
+        self.notice = Notice(code, text, context)
+
+
 @dataclass
 class Numerics:
     """How the answer was computed, like scipy's OdeResult: method, tolerance, work, error."""
@@ -38,7 +47,7 @@ class Numerics:
     cycles: int = 0
     iterations: int = 0
     runtime_ms: float = 0.0
-    error_estimate: float = 0.0
+    error_estimate: float | None = 0.0
     energy_residual: float = 0.0
     message: str = ""
 
@@ -143,7 +152,7 @@ def cumulative_simpson(values: np.ndarray, h: float) -> np.ndarray:
 
 
 def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None = None,
-                 balance: bool = False) -> Motion:
+                 balance: bool = False, deadline: float = math.inf) -> Motion:
     """The periodic solution T(φ₀ + Φ) = T(φ₀), refined until the Richardson estimate meets rtol."""
     started = time.perf_counter()
     method = ("Newton shooting on the cycle map of dT/dφ = M(φ, ω), RK4 in φ" if machine.speed_dependent
@@ -158,13 +167,14 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
             motion.notices += tables.notices
             numerics.message = "the mechanism self-locks: no motion"
             break
-        if machine.speed_dependent:
-            run, iterations, T0 = _shoot(machine, tables, steps, T0, numerics)
-            numerics.iterations += iterations
-        else:
-            run = _level(machine, tables, steps, omega_mean, numerics)
-        if run is None:
-            motion.notices.append(Notice("stall", numerics.message))
+        try:
+            if machine.speed_dependent:
+                run, T0 = _shoot(machine, tables, steps, T0, numerics)
+            else:
+                run = _level(machine, tables, steps, omega_mean)
+        except NoMotion as stop:
+            motion.notices.append(stop.notice)
+            numerics.message = stop.notice.text
             break
         numerics.steps = steps
         if previous is not None:
@@ -177,6 +187,13 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
                 break
         previous = run
         per_2pi *= 2
+        if time.perf_counter() > deadline:
+            motion.steady = cycle_figures(machine, tables, run)
+            if numerics.error_estimate == 0.0:
+                numerics.error_estimate = None     # one level only: nothing to compare with
+            numerics.message = (f"stopped at the time budget before reaching rtol = {rtol:g}; the result is the "
+                                f"last refinement, with its error estimate")
+            break
     else:
         numerics.message = f"the tolerance rtol = {rtol:g} was not reached within {STEPS_MAX} steps per revolution"
     numerics.runtime_ms = 1e3 * (time.perf_counter() - started)
@@ -188,36 +205,35 @@ def _shoot(machine: Machine, tables, steps: int, T0: float | None, numerics: Num
     if T0 is None:
         omega = mean_speed_balance(machine, tables)
         if omega is None:
-            numerics.message = ("stall: the mean resisting moment exceeds the largest mean moment the motor "
-                                "can give at any speed; the machine stops")
-            return None, 0, None
+            raise NoMotion("stall_mean", "Stall: the mean resisting moment exceeds the largest mean moment the motor "
+                                         "can give at any speed; the machine stops.")
         T0 = 0.5 * tables.J[0] * omega**2
-    for iteration in range(1, NEWTON_MAX + 1):
+    for _ in range(NEWTON_MAX):
+        numerics.iterations += 1
         run = integrate(machine, tables, T0, steps)
         if run.stall_phi is not None:
-            numerics.message = f"stall at φ = {np.degrees(run.stall_phi):.1f}°: the kinetic energy runs out within the cycle"
-            return None, iteration, None
-        g = run.T[-1] - T0
-        step = g / (run.sensitivity - 1.0)
+            raise NoMotion("stall_in_cycle", f"Stall at φ = {np.degrees(run.stall_phi):.1f}°: the kinetic energy runs "
+                                             "out within the cycle; there is no steady motion.",
+                           phi=float(np.degrees(run.stall_phi)))
+        step = (run.T[-1] - T0) / (run.sensitivity - 1.0)
         T0 = max(T0 - step, 0.25 * T0)
         if abs(step) <= 1e-13 * T0:
-            return integrate(machine, tables, T0, steps), iteration, T0
-    numerics.message = "Newton's method did not converge on the cycle map"
-    return None, NEWTON_MAX, None
+            return integrate(machine, tables, T0, steps), T0
+    raise NoMotion("newton_failed", "Newton's method did not converge on the cycle map.")
 
 
-def _level(machine: Machine, tables, steps: int, omega_mean: float | None, numerics: Numerics):
+def _level(machine: Machine, tables, steps: int, omega_mean: float | None):
     """φ-only moments: the energy level T₀ at φ₀ for which (ω_max + ω_min)/2 equals the given mean speed."""
     work = cumulative_simpson(tables.net_phi, float(tables.phi[2] - tables.phi[0]))   # A(φ) on the step nodes
     cycle_work = work[-1]
     driving = simpson(tables.drive_phi, float(tables.phi[1] - tables.phi[0]))
     if abs(cycle_work) > 1e-9 * max(abs(driving), 1.0):
-        numerics.message = (f"no steady cycle: the work over a cycle is {cycle_work:.4g} J, not zero, so the machine "
-                            f"{'speeds up' if cycle_work > 0 else 'slows down'} every cycle")
-        return None
+        trend = "speeds up" if cycle_work > 0 else "slows down"
+        raise NoMotion(f"no_steady_cycle_{trend.split()[0]}", f"No steady cycle: the work over a cycle is "
+                       f"{cycle_work:.4g} J, not zero, so the machine {trend} every cycle.", work=cycle_work)
     if omega_mean is None:
-        numerics.message = "moments of φ alone: give the mean speed to fix the energy level"
-        return None
+        raise NoMotion("needs_mean_speed", "The moments depend on φ alone: every energy level is periodic; give the "
+                                           "mean speed to choose one.")
     J = tables.J[::2]
     def mean_of(T0):
         omega = np.sqrt(2 * (T0 + work) / J)
@@ -229,7 +245,7 @@ def _level(machine: Machine, tables, steps: int, omega_mean: float | None, numer
 
 
 def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycles: int = 60,
-            balance: bool = False) -> Motion:
+            balance: bool = False, deadline: float = math.inf) -> Motion:
     """From ω₀ at φ = 0 until the cycle-start energy settles (phase portrait spiralling onto the cycle)."""
     started = time.perf_counter()
     numerics = Numerics(method="RK4 in φ on dT/dφ = M(φ, ω) from the given start", rtol=rtol)
@@ -242,8 +258,10 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
         return motion
     T0 = 0.5 * tables.J[0] * omega0**2
     if T0 == 0.0 and tables.net_phi[0] + machine.speed_moment(0.0, tables.sliding[0])[0] <= 0.0:
-        numerics.message = "the motor's starting torque does not overcome the resistance at φ = 0: the machine cannot start"
-        motion.notices.append(Notice("cannot_start", numerics.message))
+        notice = Notice("cannot_start", "The motor's starting torque does not overcome the resistance at φ = 0: "
+                                        "the machine cannot start.")
+        numerics.message = notice.text
+        motion.notices.append(notice)
         return motion
     pieces, t0, cycle = [], 0.0, machine.cycle()
     for n in range(min(max_cycles, MAX_CYCLES)):
@@ -252,14 +270,19 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
         pieces.append(run)
         numerics.cycles = n + 1
         if run.stall_phi is not None:
-            numerics.message = (f"stall at φ = {np.degrees(run.stall_phi + n * cycle):.1f}°: the machine stops; the "
-                                "load exceeds what the motor gives")
-            motion.notices.append(Notice("stall", numerics.message))
+            where = float(np.degrees(run.stall_phi + n * cycle))
+            notice = Notice("stall_startup", f"Stall at φ = {where:.1f}°: the machine stops; the load exceeds what "
+                                             "the motor gives.", {"phi": where})
+            numerics.message = notice.text
+            motion.notices.append(notice)
             break
         settled = abs(run.T[-1] - T0) <= rtol * run.T[-1]
         T0, t0 = run.T[-1], run.t[-1]
         if settled:
             numerics.message = f"settled after {n + 1} cycles"
+            break
+        if time.perf_counter() > deadline:
+            numerics.message = f"stopped at the time budget after {n + 1} cycles, not yet periodic"
             break
     else:
         numerics.message = f"not yet periodic after {numerics.cycles} cycles"
@@ -267,5 +290,14 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
                            np.concatenate([p.omega for p in pieces]), np.concatenate([p.t for p in pieces]),
                            pieces[-1].sensitivity, pieces[-1].stall_phi)
     numerics.steps = steps * numerics.cycles
+    numerics.error_estimate = _last_cycle_error(machine, pieces[-1], steps, balance)
     numerics.runtime_ms = 1e3 * (time.perf_counter() - started)
     return motion
+
+
+def _last_cycle_error(machine: Machine, last: Run, steps: int, balance: bool) -> float | None:
+    """Richardson estimate on the last cycle: rerun it with half the steps, |ω_h − ω_2h|/15 relative."""
+    if last.stall_phi is not None or last.T[0] == 0.0:
+        return None
+    coarse = integrate(machine, node_tables(machine, steps // 2, balance), float(last.T[0]), steps // 2)
+    return float(np.max(np.abs(coarse.omega - last.omega[::2])) / 15 / last.omega.max())

@@ -1,0 +1,67 @@
+"""POST /api/v1/reduction and /api/v1/motion: the one-mass dynamic model of the machine."""
+import math
+
+import numpy as np
+from fastapi import APIRouter, Query
+from fastapi.responses import JSONResponse
+
+from ...core.dynamics import report
+from ...core.dynamics.machine import Machine
+from ...core.dynamics.motors import Motor
+from ...core.dynamics.reduction import Inertias
+from ...core.dynamics.resistance import Load
+from ...core.mechanisms import MECHANISMS, GeometryError
+from ..errors import unprocessable
+from ..json_safe import finite_or_none
+from ..messages import translate
+from ..schemas import Language
+from ..schemas_dynamics import MotionRequest, MotionResponse, ReductionRequest, ReductionResponse
+
+router = APIRouter(tags=["dynamics"])
+LANG = Query("en", description="language of the warnings: ru, uk or en")
+
+
+def _respond(result: dict, notices, lang: str) -> JSONResponse:
+    return JSONResponse(finite_or_none(result) | {"warnings": [translate(n, lang) for n in notices]})
+
+
+@router.post("/reduction", response_model=ReductionResponse,
+             summary="Reduced moment of inertia J(φ), dJ/dφ and reduced resisting moment M_c(φ) with friction",
+             responses={422: {"description": "invalid input: the field and the reason"}})
+def reduction(request: ReductionRequest, lang: Language = LANG):
+    try:
+        result, notices = report.reduction(
+            request.mechanism, request.params, Inertias(**request.inertias.model_dump()),
+            Load(**request.load.model_dump()), request.n, request.omega, request.outputs, request.iteration_phi)
+    except GeometryError as error:
+        raise unprocessable(error) from None
+    return _respond(result, notices, lang)
+
+
+@router.post("/motion", response_model=MotionResponse,
+             summary="Equation of motion: steady cycle (ω(φ), δ, η) and start-up, with numerics",
+             responses={422: {"description": "invalid input: the field and the reason"}})
+def motion(request: MotionRequest, lang: Language = LANG):
+    try:
+        params = MECHANISMS[request.mechanism].check(request.params)
+        if request.motor.kind == "indicator" and request.mechanism != "slider_crank":
+            raise GeometryError("motor.kind", "an indicator diagram drives a crank-slider (piston engine) only",
+                                "indicator_needs_slider")
+        motor = Motor(**{**request.motor.model_dump(), "expansion": tuple(request.motor.expansion),
+                         "compression": tuple(request.motor.compression)})
+        machine = Machine(request.mechanism, params, Inertias(**request.inertias.model_dump()),
+                          Load(**request.load.model_dump()), motor)
+        _check_inertia(machine)
+        result, notices = report.motion(machine, request.outputs, request.omega0, request.rtol, request.omega_mean,
+                                        request.balance, request.max_cycles)
+    except GeometryError as error:
+        raise unprocessable(error) from None
+    return _respond(result, notices, lang)
+
+
+def _check_inertia(machine: Machine) -> None:
+    """A machine with no inertia at some angle has no equation of motion (J = 0)."""
+    J = machine.tables(np.linspace(0, 2 * math.pi, 73)).J
+    if J.min() <= 0:
+        raise GeometryError("inertias", "the reduced moment of inertia is zero: give the crank (J1) or the motor "
+                                        "rotor (J_rotor) some inertia", "zero_inertia")

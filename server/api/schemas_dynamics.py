@@ -1,0 +1,136 @@
+"""Request models of the dynamics API (/reduction, /motion): every input with its unit."""
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from ..core.dynamics.motors import INDICATOR_POINTS, polytropic_diagram
+from .schemas import MechanismName
+
+Positive = Field(ge=0.0, le=1e6)
+
+
+class InertiaInput(BaseModel):
+    """Masses and moments of inertia of the links; defaults are zero (massless link)."""
+
+    model_config = ConfigDict(extra="forbid")
+    J1: float = Field(0.0, ge=0, le=1e4, description="crank with shaft and gears about the crank axis, kg·m²")
+    m2: float = Field(0.0, ge=0, le=1e5, description="link 2 (rod, coupler or block) mass, kg")
+    J_S2: float = Field(0.0, ge=0, le=1e4, description="link 2 moment of inertia about its centre of mass S2, kg·m²")
+    m3: float = Field(0.0, ge=0, le=1e5, description="slider or yoke mass (sine, crank-slider), kg")
+    J3: float = Field(0.0, ge=0, le=1e4, description="lever or rocker inertia about its pivot (slotted link, four-bar), kg·m²")
+    J_rotor: float = Field(0.0, ge=0, le=1e4, description="motor rotor inertia, kg·m²")
+    gear_ratio: float = Field(1.0, gt=0, le=1000, description="transmission ratio i = ω_motor/ω_crank")
+
+
+class LoadInput(BaseModel):
+    """Useful load and friction (seed 000, chapter 3)."""
+
+    model_config = ConfigDict(extra="forbid")
+    force: float = Field(0.0, ge=0, le=1e7, description="P_c on the slider/yoke in N, or M₃ on the lever/rocker in N·m")
+    return_factor: float = Field(1.0, ge=0, le=1, description="k_p (k_M): return-stroke load / working-stroke load")
+    f: float = Field(0.0, ge=0, le=2, description="dry sliding-friction coefficient in the prismatic pairs")
+    beta: float = Field(0.0, ge=0, le=1e6, description="viscous friction coefficient β, N·s/m")
+    convention: Literal["consistent", "textbook"] = Field(
+        "consistent", description="'textbook': the formulas as printed (3.6–3.9, 3.29–3.30, 3.44–3.49); "
+                                  "'consistent': friction always resists, series summed exactly")
+    crank_moment: float = Field(0.0, ge=0, le=1e7, description="constant resisting moment on the crank shaft, N·m")
+
+
+class MotorInput(BaseModel):
+    """Motor characteristic at the motor shaft (torque N·m, speed rad/s)."""
+
+    model_config = ConfigDict(extra="forbid")
+    kind: Literal["constant", "linear", "induction", "kloss", "indicator"] = Field(
+        description="constant M₀; linear M₀ − bω; induction: linearised stable branch (seed 004 L30); "
+                    "kloss: Kloss curve (standard addition, not in the lecture); indicator: piston engine")
+    M0: float = Field(0.0, ge=0, le=1e7, description="constant, linear: torque at standstill, N·m")
+    b: float = Field(0.0, ge=0, le=1e6, description="linear: slope of the characteristic, N·m·s/rad")
+    M_nominal: float = Field(0.0, ge=0, le=1e7, description="induction: nominal torque M_н, N·m")
+    omega_nominal: float = Field(0.0, ge=0, le=1e4, description="induction: nominal speed ω_н, rad/s")
+    omega_sync: float = Field(0.0, ge=0, le=1e4, description="induction, kloss: synchronous (no-load) speed ω_с, rad/s")
+    M_max: float = Field(0.0, ge=0, le=1e7, description="kloss: breakdown torque M_к, N·m")
+    s_critical: float = Field(0.1, gt=0, lt=1, description="kloss: critical slip s_к")
+    p_max: float = Field(0.0, ge=0, le=1e9, description="indicator: maximum cylinder pressure, Pa")
+    piston_diameter: float = Field(0.0, ge=0, le=5, description="indicator: piston diameter, m")
+    expansion: list[float] = Field(default_factory=lambda: polytropic_diagram()[0], min_length=INDICATOR_POINTS,
+                                   max_length=INDICATOR_POINTS, description="indicator: p/p_max on expansion at x/H = 0, 0.1, …, 1 (assumed polytropic by default)")
+    compression: list[float] = Field(default_factory=lambda: polytropic_diagram()[1], min_length=INDICATOR_POINTS,
+                                     max_length=INDICATOR_POINTS, description="indicator: p/p_max on compression at x/H = 0, 0.1, …, 1")
+    strokes: Literal[2, 4] = Field(2, description="indicator: two-stroke (cycle 2π) or four-stroke (cycle 4π)")
+
+    @model_validator(mode="after")
+    def consistent(self):
+        if self.kind == "induction" and not 0 < self.omega_nominal < self.omega_sync:
+            raise ValueError("induction motor: need 0 < omega_nominal < omega_sync")
+        if self.kind == "kloss" and not (self.omega_sync > 0 and self.M_max > 0):
+            raise ValueError("Kloss curve: need omega_sync > 0 and M_max > 0")
+        if self.kind == "linear" and self.b == 0:
+            raise ValueError("linear motor: the slope b must be positive (b = 0 is the constant-torque motor)")
+        if self.kind == "indicator" and not (self.p_max > 0 and self.piston_diameter > 0):
+            raise ValueError("piston engine: need p_max > 0 and piston_diameter > 0")
+        if not all(0 <= x <= 1 for x in self.expansion + self.compression):
+            raise ValueError("indicator diagram ordinates are p/p_max, between 0 and 1")
+        return self
+
+
+class ReductionRequest(BaseModel):
+    """Reduced moment of inertia and of the resisting forces over one cycle; no equation of motion."""
+
+    model_config = ConfigDict(extra="forbid")
+    mechanism: MechanismName
+    params: dict[str, float] = Field(default_factory=dict, description="lengths in metres, as for /kinematics")
+    inertias: InertiaInput = Field(default_factory=InertiaInput)
+    load: LoadInput = Field(default_factory=LoadInput)
+    n: int = Field(361, ge=3, le=10001, description="points over one closed cycle")
+    omega: float = Field(1.0, ge=0, le=1e4, description="crank speed for the viscous moment β ω Σu², rad/s")
+    iteration_phi: float = Field(math.pi / 2, ge=-100, le=100, description="crank angle of the friction iteration, rad")
+    outputs: list[Literal["inertia", "resisting", "friction_iteration"]] = Field(min_length=1)
+
+
+class MotionRequest(BaseModel):
+    """The machine's equation of motion: steady cycle and/or start-up."""
+
+    model_config = ConfigDict(extra="forbid")
+    mechanism: MechanismName
+    params: dict[str, float] = Field(default_factory=dict, description="lengths in metres, as for /kinematics")
+    inertias: InertiaInput = Field(default_factory=InertiaInput)
+    load: LoadInput = Field(default_factory=LoadInput)
+    motor: MotorInput
+    outputs: list[Literal["steady", "startup"]] = Field(min_length=1)
+    omega0: float = Field(0.0, ge=0, le=1e4, description="crank speed at φ = 0 for the start-up, rad/s")
+    omega_mean: float | None = Field(None, gt=0, le=1e4, description=(
+        "mean crank speed (ω_max + ω_min)/2, rad/s: needed when the moments depend on φ alone"))
+    balance: bool = Field(False, description="add the constant crank moment that balances the cycle work (engine)")
+    rtol: float = Field(1e-8, ge=1e-11, le=1e-2, description="relative tolerance of the steady cycle")
+    max_cycles: int = Field(60, ge=1, le=200, description="cycles of the start-up at most")
+
+
+class ReductionResponse(BaseModel):
+    phi: list[float] = Field(description="crank angles over one closed cycle, rad")
+    inertia: dict | None = Field(None, description="J, dJ (kg·m², kg·m²/rad), mean J̄, variable part J̃, the parts "
+                                                   "of each link, and the textbook approximation where one exists")
+    resisting: dict | None = Field(None, description="M_c total and its parts (useful, dry, viscous), N·m; its "
+                                                     "mean M_c0 in both conventions; friction angle θ = arctan f, rad; "
+                                                     "the angles of self-locking, if any")
+    friction_iteration: dict | None = Field(None, description="the successive approximations at iteration_phi: "
+                                                              "forces of each step (N), ratio of the series, converged")
+    warnings: list[str]
+
+
+class MotionResponse(BaseModel):
+    phi: list[float] | None = Field(None, description="crank angles over the steady cycle, rad")
+    omega: list[float] | None = Field(None, description="ω(φ) on the steady cycle, rad/s (the phase portrait)")
+    t: list[float] | None = Field(None, description="t(φ) from the start of the cycle, s")
+    epsilon: list[float] | None = Field(None, description="ε(φ), rad/s²")
+    omega_mean: float | None = Field(None, description="(ω_max + ω_min)/2, rad/s")
+    omega_time_mean: float | None = Field(None, description="cycle angle / cycle time, rad/s")
+    delta: float | None = Field(None, description="coefficient of speed fluctuation (ω_max − ω_min)/ω_mean")
+    efficiency: float | None = Field(None, description="η = |A_useful|/A_driving over the steady cycle")
+    works: dict | None = Field(None, description="works over the cycle, J: driving, useful, dry and viscous friction, net")
+    numerics: dict | None = Field(None, description="method, rtol, steps, iterations, runtime_ms, error_estimate, "
+                                                    "energy_residual, message")
+    startup: dict | None = Field(None, description="start-up transient: phi, omega, t and its own numerics")
+    warnings: list[str]
