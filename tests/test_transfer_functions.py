@@ -8,7 +8,7 @@ sliders stay on their guides, and the motion repeats after one kinematic cycle.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -283,11 +283,22 @@ def test_without_limiter_the_rocker_passes_the_change_point_with_continuous_u31(
     mech = MECHANISMS["four_bar"]
     p = mech.check(SCHEMES[scheme] | {"limiter": 0})
     passage = mech.change_point(p) + 2 * np.pi
-    delta = np.array([-1e-7, 0.0, 1e-7])
-    u31 = mech.evaluate(p, passage + delta, set()).values["u31"]
-    du31 = mech.evaluate(p, passage + delta, set()).values["du31"]
-    # over ±1e-7 rad u₃₁ changes by |u′₃₁|·1e-7 < 1e-5 (|u′₃₁| < 100 here)
-    assert np.ptp(u31) < 1e-7 * np.max(np.abs(du31)) * 1.01 + 1e-12
+    delta = 1e-7
+    u31 = mech.evaluate(p, passage + np.array([-delta, 0.0, delta]), set()).values["u31"]
+    slope = np.max(np.abs(mech.evaluate(p, passage + np.linspace(-delta, delta, 21), set()).values["du31"]))
+    # mean-value theorem: a continuous u₃₁ moves by at most δ·max|u′₃₁| (+ rounding); a jump would be O(1)
+    assert np.max(np.abs(u31 - u31[1])) <= delta * slope * 1.01 + 1e-12
+
+
+@pytest.mark.parametrize("scheme", SCHEMES)
+def test_without_limiter_the_rocker_leaves_the_change_point_as_it_arrived_mirrored_in_time(scheme):
+    """u₃₁(passage + x) = u₃₁(passage − x): the passage is symmetric (mirror image of the arrival reversed)."""
+    mech = MECHANISMS["four_bar"]
+    p = mech.check(SCHEMES[scheme] | {"limiter": 0})
+    passage = mech.change_point(p) + 2 * np.pi
+    x = np.array([1e-4, 0.01, 0.3, 1.0, 2.5])
+    after, before = (mech.evaluate(p, passage + sign * x, set()).values["u31"] for sign in (1, -1))
+    np.testing.assert_allclose(after, before, rtol=0, atol=1e-12)   # rounding of O(1) values
 
 
 @pytest.mark.parametrize("scheme", SCHEMES)
