@@ -153,7 +153,7 @@ def test_fourth_harmonic_of_slider_acceleration_analog_is_1_over_4_lambda_cubed_
 
     Expanding x = l₁(1 − λ − cos φ + √(λ² − sin²φ)) to O(λ⁻³) gives u′₃₁ ∋ cos 4φ/(4λ³): the 4φ
     amplitude is 1/(4λ³) (1 + O(λ⁻²)), twice the textbook's.  At λ = 3 it is 1.0 %, not 0.46 %; the
-    "< 0.5 %" claim holds only from λ ≈ 3.7 on.
+    "< 0.5 %" claim holds only from λ ≈ 3.75 on.
     """
     a = amplitudes({"l1": 1.0, "l2": lam}, "du31")
     ratio = a[3] / a[0]
