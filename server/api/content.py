@@ -5,6 +5,8 @@ import json
 from functools import lru_cache
 from pathlib import Path
 
+from typing import Literal
+
 from pydantic import BaseModel, Field
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -16,11 +18,17 @@ Text = dict[str, str]
 
 
 class Slider(BaseModel):
-    """A slider sets params[param] = value × params[scale] (or value itself when scale is empty)."""
+    """A slider sets params[param] = value × params[scale] (or value itself when scale is empty).
+
+    In dynamics scenes ``param`` and ``scale`` are dotted paths into the request body
+    ("load.f", "params.l2", "inertias.m3"), and ``to_si`` converts the shown value to SI
+    (π/180 for a slider in degrees).
+    """
 
     id: str
     param: str
     scale: str = ""
+    to_si: float = 1.0
     min: float
     max: float
     step: float
@@ -33,8 +41,8 @@ class Slider(BaseModel):
 class Toggle(BaseModel):
     id: str
     param: str
-    options: list[float]
-    default: float
+    options: list[float | str]
+    default: float | str
     label: Text
     option_labels: list[Text]
 
@@ -52,11 +60,14 @@ class Variant(BaseModel):
     overlay: Slider | None = None
     overlay_values: list[float] = []
     panels: list[str]
+    request: dict = Field(default_factory=dict, description="dynamics scenes: the request body before the sliders")
 
 
 class Scene(BaseModel):
     id: str
     order: int
+    kind: Literal["kinematics", "dynamics"] = "kinematics"
+    endpoint: Literal["kinematics", "reduction", "motion"] = "kinematics"
     source: Text
     title: Text
     summary: Text
