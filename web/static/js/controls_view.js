@@ -1,0 +1,92 @@
+/**
+ * View of the scene's inputs: the variant (mechanism) picker, the sliders with the textbook convention
+ * and the English one beside it, the toggles, the overlay switch, and the variant's description.
+ * Sliders report on every `input` event; the coalescing client keeps dragging cheap.
+ */
+import { element } from "./dom.js";
+import { formatNumber, paramSymbol, unitText } from "./notation.js";
+
+/** Decimals that show a slider's step: 0.01 → 2. */
+function decimalsOf(step) {
+  return Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
+}
+
+/** The English convention beside a slider is the reciprocal ratio ("r/l = 1/λ"): its name and value. */
+function reciprocal(english, value, lang) {
+  const name = english.replace(/\s*=\s*1\/λ$/, "");
+  return name === english ? english : `${name} = ${formatNumber(1 / value, lang)}`;
+}
+
+export class ControlsView {
+  constructor(container, model, { t, lang }) {
+    this.container = container;
+    this.model = model;
+    this.t = t;
+    this.lang = lang;
+    model.on("variant", () => this.build());
+    model.on("params", () => this.showValues());
+    model.on("overlay", (on) => { if (this.overlayBox) this.overlayBox.checked = on; });
+  }
+
+  build() {
+    const { model, t, lang } = this;
+    const variant = model.variant;
+    const picker = element("select", { id: "variant" }, ...model.scene.variants.map((v) =>
+      element("option", { value: v.id, textContent: v.label[lang], selected: v === variant })));
+    picker.addEventListener("change", () => model.selectVariant(picker.value));
+    this.readouts = new Map();
+    this.overlayBox = null;
+    this.container.replaceChildren(
+      element("label", { className: "field" }, element("span", { textContent: t.mechanism }), picker),
+      ...variant.sliders.map((slider) => this.#slider(slider)),
+      ...variant.toggles.map((toggle) => this.#toggle(toggle)),
+      ...(variant.overlay_values.length ? [this.#overlay(variant)] : []),
+      element("p", { className: "variant-text", textContent: variant.text[lang] }));
+    this.showValues();
+  }
+
+  /** Slider readouts: "λ = l₂/l₁ = 3,00 · r/l = 0,333", and the length it sets, "l₂ = 0,300 м". */
+  showValues() {
+    const params = this.model.params();
+    for (const slider of this.model.variant.sliders) {
+      const value = this.model.values[slider.id];
+      const parts = [`${slider.label[this.lang]} = ${formatNumber(value, this.lang, decimalsOf(slider.step))}`];
+      if (slider.english) parts.push(reciprocal(slider.english[this.lang], value, this.lang));
+      const { main, length } = this.readouts.get(slider.id);
+      main.textContent = parts.join(" · ");
+      length.textContent = `${paramSymbol(slider.param)} = ${formatNumber(params[slider.param], this.lang, 3)} `
+        + unitText("m", this.t);
+    }
+  }
+
+  #slider(slider) {
+    const input = element("input", {
+      type: "range", id: `slider-${slider.id}`, min: slider.min, max: slider.max, step: slider.step,
+      value: this.model.values[slider.id] });
+    const main = element("span", { className: "readout" });
+    const length = element("span", { className: "length" });
+    this.readouts.set(slider.id, { main, length });
+    input.addEventListener("input", () => this.model.setValue(slider.id, Number(input.value)));
+    return element("label", { className: "slider", htmlFor: input.id },
+      element("span", { className: "slider-text" }, main, length), input);
+  }
+
+  #toggle(toggle) {
+    const name = `toggle-${toggle.id}`;
+    const options = toggle.options.map((option, i) => {
+      const radio = element("input", {
+        type: "radio", name, value: option, checked: option === this.model.values[toggle.id] });
+      radio.addEventListener("change", () => this.model.setValue(toggle.id, option));
+      return element("label", { className: "option" }, radio, ` ${toggle.option_labels[i][this.lang]}`);
+    });
+    return element("fieldset", { className: "toggle", id: name },
+      element("legend", { textContent: toggle.label[this.lang] }), ...options);
+  }
+
+  #overlay(variant) {
+    const values = variant.overlay_values.map((v) => formatNumber(v, this.lang)).join("; ");
+    this.overlayBox = element("input", { type: "checkbox", id: "overlay", checked: this.model.overlay });
+    this.overlayBox.addEventListener("change", () => this.model.setOverlay(this.overlayBox.checked));
+    return element("label", { className: "option overlay" }, this.overlayBox, ` ${this.t.overlay} = ${values}`);
+  }
+}

@@ -1,0 +1,14 @@
+/** Why there is nothing to draw, in the reader's language. */
+import { element } from "./dom.js";
+
+/** The translated reason of an API error (content/i18n err_<code>), or the server's own words. */
+export function errorReason(error, t) {
+  return t[`err_${error.code}`] ?? error.message;
+}
+
+/** A box saying the mechanism cannot be assembled, and why. */
+export function geometryMessage(error, t) {
+  return element("div", { className: "geometry-error", role: "alert" },
+    element("strong", { textContent: t.invalid_geometry }),
+    element("p", { textContent: errorReason(error, t) }));
+}

@@ -1,0 +1,137 @@
+/**
+ * Model of a scene (content/scenes/*.json): the chosen variant (a mechanism set-up), the values of its
+ * sliders and toggles, the overlay switch, and the kinematics answers for them. No DOM.
+ *
+ * A slider sets params[param] = value × params[scale] (lengths in metres, e.g. λ = l₂/l₁ sets l₂ = λ·l₁);
+ * a toggle sets params[param] to one of its options (assembly ±1, stroke limiter 0/1).
+ *
+ * Events:
+ *   "variant"   the variant changed: controls and panels are rebuilt
+ *   "params"    the parameters changed: a new kinematics request is due
+ *   "overlay"   the overlay switch changed
+ *   "result"    the answer for the current parameters arrived (a table, or the reason there is none)
+ *   "overlays"  the overlay tables changed
+ */
+import { Emitter } from "./emitter.js";
+
+const TURN = 2 * Math.PI;
+const POINTS_PER_TURN = 360;            // a grid step of 1° of crank angle
+/** Outputs drawn for the overlay values of λ (the textbook's Figs. 2.3, 2.5). */
+const OVERLAY_OUTPUTS = ["s", "s2", "u31", "du31", "u21", "du21"];
+
+/** Points of the grid over one cycle, ends included: 361 for 2π, 721 for a 4π change-point cycle. */
+function gridPoints(cycle) {
+  return 1 + Math.round(POINTS_PER_TURN * cycle / TURN);
+}
+
+export class SceneModel extends Emitter {
+  #cycles = new Map();     // cycle length last answered, by variant and toggle values
+
+  /** initial: {variant, values, overlay} from the page address; values out of range are ignored. */
+  constructor(scene, initial = {}) {
+    super();
+    this.scene = scene;
+    this.#useVariant(scene.variants.find((v) => v.id === initial.variant) ?? scene.variants[0]);
+    for (const [id, value] of Object.entries(initial.values ?? {})) {
+      if (this.accepts(id, value)) this.values[id] = value;
+    }
+    this.overlay = Boolean(initial.overlay) && this.variant.overlay_values.length > 0;
+  }
+
+  /** Announce the initial state to the listeners. */
+  start() {
+    this.emit("variant", this.variant);
+    this.emit("params");
+  }
+
+  selectVariant(id) {
+    const variant = this.scene.variants.find((v) => v.id === id);
+    if (!variant || variant === this.variant) return;
+    this.#useVariant(variant);
+    this.overlay = this.overlay && variant.overlay_values.length > 0;
+    this.emit("variant", variant);
+    this.emit("overlays");
+    this.emit("params");
+  }
+
+  setValue(id, value) {
+    if (!this.accepts(id, value) || this.values[id] === value) return;
+    this.values[id] = value;
+    this.emit("params");
+  }
+
+  setOverlay(on) {
+    this.overlay = on && this.variant.overlay_values.length > 0;
+    if (!this.overlay) this.overlays.clear();
+    this.emit("overlay", this.overlay);
+    this.emit("overlays");
+  }
+
+  /** True if value is allowed for the slider or toggle id of the current variant. */
+  accepts(id, value) {
+    if (!Number.isFinite(value)) return false;
+    const slider = this.variant.sliders.find((s) => s.id === id);
+    if (slider) return value >= slider.min && value <= slider.max;
+    const toggle = this.variant.toggles.find((t) => t.id === id);
+    return Boolean(toggle?.options.includes(value));
+  }
+
+  /** Mechanism parameters (metres and switches) for the given slider and toggle values. */
+  params(values = this.values) {
+    const params = { ...this.variant.fixed };
+    for (const toggle of this.variant.toggles) params[toggle.param] = values[toggle.id];
+    for (const slider of this.variant.sliders) {
+      params[slider.param] = values[slider.id] * (slider.scale ? params[slider.scale] : 1);
+    }
+    return params;
+  }
+
+  /** Every output the variant's panels show, plus the drawing's joints, special positions and info. */
+  outputs() {
+    const names = new Set(this.scene.outputs);
+    for (const id of this.variant.panels) {
+      for (const name of this.scene.panels[id].outputs ?? []) names.add(name);
+    }
+    return [...names];
+  }
+
+  /** Body of the kinematics request for the current (or given) values. */
+  request(values = this.values, outputs = this.outputs()) {
+    const cycle = this.#cycles.get(this.#cycleKey()) ?? TURN;
+    return { mechanism: this.variant.mechanism, params: this.params(values), n: gridPoints(cycle), outputs };
+  }
+
+  /** One request per overlay value of the first slider (λ), the other values as they are now. */
+  overlayRequests() {
+    if (!this.overlay) return [];
+    const slider = this.variant.sliders[0];
+    return this.variant.overlay_values.map((lambda) => ({
+      lambda, body: this.request({ ...this.values, [slider.id]: lambda }, OVERLAY_OUTPUTS) }));
+  }
+
+  /** Take the answer to request body; ask again when the table's cycle needs a different grid. */
+  receive(body, answer) {
+    this.answer = answer;
+    this.emit("result", answer);
+    if (!answer.ok) return;
+    this.#cycles.set(this.#cycleKey(), answer.data.cycle);
+    if (gridPoints(answer.data.cycle) !== body.n) this.emit("params");
+  }
+
+  receiveOverlay(lambda, answer) {
+    if (!this.overlay) return;
+    this.overlays.set(lambda, answer);
+    this.emit("overlays");
+  }
+
+  #useVariant(variant) {
+    this.variant = variant;
+    this.values = Object.fromEntries([...variant.sliders, ...variant.toggles].map((c) => [c.id, c.default]));
+    this.answer = null;
+    this.overlays = new Map();   // λ → answer, for the overlay values of the first slider
+  }
+
+  #cycleKey() {
+    return JSON.stringify([this.variant.id, this.variant.toggles.map((t) => this.values[t.id])]);
+  }
+}
