@@ -134,3 +134,34 @@ class MotionResponse(BaseModel):
                                                     "energy_residual, message")
     startup: dict | None = Field(None, description="start-up transient: phi, omega, t and its own numerics")
     warnings: list[str]
+
+
+class FlywheelRequest(BaseModel):
+    """Flywheel for a permissible δ: Merzalov, Gutyar, Wittenbauer and the exact periodic solution."""
+
+    model_config = ConfigDict(extra="forbid")
+    mechanism: MechanismName
+    params: dict[str, float] = Field(default_factory=dict, description="lengths in metres, as for /kinematics")
+    inertias: InertiaInput = Field(default_factory=InertiaInput, description="J1 + J_rotor·i² is the group I "
+                                                                            "the machine already has (I₁₀)")
+    load: LoadInput = Field(default_factory=LoadInput)
+    motor: MotorInput
+    omega_mean: float = Field(gt=0, le=1e4, description="mean crank speed (ω_max + ω_min)/2, rad/s")
+    delta: float = Field(ge=1e-4, le=0.5, description="permissible coefficient of speed fluctuation [δ]")
+    balance: bool = Field(True, description="constant crank moment M_c = A_д/Φ balancing the cycle work")
+    width_ratio: float = Field(0.2, ge=0.02, le=2, description="disk width over diameter ψ_b = b/D")
+    density: float = Field(7800.0, ge=500, le=25000, description="flywheel material density, kg/m³")
+
+
+class FlywheelResponse(BaseModel):
+    phi: list[float] | None = Field(None, description="crank angles over one cycle, rad")
+    methods: list[dict] | None = Field(None, description="for merzalov, gutyar, wittenbauer, exact: I_I (kg·m²), "
+                                                         "additional I_доп = I_I − I₁₀, energy swing (J), δ achieved")
+    flywheel_inertia: float | None = Field(None, description="flywheel inertia to fit (exact method), kg·m²")
+    curves: dict | None = Field(None, description="A_д, A_с, A_Σ, T_II, ΔT_I (J), I_II (kg·m²), Δω, ω before and "
+                                                  "after the flywheel (rad/s), ε (rad/s²)")
+    wittenbauer: dict | None = Field(None, description="energy–mass diagram: tangent intercepts, slopes, contact "
+                                                       "angles and the intersection (origin of the true axes)")
+    disk: dict | None = Field(None, description="solid disk: diameter, width (m), mass (kg)")
+    numerics: dict | None = None
+    warnings: list[str]

@@ -15,7 +15,8 @@ from ..errors import unprocessable
 from ..json_safe import finite_or_none
 from ..messages import translate
 from ..schemas import Language
-from ..schemas_dynamics import MotionRequest, MotionResponse, ReductionRequest, ReductionResponse
+from ..schemas_dynamics import (FlywheelRequest, FlywheelResponse, MotionRequest, MotionResponse, ReductionRequest,
+                                ReductionResponse)
 
 router = APIRouter(tags=["dynamics"])
 LANG = Query("en", description="language of the warnings: ru, uk or en")
@@ -43,20 +44,43 @@ def reduction(request: ReductionRequest, lang: Language = LANG):
              responses={422: {"description": "invalid input: the field and the reason"}})
 def motion(request: MotionRequest, lang: Language = LANG):
     try:
-        params = MECHANISMS[request.mechanism].check(request.params)
-        if request.motor.kind == "indicator" and request.mechanism != "slider_crank":
-            raise GeometryError("motor.kind", "an indicator diagram drives a crank-slider (piston engine) only",
-                                "indicator_needs_slider")
-        motor = Motor(**{**request.motor.model_dump(), "expansion": tuple(request.motor.expansion),
-                         "compression": tuple(request.motor.compression)})
-        machine = Machine(request.mechanism, params, Inertias(**request.inertias.model_dump()),
-                          Load(**request.load.model_dump()), motor)
-        _check_inertia(machine)
+        machine = _machine(request)
         result, notices = report.motion(machine, request.outputs, request.omega0, request.rtol, request.omega_mean,
                                         request.balance, request.max_cycles)
     except GeometryError as error:
         raise unprocessable(error) from None
     return _respond(result, notices, lang)
+
+
+@router.post("/flywheel", response_model=FlywheelResponse,
+             summary="Flywheel inertia for a permissible δ by Merzalov, Gutyar, Wittenbauer and exactly; sizing",
+             responses={422: {"description": "invalid input: the field and the reason"}})
+def flywheel(request: FlywheelRequest, lang: Language = LANG):
+    try:
+        machine = _machine(request)
+        if machine.speed_dependent:
+            raise GeometryError("motor.kind", "the flywheel methods of the lecture need moments of φ alone: a "
+                                "constant-torque motor or an indicator diagram, and no viscous friction",
+                                "flywheel_needs_phi_moments")
+        result, notices = report.flywheel(machine, request.omega_mean, request.delta, request.balance,
+                                          request.width_ratio, request.density)
+    except GeometryError as error:
+        raise unprocessable(error) from None
+    return _respond(result, notices, lang)
+
+
+def _machine(request) -> Machine:
+    """The machine of a request, checked: geometry, a piston engine only on a crank-slider, some inertia."""
+    params = MECHANISMS[request.mechanism].check(request.params)
+    if request.motor.kind == "indicator" and request.mechanism != "slider_crank":
+        raise GeometryError("motor.kind", "an indicator diagram drives a crank-slider (piston engine) only",
+                            "indicator_needs_slider")
+    motor = Motor(**{**request.motor.model_dump(), "expansion": tuple(request.motor.expansion),
+                     "compression": tuple(request.motor.compression)})
+    machine = Machine(request.mechanism, params, Inertias(**request.inertias.model_dump()),
+                      Load(**request.load.model_dump()), motor)
+    _check_inertia(machine)
+    return machine
 
 
 def _check_inertia(machine: Machine) -> None:

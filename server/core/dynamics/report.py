@@ -6,12 +6,14 @@ import time
 import numpy as np
 
 from ..mechanisms import MECHANISMS, GeometryError, Notice
+from . import flywheel as fw
 from .friction_iteration import friction_iteration
 from .machine import Machine
-from .motion import startup, steady_cycle
+from .motion import cumulative_simpson, node_tables, startup, steady_cycle, steps_per_cycle
 from .reduction import Inertias, reduced_inertia, textbook_inertia_approximation
 from .resistance import CONVENTIONS, Load, mean_over_cycle, resisting_moment
 
+DISPLAY_POINTS = 512    # curves are computed on thousands of nodes and sent on about this many
 TIME_BUDGET_S = 5.0     # wall-clock bound of one motion request (each path stops there with its partial result)
 
 
@@ -77,4 +79,69 @@ def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, ome
         if run is not None:
             keep = slice(None, None, max(1, run.phi.size // 4000))   # at most ~4000 points to draw
             result["startup"] |= {"phi": run.phi[keep], "omega": run.omega[keep], "t": run.t[keep]}
+    return result, notices
+
+
+def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, width_ratio: float,
+             density: float, steps: int = 2048) -> tuple[dict, list[Notice]]:
+    """Merzalov, Gutyar, Wittenbauer and the exact inertia for δ, with the sizing and the curves to draw."""
+    started = time.perf_counter()
+    tables = node_tables(machine, steps_per_cycle(machine, steps), balance)
+    nodes = slice(0, None, 2)
+    h = float(tables.phi[2] - tables.phi[0])
+    phi = tables.phi[nodes]
+    work = cumulative_simpson(tables.net_phi, h)
+    driving = cumulative_simpson(tables.drive_phi, h)
+    if not np.isfinite(work).all():
+        return {}, tables.notices
+    driving_cycle = max(abs(driving[-1]), 1e-300)
+    if abs(work[-1]) > 1e-9 * driving_cycle:
+        trend = "speeds up" if work[-1] > 0 else "slows down"
+        return {}, [Notice(f"no_steady_cycle_{trend.split()[0]}", f"No steady cycle: the work over a cycle is "
+                           f"{work[-1]:.4g} J, not zero, so the machine {trend} every cycle.", {"work": float(work[-1])})]
+    group_i_existing = machine.inertias.J1 + machine.inertias.J_rotor * machine.inertias.gear_ratio**2
+    cycle = fw.Cycle(phi, work, tables.J[nodes] - group_i_existing)
+    methods = [fw.merzalov(cycle, omega_mean, delta), fw.gutyar(cycle, omega_mean, delta)]
+    witt, diagram = fw.wittenbauer(cycle, omega_mean, delta)
+    methods += [witt, fw.exact(cycle, omega_mean, delta, methods[0].inertia)]
+    rows = [{"method": m.name, "inertia": m.inertia, "additional": m.inertia - group_i_existing,
+             "energy_swing": m.energy_swing, "delta_achieved": fw.achieved_delta(cycle, m.inertia, omega_mean)}
+            for m in methods]
+    notices = []
+    required = rows[-1]["inertia"]
+    chosen = max(required, group_i_existing)
+    if required <= group_i_existing:
+        achieved = fw.achieved_delta(cycle, group_i_existing, omega_mean)
+        notices.append(Notice("no_flywheel_needed", f"No flywheel needed: the crank and rotor alone (I = "
+                              f"{group_i_existing:.4g} kg·m²) already give δ = {achieved:.4g} ≤ {delta:g}.",
+                              {"inertia": group_i_existing, "achieved": achieved, "delta": delta}))
+    flywheel_inertia = max(required - group_i_existing, 0.0)
+    merz = rows[0]
+    omega_before = fw.periodic_speed(cycle, group_i_existing, omega_mean)
+    omega_after = fw.periodic_speed(cycle, chosen, omega_mean)
+    total = chosen + cycle.inertia_ii
+    moment = tables.net_phi[nodes]
+    epsilon = (moment - 0.5 * tables.dJ[nodes] * omega_after**2) / total
+    group_one = work - 0.5 * cycle.inertia_ii * omega_mean**2
+    delta_t_i = group_one - group_one[0]
+    shown = slice(0, None, max(1, (phi.size - 1) // DISPLAY_POINTS))   # computed finely, sent coarsely
+    curves = {
+        "work_driving": driving, "work_resisting": driving - work, "work_total": work,
+        "kinetic_ii": 0.5 * cycle.inertia_ii * omega_mean**2, "delta_t_i": delta_t_i, "inertia_ii": cycle.inertia_ii,
+        "delta_omega": (delta_t_i - 0.5 * (delta_t_i.max() + delta_t_i.min())) / (merz["inertia"] * omega_mean),
+        "omega_before": omega_before, "omega_after": omega_after, "epsilon": epsilon}
+    result = {
+        "phi": phi[shown], "methods": rows, "group_i_existing": group_i_existing, "flywheel_inertia": flywheel_inertia,
+        "merzalov_excess": merz["inertia"] / required - 1,
+        "curves": {name: values[shown] for name, values in curves.items()},
+        "wittenbauer": diagram,
+        "disk": fw.disk(flywheel_inertia, width_ratio, density).__dict__,
+        "disk_as_printed": fw.disk_as_printed(flywheel_inertia).__dict__,
+        "rim": fw.rim(flywheel_inertia, fw.disk(flywheel_inertia, width_ratio, density).diameter, density)
+        if flywheel_inertia > 0 else None,
+        "balancing_moment": tables.balancing_moment,
+        "numerics": {"method": "Simpson's rule for A(φ) on a uniform grid; exact inertia by Brent's method on the "
+                               "periodic energy solution", "steps": steps, "runtime_ms": 1e3 * (time.perf_counter() - started),
+                     "error_estimate": abs(rows[-1]["delta_achieved"] / delta - 1)},
+    }
     return result, notices

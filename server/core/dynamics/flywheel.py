@@ -1,0 +1,151 @@
+"""Flywheel for a given coefficient of speed fluctuation δ: seed 004 (lecture 10), §10.3–10.8.
+
+The moments depend on φ alone and balance over the cycle (A_Σ(Φ) = 0).  Links split into
+group I (constant reduced inertia I_I: crank, rotor, flywheel) and group II (I_II(φ)).
+With the total work A(φ) = ∫(M_д − M_c)dφ and δ = (ω_max − ω_min)/ω_m, ω_m = (ω_max + ω_min)/2:
+
+  Merzalov (L9)–(L10), (L6):  ΔT_I = A − I_II ω_m²/2 (+const),  I_I = [max ΔT_I − min ΔT_I]/(δ ω_m²)
+  Gutyar (L27):               the same with I_II ω_max²/2 near the top and I_II ω_min²/2 near the bottom,
+                              ω_max,min = (1 ± δ/2) ω_m  (the lecture prints the squares without ², an OCR slip)
+  Wittenbauer (L28)–(L29):    tangents of slopes ω_max²/2, ω_min²/2 to the curve (I_II, A):
+                              I_I = (b_up − b_low)/(δ ω_m²), b_up = max(A − I_II ω_max²/2), b_low = min(A − I_II ω_min²/2)
+  exact:                      ω(φ)² = 2(T₀ + A)/(I_I + I_II) with T₀ chosen so that (ω_max + ω_min)/2 = ω_m,
+                              and I_I found by root finding so that this periodic solution has the target δ.
+Sizing (step 6): solid disk I = mD²/8, m = ρπψ_b D³/4 ⇒ D = (32I/(ρπψ_b))^{1/5}
+(0.366·I^{1/5}, m = 1230·D³ for ψ_b = 0.2, ρ = 7800 kg/m³); thin rim of mean diameter D: m = 4I/D².
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+GUTYAR_WINDOW = np.pi / 4      # half-width of the curve pieces Gutyar draws around the extremes, rad
+
+
+@dataclass(frozen=True)
+class Cycle:
+    """Tabulated cycle: φ on a closed uniform grid, A(φ) = ∫(M_д − M_c)dφ (J), I_II(φ) (kg·m²)."""
+
+    phi: np.ndarray
+    work: np.ndarray
+    inertia_ii: np.ndarray
+
+
+@dataclass
+class Method:
+    name: str
+    inertia: float              # I_I, kg·m²
+    energy_swing: float         # ΔT used, J
+
+
+def _extreme(values: np.ndarray, sign: int, allowed: np.ndarray | None = None) -> float:
+    """max (sign +1) or min (−1) of a smooth sampled periodic curve (closed grid), refined by a parabola
+    through the best sample and its neighbours; ``allowed`` restricts the search to part of the cycle."""
+    n = values.size - 1
+    allowed = np.ones(n, bool) if allowed is None else allowed[:-1]
+    k = int(np.argmax(np.where(allowed, sign * values[:-1], -np.inf)))
+    if not (allowed[(k - 1) % n] and allowed[(k + 1) % n]):
+        return float(values[k])
+    left, mid, right = values[(k - 1) % n], values[k], values[(k + 1) % n]
+    curvature = left - 2 * mid + right
+    return float(mid - (right - left) ** 2 / (8 * curvature)) if curvature * sign < 0 else float(mid)
+
+
+def merzalov(cycle: Cycle, omega_mean: float, delta: float) -> Method:
+    group_one = cycle.work - 0.5 * cycle.inertia_ii * omega_mean**2
+    swing = _extreme(group_one, +1) - _extreme(group_one, -1)
+    return Method("merzalov", swing / (delta * omega_mean**2), swing)
+
+
+def tangent_intercepts(cycle: Cycle, omega_mean: float, delta: float, window: float | None = None):
+    """b_up = max(A − I_II ω_max²/2), b_low = min(A − I_II ω_min²/2), optionally within ±window of the
+    extremes of Merzalov's ΔT_I; returns the intercepts and the angles where the tangents touch."""
+    w_max, w_min = (1 + delta / 2) * omega_mean, (1 - delta / 2) * omega_mean
+    upper = cycle.work - 0.5 * cycle.inertia_ii * w_max**2
+    lower = cycle.work - 0.5 * cycle.inertia_ii * w_min**2
+    near_top = near_bottom = np.ones_like(cycle.phi, bool)
+    if window is not None:
+        group_one = cycle.work - 0.5 * cycle.inertia_ii * omega_mean**2
+        def near(k):
+            return np.abs(np.angle(np.exp(1j * (cycle.phi - cycle.phi[k])))) <= window
+        near_top, near_bottom = near(int(np.argmax(group_one))), near(int(np.argmin(group_one)))
+    k_up = int(np.argmax(np.where(near_top, upper, -np.inf)))
+    k_low = int(np.argmin(np.where(near_bottom, lower, np.inf)))
+    return (_extreme(upper, +1, near_top), _extreme(lower, -1, near_bottom),
+            float(cycle.phi[k_up]), float(cycle.phi[k_low]))
+
+
+def gutyar(cycle: Cycle, omega_mean: float, delta: float) -> Method:
+    b_up, b_low, _, _ = tangent_intercepts(cycle, omega_mean, delta, GUTYAR_WINDOW)
+    return Method("gutyar", (b_up - b_low) / (delta * omega_mean**2), b_up - b_low)
+
+
+def wittenbauer(cycle: Cycle, omega_mean: float, delta: float) -> tuple[Method, dict]:
+    """The inertia and the diagram: tangent intercepts, touching angles and the tangents' intersection."""
+    b_up, b_low, phi_up, phi_low = tangent_intercepts(cycle, omega_mean, delta)
+    inertia = (b_up - b_low) / (delta * omega_mean**2)
+    w_max = (1 + delta / 2) * omega_mean
+    diagram = {"b_up": b_up, "b_low": b_low, "phi_up": phi_up, "phi_low": phi_low,
+               "slope_up": 0.5 * w_max**2, "slope_low": 0.5 * ((1 - delta / 2) * omega_mean) ** 2,
+               "origin_inertia": -inertia, "origin_energy": b_up - inertia * 0.5 * w_max**2}
+    return Method("wittenbauer", inertia, b_up - b_low), diagram
+
+
+def periodic_speed(cycle: Cycle, inertia_i: float, omega_mean: float) -> np.ndarray:
+    """ω(φ) of the exact periodic solution with group-I inertia I_I and mean (ω_max + ω_min)/2 = ω_m."""
+    total = inertia_i + cycle.inertia_ii
+    lowest = float(np.max(-cycle.work))
+    def mean_error(T0):
+        omega = np.sqrt(2 * (T0 + cycle.work) / total)
+        return 0.5 * (_extreme(omega, +1) + _extreme(omega, -1)) - omega_mean
+    high = lowest + 0.5 * float(total.max()) * (2 * omega_mean) ** 2 + 1.0
+    T0 = brentq(mean_error, lowest + 1e-12 * high, high, xtol=1e-15 * high, rtol=1e-15)
+    return np.sqrt(2 * (T0 + cycle.work) / total)
+
+
+def achieved_delta(cycle: Cycle, inertia_i: float, omega_mean: float) -> float:
+    omega = periodic_speed(cycle, inertia_i, omega_mean)
+    w_max, w_min = _extreme(omega, +1), _extreme(omega, -1)
+    return (w_max - w_min) / (0.5 * (w_max + w_min))
+
+
+def exact(cycle: Cycle, omega_mean: float, delta: float, guess: float) -> Method:
+    """I_I of the periodic solution with exactly the target δ (δ falls monotonically as I_I grows)."""
+    def error(log_inertia):
+        return np.log(achieved_delta(cycle, float(np.exp(log_inertia)), omega_mean) / delta)
+    low, high = np.log(guess) - 1.0, np.log(guess) + 1.0
+    while error(low) < 0:
+        low -= 2.0
+    while error(high) > 0:
+        high += 2.0
+    inertia = float(np.exp(brentq(error, low, high, xtol=1e-14, rtol=1e-14)))
+    return Method("exact", inertia, delta * inertia * omega_mean**2)
+
+
+@dataclass(frozen=True)
+class Disk:
+    """Solid steel disk for inertia I: diameter D, width b = ψ_b D, mass m."""
+
+    diameter: float
+    width: float
+    mass: float
+
+
+def disk(inertia: float, width_ratio: float = 0.2, density: float = 7800.0) -> Disk:
+    diameter = (32 * inertia / (density * np.pi * width_ratio)) ** 0.2
+    return Disk(diameter, width_ratio * diameter, density * np.pi * width_ratio * diameter**3 / 4)
+
+
+def disk_as_printed(inertia: float) -> Disk:
+    """The lecture's rounded constants for ψ_b = 0.2, ρ = 7800 kg/m³: D = 0.366·I^{1/5}, m = 1230·D³."""
+    diameter = 0.366 * inertia**0.2
+    return Disk(diameter, 0.2 * diameter, 1230 * diameter**3)
+
+
+def rim(inertia: float, diameter: float, density: float = 7800.0) -> dict:
+    """Thin rim of mean diameter D: m = 4I/D², square cross-section of area m/(ρπD)."""
+    mass = 4 * inertia / diameter**2
+    area = mass / (density * np.pi * diameter)
+    return {"diameter": diameter, "mass": mass, "section_side": float(np.sqrt(area))}
