@@ -71,7 +71,7 @@ def test_every_panel_path_of_a_scene_exists_in_its_answer(scene_id, variant_id):
         panel = scene.panels[name]
         paths = [s[key] for s in panel.get("series", []) for key in ("y", "theta", "r") if key in s]
         paths += [item["path"] for item in panel.get("items", [])]
-        paths += [panel[key] for key in ("x", "path") if key in panel]
+        paths += [panel[key] for key in ("x", "y", "path", "diagram") if key in panel]
         if panel["kind"] == "numerics":       # shows whichever of its paths the variant computes
             assert any(_has(data, path) for path in panel["paths"])
         for path in paths:

@@ -75,6 +75,7 @@ class Scene(BaseModel):
     outputs: list[str]
     panels: dict[str, dict]
     variants: list[Variant]
+    presets: list[dict] = Field(default_factory=list, description="named ranges of a slider, e.g. [δ] by machine type")
 
 
 def _check_languages(texts: dict, where: str) -> None:

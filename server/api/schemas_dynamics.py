@@ -151,6 +151,7 @@ class FlywheelRequest(BaseModel):
     balance: bool = Field(True, description="constant crank moment M_c = A_д/Φ balancing the cycle work")
     width_ratio: float = Field(0.2, ge=0.02, le=2, description="disk width over diameter ψ_b = b/D")
     density: float = Field(7800.0, ge=500, le=25000, description="flywheel material density, kg/m³")
+    outputs: list[Literal["flywheel"]] = Field(["flywheel"], description="the whole flywheel study")
 
 
 class FlywheelResponse(BaseModel):
