@@ -104,3 +104,12 @@ def test_openapi_documents_the_dynamics_inputs_with_units():
     assert "/api/v1/motion" in schema["paths"] and "/api/v1/reduction" in schema["paths"]
     inertia = schema["components"]["schemas"]["InertiaInput"]["properties"]
     assert "kg" in inertia["m2"]["description"] and "kg·m²" in inertia["J1"]["description"]
+
+
+def test_block_on_the_lever_pivot_is_reported_once_in_words():
+    body = {"mechanism": "slotted_link", "params": {"l0": 0.1, "l1": 0.1}, "inertias": {"J1": 0.5, "J3": 0.1},
+            "load": {"force": 20, "f": 0.2}, "motor": {"kind": "linear", "M0": 60, "b": 0.3},
+            "outputs": ["steady", "startup"]}
+    data = strict(post("motion", body))
+    assert "omega" not in data and len(data["warnings"]) == len(set(data["warnings"])) >= 1
+    assert any("jam" in w for w in data["warnings"])

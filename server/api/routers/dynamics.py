@@ -23,7 +23,8 @@ LANG = Query("en", description="language of the warnings: ru, uk or en")
 
 
 def _respond(result: dict, notices, lang: str) -> JSONResponse:
-    return JSONResponse(finite_or_none(result) | {"warnings": [translate(n, lang) for n in notices]})
+    warnings = dict.fromkeys(translate(n, lang) for n in notices)      # once each, in order
+    return JSONResponse(finite_or_none(result) | {"warnings": list(warnings)})
 
 
 @router.post("/reduction", response_model=ReductionResponse,

@@ -78,6 +78,15 @@ class Motion:
     notices: list[Notice] = field(default_factory=list)
 
 
+def blocked(tables) -> list[Notice]:
+    """Why the machine cannot pass some angle: the notices of the tables, or the angles themselves."""
+    if tables.notices:
+        return list(tables.notices)
+    where = np.degrees(tables.phi[~np.isfinite(tables.net_phi)])
+    return [Notice("singular_position", f"The reduced moments are undefined at φ = {where[0]:.1f}° (a singular "
+                   "position of the mechanism); the machine cannot pass it.", {"phi": float(where[0])})]
+
+
 def node_tables(machine: Machine, steps: int, balance: bool = False):
     """φ-dependent tables on the step and half-step nodes of one cycle.
 
@@ -186,8 +195,8 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
         steps = steps_per_cycle(machine, per_2pi)
         tables = node_tables(machine, steps, balance)
         if not np.isfinite(tables.net_phi).all():
-            motion.notices += tables.notices
-            numerics.message = "the mechanism self-locks: no motion"
+            motion.notices += blocked(tables)
+            numerics.message = motion.notices[0].text
             break
         try:
             if machine.speed_dependent:
@@ -285,8 +294,8 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
     steps = steps_per_cycle(machine, 256)
     tables = node_tables(machine, steps, balance)
     if not np.isfinite(tables.net_phi).all():
-        motion.notices += tables.notices
-        numerics.message = "the mechanism self-locks: no motion"
+        motion.notices += blocked(tables)
+        numerics.message = motion.notices[0].text
         return motion
     T0 = 0.5 * tables.J[0] * omega0**2
     if T0 == 0.0 and tables.net_phi[0] + machine.speed_moment(0.0, tables.sliding[0])[0] <= 0.0:

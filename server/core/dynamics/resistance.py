@@ -71,12 +71,14 @@ def stroke_factor(u31: np.ndarray, k: float) -> np.ndarray:
 def resisting_moment(mechanism: str, params: dict[str, float], load: Load, phi: np.ndarray,
                      omega: np.ndarray | float = 0.0) -> ResistingMoment:
     """M_c(φ, ω) reduced to the crank shaft; ω (rad/s) enters only through viscous friction."""
-    values = MECHANISMS[mechanism].evaluate(params, phi, set()).values
+    kinematics = MECHANISMS[mechanism].evaluate(params, phi, set())
+    values = kinematics.values
     u31, u21 = values["u31"], values["u21"]
     k = stroke_factor(u31, load.return_factor)
     builder = {"sine": _sine, "slider_crank": _slider_crank, "slotted_link": _slotted_link,
                "four_bar": _four_bar}[mechanism]
     result = builder(params, load, phi, values, k)
+    result.notices = kinematics.warnings + result.notices     # singular positions of the linkage itself
     sliding = {"sine": u21**2 + u31**2, "slider_crank": u31**2, "slotted_link": u21**2,
                "four_bar": np.zeros_like(phi)}[mechanism]
     result.viscous = load.beta * np.asarray(omega) * sliding
@@ -140,10 +142,11 @@ def _slotted_link(p, load, phi, values, k):
         return ResistingMoment(useful, total - useful, 0 * phi, [Notice(
             "textbook_idle_stroke", "Textbook formulas (3.44)–(3.49): on the idle stroke of the oscillating lever "
             "the printed moment is negative, i.e. the idle load would drive the crank.")])
+    on_pivot = d2 < 1e-24                      # λ = 1, φ = π: the block on the lever pivot
     with np.errstate(divide="ignore", invalid="ignore"):
-        dry = k * M3 * f * lam * np.abs(np.sin(phi)) / d2
+        dry = np.where(on_pivot, np.nan, k * M3 * f * lam * np.abs(np.sin(phi)) / d2)
     result = ResistingMoment(useful, dry, 0 * phi)
-    if f > 0 and lam == 1 and not np.isfinite(dry).all():
+    if f > 0 and on_pivot.any():
         result.notices.append(Notice("slotted_jamming_friction", "λ = 1: at φ = 180° the dry-friction moment "
                                      "M_T = ±0.5 M₃ f tan(φ/2) is unbounded, the mechanism jams for any load "
                                      "(seed 000 (3.52)); in a real machine clearances prevent it."))
