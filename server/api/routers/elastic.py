@@ -1,0 +1,42 @@
+"""POST /api/v1/elastic: elastic machine models in time, with the solver chosen by measured stiffness."""
+from fastapi import APIRouter
+
+from ...core.dynamics.motors import Motor
+from ...core.dynamics.reduction import Inertias
+from ...core.dynamics.resistance import Load
+from ...core.elastic.report import ElasticMachine, modal, simulate
+from ...core.elastic.stiffness import Compliances
+from ...core.mechanisms import MECHANISMS, GeometryError
+from ..errors import unprocessable
+from ..schemas import Language
+from ..schemas_elastic import ElasticRequest
+from .dynamics import LANG, _respond
+
+router = APIRouter(tags=["elastic"])
+
+
+@router.post("/elastic", summary="Two- and three-mass elastic machines and elastic linkages: time histories, "
+                                 "modal curves, the rigid solution, numerics",
+             responses={422: {"description": "invalid input: the field and the reason"}})
+def elastic(request: ElasticRequest, lang: Language = LANG):
+    try:
+        machine = ElasticMachine(
+            request.model, request.mechanism, MECHANISMS[request.mechanism].check(request.params),
+            Inertias(**request.inertias.model_dump()), Load(**request.load.model_dump()),
+            Motor(**{**request.motor.model_dump(), "expansion": tuple(request.motor.expansion),
+                     "compression": tuple(request.motor.compression)}),
+            request.J_motor, request.J_middle, request.c, Compliances(**request.compliances.model_dump()),
+            request.b, request.b1, request.speed, request.omega0, request.twist0)
+        if request.motor.kind == "indicator":
+            raise GeometryError("motor.kind", "the elastic models take a motor with a speed characteristic or a "
+                                "constant torque", "elastic_motor")
+        result, notices = {}, []
+        if "histories" in request.outputs or "rigid" in request.outputs:
+            result, notices = simulate(machine, request.t_end, request.n, request.rtol, request.method)
+            if "rigid" not in request.outputs:
+                result.pop("rigid")
+        if "modal" in request.outputs:
+            result["modal"] = modal(machine)
+    except GeometryError as error:
+        raise unprocessable(error) from None
+    return _respond(result, notices, lang)

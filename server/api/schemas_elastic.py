@@ -1,0 +1,69 @@
+"""Request model of the elastic-machine API (/elastic): every input with its unit."""
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from .schemas import MechanismName
+from .schemas_dynamics import InertiaInput, LoadInput, MotorInput
+
+
+class CompliancesInput(BaseModel):
+    """Compliances of the elastic linkage, seed 000 (1.24)–(1.25), (1.34); seed 003 (2)."""
+
+    model_config = ConfigDict(extra="forbid")
+    e1: float = Field(0.0, ge=0, le=1, description="crank-shaft torsion e₁ = L₁/(G I_p1), rad/(N·m)")
+    e2: float = Field(0.0, ge=0, le=1, description="rod/coupler tension–compression e₂ = l₂/(E F₂), m/N")
+    e3: float = Field(0.0, ge=0, le=1, description="rocker-shaft torsion e₃ = L₃/(G I_p3), rad/(N·m) (four-bar)")
+
+
+class ElasticRequest(BaseModel):
+    """An elastic machine, its time span and the outputs wanted."""
+
+    model_config = ConfigDict(extra="forbid")
+    model: Literal["two_mass", "kinematic_drive", "three_mass", "elastic_linkage", "elastic_four_bar"] = Field(
+        description="two_mass: belt drive (1.20)–(1.21); kinematic_drive: powerful motor φ₁ = ωt (1.22)–(1.23); "
+                    "three_mass: (1.40)–(1.42); elastic_linkage: c(φ) of the linkage (1.29)/(1.34), (1.31)–(1.32); "
+                    "elastic_four_bar: seed 003's two-mass model with c_n(φ₁) and damping b_n")
+    mechanism: MechanismName
+    params: dict[str, float] = Field(default_factory=dict, description="lengths in metres, as for /kinematics")
+    inertias: InertiaInput = Field(default_factory=InertiaInput, description="the mechanism side; J1 is the crank")
+    load: LoadInput = Field(default_factory=LoadInput)
+    motor: MotorInput = Field(default_factory=lambda: MotorInput(kind="constant"))
+    J_motor: float = Field(0.0, ge=0, le=1e4, description="motor side of the first spring, kg·m²")
+    J_middle: float = Field(0.0, ge=0, le=1e4, description="three-mass: the middle mass, kg·m²")
+    c: float = Field(0.0, ge=0, le=1e12, description="constant stiffness (belt, or the first spring), N·m/rad")
+    compliances: CompliancesInput = Field(default_factory=CompliancesInput)
+    b: float = Field(0.0, ge=0, le=1e9, description="damping across the spring next to the mechanism, N·m·s/rad")
+    b1: float = Field(0.0, ge=0, le=1e9, description="three-mass: damping across the first spring, N·m·s/rad")
+    speed: float = Field(0.0, ge=0, le=1e4, description="kinematic drive: the motor side's constant speed, rad/s")
+    omega0: float = Field(0.0, ge=0, le=1e4, description="initial speed of every mass, rad/s")
+    twist0: float = Field(0.0, ge=-1, le=1, description="initial twist of the spring next to the mechanism, rad")
+    t_end: float = Field(1.0, gt=0, le=20, description="time span, s")
+    n: int = Field(801, ge=11, le=4001, description="samples of the time histories")
+    rtol: float = Field(1e-6, ge=1e-10, le=1e-2, description="relative tolerance")
+    method: Literal["auto", "DOP853", "RK45", "Radau", "BDF", "LSODA"] = Field(
+        "auto", description="auto: chosen by the stiffness the server measures")
+    outputs: list[Literal["histories", "modal", "rigid"]] = Field(min_length=1, description=(
+        "histories: time histories with numerics; modal: c(φ), e(φ), natural frequency and damping ratio over a "
+        "turn (closed forms); rigid: the rigid machine's start-up on the same times"))
+
+    @model_validator(mode="after")
+    def complete(self):
+        needs_linkage = self.model in ("three_mass", "elastic_linkage", "elastic_four_bar")
+        if needs_linkage and not (self.compliances.e1 or self.compliances.e2 or self.compliances.e3):
+            raise ValueError(f"{self.model}: give the linkage's compliances e1, e2 (e3)")
+        if self.model in ("two_mass", "kinematic_drive", "three_mass") and self.c <= 0:
+            raise ValueError(f"{self.model}: give the stiffness c > 0")
+        if self.model == "elastic_four_bar" and self.mechanism != "four_bar":
+            raise ValueError("elastic_four_bar: the mechanism is the four_bar")
+        if self.model in ("elastic_linkage", "three_mass") and self.mechanism not in ("slider_crank", "four_bar"):
+            raise ValueError("an elastic linkage is a slider_crank or a four_bar")
+        if self.model == "kinematic_drive" and self.speed <= 0:
+            raise ValueError("kinematic_drive: give the motor side's speed > 0")
+        if self.model != "kinematic_drive" and self.J_motor <= 0:
+            raise ValueError(f"{self.model}: give the motor side's inertia J_motor > 0")
+        if self.model == "three_mass" and self.J_middle <= 0:
+            raise ValueError("three_mass: give the middle mass J_middle > 0")
+        return self

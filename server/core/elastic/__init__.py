@@ -1,0 +1,1 @@
+"""Elastic machine models: two- and three-mass chains, elastic linkages, stiff numerics."""

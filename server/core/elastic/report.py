@@ -1,0 +1,241 @@
+"""The elastic scenes' computations: build the model from the machine data, integrate, report.
+
+Everything on the mechanism side is tabulated once per request on TABLE_POINTS nodes per turn
+(closed forms, vectorised): J(φ) and c(φ) as cubic Hermite tables with their exact derivatives,
+the load M_c(φ) with central-difference slopes (it has kinks at the dead centres, where the
+table rounds them over one node spacing).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..dynamics.machine import Machine
+from ..dynamics.motion import startup
+from ..dynamics.motors import Motor
+from ..dynamics.reduction import Inertias, reduced_inertia
+from ..dynamics.resistance import Load, resisting_moment
+from ..mechanisms import MECHANISMS, GeometryError, Notice
+from .models import Drive, MechanismSide, ThreeMass, TwoMass
+from .periodic_table import PeriodicTable
+from .simulate import MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio
+from .stiffness import Compliances, linkage_stiffness
+
+TABLE_POINTS = 4096
+LARGE_TWIST = 0.05       # rad: a linear spring is an idealisation well before this
+SENSITIVE = 1e-2         # relative error estimate above which the scene says so
+MODELS = ("two_mass", "kinematic_drive", "three_mass", "elastic_linkage", "elastic_four_bar")
+LINKAGE_STIFFNESS = ("three_mass", "elastic_linkage", "elastic_four_bar")
+
+
+@dataclass(frozen=True)
+class ElasticMachine:
+    """A machine with elastic links. The mechanism side is the reduced inertia of `inertias`
+    (J1 = the crank); J_motor is the motor side of the first spring."""
+
+    model: str
+    mechanism: str
+    params: dict
+    inertias: Inertias
+    load: Load
+    motor: Motor
+    J_motor: float = 0.0        # kg·m²
+    J_middle: float = 0.0       # three-mass: middle mass, kg·m²
+    c: float = 0.0              # constant stiffness: the belt (two-mass) or the first spring (three-mass), N·m/rad
+    compliances: Compliances = field(default_factory=Compliances)   # elastic linkage, seed 000 (1.24)–(1.34)
+    b: float = 0.0              # damping across the spring next to the mechanism, N·m·s/rad
+    b1: float = 0.0             # three-mass: damping across the first spring, N·m·s/rad
+    speed: float = 0.0          # kinematic drive: prescribed motor-side speed, rad/s
+    omega0: float = 0.0         # initial speed of every mass, rad/s
+    twist0: float = 0.0         # initial twist of the spring next to the mechanism, rad
+
+
+def mechanism_side(machine: ElasticMachine) -> MechanismSide:
+    """Periodic tables of J(φ), c(φ), M_c(φ) and S(φ) for the mechanism side."""
+    period = MECHANISMS[machine.mechanism].cycle(machine.params)
+    phi = np.linspace(0.0, period, int(TABLE_POINTS * period / (2 * np.pi)) + 1)
+    side = Inertias(**{**machine.inertias.__dict__, "J_rotor": 0.0})
+    inertia = reduced_inertia(machine.mechanism, machine.params, side, phi)
+    moment = resisting_moment(machine.mechanism, machine.params, machine.load, phi, omega=1.0)
+    if not np.isfinite(moment.useful + moment.dry).all():
+        notice = moment.notices[0] if moment.notices else Notice("singular_position", "the load is undefined")
+        raise GeometryError("load", notice.text, notice.code, **notice.context)
+    sliding = moment.viscous / machine.load.beta if machine.load.beta else np.zeros_like(phi)
+    if machine.model in LINKAGE_STIFFNESS:
+        c, dc, _ = linkage_stiffness(machine.mechanism, machine.params, machine.compliances, phi)
+        stiffness = PeriodicTable(period, c, dc)
+    else:
+        stiffness = machine.c
+    load = moment.useful + moment.dry
+    return MechanismSide(PeriodicTable(period, inertia.J, inertia.dJ), stiffness,
+                         PeriodicTable(period, load, periodic_slope(load, period)),
+                         PeriodicTable(period, sliding, periodic_slope(sliding, period)), machine.load.beta)
+
+
+def periodic_slope(values: np.ndarray, period: float) -> np.ndarray:
+    """Central differences on the closed periodic grid: keeps the table's interpolant C¹ between the
+    nodes (a piecewise-linear load would jolt an adaptive solver at every node)."""
+    h = period / (values.size - 1)
+    inner = values[:-1]
+    slope = (np.roll(inner, -1) - np.roll(inner, 1)) / (2 * h)
+    return np.append(slope, slope[0])
+
+
+def reduced_torque(motor: Motor, i: float):
+    """ω ↦ (i·M(iω), i²·M′(iω)): the motor seen from the crank, as plain float arithmetic."""
+    if motor.kind == "constant":
+        return lambda w: (i * motor.M0, 0.0)
+    if motor.kind == "linear":
+        return lambda w: (i * (motor.M0 - motor.b * i * w), -i * i * motor.b)
+    def characteristic(w):
+        torque, slope = motor.torque(i * w)
+        return i * float(torque), i * i * float(slope)
+    return characteristic
+
+
+def build(machine: ElasticMachine):
+    """The first-order model and its initial state: φ = 0, every mass at speed ω₀, the twist next to
+    the mechanism θ₀ (a free-vibration start), the others relaxed."""
+    side = mechanism_side(machine)
+    drive = Drive(reduced_torque(machine.motor, machine.inertias.gear_ratio),
+                  machine.speed if machine.model == "kinematic_drive" else None)
+    if machine.model == "three_mass":
+        model = ThreeMass(machine.J_motor, machine.J_middle, machine.c, machine.b1, side, machine.b, drive)
+    else:
+        model = TwoMass(machine.J_motor, side, machine.b, drive)
+    y0 = np.zeros(model.size)
+    y0[2] = machine.twist0
+    if machine.model == "kinematic_drive":
+        y0[3] = machine.speed - machine.omega0        # θ̇ = ω − ω₂
+    else:
+        y0[1] = machine.omega0
+    return model, y0
+
+
+def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, method: str = "auto",
+             budget_s: float = TIME_BUDGET_S, max_evaluations: int = MAX_EVALUATIONS) -> tuple[dict, list]:
+    """Time histories, the rigid solution for comparison, the energy balance and the numerics."""
+    started = time.perf_counter()
+    deadline = started + budget_s
+    model, y0 = build(machine)
+    slow = max(2 * np.pi / t_end, machine.speed, no_load_speed(machine))
+    ratio, decay, fastest = stiffness_ratio(model, y0, slow)
+    chosen = method if method != "auto" else ("Radau" if ratio > STIFF_RATIO else "DOP853")
+    times = np.linspace(0.0, t_end, samples)
+    atol = absolute_tolerances(machine, model, rtol)
+    run = integrate(model, y0, t_end, rtol, chosen, times, deadline, atol, max_evaluations)
+    check = integrate(model, y0, run.t[-1] if run.t.size else t_end, rtol / 10, chosen,
+                      run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations)
+    result = histories(machine, model, run)
+    twist_now, twist_check = result["twist"], histories(machine, model, check)["twist"]
+    common = min(twist_now.size, twist_check.size)
+    scale = max(float(np.max(np.abs(twist_now))) if twist_now.size else 0.0, 1e-300)
+    numerics = {
+        "method": chosen, "why": (f"stiffness ratio {ratio:.3g}: the fastest decay rate {decay:.4g} 1/s against the "
+                                  f"slow rate {slow:.4g} 1/s (fastest |λ| = {fastest:.4g} 1/s) is "
+                                  f"{'above' if ratio > STIFF_RATIO else 'below'} {STIFF_RATIO:g}, so an "
+                                  f"{'implicit' if chosen in ('Radau', 'BDF', 'LSODA') else 'explicit'} method"
+                                  + (" (chosen by the request)" if method != "auto" else "")),
+        "stiffness_ratio": ratio, "rtol": rtol, "steps": run.numerics["steps"], "rejected": run.numerics["rejected"],
+        "nfev": run.numerics["nfev"], "njev": run.numerics["njev"], "nlu": run.numerics["nlu"],
+        "error_estimate": float(np.max(np.abs(twist_now[:common] - twist_check[:common]))) / scale,
+        "energy_residual": result.pop("energy_residual"), "message": run.numerics["message"],
+        "table_points_per_turn": TABLE_POINTS,
+        "runtime_ms": 1e3 * (time.perf_counter() - started)}
+    notices = [] if run.complete else [Notice("elastic_partial", run.numerics["message"])]
+    largest = scale if twist_now.size else 0.0
+    if largest > LARGE_TWIST:
+        notices.append(Notice("large_twist", f"The twist reaches {largest:.3g} rad: far beyond the small "
+                              "deformations the linear spring assumes (near the dead positions c → 0).",
+                              {"twist": largest}))
+    if numerics["error_estimate"] > SENSITIVE:
+        notices.append(Notice("sensitive_motion", f"The run at ten times tighter tolerance differs by "
+                              f"{100 * numerics['error_estimate']:.2g} % of the largest twist: the details of this "
+                              "motion are sensitive; more damping makes them reliable.",
+                              {"percent": 100 * numerics["error_estimate"]}))
+    result |= {"rigid": rigid(machine, result["t"]), "numerics": numerics}
+    return result, notices
+
+
+def no_load_speed(machine: ElasticMachine) -> float:
+    """Crank speed where the motor's torque vanishes (0 when there is none): the slow rate's scale."""
+    motor, i = machine.motor, machine.inertias.gear_ratio
+    if motor.kind == "linear" and motor.b > 0:
+        return motor.M0 / motor.b / i
+    return motor.omega_sync / i if motor.kind in ("induction", "kloss") else 0.0
+
+
+def absolute_tolerances(machine: ElasticMachine, model, rtol: float) -> np.ndarray:
+    """Per state: angles and speeds to rtol·1e-3; the twists to rtol times a millionth of the static twist
+    scale M/c (so a stiff spring's tiny twist keeps its digits); works to rtol·1e-3 J."""
+    atol = np.full(model.size, rtol * 1e-3)
+    stiffest = max(machine.c, float(np.max(model.side.stiffness.values)) if machine.model in LINKAGE_STIFFNESS else 0.0)
+    twist_scale = max(machine.load.force * machine.params.get("l1", 1.0), 1.0) / max(stiffest, 1e-300)
+    twist_rows = (2, 3, 4, 5) if machine.model == "three_mass" else (2, 3)
+    atol[list(twist_rows)] = rtol * 1e-3 * min(twist_scale, 1.0)
+    return atol
+
+
+def histories(machine: ElasticMachine, model, run) -> dict:
+    """Angles, speeds, twist, its rate, the driving moment and I_n(t) from the state histories."""
+    y, t = run.y, run.t
+    phi1, w1 = np.array([model.motor_state(tk, yk) for tk, yk in zip(t, y.T)]).reshape(-1, 2).T
+    if machine.model == "kinematic_drive":
+        phi2, w2 = machine.speed * t - y[2], machine.speed - y[3]
+    else:
+        phi2, w2 = y[0], y[1]
+    side = model.side
+    tables = [side.inertia(p) for p in phi2]
+    stiffness = [side.stiff(p)[0] for p in phi2]
+    spring_near, rate_near = y[2], y[3]
+    if machine.model == "kinematic_drive":
+        drive = np.array(stiffness) * spring_near + machine.b * rate_near
+    else:
+        i = machine.inertias.gear_ratio
+        drive = i * machine.motor.torque(i * w1)[0]
+    w_in, w_load, w_diss = y[-3], y[-2], y[-1]
+    energy = np.array([model.energy(tk, yk) for tk, yk in zip(t, y.T)])
+    residual = w_in - (energy - energy[0]) - w_load - w_diss if t.size else np.zeros(0)
+    scale = max(float(np.max(np.abs(w_in))) if t.size else 0.0, 1e-300)
+    total_twist = y[2] + y[4] if machine.model == "three_mass" else y[2]
+    total_rate = y[3] + y[5] if machine.model == "three_mass" else y[3]
+    return {"t": t, "phi_motor": phi1, "omega_motor": w1, "phi": phi2, "omega": w2,
+            "twist": total_twist, "twist_rate": total_rate, "spring_twist": spring_near, "driving_moment": drive,
+            "inertia": np.array([v[0] for v in tables]), "stiffness": np.array(stiffness),
+            "work_in": w_in, "work_load": w_load, "work_dissipated": w_diss,
+            "energy_residual": float(np.max(np.abs(residual))) / scale if t.size else 0.0}
+
+
+def rigid(machine: ElasticMachine, t: np.ndarray) -> dict | None:
+    """The rigid machine's start-up from rest (issue 3's solver), resampled on t, for comparison."""
+    if machine.model == "kinematic_drive" or t.size == 0:
+        return None
+    J_extra = machine.J_motor + machine.J_middle
+    inertias = Inertias(**{**machine.inertias.__dict__, "J1": machine.inertias.J1 + J_extra, "J_rotor": 0.0})
+    rigid_machine = Machine(machine.mechanism, machine.params, inertias, machine.load, machine.motor)
+    run = startup(rigid_machine, 0.0, rtol=0.0, max_cycles=400).transient
+    if run is None or run.t[-1] < t[-1] * 0.999:
+        reach = t <= (run.t[-1] if run is not None else 0.0)
+    else:
+        reach = np.ones_like(t, bool)
+    omega = np.where(reach, np.interp(t, run.t, run.omega) if run is not None else 0.0, np.nan)
+    phi = np.where(reach, np.interp(t, run.t, run.phi) if run is not None else 0.0, np.nan)
+    return {"phi": phi, "omega": omega}
+
+
+def modal(machine: ElasticMachine, points: int = 361) -> dict:
+    """Over one turn: c(φ), e(φ), natural frequency √(c(J_m + J)/(J_m J)) and damping ratio
+    ζ = b/(2√(c J_eq)), J_eq = J_m J/(J_m + J) (notes 003 §4, §6)."""
+    side = mechanism_side(machine)
+    period = side.inertia.period
+    phi = np.linspace(0.0, period, points)
+    J = np.array([side.inertia(p)[0] for p in phi])
+    c = np.array([side.stiff(p)[0] for p in phi])
+    J_eq = machine.J_motor * J / (machine.J_motor + J)
+    with np.errstate(divide="ignore"):
+        compliance = np.where(c > 1e-12 * c.max(), 1 / np.where(c > 0, c, 1.0), np.inf)
+        zeta = np.where(c > 0, machine.b / (2 * np.sqrt(np.where(c > 0, c, 1.0) * J_eq)), np.inf)
+    return {"phi": phi, "stiffness": c, "compliance": compliance, "natural_frequency": np.sqrt(c / J_eq),
+            "damping_ratio": zeta, "inertia": J}

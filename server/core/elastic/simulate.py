@@ -1,0 +1,90 @@
+"""Time integration of the elastic models: the solver chosen by the stiffness it measures, bounded work.
+
+Stiffness ratio: the fastest decay rate max|Re λ| of the Jacobian over a turn of the mechanism,
+divided by the slow rate of the motion (the crank speed, or 2π over the time span).  Fast modes
+that decay (a stiff spring with damping) force an explicit method to tiny steps long after they
+have died out: above STIFF_RATIO the implicit, L-stable Radau runs with the analytic Jacobian.
+A fast mode that only oscillates (little damping) has to be resolved by any accurate method, and
+there the explicit DOP853 is the cheaper one per step (measured in bench/elastic.py).
+The span is integrated in chunks; a request that passes its step or time budget stops with the
+partial result and says so.  The error estimate is the largest difference of the twist against
+a run at ten times tighter tolerance (same method), relative to the largest twist.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+STIFF_RATIO = 1e3
+CHUNKS = 16
+MAX_EVALUATIONS = 300_000     # right-hand-side calls of one run at most
+TIME_BUDGET_S = 4.0
+
+
+@dataclass
+class ElasticRun:
+    t: np.ndarray
+    y: np.ndarray
+    numerics: dict = field(default_factory=dict)
+    complete: bool = True
+
+
+def stiffness_ratio(model, y0: np.ndarray, slow_rate: float, probes: int = 24) -> tuple[float, float, float]:
+    """max|Re λ| / slow rate over a turn of the mechanism; and the largest decay rate and |λ| themselves."""
+    fastest = decay = 0.0
+    kinematic = getattr(model, "kinematic", False)
+    for k in range(probes):
+        angle = 2 * np.pi * k / probes          # the mechanism's angle: row 0, or ωt for a kinematic drive
+        y = np.array(y0, float)
+        if not kinematic:
+            y[0] += angle
+        eigen = np.linalg.eigvals(model.jac(angle / model.drive.speed if kinematic else 0.0, y))
+        fastest = max(fastest, float(np.max(np.abs(eigen))))
+        decay = max(decay, float(np.max(-eigen.real)))
+    return decay / max(slow_rate, 1e-12), decay, fastest
+
+
+RK_STAGES = {"RK45": 6, "DOP853": 12}    # RHS calls per step attempt in scipy's explicit Runge–Kutta
+DENSE_EXTRA = {"RK45": 0, "DOP853": 3}   # extra calls per accepted step for DOP853's dense output
+
+
+def integrate(model, y0: np.ndarray, t_end: float, rtol: float, method: str, samples: np.ndarray,
+              deadline: float, atol: np.ndarray | float = 1e-12, max_evaluations: int = MAX_EVALUATIONS) -> ElasticRun:
+    """solve_ivp in chunks; stops at the work bound with the partial result and a message."""
+    edges = np.linspace(0.0, t_end, CHUNKS + 1)
+    implicit = {"jac": model.jac} if method in ("Radau", "BDF", "LSODA") else {}
+    pieces_t, pieces_y = [], []
+    stats = {"steps": 0, "rejected": 0 if method in RK_STAGES else None, "nfev": 0, "njev": 0, "nlu": 0}
+    y, complete, message = np.asarray(y0, float), True, ""
+    for a, b in zip(edges[:-1], edges[1:]):
+        with np.errstate(all="ignore"):          # a diverging explicit run is caught below and reported
+            solution = solve_ivp(model.rhs, (a, b), y, method=method, rtol=rtol, atol=atol, dense_output=True,
+                                 **implicit)
+        accepted = solution.t.size - 1
+        stats["steps"] += accepted
+        stats["nfev"] += solution.nfev
+        stats["njev"] += solution.njev
+        stats["nlu"] += solution.nlu
+        if method in RK_STAGES:        # two calls start each chunk; every attempt costs one call per stage
+            attempts = (solution.nfev - 2 - DENSE_EXTRA[method] * accepted) / RK_STAGES[method]
+            stats["rejected"] += max(round(attempts) - accepted, 0)
+        if not solution.success or not np.isfinite(solution.y[:, -1]).all():
+            complete = False
+            message = f"the solver stopped at t = {a:.4g} s: {solution.message if not solution.success else 'the state diverged'}"
+            break
+        inside = samples[(samples >= a) & ((samples < b) | (b == t_end))]
+        pieces_t.append(inside)
+        pieces_y.append(solution.sol(inside) if inside.size else np.zeros((len(y), 0)))
+        y = solution.y[:, -1]
+        if stats["nfev"] > max_evaluations or time.perf_counter() > deadline:
+            if b < t_end:
+                complete = False
+                message = (f"stopped at t = {b:.4g} s of {t_end:.4g} s: the work bound was reached; "
+                           "the result is partial")
+            break
+    t = np.concatenate(pieces_t) if pieces_t else np.zeros(0)
+    y_all = np.concatenate(pieces_y, axis=1) if pieces_y else np.zeros((len(y0), 0))
+    return ElasticRun(t, y_all, stats | {"message": message}, complete)

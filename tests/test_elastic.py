@@ -1,0 +1,117 @@
+"""Elastic machines against analytic solutions, the rigid limit, conservation of energy and seed 003's claim."""
+import numpy as np
+import pytest
+
+from server.core.dynamics.motors import Motor
+from server.core.dynamics.reduction import Inertias
+from server.core.dynamics.resistance import Load
+from server.core.elastic.report import ElasticMachine, modal, simulate
+from server.core.elastic.stiffness import Compliances
+from server.core.mechanisms import MECHANISMS
+
+SINE = MECHANISMS["sine"].check({"l1": 0.1})
+SLIDER = MECHANISMS["slider_crank"].check({"l1": 0.1, "l2": 0.3})
+FOUR_BAR = MECHANISMS["four_bar"].check({"l0": 1.0, "l1": 0.3, "l2": 1.0, "l3": 0.8})
+
+
+def free_pair(c, b=0.0, twist0=0.01):
+    """Two constant inertias on a spring: the sine mechanism with massless links is just its crank."""
+    return ElasticMachine("two_mass", "sine", SINE, Inertias(J1=0.3), Load(), Motor("constant", M0=0.0),
+                          J_motor=0.2, c=c, b=b, twist0=twist0)
+
+
+def test_free_vibration_of_two_inertias_matches_the_analytic_solution():
+    c, J1, J2 = 5000.0, 0.2, 0.3
+    omega_n = np.sqrt(c * (J1 + J2) / (J1 * J2))
+    result, _ = simulate(free_pair(c), t_end=0.5, samples=501, rtol=1e-11)
+    expected = 0.01 * np.cos(omega_n * result["t"])
+    assert result["twist"] == pytest.approx(expected, abs=1e-8 * 0.01 + 1e-12)     # 1e-8 of the amplitude
+    assert modal(free_pair(c))["natural_frequency"] == pytest.approx(np.full(361, omega_n), rel=1e-12)
+
+
+def test_centre_of_mass_of_the_free_pair_keeps_its_momentum():
+    result, _ = simulate(free_pair(5000.0), t_end=0.2, samples=201, rtol=1e-10)
+    momentum = 0.2 * result["omega_motor"] + 0.3 * result["omega"]
+    assert np.abs(momentum).max() < 1e-9
+
+
+def crank_slider(c, b):
+    return ElasticMachine("two_mass", "slider_crank", SLIDER, Inertias(J1=0.5, m2=5.0, J_S2=0.05, m3=10.0, gear_ratio=5.0),
+                          Load(2000.0, 0.2, 0.1), Motor("linear", M0=60.0, b=0.3), J_motor=0.25, c=c, b=b)
+
+
+def test_elastic_machine_tends_to_the_rigid_one_as_the_stiffness_grows():
+    """Mean |ω − ω_rigid| over the run falls like 1/c: the static twist M/c is what separates them."""
+    stiffness = np.array([1e3, 1e4, 1e5, 1e6])
+    gaps = []
+    for c in stiffness:
+        b = 0.2 * 2 * np.sqrt(c * 0.25 * 0.5 / 0.75)            # damping ratio 0.2 for every c
+        result, _ = simulate(crank_slider(c, b), t_end=1.0, samples=401, rtol=1e-8)
+        gaps.append(np.mean(np.abs(result["omega"] - result["rigid"]["omega"])))
+    rate = np.polyfit(np.log10(stiffness), np.log10(gaps), 1)[0]
+    assert all(a > b for a, b in zip(gaps, gaps[1:]))
+    assert -1.3 < rate < -0.6, f"convergence rate {rate:.2f} in log10(gap) per decade of c"
+
+
+def test_energy_balance_with_damping_holds_to_the_tolerance():
+    result, _ = simulate(crank_slider(1e5, 60.0), t_end=1.0, samples=401, rtol=1e-8)
+    assert result["numerics"]["energy_residual"] < 1e-6
+    assert result["work_dissipated"][-1] > 0
+
+
+@pytest.mark.parametrize("fraction, oscillates", [(0.05, True), (3.0, False)])
+def test_seed_003_small_damping_oscillates_large_damping_creeps(fraction, oscillates):
+    """Seed 003's claim: small b_n gives decaying oscillation, large b_n aperiodic decay of the twist."""
+    compliances = Compliances(2e-6, 1e-9, 3e-6)
+    probe = ElasticMachine("elastic_four_bar", "four_bar", FOUR_BAR, Inertias(J1=0.01, J3=0.05), Load(),
+                           Motor("constant", M0=0.0), J_motor=0.02, compliances=compliances, twist0=0.001)
+    modes = modal(probe)
+    critical = 2 * np.sqrt(modes["stiffness"][0] * 0.02 * modes["inertia"][0] / (0.02 + modes["inertia"][0]))
+    machine = ElasticMachine(**{**probe.__dict__, "b": fraction * critical})
+    result, _ = simulate(machine, t_end=0.05, samples=2001, rtol=1e-9)
+    crossings = np.count_nonzero(np.diff(np.sign(result["twist"])) != 0)
+    assert (crossings >= 6) if oscillates else (crossings <= 1)
+    assert abs(result["twist"][-1]) < 0.5 * abs(result["twist"][0])
+
+
+def test_linkage_stiffness_vanishes_at_the_dead_positions_in_finite_form():
+    machine = ElasticMachine("elastic_linkage", "slider_crank", SLIDER, Inertias(J1=0.5, m3=10.0), Load(),
+                             Motor("constant", M0=1.0), J_motor=0.2, compliances=Compliances(1e-6, 1e-8), b=5.0)
+    modes = modal(machine)
+    dead = [0, 180]                       # φ = 0° and 180° on the 361-point grid
+    assert modes["stiffness"][dead] == pytest.approx([0, 0], abs=1e-9)
+    assert np.isinf(modes["compliance"][dead]).all() and np.isfinite(modes["stiffness"]).all()
+    # at φ = 90°: sin ψ = l₁/l₂ = 1/3, the crank–rod angle is 90° − ψ, sin² = cos²ψ = 8/9 (1.29)
+    S = 8 / 9
+    assert modes["stiffness"][90] == pytest.approx(0.1**2 * S / (1e-6 * 0.1**2 * S + 1e-8), rel=1e-9)
+
+
+STIFF_CASES = {
+    "stiffness ratio 1e6": crank_slider(1e9, 3e7),
+    "no damping": crank_slider(1e5, 0.0),
+    "c → 0 at dead positions": ElasticMachine("elastic_linkage", "slider_crank", SLIDER,
+                                              Inertias(J1=0.5, m2=5.0, J_S2=0.05, m3=10.0, gear_ratio=5.0),
+                                              Load(2000.0, 0.2, 0.1), Motor("linear", M0=60.0, b=0.3), J_motor=0.25,
+                                              compliances=Compliances(1e-6, 1e-9), b=20.0),
+    "very slow crank": ElasticMachine("kinematic_drive", "slider_crank", SLIDER, Inertias(J1=0.5, m3=10.0),
+                                      Load(200.0), Motor("constant"), c=1e5, b=20.0, speed=0.05),
+    "very fast crank": ElasticMachine("kinematic_drive", "slider_crank", SLIDER, Inertias(J1=0.5, m3=10.0),
+                                      Load(200.0), Motor("constant"), c=1e5, b=20.0, speed=300.0),
+}
+
+
+@pytest.mark.parametrize("name", list(STIFF_CASES))
+def test_stiff_and_extreme_cases_finish_without_nan_and_with_a_trustworthy_error_estimate(name):
+    machine = STIFF_CASES[name]
+    result, notices = simulate(machine, t_end=0.2, samples=201, rtol=1e-6)
+    for key in ("twist", "omega", "driving_moment"):
+        assert np.isfinite(result[key]).all()
+    numerics = result["numerics"]
+    assert numerics["runtime_ms"] < 15_000
+    if name == "stiffness ratio 1e6":
+        assert numerics["stiffness_ratio"] > 1e6 and numerics["method"] == "Radau"
+    reference, _ = simulate(machine, t_end=result["t"][-1], samples=result["t"].size, rtol=1e-10,
+                            budget_s=120.0, max_evaluations=10_000_000)
+    assert reference["t"].size == result["t"].size
+    error = np.max(np.abs(result["twist"] - reference["twist"])) / np.max(np.abs(reference["twist"]))
+    assert error <= 10 * numerics["error_estimate"] + 1e-7
