@@ -115,3 +115,20 @@ def test_stiff_and_extreme_cases_finish_without_nan_and_with_a_trustworthy_error
     assert reference["t"].size == result["t"].size
     error = np.max(np.abs(result["twist"] - reference["twist"])) / np.max(np.abs(reference["twist"]))
     assert error <= 10 * numerics["error_estimate"] + 1e-7
+
+
+def test_ball_bearing_stiffness_formula_and_its_iteration_converge():
+    from server.core.elastic.report import Bearing, bearing_iteration
+    from server.core.elastic.stiffness import bearing_stiffness
+    # (1.44) by hand: k_B = 2E√r₁/(3(1 − μ²)), c_n = 3.34 (z k_B)^{2/3} R^{1/3}/(1 + ∛(r₁/r₂))
+    k_b = 2 * 2.1e11 * np.sqrt(0.01) / (3 * (1 - 0.09))
+    by_hand = 3.34 * (9 * k_b) ** (2 / 3) * 1000.0 ** (1 / 3) / (1 + (0.01 / 0.011) ** (1 / 3))
+    assert bearing_stiffness(1000.0, 9, 0.01, 0.011) == pytest.approx(by_hand, rel=1e-12)
+    assert bearing_stiffness(8000.0, 9, 0.01, 0.011) == pytest.approx(2 * by_hand, rel=1e-12)   # c ∝ R^{1/3}
+    machine = ElasticMachine("elastic_linkage", "slider_crank", SLIDER, Inertias(J1=0.5, m3=10.0, gear_ratio=5.0),
+                             Load(2000.0), Motor("linear", M0=60.0, b=0.3), J_motor=0.25,
+                             compliances=Compliances(1e-5, 1e-8), b=5.0)
+    result = bearing_iteration(machine, Bearing(), t_end=0.3, samples=151, rtol=1e-6)
+    loads = [r["R_m"] for r in result["rounds"]]
+    assert result["converged"] and abs(loads[-1] - loads[-2]) <= 1e-3 * loads[-1]
+    assert result["rounds"][-1]["e2_total"] > 1e-8            # the bearings add compliance to the rod's

@@ -18,6 +18,17 @@ class CompliancesInput(BaseModel):
     e3: float = Field(0.0, ge=0, le=1, description="rocker-shaft torsion e₃ = L₃/(G I_p3), rad/(N·m) (four-bar)")
 
 
+class BearingInput(BaseModel):
+    """Ball bearings in the rod's joints B and C, seed 000 (1.43)–(1.44)."""
+
+    model_config = ConfigDict(extra="forbid")
+    balls: int = Field(9, ge=3, le=60, description="number of balls z")
+    r_inner: float = Field(0.01, gt=0, le=1, description="radius r₁ of the inner race where the balls touch, m")
+    r_outer: float = Field(0.011, gt=0, le=1, description="radius r₂ of the outer race, m")
+    young: float = Field(2.1e11, gt=0, le=1e12, description="Young's modulus E, Pa")
+    poisson: float = Field(0.3, ge=0, lt=0.5, description="Poisson's ratio μ")
+
+
 class ElasticRequest(BaseModel):
     """An elastic machine, its time span and the outputs wanted."""
 
@@ -45,9 +56,11 @@ class ElasticRequest(BaseModel):
     rtol: float = Field(1e-6, ge=1e-10, le=1e-2, description="relative tolerance")
     method: Literal["auto", "DOP853", "RK45", "Radau", "BDF", "LSODA"] = Field(
         "auto", description="auto: chosen by the stiffness the server measures")
-    outputs: list[Literal["histories", "modal", "rigid"]] = Field(min_length=1, description=(
+    bearing: BearingInput = Field(default_factory=lambda: BearingInput(), description="ball bearings in B and C")
+    outputs: list[Literal["histories", "modal", "rigid", "bearings"]] = Field(min_length=1, description=(
         "histories: time histories with numerics; modal: c(φ), e(φ), natural frequency and damping ratio over a "
-        "turn (closed forms); rigid: the rigid machine's start-up on the same times"))
+        "turn (closed forms); rigid: the rigid machine's start-up on the same times; bearings: the successive "
+        "approximations of the ball-bearing stiffness (1.44) over the largest rod force (elastic crank-slider)"))
 
     @model_validator(mode="after")
     def complete(self):
@@ -60,6 +73,8 @@ class ElasticRequest(BaseModel):
             raise ValueError("elastic_four_bar: the mechanism is the four_bar")
         if self.model in ("elastic_linkage", "three_mass") and self.mechanism not in ("slider_crank", "four_bar"):
             raise ValueError("an elastic linkage is a slider_crank or a four_bar")
+        if "bearings" in self.outputs and not (self.model == "elastic_linkage" and self.mechanism == "slider_crank"):
+            raise ValueError("bearings: the iteration of seed 000 §1.4 is for the elastic crank-slider linkage")
         if self.model == "kinematic_drive" and self.speed <= 0:
             raise ValueError("kinematic_drive: give the motor side's speed > 0")
         if self.model != "kinematic_drive" and self.J_motor <= 0:

@@ -4,7 +4,7 @@ from fastapi import APIRouter
 from ...core.dynamics.motors import Motor
 from ...core.dynamics.reduction import Inertias
 from ...core.dynamics.resistance import Load
-from ...core.elastic.report import ElasticMachine, modal, simulate
+from ...core.elastic.report import Bearing, ElasticMachine, bearing_iteration, modal, simulate
 from ...core.elastic.stiffness import Compliances
 from ...core.mechanisms import MECHANISMS, GeometryError
 from ..errors import unprocessable
@@ -37,6 +37,9 @@ def elastic(request: ElasticRequest, lang: Language = LANG):
                 result.pop("rigid")
         if "modal" in request.outputs:
             result["modal"] = modal(machine)
+        if "bearings" in request.outputs:
+            result["bearings"] = bearing_iteration(machine, Bearing(**request.bearing.model_dump()), request.t_end,
+                                                   request.n, request.rtol)
     except GeometryError as error:
         raise unprocessable(error) from None
     return _respond(result, notices, lang)

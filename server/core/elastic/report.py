@@ -21,7 +21,7 @@ from ..mechanisms import MECHANISMS, GeometryError, Notice
 from .models import Drive, MechanismSide, ThreeMass, TwoMass
 from .periodic_table import PeriodicTable
 from .simulate import MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio
-from .stiffness import Compliances, linkage_stiffness
+from .stiffness import Compliances, bearing_stiffness, link_angles, linkage_stiffness
 
 TABLE_POINTS = 4096
 LARGE_TWIST = 0.05       # rad: a linear spring is an idealisation well before this
@@ -239,3 +239,44 @@ def modal(machine: ElasticMachine, points: int = 361) -> dict:
         zeta = np.where(c > 0, machine.b / (2 * np.sqrt(np.where(c > 0, c, 1.0) * J_eq)), np.inf)
     return {"phi": phi, "stiffness": c, "compliance": compliance, "natural_frequency": np.sqrt(c / J_eq),
             "damping_ratio": zeta, "inertia": J}
+
+
+@dataclass(frozen=True)
+class Bearing:
+    """Ball bearings in joints B and C (seed 000 §1.4): z balls, race radii r₁, r₂ (m), E (Pa), μ."""
+
+    balls: int = 9
+    r_inner: float = 0.01
+    r_outer: float = 0.011
+    young: float = 2.1e11
+    poisson: float = 0.3
+
+
+def rod_force(machine: ElasticMachine, phi: np.ndarray, twist: np.ndarray) -> np.ndarray:
+    """Axial force of the rod from the spring moment: F = l₁ sin θ₁₂ · θ/Δ (finite at the dead positions)."""
+    values = MECHANISMS[machine.mechanism].evaluate(machine.params, np.mod(phi, 2 * np.pi), set()).values
+    theta12 = link_angles(machine.mechanism, values | {"phi": phi})[0]
+    S = np.sin(theta12) ** 2
+    l1 = machine.params["l1"]
+    delta = machine.compliances.e1 * l1**2 * S + machine.compliances.e2
+    return l1 * np.sin(theta12) * twist / delta
+
+
+def bearing_iteration(machine: ElasticMachine, bearing: Bearing, t_end: float, samples: int, rtol: float,
+                      tolerance: float = 1e-3, max_rounds: int = 8) -> dict:
+    """Successive approximations of seed 000 §1.4: rigid bearings → R_m → c_n (1.44) → e = e₁ + (e₂ + 2/c_n)λ₁₂²
+    (1.43) → R_m again, until R_m changes by less than ``tolerance``."""
+    rounds, current, previous = [], machine, None
+    for _ in range(max_rounds):
+        result, _ = simulate(current, t_end, samples, rtol)
+        load = float(np.max(np.abs(rod_force(current, result["phi"], result["twist"]))))
+        stiffness = bearing_stiffness(load, bearing.balls, bearing.r_inner, bearing.r_outer, bearing.young,
+                                      bearing.poisson)
+        rounds.append({"R_m": load, "c_n": stiffness, "e2_total": current.compliances.e2})
+        if previous is not None and abs(load - previous) <= tolerance * load:
+            break
+        previous = load
+        joints = 2.0 / stiffness                    # e_B + e_C, two equal bearings
+        current = ElasticMachine(**{**machine.__dict__, "compliances": Compliances(
+            machine.compliances.e1, machine.compliances.e2 + joints, machine.compliances.e3)})
+    return {"rounds": rounds, "converged": len(rounds) < max_rounds}
