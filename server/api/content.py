@@ -67,7 +67,7 @@ class Scene(BaseModel):
     id: str
     order: int
     kind: Literal["kinematics", "dynamics"] = "kinematics"
-    endpoint: Literal["kinematics", "reduction", "motion", "flywheel"] = "kinematics"
+    endpoint: Literal["kinematics", "reduction", "motion", "flywheel", "elastic"] = "kinematics"
     source: Text
     title: Text
     summary: Text

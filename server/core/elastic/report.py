@@ -147,9 +147,10 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
     notices = [] if run.complete else [Notice("elastic_partial", run.numerics["message"])]
     largest = scale if twist_now.size else 0.0
     if largest > LARGE_TWIST:
-        notices.append(Notice("large_twist", f"The twist reaches {largest:.3g} rad: far beyond the small "
-                              "deformations the linear spring assumes (near the dead positions c → 0).",
-                              {"twist": largest}))
+        near_dead = " (near the dead positions c → 0)" if machine.model in LINKAGE_STIFFNESS else ""
+        notices.append(Notice("large_twist_dead" if near_dead else "large_twist",
+                              f"The twist reaches {largest:.3g} rad: far beyond the small deformations the linear "
+                              f"spring assumes{near_dead}.", {"twist": largest}))
     if numerics["error_estimate"] > SENSITIVE:
         notices.append(Notice("sensitive_motion", f"The run at ten times tighter tolerance differs by "
                               f"{100 * numerics['error_estimate']:.2g} % of the largest twist: the details of this "
@@ -263,12 +264,15 @@ def rod_force(machine: ElasticMachine, phi: np.ndarray, twist: np.ndarray) -> np
 
 
 def bearing_iteration(machine: ElasticMachine, bearing: Bearing, t_end: float, samples: int, rtol: float,
-                      tolerance: float = 1e-3, max_rounds: int = 8) -> dict:
+                      tolerance: float = 1e-3, max_rounds: int = 8, budget_s: float = 2 * TIME_BUDGET_S) -> dict:
     """Successive approximations of seed 000 §1.4: rigid bearings → R_m → c_n (1.44) → e = e₁ + (e₂ + 2/c_n)λ₁₂²
     (1.43) → R_m again, until R_m changes by less than ``tolerance``."""
     rounds, current, previous = [], machine, None
+    deadline = time.perf_counter() + budget_s
     for _ in range(max_rounds):
-        result, _ = simulate(current, t_end, samples, rtol)
+        if time.perf_counter() > deadline:
+            return {"rounds": rounds, "converged": False}
+        result, _ = simulate(current, t_end, samples, rtol, budget_s=budget_s / 4)
         load = float(np.max(np.abs(rod_force(current, result["phi"], result["twist"]))))
         stiffness = bearing_stiffness(load, bearing.balls, bearing.r_inner, bearing.r_outer, bearing.young,
                                       bearing.poisson)
