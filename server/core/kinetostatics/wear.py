@@ -1,0 +1,51 @@
+"""Expected wear of the pairs, Archard-type linear in p·V (seed 002 §4, (4.1)–(4.24)).
+
+Revolute pair j/j+1 under a rotating reaction R (cosine pressure, |ψ| ≤ π/2 in contact):
+    δ_j(β) = a_j ∫ R |u_j1 − u_{j+1,1}| cos ψ_j dφ,   ψ_j = φ_j + β − γ*,   a_j = 2·10⁶ k_j n_c/(π l_z)   (4.12), (4.13)
+    [(4.6)–(4.11) are lost in the print; reconstructed in notes 002 §2.7.2]
+Piston (cylindrical slider) and cylinder, the pressed side only:
+    δ₃ = a₃ ∫ |R₃₄ V_qB| dφ,  a₃ = 10⁶ b k₃ n_c/(l_p d_p), b = 4/π                            (4.17), (4.19)
+    δ₄(X) = a₄ ∫_{piston over X} |R₃₄ V_qB| dφ,  a₄ = 10⁶ d k₄ n_c/(l_p d_p), d = 4/π        (4.18)
+Wear coefficients from the wear intensities: k = I_s/p_m, p_m = 4 R_m/(π l d) (4.23), (4.24).
+Wear in micrometres; integrals by the trapezoidal rule as in the book's program ISNKPKPM.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def mean_pressure(reaction: np.ndarray, length: float, diameter: float) -> float:
+    """p_m = 4 R_m/(π l d) with R_m the mean of |R| over the cycle samples (4.23)."""
+    return 4 * float(np.mean(np.abs(reaction))) / (np.pi * length * diameter)
+
+
+def revolute_wear(phi: np.ndarray, reaction: np.ndarray, relative_rate: np.ndarray, link_angle: np.ndarray,
+                  beta: np.ndarray, k: float, cycles: float, length: float, journal: bool) -> np.ndarray:
+    """δ(β) in µm over the points β (rad) of one element of a revolute pair.
+
+    reaction: (n, 2) force the mating element exerts on this one; relative_rate: |u_j1 − u_{j+1,1}|;
+    link_angle: the element's angle in the frame (its points turn with it); journal: a pin is pressed on
+    the side facing against the force (γ* = γ + π), a bush on the side the force points to (γ* = γ)."""
+    gamma = np.arctan2(reaction[:, 1], reaction[:, 0]) + (np.pi if journal else 0.0)
+    psi = np.angle(np.exp(1j * (link_angle[None, :] + beta[:, None] - gamma[None, :])))
+    contact = np.where(np.abs(psi) <= np.pi / 2, np.cos(psi), 0.0)
+    integrand = np.linalg.norm(reaction, axis=1)[None, :] * relative_rate[None, :] * contact
+    a = 2e6 * k * cycles / (np.pi * length)
+    return a * np.trapezoid(integrand, phi, axis=1)
+
+
+def piston_wear(phi: np.ndarray, normal: np.ndarray, velocity_analog: np.ndarray, k: float, cycles: float,
+                length: float, diameter: float, side: int = 1) -> float:
+    """δ₃ (µm) of the piston's side pressed when sign(R₃₄) = side (4.17), b = 4/π."""
+    pressed = np.where(np.sign(normal) == side, np.abs(normal * velocity_analog), 0.0)
+    return 1e6 * (4 / np.pi) * k * cycles / (length * diameter) * float(np.trapezoid(pressed, phi))
+
+
+def cylinder_wear(phi: np.ndarray, normal: np.ndarray, velocity_analog: np.ndarray, travel: np.ndarray,
+                  points: np.ndarray, k: float, cycles: float, length: float, diameter: float, side: int = 1) -> np.ndarray:
+    """δ₄(X) (µm) along the cylinder: a point X (from the top-dead-centre end of the piston's path) wears
+    while the piston, occupying [s, s + l_p] in that coordinate, covers it (4.18), d = 4/π."""
+    pressed = np.where(np.sign(normal) == side, np.abs(normal * velocity_analog), 0.0)
+    covered = (points[:, None] >= travel[None, :]) & (points[:, None] <= travel[None, :] + length)
+    a = 1e6 * (4 / np.pi) * k * cycles / (length * diameter)
+    return a * np.trapezoid(np.where(covered, pressed[None, :], 0.0), phi, axis=1)
