@@ -7,7 +7,7 @@ from fastapi.responses import JSONResponse
 from ..core.mechanisms import GeometryError
 from .json_safe import finite_or_none
 
-REQUEST_FIELDS = ("outputs", "phi", "n", "motor", "inertias", "load", "compliances")
+REQUEST_FIELDS = ("outputs", "phi", "n", "motor", "inertias", "load", "compliances", "loads", "pairs")
 
 
 def unprocessable(error: GeometryError) -> HTTPException:

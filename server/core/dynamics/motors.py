@@ -96,11 +96,10 @@ def driving_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: 
     return indicator_moment(motor, mechanism, params, phi)
 
 
-def indicator_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray) -> np.ndarray:
-    """M_д = F·V_qC·cos(F, V) with F = p A_p on the piston (seed 004 (L17)); gas pushes towards the crank."""
-    if mechanism != "slider_crank":
-        raise ValueError("an indicator diagram drives a crank-slider (piston engine) only")
-    mech = MECHANISMS[mechanism]
+def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray) -> np.ndarray:
+    """Gas force on the crank-slider's piston, N, from the indicator diagram (seed 004 (L15)–(L16)):
+    p/p_max interpolated over the piston travel from top dead centre; it pushes towards the crank."""
+    mech = MECHANISMS["slider_crank"]
     values = mech.evaluate(params, phi, set()).values
     stroke = next(sp.value for sp in mech.special_positions(params) if sp.kind == "dead_centre" and sp.value)
     x = np.clip((stroke - values["s"]) / stroke, 0.0, 1.0)      # piston travel from top dead centre, x/H
@@ -109,5 +108,12 @@ def indicator_moment(motor: Motor, mechanism: str, params: dict[str, float], phi
     compression = PchipInterpolator(grid, motor.compression)(x)
     phase = np.mod(phi, motor.cycle()) / np.pi                  # stroke number 0, 1, (2, 3)
     ratio = np.select([phase < 1, phase < 2], [compression, expansion], 0.0)
-    area = np.pi * motor.piston_diameter**2 / 4
-    return -motor.p_max * ratio * area * values["u31"]
+    return motor.p_max * ratio * np.pi * motor.piston_diameter**2 / 4
+
+
+def indicator_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray) -> np.ndarray:
+    """M_д = F·V_qC·cos(F, V) with F = p A_p on the piston (seed 004 (L17)); gas pushes towards the crank."""
+    if mechanism != "slider_crank":
+        raise ValueError("an indicator diagram drives a crank-slider (piston engine) only")
+    u31 = MECHANISMS[mechanism].evaluate(params, phi, set()).values["u31"]
+    return -gas_force(motor, params, phi) * u31

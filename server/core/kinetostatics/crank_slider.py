@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..dynamics.motors import gas_force
 from ..mechanisms import MECHANISMS, Notice
 
 G = 9.81
@@ -52,6 +53,7 @@ class Loads:
     return_factor: float = 1.0   # k_p on the return stroke
     gravity: bool = True
     guide_angle: float = 0.0     # α: inclination of the guide, rad (gravity −y when 0)
+    gas: object = None           # a piston engine (dynamics.motors.Motor, kind indicator): gas force instead
 
 
 @dataclass
@@ -98,12 +100,15 @@ def motion(params: dict, loads: Loads, phi: np.ndarray) -> tuple[dict, dict]:
     down = np.array([np.sin(loads.guide_angle), -np.cos(loads.guide_angle)]) * (G if loads.gravity else 0.0)
     k = np.where(v["u31"] * w >= 0, 1.0, loads.return_factor)
     slider_velocity = v["u31"] * w
-    piston = np.stack([-np.sign(slider_velocity) * k * loads.force, 0 * phi], axis=1)
+    if loads.gas is not None:                # the gas pushes the piston towards the crank (−x)
+        piston = np.stack([-gas_force(loads.gas, params, phi), 0 * phi], axis=1)
+    else:                                    # a working machine's load resists the slider's motion
+        piston = np.stack([-np.sign(slider_velocity) * k * loads.force, 0 * phi], axis=1)
     applied = {
         "G2": np.tile(loads.m2 * down, (phi.size, 1)), "G3": np.tile(loads.m3 * down, (phi.size, 1)),
         "F_in2": -loads.m2 * a_s2, "F_in3": np.stack([-loads.m3 * a_b, 0 * phi], axis=1),
         "M_in2": -loads.J_S2 * eps2, "M_in1": -loads.J1 * (-eps), "F_3p": piston,
-        "omega2": omega2, "slider_velocity": slider_velocity, "u31": v["u31"],
+        "omega2": omega2, "slider_velocity": slider_velocity, "u31": v["u31"], "u21": v["u21"],
     }
     points = {"O": ev.joints["O"], "A": ev.joints["A"], "B": ev.joints["B"], "S2": ev.joints["S2"]}
     return points, applied

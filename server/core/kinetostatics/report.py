@@ -33,3 +33,78 @@ def equilibrium_residuals(analysis: ForceAnalysis, k: int = -1) -> dict:
     slider = (approx.R23 + np.stack([approx.friction["F34"], approx.N], 1) + a["F_3p"] + a["G3"] + a["F_in3"])
     return {"rod_force": np.linalg.norm(rod_force, axis=1), "rod_moment": np.abs(rod_moment),
             "slider_force": np.linalg.norm(slider, axis=1), "size": n}
+
+
+def forces_report(analysis: ForceAnalysis, pairs) -> dict:
+    """Everything the force scene draws: reactions, applied loads, friction, iteration, efficiency."""
+    final = analysis.final
+    norm = lambda v: np.linalg.norm(v, axis=1)
+    angle = lambda v: np.degrees(np.arctan2(v[:, 1], v[:, 0]))
+    reactions = {"R12": final.R12, "R23": final.R23, "R41": analysis.R41,
+                 "R34": np.stack([np.zeros_like(final.N), final.N], 1)}
+    return {
+        "phi": analysis.phi,
+        "points": analysis.points,
+        "reactions": reactions,
+        "magnitudes": {name: norm(value) for name, value in reactions.items()},
+        "directions": {name: angle(value) for name, value in reactions.items()},
+        "balancing_moment": analysis.balancing_moment,
+        "applied": {k: analysis.applied[k] for k in ("G2", "G3", "F_in2", "F_in3", "F_3p", "M_in2")},
+        "friction": {k: final.friction[k] for k in ("M_A", "M_B", "M_O", "F34")},
+        "friction_circles": {"O": pairs.f14 * pairs.r14, "A": pairs.f12 * pairs.r12, "B": pairs.f23 * pairs.r23},
+        "iteration": {"changes": [a.change for a in analysis.approximations], "ratio": analysis.ratio,
+                      "approximations": len(analysis.approximations)},
+        "converged": analysis.converged,
+        **efficiency(analysis),
+    }
+
+
+def crank_check(analysis: ForceAnalysis, frictionless: ForceAnalysis, reduced_moment: np.ndarray) -> dict:
+    """Seed 002 (3.2): the balancing moment against the reduced moment known from dynamics (virtual work),
+    as a relative error; with friction it measures friction's share, without it the arithmetic."""
+    scale = np.maximum(np.abs(reduced_moment).max(), 1e-300)
+    return {"frictionless": float(np.nanmax(np.abs(frictionless.balancing_moment - reduced_moment)) / scale),
+            "with_friction": float(np.nanmax(np.abs(analysis.balancing_moment - reduced_moment)) / scale)}
+
+
+BOOK_WEAR = {"bush_23": 88.0, "pin_23": 36.0, "cylinder": 43.0, "piston": 76.0}   # seed 002 §4.3, µm
+
+
+def wear_report(analysis: ForceAnalysis, parts: dict, cycles: float) -> dict:
+    """Wear of the pin and bush of pair 2–3 (polar, over β), of the piston and along the cylinder.
+
+    parts: pin_diameter, pin_length (l_z23), piston_diameter, piston_length (m) and the wear
+    intensities I_s of pin, bush, piston and cylinder; the coefficients k = I_s/p_m (4.24)."""
+    from .wear import cylinder_wear, mean_pressure, piston_wear, revolute_wear
+    phi = analysis.phi
+    values = analysis.applied
+    final = analysis.final
+    r23 = final.R23                                   # rod on the pin (link 3)
+    p23 = mean_pressure(np.linalg.norm(r23, axis=1), parts["pin_length"], parts["pin_diameter"])
+    beta = np.radians(np.arange(0, 361, 5))
+    rod = analysis.points["B"] - analysis.points["A"]
+    rod_angle = np.arctan2(rod[:, 1], rod[:, 0])     # the bush turns with the rod; the pin stays with the piston
+    relative = np.abs(values["u21"])                  # |u₂₁ − u₃₁| with the piston not turning (4.9)
+    pin = revolute_wear(phi, r23, relative, np.zeros_like(phi), beta, parts["I_pin"] / p23, cycles,
+                        parts["pin_length"], journal=True)
+    bush = revolute_wear(phi, -r23, relative, rod_angle, beta, parts["I_bush"] / p23, cycles,
+                         parts["pin_length"], journal=False)
+    normal = final.N
+    side = 1 if np.nansum(np.clip(normal, 0, None)) >= np.nansum(np.clip(-normal, 0, None)) else -1
+    pressed = np.where(np.sign(normal) == side, np.abs(normal), 0.0)
+    p34 = mean_pressure(pressed, parts["piston_length"], parts["piston_diameter"])
+    u31 = values["u31"]
+    x_b = analysis.points["B"][:, 0]
+    travel = x_b.max() - x_b                          # piston crown from top dead centre
+    stroke = float(travel.max())
+    along = np.linspace(0.0, stroke + parts["piston_length"], 121)
+    return {
+        "beta": np.degrees(beta), "pin": pin, "bush": bush,
+        "piston": piston_wear(phi, normal, u31, parts["I_piston"] / p34, cycles, parts["piston_length"],
+                              parts["piston_diameter"], side),
+        "cylinder_x": along,
+        "cylinder": cylinder_wear(phi, normal, u31, travel, along, parts["I_cylinder"] / p34, cycles,
+                                  parts["piston_length"], parts["piston_diameter"], side),
+        "mean_pressure_23": p23, "mean_pressure_34": p34, "pressed_side": side,
+        "book": BOOK_WEAR, "allowed": [150.0, 180.0],
+    }

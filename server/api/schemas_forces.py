@@ -1,0 +1,82 @@
+"""Request models of the force-analysis API (/forces, /wear, /efficiency-chain)."""
+from __future__ import annotations
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from .schemas_dynamics import MotorInput
+
+
+class PairsInput(BaseModel):
+    """Friction coefficients and journal radii of the crank-slider's pairs (seed 002 (3.3))."""
+
+    model_config = ConfigDict(extra="forbid")
+    f14: float = Field(0.0, ge=0, le=2, description="main bearing O (crank–frame), revolute")
+    f12: float = Field(0.0, ge=0, le=2, description="crank pin A (crank–rod), revolute")
+    f23: float = Field(0.0, ge=0, le=2, description="piston pin B (rod–slider), revolute")
+    f34: float = Field(0.0, ge=0, le=2, description="slider in its guide, prismatic")
+    r14: float = Field(0.02, gt=0, le=1, description="journal radius at O, m")
+    r12: float = Field(0.015, gt=0, le=1, description="journal radius at A, m")
+    r23: float = Field(0.01, gt=0, le=1, description="journal radius at B, m")
+
+
+class ForceLoadsInput(BaseModel):
+    """Masses, inertias, the crank's motion and the piston force."""
+
+    model_config = ConfigDict(extra="forbid")
+    m2: float = Field(0.0, ge=0, le=1e5, description="rod mass, kg")
+    J_S2: float = Field(0.0, ge=0, le=1e4, description="rod inertia about S2, kg·m²")
+    m3: float = Field(0.0, ge=0, le=1e5, description="slider mass, kg")
+    J1: float = Field(0.0, ge=0, le=1e4, description="reduced inertia of the parts geared to the crank, kg·m²")
+    omega: float = Field(10.0, gt=0, le=1e4, description="crank speed along its rotation, rad/s")
+    epsilon: float = Field(0.0, ge=-1e6, le=1e6, description="crank angular acceleration, rad/s²")
+    force: float = Field(0.0, ge=0, le=1e7, description="working machine: the load P_c on the slider, N")
+    return_factor: float = Field(1.0, ge=0, le=1, description="k_p on the return stroke")
+    gravity: bool = True
+    guide_angle: float = Field(0.0, ge=-3.2, le=3.2, description="inclination α of the guide, rad")
+    gas: MotorInput | None = Field(None, description="a piston engine: the indicator diagram gives the piston force")
+
+    @model_validator(mode="after")
+    def engine(self):
+        if self.gas is not None and self.gas.kind != "indicator":
+            raise ValueError("gas: an indicator diagram (kind 'indicator')")
+        return self
+
+
+class ForcesRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    params: dict[str, float] = Field(default_factory=dict, description="crank-slider lengths l1, l2, e (m) and a2")
+    loads: ForceLoadsInput = Field(default_factory=ForceLoadsInput)
+    pairs: PairsInput = Field(default_factory=PairsInput)
+    n: int = Field(361, ge=13, le=1441, description="points over one closed cycle")
+    tolerance: float = Field(1e-9, ge=1e-14, le=1e-2, description="ε_R: relative change that ends the iteration")
+
+
+class WearRequest(ForcesRequest):
+    """The wear of seed 002 §4 for a crank-slider (by default the two-stroke engine of §4.3)."""
+
+    pin_diameter: float = Field(0.02, gt=0, le=1, description="piston pin diameter d₂₃, m")
+    pin_length: float = Field(0.025, gt=0, le=1, description="pin bearing length l_z23, m")
+    piston_diameter: float = Field(0.075, gt=0, le=2, description="piston diameter D_p, m")
+    piston_length: float = Field(0.076, gt=0, le=2, description="piston length L_p, m")
+    I_pin: float = Field(0.6e-10, gt=0, le=1e-3, description="wear intensity of the pin")
+    I_bush: float = Field(1.0e-10, gt=0, le=1e-3, description="wear intensity of the bush")
+    I_piston: float = Field(2e-12, gt=0, le=1e-3, description="wear intensity of the piston")
+    I_cylinder: float = Field(3e-12, gt=0, le=1e-3, description="wear intensity of the cylinder liner")
+    rpm: float = Field(2400, gt=0, le=1e5, description="crank speed, rev/min (one cycle per revolution)")
+    hours: float = Field(1000, gt=0, le=1e6, description="service life, h")
+
+
+class ChainRequest(BaseModel):
+    """Efficiency of mechanisms in series (3.39) or in parallel (3.40)."""
+
+    model_config = ConfigDict(extra="forbid")
+    efficiencies: list[float] = Field(min_length=1, max_length=50, description="η_k of each mechanism, 0…1")
+    works: list[float] | None = Field(None, description="parallel only: driving work A_P,k of each branch, J")
+
+    @model_validator(mode="after")
+    def sizes(self):
+        if not all(0 <= e <= 1 for e in self.efficiencies):
+            raise ValueError("each efficiency lies between 0 and 1")
+        if self.works is not None and (len(self.works) != len(self.efficiencies) or min(self.works) < 0):
+            raise ValueError("one non-negative work per branch")
+        return self
