@@ -41,7 +41,8 @@ def default_body(scene, variant) -> dict:
         set_path(body, toggle.param, toggle.default)
     for slider in variant.sliders:
         value = slider.default * slider.to_si * (get_path(body, slider.scale) if slider.scale else 1.0)
-        set_path(body, slider.param, value)
+        for path in [slider.param, *slider.also]:
+            set_path(body, path, value)
     needs = sorted({need for name in variant.panels for need in scene.panels[name].get("needs", [])})
     return body | {"outputs": needs}
 

@@ -27,6 +27,7 @@ class Slider(BaseModel):
 
     id: str
     param: str
+    also: list[str] = Field(default_factory=list, description="more paths set to the same value (one f for all pairs)")
     scale: str = ""
     to_si: float = 1.0
     min: float
@@ -67,7 +68,7 @@ class Scene(BaseModel):
     id: str
     order: int
     kind: Literal["kinematics", "dynamics"] = "kinematics"
-    endpoint: Literal["kinematics", "reduction", "motion", "flywheel", "elastic"] = "kinematics"
+    endpoint: Literal["kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear"] = "kinematics"
     source: Text
     title: Text
     summary: Text

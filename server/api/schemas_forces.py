@@ -1,6 +1,8 @@
 """Request models of the force-analysis API (/forces, /wear, /efficiency-chain)."""
 from __future__ import annotations
 
+from typing import Literal
+
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from .schemas_dynamics import MotorInput
@@ -44,6 +46,8 @@ class ForceLoadsInput(BaseModel):
 
 class ForcesRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
+    mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider (seed 002 §3.1)")
+    outputs: list[Literal["forces", "wear"]] = Field(["forces"], description="what the scene shows")
     params: dict[str, float] = Field(default_factory=dict, description="crank-slider lengths l1, l2, e (m) and a2")
     loads: ForceLoadsInput = Field(default_factory=ForceLoadsInput)
     pairs: PairsInput = Field(default_factory=PairsInput)

@@ -99,7 +99,7 @@ def wear_report(analysis: ForceAnalysis, parts: dict, cycles: float) -> dict:
     stroke = float(travel.max())
     along = np.linspace(0.0, stroke + parts["piston_length"], 121)
     return {
-        "beta": np.degrees(beta), "pin": pin, "bush": bush,
+        "beta": beta, "pin": pin, "bush": bush,
         "piston": piston_wear(phi, normal, u31, parts["I_piston"] / p34, cycles, parts["piston_length"],
                               parts["piston_diameter"], side),
         "cylinder_x": along,
