@@ -20,11 +20,35 @@ ARTIFACTS = REPO / "test-artifacts"
 CHROMIUM = Path("/usr/bin/chromium")
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                  "--disable-background-networking", "--disable-component-update", "--disable-sync"]
-SCENE = json.loads((REPO / "content" / "scenes" / "transfer_functions.json").read_text(encoding="utf-8"))
+
+
+def read_scene(name: str) -> dict:
+    """A scene of content/scenes, e.g. read_scene("transfer_functions")."""
+    return json.loads((REPO / "content" / "scenes" / f"{name}.json").read_text(encoding="utf-8"))
+
+
+SCENE = read_scene("transfer_functions")
 
 
 def interface_texts(lang: str) -> dict[str, str]:
     return json.loads((REPO / "content" / "i18n" / f"{lang}.json").read_text(encoding="utf-8"))
+
+
+def drag_slider(page, selector: str, fraction: float) -> None:
+    """Press the mouse on the range input's thumb and drag it to `fraction` of the track."""
+    page.locator(selector).scroll_into_view_if_needed()
+    box = page.locator(selector).bounding_box()
+    value, low, high = page.eval_on_selector(selector, "e => [e.value, e.min, e.max].map(Number)")
+    x = lambda f: box["x"] + 8 + (box["width"] - 16) * f      # the thumb's centre stays 8 px inside the track
+    y = box["y"] + box["height"] / 2
+    page.mouse.move(x((value - low) / (high - low)), y)
+    page.mouse.down()
+    page.mouse.move(x(fraction), y, steps=5)
+    page.mouse.up()
+
+
+def screenshot(page, name: str) -> None:
+    page.screenshot(path=ARTIFACTS / f"{name}.png", full_page=True)
 
 
 def _free_port() -> int:

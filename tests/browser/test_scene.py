@@ -7,7 +7,7 @@ from urllib.parse import urlencode
 
 import pytest
 
-from conftest import ARTIFACTS, SCENE, interface_texts
+from conftest import SCENE, drag_slider, interface_texts, screenshot
 
 pytestmark = pytest.mark.browser
 
@@ -42,25 +42,8 @@ def drawing(page) -> str:
     return page.inner_html("#linkage svg .moving")
 
 
-def drag_slider(page, selector: str, fraction: float) -> None:
-    """Press the mouse on the range input's thumb and drag it to `fraction` of the track."""
-    page.locator(selector).scroll_into_view_if_needed()
-    box = page.locator(selector).bounding_box()
-    value, low, high = page.eval_on_selector(selector, "e => [e.value, e.min, e.max].map(Number)")
-    x = lambda f: box["x"] + 8 + (box["width"] - 16) * f      # the thumb's centre stays 8 px inside the track
-    y = box["y"] + box["height"] / 2
-    page.mouse.move(x((value - low) / (high - low)), y)
-    page.mouse.down()
-    page.mouse.move(x(fraction), y, steps=5)
-    page.mouse.up()
-
-
 def shows_no_nan(page) -> bool:
     return "NaN" not in page.inner_text("body") and "NaN" not in page.inner_html("#linkage")
-
-
-def screenshot(page, name: str) -> None:
-    page.screenshot(path=ARTIFACTS / f"{name}.png", full_page=True)
 
 
 @pytest.mark.parametrize("lang", ["ru", "uk", "en"])

@@ -1,5 +1,5 @@
 /**
- * Client of POST /api/v1/kinematics that coalesces requests.
+ * Client of one computing endpoint (POST /api/v1/kinematics, /reduction, /motion, …) that coalesces requests.
  *
  * Requests are grouped by a key ("main", "overlay 1.5", …). Per key at most one request is in flight;
  * a request submitted meanwhile waits, replacing any older waiting one, and the answer of a request
@@ -7,15 +7,18 @@
  * trip, and the screen always ends on the latest parameters.
  *
  * An answer is {ok: true, data} with the response body, or {ok: false, error: {code, message}} where
- * code is the geometry error code of the 422 answer (content/i18n has err_<code>), "network" or "server".
+ * code is the error code of the 422 answer (content/i18n has err_<code>), "network" or "server".
  */
-export class KinematicsClient {
+export class ApiClient {
   #slots = new Map();
   #inFlight = 0;
 
-  /** lang: language of the warnings; onBusy(busy) is told when the first request starts and the last ends. */
-  constructor(lang, onBusy) {
-    this.url = `/api/v1/kinematics?lang=${encodeURIComponent(lang)}`;
+  /**
+   * endpoint: "kinematics", "reduction", "motion", …; lang: language of the warnings;
+   * onBusy(busy) is told when the first request starts and the last ends.
+   */
+  constructor(endpoint, lang, onBusy) {
+    this.url = `/api/v1/${endpoint}?lang=${encodeURIComponent(lang)}`;
     this.onBusy = onBusy;
   }
 

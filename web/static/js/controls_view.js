@@ -1,14 +1,22 @@
 /**
  * View of the scene's inputs: the variant (mechanism) picker, the sliders with the textbook convention
- * and the English one beside it, the toggles, the overlay switch, and the variant's description.
+ * and the English one beside it, the toggles, the overlay switch (kinematics), and the variant's
+ * description. The model is a SceneSettings that also tells the length a ratio slider sets (setting).
  * Sliders report on every `input` event; the coalescing client keeps dragging cheap.
  */
 import { element } from "./dom.js";
-import { formatNumber, paramSymbol, unitText } from "./notation.js";
+import { formatNumber, formatQuantity, labelledValue, paramSymbol, unitText } from "./notation.js";
+
+const POWER_FROM = 1e6;     // a slider value from here on reads "4,4·10⁶", not "4400000"
 
 /** Decimals that show a slider's step: 0.01 → 2. */
 function decimalsOf(step) {
   return Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
+}
+
+/** A slider's value with the decimals of its step, or with a power of ten when it is large. */
+function sliderValue(value, step, lang) {
+  return Math.abs(value) >= POWER_FROM ? formatQuantity(value, lang) : formatNumber(value, lang, decimalsOf(step));
 }
 
 /** The English convention beside a slider is the reciprocal ratio ("r/l = 1/λ"): its name and value. */
@@ -18,11 +26,13 @@ function reciprocal(english, value, lang) {
 }
 
 export class ControlsView {
-  constructor(container, model, { t, lang }) {
+  /** pickerLabel: what the variants are ("Mechanism", "Set-up"). */
+  constructor(container, model, { t, lang, pickerLabel }) {
     this.container = container;
     this.model = model;
     this.t = t;
     this.lang = lang;
+    this.pickerLabel = pickerLabel;
     model.on("variant", () => this.build());
     model.on("params", () => this.showValues());
     model.on("overlay", (on) => { if (this.overlayBox) this.overlayBox.checked = on; });
@@ -37,7 +47,7 @@ export class ControlsView {
     this.readouts = new Map();
     this.overlayBox = null;
     this.container.replaceChildren(
-      element("label", { className: "field" }, element("span", { textContent: t.mechanism }), picker),
+      element("label", { className: "field" }, element("span", { textContent: this.pickerLabel }), picker),
       ...variant.sliders.map((slider) => this.#slider(slider)),
       ...variant.toggles.map((toggle) => this.#toggle(toggle)),
       ...(variant.overlay_values.length ? [this.#overlay(variant)] : []),
@@ -45,17 +55,19 @@ export class ControlsView {
     this.showValues();
   }
 
-  /** Slider readouts: "λ = l₂/l₁ = 3,00 · r/l = 0,333", and the length it sets, "l₂ = 0,300 м". */
+  /**
+   * Slider readouts: "λ = l₂/l₁ = 3,00 · r/l = 0,333", "P_c (нагрузка) = 2000 Н"; a slider with a scale is
+   * a ratio of lengths and also shows the length it sets, "l₂ = 0,300 м".
+   */
   showValues() {
-    const params = this.model.params();
     for (const slider of this.model.variant.sliders) {
       const value = this.model.values[slider.id];
-      const parts = [`${slider.label[this.lang]} = ${formatNumber(value, this.lang, decimalsOf(slider.step))}`];
+      const parts = [labelledValue(slider.label[this.lang], sliderValue(value, slider.step, this.lang))];
       if (slider.english) parts.push(reciprocal(slider.english[this.lang], value, this.lang));
       const { main, length } = this.readouts.get(slider.id);
       main.textContent = parts.join(" · ");
-      length.textContent = `${paramSymbol(slider.param)} = ${formatNumber(params[slider.param], this.lang, 3)} `
-        + unitText("m", this.t);
+      length.textContent = slider.scale ? `${paramSymbol(slider.param)} = `
+        + `${formatNumber(this.model.setting(slider), this.lang, 3)} ${unitText("m", this.t)}` : "";
     }
   }
 

@@ -6,15 +6,13 @@
  *   harmonics       amplitudes of the harmonics of u₃₁ as bars
  * Values the API leaves null (singular positions) are gaps in the curves.
  */
-import { axisTitle, degrees, exactName, formatNumber, plotSeparators, symbol, unitOf, unitText } from "./notation.js";
+import { axisTitle, degrees, exactName, formatNumber, symbol, unitOf, unitText } from "./notation.js";
+import { baseLayout, GRID, phiAxis, valueAxis } from "./plot_style.js";
 import { specialPositions } from "./positions_table.js";
 
-const FONT = 'system-ui, -apple-system, "Segoe UI", Roboto, "Noto Sans", "DejaVu Sans", sans-serif';
 const LINK_COLORS = { s: "#1f4e79", s2: "#b5442f" };     // output link 3, intermediate link 2
 const APPROXIMATION_COLOR = "#e08e0b";
 const OVERLAY_DASHES = ["dash", "dot", "dashdot"];     // one per overlay value of λ, in the link's colour
-const GRID = "#e4e8ee";
-const TURN = 2 * Math.PI;
 const AMPLITUDE_FLOOR = 0.01;   // the amplitude axis reaches at least 1 % of the function's peak: round-off
                                 // (a constant u₃₁ at λ = 1) never fills the plot
 
@@ -41,28 +39,6 @@ export function exactOutputs(panel) {
 
 function color(name) {
   return LINK_COLORS[["s", "u31", "du31"].includes(exactName(name)) ? "s" : "s2"];
-}
-
-function baseLayout({ lang }, height) {
-  return {
-    height, margin: { l: 64, r: 18, t: 30, b: 44 }, separators: plotSeparators(lang),
-    font: { family: FONT, size: 12, color: "#1d2733" },
-    paper_bgcolor: "rgba(0,0,0,0)", plot_bgcolor: "#ffffff",
-    legend: { orientation: "h", x: 0, xanchor: "left", y: 1.02, yanchor: "bottom", font: { size: 11 } },
-    hovermode: "x", hoverlabel: { namelength: -1 },
-  };
-}
-
-function phiAxis(cycle, { t }) {
-  return {
-    title: { text: `${t.crank_angle}, °` }, range: [0, degrees(cycle)], autorange: false, fixedrange: true,
-    tick0: 0, dtick: cycle > TURN * 1.01 ? 90 : 45, ticks: "outside", gridcolor: GRID, zeroline: false,
-  };
-}
-
-function valueAxis(title, extra = {}) {
-  return { title: { text: title }, fixedrange: true, automargin: true, gridcolor: GRID,
-    zerolinecolor: "#aab4c2", exponentformat: "power", ...extra };
 }
 
 /** Dashed vertical lines at the special positions, labelled at the bottom with their kinds (one label per angle). */

@@ -1,10 +1,10 @@
 /**
- * Scene page: wires the scene model, the kinematics client, the crank-angle clock and the views.
+ * Kinematics scene page: wires the scene model, the kinematics client, the crank-angle clock and the views.
  * One kinematics table per parameter change; animation frames only interpolate in it.
  */
 import { AnimationControls } from "./animation_controls.js";
 import { CrankAnimation } from "./animation.js";
-import { KinematicsClient } from "./api.js";
+import { ApiClient } from "./api.js";
 import { ControlsView } from "./controls_view.js";
 import { LinkageView } from "./linkage_view.js";
 import { PlotsView } from "./plots_view.js";
@@ -23,11 +23,11 @@ const texts = { t, lang };
 const model = new SceneModel(scene, readState());
 const animation = new CrankAnimation();
 const stage = document.querySelector(".stage");
-const client = new KinematicsClient(lang, (busy) => stage.classList.toggle("busy", busy));
+const client = new ApiClient(scene.endpoint, lang, (busy) => stage.classList.toggle("busy", busy));
 const linkage = new LinkageView(byId("linkage"), texts);
 const plots = new PlotsView(byId("plots"), { scene, ...texts });
 const status = new StatusView(byId("status"), texts);
-new ControlsView(byId("controls"), model, texts);
+new ControlsView(byId("controls"), model, { ...texts, pickerLabel: t.mechanism });
 new AnimationControls(byId("animation"), animation, texts);
 
 let overlayKeys = [];

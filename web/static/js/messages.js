@@ -6,9 +6,16 @@ export function errorReason(error, t) {
   return t[`err_${error.code}`] ?? error.message;
 }
 
+/** A box saying that the request was refused (heading) and why. */
+export function refusalMessage(heading, error, t) {
+  return element("div", { className: "refusal", role: "alert" },
+    element("strong", { textContent: heading }),
+    element("p", { textContent: errorReason(error, t) }));
+}
+
 /** A box saying the mechanism cannot be assembled, and why. */
 export function geometryMessage(error, t) {
-  return element("div", { className: "geometry-error", role: "alert" },
-    element("strong", { textContent: t.invalid_geometry }),
-    element("p", { textContent: errorReason(error, t) }));
+  const box = refusalMessage(t.invalid_geometry, error, t);
+  box.classList.add("geometry-error");
+  return box;
 }

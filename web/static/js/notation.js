@@ -35,9 +35,15 @@ export function unitOf(mechanism, output) {
   return position === "m" ? "m" : "1";
 }
 
-/** The unit in the reader's language: t.units_m, t.units_rad, t.units_1. */
+/** Interface texts (content/i18n) of the units that have a name in the reader's language. */
+const UNIT_KEYS = {
+  m: "units_m", rad: "units_rad", 1: "units_1", s: "units_s", ms: "units_ms", kg: "units_kg",
+  "kg·m²": "units_kg_m2", "rad/s": "units_rad_s", J: "units_J",
+};
+
+/** The unit in the reader's language ("m" → "м"); a unit without a translation ("%") as it is. */
 export function unitText(unit, t) {
-  return t[{ m: "units_m", rad: "units_rad", 1: "units_1" }[unit]];
+  return UNIT_KEYS[unit] ? t[UNIT_KEYS[unit]] : unit;
 }
 
 /** Axis title in textbook notation for outputs that share a unit: "u₃₁, м", "s, s₂, м". */
@@ -45,9 +51,19 @@ export function axisTitle(mechanism, outputs, t) {
   return `${outputs.map(symbol).join(", ")}, ${unitText(unitOf(mechanism, outputs[0]), t)}`;
 }
 
-/** Parameter name as printed: "l2" → "l₂". */
+/**
+ * A slider's label with its value: "λ = l₂/l₁" → "λ = l₂/l₁ = 3,00"; a label that ends in its unit puts
+ * the unit after the value: "P_c (нагрузка), Н" → "P_c (нагрузка) = 2000 Н", "φ, °" → "φ = 30°".
+ */
+export function labelledValue(label, valueText) {
+  const [, name, unit] = label.match(/^(.+), ([^,]+)$/) ?? [];
+  if (!unit) return `${label} = ${valueText}`;
+  return `${name} = ${valueText}${unit === "°" ? "" : " "}${unit}`;
+}
+
+/** Parameter name as printed: "l2" → "l₂", "params.l2" → "l₂". */
 export function paramSymbol(name) {
-  return name.replace(/\d/g, (digit) => SUBSCRIPT_DIGITS[digit]);
+  return name.split(".").pop().replace(/\d/g, (digit) => SUBSCRIPT_DIGITS[digit]);
 }
 
 /** "мёртвая точка" → "Мёртвая точка", for interface texts that start a line. */
@@ -61,15 +77,30 @@ export function degrees(radians) {
 
 const formats = new Map();
 
+function numberFormat(lang, options) {
+  const key = `${lang}|${JSON.stringify(options)}`;
+  if (!formats.has(key)) formats.set(key, new Intl.NumberFormat(lang, { ...options, useGrouping: false }));
+  return formats.get(key);
+}
+
 /** value with the given decimals, or with 3 significant digits when decimals is omitted. */
 export function formatNumber(value, lang, decimals) {
-  const key = `${lang}|${decimals}`;
-  if (!formats.has(key)) {
-    const options = decimals === undefined ? { maximumSignificantDigits: 3 }
-      : { minimumFractionDigits: decimals, maximumFractionDigits: decimals };
-    formats.set(key, new Intl.NumberFormat(lang, { ...options, useGrouping: false }));
-  }
-  return formats.get(key).format(value);
+  return numberFormat(lang, decimals === undefined ? { maximumSignificantDigits: 3 }
+    : { minimumFractionDigits: decimals, maximumFractionDigits: decimals }).format(value);
+}
+
+const SUPERSCRIPTS = { "-": "⁻", 0: "⁰", 1: "¹", 2: "²", 3: "³", 4: "⁴", 5: "⁵", 6: "⁶", 7: "⁷", 8: "⁸", 9: "⁹" };
+const PLAIN_RANGE = [1e-3, 1e6];     // magnitudes written without a power of ten
+
+/** value with digits significant digits; very small or large ones as "1,43·10⁻⁹". */
+export function formatQuantity(value, lang, digits = 3) {
+  const format = numberFormat(lang, { maximumSignificantDigits: digits });
+  const size = Math.abs(value);
+  if (size === 0 || (size >= PLAIN_RANGE[0] && size < PLAIN_RANGE[1])) return format.format(value);
+  let exponent = Math.floor(Math.log10(size));
+  if (Math.abs(Number((value / 10 ** exponent).toPrecision(digits))) >= 10) exponent += 1;   // 9,999… → 10
+  const power = String(exponent).replace(/./g, (c) => SUPERSCRIPTS[c]);
+  return `${format.format(value / 10 ** exponent)}·10${power}`;
 }
 
 /** Plotly's `separators` layout property: decimal point and thousands separator of the language. */

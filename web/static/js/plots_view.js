@@ -2,45 +2,35 @@
  * The plot panels of the variant: one Plotly graph per panel, its title, caption (largest error of an
  * approximation) and note. A cursor line over each φ-plot follows the animation; it is a positioned
  * element moved with a CSS transform, so animation frames never ask Plotly to lay out again.
- * Plots are redrawn one per animation frame, and those outside the window only when they scroll into
- * view, so a slider drag never blocks the page for long and redraws only what is seen.
+ * Plots are redrawn by a PanelScheduler: one per animation frame, only those in view.
  */
 import { element } from "./dom.js";
 import { approximationErrors, exactOutputs, panelFigure } from "./figures.js";
 import { geometryMessage } from "./messages.js";
 import { degrees, formatNumber, symbol } from "./notation.js";
+import { PanelScheduler } from "./panel_scheduler.js";
 import { valueAt } from "./positions_table.js";
 
 const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
 
 export class PlotsView {
-  #frameRequested = false;
-
   constructor(container, { scene, t, lang }) {
     this.container = container;
     this.scene = scene;
     this.texts = { t, lang };
     this.panels = [];
     this.phi = 0;
-    this.visibility = new IntersectionObserver((entries) => {
-      for (const entry of entries) {
-        const panel = this.panels.find((p) => p.figure === entry.target);
-        if (!panel) continue;
-        panel.visible = entry.isIntersecting;
-      }
-      this.#requestFrame();
-    }, { rootMargin: "100px" });
+    this.scheduler = new PanelScheduler((panel) => this.#render(panel));
   }
 
   /** One panel per plot of the variant, in the scene's order. */
   build(variant) {
-    this.visibility.disconnect();
     for (const panel of this.panels) Plotly.purge(panel.graph);
     this.panels = variant.panels.filter((id) => this.scene.panels[id].kind === "plot")
       .map((id) => this.#panel(id, this.scene.panels[id]));
     this.message = element("div", { className: "plots-message" });
     this.container.replaceChildren(this.message, ...this.panels.map((p) => p.figure));
-    for (const panel of this.panels) this.visibility.observe(panel.figure);
+    this.scheduler.track(this.panels);
   }
 
   /** Show the answer (and the overlay tables, Map λ → answer), or why there is nothing to plot. */
@@ -52,7 +42,7 @@ export class PlotsView {
       panel.overlays = overlays;
       panel.stale = answer.ok;
     }
-    this.#requestFrame();
+    this.scheduler.refresh();
   }
 
   /** Move the cursors to crank angle phi (rad) and show the values there. */
@@ -80,27 +70,11 @@ export class PlotsView {
       element("h3", { textContent: spec.title[this.texts.lang] }),
       element("div", { className: "graph-frame" }, graph, cursor), caption,
       ...(spec.note ? [element("p", { className: "note", textContent: spec.note[this.texts.lang] })] : []));
-    return { id, spec, graph, cursor, readout, caption, figure, visible: false, stale: false, axis: null,
+    return { id, spec, graph, cursor, readout, caption, figure, stale: false, axis: null,
       hasCursor: !spec.outputs.includes("harmonics") };
   }
 
-  #requestFrame() {
-    if (this.#frameRequested) return;
-    this.#frameRequested = true;
-    requestAnimationFrame(this.#renderNext);
-  }
-
-  /** Redraw the first visible panel whose plot is out of date; the next one in the next frame. */
-  #renderNext = () => {
-    this.#frameRequested = false;
-    const panel = this.panels.find((p) => p.stale && p.visible);
-    if (!panel) return;
-    this.#render(panel);
-    this.#requestFrame();
-  };
-
   #render(panel) {
-    panel.stale = false;
     const { data, layout } = panelFigure(panel.spec, this.table, panel.overlays, this.texts);
     panel.caption.textContent = approximationErrors(panel.spec, this.table, this.texts);
     Plotly.react(panel.graph, data, layout, PLOTLY_CONFIG).then(() => {

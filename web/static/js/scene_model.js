@@ -1,18 +1,16 @@
 /**
- * Model of a scene (content/scenes/*.json): the chosen variant (a mechanism set-up), the values of its
- * sliders and toggles, the overlay switch, and the kinematics answers for them. No DOM.
+ * Model of a kinematics scene: the reader's choices (SceneSettings), the overlay switch, and the
+ * kinematics answers for them. No DOM.
  *
  * A slider sets params[param] = value × params[scale] (lengths in metres, e.g. λ = l₂/l₁ sets l₂ = λ·l₁);
  * a toggle sets params[param] to one of its options (assembly ±1, stroke limiter 0/1).
  *
- * Events:
- *   "variant"   the variant changed: controls and panels are rebuilt
- *   "params"    the parameters changed: a new kinematics request is due
+ * Events, besides those of SceneSettings:
  *   "overlay"   the overlay switch changed
  *   "result"    the answer for the current parameters arrived (a table, or the reason there is none)
  *   "overlays"  the overlay tables changed
  */
-import { Emitter } from "./emitter.js";
+import { SceneSettings } from "./scene_settings.js";
 
 const TURN = 2 * Math.PI;
 const POINTS_PER_TURN = 360;            // a grid step of 1° of crank angle
@@ -24,40 +22,13 @@ function gridPoints(cycle) {
   return 1 + Math.round(POINTS_PER_TURN * cycle / TURN);
 }
 
-export class SceneModel extends Emitter {
+export class SceneModel extends SceneSettings {
   #cycles = new Map();     // cycle length last answered, by variant and toggle values
 
-  /** initial: {variant, values, overlay} from the page address; values out of range are ignored. */
+  /** initial: {variant, values, overlay} from the page address. */
   constructor(scene, initial = {}) {
-    super();
-    this.scene = scene;
-    this.#useVariant(scene.variants.find((v) => v.id === initial.variant) ?? scene.variants[0]);
-    for (const [id, value] of Object.entries(initial.values ?? {})) {
-      if (this.accepts(id, value)) this.values[id] = value;
-    }
+    super(scene, initial);
     this.overlay = Boolean(initial.overlay) && this.variant.overlay_values.length > 0;
-  }
-
-  /** Announce the initial state to the listeners. */
-  start() {
-    this.emit("variant", this.variant);
-    this.emit("params");
-  }
-
-  selectVariant(id) {
-    const variant = this.scene.variants.find((v) => v.id === id);
-    if (!variant || variant === this.variant) return;
-    this.#useVariant(variant);
-    this.overlay = this.overlay && variant.overlay_values.length > 0;
-    this.emit("variant", variant);
-    this.emit("overlays");
-    this.emit("params");
-  }
-
-  setValue(id, value) {
-    if (!this.accepts(id, value) || this.values[id] === value) return;
-    this.values[id] = value;
-    this.emit("params");
   }
 
   setOverlay(on) {
@@ -67,13 +38,9 @@ export class SceneModel extends Emitter {
     this.emit("overlays");
   }
 
-  /** True if value is allowed for the slider or toggle id of the current variant. */
-  accepts(id, value) {
-    if (!Number.isFinite(value)) return false;
-    const slider = this.variant.sliders.find((s) => s.id === id);
-    if (slider) return value >= slider.min && value <= slider.max;
-    const toggle = this.variant.toggles.find((t) => t.id === id);
-    return Boolean(toggle?.options.includes(value));
+  /** The length in metres that slider sets (l₂ for λ = l₂/l₁). */
+  setting(slider) {
+    return this.params()[slider.param];
   }
 
   /** Mechanism parameters (metres and switches) for the given slider and toggle values. */
@@ -124,9 +91,9 @@ export class SceneModel extends Emitter {
     this.emit("overlays");
   }
 
-  #useVariant(variant) {
-    this.variant = variant;
-    this.values = Object.fromEntries([...variant.sliders, ...variant.toggles].map((c) => [c.id, c.default]));
+  useVariant(variant) {
+    super.useVariant(variant);
+    this.overlay = Boolean(this.overlay) && variant.overlay_values.length > 0;
     this.answer = null;
     this.overlays = new Map();   // λ → answer, for the overlay values of the first slider
   }

@@ -1,14 +1,21 @@
 /**
- * The scene's state in the page address (?lang=ru&variant=slider_crank&lambda=3.2&overlay=1), so that
- * a link or a reload shows the same set-up, and the language switch keeps the scene as it is.
+ * The scene's state in the page address (?lang=ru&variant=slider_crank&lambda=3.2&overlay=1, or
+ * …&convention=textbook for a toggle with words for options), so that a link or a reload shows the same
+ * set-up, and the language switch keeps the scene as it is.
  */
+
+/** A value as written in the address: a number ("3.2", "-1"), or a toggle's word ("textbook"). */
+function parseValue(text) {
+  const number = Number(text);
+  return text.trim() !== "" && Number.isFinite(number) ? number : text;
+}
 
 /** {variant, values, overlay} read from the address; the model ignores what does not fit the variant. */
 export function readState(search = location.search) {
   const query = new URLSearchParams(search);
   const values = {};
   for (const [key, text] of query) {
-    if (!["lang", "variant", "overlay"].includes(key)) values[key] = Number(text);
+    if (!["lang", "variant", "overlay"].includes(key)) values[key] = parseValue(text);
   }
   return { variant: query.get("variant"), values, overlay: query.get("overlay") === "1" };
 }

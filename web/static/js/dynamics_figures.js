@@ -1,0 +1,99 @@
+/**
+ * Plotly figures of a dynamics scene's panels, built from an answer of /reduction or /motion; no DOM.
+ *   plot   series against x: the crank angle in degrees (x_unit "deg", x in rad) or the time in s;
+ *          a scalar series (style "hline", e.g. the mean M_c0) is a dashed level line labelled with its value
+ *   polar  the phase portrait ω(φ): radius r against angle θ (rad, drawn in degrees), so the start-up
+ *          winds round and round onto the closed steady cycle (style "bold")
+ * Series the answer does not hold (no textbook approximation, no steady cycle) are left out; null
+ * values (undefined points, e.g. where the mechanism self-locks) are gaps in the curves.
+ */
+import { pathValue } from "./dotted_paths.js";
+import { degrees, formatQuantity } from "./notation.js";
+import { baseLayout, GRID, phiAxis, valueAxis } from "./plot_style.js";
+
+const COLORS = ["#1f4e79", "#b5442f", "#e08e0b", "#2e7d4f", "#6a4c93"];
+const LEVEL_COLOR = "#5d6978";
+const DASHES = { solid: "solid", dotted: "dot", dashed: "dash" };
+const STARTUP_COLOR = "#e08e0b";
+
+/** True where the answer holds a value, or a curve with at least one defined point, at path. */
+export function holds(data, path) {
+  const value = pathValue(data, path);
+  if (Array.isArray(value)) return value.some((v) => v !== null);
+  return value !== undefined && value !== null;
+}
+
+/** A series keeps its colour whatever other series the answer leaves out (link 3 is green in every variant). */
+function seriesColor(panel, series) {
+  return COLORS[panel.series.indexOf(series) % COLORS.length];
+}
+
+const toDegrees = (values) => values.map((v) => (v === null ? null : degrees(v)));
+
+/** The series of a plot panel that the answer holds. */
+export function heldSeries(panel, data) {
+  return panel.series.filter((series) => holds(data, series.y));
+}
+
+/** The series of a polar panel that the answer holds. */
+export function heldCurves(panel, data) {
+  return panel.series.filter((series) => holds(data, series.theta) && holds(data, series.r));
+}
+
+/** Plotly figure {data, layout} of a plot panel (content/scenes "panels" entry) for the answer's data. */
+export function plotFigure(panel, data, texts) {
+  const { lang } = texts;
+  const xValues = pathValue(data, panel.x);
+  const inDegrees = panel.x_unit === "deg";
+  const x = inDegrees ? toDegrees(xValues) : xValues;
+  const ends = [x[0], x[x.length - 1]];
+  const traces = heldSeries(panel, data).map((series) => {
+    const label = series.label[lang];
+    const y = pathValue(data, series.y);
+    if (series.style === "hline") {
+      const name = `${label} = ${formatQuantity(y, lang, 4)}`;
+      return { type: "scatter", mode: "lines", x: ends, y: [y, y], name, hoverinfo: "skip",
+        line: { color: LEVEL_COLOR, width: 1.5, dash: "dash" } };
+    }
+    return { type: "scatter", mode: "lines", x, y, name: label, connectgaps: false,
+      line: { color: seriesColor(panel, series), width: 2, dash: DASHES[series.style ?? "solid"] },
+      hovertemplate: `${label} = %{y:.4g}<extra></extra>` };
+  });
+  return {
+    data: traces,
+    layout: {
+      ...baseLayout(texts, 300), showlegend: traces.length > 1,
+      xaxis: inDegrees ? phiAxis(xValues[xValues.length - 1], texts) : timeAxis(panel, texts),
+      yaxis: valueAxis(panel.y_title[lang]),
+    },
+  };
+}
+
+function timeAxis(panel, { lang }) {
+  return { title: { text: panel.x_title[lang] }, fixedrange: true, ticks: "outside", gridcolor: GRID,
+    zeroline: false, rangemode: "tozero" };
+}
+
+/** Plotly figure {data, layout} of a polar panel (the phase portrait) for the answer's data. */
+export function polarFigure(panel, data, texts) {
+  const { lang } = texts;
+  const traces = heldCurves(panel, data).map((series) => {
+    const label = series.label[lang];
+    const bold = series.style === "bold";
+    return { type: "scatterpolar", mode: "lines", name: label,
+      theta: toDegrees(pathValue(data, series.theta)), r: pathValue(data, series.r), connectgaps: false,
+      line: bold ? { color: COLORS[0], width: 3.5 } : { color: STARTUP_COLOR, width: 1.2 },
+      hovertemplate: `${label}: %{r:.4g}, φ = %{theta:.1f}°<extra></extra>` };
+  });
+  return {
+    data: traces,
+    layout: {
+      ...baseLayout(texts, 440), hovermode: "closest", showlegend: true, margin: { l: 40, r: 40, t: 40, b: 30 },
+      polar: {
+        bgcolor: "#ffffff",
+        angularaxis: { direction: "counterclockwise", rotation: 0, dtick: 45, ticksuffix: "°", gridcolor: GRID },
+        radialaxis: { rangemode: "tozero", angle: 90, tickangle: 90, gridcolor: GRID, exponentformat: "power" },
+      },
+    },
+  };
+}

@@ -1,0 +1,43 @@
+/**
+ * Model of a dynamics scene (endpoint /reduction or /motion): the reader's choices (SceneSettings) and
+ * the request body built from them. No DOM.
+ *
+ * The body is the variant's `request` with the mechanism added; each toggle puts its option at its
+ * dotted path (toggle.param, e.g. "load.convention"); each slider puts value × to_si × (the value at
+ * slider.scale, if given) at slider.param, e.g. λ sets params.l2 = λ·params.l1 in metres and a slider in
+ * degrees has to_si = π/180; outputs are whatever the variant's panels need.
+ *
+ * Events, besides those of SceneSettings:
+ *   "result"    the answer for the current values arrived (the results, or why there are none)
+ */
+import { pathValue, setPath } from "./dotted_paths.js";
+import { SceneSettings } from "./scene_settings.js";
+
+export class DynamicsModel extends SceneSettings {
+  /** The SI value slider sets in the request (l₂ in metres for λ = l₂/l₁). */
+  setting(slider) {
+    return pathValue(this.request(), slider.param);
+  }
+
+  /** Body of the request for the current values. */
+  request() {
+    const variant = this.variant;
+    const body = { ...structuredClone(variant.request), mechanism: variant.mechanism };
+    for (const toggle of variant.toggles) setPath(body, toggle.param, this.values[toggle.id]);
+    for (const slider of variant.sliders) {
+      const scale = slider.scale ? pathValue(body, slider.scale) : 1;
+      setPath(body, slider.param, this.values[slider.id] * slider.to_si * scale);
+    }
+    return { ...body, outputs: this.outputs() };
+  }
+
+  /** What the variant's panels need ("resisting", "friction_iteration", "steady", "startup", …). */
+  outputs() {
+    return [...new Set(this.variant.panels.flatMap((id) => this.scene.panels[id].needs ?? []))];
+  }
+
+  /** Take the answer to the latest request. */
+  receive(answer) {
+    this.emit("result", answer);
+  }
+}

@@ -1,0 +1,34 @@
+/**
+ * The look shared by every Plotly figure of the app: fonts, grid, legend above the plot, numbers
+ * written the way the reader's language writes them, and the crank-angle axis in degrees.
+ */
+import { degrees, plotSeparators } from "./notation.js";
+
+const FONT = 'system-ui, -apple-system, "Segoe UI", Roboto, "Noto Sans", "DejaVu Sans", sans-serif';
+const TURN = 2 * Math.PI;
+export const GRID = "#e4e8ee";
+
+/** Layout of a figure height pixels high, before its axes. */
+export function baseLayout({ lang }, height) {
+  return {
+    height, margin: { l: 64, r: 18, t: 30, b: 44 }, separators: plotSeparators(lang),
+    font: { family: FONT, size: 12, color: "#1d2733" },
+    paper_bgcolor: "rgba(0,0,0,0)", plot_bgcolor: "#ffffff",
+    legend: { orientation: "h", x: 0, xanchor: "left", y: 1.02, yanchor: "bottom", font: { size: 11 } },
+    hovermode: "x", hoverlabel: { namelength: -1 },
+  };
+}
+
+/** The crank angle φ in degrees over one cycle (rad): ticks every 45°, or every 90° for a 4π cycle. */
+export function phiAxis(cycle, { t }) {
+  return {
+    title: { text: `${t.crank_angle}, °` }, range: [0, degrees(cycle)], autorange: false, fixedrange: true,
+    tick0: 0, dtick: cycle > TURN * 1.01 ? 90 : 45, ticks: "outside", gridcolor: GRID, zeroline: false,
+  };
+}
+
+/** A value axis titled title ("u₃₁, м"), with extra Plotly axis properties. */
+export function valueAxis(title, extra = {}) {
+  return { title: { text: title }, fixedrange: true, automargin: true, gridcolor: GRID,
+    zerolinecolor: "#aab4c2", exponentformat: "power", ...extra };
+}

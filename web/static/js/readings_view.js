@@ -1,0 +1,114 @@
+/**
+ * The panels of a dynamics scene that are read rather than plotted, as HTML built from an answer:
+ *   figures   labelled numbers (M_c0 in both conventions, the friction angle, ω_mean, δ, η, works)
+ *   table     rows from a list in the answer (the successive approximations of the friction forces),
+ *             with whether the series converges, its ratio and its limit
+ *   numerics  how each result was computed: method, tolerance, steps, cycles and Newton iterations,
+ *             run time, error estimate, energy residual, and the solver's message — error beside time
+ * A number the answer leaves null (M_c0 of a self-locking mechanism) reads "—".
+ */
+import { pathValue } from "./dotted_paths.js";
+import { element } from "./dom.js";
+import { degrees, formatNumber, formatQuantity, unitText } from "./notation.js";
+
+const MISSING = "—";
+const TABLE_DIGITS = 5;
+
+/** Headings of the computations a numerics panel may show, by their path in the answer. */
+const COMPUTATIONS = { numerics: "steady_cycle", "startup.numerics": "startup" };
+
+/** Rows of a numerics panel: the key in the answer's numerics, its label, how its value reads. */
+const NUMERICS_ROWS = [
+  ["method", "numerics_method", (v) => v],
+  ["rtol", "numerics_rtol", (v, lang) => formatQuantity(v, lang, 2)],
+  ["steps", "numerics_steps", (v, lang) => formatNumber(v, lang, 0)],
+  ["cycles", "numerics_cycles", (v, lang) => formatNumber(v, lang, 0)],
+  ["iterations", "numerics_iterations", (v, lang) => formatNumber(v, lang, 0)],
+  ["runtime_ms", "numerics_runtime", (v, lang, t) => `${formatQuantity(v, lang, 3)} ${unitText("ms", t)}`],
+  ["error_estimate", "numerics_error", (v, lang) => formatQuantity(v, lang, 2)],
+  ["energy_residual", "numerics_energy", (v, lang) => formatQuantity(v, lang, 2)],
+  ["message", "numerics_message", (v) => v],
+];
+
+const absent = (value) => value === undefined || value === null || value === "";
+
+/** One labelled number: digits significant digits; unit "deg" turns radians into degrees. */
+function quantity(value, item, { t, lang }) {
+  if (value === null) return MISSING;
+  const scaled = value * (item.scale ?? 1);
+  if (item.unit === "deg") return `${formatQuantity(degrees(scaled), lang, item.digits)}°`;
+  const number = formatQuantity(scaled, lang, item.digits);
+  return item.unit ? `${number} ${unitText(item.unit, t)}` : number;
+}
+
+/** A cell of a table: numbers with TABLE_DIGITS digits, words as they are. */
+function cell(value, lang) {
+  if (absent(value)) return MISSING;
+  return typeof value === "number" ? formatQuantity(value, lang, TABLE_DIGITS) : String(value);
+}
+
+/** True if the answer holds something for a figures, table or numerics panel. */
+export function holdsReadings(panel, data) {
+  if (panel.kind === "figures") return panel.items.some((item) => pathValue(data, item.path) !== undefined);
+  if (panel.kind === "table") return Array.isArray(pathValue(data, panel.path));
+  return panel.paths.some((path) => pathValue(data, path));
+}
+
+/** The content of a figures, table or numerics panel for the answer's data. */
+export function readings(panel, data, texts) {
+  if (panel.kind === "figures") return figuresList(panel, data, texts);
+  if (panel.kind === "table") return rowsTable(panel, data, texts);
+  return numericsTable(panel, data, texts);
+}
+
+function figuresList(panel, data, texts) {
+  const items = panel.items.filter((item) => pathValue(data, item.path) !== undefined);
+  return [element("dl", { className: "figures-list" }, ...items.flatMap((item) => [
+    element("dt", { textContent: item.label[texts.lang] }),
+    element("dd", { textContent: quantity(pathValue(data, item.path), item, texts) })]))];
+}
+
+function rowsTable(panel, data, texts) {
+  const rows = pathValue(data, panel.path);
+  const columns = panel.columns.filter((column) => rows.some((row) => column.key in row));
+  const table = element("table", { className: "rows" },
+    element("thead", {}, element("tr", {}, ...columns.map((column) =>
+      element("th", { scope: "col", textContent: column.label[texts.lang] })))),
+    element("tbody", {}, ...rows.map((row) => element("tr", {}, ...columns.map((column) =>
+      element("td", { textContent: cell(row[column.key], texts.lang) }))))));
+  const series = pathValue(data, panel.path.split(".").slice(0, -1).join("."));
+  const summary = series && "converged" in series ? [seriesSummary(series, columns, texts)] : [];
+  return [...summary, element("div", { className: "table-frame" }, table)];
+}
+
+/**
+ * "φ = 30,0° · знаменатель ряда 0,0225 < 1 · ряд сходится · предел: R₂₃ = 1,023", or that it diverges
+ * (the mechanism self-locks at this angle), for a list of successive approximations.
+ */
+function seriesSummary(series, columns, { t, lang }) {
+  const parts = [];
+  if (typeof series.phi === "number") parts.push(`φ = ${formatNumber(degrees(series.phi), lang, 1)}°`);
+  const ratio = `${t.series_ratio} ${formatQuantity(series.ratio, lang, 3)}`;
+  if (series.converged) {
+    parts.push(`${ratio} < 1`, t.series_converges);
+    const limit = Object.entries(series.limit ?? {}).map(([key, value]) =>
+      `${columns.find((c) => c.key === key)?.label[lang] ?? key} = ${cell(value, lang)}`);
+    if (limit.length) parts.push(`${t.series_limit}: ${limit.join(", ")}`);
+  } else {
+    parts.push(`${ratio} ≥ 1`, t.series_diverges);
+  }
+  return element("p", { className: `series-summary ${series.converged ? "converges" : "diverges"}`,
+    textContent: parts.join(" · ") });
+}
+
+function numericsTable(panel, data, { t, lang }) {
+  const runs = panel.paths.filter((path) => pathValue(data, path)).map((path) => [path, pathValue(data, path)]);
+  const rows = NUMERICS_ROWS.filter(([key]) => runs.some(([, numerics]) => !absent(numerics[key])));
+  const head = runs.length > 1 ? [element("thead", {}, element("tr", {}, element("td"),
+    ...runs.map(([path]) => element("th", { scope: "col", textContent: t[COMPUTATIONS[path]] }))))] : [];
+  return [element("table", { className: "numerics" }, ...head,
+    element("tbody", {}, ...rows.map(([key, label, text]) => element("tr", { className: `numerics-${key}` },
+      element("th", { scope: "row", textContent: t[label] }),
+      ...runs.map(([, numerics]) => element("td", {
+        textContent: absent(numerics[key]) ? MISSING : text(numerics[key], lang, t) }))))))];
+}
