@@ -9,7 +9,7 @@ from fastapi.staticfiles import StaticFiles
 
 from .content import REPO_ROOT
 from .errors import validation_error
-from .routers import dynamics, elastic, forces, kinematics, mechanisms, pages, scenes
+from .routers import angular, dynamics, elastic, forces, kinematics, mechanisms, pages, scenes
 
 API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
@@ -21,7 +21,7 @@ def create_app() -> FastAPI:
                               "mechanisms. SI units throughout; angles in radians.",
                   openapi_url=f"{API_PREFIX}/openapi.json", docs_url=None, redoc_url=None)
     api = APIRouter(prefix=API_PREFIX)
-    for module in (mechanisms, kinematics, dynamics, elastic, forces, scenes):
+    for module in (mechanisms, kinematics, dynamics, elastic, forces, angular, scenes):
         api.include_router(module.router)
     app.include_router(api)
     app.include_router(pages.router)

@@ -68,7 +68,8 @@ class Scene(BaseModel):
     id: str
     order: int
     kind: Literal["kinematics", "dynamics"] = "kinematics"
-    endpoint: Literal["kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear"] = "kinematics"
+    endpoint: Literal["kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
+                      "angular-acceleration"] = "kinematics"
     source: Text
     title: Text
     summary: Text
