@@ -7,7 +7,8 @@
  * trip, and the screen always ends on the latest parameters.
  *
  * An answer is {ok: true, data} with the response body, or {ok: false, error: {code, message}} where
- * code is the error code of the 422 answer (content/i18n has err_<code>), "network" or "server".
+ * code is the error code of the 422 answer (content/i18n has err_<code>; null when the answer names none,
+ * and its message is shown), "network" or "server".
  */
 export class ApiClient {
   #slots = new Map();
@@ -58,8 +59,8 @@ export class ApiClient {
       const payload = await response.json().catch(() => null);
       if (response.ok && payload) return { ok: true, data: payload };
       const detail = Array.isArray(payload?.detail) ? payload.detail[0] : null;
-      return { ok: false, error: {
-        code: detail?.ctx?.code ?? "server", message: detail?.msg ?? `HTTP ${response.status}` } };
+      if (!detail) return { ok: false, error: { code: "server", message: `HTTP ${response.status}` } };
+      return { ok: false, error: { code: detail.ctx?.code ?? null, message: detail.msg } };
     } catch (error) {
       return { ok: false, error: { code: "network", message: String(error) } };
     } finally {

@@ -3,7 +3,7 @@ import { element } from "./dom.js";
 
 /** The translated reason of an API error (content/i18n err_<code>), or the server's own words. */
 export function errorReason(error, t) {
-  return t[`err_${error.code}`] ?? error.message;
+  return (error.code && t[`err_${error.code}`]) || error.message;
 }
 
 /** A box saying that the request was refused (heading) and why. */

@@ -32,12 +32,16 @@ const NUMERICS_ROWS = [
 
 const absent = (value) => value === undefined || value === null || value === "";
 
-/** One labelled number: digits significant digits; unit "deg" turns radians into degrees. */
+/**
+ * One labelled number: item.digits significant digits (0: a count, shown whole), times item.scale
+ * (100 for %); unit "deg" turns radians into degrees.
+ */
 function quantity(value, item, { t, lang }) {
   if (value === null) return MISSING;
   const scaled = value * (item.scale ?? 1);
-  if (item.unit === "deg") return `${formatQuantity(degrees(scaled), lang, item.digits)}°`;
-  const number = formatQuantity(scaled, lang, item.digits);
+  const shown = item.unit === "deg" ? degrees(scaled) : scaled;
+  const number = item.digits ? formatQuantity(shown, lang, item.digits) : formatNumber(shown, lang, 0);
+  if (item.unit === "deg") return `${number}°`;
   return item.unit ? `${number} ${unitText(item.unit, t)}` : number;
 }
 
