@@ -4,6 +4,15 @@ from __future__ import annotations
 from ..core.mechanisms import Notice
 from .content import interface_texts
 
+DECIMAL_COMMA = ("ru", "uk")
+
+
+class CommaFloat(float):
+    """A number that prints with a decimal comma, as Russian and Ukrainian texts write it."""
+
+    def __format__(self, spec: str) -> str:
+        return format(float(self), spec).replace(".", ",")
+
 
 def translate(notice: Notice, lang: str) -> str:
     """The notice in ``lang``; English text of the core when the language has no template for it."""
@@ -12,4 +21,6 @@ def translate(notice: Notice, lang: str) -> str:
     template = interface_texts(lang).get(f"warn_{notice.code}")
     if template is None:
         return notice.text
-    return template.format(**notice.context)
+    context = {key: CommaFloat(value) if isinstance(value, float) and lang in DECIMAL_COMMA else value
+               for key, value in notice.context.items()}
+    return template.format(**context)

@@ -39,10 +39,15 @@ def leave_rest(machine: Machine, phi: np.ndarray, t0: float) -> tuple[list[float
             return y[0] - node
         event.terminal = node == phi[-1]
         return event
+
+    def stalls(_, y):                 # back to rest after leaving it: the load wins
+        return y[1]
+    stalls.terminal, stalls.direction = True, -1
     start = machine.tables(phi[:1])
     scale = math.sqrt(2 * (phi[-1] - phi[0]) * start.J[0] / max(abs(rhs(0, [phi[0], 0.0])[1]) * start.J[0], 1e-300))
-    solution = solve_ivp(rhs, (0.0, 100 * scale + 1.0), [phi[0], 0.0], method="DOP853", rtol=1e-12, atol=1e-14,
-                         events=[passing(node) for node in phi[1:]])
+    solution = solve_ivp(rhs, (0.0, 20 * scale + 1.0), [phi[0], 0.0], method="DOP853", rtol=1e-11, atol=1e-14,
+                         events=[passing(node) for node in phi[1:]] + [stalls])
+    solution.t_events, solution.y_events = solution.t_events[:-1], solution.y_events[:-1]
     reached = [k for k, e in enumerate(solution.t_events) if e.size and solution.y_events[k][0][1] > 0]
     reached = reached[:next((n for n, k in enumerate(reached) if k != n), len(reached))]   # contiguous from the start
     omega = np.array([float(solution.y_events[k][0][1]) for k in reached])
