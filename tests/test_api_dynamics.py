@@ -113,3 +113,11 @@ def test_block_on_the_lever_pivot_is_reported_once_in_words():
     data = strict(post("motion", body))
     assert "omega" not in data and len(data["warnings"]) == len(set(data["warnings"])) >= 1
     assert any("jam" in w for w in data["warnings"])
+
+
+def test_start_from_rest_that_stalls_at_once_ends_with_words():
+    body = MACHINE | {"load": {"force": 6000, "return_factor": 0.2, "f": 0.1},
+                      "motor": {"kind": "kloss", "M_max": 10, "s_critical": 0.2, "omega_sync": 157},
+                      "outputs": ["startup"]}
+    data = strict(post("motion", body))
+    assert any("Stall at" in w for w in data["warnings"]) and data["startup"]["omega"][-1] >= 0

@@ -158,3 +158,13 @@ def test_seed_004_group_two_inertia():
     J = reduced_inertia("slider_crank", p, Inertias(m2=24.2, J_S2=1.21, m3=36.2), PHI)
     assert J.J.max() == pytest.approx(0.90191, abs=1e-5) and J.J.min() == pytest.approx(0.22360, abs=1e-5)
     assert J.mean == pytest.approx(0.55079, abs=1e-5)                                         # notes 004 §4.2
+
+
+def test_partial_self_locking_keeps_the_moment_where_the_slider_moves():
+    p = params("slider_crank", l1=1.0, l2=1.05)
+    m = resisting_moment("slider_crank", p, Load(1.0, f=0.5), PHI)
+    free = ~m.self_locking
+    tan_psi = np.abs(np.tan(MECHANISMS["slider_crank"].evaluate(p, PHI, set()).values["s2"]))
+    u31 = np.abs(MECHANISMS["slider_crank"].evaluate(p, PHI, set()).values["u31"])
+    assert m.total[free] == pytest.approx(u31[free] / (1 - 0.5 * tan_psi[free]), rel=1e-12)
+    assert np.isnan(m.total[m.self_locking]).all()
