@@ -29,6 +29,7 @@ def create_app() -> FastAPI:
     app.add_middleware(GZipMiddleware, minimum_size=1000, compresslevel=3)  # cheap CPU, ~4x smaller
     app.mount("/static", StaticFiles(directory=REPO_ROOT / "web" / "static"), name="static")
     app.mount("/vendor/plotly", StaticFiles(directory=PLOTLY_DIR), name="plotly")
+    app.mount("/bench-results", StaticFiles(directory=REPO_ROOT / "bench" / "results"), name="bench")
     return app
 
 
