@@ -14,6 +14,20 @@ class CommaFloat(float):
         return format(float(self), spec).replace(".", ",")
 
 
+def localise_numerics(numerics: dict, lang: str) -> dict:
+    """The method's description (and, for the elastic models, why it was chosen) in the reader's language."""
+    texts = interface_texts(lang) if lang != "en" else {}
+    local = dict(numerics)
+    template = texts.get(f"num_{numerics.get('code')}")
+    if template:
+        local["method"] = template.format(method=numerics.get("method", ""))
+    why = texts.get(f"why_{numerics.get('code')}")
+    if why and "why_context" in numerics:
+        context = {k: CommaFloat(v) if lang in DECIMAL_COMMA else v for k, v in numerics["why_context"].items()}
+        local["why"] = why.format(**context)
+    return local
+
+
 def translate(notice: Notice, lang: str) -> str:
     """The notice in ``lang``; English text of the core when the language has no template for it."""
     if lang == "en":

@@ -13,7 +13,7 @@ from ...core.dynamics.resistance import Load
 from ...core.mechanisms import MECHANISMS, GeometryError
 from ..errors import unprocessable
 from ..json_safe import finite_or_none
-from ..messages import translate
+from ..messages import localise_numerics, translate
 from ..schemas import Language
 from ..schemas_dynamics import (FlywheelRequest, FlywheelResponse, MotionRequest, MotionResponse, ReductionRequest,
                                 ReductionResponse)
@@ -24,6 +24,9 @@ LANG = Query("en", description="language of the warnings: ru, uk or en")
 
 def _respond(result: dict, notices, lang: str) -> JSONResponse:
     warnings = dict.fromkeys(translate(n, lang) for n in notices)      # once each, in order
+    for holder in (result, result.get("startup") or {}):
+        if isinstance(holder.get("numerics"), dict):
+            holder["numerics"] = localise_numerics(holder["numerics"], lang)
     return JSONResponse(finite_or_none(result) | {"warnings": list(warnings)})
 
 

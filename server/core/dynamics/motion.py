@@ -43,6 +43,7 @@ class Numerics:
 
     method: str
     rtol: float
+    code: str = ""                  # names the method for the interface's translations
     steps: int = 0
     cycles: int = 0
     iterations: int = 0
@@ -188,7 +189,8 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
     started = time.perf_counter()
     method = ("Newton shooting on the cycle map of dT/dφ = M(φ, ω), RK4 in φ" if machine.speed_dependent
               else "energy integral (1.9)–(1.10) by Simpson's rule, mean speed given")
-    numerics = Numerics(method=method, rtol=rtol)
+    numerics = Numerics(method=method, rtol=rtol,
+                        code="newton_shooting" if machine.speed_dependent else "energy_integral")
     motion = Motion(numerics=numerics)
     per_2pi, previous, T0 = STEPS_START, None, None
     while per_2pi <= STEPS_MAX:
@@ -289,7 +291,7 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
             balance: bool = False, deadline: float = math.inf) -> Motion:
     """From ω₀ at φ = 0 until the cycle-start energy settles (phase portrait spiralling onto the cycle)."""
     started = time.perf_counter()
-    numerics = Numerics(method="RK4 in φ on dT/dφ = M(φ, ω) from the given start", rtol=rtol)
+    numerics = Numerics(method="RK4 in φ on dT/dφ = M(φ, ω) from the given start", rtol=rtol, code="startup_rk4")
     motion = Motion(numerics=numerics)
     steps = steps_per_cycle(machine, 256)
     tables = node_tables(machine, steps, balance)

@@ -42,6 +42,7 @@ def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: i
             means[convention] = mean_over_cycle(total)
             errors[convention] = abs(means[convention] - mean_over_cycle(total[::2]))
         result["numerics"] = {
+            "code": "closed_forms",
             "method": "closed forms at each angle; M_c0 by the trapezoid rule on a closed uniform grid, error "
                       "estimated against the grid of half as many points",
             "points": MEAN_POINTS, "error_estimate": errors[load.convention]}
@@ -147,7 +148,8 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
         "rim": fw.rim(flywheel_inertia, fw.disk(flywheel_inertia, width_ratio, density).diameter, density)
         if flywheel_inertia > 0 else None,
         "balancing_moment": tables.balancing_moment,
-        "numerics": {"method": "Simpson's rule for A(φ) on a uniform grid; exact inertia by Brent's method on the "
+        "numerics": {"code": "flywheel_simpson",
+                     "method": "Simpson's rule for A(φ) on a uniform grid; exact inertia by Brent's method on the "
                                "periodic energy solution", "steps": steps, "runtime_ms": 1e3 * (time.perf_counter() - started),
                      "error_estimate": abs(rows[-1]["delta_achieved"] / delta - 1)},
     }

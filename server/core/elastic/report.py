@@ -133,7 +133,9 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
     common = min(twist_now.size, twist_check.size)
     scale = max(float(np.max(np.abs(twist_now))) if twist_now.size else 0.0, 1e-300)
     numerics = {
-        "method": chosen, "why": (f"stiffness ratio {ratio:.3g}: the fastest decay rate {decay:.4g} 1/s against the "
+        "method": chosen, "code": "elastic_" + ("implicit" if chosen in ("Radau", "BDF", "LSODA") else "explicit"),
+        "why_context": {"ratio": ratio, "decay": decay, "slow": slow, "fastest": fastest, "threshold": STIFF_RATIO},
+        "why": (f"stiffness ratio {ratio:.3g}: the fastest decay rate {decay:.4g} 1/s against the "
                                   f"slow rate {slow:.4g} 1/s (fastest |λ| = {fastest:.4g} 1/s) is "
                                   f"{'above' if ratio > STIFF_RATIO else 'below'} {STIFF_RATIO:g}, so an "
                                   f"{'implicit' if chosen in ('Radau', 'BDF', 'LSODA') else 'explicit'} method"
