@@ -5,6 +5,7 @@ import numpy as np
 from fastapi import APIRouter, Query
 from fastapi.responses import JSONResponse
 
+from ...core import work_precision
 from ...core.dynamics import report
 from ...core.dynamics.machine import Machine
 from ...core.dynamics.motors import Motor
@@ -71,6 +72,19 @@ def flywheel(request: FlywheelRequest, lang: Language = LANG):
     except GeometryError as error:
         raise unprocessable(error) from None
     return _respond(result, notices, lang)
+
+
+@router.post("/work-precision/motion", summary="Live work–precision study of the current machine's steady cycle "
+                                               "(ours against solve_ivp integrating cycles, small budget)")
+def motion_work_precision(request: MotionRequest, lang: Language = LANG):
+    try:
+        machine = _machine(request)
+    except GeometryError as error:
+        raise unprocessable(error) from None
+    if not machine.speed_dependent:
+        raise unprocessable(GeometryError("motor.kind", "the study compares steady-cycle solvers: give a motor or "
+                                          "friction that depends on speed", "study_needs_speed"))
+    return _respond({"study": work_precision.motion_study(machine)}, [], lang)
 
 
 def _machine(request) -> Machine:

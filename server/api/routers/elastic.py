@@ -6,6 +6,7 @@ from ...core.dynamics.reduction import Inertias
 from ...core.dynamics.resistance import Load
 from ...core.elastic.report import Bearing, ElasticMachine, bearing_iteration, modal, simulate
 from ...core.elastic.stiffness import Compliances
+from ...core import work_precision
 from ...core.mechanisms import MECHANISMS, GeometryError
 from ..errors import unprocessable
 from ..schemas import Language
@@ -15,21 +16,25 @@ from .dynamics import LANG, _respond
 router = APIRouter(tags=["elastic"])
 
 
+def _elastic_machine(request: ElasticRequest) -> ElasticMachine:
+    if request.motor.kind == "indicator":
+        raise GeometryError("motor.kind", "the elastic models take a motor with a speed characteristic or a "
+                            "constant torque", "elastic_motor")
+    return ElasticMachine(
+        request.model, request.mechanism, MECHANISMS[request.mechanism].check(request.params),
+        Inertias(**request.inertias.model_dump()), Load(**request.load.model_dump()),
+        Motor(**{**request.motor.model_dump(), "expansion": tuple(request.motor.expansion),
+                 "compression": tuple(request.motor.compression)}),
+        request.J_motor, request.J_middle, request.c, Compliances(**request.compliances.model_dump()),
+        request.b, request.b1, request.speed, request.omega0, request.twist0)
+
+
 @router.post("/elastic", summary="Two- and three-mass elastic machines and elastic linkages: time histories, "
                                  "modal curves, the rigid solution, numerics",
              responses={422: {"description": "invalid input: the field and the reason"}})
 def elastic(request: ElasticRequest, lang: Language = LANG):
     try:
-        machine = ElasticMachine(
-            request.model, request.mechanism, MECHANISMS[request.mechanism].check(request.params),
-            Inertias(**request.inertias.model_dump()), Load(**request.load.model_dump()),
-            Motor(**{**request.motor.model_dump(), "expansion": tuple(request.motor.expansion),
-                     "compression": tuple(request.motor.compression)}),
-            request.J_motor, request.J_middle, request.c, Compliances(**request.compliances.model_dump()),
-            request.b, request.b1, request.speed, request.omega0, request.twist0)
-        if request.motor.kind == "indicator":
-            raise GeometryError("motor.kind", "the elastic models take a motor with a speed characteristic or a "
-                                "constant torque", "elastic_motor")
+        machine = _elastic_machine(request)
         result, notices = {}, []
         if "histories" in request.outputs or "rigid" in request.outputs:
             result, notices = simulate(machine, request.t_end, request.n, request.rtol, request.method)
@@ -43,3 +48,13 @@ def elastic(request: ElasticRequest, lang: Language = LANG):
     except GeometryError as error:
         raise unprocessable(error) from None
     return _respond(result, notices, lang)
+
+
+@router.post("/work-precision/elastic", summary="Live work–precision study of the current elastic machine "
+                                                "(error against run time of several solvers, small budget)")
+def elastic_work_precision(request: ElasticRequest, lang: Language = LANG):
+    try:
+        machine = _elastic_machine(request)
+    except GeometryError as error:
+        raise unprocessable(error) from None
+    return _respond({"study": work_precision.elastic_study(machine, min(request.t_end, 0.5))}, [], lang)

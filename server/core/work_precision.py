@@ -1,0 +1,91 @@
+"""A small live work–precision study for the current machine (issue 8's in-app Numerics page).
+
+Each entry is (method, tolerance, relative error, run time in ms) against a reference computed at a
+tighter tolerance by a different route; the whole study stops at its time budget and says what it
+skipped.  bench/work_precision.py runs the full study offline.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from .dynamics.machine import Machine
+from .dynamics.motion import steady_cycle
+from .elastic.report import ElasticMachine, absolute_tolerances, build
+from .elastic.simulate import integrate
+
+BUDGET_S = 6.0
+
+
+def _time_domain_cycle(machine: Machine, method: str, rtol: float, omega_start: float, deadline: float):
+    """ω(φ = 0) on the steady cycle by integrating J ω̇ + ½J′ω² = M in time until it repeats."""
+    def rhs(_, y):
+        tables = machine.tables(np.array([y[0]]))
+        moment = tables.net_phi[0] + machine.speed_moment(y[1], tables.sliding[0])[0]
+        return [y[1], (moment - 0.5 * tables.dJ[0] * y[1] ** 2) / tables.J[0]]
+    y, t, previous = np.array([0.0, omega_start]), 0.0, None
+    cycle = machine.cycle()
+    for k in range(200):
+        if time.perf_counter() > deadline:
+            return None
+        target = cycle * (k + 1)
+        event = lambda _, s: s[0] - target
+        event.terminal = True
+        solution = solve_ivp(rhs, (t, t + 100.0), y, method=method, rtol=rtol, atol=rtol * 1e-3, events=event)
+        t, y = float(solution.t_events[0][0]), solution.y_events[0][0]
+        if previous is not None and abs(y[1] - previous) <= rtol * y[1]:
+            return float(y[1])
+        previous = y[1]
+    return None
+
+
+def motion_study(machine: Machine) -> dict:
+    deadline = time.perf_counter() + BUDGET_S
+    reference = steady_cycle(machine, 1e-11).steady
+    if reference is None:
+        return {"rows": [], "skipped": [], "reference": None}
+    rows, skipped = [], []
+    for rtol in (1e-3, 1e-5, 1e-7, 1e-9):
+        start = time.perf_counter()
+        result = steady_cycle(machine, rtol).steady
+        rows.append({"method": "ours: Newton shooting", "rtol": rtol, "runtime_ms": 1e3 * (time.perf_counter() - start),
+                     "error": abs(result.omega[0] / reference.omega[0] - 1)})
+    for method in ("DOP853", "LSODA", "Radau"):
+        for rtol in (1e-3, 1e-5):
+            start = time.perf_counter()
+            omega = _time_domain_cycle(machine, method, rtol, 0.9 * reference.omega[0], deadline)
+            if omega is None:
+                skipped.append(f"{method} {rtol:.0e}")
+                continue
+            rows.append({"method": f"solve_ivp {method}, cycles until periodic", "rtol": rtol,
+                         "runtime_ms": 1e3 * (time.perf_counter() - start), "error": abs(omega / reference.omega[0] - 1)})
+    return {"rows": rows, "skipped": skipped, "reference": "ours at rtol 1e-11", "quantity": "ω(φ = 0) on the steady cycle"}
+
+
+def elastic_study(machine: ElasticMachine, t_end: float) -> dict:
+    deadline = time.perf_counter() + BUDGET_S
+    model, y0 = build(machine)
+    samples = np.linspace(0.0, t_end, 201)
+    reference = integrate(model, y0, t_end, 1e-10, "DOP853", samples, deadline + BUDGET_S,
+                          absolute_tolerances(machine, model, 1e-10))
+    if not reference.complete:
+        reference = integrate(model, y0, t_end, 1e-10, "Radau", samples, deadline + BUDGET_S,
+                              absolute_tolerances(machine, model, 1e-10))
+    twist = reference.y[2]
+    scale = max(float(np.max(np.abs(twist))), 1e-300)
+    rows, skipped = [], []
+    for method in ("DOP853", "Radau", "LSODA", "RK45"):
+        for rtol in (1e-3, 1e-5, 1e-7):
+            if time.perf_counter() > deadline:
+                skipped.append(f"{method} {rtol:.0e}")
+                continue
+            start = time.perf_counter()
+            run = integrate(model, y0, t_end, rtol, method, samples, deadline, absolute_tolerances(machine, model, rtol))
+            if not run.complete:
+                skipped.append(f"{method} {rtol:.0e}")
+                continue
+            rows.append({"method": method, "rtol": rtol, "runtime_ms": 1e3 * (time.perf_counter() - start),
+                         "error": float(np.max(np.abs(run.y[2] - twist))) / scale})
+    return {"rows": rows, "skipped": skipped, "reference": "rtol 1e-10", "quantity": "the twist over the run"}
