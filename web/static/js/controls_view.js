@@ -6,6 +6,7 @@
  */
 import { element } from "./dom.js";
 import { formatNumber, formatQuantity, labelledValue, paramSymbol, unitText } from "./notation.js";
+import { LOG_DIGITS, sliderScale } from "./slider_scale.js";
 
 const POWER_FROM = 1e6;     // a slider value from here on reads "4,4·10⁶", not "4400000"
 
@@ -14,9 +15,13 @@ function decimalsOf(step) {
   return Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
 }
 
-/** A slider's value with the decimals of its step, or with a power of ten when it is large. */
-function sliderValue(value, step, lang) {
-  return Math.abs(value) >= POWER_FROM ? formatQuantity(value, lang) : formatNumber(value, lang, decimalsOf(step));
+/**
+ * A slider's value with the decimals of its step, or with a power of ten when it is large; a logarithmic
+ * slider's with its significant digits ("0,0125", "3,16·10⁶").
+ */
+function sliderValue(value, slider, lang) {
+  if (slider.log) return formatQuantity(value, lang, LOG_DIGITS);
+  return Math.abs(value) >= POWER_FROM ? formatQuantity(value, lang) : formatNumber(value, lang, decimalsOf(slider.step));
 }
 
 /** The English convention beside a slider is the reciprocal ratio ("r/l = 1/λ"): its name and value. */
@@ -57,14 +62,16 @@ export class ControlsView {
 
   /**
    * Slider readouts: "λ = l₂/l₁ = 3,00 · r/l = 0,333", "P_c (нагрузка) = 2000 Н"; a slider with a scale is
-   * a ratio of lengths and also shows the length it sets, "l₂ = 0,300 м".
+   * a ratio of lengths and also shows the length it sets, "l₂ = 0,300 м". A thumb that does not stand
+   * for the value (the value was set elsewhere, e.g. by a preset) moves to it.
    */
   showValues() {
     for (const slider of this.model.variant.sliders) {
       const value = this.model.values[slider.id];
-      const parts = [labelledValue(slider.label[this.lang], sliderValue(value, slider.step, this.lang))];
+      const parts = [labelledValue(slider.label[this.lang], sliderValue(value, slider, this.lang))];
       if (slider.english) parts.push(reciprocal(slider.english[this.lang], value, this.lang));
-      const { main, length } = this.readouts.get(slider.id);
+      const { main, length, input, scale } = this.readouts.get(slider.id);
+      if (scale.value(Number(input.value)) !== value) input.value = scale.position(value);
       main.textContent = parts.join(" · ");
       length.textContent = slider.scale ? `${paramSymbol(slider.param)} = `
         + `${formatNumber(this.model.setting(slider), this.lang, 3)} ${unitText("m", this.t)}` : "";
@@ -72,13 +79,14 @@ export class ControlsView {
   }
 
   #slider(slider) {
+    const scale = sliderScale(slider);
     const input = element("input", {
-      type: "range", id: `slider-${slider.id}`, min: slider.min, max: slider.max, step: slider.step,
-      value: this.model.values[slider.id] });
+      type: "range", id: `slider-${slider.id}`, min: scale.min, max: scale.max, step: scale.step,
+      value: scale.position(this.model.values[slider.id]) });
     const main = element("span", { className: "readout" });
     const length = element("span", { className: "length" });
-    this.readouts.set(slider.id, { main, length });
-    input.addEventListener("input", () => this.model.setValue(slider.id, Number(input.value)));
+    this.readouts.set(slider.id, { main, length, input, scale });
+    input.addEventListener("input", () => this.model.setValue(slider.id, scale.value(Number(input.value))));
     return element("label", { className: "slider", htmlFor: input.id },
       element("span", { className: "slider-text" }, main, length), input);
   }
