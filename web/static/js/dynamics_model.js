@@ -4,8 +4,9 @@
  *
  * The body is the variant's `request` with the mechanism added; each toggle puts its option at its
  * dotted path (toggle.param, e.g. "load.convention"); each slider puts value × to_si × (the value at
- * slider.scale, if given) at slider.param, e.g. λ sets params.l2 = λ·params.l1 in metres and a slider in
- * degrees has to_si = π/180; outputs are whatever the variant's panels need.
+ * slider.scale, if given) at slider.param and at each of its slider.also paths, e.g. λ sets
+ * params.l2 = λ·params.l1 in metres, a slider in degrees has to_si = π/180, and one f sets the friction
+ * coefficient of every pair; outputs are whatever the variant's panels need.
  *
  * Events, besides those of SceneSettings:
  *   "result"    the answer for the current values arrived (the results, or why there are none)
@@ -26,7 +27,8 @@ export class DynamicsModel extends SceneSettings {
     for (const toggle of variant.toggles) setPath(body, toggle.param, this.values[toggle.id]);
     for (const slider of variant.sliders) {
       const scale = slider.scale ? pathValue(body, slider.scale) : 1;
-      setPath(body, slider.param, this.values[slider.id] * slider.to_si * scale);
+      const value = this.values[slider.id] * slider.to_si * scale;
+      for (const path of [slider.param, ...slider.also]) setPath(body, path, value);
     }
     return { ...body, outputs: this.outputs() };
   }

@@ -1,10 +1,14 @@
 /**
- * Dynamics scene page: wires the scene model, the client of the scene's endpoint (/reduction or
- * /motion) and the views. One request per change of the values; while a slider is dragged the client
- * keeps one in flight and sends only the latest values next.
+ * Dynamics scene page: wires the scene model, the client of the scene's endpoint (/reduction, /motion,
+ * /forces, …) and the views. One request per change of the values; while a slider is dragged the client
+ * keeps one in flight and sends only the latest values next. A variant with a drawing gets the
+ * crank-angle clock and its controls above the parameters; animation frames only interpolate in the answer.
  */
+import { AnimationControls } from "./animation_controls.js";
+import { CrankAnimation } from "./animation.js";
 import { ApiClient } from "./api.js";
 import { ControlsView } from "./controls_view.js";
+import { element } from "./dom.js";
 import { DynamicsModel } from "./dynamics_model.js";
 import { DynamicsView } from "./dynamics_view.js";
 import { readState, writeState } from "./url_state.js";
@@ -22,12 +26,24 @@ const results = document.querySelector(".results");
 const client = new ApiClient(scene.endpoint, lang, (busy) => results.classList.toggle("busy", busy));
 const view = new DynamicsView(byId("panels"), byId("notices"), { scene, ...texts });
 new ControlsView(byId("controls"), model, { ...texts, pickerLabel: t.variant });
+const animation = new CrankAnimation();
+const animationBar = element("section", { id: "animation", className: "animation", "aria-label": t.animation });
+new AnimationControls(animationBar, animation, texts);
 
-model.on("variant", (variant) => view.build(variant));
+model.on("variant", (variant) => {
+  view.build(variant);
+  if (view.animated) {
+    byId("controls").before(animationBar);
+  } else {
+    animation.pause();
+    animationBar.remove();
+  }
+});
 model.on("params", () => {
   client.submit("main", model.request(), (answer) => model.receive(answer));
   writeState(model, lang);
 });
 model.on("result", (answer) => view.show(answer));
+animation.on("phi", (phi) => view.drawAt(phi));
 
 model.start();

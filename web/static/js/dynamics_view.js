@@ -1,27 +1,50 @@
 /**
  * The panels of a dynamics scene's variant, in the variant's order, and above them what the answer says
  * in words. Plot and polar panels are Plotly graphs redrawn by a PanelScheduler (one per animation
- * frame, only those in view); figures, tables and numerics are HTML, rebuilt with every answer.
+ * frame, only those in view); figures, tables and numerics are HTML, rebuilt with every answer; other
+ * kinds have views of their own (PANEL_VIEWS).
+ *
+ * A variant with a drawing (a panel view with drawAt) is animated: the drawings and a cursor over each
+ * plot against φ follow the crank angle, interpolating in the one answer of the current values.
  *
  * A panel the answer holds nothing for is hidden: when the machine stalls or self-locks, or has no
  * steady cycle, the answer leaves those results out and its warnings say why — they are shown first,
  * under a heading that says there is no steady motion. A refused request (HTTP 422) says why instead.
+ * A panel that needs nothing from the answer ("needs": [], e.g. a calculator) is always shown.
  */
 import { element } from "./dom.js";
+import { pathValue } from "./dotted_paths.js";
 import { heldCurves, heldSeries, holds, plotFigure, polarFigure } from "./dynamics_figures.js";
+import { GearTrainView } from "./gear_train_view.js";
 import { refusalMessage } from "./messages.js";
+import { formatQuantity } from "./notation.js";
 import { PanelScheduler } from "./panel_scheduler.js";
+import { sampleAt } from "./phi_samples.js";
+import { PlotCursor } from "./plot_cursor.js";
 import { holdsReadings, readings } from "./readings_view.js";
 
 const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
 const GRAPH_KINDS = ["plot", "polar"];
 const READING_KINDS = ["figures", "table", "numerics"];
 
+/**
+ * Panel kinds drawn by views of their own: new View(body, spec, {t, lang}) has
+ *   holds(data)   true if the answer's data holds what the panel shows
+ *   show(data)    take the answer's data
+ *   drawAt(phi)   drawings only: show the mechanism at crank angle phi (rad)
+ */
+const PANEL_VIEWS = {
+  gear_train: GearTrainView,
+};
+
+const isDrawing = (spec) => typeof PANEL_VIEWS[spec.kind]?.prototype.drawAt === "function";
+
 /** True if the answer's data holds what the panel shows. */
 function holdsPanel(panel, data) {
-  if (panel.kind === "plot") return holds(data, panel.x) && heldSeries(panel, data).length > 0;
-  if (panel.kind === "polar") return heldCurves(panel, data).length > 0;
-  return holdsReadings(panel, data);
+  if (panel.view) return panel.view.holds(data);
+  if (panel.spec.kind === "plot") return holds(data, panel.spec.x) && heldSeries(panel.spec, data).length > 0;
+  if (panel.spec.kind === "polar") return heldCurves(panel.spec, data).length > 0;
+  return holdsReadings(panel.spec, data);
 }
 
 export class DynamicsView {
@@ -31,15 +54,18 @@ export class DynamicsView {
     this.scene = scene;
     this.texts = { t, lang };
     this.panels = [];
+    this.phi = 0;
+    this.animated = false;
     this.scheduler = new PanelScheduler((panel) => this.#draw(panel));
   }
 
-  /** One panel per graph or reading of the variant, hidden until an answer fills it. */
+  /** One panel per graph, reading or panel view of the variant, hidden until an answer fills it. */
   build(variant) {
     for (const panel of this.panels) if (panel.graph) Plotly.purge(panel.graph);
-    this.panels = variant.panels.map((id) => [id, this.scene.panels[id]])
-      .filter(([, spec]) => [...GRAPH_KINDS, ...READING_KINDS].includes(spec.kind))
-      .map(([id, spec]) => this.#panel(id, spec));
+    const specs = variant.panels.map((id) => [id, this.scene.panels[id]])
+      .filter(([, spec]) => [...GRAPH_KINDS, ...READING_KINDS].includes(spec.kind) || PANEL_VIEWS[spec.kind]);
+    this.animated = specs.some(([, spec]) => isDrawing(spec));
+    this.panels = specs.map(([id, spec]) => this.#panel(id, spec));
     this.container.replaceChildren(...this.panels.map((panel) => panel.figure));
     this.notices.replaceChildren();
     this.scheduler.track(this.panels.filter((panel) => panel.graph));
@@ -51,11 +77,13 @@ export class DynamicsView {
     const data = answer.ok ? answer.data : null;
     const missing = [];
     for (const panel of this.panels) {
-      const held = Boolean(data) && holdsPanel(panel.spec, data);
+      const independent = panel.spec.needs?.length === 0;
+      const held = independent || (Boolean(data) && holdsPanel(panel, data));
       panel.figure.hidden = !held;
       if (data && !held) missing.push(panel);
-      if (!held) continue;
+      if (!held || independent) continue;
       if (panel.graph) panel.stale = true;
+      else if (panel.view) panel.view.show(data);
       else panel.body.replaceChildren(...readings(panel.spec, data, this.texts));
     }
     if (!answer.ok) {
@@ -69,21 +97,60 @@ export class DynamicsView {
       this.notices.replaceChildren();
     }
     this.data = data;
+    this.drawAt(this.phi);
     this.scheduler.refresh();
   }
 
+  /** Put the drawings and the plot cursors at crank angle phi (rad). */
+  drawAt(phi) {
+    this.phi = phi;
+    if (!this.data) return;
+    for (const panel of this.panels) {
+      if (panel.figure.hidden) continue;
+      panel.view?.drawAt?.(phi);
+      panel.cursor?.move(phi);
+    }
+  }
+
   #panel(id, spec) {
-    const graphic = GRAPH_KINDS.includes(spec.kind);
-    const content = element("div", { className: graphic ? "graph" : `readings ${spec.kind}-readings` });
-    const figure = element("figure", { className: `panel panel-${spec.kind}`, id: `panel-${id}`, hidden: true },
-      ...(spec.title ? [element("h3", { textContent: spec.title[this.texts.lang] })] : []), content);
-    return graphic ? { id, spec, figure, graph: content, stale: false } : { id, spec, figure, body: content };
+    const { lang } = this.texts;
+    const title = spec.title ? [element("h3", { textContent: spec.title[lang] })] : [];
+    const make = (content, ...more) => element("figure", {
+      className: `panel panel-${spec.kind}${isDrawing(spec) ? " panel-drawing" : ""}`, id: `panel-${id}`, hidden: true },
+    ...title, content, ...more);
+    if (PANEL_VIEWS[spec.kind]) {
+      const body = element("div", { className: `${spec.kind}-body` });
+      return { id, spec, figure: make(body), view: new PANEL_VIEWS[spec.kind](body, spec, this.texts) };
+    }
+    if (GRAPH_KINDS.includes(spec.kind)) {
+      const graph = element("div", { className: "graph" });
+      const cursor = this.animated && spec.kind === "plot" && spec.x_unit === "deg"
+        ? new PlotCursor((phi) => this.#values(spec, phi), this.phi) : null;
+      const frame = element("div", { className: "graph-frame" }, graph, ...(cursor ? [cursor.element] : []));
+      return { id, spec, figure: make(frame), graph, cursor, stale: false };
+    }
+    const body = element("div", { className: `readings ${spec.kind}-readings` });
+    return { id, spec, figure: make(body), body };
+  }
+
+  /**
+   * "ε* = 0,0604", "ε** = −0,141", … one line each: the plot's series at crank angle phi, each named by the
+   * first word of its label (its symbol); level lines left out, "—" where the answer has no value.
+   */
+  #values(spec, phi) {
+    if (!this.data) return "";
+    const { lang } = this.texts;
+    const phis = pathValue(this.data, spec.x);
+    return heldSeries(spec, this.data).filter((series) => series.style !== "hline").map((series) => {
+      const value = sampleAt(phis, pathValue(this.data, series.y), phi);
+      return `${series.label[lang].split(" ")[0]} = ${value === null ? "—" : formatQuantity(value, lang, 3)}`;
+    }).join("\n");
   }
 
   #draw(panel) {
     if (!this.data) return;
     const figure = panel.spec.kind === "polar" ? polarFigure(panel.spec, this.data, this.texts)
       : plotFigure(panel.spec, this.data, this.texts);
-    Plotly.react(panel.graph, figure.data, figure.layout, PLOTLY_CONFIG);
+    Plotly.react(panel.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => panel.cursor?.follow(panel.graph));
   }
 }

@@ -1,11 +1,26 @@
 /**
- * The parts of a kinematic diagram, in drawing units: fixed pivots with a hatched base, guides, bars
- * (links), pins, slider blocks and joint labels. Moving parts return an `update` for animation frames.
+ * The parts of a kinematic diagram, in drawing units: the drawing itself (with the frame's hatching and
+ * an arrowhead), fixed pivots with a hatched base, guides, bars (links), pins, slider blocks and joint
+ * labels. Moving parts return an `update` for animation frames.
  */
 import { setAttributes, svgElement } from "./svg.js";
 
 const PIN_RADIUS = 4.5;
 const HATCH_DEPTH = 7;
+
+/** An empty drawing of width × height drawing units, described by label, with the defs the parts use. */
+export function drawing(width, height, label) {
+  const svg = svgElement("svg", {
+    viewBox: `0 0 ${width} ${height}`, class: "linkage-drawing", role: "img", "aria-label": label });
+  const defs = svgElement("defs", {}, svg);
+  const hatch = svgElement("pattern", {
+    id: "hatch", width: 6, height: 6, patternUnits: "userSpaceOnUse", patternTransform: "rotate(45)" }, defs);
+  svgElement("line", { x1: 0, y1: 0, x2: 0, y2: 6, class: "hatch-line" }, hatch);
+  const arrow = svgElement("marker", {
+    id: "arrow", viewBox: "0 0 10 10", refX: 8, refY: 5, markerWidth: 7, markerHeight: 7, orient: "auto-start-reverse" }, defs);
+  svgElement("path", { d: "M0 0 L10 5 L0 10 Z", class: "arrow-head" }, arrow);
+  return svg;
+}
 
 /** A frame pivot at [x, y]: a triangular support standing on a hatched base. */
 export function framePivot(layer, [x, y]) {

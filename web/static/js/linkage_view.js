@@ -4,7 +4,7 @@
  * special positions marked on it and the linkage shown faintly in each of them; an arc giving the
  * sense in which φ grows. Animation frames move the parts to positions interpolated in the table.
  */
-import { bar, framePivot, label, pin } from "./linkage_parts.js";
+import { bar, drawing, framePivot, label, pin } from "./linkage_parts.js";
 import { DRAWINGS } from "./linkage_drawings.js";
 import { geometryMessage } from "./messages.js";
 import { degrees, formatNumber } from "./notation.js";
@@ -21,15 +21,7 @@ export class LinkageView {
     this.container = container;
     this.t = t;
     this.lang = lang;
-    this.svg = svgElement("svg", {
-      viewBox: `0 0 ${WIDTH} ${HEIGHT}`, class: "linkage-drawing", role: "img", "aria-label": t.drawing });
-    const defs = svgElement("defs", {}, this.svg);
-    const hatch = svgElement("pattern", {
-      id: "hatch", width: 6, height: 6, patternUnits: "userSpaceOnUse", patternTransform: "rotate(45)" }, defs);
-    svgElement("line", { x1: 0, y1: 0, x2: 0, y2: 6, class: "hatch-line" }, hatch);
-    const arrow = svgElement("marker", {
-      id: "arrow", viewBox: "0 0 10 10", refX: 8, refY: 5, markerWidth: 7, markerHeight: 7, orient: "auto-start-reverse" }, defs);
-    svgElement("path", { d: "M0 0 L10 5 L0 10 Z", class: "arrow-head" }, arrow);
+    this.svg = drawing(WIDTH, HEIGHT, t.drawing);
     this.picture = svgElement("g", {}, this.svg);
     this.update = null;
     container.append(this.svg);

@@ -38,7 +38,8 @@ export function unitOf(mechanism, output) {
 /** Interface texts (content/i18n) of the units that have a name in the reader's language. */
 const UNIT_KEYS = {
   m: "units_m", rad: "units_rad", 1: "units_1", s: "units_s", ms: "units_ms", kg: "units_kg",
-  "kg·m²": "units_kg_m2", "rad/s": "units_rad_s", J: "units_J",
+  "kg·m²": "units_kg_m2", "rad/s": "units_rad_s", "rad/s²": "units_rad_s2", J: "units_J", N: "units_N",
+  "N·m": "units_N_m", "µm": "units_um", Pa: "units_Pa",
 };
 
 /** The unit in the reader's language ("m" → "м"); a unit without a translation ("%") as it is. */

@@ -1,14 +1,14 @@
 /**
  * The plot panels of the variant: one Plotly graph per panel, its title, caption (largest error of an
- * approximation) and note. A cursor line over each φ-plot follows the animation; it is a positioned
- * element moved with a CSS transform, so animation frames never ask Plotly to lay out again.
+ * approximation) and note. A cursor line (PlotCursor) over each φ-plot follows the animation.
  * Plots are redrawn by a PanelScheduler: one per animation frame, only those in view.
  */
 import { element } from "./dom.js";
 import { approximationErrors, exactOutputs, panelFigure } from "./figures.js";
 import { geometryMessage } from "./messages.js";
-import { degrees, formatNumber, symbol } from "./notation.js";
+import { formatNumber, symbol } from "./notation.js";
 import { PanelScheduler } from "./panel_scheduler.js";
+import { PlotCursor } from "./plot_cursor.js";
 import { valueAt } from "./positions_table.js";
 
 const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
@@ -48,29 +48,27 @@ export class PlotsView {
   /** Move the cursors to crank angle phi (rad) and show the values there. */
   moveCursor(phi) {
     this.phi = phi;
-    for (const panel of this.panels) {
-      if (!panel.axis || !this.table) continue;
-      const { left, width, x0, x1 } = panel.axis;
-      const x = left + (degrees(phi) - x0) / (x1 - x0) * width;
-      panel.cursor.style.transform = `translateX(${x}px)`;
-      panel.readout.classList.toggle("before", x > left + 0.6 * width);   // keep the values inside the plot
-      panel.readout.textContent = exactOutputs(panel.spec).map((name) => {
-        const value = valueAt(this.table, this.table.outputs[name], phi);
-        return `${symbol(name)} = ${value === null ? "—" : formatNumber(value, this.texts.lang)}`;
-      }).join("  ");
-    }
+    for (const panel of this.panels) if (panel.hasCursor) panel.cursor.move(phi);
+  }
+
+  /** "u₃₁ = 0,0866  u′₃₁ = 0,05": the panel's outputs at crank angle phi. */
+  #values(spec, phi) {
+    if (!this.table) return "";
+    return exactOutputs(spec).map((name) => {
+      const value = valueAt(this.table, this.table.outputs[name], phi);
+      return `${symbol(name)} = ${value === null ? "—" : formatNumber(value, this.texts.lang)}`;
+    }).join("  ");
   }
 
   #panel(id, spec) {
     const graph = element("div", { className: "graph" });
-    const readout = element("span", { className: "cursor-readout" });
-    const cursor = element("div", { className: "cursor", hidden: true }, readout);
+    const cursor = new PlotCursor((phi) => this.#values(spec, phi), this.phi);
     const caption = element("p", { className: "caption" });
     const figure = element("figure", { className: "panel", id: `panel-${id}` },
       element("h3", { textContent: spec.title[this.texts.lang] }),
-      element("div", { className: "graph-frame" }, graph, cursor), caption,
+      element("div", { className: "graph-frame" }, graph, cursor.element), caption,
       ...(spec.note ? [element("p", { className: "note", textContent: spec.note[this.texts.lang] })] : []));
-    return { id, spec, graph, cursor, readout, caption, figure, stale: false, axis: null,
+    return { id, spec, graph, cursor, caption, figure, stale: false,
       hasCursor: !spec.outputs.includes("harmonics") };
   }
 
@@ -78,21 +76,7 @@ export class PlotsView {
     const { data, layout } = panelFigure(panel.spec, this.table, panel.overlays, this.texts);
     panel.caption.textContent = approximationErrors(panel.spec, this.table, this.texts);
     Plotly.react(panel.graph, data, layout, PLOTLY_CONFIG).then(() => {
-      if (!panel.hasCursor || panel.listening) return;
-      panel.listening = true;
-      panel.graph.on("plotly_afterplot", () => this.#measure(panel));
-      this.#measure(panel);
+      if (panel.hasCursor) panel.cursor.follow(panel.graph);
     });
-  }
-
-  /** Plot area in pixels and the φ range, from Plotly's computed layout (after every (re)draw). */
-  #measure(panel) {
-    const layout = panel.graph._fullLayout;
-    const { l, t, w, h } = layout._size;
-    const [x0, x1] = layout.xaxis.range;
-    panel.axis = { left: l, width: w, x0, x1 };
-    Object.assign(panel.cursor.style, { top: `${t}px`, height: `${h}px` });
-    panel.cursor.hidden = false;
-    this.moveCursor(this.phi);
   }
 }
