@@ -39,5 +39,7 @@ def test_steady_cycle_balances_the_work_of_all_moments(lam, m3, force, f, b):
         assert result.notices
         return
     works = result.steady.works
-    assert abs(works["net"]) <= 1e-7 * works["driving"]
+    # the works are Simpson sums on the step nodes of the level that met rtol (as few as 64 a turn):
+    # their own quadrature error, ~h⁴M⁗/180 ≲ 1e-6 of the driving work, bounds the balance here
+    assert abs(works["net"]) <= 1e-6 * works["driving"]
     assert result.numerics.error_estimate <= 1e-8
