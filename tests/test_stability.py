@@ -130,3 +130,52 @@ def test_live_work_precision_study_of_an_elastic_machine():
     for method in ("DOP853", "Radau"):
         errors = [r["error"] for r in study["rows"] if r["method"] == method]
         assert errors == sorted(errors, reverse=True) and errors[-1] < 1e-5   # error falls with the tolerance
+
+
+def test_motion_error_estimate_does_not_underestimate_the_true_error():
+    for force, b in ((2000, 0.3), (500, 0.1), (1000, 0.6)):
+        body = RIG | {"load": {"force": force, "return_factor": 0.2, "f": 0.1}, "motor": {"kind": "linear", "M0": 60, "b": b}}
+        for rtol in (1e-4, 1e-7):
+            answer = strict(client.post("/api/v1/motion", json=body | {"outputs": ["steady"], "rtol": rtol}))
+            reference = strict(client.post("/api/v1/motion", json=body | {"outputs": ["steady"], "rtol": 1e-11}))
+            true = abs(answer["omega"][0] / reference["omega"][0] - 1)
+            assert true <= 10 * answer["numerics"]["error_estimate"] + 1e-12
+
+
+def test_flywheel_error_estimate_does_not_underestimate_the_true_error():
+    from server.core.dynamics import flywheel as fw
+    from server.core.dynamics.machine import Machine
+    from server.core.dynamics.motion import cumulative_simpson, node_tables
+    from server.core.dynamics.motors import Motor
+    from server.core.dynamics.reduction import Inertias
+    from server.core.dynamics.resistance import Load
+    from server.core.mechanisms import MECHANISMS
+    answer = strict(client.post("/api/v1/flywheel", json=ENGINE | {"delta": 0.0125}))
+    inertia = next(m["inertia"] for m in answer["methods"] if m["method"] == "exact")
+    machine = Machine("slider_crank", MECHANISMS["slider_crank"].check(ENGINE["params"]),
+                      Inertias(**ENGINE["inertias"]), Load(), Motor("indicator", p_max=4.4e6, piston_diameter=0.1))
+    tables = node_tables(machine, 1 << 15, balance=True)
+    work = cumulative_simpson(tables.net_phi, float(tables.phi[2] - tables.phi[0]))
+    reference = fw.exact(fw.Cycle(tables.phi[::2], work, tables.J[::2] - 2.72), 47.124, 0.0125, inertia).inertia
+    assert abs(inertia / reference - 1) <= 10 * answer["numerics"]["error_estimate"] + 1e-13
+
+
+def test_reduction_error_estimate_against_the_closed_form_mean():
+    body = {"mechanism": "sine", "params": {"l1": 1}, "load": {"force": 1, "f": 0.15, "convention": "textbook"},
+            "outputs": ["resisting"]}
+    answer = strict(client.post("/api/v1/reduction", json=body))
+    true = abs(answer["resisting"]["mean"] - 2 * (1 + 0.15**2) * 1.15 / math.pi)
+    assert true <= 10 * answer["numerics"]["error_estimate"]
+
+
+@pytest.mark.parametrize("lam", [0.001, 0.5, 0.999])
+def test_angular_acceleration_near_the_locking_ratio(lam):
+    data = strict(client.post("/api/v1/angular-acceleration", json={"lam": lam, "law": "harmonic", "amplitude": 0.9,
+                                                                    "n": 2001}))
+    assert no_non_finite(data)
+
+
+def test_wear_at_extreme_speed_and_life():
+    body = {"params": {"l1": 0.045, "l2": 0.18, "a2": 0.38}, "rpm": 20000, "hours": 1e5,
+            "loads": {"m2": 1.8, "m3": 1.33, "gas": {"kind": "indicator", "p_max": 3e6, "piston_diameter": 0.075}}}
+    assert no_non_finite(strict(client.post("/api/v1/wear", json=body)))
