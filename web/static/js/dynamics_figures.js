@@ -1,7 +1,10 @@
 /**
  * Plotly figures of a dynamics scene's panels, built from an answer of /reduction or /motion; no DOM.
  *   plot   series against x: the crank angle in degrees (x_unit "deg", x in rad) or the time in s;
- *          a scalar series (style "hline", e.g. the mean M_c0) is a dashed level line labelled with its value
+ *          a scalar series (style "hline", e.g. the mean M_c0) is a dashed level line labelled with its value;
+ *          a series with axis 2 is read on a right-hand axis (panel.y2_title), one with `gaps` (a path) has
+ *          gaps where the answer's values there are null (ζ where the compliance is infinite); x_unit ""
+ *          plots against another series (a phase portrait of the twist), and the nearest point is read
  *   polar  the phase portrait ω(φ): radius r against angle θ (rad, drawn in degrees), so the start-up
  *          winds round and round onto the closed steady cycle (style "bold")
  * Series the answer does not hold (no textbook approximation, no steady cycle) are left out; null
@@ -55,18 +58,24 @@ export function plotFigure(panel, data, texts) {
       return { type: "scatter", mode: "lines", x: ends, y: [y, y], name, hoverinfo: "skip",
         line: { color: LEVEL_COLOR, width: 1.5, dash: "dash" } };
     }
-    return { type: "scatter", mode: "lines", x, y, name: label, connectgaps: false,
+    const gaps = series.gaps ? pathValue(data, series.gaps) : null;
+    return { type: "scatter", mode: "lines", x, y: gaps ? y.map((v, i) => (gaps[i] === null ? null : v)) : y,
+      name: label, connectgaps: false, yaxis: series.axis === 2 ? "y2" : "y",
       line: { color: seriesColor(panel, series), width: 2, dash: DASHES[series.style ?? "solid"] },
       hovertemplate: `${label} = %{y:.4g}<extra></extra>` };
   });
-  return {
-    data: traces,
-    layout: {
-      ...baseLayout(texts, 300), showlegend: traces.length > 1,
-      xaxis: inDegrees ? phiAxis(xValues[xValues.length - 1], texts) : timeAxis(panel, texts),
-      yaxis: valueAxis(panel.y_title[lang]),
-    },
+  const layout = {
+    ...baseLayout(texts, 300), showlegend: traces.length > 1,
+    xaxis: inDegrees ? phiAxis(xValues[xValues.length - 1], texts) : timeAxis(panel, texts),
+    yaxis: valueAxis(panel.y_title[lang]),
   };
+  if (panel.x_unit === "") layout.hovermode = "closest";
+  if (traces.some((trace) => trace.yaxis === "y2")) {
+    layout.yaxis2 = valueAxis(panel.y2_title[lang], {
+      overlaying: "y", side: "right", showgrid: false, zeroline: false, tickmode: "auto" });
+    layout.margin = { ...layout.margin, r: 64 };
+  }
+  return { data: traces, layout };
 }
 
 function timeAxis(panel, { lang }) {

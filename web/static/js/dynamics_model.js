@@ -6,7 +6,8 @@
  * dotted path (toggle.param, e.g. "load.convention"); each slider puts value × to_si × (the value at
  * slider.scale, if given) at slider.param and at each of its slider.also paths, e.g. λ sets
  * params.l2 = λ·params.l1 in metres, a slider in degrees has to_si = π/180, and one f sets the friction
- * coefficient of every pair; outputs are whatever the variant's panels need.
+ * coefficient of every pair; values the reader edited in a panel (the indicator diagram's points) go to
+ * their paths; outputs are whatever the variant's panels need.
  *
  * Events, besides those of SceneSettings:
  *   "result"    the answer for the current values arrived (the results, or why there are none)
@@ -25,6 +26,7 @@ export class DynamicsModel extends SceneSettings {
     const variant = this.variant;
     const body = { ...structuredClone(variant.request), mechanism: variant.mechanism };
     for (const toggle of variant.toggles) setPath(body, toggle.param, this.values[toggle.id]);
+    for (const [path, value] of this.edits) setPath(body, path, value);
     for (const slider of variant.sliders) {
       const scale = slider.scale ? pathValue(body, slider.scale) : 1;
       const value = this.values[slider.id] * slider.to_si * scale;
@@ -36,6 +38,17 @@ export class DynamicsModel extends SceneSettings {
   /** What the variant's panels need ("resisting", "friction_iteration", "steady", "startup", …). */
   outputs() {
     return [...new Set(this.variant.panels.flatMap((id) => this.scene.panels[id].needs ?? []))];
+  }
+
+  /** Put value at path of the request body (a list edited in a panel, e.g. "motor.expansion"). */
+  edit(path, value) {
+    this.edits.set(path, value);
+    this.emit("params");
+  }
+
+  useVariant(variant) {
+    super.useVariant(variant);
+    this.edits = new Map();
   }
 
   /** Take the answer to the latest request. */

@@ -11,7 +11,12 @@ import { ControlsView } from "./controls_view.js";
 import { element } from "./dom.js";
 import { DynamicsModel } from "./dynamics_model.js";
 import { DynamicsView } from "./dynamics_view.js";
+import { PresetsView } from "./presets_view.js";
 import { readState, writeState } from "./url_state.js";
+
+const TURN = 2 * Math.PI;
+/** A cycle of crank angle is a whole number of turns: 2π, or 4π for a four-stroke engine. */
+const wholeTurns = (phi) => Math.max(1, Math.round(phi / TURN)) * TURN;
 
 const readJson = (id) => JSON.parse(document.getElementById(id).textContent);
 const byId = (id) => document.getElementById(id);
@@ -24,8 +29,9 @@ const texts = { t, lang };
 const model = new DynamicsModel(scene, readState());
 const results = document.querySelector(".results");
 const client = new ApiClient(scene.endpoint, lang, (busy) => results.classList.toggle("busy", busy));
-const view = new DynamicsView(byId("panels"), byId("notices"), { scene, ...texts });
+const view = new DynamicsView(byId("panels"), byId("notices"), { scene, ...texts }, model);
 new ControlsView(byId("controls"), model, { ...texts, pickerLabel: t.variant });
+new PresetsView(byId("controls"), model, texts);
 const animation = new CrankAnimation();
 const animationBar = element("section", { id: "animation", className: "animation", "aria-label": t.animation });
 new AnimationControls(animationBar, animation, texts);
@@ -43,7 +49,10 @@ model.on("params", () => {
   client.submit("main", model.request(), (answer) => model.receive(answer));
   writeState(model, lang);
 });
-model.on("result", (answer) => view.show(answer));
+model.on("result", (answer) => {
+  if (view.animated && answer.ok && Array.isArray(answer.data.phi)) animation.setCycle(wholeTurns(answer.data.phi.at(-1)));
+  view.show(answer);
+});
 animation.on("phi", (phi) => view.drawAt(phi));
 
 model.start();

@@ -15,26 +15,33 @@
 import { element } from "./dom.js";
 import { pathValue } from "./dotted_paths.js";
 import { heldCurves, heldSeries, holds, plotFigure, polarFigure } from "./dynamics_figures.js";
+import { FlywheelDrawingView } from "./flywheel_drawing_view.js";
 import { GearTrainView } from "./gear_train_view.js";
+import { IndicatorDiagramView } from "./indicator_diagram_view.js";
 import { refusalMessage } from "./messages.js";
 import { formatQuantity } from "./notation.js";
 import { PanelScheduler } from "./panel_scheduler.js";
 import { sampleAt } from "./phi_samples.js";
 import { PlotCursor } from "./plot_cursor.js";
 import { holdsReadings, readings } from "./readings_view.js";
+import { WittenbauerView } from "./wittenbauer_view.js";
 
 const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
 const GRAPH_KINDS = ["plot", "polar"];
 const READING_KINDS = ["figures", "table", "numerics"];
 
 /**
- * Panel kinds drawn by views of their own: new View(body, spec, {t, lang}) has
+ * Panel kinds drawn by views of their own: new View(body, spec, {t, lang}, model) (model: the scene's
+ * DynamicsModel, for views that read or edit the request) has
  *   holds(data)   true if the answer's data holds what the panel shows
  *   show(data)    take the answer's data
- *   drawAt(phi)   drawings only: show the mechanism at crank angle phi (rad)
+ *   drawAt(phi)   drawings (and diagrams that follow the crank angle): show them at crank angle phi (rad)
  */
 const PANEL_VIEWS = {
+  flywheel_drawing: FlywheelDrawingView,
   gear_train: GearTrainView,
+  indicator_diagram: IndicatorDiagramView,
+  wittenbauer: WittenbauerView,
 };
 
 const isDrawing = (spec) => typeof PANEL_VIEWS[spec.kind]?.prototype.drawAt === "function";
@@ -48,8 +55,9 @@ function holdsPanel(panel, data) {
 }
 
 export class DynamicsView {
-  constructor(container, notices, { scene, t, lang }) {
+  constructor(container, notices, { scene, t, lang }, model) {
     this.container = container;
+    this.model = model;
     this.notices = notices;
     this.scene = scene;
     this.texts = { t, lang };
@@ -120,7 +128,7 @@ export class DynamicsView {
     ...title, content, ...more);
     if (PANEL_VIEWS[spec.kind]) {
       const body = element("div", { className: `${spec.kind}-body` });
-      return { id, spec, figure: make(body), view: new PANEL_VIEWS[spec.kind](body, spec, this.texts) };
+      return { id, spec, figure: make(body), view: new PANEL_VIEWS[spec.kind](body, spec, this.texts, this.model) };
     }
     if (GRAPH_KINDS.includes(spec.kind)) {
       const graph = element("div", { className: "graph" });

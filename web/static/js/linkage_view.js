@@ -27,8 +27,11 @@ export class LinkageView {
     container.append(this.svg);
   }
 
-  /** Draw the answer at crank angle phi (rad), or say why the mechanism cannot be assembled. */
-  show(answer, phi) {
+  /**
+   * Draw the answer at crank angle phi (rad), or say why the mechanism cannot be assembled; drawing
+   * (linkage_drawings.js) is the mechanism's own unless given (the crank-slider with a flywheel).
+   */
+  show(answer, phi, drawing = DRAWINGS[answer.data?.mechanism]) {
     this.container.querySelector(".geometry-error")?.remove();
     this.svg.style.display = answer.ok ? "" : "none";
     if (!answer.ok) {
@@ -37,7 +40,7 @@ export class LinkageView {
       return;
     }
     this.table = answer.data;
-    this.#build(DRAWINGS[this.table.mechanism], this.table);
+    this.#build(drawing, this.table);
     this.drawAt(phi);
   }
 

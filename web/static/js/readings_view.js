@@ -2,9 +2,12 @@
  * The panels of a dynamics scene that are read rather than plotted, as HTML built from an answer:
  *   figures   labelled numbers (M_c0 in both conventions, the friction angle, ω_mean, δ, η, works)
  *   table     rows from a list in the answer (the successive approximations of the friction forces),
- *             with whether the series converges, its ratio and its limit
- *   numerics  how each result was computed: method, tolerance, steps, cycles and Newton iterations,
- *             run time, error estimate, energy residual, and the solver's message — error beside time
+ *             with whether the series converges, its ratio and its limit; a column with `words` shows
+ *             the interface text words + value instead of the value ("method_" + "merzalov" → "Мерцалов")
+ *   numerics  how each result was computed: method and why it was chosen, stiffness ratio, tolerance,
+ *             steps (and rejected ones), evaluations of the right-hand side and the Jacobian, LU
+ *             decompositions, cycles and Newton iterations, run time, error estimate, energy residual,
+ *             and the solver's message — error beside time
  * A number the answer leaves null (M_c0 of a self-locking mechanism) reads "—".
  */
 import { pathValue } from "./dotted_paths.js";
@@ -20,8 +23,14 @@ const COMPUTATIONS = { numerics: "steady_cycle", "startup.numerics": "startup" }
 /** Rows of a numerics panel: the key in the answer's numerics, its label, how its value reads. */
 const NUMERICS_ROWS = [
   ["method", "numerics_method", (v) => v],
+  ["why", "numerics_why", (v) => v],
+  ["stiffness_ratio", "numerics_stiffness_ratio", (v, lang) => formatQuantity(v, lang, 3)],
   ["rtol", "numerics_rtol", (v, lang) => formatQuantity(v, lang, 2)],
   ["steps", "numerics_steps", (v, lang) => formatNumber(v, lang, 0)],
+  ["rejected", "numerics_rejected", (v, lang) => formatNumber(v, lang, 0)],
+  ["nfev", "numerics_nfev", (v, lang) => formatNumber(v, lang, 0)],
+  ["njev", "numerics_njev", (v, lang) => formatNumber(v, lang, 0)],
+  ["nlu", "numerics_nlu", (v, lang) => formatNumber(v, lang, 0)],
   ["cycles", "numerics_cycles", (v, lang) => formatNumber(v, lang, 0)],
   ["iterations", "numerics_iterations", (v, lang) => formatNumber(v, lang, 0)],
   ["runtime_ms", "numerics_runtime", (v, lang, t) => `${formatQuantity(v, lang, 3)} ${unitText("ms", t)}`],
@@ -45,9 +54,10 @@ function quantity(value, item, { t, lang }) {
   return item.unit ? `${number} ${unitText(item.unit, t)}` : number;
 }
 
-/** A cell of a table: numbers with TABLE_DIGITS digits, words as they are. */
-function cell(value, lang) {
+/** A cell of a table: numbers with TABLE_DIGITS digits, words as they are (or as the column's `words` name them). */
+function cell(value, lang, column = {}, t = {}) {
   if (absent(value)) return MISSING;
+  if (column.words) return t[`${column.words}${value}`] ?? String(value);
   return typeof value === "number" ? formatQuantity(value, lang, TABLE_DIGITS) : String(value);
 }
 
@@ -79,7 +89,7 @@ function rowsTable(panel, data, texts) {
     element("thead", {}, element("tr", {}, ...columns.map((column) =>
       element("th", { scope: "col", textContent: column.label[texts.lang] })))),
     element("tbody", {}, ...rows.map((row) => element("tr", {}, ...columns.map((column) =>
-      element("td", { textContent: cell(row[column.key], texts.lang) }))))));
+      element("td", { textContent: cell(row[column.key], texts.lang, column, texts.t) }))))));
   const series = pathValue(data, panel.path.split(".").slice(0, -1).join("."));
   const summary = series && "converged" in series ? [seriesSummary(series, columns, texts)] : [];
   return [...summary, element("div", { className: "table-frame" }, table)];

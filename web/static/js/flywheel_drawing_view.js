@@ -1,0 +1,110 @@
+/**
+ * Panel view of the machine with its flywheel, to scale: the scene's linkage (joints from
+ * POST /api/v1/kinematics for the request's mechanism and lengths) and the flywheel disk of the answer's
+ * diameter on the crank axis, both in metres on one scale; the disk's spokes turn with the crank.
+ * Below the drawing the disk's diameter, width and mass. When the answer needs no flywheel (its inertia is 0) the
+ * linkage is drawn alone and the panel says so.
+ */
+import { ApiClient } from "./api.js";
+import { pathValue } from "./dotted_paths.js";
+import { element } from "./dom.js";
+import { DRAWINGS } from "./linkage_drawings.js";
+import { LinkageView } from "./linkage_view.js";
+import { formatQuantity, unitText } from "./notation.js";
+import { svgElement } from "./svg.js";
+
+const JOINT_POINTS = 361;     // a grid step of 1° of crank angle
+const SPOKES = 4;
+const HUB = 0.08;             // × disk radius
+const DIMENSION_GAP = 16;     // drawing units from the disk's rim to its dimension line
+
+/** The drawing of mechanism with a disk of radius (m) on its crank axis: the disk under the frame, spokes on top. */
+function withFlywheel(base, radius) {
+  const [pivot, crankPin] = base.crank;
+  return {
+    ...base,
+    extent: (params, table) => {
+      const [x, y] = table.outputs.joints[pivot][0];
+      return [...base.extent(params, table), [x - radius, y - radius], [x + radius, y + radius]];
+    },
+    frame(layer, scale, params, table) {
+      const [cx, cy] = scale.point(table.outputs.joints[pivot][0]);
+      const r = radius * scale.k;
+      svgElement("circle", { class: "flywheel-disk", cx, cy, r }, layer);
+      svgElement("circle", { class: "flywheel-hub", cx, cy, r: HUB * r }, layer);
+      const y = cy + r + DIMENSION_GAP;
+      svgElement("line", { class: "dimension", x1: cx - r, y1: y, x2: cx + r, y2: y,
+        "marker-start": "url(#arrow)", "marker-end": "url(#arrow)" }, layer);
+      svgElement("text", { class: "dimension-label", x: cx, y: y - 4 }, layer).textContent = "D";
+      base.frame?.(layer, scale, params, table);
+    },
+    parts(layer, scale, params) {
+      const spokes = Array.from({ length: SPOKES }, () => svgElement("line", { class: "flywheel-spoke" }, layer));
+      const baseParts = base.parts?.(layer, scale, params);
+      const r = radius * scale.k;
+      return (points) => {
+        const [cx, cy] = points[pivot];
+        const turn = Math.atan2(points[crankPin][1] - cy, points[crankPin][0] - cx);
+        spokes.forEach((spoke, i) => {
+          const angle = turn + (i + 0.5) * 2 * Math.PI / SPOKES;
+          const [c, s] = [Math.cos(angle), Math.sin(angle)];
+          spoke.setAttribute("x1", cx + HUB * r * c);
+          spoke.setAttribute("y1", cy + HUB * r * s);
+          spoke.setAttribute("x2", cx + r * c);
+          spoke.setAttribute("y2", cy + r * s);
+        });
+        baseParts?.(points);
+      };
+    },
+  };
+}
+
+export class FlywheelDrawingView {
+  /** model: the scene's DynamicsModel, whose request names the mechanism and its lengths. */
+  constructor(body, spec, { t, lang }, model) {
+    this.spec = spec;
+    this.model = model;
+    this.t = t;
+    this.lang = lang;
+    const stage = element("div", { className: "linkage" });
+    this.numbers = element("p", { className: "flywheel-numbers" });
+    body.append(stage, this.numbers);
+    this.linkage = new LinkageView(stage, { t, lang });
+    this.kinematics = new ApiClient("kinematics", lang, (busy) => body.classList.toggle("busy", busy));
+    this.joints = null;
+    this.phi = 0;
+  }
+
+  holds(data) {
+    return Boolean(pathValue(data, this.spec.disk));
+  }
+
+  /** Take the answer: ask for the linkage's joints (once per set of lengths) and draw. */
+  show(data) {
+    const request = this.model.request();
+    this.disk = pathValue(data, this.spec.disk);
+    this.inertia = pathValue(data, this.spec.inertia);
+    this.kinematics.submit("joints", {
+      mechanism: request.mechanism, params: request.params, n: JOINT_POINTS, outputs: ["joints"] }, (answer) => {
+      this.joints = answer;
+      this.#draw();
+    });
+    if (this.joints) this.#draw();
+  }
+
+  drawAt(phi) {
+    this.phi = phi;
+    this.linkage.drawAt(phi);
+  }
+
+  #draw() {
+    const { t, lang } = this;
+    const needed = this.inertia > 0 && this.disk.diameter > 0;
+    const base = this.joints.ok ? DRAWINGS[this.joints.data.mechanism] : null;
+    this.linkage.show(this.joints, this.phi, needed && base ? withFlywheel(base, this.disk.diameter / 2) : base);
+    const number = (value, unit) => `${formatQuantity(value, lang, 4)} ${unitText(unit, t)}`;
+    this.numbers.classList.toggle("no-flywheel", !needed);
+    this.numbers.textContent = needed ? [`D = ${number(this.disk.diameter, "m")}`,
+      `b = ${number(this.disk.width, "m")}`, `m = ${number(this.disk.mass, "kg")}`].join(" · ") : t.flywheel_not_needed;
+  }
+}
