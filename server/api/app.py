@@ -8,7 +8,8 @@ from fastapi.middleware.gzip import GZipMiddleware
 from fastapi.staticfiles import StaticFiles
 
 from .content import REPO_ROOT
-from .errors import validation_error
+from ..core.mechanisms import GeometryError
+from .errors import geometry_error, validation_error
 from .routers import angular, dynamics, elastic, forces, kinematics, mechanisms, pages, scenes
 
 API_PREFIX = "/api/v1"
@@ -26,6 +27,7 @@ def create_app() -> FastAPI:
     app.include_router(api)
     app.include_router(pages.router)
     app.add_exception_handler(RequestValidationError, validation_error)  # never echo NaN back
+    app.add_exception_handler(GeometryError, geometry_error)
     app.add_middleware(GZipMiddleware, minimum_size=1000, compresslevel=3)  # cheap CPU, ~4x smaller
     app.mount("/static", StaticFiles(directory=REPO_ROOT / "web" / "static"), name="static")
     app.mount("/vendor/plotly", StaticFiles(directory=PLOTLY_DIR), name="plotly")

@@ -1,5 +1,5 @@
 """HTTP 422 in FastAPI's own error format for errors the numeric core reports."""
-from fastapi import HTTPException, Request
+from fastapi import Request
 from fastapi.encoders import jsonable_encoder
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
@@ -10,15 +10,16 @@ from .json_safe import finite_or_none
 REQUEST_FIELDS = ("outputs", "phi", "n", "motor", "inertias", "load", "compliances", "loads", "pairs")
 
 
-def unprocessable(error: GeometryError) -> HTTPException:
-    """422 naming the field and the reason, like pydantic's validation errors, plus a code for translation."""
+async def geometry_error(request: Request, error: GeometryError) -> JSONResponse:
+    """422 naming the field and the reason, like pydantic's validation errors, plus a code for translation;
+    every route lets the core's GeometryError through to here."""
     if error.field.split(".")[0] in REQUEST_FIELDS:
         loc = ["body", *error.field.split(".")]
     else:
         loc = ["body", "params", error.field]
-    return HTTPException(status_code=422, detail=[{
+    return JSONResponse(status_code=422, content={"detail": [{
         "loc": loc, "msg": error.reason, "type": "geometry_error",
-        "ctx": {"code": error.code, **error.context}}])
+        "ctx": finite_or_none({"code": error.code, **error.context})}]})
 
 
 async def validation_error(request: Request, error: RequestValidationError) -> JSONResponse:

@@ -12,7 +12,6 @@ from ...core.dynamics.motors import Motor
 from ...core.dynamics.reduction import Inertias
 from ...core.dynamics.resistance import Load
 from ...core.mechanisms import MECHANISMS, GeometryError
-from ..errors import unprocessable
 from ..json_safe import finite_or_none
 from ..messages import localise_numerics, translate
 from ..schemas import Language
@@ -35,12 +34,9 @@ def _respond(result: dict, notices, lang: str) -> JSONResponse:
              summary="Reduced moment of inertia J(φ), dJ/dφ and reduced resisting moment M_c(φ) with friction",
              responses={422: {"description": "invalid input: the field and the reason"}})
 def reduction(request: ReductionRequest, lang: Language = LANG):
-    try:
-        result, notices = report.reduction(
-            request.mechanism, request.params, Inertias(**request.inertias.model_dump()),
-            Load(**request.load.model_dump()), request.n, request.omega, request.outputs, request.iteration_phi)
-    except GeometryError as error:
-        raise unprocessable(error) from None
+    result, notices = report.reduction(
+        request.mechanism, request.params, Inertias(**request.inertias.model_dump()),
+        Load(**request.load.model_dump()), request.n, request.omega, request.outputs, request.iteration_phi)
     return _respond(result, notices, lang)
 
 
@@ -48,12 +44,9 @@ def reduction(request: ReductionRequest, lang: Language = LANG):
              summary="Equation of motion: steady cycle (ω(φ), δ, η) and start-up, with numerics",
              responses={422: {"description": "invalid input: the field and the reason"}})
 def motion(request: MotionRequest, lang: Language = LANG):
-    try:
-        machine = _machine(request)
-        result, notices = report.motion(machine, request.outputs, request.omega0, request.rtol, request.omega_mean,
-                                        request.balance, request.max_cycles)
-    except GeometryError as error:
-        raise unprocessable(error) from None
+    machine = _machine(request)
+    result, notices = report.motion(machine, request.outputs, request.omega0, request.rtol, request.omega_mean,
+                                    request.balance, request.max_cycles)
     return _respond(result, notices, lang)
 
 
@@ -61,29 +54,23 @@ def motion(request: MotionRequest, lang: Language = LANG):
              summary="Flywheel inertia for a permissible δ by Merzalov, Gutyar, Wittenbauer and exactly; sizing",
              responses={422: {"description": "invalid input: the field and the reason"}})
 def flywheel(request: FlywheelRequest, lang: Language = LANG):
-    try:
-        machine = _machine(request)
-        if machine.speed_dependent:
-            raise GeometryError("motor.kind", "the flywheel methods of the lecture need moments of φ alone: a "
-                                "constant-torque motor or an indicator diagram, and no viscous friction",
-                                "flywheel_needs_phi_moments")
-        result, notices = report.flywheel(machine, request.omega_mean, request.delta, request.balance,
-                                          request.width_ratio, request.density)
-    except GeometryError as error:
-        raise unprocessable(error) from None
+    machine = _machine(request)
+    if machine.speed_dependent:
+        raise GeometryError("motor.kind", "the flywheel methods of the lecture need moments of φ alone: a "
+                            "constant-torque motor or an indicator diagram, and no viscous friction",
+                            "flywheel_needs_phi_moments")
+    result, notices = report.flywheel(machine, request.omega_mean, request.delta, request.balance,
+                                      request.width_ratio, request.density)
     return _respond(result, notices, lang)
 
 
 @router.post("/work-precision/motion", summary="Live work–precision study of the current machine's steady cycle "
                                                "(ours against solve_ivp integrating cycles, small budget)")
 def motion_work_precision(request: MotionRequest, lang: Language = LANG):
-    try:
-        machine = _machine(request)
-    except GeometryError as error:
-        raise unprocessable(error) from None
+    machine = _machine(request)
     if not machine.speed_dependent:
-        raise unprocessable(GeometryError("motor.kind", "the study compares steady-cycle solvers: give a motor or "
-                                          "friction that depends on speed", "study_needs_speed"))
+        raise GeometryError("motor.kind", "the study compares steady-cycle solvers: give a motor or "
+                                          "friction that depends on speed", "study_needs_speed")
     return _respond({"study": work_precision.motion_study(machine)}, [], lang)
 
 

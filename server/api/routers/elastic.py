@@ -8,7 +8,6 @@ from ...core.elastic.report import Bearing, ElasticMachine, bearing_iteration, m
 from ...core.elastic.stiffness import Compliances
 from ...core import work_precision
 from ...core.mechanisms import MECHANISMS, GeometryError
-from ..errors import unprocessable
 from ..schemas import Language
 from ..schemas_elastic import ElasticRequest
 from .dynamics import LANG, _respond
@@ -33,28 +32,22 @@ def _elastic_machine(request: ElasticRequest) -> ElasticMachine:
                                  "modal curves, the rigid solution, numerics",
              responses={422: {"description": "invalid input: the field and the reason"}})
 def elastic(request: ElasticRequest, lang: Language = LANG):
-    try:
-        machine = _elastic_machine(request)
-        result, notices = {}, []
-        if "histories" in request.outputs or "rigid" in request.outputs:
-            result, notices = simulate(machine, request.t_end, request.n, request.rtol, request.method)
-            if "rigid" not in request.outputs:
-                result.pop("rigid")
-        if "modal" in request.outputs:
-            result["modal"] = modal(machine)
-        if "bearings" in request.outputs:
-            result["bearings"] = bearing_iteration(machine, Bearing(**request.bearing.model_dump()), request.t_end,
-                                                   request.n, request.rtol)
-    except GeometryError as error:
-        raise unprocessable(error) from None
+    machine = _elastic_machine(request)
+    result, notices = {}, []
+    if "histories" in request.outputs or "rigid" in request.outputs:
+        result, notices = simulate(machine, request.t_end, request.n, request.rtol, request.method)
+        if "rigid" not in request.outputs:
+            result.pop("rigid")
+    if "modal" in request.outputs:
+        result["modal"] = modal(machine)
+    if "bearings" in request.outputs:
+        result["bearings"] = bearing_iteration(machine, Bearing(**request.bearing.model_dump()), request.t_end,
+                                               request.n, request.rtol)
     return _respond(result, notices, lang)
 
 
 @router.post("/work-precision/elastic", summary="Live work–precision study of the current elastic machine "
                                                 "(error against run time of several solvers, small budget)")
 def elastic_work_precision(request: ElasticRequest, lang: Language = LANG):
-    try:
-        machine = _elastic_machine(request)
-    except GeometryError as error:
-        raise unprocessable(error) from None
+    machine = _elastic_machine(request)
     return _respond({"study": work_precision.elastic_study(machine, min(request.t_end, 0.5))}, [], lang)

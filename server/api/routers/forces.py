@@ -6,8 +6,7 @@ from ...core.dynamics.motors import Motor
 from ...core.kinetostatics.crank_slider import Loads, Pairs, analyse
 from ...core.kinetostatics.report import crank_check, forces_report, wear_report
 from ...core.kinetostatics.virtual_work import reduced_moment
-from ...core.mechanisms import MECHANISMS, GeometryError
-from ..errors import unprocessable
+from ...core.mechanisms import MECHANISMS
 from ..schemas import Language
 from ..schemas_forces import ChainRequest, ForcesRequest, WearRequest
 from .dynamics import LANG, _respond
@@ -34,10 +33,7 @@ def _analyses(request: ForcesRequest, omega: float | None = None):
 @router.post("/forces", summary="Reactions, balancing moment, friction, iteration and efficiency of the crank-slider",
              responses={422: {"description": "invalid input: the field and the reason"}})
 def forces(request: ForcesRequest, lang: Language = LANG):
-    try:
-        params, pairs, analysis, frictionless = _analyses(request)
-    except GeometryError as error:
-        raise unprocessable(error) from None
+    params, pairs, analysis, frictionless = _analyses(request)
     result = forces_report(analysis, pairs)
     result["crank_check"] = crank_check(analysis, frictionless, reduced_moment(params, analysis.applied, analysis.phi))
     return _respond(result, analysis.notices, lang)
@@ -46,10 +42,7 @@ def forces(request: ForcesRequest, lang: Language = LANG):
 @router.post("/wear", summary="Expected wear of the pin, bush, piston and cylinder (seed 002 §4)",
              responses={422: {"description": "invalid input: the field and the reason"}})
 def wear(request: WearRequest, lang: Language = LANG):
-    try:
-        _, _, analysis, _ = _analyses(request, omega=request.rpm * 2 * np.pi / 60)
-    except GeometryError as error:
-        raise unprocessable(error) from None
+    _, _, analysis, _ = _analyses(request, omega=request.rpm * 2 * np.pi / 60)
     parts = request.model_dump(include={"pin_diameter", "pin_length", "piston_diameter", "piston_length",
                                         "I_pin", "I_bush", "I_piston", "I_cylinder"})
     return _respond(wear_report(analysis, parts, 60 * request.rpm * request.hours), analysis.notices, lang)

@@ -4,8 +4,7 @@ from fastapi import APIRouter, Query
 from fastapi.responses import JSONResponse
 
 from ...core.kinematics import compute_kinematics
-from ...core.mechanisms import MECHANISMS, GeometryError, Notice
-from ..errors import unprocessable
+from ...core.mechanisms import MECHANISMS, Notice
 from ..json_safe import count_undefined, finite_or_none
 from ..messages import translate
 from ..schemas import KinematicsRequest, KinematicsResponse, Language
@@ -18,11 +17,8 @@ router = APIRouter(tags=["kinematics"])
              responses={422: {"description": "invalid input: the field and the reason"}})
 def kinematics(request: KinematicsRequest,
                lang: Language = Query("en", description="language of the warnings: ru, uk or en")) -> KinematicsResponse:
-    try:
-        result = compute_kinematics(request.mechanism, request.params, request.outputs,
-                                    phi=None if request.phi is None else np.asarray(request.phi, float), n=request.n)
-    except GeometryError as error:
-        raise unprocessable(error) from None
+    result = compute_kinematics(request.mechanism, request.params, request.outputs,
+                                phi=None if request.phi is None else np.asarray(request.phi, float), n=request.n)
     notices = list(result.warnings)
     for name, value in result.outputs.items():
         bad = count_undefined(value)
