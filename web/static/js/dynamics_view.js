@@ -15,7 +15,9 @@
 import { element } from "./dom.js";
 import { pathValue } from "./dotted_paths.js";
 import { heldCurves, heldSeries, holds, plotFigure, polarFigure } from "./dynamics_figures.js";
+import { EfficiencyChainView } from "./efficiency_chain_view.js";
 import { FlywheelDrawingView } from "./flywheel_drawing_view.js";
+import { FreeBodyView } from "./free_body_view.js";
 import { GearTrainView } from "./gear_train_view.js";
 import { IndicatorDiagramView } from "./indicator_diagram_view.js";
 import { refusalMessage } from "./messages.js";
@@ -38,7 +40,9 @@ const READING_KINDS = ["figures", "table", "numerics"];
  *   drawAt(phi)   drawings (and diagrams that follow the crank angle): show them at crank angle phi (rad)
  */
 const PANEL_VIEWS = {
+  efficiency_chain: EfficiencyChainView,
   flywheel_drawing: FlywheelDrawingView,
+  free_body: FreeBodyView,
   gear_train: GearTrainView,
   indicator_diagram: IndicatorDiagramView,
   wittenbauer: WittenbauerView,

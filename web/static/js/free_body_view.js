@@ -110,7 +110,7 @@ export class FreeBodyView {
    */
   #state(phi) {
     const { data } = this;
-    const at = (values) => (values === undefined ? null : sampleAt(data.phi, values, phi));
+    const at = (values) => sampleAt(data.phi, values, phi);
     const [O, A, B, S2] = ["O", "A", "B", "S2"].map((name) => at(data.points[name]));
     const R12 = at(data.reactions.R12);
     const locked = R12 === null;
@@ -173,7 +173,10 @@ export class FreeBodyView {
     };
     return (state, map) => {
       const { w1, w2 } = state;
-      /** A load at point (m) of body, moved by offset (drawing units), away from the body's own side outward. */
+      /**
+       * A load at point (m) of body, shifted by offset (drawing units); given an outward direction, the
+       * arrow lies on that side of the point, pulling away from it or pushing into it.
+       */
       const drawn = (name, body, point, force, offset = [0, 0], outward = null) => {
         const [x, y] = map[body](point);
         const [vector, beyondScale] = this.#vector(force);
@@ -182,27 +185,26 @@ export class FreeBodyView {
       };
       /**
        * A reaction in a revolute pair: its line touches the friction circle, its moment against the relative
-       * turning; drawn on the side of the joint away from the body's other end, pulling or pushing.
+       * turning; drawn outside the body, on the side of the joint away from inner (a point of the body, m).
        */
-      const reaction = (name, body, joint, force, relative, other) => {
+      const reaction = (name, body, joint, force, relative, inner) => {
         const offset = force ? tangent(force, Math.sign(relative) * this.rho[joint]) : [0, 0];
-        const [from, to] = [map[body](state[joint]), map[body](state[other])];
+        const [from, to] = [map[body](state[joint]), map[body](inner)];
         drawn(name, body, state[joint], force, offset, [from[0] - to[0], from[1] - to[1]]);
       };
-      reaction("R41", "crank", "O", state.R41, w1, "A");
-      reaction("R21", "crank", "A", minus(state.R12), w1 - w2, "O");
+      reaction("R41", "crank", "O", state.R41, w1, state.A);
+      reaction("R21", "crank", "A", minus(state.R12), w1 - w2, state.O);
       parts.Mb.update(map.crank(state.O), state.Mb);
-      reaction("R12", "rod", "A", state.R12, w2 - w1, "B");
-      reaction("R32", "rod", "B", minus(state.R23), w2, "A");
+      reaction("R12", "rod", "A", state.R12, w2 - w1, state.B);
+      reaction("R32", "rod", "B", minus(state.R23), w2, state.A);
       drawn("G2", "rod", state.S2, state.G2);
       drawn("F_in2", "rod", state.S2, state.F_in2);
       parts.M_in2.update(map.rod(state.S2), state.M_in2);
       // the slider's loads spread over the block so that collinear ones do not hide each other: the rod's
-      // on the rod's side of B, the guide's at the bottom face, the piston force on the face it pushes
+      // on the rod's side of B (away from B's mirror of A), the guide's at the bottom face, the piston
+      // force on the face it pushes
       const [bx, by] = map.slider(state.B);
-      const [rodA, rodB] = [map.rod(state.A), map.rod(state.B)];
-      const offset = state.R23 ? tangent(state.R23, Math.sign(-w2) * this.rho.B) : [0, 0];
-      drawn("R23", "slider", state.B, state.R23, offset, [rodA[0] - rodB[0], rodA[1] - rodB[1]]);
+      reaction("R23", "slider", "B", state.R23, -w2, [2 * state.B[0] - state.A[0], 2 * state.B[1] - state.A[1]]);
       const contact = [SLIDER[0] / 4, SLIDER[1] / 2];
       drawn("R34", "slider", state.B, state.N === null ? null : [0, state.N], contact, [0, 1]);
       drawn("F34", "slider", state.B, state.F34 === null ? null : [state.F34, 0], contact);
@@ -246,7 +248,7 @@ export class FreeBodyView {
     const value = (v, unit) => (v === null || v === undefined ? MISSING
       : `${formatQuantity(v, lang, 4)} ${unitText(unit, t)}`);
     const rows = [
-      ["φ", t.crank_angle, (s) => `${formatNumber(degrees(s.phi), lang, 1)}°`],
+      [t.crank_angle, "", (s) => `${formatNumber(degrees(s.phi), lang, 1)}°`],
       ["|R₁₂| = |R₂₁|", t.fb_joint_A, (s) => value(size(s.R12), "N")],
       ["|R₂₃| = |R₃₂|", t.fb_joint_B, (s) => value(size(s.R23), "N")],
       ["|R₄₁|", t.fb_joint_O, (s) => value(size(s.R41), "N")],
@@ -263,7 +265,7 @@ export class FreeBodyView {
     const cells = rows.map(([symbol, words, text]) => {
       const cell = element("dd");
       this.list.append(element("div", {},
-        element("dt", {}, element("span", { className: "symbol", textContent: symbol }), ` ${words}`), cell));
+        element("dt", {}, element("span", { className: "symbol", textContent: symbol }), words && ` ${words}`), cell));
       return [cell, text];
     });
     return cells;
@@ -322,7 +324,5 @@ function tangent(force, signedRadius) {
 }
 
 function text(layer, x, content) {
-  const node = svgElement("text", { class: "scale-label", x, y: 0 }, layer);
-  node.textContent = content;
-  return node;
+  svgElement("text", { class: "scale-label", x, y: 0 }, layer).textContent = content;
 }

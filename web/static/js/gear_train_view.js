@@ -72,13 +72,14 @@ export class GearTrainView {
     this.picture.replaceChildren(frame, construction, wheels, moving);
 
     this.#guides(frame, points, trammel);
-    framePivot(frame, this.scale.point(points.O[0]));
+    const [cx, cy] = this.scale.point(points.O[0]);
+    framePivot(frame, [cx, cy]);
     this.lines = {
       centres: svgElement("line", { class: "construction-line" }, construction),
       normalB: svgElement("line", { class: "construction-line" }, construction),
       normalD: trammel ? svgElement("line", { class: "construction-line" }, construction) : null,
     };
-    this.crankWheel = svgElement("circle", { class: "pitch-circle crank-wheel" }, wheels);
+    svgElement("circle", { class: "pitch-circle crank-wheel", cx, cy, r: this.crank * this.scale.k }, wheels);
     this.couplerWheel = svgElement("circle", { class: "pitch-circle coupler-wheel" }, wheels);
     this.couplerLine = svgElement("line", { class: "pitch-circle coupler-wheel" }, wheels);
     const blocks = { B: block(moving, ...SLIDER), ...(trammel ? { D: block(moving, ...SLIDER) } : {}) };
@@ -107,15 +108,13 @@ export class GearTrainView {
   drawAt(phi) {
     const { data, scale } = this;
     const sample = (values) => sampleAt(data.phi, values, phi);
-    const metres = Object.fromEntries(JOINTS.filter((name) => data.points[name])
-      .map((name) => [name, sample(data.points[name])]));
-    const at = Object.fromEntries(Object.entries(metres).map(([name, p]) => [name, scale.point(p)]));
+    const at = Object.fromEntries(JOINTS.filter((name) => data.points[name])
+      .map((name) => [name, scale.point(sample(data.points[name]))]));
     this.moveParts(at);
 
     const [O, A] = [at.O, at.A];
     const crankRadius = Math.hypot(A[0] - O[0], A[1] - O[1]);
     const u = [(A[0] - O[0]) / crankRadius, (A[1] - O[1]) / crankRadius];     // along OA, drawing units
-    setAttributes(this.crankWheel, { cx: O[0], cy: O[1], r: crankRadius });
     setAttributes(this.lines.centres, line(O, u));
     setAttributes(this.lines.normalB, line(at.B, [0, 1]));
     if (this.lines.normalD) setAttributes(this.lines.normalD, line(at.D, [1, 0]));
