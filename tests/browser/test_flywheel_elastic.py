@@ -1,7 +1,7 @@
 """The flywheel and elastic scenes in a real browser: δ drives the exact inertia and the flywheel drawn to
 scale, a machine type's permissible [δ] is checked, Wittenbauer's point follows the crank, the indicator
 diagram is edited by dragging; the elastic four-bar answers a damping drag with its method and stiffness
-ratio, and the stiffest belt still gets an answer without NaN."""
+ratio, the stiffest belt still gets an answer without NaN, and every elastic variant shows all its panels."""
 from __future__ import annotations
 
 from urllib.parse import urlencode
@@ -148,6 +148,20 @@ def test_dragging_an_indicator_point_changes_the_work(browser_page):
     assert table_value > 0.4                          # the assumed polytrope has 0.2397 there
     wait_for_new_trace(page, "work", work)
     screenshot(page, "flywheel_indicator_edited")
+    assert page.problems == []
+
+
+def test_every_elastic_variant_shows_all_its_panels_without_nan(browser_page):
+    page = browser_page
+    for scene in (TRANSMISSION, read_scene("elastic_linkage"), FOUR_BAR):
+        for variant in scene["variants"]:
+            open_scene(page, scene, "uk", variant["panels"], variant=variant["id"])
+            text = page.inner_text(".results")
+            assert "NaN" not in text and "undefined" not in text
+            assert page.locator(".refusal").count() == 0
+            if "bearings" in variant["panels"]:
+                assert page.inner_text("#panel-bearings .series-summary") == interface_texts("uk")["approximations_converged"]
+            screenshot(page, f"elastic_{scene['id']}_{variant['id']}")
     assert page.problems == []
 
 

@@ -97,13 +97,16 @@ function rowsTable(panel, data, texts) {
 
 /**
  * "φ = 30,0° · знаменатель ряда 0,0225 < 1 · ряд сходится · предел: R₂₃ = 1,023", or that it diverges
- * (the mechanism self-locks at this angle), for a list of successive approximations.
+ * (the mechanism self-locks at this angle), for a list of successive approximations; approximations
+ * that are not a series (no ratio: the bearings' stiffness) say only whether they converged.
  */
 function seriesSummary(series, columns, { t, lang }) {
   const parts = [];
   if (typeof series.phi === "number") parts.push(`φ = ${formatNumber(degrees(series.phi), lang, 1)}°`);
   const ratio = `${t.series_ratio} ${formatQuantity(series.ratio, lang, 3)}`;
-  if (series.converged) {
+  if (typeof series.ratio !== "number") {
+    parts.push(series.converged ? t.approximations_converged : t.approximations_stopped);
+  } else if (series.converged) {
     parts.push(`${ratio} < 1`, t.series_converges);
     const limit = Object.entries(series.limit ?? {}).map(([key, value]) =>
       `${columns.find((c) => c.key === key)?.label[lang] ?? key} = ${cell(value, lang)}`);
