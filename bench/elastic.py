@@ -37,6 +37,8 @@ PROBLEMS = {
     "belt drive, c = 1e5 N·m/rad, b = 30": (ElasticMachine("two_mass", "slider_crank", SLIDER, c=1e5, b=30.0, **RIG), 0.5),
     "stiff belt, c = 1e8, b = 1e5 (heavily damped)": (ElasticMachine("two_mass", "slider_crank", SLIDER, c=1e8, b=1e5,
                                                                       **RIG), 0.5),
+    "elastic crank-slider linkage, c(φ) from e₁ = 1e-6, e₂ = 1e-9, b = 100": (ElasticMachine(
+        "elastic_linkage", "slider_crank", SLIDER, compliances=Compliances(1e-6, 1e-9), b=100.0, **RIG), 0.5),
     "seed 003 elastic four-bar, b_n = 0.02": (ElasticMachine(
         "elastic_four_bar", "four_bar", FOUR_BAR, Inertias(J1=0.01, J3=0.05), Load(0.5), Motor("linear", M0=2.0, b=0.05),
         J_motor=0.02, compliances=Compliances(2e-6, 1e-9, 3e-6), b=0.02), 0.5),
