@@ -38,6 +38,7 @@ export class PresetsView {
     const sliders = this.model.variant.sliders.map((s) => s.id);
     this.presets = (this.model.scene.presets ?? []).filter((p) => sliders.includes(p.slider));
     this.chosen = null;
+    this.check = null;
     if (!this.presets.length) return;
     const { t, lang } = this;
     const range = (p) => `${this.#number(p.min)}…${this.#number(p.max)}`;

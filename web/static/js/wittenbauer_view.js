@@ -24,6 +24,7 @@ export class WittenbauerView {
     this.caption = element("p", { className: "caption" });
     body.append(element("div", { className: "graph-frame" }, this.graph, this.point), this.readout, this.caption);
     this.maps = null;
+    this.listening = false;
     this.phi = 0;
   }
 
