@@ -17,6 +17,7 @@ FOUR_BAR = read_scene("elastic_four_bar")
 TRANSMISSION = read_scene("elastic_transmission")
 GRAPH = "document.querySelector(`#panel-${id} .graph`)"
 ELASTIC_TIMEOUT = 30_000        # ms; an elastic answer takes up to a few seconds
+RESULT_KINDS = ("plot", "table", "figures", "numerics")     # the panels filled by the scene's own answer
 
 
 def open_scene(page, scene: dict, lang: str, panels: list[str], **state) -> None:
@@ -155,7 +156,8 @@ def test_every_elastic_variant_shows_all_its_panels_without_nan(browser_page):
     page = browser_page
     for scene in (TRANSMISSION, read_scene("elastic_linkage"), FOUR_BAR):
         for variant in scene["variants"]:
-            open_scene(page, scene, "uk", variant["panels"], variant=variant["id"])
+            results = [p for p in variant["panels"] if scene["panels"][p]["kind"] in RESULT_KINDS]
+            open_scene(page, scene, "uk", results, variant=variant["id"])
             text = page.inner_text(".results")
             assert "NaN" not in text and "undefined" not in text
             assert page.locator(".refusal").count() == 0
