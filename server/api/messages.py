@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from ..core.mechanisms import Notice
+from ..core.mechanisms.base import ranges_text
 from .content import interface_texts
 
 DECIMAL_COMMA = ("ru", "uk")
@@ -35,6 +36,8 @@ def translate(notice: Notice, lang: str) -> str:
     template = interface_texts(lang).get(f"warn_{notice.code}")
     if template is None:
         return notice.text
-    context = {key: CommaFloat(value) if isinstance(value, float) and lang in DECIMAL_COMMA else value
+    decimal = "," if lang in DECIMAL_COMMA else "."
+    context = {key: CommaFloat(value) if isinstance(value, float) and decimal == "," else
+               ranges_text(value, decimal) if key == "ranges" else value
                for key, value in notice.context.items()}
     return template.format(**context)

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..mechanisms import MECHANISMS, Notice
+from ..mechanisms.base import angle_ranges, ranges_text
 
 CONVENTIONS = ("consistent", "textbook")
 
@@ -120,13 +121,13 @@ def _slider_crank(p, load, phi, values, k):
     tan_psi = np.abs(np.tan(values["s2"]))
     locked = f * tan_psi >= 1
     if locked.any():
-        where = np.degrees(phi[locked])
+        ranges = angle_ranges(phi, locked)
         total = np.where(locked, np.nan, useful / np.where(locked, 1.0, 1 - f * tan_psi))
         return ResistingMoment(np.where(locked, np.nan, useful), total - useful, 0 * phi, [Notice(
             "slider_crank_self_locking",
-            f"Self-locking: f·tan ψ ≥ 1 for φ from {where.min():.1f}° to {where.max():.1f}°: the rod presses the "
-            f"slider into its guide harder than the rod can push it along (f = {f:g}, largest tan ψ = "
-            f"{tan_psi.max():.3g}).", {"f": f, "phi_from": float(where.min()), "phi_to": float(where.max())})],
+            f"Self-locking: f·tan ψ ≥ 1 for φ in {ranges_text(ranges)}: the rod presses the slider into its guide "
+            f"harder than the rod can push it along (f = {f:g}, largest tan ψ = {tan_psi.max():.3g}).",
+            {"f": f, "ranges": ranges})],
             locked)
     total = useful / (1 - f * tan_psi)
     return ResistingMoment(useful, total - useful, 0 * phi)

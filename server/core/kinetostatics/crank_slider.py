@@ -22,6 +22,7 @@ import numpy as np
 
 from ..dynamics.motors import gas_force
 from ..mechanisms import MECHANISMS, Notice
+from ..mechanisms.base import angle_ranges, ranges_text
 
 G = 9.81
 
@@ -191,15 +192,16 @@ def analyse(params: dict, loads: Loads, pairs: Pairs, phi: np.ndarray, tolerance
     ccw = -(cross(points["A"], -final.R12) + applied["M_in1"] + final.friction["M1"])
     result.balancing_moment = -ccw
     if not per_angle.all():
-        where = np.degrees(phi[~per_angle])
+        ranges = angle_ranges(phi, ~per_angle)
         result.notices.append(Notice(
-            "kinetostatics_self_locking", f"Self-locking: the successive approximations diverge for φ from "
-            f"{where.min():.1f}° to {where.max():.1f}°: friction grows faster than the reactions it comes from.",
-            {"phi_from": float(where.min()), "phi_to": float(where.max())}))
-        for approximation in result.approximations:
+            "kinetostatics_self_locking", f"Self-locking: the successive approximations diverge for φ in "
+            f"{ranges_text(ranges)}: friction grows faster than the reactions it comes from.", {"ranges": ranges}))
+        for approximation in result.approximations:       # no reaction, no friction where the series diverges
             for name in ("R12", "R23"):
                 getattr(approximation, name)[~per_angle] = np.nan
             approximation.N[~per_angle] = np.nan
+            for value in approximation.friction.values():
+                value[~per_angle] = np.nan
         result.balancing_moment[~per_angle] = np.nan
         result.R41[~per_angle] = np.nan
     return result

@@ -41,7 +41,7 @@ def forces_report(analysis: ForceAnalysis, pairs) -> dict:
     norm = lambda v: np.linalg.norm(v, axis=1)
     angle = lambda v: np.degrees(np.arctan2(v[:, 1], v[:, 0]))
     reactions = {"R12": final.R12, "R23": final.R23, "R41": analysis.R41,
-                 "R34": np.stack([np.zeros_like(final.N), final.N], 1)}
+                 "R34": np.stack([final.N * 0.0, final.N], 1)}          # NaN stays NaN in both components
     return {
         "phi": analysis.phi,
         "points": analysis.points,

@@ -99,6 +99,24 @@ COMMON_OUTPUTS = (
 )
 
 
+def angle_ranges(phi: np.ndarray, mask: np.ndarray) -> list[list[float]]:
+    """The stretches of crank angle (degrees, [from, to]) where ``mask`` holds, on an ordered grid."""
+    ranges, start = [], None
+    for k, inside in enumerate(mask):
+        if inside and start is None:
+            start = k
+        if start is not None and (not inside or k == mask.size - 1):
+            end = k if inside else k - 1
+            ranges.append([float(np.degrees(phi[start])), float(np.degrees(phi[end]))])
+            start = None
+    return ranges
+
+
+def ranges_text(ranges: list[list[float]], decimal: str = ".") -> str:
+    """'57.0°–133.0°, 231.0°–307.0°' (with the reader's decimal separator)."""
+    return ", ".join(f"{a:.1f}°–{b:.1f}°".replace(".", decimal) for a, b in ranges)
+
+
 def wrap_angle(phi: float, cycle: float = TWO_PI) -> float:
     """Angle reduced to [0, cycle)."""
     value = float(np.mod(phi, cycle))
