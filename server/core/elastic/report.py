@@ -236,10 +236,11 @@ def modal(machine: ElasticMachine, points: int = 361) -> dict:
     phi = np.linspace(0.0, period, points)
     J = np.array([side.inertia(p)[0] for p in phi])
     c = np.array([side.stiff(p)[0] for p in phi])
+    c = np.where(c <= 1e-12 * c.max(), 0.0, c)          # the dead positions: round-off of sin²θ₁₂ is zero
     J_eq = machine.J_motor * J / (machine.J_motor + J)
     with np.errstate(divide="ignore"):
         compliance = np.where(c > 1e-12 * c.max(), 1 / np.where(c > 0, c, 1.0), np.inf)
-        zeta = np.where(c > 0, machine.b / (2 * np.sqrt(np.where(c > 0, c, 1.0) * J_eq)), np.inf)
+        zeta = np.where(c > 0, machine.b / (2 * np.sqrt(np.where(c > 0, c, 1.0) * J_eq)), np.inf)   # null in JSON
     return {"phi": phi, "stiffness": c, "compliance": compliance, "natural_frequency": np.sqrt(c / J_eq),
             "damping_ratio": zeta, "inertia": J}
 
@@ -273,16 +274,16 @@ def bearing_iteration(machine: ElasticMachine, bearing: Bearing, t_end: float, s
     deadline = time.perf_counter() + budget_s
     for _ in range(max_rounds):
         if time.perf_counter() > deadline:
-            return {"rounds": rounds, "converged": False}
+            break
         result, _ = simulate(current, t_end, samples, rtol, budget_s=budget_s / 4)
         load = float(np.max(np.abs(rod_force(current, result["phi"], result["twist"]))))
         stiffness = bearing_stiffness(load, bearing.balls, bearing.r_inner, bearing.r_outer, bearing.young,
                                       bearing.poisson)
         rounds.append({"R_m": load, "c_n": stiffness, "e2_total": current.compliances.e2})
         if previous is not None and abs(load - previous) <= tolerance * load:
-            break
+            return {"rounds": rounds, "converged": True}
         previous = load
         joints = 2.0 / stiffness                    # e_B + e_C, two equal bearings
         current = ElasticMachine(**{**machine.__dict__, "compliances": Compliances(
             machine.compliances.e1, machine.compliances.e2 + joints, machine.compliances.e3)})
-    return {"rounds": rounds, "converged": len(rounds) < max_rounds}
+    return {"rounds": rounds, "converged": False}
