@@ -37,7 +37,7 @@ export class DynamicsModel extends SceneSettings {
 
   /** What the variant's panels need ("resisting", "friction_iteration", "steady", "startup", …). */
   outputs() {
-    return [...new Set(this.variant.panels.flatMap((id) => this.scene.panels[id].needs ?? []))];
+    return [...new Set(this.variant.panels.flatMap((id) => this.scene.panels[id]?.needs ?? []))];
   }
 
   /** Put value at path of the request body (a list edited in a panel, e.g. "motor.expansion"). */

@@ -10,7 +10,8 @@
  * A panel the answer holds nothing for is hidden: when the machine stalls or self-locks, or has no
  * steady cycle, the answer leaves those results out and its warnings say why — they are shown first,
  * under a heading that says there is no steady motion. A refused request (HTTP 422) says why instead.
- * A panel that needs nothing from the answer ("needs": [], e.g. a calculator) is always shown.
+ * A panel that needs nothing from the answer ("needs": [], e.g. a calculator) is always shown. A panel
+ * of a kind this page has no view for is left out, so new content never breaks an older page.
  */
 import { element } from "./dom.js";
 import { pathValue } from "./dotted_paths.js";
@@ -27,6 +28,7 @@ import { sampleAt } from "./phi_samples.js";
 import { PlotCursor } from "./plot_cursor.js";
 import { holdsReadings, readings } from "./readings_view.js";
 import { WittenbauerView } from "./wittenbauer_view.js";
+import { WorkPrecisionView } from "./work_precision_view.js";
 
 const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
 const GRAPH_KINDS = ["plot", "polar"];
@@ -38,6 +40,8 @@ const READING_KINDS = ["figures", "table", "numerics"];
  *   holds(data)   true if the answer's data holds what the panel shows
  *   show(data)    take the answer's data
  *   drawAt(phi)   drawings (and diagrams that follow the crank angle): show them at crank angle phi (rad)
+ *   paramsChanged()  optional: a value changed (a view with results of its own marks them as earlier)
+ * A view without holds needs nothing from the answer (as a panel with "needs": []): always shown, never given show.
  */
 const PANEL_VIEWS = {
   efficiency_chain: EfficiencyChainView,
@@ -46,9 +50,13 @@ const PANEL_VIEWS = {
   gear_train: GearTrainView,
   indicator_diagram: IndicatorDiagramView,
   wittenbauer: WittenbauerView,
+  work_precision: WorkPrecisionView,
 };
 
-const isDrawing = (spec) => typeof PANEL_VIEWS[spec.kind]?.prototype.drawAt === "function";
+/** The view class of a panel kind, or null (also for names such as "constructor" that every object has). */
+const panelView = (kind) => (Object.hasOwn(PANEL_VIEWS, kind) ? PANEL_VIEWS[kind] : null);
+const isShown = (spec) => [...GRAPH_KINDS, ...READING_KINDS].includes(spec?.kind) || panelView(spec?.kind) !== null;
+const isDrawing = (spec) => typeof panelView(spec.kind)?.prototype.drawAt === "function";
 
 /** True if the answer's data holds what the panel shows. */
 function holdsPanel(panel, data) {
@@ -69,13 +77,15 @@ export class DynamicsView {
     this.phi = 0;
     this.animated = false;
     this.scheduler = new PanelScheduler((panel) => this.#draw(panel));
+    model.on("params", () => {
+      for (const panel of this.panels) panel.view?.paramsChanged?.();
+    });
   }
 
   /** One panel per graph, reading or panel view of the variant, hidden until an answer fills it. */
   build(variant) {
     for (const panel of this.panels) if (panel.graph) Plotly.purge(panel.graph);
-    const specs = variant.panels.map((id) => [id, this.scene.panels[id]])
-      .filter(([, spec]) => [...GRAPH_KINDS, ...READING_KINDS].includes(spec.kind) || PANEL_VIEWS[spec.kind]);
+    const specs = variant.panels.map((id) => [id, this.scene.panels[id]]).filter(([, spec]) => isShown(spec));
     this.animated = specs.some(([, spec]) => isDrawing(spec));
     this.panels = specs.map(([id, spec]) => this.#panel(id, spec));
     this.container.replaceChildren(...this.panels.map((panel) => panel.figure));
@@ -89,7 +99,7 @@ export class DynamicsView {
     const data = answer.ok ? answer.data : null;
     const missing = [];
     for (const panel of this.panels) {
-      const independent = panel.spec.needs?.length === 0;
+      const independent = panel.spec.needs?.length === 0 || (panel.view !== undefined && !panel.view.holds);
       const held = independent || (Boolean(data) && holdsPanel(panel, data));
       panel.figure.hidden = !held;
       if (data && !held) missing.push(panel);
@@ -130,9 +140,10 @@ export class DynamicsView {
     const make = (content, ...more) => element("figure", {
       className: `panel panel-${spec.kind}${isDrawing(spec) ? " panel-drawing" : ""}`, id: `panel-${id}`, hidden: true },
     ...title, content, ...more);
-    if (PANEL_VIEWS[spec.kind]) {
+    const View = panelView(spec.kind);
+    if (View) {
       const body = element("div", { className: `${spec.kind}-body` });
-      return { id, spec, figure: make(body), view: new PANEL_VIEWS[spec.kind](body, spec, this.texts, this.model) };
+      return { id, spec, figure: make(body), view: new View(body, spec, this.texts, this.model) };
     }
     if (GRAPH_KINDS.includes(spec.kind)) {
       const graph = element("div", { className: "graph" });

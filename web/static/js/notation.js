@@ -104,6 +104,13 @@ export function formatQuantity(value, lang, digits = 3) {
   return `${format.format(value / 10 ** exponent)}·10${power}`;
 }
 
+/** A tolerance as written in a table of solvers: a power of ten as "10⁻⁵", any other value as formatQuantity. */
+export function toleranceText(value, lang) {
+  const exponent = Math.log10(value);
+  if (!Number.isInteger(exponent)) return formatQuantity(value, lang, 2);
+  return `10${String(exponent).replace(/./g, (c) => SUPERSCRIPTS[c])}`;
+}
+
 /** Plotly's `separators` layout property: decimal point and thousands separator of the language. */
 export function plotSeparators(lang) {
   return lang === "en" ? ".," : ", ";
