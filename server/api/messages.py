@@ -29,6 +29,17 @@ def localise_numerics(numerics: dict, lang: str) -> dict:
     return local
 
 
+def localise_study(study: dict, lang: str) -> dict:
+    """The work–precision study's reference and quantity in the reader's language."""
+    texts = interface_texts(lang) if lang != "en" else {}
+    local = dict(study)
+    for field in ("reference", "quantity"):
+        text = texts.get(f"study_{field}_{study.get(field + '_code')}")
+        if text:
+            local[field] = text
+    return local
+
+
 def translate(notice: Notice, lang: str) -> str:
     """The notice in ``lang``; English text of the core when the language has no template for it."""
     if lang == "en":

@@ -13,7 +13,7 @@ from ...core.dynamics.reduction import Inertias
 from ...core.dynamics.resistance import Load
 from ...core.mechanisms import MECHANISMS, GeometryError
 from ..json_safe import finite_or_none
-from ..messages import localise_numerics, translate
+from ..messages import localise_numerics, localise_study, translate
 from ..schemas import Language
 from ..schemas_dynamics import (FlywheelRequest, FlywheelResponse, MotionRequest, MotionResponse, ReductionRequest,
                                 ReductionResponse)
@@ -24,6 +24,8 @@ LANG = Query("en", description="language of the warnings: ru, uk or en")
 
 def _respond(result: dict, notices, lang: str) -> JSONResponse:
     warnings = dict.fromkeys(translate(n, lang) for n in notices)      # once each, in order
+    if isinstance(result.get("study"), dict):
+        result["study"] = localise_study(result["study"], lang)
     for holder in (result, result.get("startup") or {}):
         if isinstance(holder.get("numerics"), dict):
             holder["numerics"] = localise_numerics(holder["numerics"], lang)
