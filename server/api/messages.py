@@ -22,6 +22,9 @@ def localise_numerics(numerics: dict, lang: str) -> dict:
     template = texts.get(f"num_{numerics.get('code')}")
     if template:
         local["method"] = template.format(method=numerics.get("method", ""))
+    message = texts.get(f"num_message_{numerics.get('message_code')}")
+    if message:
+        local["message"] = message.format(**numerics.get("message_context", {}))
     why = texts.get(f"why_{numerics.get('code')}")
     if why and "why_context" in numerics:
         context = {k: CommaFloat(v) if lang in DECIMAL_COMMA else v for k, v in numerics["why_context"].items()}

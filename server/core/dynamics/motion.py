@@ -44,6 +44,8 @@ class Numerics:
     method: str
     rtol: float
     code: str = ""                  # names the method for the interface's translations
+    message_code: str = ""          # names a routine message (with message_context) for the same
+    message_context: dict = field(default_factory=dict)
     steps: int = 0
     cycles: int = 0
     iterations: int = 0
@@ -323,6 +325,7 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
         T0, t0 = run.T[-1], run.t[-1]
         if settled:
             numerics.message = f"settled after {n + 1} cycles"
+            numerics.message_code, numerics.message_context = "settled", {"cycles": n + 1}
             break
         if time.perf_counter() > deadline:
             numerics.message = f"stopped at the time budget after {n + 1} cycles, not yet periodic"
