@@ -16,7 +16,6 @@ import time
 from pathlib import Path
 
 import numpy as np
-from scipy.integrate import solve_ivp
 from scipy.optimize import minimize_scalar
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -26,6 +25,7 @@ from server.core.dynamics.motion import steady_cycle      # noqa: E402
 from server.core.dynamics.motors import Motor             # noqa: E402
 from server.core.dynamics.reduction import Inertias       # noqa: E402
 from server.core.dynamics.resistance import Load          # noqa: E402
+from server.core.work_precision import cycles_until_periodic  # noqa: E402
 from server.core.mechanisms import MECHANISMS             # noqa: E402
 
 PARAMS = MECHANISMS["slider_crank"].check({"l1": 0.1, "l2": 0.3})
@@ -33,28 +33,14 @@ MACHINE = Machine("slider_crank", PARAMS, Inertias(J1=0.5, m2=5.0, J_S2=0.05, m3
                   Load(2000.0, 0.2, 0.1), Motor("linear", M0=60.0, b=0.3))
 
 
-def rhs(_, y):
-    tables = MACHINE.tables(np.array([y[0]]))
-    moment = tables.net_phi[0] + MACHINE.speed_moment(y[1], tables.sliding[0])[0]
-    return [y[1], (moment - 0.5 * tables.dJ[0] * y[1] ** 2) / tables.J[0]]
-
-
 def time_domain(method: str, rtol: float, omega_start: float, max_cycles: int = 400):
-    """Integrate cycle after cycle; return ω(0), δ of the first cycle that repeats, and the RHS count."""
-    y, t, nfev, previous = np.array([0.0, omega_start]), 0.0, 0, None
-    for k in range(max_cycles):
-        target = 2 * np.pi * (k + 1)
-        event = lambda _, s: s[0] - target
-        event.terminal = True
-        solution = solve_ivp(rhs, (t, t + 100.0), y, method=method, rtol=rtol, atol=rtol * 1e-3, events=event,
-                             dense_output=True)
-        nfev += solution.nfev
-        t, y = float(solution.t_events[0][0]), solution.y_events[0][0]
-        if previous is not None and abs(y[1] - previous) <= rtol * y[1]:
-            w_max, w_min = (extreme(solution.sol, solution.t[0], t, sign) for sign in (1, -1))
-            return y[1], (w_max - w_min) / (0.5 * (w_max + w_min)), nfev, k + 1
-        previous = y[1]
-    raise RuntimeError(f"{method} did not settle in {max_cycles} cycles")
+    """solve_ivp cycle after cycle (the server's own general path); ω(0), δ of the repeating cycle, RHS count."""
+    periodic = cycles_until_periodic(MACHINE, method, rtol, omega_start, max_cycles=max_cycles)
+    if periodic is None:
+        raise RuntimeError(f"{method} did not settle in {max_cycles} cycles")
+    last = periodic.last_cycle
+    w_max, w_min = (extreme(last.sol, last.t[0], last.t_events[0][0], sign) for sign in (1, -1))
+    return periodic.omega0, (w_max - w_min) / (0.5 * (w_max + w_min)), periodic.nfev, periodic.cycles
 
 
 def extreme(dense, t0: float, t1: float, sign: int) -> float:

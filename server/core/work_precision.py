@@ -6,7 +6,9 @@ skipped.  bench/work_precision.py runs the full study offline.
 """
 from __future__ import annotations
 
+import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -19,24 +21,39 @@ from .elastic.simulate import STIFF_RATIO, integrate, stiffness_ratio
 BUDGET_S = 6.0
 
 
-def _time_domain_cycle(machine: Machine, method: str, rtol: float, omega_start: float, deadline: float):
-    """ω(φ = 0) on the steady cycle by integrating J ω̇ + ½J′ω² = M in time until it repeats."""
+@dataclass
+class Periodic:
+    """The general way to a steady cycle: ω at φ = 0 of the first cycle that repeats, that cycle's dense
+    solution (t ↦ φ, ω), and the work it took."""
+
+    omega0: float
+    last_cycle: object
+    nfev: int
+    cycles: int
+
+
+def cycles_until_periodic(machine: Machine, method: str, rtol: float, omega_start: float,
+                          deadline: float = math.inf, max_cycles: int = 400) -> Periodic | None:
+    """Integrate J ω̇ + ½J′ω² = M in time by solve_ivp(method), cycle after cycle, until ω(φ = kΦ) repeats
+    to rtol; None when the deadline or max_cycles comes first."""
     def rhs(_, y):
         tables = machine.tables(np.array([y[0]]))
         moment = tables.net_phi[0] + machine.speed_moment(y[1], tables.sliding[0])[0]
         return [y[1], (moment - 0.5 * tables.dJ[0] * y[1] ** 2) / tables.J[0]]
-    y, t, previous = np.array([0.0, omega_start]), 0.0, None
+    y, t, previous, nfev = np.array([0.0, omega_start]), 0.0, None, 0
     cycle = machine.cycle()
-    for k in range(200):
+    for k in range(max_cycles):
         if time.perf_counter() > deadline:
             return None
         target = cycle * (k + 1)
         event = lambda _, s: s[0] - target
         event.terminal = True
-        solution = solve_ivp(rhs, (t, t + 100.0), y, method=method, rtol=rtol, atol=rtol * 1e-3, events=event)
+        solution = solve_ivp(rhs, (t, t + 100.0), y, method=method, rtol=rtol, atol=rtol * 1e-3, events=event,
+                             dense_output=True)
+        nfev += solution.nfev
         t, y = float(solution.t_events[0][0]), solution.y_events[0][0]
         if previous is not None and abs(y[1] - previous) <= rtol * y[1]:
-            return float(y[1])
+            return Periodic(float(y[1]), solution, nfev, k + 1)
         previous = y[1]
     return None
 
@@ -55,10 +72,11 @@ def motion_study(machine: Machine) -> dict:
     for method in ("DOP853", "LSODA", "Radau"):
         for rtol in (1e-3, 1e-5):
             start = time.perf_counter()
-            omega = _time_domain_cycle(machine, method, rtol, 0.9 * reference.omega[0], deadline)
-            if omega is None:
+            periodic = cycles_until_periodic(machine, method, rtol, 0.9 * reference.omega[0], deadline, 200)
+            if periodic is None:
                 skipped.append(f"{method} {rtol:.0e}")
                 continue
+            omega = periodic.omega0
             rows.append({"method": f"solve_ivp {method}, cycles until periodic", "rtol": rtol,
                          "runtime_ms": 1e3 * (time.perf_counter() - start), "error": abs(omega / reference.omega[0] - 1)})
     return {"rows": rows, "skipped": skipped, "reference": "ours at rtol 1e-11", "quantity": "ω(φ = 0) on the steady cycle",
