@@ -1,6 +1,8 @@
 """Warnings and errors of the numeric core in the reader's language (content/i18n, keys warn_*/err_*)."""
 from __future__ import annotations
 
+import math
+
 from ..core.mechanisms import Notice
 from ..core.mechanisms.base import ranges_text
 from .content import interface_texts
@@ -8,11 +10,24 @@ from .content import interface_texts
 DECIMAL_COMMA = ("ru", "uk")
 
 
-class CommaFloat(float):
-    """A number that prints with a decimal comma, as Russian and Ukrainian texts write it."""
+class ReadableFloat(float):
+    """A number for sentences: 'g' formats keep ordinary numbers out of exponent notation (12100, not
+    1.21e+04), and Russian and Ukrainian texts get a decimal comma."""
+
+    decimal = "."
 
     def __format__(self, spec: str) -> str:
-        return format(float(self), spec).replace(".", ",")
+        value = float(self)
+        if spec.endswith("g") and 1e-4 <= abs(value) < 1e9:
+            digits = int(spec[1:-1] or 6) - 1 - math.floor(math.log10(abs(value)))
+            text = f"{round(value, digits):.0f}" if digits <= 0 else f"{value:.{digits}f}".rstrip("0").rstrip(".")
+        else:
+            text = format(value, spec)
+        return text.replace(".", self.decimal)
+
+
+class CommaFloat(ReadableFloat):
+    decimal = ","
 
 
 def localise_numerics(numerics: dict, lang: str) -> dict:
@@ -25,10 +40,10 @@ def localise_numerics(numerics: dict, lang: str) -> dict:
     message = texts.get(f"num_message_{numerics.get('message_code')}")
     if message:
         local["message"] = message.format(**numerics.get("message_context", {}))
-    why = texts.get(f"why_{numerics.get('code')}")
+    why = interface_texts(lang).get(f"why_{numerics.get('code')}")      # English too: readable numbers
     if why and "why_context" in numerics:
-        context = {k: CommaFloat(v) if lang in DECIMAL_COMMA else v for k, v in numerics["why_context"].items()}
-        local["why"] = why.format(**context)
+        number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
+        local["why"] = why.format(**{k: number(v) for k, v in numerics["why_context"].items()})
     return local
 
 
@@ -51,7 +66,8 @@ def translate(notice: Notice, lang: str) -> str:
     if template is None:
         return notice.text
     decimal = "," if lang in DECIMAL_COMMA else "."
-    context = {key: CommaFloat(value) if isinstance(value, float) and decimal == "," else
+    number = CommaFloat if decimal == "," else ReadableFloat
+    context = {key: number(value) if isinstance(value, float) else
                ranges_text(value, decimal) if key == "ranges" else value
                for key, value in notice.context.items()}
     return template.format(**context)
