@@ -11,9 +11,7 @@ Run:  python bench/work_precision.py
 """
 from __future__ import annotations
 
-import statistics
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -39,15 +37,6 @@ RESULTS = HERE / "results"
 METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
 
 
-def timed(function, repeat=2):
-    times, value = [], None
-    for _ in range(repeat):
-        start = time.perf_counter()
-        value = function()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times), value
-
-
 def steady_cycle_study() -> dict:
     """Rigid steady cycle: ω(0) on the cycle; ours by Newton shooting, theirs by integrating cycles."""
     from server.core.dynamics.motion import steady_cycle
@@ -55,13 +44,14 @@ def steady_cycle_study() -> dict:
     reference = steady_bench.time_domain("DOP853", 1e-13, steady_cycle(machine, 1e-10).steady.omega[0] * 0.9)[0]
     series = {"ours (Newton shooting, RK4 in φ)": []}
     for rtol in (1e-3, 1e-5, 1e-7, 1e-9, 1e-11):
-        seconds, motion = timed(lambda: steady_cycle(machine, rtol))
+        seconds, motion = steady_bench.timed(lambda: steady_cycle(machine, rtol), repeat=2)
         series["ours (Newton shooting, RK4 in φ)"].append((rtol, abs(motion.steady.omega[0] / reference - 1), seconds))
     start = reference * 0.9
     for method in ("RK45", "DOP853", "Radau", "LSODA"):
         series[f"solve_ivp {method}"] = []
         for rtol in (1e-3, 1e-5, 1e-7, 1e-9):
-            seconds, (omega, _, _, _) = timed(lambda: steady_bench.time_domain(method, rtol, start), repeat=1)
+            seconds, (omega, _, _, _) = steady_bench.timed(lambda: steady_bench.time_domain(method, rtol, start),
+                                                           repeat=1)
             series[f"solve_ivp {method}"].append((rtol, abs(omega / reference - 1), seconds))
     return {"title": "Rigid steady cycle (crank-slider, linear motor): error of ω(0)", "series": series,
             "reference": "DOP853 at rtol 1e-13 in time, cycles until periodic"}
@@ -84,7 +74,8 @@ def flywheel_study() -> dict:
     reference = fw.exact(fine, omega, delta, 40.0).inertia
     series = {"ours (Simpson on the cycle grid)": []}
     for steps in (64, 256, 1024, 4096):
-        seconds, inertia = timed(lambda: fw.exact(flywheel_cycle(steps)[2], omega, delta, 40.0).inertia)
+        seconds, inertia = steady_bench.timed(lambda: fw.exact(flywheel_cycle(steps)[2], omega, delta, 40.0).inertia,
+                                              repeat=2)
         series["ours (Simpson on the cycle grid)"].append((1.0 / steps, abs(inertia / reference - 1), seconds))
     machine, tables, _ = flywheel_cycle(4096)
     moment = lambda phi: np.interp(phi, tables.phi, tables.net_phi)
@@ -97,7 +88,7 @@ def flywheel_study() -> dict:
                                      atol=rtol * 1e-3, t_eval=phi)
                 cycle = fw.Cycle(phi, solution.y[0], tables.J[::2] - 2.72)
                 return fw.exact(cycle, omega, delta, 40.0).inertia
-            seconds, inertia = timed(run, repeat=1)
+            seconds, inertia = steady_bench.timed(run, repeat=1)
             series[f"solve_ivp {method}"].append((rtol, abs(inertia / reference - 1), seconds))
     return {"title": "Flywheel: exact inertia for δ = 1/80 (error of I_I)", "series": series,
             "reference": "ours on 32768 steps per turn", "x_note": "ours: 1/steps per turn"}
@@ -117,7 +108,7 @@ def elastic_study(name: str) -> dict:
         label = f"ours (picked by stiffness ratio {ratio:.2g}): {method}" if method == picked else f"solve_ivp {method}"
         series[label] = []
         for rtol in (1e-3, 1e-5, 1e-7, 1e-9):
-            seconds, result = timed(lambda: elastic_bench.run(machine, t_end, method, rtol)[1], repeat=1)
+            seconds, result = steady_bench.timed(lambda: elastic_bench.run(machine, t_end, method, rtol)[1], repeat=1)
             if result.complete:
                 error = float(np.max(np.abs(result.y[2] - twist)) / np.max(np.abs(twist)))
                 series[label].append((rtol, error, seconds))

@@ -13,18 +13,12 @@ import { DynamicsModel } from "./dynamics_model.js";
 import { DynamicsView } from "./dynamics_view.js";
 import { PresetsView } from "./presets_view.js";
 import { readState, writeState } from "./url_state.js";
+import { byId, lang, scene, t, texts } from "./page_data.js";
 
 const TURN = 2 * Math.PI;
 /** A cycle of crank angle is a whole number of turns: 2π, or 4π for a four-stroke engine. */
 const wholeTurns = (phi) => Math.max(1, Math.round(phi / TURN)) * TURN;
 
-const readJson = (id) => JSON.parse(document.getElementById(id).textContent);
-const byId = (id) => document.getElementById(id);
-
-const scene = readJson("scene-data");
-const t = readJson("interface-texts");
-const lang = document.documentElement.lang;
-const texts = { t, lang };
 
 const model = new DynamicsModel(scene, readState());
 const results = document.querySelector(".results");

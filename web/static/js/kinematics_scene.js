@@ -11,14 +11,8 @@ import { PlotsView } from "./plots_view.js";
 import { SceneModel } from "./scene_model.js";
 import { StatusView } from "./status_view.js";
 import { readState, writeState } from "./url_state.js";
+import { byId, lang, scene, t, texts } from "./page_data.js";
 
-const readJson = (id) => JSON.parse(document.getElementById(id).textContent);
-const byId = (id) => document.getElementById(id);
-
-const scene = readJson("scene-data");
-const t = readJson("interface-texts");
-const lang = document.documentElement.lang;
-const texts = { t, lang };
 
 const model = new SceneModel(scene, readState());
 const animation = new CrankAnimation();
