@@ -37,6 +37,7 @@ class Slider(BaseModel):
     label: Text
     english: Text | None = Field(default=None, description="the other convention shown beside the slider")
     log: bool = False
+    locked: bool = Field(False, description="an assignment fixed this value: the student cannot move it")
 
 
 class Toggle(BaseModel):
@@ -64,6 +65,23 @@ class Variant(BaseModel):
     request: dict = Field(default_factory=dict, description="dynamics scenes: the request body before the sliders")
 
 
+class Question(BaseModel):
+    """A question an assignment can ask about a scene: a number the server computes from the student's
+    variant. ``path`` names it in the endpoint's answer ("flywheel_inertia", "outputs.u31"), ``reduce``
+    turns an array over φ into one number; ``hides`` are the outputs the student's page must not ask for
+    (they would show the answer), and with them every panel that shows one."""
+
+    id: str
+    label: Text
+    unit: str = ""
+    outputs: list[str] = Field(description="outputs to request when computing the answer")
+    path: str
+    reduce: Literal["value", "max", "min"] = "value"
+    tolerance: float = Field(0.02, gt=0, lt=1, description="relative, by default")
+    variants: list[str] = Field(default_factory=list, description="the variants it applies to (empty: all)")
+    hides: list[str]
+
+
 class Scene(BaseModel):
     id: str
     order: int
@@ -78,6 +96,7 @@ class Scene(BaseModel):
     panels: dict[str, dict]
     variants: list[Variant]
     presets: list[dict] = Field(default_factory=list, description="named ranges of a slider, e.g. [δ] by machine type")
+    questions: list[Question] = Field(default_factory=list, description="what an assignment can ask")
 
 
 def _check_languages(texts: dict, where: str) -> None:
@@ -96,6 +115,8 @@ def scenes() -> dict[str, Scene]:
             _check_languages(getattr(scene, key), f"{path.name}: {key}")
         for variant in scene.variants:
             _check_languages(variant.label, f"{path.name}: {variant.id}.label")
+        for question in scene.questions:
+            _check_languages(question.label, f"{path.name}: question {question.id}")
         loaded.append(scene)
     return {s.id: s for s in sorted(loaded, key=lambda s: s.order)}
 

@@ -26,6 +26,11 @@ def scene_page(request: Request, scene_id: str, lang: str | None = None):
     scene = scenes().get(scene_id)
     if scene is None:
         raise HTTPException(404, f"no scene '{scene_id}'")
+    return templates.TemplateResponse(request, "scene.html", scene_context(request, _context(request, lang), scene))
+
+
+def scene_context(request: Request, context: dict, scene) -> dict:
+    """What scene.html needs to show scene (plotly only when a panel plots)."""
     needs_plotly = any(panel.get("kind") == "plot" for panel in scene.panels.values())
-    return templates.TemplateResponse(request, "scene.html", _context(request, lang) | {
-        "scene": scene, "scene_json": scene.model_dump_json(), "needs_plotly": needs_plotly})
+    return context | {"scene": scene, "scene_json": scene.model_dump_json(), "needs_plotly": needs_plotly,
+                      "assignment": None}

@@ -82,12 +82,12 @@ export class ControlsView {
     const scale = sliderScale(slider);
     const input = element("input", {
       type: "range", id: `slider-${slider.id}`, min: scale.min, max: scale.max, step: scale.step,
-      value: scale.position(this.model.values[slider.id]) });
+      value: scale.position(this.model.values[slider.id]), disabled: slider.locked });
     const main = element("span", { className: "readout" });
     const length = element("span", { className: "length" });
     this.readouts.set(slider.id, { main, length, input, scale });
     input.addEventListener("input", () => this.model.setValue(slider.id, scale.value(Number(input.value))));
-    return element("label", { className: "slider", htmlFor: input.id },
+    return element("label", { className: slider.locked ? "slider locked" : "slider", htmlFor: input.id },
       element("span", { className: "slider-text" }, main, length), input);
   }
 

@@ -40,7 +40,9 @@ model.on("variant", (variant) => {
   }
 });
 model.on("params", () => {
-  client.submit("main", model.request(), (answer) => model.receive(answer));
+  const body = model.request();
+  if (body.outputs.length) client.submit("main", body, (answer) => model.receive(answer));
+  else results.classList.remove("busy");         // an assignment hid every computed panel: nothing to ask
   writeState(model, lang);
 });
 model.on("result", (answer) => {

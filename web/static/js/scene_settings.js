@@ -43,6 +43,7 @@ export class SceneSettings extends Emitter {
   /** True if value is allowed for the slider (a number in its range) or the toggle (one of its options) id. */
   accepts(id, value) {
     const slider = this.variant.sliders.find((s) => s.id === id);
+    if (slider?.locked) return value === slider.default;     // fixed by an assignment
     if (slider) return Number.isFinite(value) && value >= slider.min && value <= slider.max;
     const toggle = this.variant.toggles.find((t) => t.id === id);
     return Boolean(toggle?.options.includes(value));

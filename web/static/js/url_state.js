@@ -15,7 +15,7 @@ export function readState(search = location.search) {
   const query = new URLSearchParams(search);
   const values = {};
   for (const [key, text] of query) {
-    if (!["lang", "variant", "overlay"].includes(key)) values[key] = parseValue(text);
+    if (!["lang", "variant", "overlay", "student"].includes(key)) values[key] = parseValue(text);
   }
   return { variant: query.get("variant"), values, overlay: query.get("overlay") === "1" };
 }
@@ -23,9 +23,14 @@ export function readState(search = location.search) {
 const ADDRESS_DELAY = 300;     // ms; a slider drag rewrites the address a few times a second, not per event
 let pendingAddress = null;
 
-/** Write the model's state into the language links at once, and into the address shortly after. */
+/**
+ * Write the model's state into the language links at once, and into the address shortly after; an
+ * assignment page keeps its student (?student=…) in both.
+ */
 export function writeState(model, lang) {
   const query = new URLSearchParams({ lang, variant: model.variant.id });
+  const student = new URLSearchParams(location.search).get("student");
+  if (student) query.set("student", student);
   for (const [id, value] of Object.entries(model.values)) query.set(id, String(value));
   if (model.overlay) query.set("overlay", "1");
   if (pendingAddress === null) {
@@ -35,6 +40,7 @@ export function writeState(model, lang) {
     }, ADDRESS_DELAY);
   }
   pendingAddress = `?${query}`;
+  for (const link of document.querySelectorAll("a[data-with-state]")) link.href = `${link.dataset.withState}?${query}`;
   for (const link of document.querySelectorAll("a[data-lang]")) {
     query.set("lang", link.dataset.lang);
     link.href = `?${query}`;

@@ -1,0 +1,71 @@
+"""What an instructor fixes in an assignment: the scene and its variant, each slider's value or the range
+its per-student values are drawn from, how far a student may move it, the questions, attempts, deadline."""
+from __future__ import annotations
+
+from datetime import datetime, timezone
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+MAX_QUESTIONS = 10
+MAX_ATTEMPTS = 10
+
+
+class Span(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    min: float = Field(allow_inf_nan=False)
+    max: float = Field(allow_inf_nan=False)
+
+    @model_validator(mode="after")
+    def ordered(self):
+        if self.min > self.max:
+            raise ValueError("min is above max")
+        return self
+
+
+class SliderRule(BaseModel):
+    """One slider: a fixed ``value``, or per-student values from ``vary`` (every ``step``-th value the
+    slider can express in that range); ``free`` lets the student move it within a range to explore
+    (the answers are always those of the student's own value), none locks it."""
+
+    model_config = ConfigDict(extra="forbid")
+    value: float | None = Field(None, allow_inf_nan=False, description="fixed value (default: the slider's default)")
+    vary: Span | None = Field(None, description="per-student values from this range")
+    step: float | None = Field(None, gt=0, allow_inf_nan=False, description="spacing of the per-student values "
+                                                                            "(default: the slider's step)")
+    free: Span | None = Field(None, description="the student may move the slider within this range; none: locked")
+
+
+class QuestionPick(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    id: str = Field(max_length=40)
+    tolerance: float | None = Field(None, gt=0, lt=1, description="relative tolerance (default: the question's)")
+
+
+class AssignmentSpec(BaseModel):
+    """POST /api/v1/assignments: everything the students' link will show and check."""
+
+    model_config = ConfigDict(extra="forbid")
+    scene: str = Field(max_length=60, description="scene id, e.g. flywheel")
+    variant: str = Field(max_length=60, description="the scene's variant (mechanism set-up)")
+    title: str = Field("", max_length=200)
+    lang: str = Field("ru", pattern="^(ru|uk|en)$", description="language of the links")
+    sliders: dict[str, SliderRule] = Field(default_factory=dict, max_length=20,
+                                           description="by slider id; a slider not named is fixed at its default")
+    toggles: dict[str, float | str] = Field(default_factory=dict, max_length=10, description="fixed toggle values")
+    questions: list[QuestionPick] = Field(min_length=1, max_length=MAX_QUESTIONS)
+    attempts: int = Field(3, ge=1, le=MAX_ATTEMPTS, description="attempts per question")
+    deadline: datetime | None = Field(None, description="ISO 8601; without a zone it is UTC")
+
+    @field_validator("deadline")
+    @classmethod
+    def in_utc(cls, value: datetime | None) -> datetime | None:
+        if value is not None and value.tzinfo is None:
+            value = value.replace(tzinfo=timezone.utc)
+        return value
+
+    @field_validator("questions")
+    @classmethod
+    def distinct(cls, value: list[QuestionPick]) -> list[QuestionPick]:
+        if len({q.id for q in value}) != len(value):
+            raise ValueError("a question is picked twice")
+        return value

@@ -1,0 +1,120 @@
+"""Per-student variants: the values of an assignment's sliders for one student.
+
+The variant number is derived from the assignment and the student's name alone,
+``number = SHA-256(assignment id, normalised name) mod (number of variants)``, so the same student always
+gets the same variant, on any server, without storing anything first. The number is read as a
+mixed-radix numeral: one digit per varied slider, each digit an index into that slider's values.
+"""
+from __future__ import annotations
+
+import hashlib
+import math
+import unicodedata
+from dataclasses import dataclass, field
+
+from ..api.content import Scene, Variant
+from ..api.scene_requests import slider_values
+from .spec import AssignmentSpec
+
+MAX_NAME = 80
+
+
+class SpecError(ValueError):
+    """An assignment that cannot be made as specified: the field (dotted path) and the reason."""
+
+    def __init__(self, field: str, reason: str):
+        super().__init__(f"{field}: {reason}")
+        self.field, self.reason = field, reason
+
+
+def student_key(name: str) -> str:
+    """The name as it identifies a student: Unicode NFKC, case-folded, inner spaces collapsed."""
+    return " ".join(unicodedata.normalize("NFKC", name).casefold().split())
+
+
+@dataclass
+class Plan:
+    """An assignment resolved against its scene: fixed values, and the values each varied slider takes."""
+
+    scene: Scene
+    variant: Variant
+    spec: AssignmentSpec
+    fixed: dict[str, float | str] = field(default_factory=dict)
+    varied: dict[str, list[float]] = field(default_factory=dict)
+
+    @property
+    def count(self) -> int:
+        return math.prod(len(values) for values in self.varied.values())
+
+    def number_for(self, assignment_id: str, key: str) -> int:
+        digest = hashlib.sha256(f"{assignment_id}\n{key}".encode()).digest()
+        return int.from_bytes(digest, "big") % self.count
+
+    def values(self, number: int) -> dict[str, float | str]:
+        values = dict(self.fixed)
+        for slider_id, choices in self.varied.items():
+            number, digit = divmod(number, len(choices))
+            values[slider_id] = choices[digit]
+        return values
+
+    def limits(self) -> dict[str, tuple[float, float] | None]:
+        """How far the student may move each slider (None: locked)."""
+        rules = self.spec.sliders
+        return {s.id: (rules[s.id].free.min, rules[s.id].free.max) if s.id in rules and rules[s.id].free else None
+                for s in self.variant.sliders}
+
+
+def _on_grid(grid: list[float], value: float, where: str) -> float:
+    nearest = min(grid, key=lambda g: abs(g - value))
+    if abs(nearest - value) > 1e-9 * max(1.0, abs(value)):
+        raise SpecError(where, f"{value:g} is not a value the slider can take (nearest {nearest:g})")
+    return nearest
+
+
+def plan(spec: AssignmentSpec, scenes: dict[str, Scene]) -> Plan:
+    """Check spec against its scene and resolve it; SpecError names the first field that is wrong."""
+    scene = scenes.get(spec.scene)
+    if scene is None:
+        raise SpecError("scene", f"no scene '{spec.scene}'")
+    variant = next((v for v in scene.variants if v.id == spec.variant), None)
+    if variant is None:
+        raise SpecError("variant", f"scene '{scene.id}' has no variant '{spec.variant}'")
+    sliders = {s.id: s for s in variant.sliders}
+    for name in spec.sliders:
+        if name not in sliders:
+            raise SpecError(f"sliders.{name}", f"variant '{variant.id}' has no slider '{name}'")
+    result = Plan(scene, variant, spec)
+    for slider in variant.sliders:
+        rule = spec.sliders.get(slider.id)
+        grid = slider_values(slider)
+        where = f"sliders.{slider.id}"
+        if rule is not None and rule.vary is not None:
+            if rule.vary.min < slider.min - 1e-12 or rule.vary.max > slider.max + 1e-12:
+                raise SpecError(f"{where}.vary", f"the range must lie within {slider.min:g} … {slider.max:g}")
+            choices = [g for g in grid if rule.vary.min - 1e-12 <= g <= rule.vary.max + 1e-12]
+            if rule.step is not None:
+                every = max(1, round(rule.step / slider.step)) if not slider.log else 1
+                choices = choices[::every]
+            if not choices:
+                raise SpecError(f"{where}.vary", "the range holds no value the slider can take")
+            result.varied[slider.id] = choices
+        else:
+            value = slider.default if rule is None or rule.value is None else rule.value
+            result.fixed[slider.id] = _on_grid(grid, value, f"{where}.value")
+        if rule is not None and rule.free is not None and (
+                rule.free.min < slider.min - 1e-12 or rule.free.max > slider.max + 1e-12):
+            raise SpecError(f"{where}.free", f"the range must lie within {slider.min:g} … {slider.max:g}")
+    toggles = {t.id: t for t in variant.toggles}
+    for name, value in spec.toggles.items():
+        if name not in toggles:
+            raise SpecError(f"toggles.{name}", f"variant '{variant.id}' has no toggle '{name}'")
+        if value not in toggles[name].options:
+            raise SpecError(f"toggles.{name}", f"one of {toggles[name].options}")
+    for toggle in variant.toggles:
+        result.fixed[toggle.id] = spec.toggles.get(toggle.id, toggle.default)
+    asked = {q.id: q for q in scene.questions if not q.variants or variant.id in q.variants}
+    for i, pick in enumerate(spec.questions):
+        if pick.id not in asked:
+            raise SpecError(f"questions.{i}.id", f"not a question of variant '{variant.id}' "
+                                                 f"(one of {sorted(asked) or 'none'})")
+    return result
