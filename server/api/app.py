@@ -10,6 +10,8 @@ from fastapi.staticfiles import StaticFiles
 from .content import REPO_ROOT
 from ..core.mechanisms import GeometryError
 from .errors import geometry_error, validation_error
+from .response_cache import ResponseCache, ResponseCacheMiddleware
+from .routers import cache as cache_stats
 from .routers import angular, dynamics, elastic, forces, kinematics, mechanisms, pages, scenes
 
 API_PREFIX = "/api/v1"
@@ -24,10 +26,13 @@ def create_app() -> FastAPI:
     api = APIRouter(prefix=API_PREFIX)
     for module in (mechanisms, kinematics, dynamics, elastic, forces, angular, scenes):
         api.include_router(module.router)
+    api.include_router(cache_stats.router)  # GET /api/v1/cache
     app.include_router(api)
     app.include_router(pages.router)
     app.add_exception_handler(RequestValidationError, validation_error)  # never echo NaN back
     app.add_exception_handler(GeometryError, geometry_error)
+    app.state.response_cache = ResponseCache.from_env()  # MDL_CACHE_BYTES, default 64 MB, 0 = off
+    app.add_middleware(ResponseCacheMiddleware, cache=app.state.response_cache, prefix=API_PREFIX)  # inside gzip
     app.add_middleware(GZipMiddleware, minimum_size=1000, compresslevel=3)  # cheap CPU, ~4x smaller
     app.mount("/static", StaticFiles(directory=REPO_ROOT / "web" / "static"), name="static")
     app.mount("/vendor/plotly", StaticFiles(directory=PLOTLY_DIR), name="plotly")

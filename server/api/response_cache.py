@@ -1,0 +1,241 @@
+"""A cache of the computing endpoints' answers, for a classroom where many students ask the same questions.
+
+Thirty students dragging the same slider of the same scene send the same bodies: the sliders' values are
+quantised to their step, so the same few hundred positions come back again and again. This pure ASGI
+middleware keeps the 200 answers of the computing POST endpoints (CACHED_ENDPOINTS) in memory and answers
+a repeated question without computing. It sits inside the GZip middleware, so it keeps the uncompressed
+bodies and each client still gets the encoding it asked for.
+
+The key is the path, the query (``lang``) and the JSON body canonicalised: parsed, every float rounded to
+10 significant digits (0.1·3 and 0.3 are one question; the answers of two bodies that differ only past the
+10th digit differ by about 1e-10 relatively), keys sorted, hashed with SHA-256. A body that is not JSON
+(by its content type or by parsing) bypasses the cache, and so does every other path: the live
+work-precision studies (their answer is a timing measurement), the assignments, pages and files.
+Only complete 200 answers are stored; 422s and other errors are computed every time. The equation of
+motion and the elastic machines stop at a wall-clock time budget with a partial result, and whether that
+happens depends on the load at the time: their answers that took as long as the endpoint's shortest
+budget (TIME_BUDGETS_S) are not stored.
+
+Entries are evicted least recently used first once their total size passes ``max_bytes`` (default 64 MB,
+environment variable MDL_CACHE_BYTES; 0 turns the cache off). The cache is per process: with several
+workers each has its own. Every cached path answers with the header ``X-Cache: hit`` or ``X-Cache: miss``;
+GET /api/v1/cache reports hits, misses, entries and bytes. An answer served from the cache is the stored
+bytes of the first computation, its ``numerics.runtime_ms`` included.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import threading
+import time
+from collections import OrderedDict
+from dataclasses import dataclass
+from urllib.parse import parse_qsl, urlencode
+
+from ..core.dynamics.report import TIME_BUDGET_S as MOTION_BUDGET_S
+from ..core.elastic.simulate import TIME_BUDGET_S as ELASTIC_BUDGET_S
+
+DEFAULT_MAX_BYTES = 64 * 1024 * 1024
+ENV_MAX_BYTES = "MDL_CACHE_BYTES"
+SIGNIFICANT_DIGITS = 10
+# The shortest wall-clock budget each endpoint may stop at (the elastic bearing iteration gives each of its
+# simulations half of the elastic budget); an answer at least this slow may be a partial one. The other
+# endpoints have no time budget.
+TIME_BUDGETS_S = {"motion": MOTION_BUDGET_S, "elastic": ELASTIC_BUDGET_S / 2}
+ENTRY_OVERHEAD_BYTES = 200          # key, bookkeeping and object headers of one entry, roughly
+
+# The computing endpoints whose answer is a function of (path, lang, body) alone.
+CACHED_ENDPOINTS = ("kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
+                    "angular-acceleration", "efficiency-chain")
+
+
+def canonical_body(raw: bytes) -> str | None:
+    """The body as one canonical string (floats to 10 significant digits, keys sorted), None if not JSON."""
+    try:
+        parsed = json.loads(raw)
+    except (ValueError, UnicodeDecodeError, RecursionError):
+        return None
+    return json.dumps(_rounded(parsed), sort_keys=True, separators=(",", ":"), ensure_ascii=False)
+
+
+def _rounded(value):
+    if isinstance(value, float):
+        return float(f"{value:.{SIGNIFICANT_DIGITS}g}") if math.isfinite(value) else value
+    if isinstance(value, dict):
+        return {key: _rounded(item) for key, item in value.items()}
+    if isinstance(value, list):
+        return [_rounded(item) for item in value]
+    return value
+
+
+def cache_key(path: str, query: str, canonical: str) -> bytes:
+    """SHA-256 of the path, the query's pairs sorted and the canonical body: 32 bytes per entry."""
+    pairs = urlencode(sorted(parse_qsl(query, keep_blank_values=True)))
+    return hashlib.sha256("\n".join((path, pairs, canonical)).encode()).digest()
+
+
+@dataclass(frozen=True)
+class CachedAnswer:
+    """A complete 200 answer: its raw ASGI headers and body."""
+
+    headers: tuple[tuple[bytes, bytes], ...]
+    body: bytes
+
+    @property
+    def size(self) -> int:
+        return len(self.body) + sum(len(n) + len(v) for n, v in self.headers) + ENTRY_OVERHEAD_BYTES
+
+
+class ResponseCache:
+    """A least-recently-used store bounded by total bytes, safe to share between threads."""
+
+    def __init__(self, max_bytes: int = DEFAULT_MAX_BYTES):
+        if max_bytes < 0:
+            raise ValueError("the cache size must be 0 (off) or a positive number of bytes")
+        self.max_bytes = max_bytes
+        self._entries: OrderedDict[bytes, CachedAnswer] = OrderedDict()
+        self._lock = threading.Lock()
+        self.bytes = self.hits = self.misses = self.bypassed = self.evictions = 0
+
+    @classmethod
+    def from_env(cls) -> "ResponseCache":
+        """The size from MDL_CACHE_BYTES (bytes; 0 turns the cache off), else 64 MB."""
+        text = os.environ.get(ENV_MAX_BYTES, "").strip()
+        if not text:
+            return cls()
+        try:
+            return cls(int(text))
+        except ValueError:
+            raise ValueError(f"{ENV_MAX_BYTES} must be a whole number of bytes (0 turns the cache off), "
+                             f"not {text!r}") from None
+
+    @property
+    def enabled(self) -> bool:
+        return self.max_bytes > 0
+
+    def get(self, key: bytes) -> CachedAnswer | None:
+        with self._lock:
+            answer = self._entries.get(key)
+            if answer is None:
+                self.misses += 1
+                return None
+            self._entries.move_to_end(key)
+            self.hits += 1
+            return answer
+
+    def put(self, key: bytes, answer: CachedAnswer) -> None:
+        size = answer.size
+        if size > self.max_bytes:
+            return
+        with self._lock:
+            previous = self._entries.pop(key, None)
+            if previous is not None:
+                self.bytes -= previous.size
+            self._entries[key] = answer
+            self.bytes += size
+            while self.bytes > self.max_bytes:
+                _, evicted = self._entries.popitem(last=False)
+                self.bytes -= evicted.size
+                self.evictions += 1
+
+    def count_bypass(self) -> None:
+        with self._lock:
+            self.bypassed += 1
+
+    def stats(self) -> dict:
+        with self._lock:
+            looked_up = self.hits + self.misses
+            return {"enabled": self.enabled, "max_bytes": self.max_bytes, "bytes": self.bytes,
+                    "entries": len(self._entries), "hits": self.hits, "misses": self.misses,
+                    "hit_rate": self.hits / looked_up if looked_up else None, "bypassed": self.bypassed,
+                    "evictions": self.evictions, "pid": os.getpid()}
+
+
+def _header(headers, name: bytes) -> bytes:
+    for key, value in headers:
+        if key.lower() == name:
+            return value
+    return b""
+
+
+def _is_json(content_type: bytes) -> bool:
+    """FastAPI reads a body as JSON when it names no type or a JSON type; anything else gets a 422."""
+    media = content_type.split(b";")[0].strip().lower()
+    return not media or media == b"application/json" or (media.startswith(b"application/") and media.endswith(b"+json"))
+
+
+class ResponseCacheMiddleware:
+    """Answers repeated POSTs to the computing endpoints from a ResponseCache (see the module's docstring)."""
+
+    def __init__(self, app, cache: ResponseCache, prefix: str = "/api/v1",
+                 endpoints: tuple[str, ...] = CACHED_ENDPOINTS):
+        self.app = app
+        self.cache = cache
+        self.paths = frozenset(f"{prefix}/{name}" for name in endpoints)
+        self.budgets = {f"{prefix}/{name}": seconds for name, seconds in TIME_BUDGETS_S.items()}
+
+    async def __call__(self, scope, receive, send):
+        if (scope["type"] != "http" or scope["method"] != "POST" or scope["path"] not in self.paths
+                or not self.cache.enabled):
+            await self.app(scope, receive, send)
+            return
+        chunks = []
+        while True:
+            message = await receive()
+            if message["type"] == "http.disconnect":
+                return                          # the client left before its question was complete
+            chunks.append(message.get("body", b""))
+            if not message.get("more_body", False):
+                break
+        raw = b"".join(chunks)
+        replayed = False
+
+        async def replay():
+            nonlocal replayed
+            if not replayed:
+                replayed = True
+                return {"type": "http.request", "body": raw, "more_body": False}
+            return await receive()
+
+        canonical = canonical_body(raw) if _is_json(_header(scope["headers"], b"content-type")) else None
+        if canonical is None:
+            self.cache.count_bypass()
+            await self.app(scope, replay, send)
+            return
+        key = cache_key(scope["path"], scope.get("query_string", b"").decode("latin-1"), canonical)
+        cached = self.cache.get(key)
+        if cached is not None:
+            await send({"type": "http.response.start", "status": 200,
+                        "headers": [*cached.headers, (b"x-cache", b"hit")]})
+            await send({"type": "http.response.body", "body": cached.body})
+            return
+        await self._compute_and_store(scope, replay, send, key)
+
+    async def _compute_and_store(self, scope, receive, send, key: bytes) -> None:
+        started, budget = time.perf_counter(), self.budgets.get(scope["path"], math.inf)
+        headers: list = []
+        body: list[bytes] = []
+        keep = False
+        size = 0
+
+        async def send_and_keep(message):
+            nonlocal headers, keep, size
+            if message["type"] == "http.response.start":
+                headers = list(message.get("headers", []))
+                keep = message["status"] == 200 and not _header(headers, b"set-cookie")
+                message = {**message, "headers": [*headers, (b"x-cache", b"miss")]}
+            elif message["type"] == "http.response.body" and keep:
+                chunk = message.get("body", b"")
+                size += len(chunk)
+                keep = size <= self.cache.max_bytes
+                if keep:
+                    body.append(chunk)
+                if keep and not message.get("more_body", False):
+                    if time.perf_counter() - started < budget:
+                        self.cache.put(key, CachedAnswer(tuple(headers), b"".join(body)))
+                    keep = False
+            await send(message)
+
+        await self.app(scope, receive, send_and_keep)

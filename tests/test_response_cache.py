@@ -1,0 +1,258 @@
+"""The response cache: a repeated question is answered from memory with the same bytes, a different one is
+computed; only 200 answers of the computing endpoints are kept, within the byte bound, least recently used
+evicted first; the cached answer is the one the server computes afresh.
+"""
+from __future__ import annotations
+
+import json
+import threading
+
+import pytest
+from fastapi.testclient import TestClient
+
+from server.api import response_cache
+from server.api.app import create_app
+from server.api.content import scenes
+from server.api.response_cache import (CACHED_ENDPOINTS, CachedAnswer, ResponseCache, ResponseCacheMiddleware,
+                                       canonical_body)
+from server.api.scene_requests import scene_request
+
+API = "/api/v1"
+SLIDER_CRANK = {"mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3, "e": 0.0}, "n": 361,
+                "outputs": ["s", "u31", "du31", "joints"]}
+
+
+def app_client(monkeypatch, max_bytes: int | None = None) -> TestClient:
+    """A fresh app (its own cache) with MDL_CACHE_BYTES set, or unset for the default."""
+    if max_bytes is None:
+        monkeypatch.delenv("MDL_CACHE_BYTES", raising=False)
+    else:
+        monkeypatch.setenv("MDL_CACHE_BYTES", str(max_bytes))
+    return TestClient(create_app())
+
+
+@pytest.fixture
+def client(monkeypatch) -> TestClient:
+    return app_client(monkeypatch)
+
+
+def kinematics(client, body=SLIDER_CRANK, lang="en"):
+    return client.post(f"{API}/kinematics", params={"lang": lang}, json=body)
+
+
+def stats(client) -> dict:
+    response = client.get(f"{API}/cache")
+    assert response.status_code == 200
+    return response.json()
+
+
+def without_runtime(value):
+    """An answer without its run times: the cached one carries the first computation's."""
+    if isinstance(value, dict):
+        return {k: without_runtime(v) for k, v in value.items() if k != "runtime_ms"}
+    if isinstance(value, list):
+        return [without_runtime(v) for v in value]
+    return value
+
+
+def test_an_identical_request_is_a_hit_with_the_same_bytes(client):
+    first, second = kinematics(client), kinematics(client)
+    assert (first.status_code, second.status_code) == (200, 200)
+    assert (first.headers["x-cache"], second.headers["x-cache"]) == ("miss", "hit")
+    assert second.content == first.content
+    assert second.headers["content-type"] == first.headers["content-type"]
+    assert {k: stats(client)[k] for k in ("hits", "misses", "entries")} == {"hits": 1, "misses": 1, "entries": 1}
+
+
+def test_the_cache_keeps_uncompressed_bodies_and_each_client_gets_its_own_encoding(client):
+    computed = kinematics(client)
+    cached = client.post(f"{API}/kinematics", params={"lang": "en"}, json=SLIDER_CRANK,
+                         headers={"accept-encoding": "identity"})
+    assert computed.headers["content-encoding"] == "gzip"              # the cache sits inside the gzip layer
+    assert cached.headers["x-cache"] == "hit" and "content-encoding" not in cached.headers
+    assert cached.content == computed.content
+
+
+def test_a_slider_value_reached_by_arithmetic_hits_the_entry_of_the_value_typed():
+    assert 0.1 * 3 != 0.3
+    assert canonical_body(b'{"l2": 0.30000000000000004}') == canonical_body(b'{"l2": 0.3}')
+    assert canonical_body(b'{"b": 1, "a": [2.5, {"d": 0.1, "c": "x"}]}') == \
+        canonical_body(b'{ "a": [2.5, {"c": "x", "d": 0.1}], "b": 1 }')
+    assert canonical_body(b"{not json") is None
+
+
+def test_point_one_times_three_and_point_three_are_one_entry(client):
+    computed = kinematics(client, {**SLIDER_CRANK, "params": {"l1": 0.1, "l2": 0.1 * 3, "e": 0.0}})
+    typed = kinematics(client, {**SLIDER_CRANK, "params": {"l2": 0.3, "e": 0.0, "l1": 0.1}})
+    assert (computed.headers["x-cache"], typed.headers["x-cache"]) == ("miss", "hit")
+    assert typed.content == computed.content
+
+
+def test_different_parameters_language_or_endpoint_miss(client):
+    kinematics(client)
+    other_l2 = kinematics(client, {**SLIDER_CRANK, "params": {"l1": 0.1, "l2": 0.31, "e": 0.0}})
+    other_outputs = kinematics(client, {**SLIDER_CRANK, "outputs": ["s"]})
+    other_lang = kinematics(client, lang="ru")
+    assert [r.headers["x-cache"] for r in (other_l2, other_outputs, other_lang)] == ["miss"] * 3
+    assert other_l2.json()["outputs"]["s"] != other_lang.json()["outputs"]["s"]
+    assert stats(client)["entries"] == 4
+
+
+def test_a_422_answer_is_computed_every_time_and_never_stored(client):
+    crossed = {**SLIDER_CRANK, "params": {"l1": 0.3, "l2": 0.1, "e": 0.0}}     # the rod shorter than the crank
+    answers = [kinematics(client, crossed) for _ in range(2)]
+    assert [a.status_code for a in answers] == [422, 422]
+    assert [a.headers["x-cache"] for a in answers] == ["miss", "miss"]
+    assert stats(client)["entries"] == 0
+
+
+def test_a_body_that_is_not_json_bypasses_the_cache(client):
+    for _ in range(2):
+        broken = client.post(f"{API}/kinematics", content=b'{"mechanism": ', headers={"content-type": "application/json"})
+        assert broken.status_code == 422 and "x-cache" not in broken.headers
+    as_text = client.post(f"{API}/kinematics", content=json.dumps(SLIDER_CRANK), headers={"content-type": "text/plain"})
+    assert "x-cache" not in as_text.headers
+    assert stats(client)["bypassed"] == 3 and stats(client)["entries"] == 0
+
+
+def test_the_byte_bound_holds_and_the_least_recently_used_answer_goes_first(monkeypatch):
+    size = len(kinematics(app_client(monkeypatch, 0)).content)
+    client = app_client(monkeypatch, int(2.5 * size))                  # room for two answers, not three
+    bodies = [{**SLIDER_CRANK, "params": {"l1": 0.1, "l2": 0.3 + 0.01 * k, "e": 0.0}} for k in range(4)]
+    kinematics(client, bodies[0])
+    kinematics(client, bodies[1])
+    assert kinematics(client, bodies[0]).headers["x-cache"] == "hit"     # 0 is now the most recently used
+    kinematics(client, bodies[2])                                        # evicts 1, keeps 0
+    state = stats(client)
+    assert state["entries"] == 2 and state["evictions"] == 1 and state["bytes"] <= state["max_bytes"]
+    assert kinematics(client, bodies[0]).headers["x-cache"] == "hit"
+    assert kinematics(client, bodies[1]).headers["x-cache"] == "miss"
+    for body in bodies:
+        kinematics(client, body)
+        assert stats(client)["bytes"] <= int(2.5 * size)
+
+
+def test_an_answer_larger_than_the_whole_cache_is_not_stored():
+    cache = ResponseCache(max_bytes=1000)
+    cache.put(b"k", CachedAnswer(((b"content-type", b"application/json"),), b"x" * 2000))
+    assert cache.stats()["entries"] == 0 and cache.bytes == 0
+
+
+def test_zero_bytes_turns_the_cache_off(monkeypatch):
+    client = app_client(monkeypatch, 0)
+    answers = [kinematics(client) for _ in range(2)]
+    assert all(a.status_code == 200 and "x-cache" not in a.headers for a in answers)
+    assert stats(client)["enabled"] is False
+
+
+def test_a_size_that_is_not_a_number_is_refused(monkeypatch):
+    monkeypatch.setenv("MDL_CACHE_BYTES", "64MB")
+    with pytest.raises(ValueError, match="MDL_CACHE_BYTES"):
+        ResponseCache.from_env()
+
+
+class CountingApp:
+    """An inner app that answers 200 to every request and counts how often it is asked."""
+
+    def __init__(self):
+        self.calls = 0
+
+    async def __call__(self, scope, receive, send):
+        self.calls += 1
+        while (await receive()).get("more_body"):
+            pass
+        await send({"type": "http.response.start", "status": 200, "headers": [(b"content-type", b"application/json")]})
+        await send({"type": "http.response.body", "body": b'{"answer": %d}' % self.calls})
+
+
+@pytest.mark.parametrize("path,cached", [
+    *((f"{API}/{name}", True) for name in CACHED_ENDPOINTS),
+    (f"{API}/work-precision/motion", False),       # the answer is a timing measurement
+    (f"{API}/work-precision/elastic", False),
+    (f"{API}/assignments", False),
+    (f"{API}/assignments/abc123/answers", False),
+    (f"{API}/kinematics/extra", False),
+    ("/scenes/transfer-functions", False),
+])
+def test_only_the_computing_endpoints_are_cached(path, cached):
+    inner = CountingApp()
+    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache()))
+    answers = [client.post(path, json={"same": "question"}) for _ in range(3)]
+    assert inner.calls == (1 if cached else 3)
+    assert [a.headers.get("x-cache") for a in answers] == (["miss", "hit", "hit"] if cached else [None] * 3)
+    assert len({a.content for a in answers}) == (1 if cached else 3)
+
+
+def test_get_requests_are_never_cached():
+    inner = CountingApp()
+    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache()))
+    for _ in range(2):
+        client.get(f"{API}/kinematics")
+    assert inner.calls == 2
+
+
+def test_an_answer_as_slow_as_its_time_budget_is_not_stored_since_the_budget_may_have_cut_it(monkeypatch):
+    monkeypatch.setitem(response_cache.TIME_BUDGETS_S, "motion", 0.0)
+    inner = CountingApp()
+    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache()))
+    for _ in range(2):
+        assert client.post(f"{API}/motion", json={}).headers["x-cache"] == "miss"
+        client.post(f"{API}/reduction", json={})                 # no time budget: stored
+    assert inner.calls == 3
+
+
+
+def test_the_work_precision_study_of_the_real_app_is_computed_every_time(client):
+    scene = scenes()["equation-of-motion"]
+    body = scene_request(scene, scene.variants[0])
+    for _ in range(2):
+        study = client.post(f"{API}/work-precision/motion", params={"lang": "en"}, json=body)
+        assert study.status_code == 200 and "x-cache" not in study.headers
+    assert stats(client)["hits"] == 0 and stats(client)["entries"] == 0
+
+
+@pytest.mark.parametrize("scene_id", list(scenes()))
+def test_the_cached_answer_is_the_answer_computed_afresh(monkeypatch, scene_id):
+    """Every scene's default request: the second answer comes from the cache, and equals (run times aside,
+    byte for byte for kinematics) what a server without a cache computes."""
+    scene = scenes()[scene_id]
+    body = scene_request(scene, scene.variants[0])
+    url = f"{API}/{scene.endpoint}?lang=en"
+    cached_client, fresh_client = app_client(monkeypatch), app_client(monkeypatch, 0)
+    assert cached_client.post(url, json=body).headers["x-cache"] == "miss"
+    cached = cached_client.post(url, json=body)
+    fresh = fresh_client.post(url, json=body)
+    assert cached.status_code == fresh.status_code == 200
+    assert cached.headers["x-cache"] == "hit"
+    if scene.endpoint == "kinematics":
+        assert cached.content == fresh.content
+    assert without_runtime(cached.json()) == without_runtime(fresh.json())
+
+
+def test_the_store_keeps_its_byte_count_right_under_concurrent_use():
+    cache = ResponseCache(max_bytes=50_000)
+    answers = [CachedAnswer(((b"content-type", b"application/json"),), bytes(100 + 37 * k)) for k in range(64)]
+
+    def work(offset: int):
+        for n in range(2000):
+            key = bytes([(offset + n * 7) % 64])
+            if cache.get(key) is None:
+                cache.put(key, answers[key[0]])
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(8)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    state = cache.stats()
+    assert state["hits"] + state["misses"] == 8 * 2000
+    assert cache.bytes == sum(a.size for a in cache._entries.values()) <= cache.max_bytes
+
+
+def test_the_statistics_are_documented_in_openapi(client):
+    schema = client.get(f"{API}/openapi.json").json()
+    answer = schema["paths"][f"{API}/cache"]["get"]["responses"]["200"]["content"]["application/json"]["schema"]
+    assert answer["$ref"].endswith("/CacheStats")
+    fields = schema["components"]["schemas"]["CacheStats"]["properties"]
+    assert {"hits", "misses", "entries", "bytes", "max_bytes"} <= set(fields)
+    assert all(field.get("description") for field in fields.values())
