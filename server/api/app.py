@@ -10,9 +10,12 @@ from fastapi.staticfiles import StaticFiles
 from .content import REPO_ROOT
 from ..core.mechanisms import GeometryError
 from .errors import geometry_error, validation_error
+from .security import SecurityMiddleware
 from .response_cache import ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
-from .routers import angular, dynamics, elastic, forces, kinematics, mechanisms, pages, scenes
+from ..classroom.variants import SpecError
+from .routers import (angular, assignment_pages, assignments, dynamics, elastic, forces, kinematics, mechanisms, pages,
+                      scenes)
 
 API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
@@ -24,16 +27,19 @@ def create_app() -> FastAPI:
                               "mechanisms. SI units throughout; angles in radians.",
                   openapi_url=f"{API_PREFIX}/openapi.json", docs_url=None, redoc_url=None)
     api = APIRouter(prefix=API_PREFIX)
-    for module in (mechanisms, kinematics, dynamics, elastic, forces, angular, scenes):
+    for module in (mechanisms, kinematics, dynamics, elastic, forces, angular, scenes, assignments):
         api.include_router(module.router)
     api.include_router(cache_stats.router)  # GET /api/v1/cache
     app.include_router(api)
     app.include_router(pages.router)
+    app.include_router(assignment_pages.router)
     app.add_exception_handler(RequestValidationError, validation_error)  # never echo NaN back
     app.add_exception_handler(GeometryError, geometry_error)
+    app.add_exception_handler(SpecError, assignments.spec_error)
     app.state.response_cache = ResponseCache.from_env()  # MDL_CACHE_BYTES, default 64 MB, 0 = off
     app.add_middleware(ResponseCacheMiddleware, cache=app.state.response_cache, prefix=API_PREFIX)  # inside gzip
     app.add_middleware(GZipMiddleware, minimum_size=1000, compresslevel=3)  # cheap CPU, ~4x smaller
+    app.add_middleware(SecurityMiddleware)  # outermost: headers on every response, bodies ≤ 1 MiB
     app.mount("/static", StaticFiles(directory=REPO_ROOT / "web" / "static"), name="static")
     app.mount("/vendor/plotly", StaticFiles(directory=PLOTLY_DIR), name="plotly")
     app.mount("/bench-results", StaticFiles(directory=REPO_ROOT / "bench" / "results"), name="bench")

@@ -15,7 +15,7 @@ from ..classroom.variants import MAX_NAME, Plan, SpecError, plan, student_key
 from ..core.mechanisms import GeometryError
 from .answers import correct_answer, question, tolerance
 from .assignment_store import store
-from .content import scenes
+from .content import interface_texts, scenes
 from .schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow
 
 CHECKED_VARIANTS = 8        # variants whose answers are computed when the assignment is made
@@ -65,13 +65,18 @@ def is_open(resolved: Plan, now: float | None = None) -> bool:
     return deadline is None or (now or time.time()) <= deadline.timestamp()
 
 
+def unit_text(unit: str, lang: str) -> str:
+    """A question's unit in the reader's language ("kg_m2" → "кг·м²"), from content/i18n's units_<unit>."""
+    return interface_texts(lang).get(f"units_{unit}", unit) if unit else ""
+
+
 def info(record: AssignmentRecord, resolved: Plan, lang: str) -> AssignmentInfo:
     spec = resolved.spec
     return AssignmentInfo(
         id=record.id, title=spec.title or resolved.scene.title[lang], scene=spec.scene,
         scene_title=resolved.scene.title[lang], variant=spec.variant,
         questions=[QuestionInfo(id=p.id, label=question(resolved.scene, p.id).label[lang],
-                                unit=question(resolved.scene, p.id).unit, tolerance=tolerance(resolved, p.id))
+                                unit=unit_text(question(resolved.scene, p.id).unit, lang), tolerance=tolerance(resolved, p.id))
                    for p in spec.questions],
         attempts=spec.attempts, deadline=None if spec.deadline is None else spec.deadline.isoformat(),
         open=is_open(resolved), variants=resolved.count)

@@ -73,7 +73,7 @@ class Question(BaseModel):
 
     id: str
     label: Text
-    unit: str = ""
+    unit: str = Field("", description="key of the unit in content/i18n (units_<unit>): m, kg_m2, N_m, rad_s")
     outputs: list[str] = Field(description="outputs to request when computing the answer")
     path: str
     reduce: Literal["value", "max", "min"] = "value"

@@ -10,6 +10,8 @@ from __future__ import annotations
 import hashlib
 import math
 import unicodedata
+
+import numpy as np
 from dataclasses import dataclass, field
 
 from ..api.content import Scene, Variant
@@ -17,6 +19,7 @@ from ..api.scene_requests import slider_values
 from .spec import AssignmentSpec
 
 MAX_NAME = 80
+MAX_CHOICES = 10_000      # values of one varied slider
 
 
 class SpecError(ValueError):
@@ -64,11 +67,6 @@ class Plan:
                 for s in self.variant.sliders}
 
 
-def _on_grid(grid: list[float], value: float, where: str) -> float:
-    nearest = min(grid, key=lambda g: abs(g - value))
-    if abs(nearest - value) > 1e-9 * max(1.0, abs(value)):
-        raise SpecError(where, f"{value:g} is not a value the slider can take (nearest {nearest:g})")
-    return nearest
 
 
 def plan(spec: AssignmentSpec, scenes: dict[str, Scene]) -> Plan:
@@ -92,15 +90,17 @@ def plan(spec: AssignmentSpec, scenes: dict[str, Scene]) -> Plan:
             if rule.vary.min < slider.min - 1e-12 or rule.vary.max > slider.max + 1e-12:
                 raise SpecError(f"{where}.vary", f"the range must lie within {slider.min:g} … {slider.max:g}")
             choices = [g for g in grid if rule.vary.min - 1e-12 <= g <= rule.vary.max + 1e-12]
-            if rule.step is not None:
-                every = max(1, round(rule.step / slider.step)) if not slider.log else 1
-                choices = choices[::every]
+            if rule.step is not None and choices:           # the slider's values nearest min, min + step, …
+                targets = np.arange(rule.vary.min, rule.vary.max + rule.step * 1e-9, rule.step)[:MAX_CHOICES]
+                choices = sorted({min(choices, key=lambda g: abs(g - target)) for target in targets})
             if not choices:
                 raise SpecError(f"{where}.vary", "the range holds no value the slider can take")
             result.varied[slider.id] = choices
         else:
             value = slider.default if rule is None or rule.value is None else rule.value
-            result.fixed[slider.id] = _on_grid(grid, value, f"{where}.value")
+            if not slider.min <= value <= slider.max:
+                raise SpecError(f"{where}.value", f"{value:g} is outside {slider.min:g} … {slider.max:g}")
+            result.fixed[slider.id] = value
         if rule is not None and rule.free is not None and (
                 rule.free.min < slider.min - 1e-12 or rule.free.max > slider.max + 1e-12):
             raise SpecError(f"{where}.free", f"the range must lie within {slider.min:g} … {slider.max:g}")

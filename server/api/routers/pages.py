@@ -8,6 +8,17 @@ from fastapi.templating import Jinja2Templates
 from ..content import LANGUAGES, REPO_ROOT, interface_texts, language, scenes
 
 templates = Jinja2Templates(directory=Path(REPO_ROOT, "web", "templates"))
+
+
+def decimal(value, lang: str, digits: int = 6) -> str:
+    """A number for a table in the reader's language: 6 significant digits, a decimal comma in ru/uk."""
+    if not isinstance(value, (int, float)) or isinstance(value, bool):
+        return str(value)
+    text = f"{value:.{digits}g}"
+    return text if lang == "en" else text.replace(".", ",")
+
+
+templates.env.filters["decimal"] = decimal
 router = APIRouter(include_in_schema=False)
 
 
