@@ -6,6 +6,7 @@ it). Screenshots go to test-artifacts/ for a person to look at.
 from __future__ import annotations
 
 import json
+import os
 import socket
 import subprocess
 import sys
@@ -58,12 +59,14 @@ def _free_port() -> int:
 
 
 @pytest.fixture(scope="session")
-def app_url():
-    """Base address of the app, started with uvicorn in a subprocess for the whole session."""
+def app_url(tmp_path_factory):
+    """Base address of the app, started with uvicorn in a subprocess for the whole session; its
+    assignments database lives in a temporary directory."""
     port = _free_port()
+    env = os.environ | {"MDL_DATA_DIR": str(tmp_path_factory.mktemp("data"))}
     server = subprocess.Popen(
         [sys.executable, "-m", "uvicorn", "server.api.app:app", "--host", "127.0.0.1", "--port", str(port)],
-        cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        cwd=REPO, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     url = f"http://127.0.0.1:{port}"
     deadline = time.monotonic() + 30
     while True:

@@ -79,12 +79,16 @@ function showLinks(created) {
   links.scrollIntoView({ block: "nearest" });
 }
 
+/** A row's range fields are open when "per student" is ticked, its value field when it is not. */
+function syncRow(row) {
+  const varied = row.querySelector('[name="vary"]').checked;
+  for (const name of ["vary_min", "vary_max", "vary_step"]) row.querySelector(`[name="${name}"]`).disabled = !varied;
+  row.querySelector('[name="value"]').disabled = varied;
+}
+
 for (const row of form.querySelectorAll(".slider-rule")) {
-  const vary = row.querySelector('[name="vary"]');
-  vary.addEventListener("change", () => {
-    for (const name of ["vary_min", "vary_max", "vary_step"]) row.querySelector(`[name="${name}"]`).disabled = !vary.checked;
-    row.querySelector('[name="value"]').disabled = vary.checked;
-  });
+  row.querySelector('[name="vary"]').addEventListener("change", () => syncRow(row));
+  syncRow(row);                  // a box ticked before this module ran (or kept by the browser on reload)
 }
 
 form.addEventListener("submit", async (event) => {
