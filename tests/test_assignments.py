@@ -22,7 +22,7 @@ from server.api import assignment_store
 from server.api.answers import correct_answer
 from server.api.app import app
 from server.api.assignments import load
-from server.api.content import scenes
+from server.api.content import Scene, scenes
 from server.api.scene_requests import scene_request
 from server.api.routers import assignments as assignments_router
 from server.classroom.storage import SQLiteStore
@@ -296,6 +296,36 @@ def test_assignment_pages_render(client):
     start = client.get(f"/assignments/{created['id']}", params={"lang": "uk"})
     assert start.status_code == 200 and 'name="student"' in start.text
     assert client.get("/scenes/flywheel/assign", params={"lang": "en", "delta": "0.02"}).status_code == 200
-    assert client.get("/scenes/wear/assign").status_code == 404                # a scene without questions
+    assert client.get("/scenes/nowhere/assign").status_code == 404
     page = client.get(f"/assignments/{created['id']}/results/{created['results_token']}", params={"lang": "ru"})
     assert page.status_code == 200 and "results-empty" in page.text
+
+
+def test_coupler_acceleration_answer_matches_the_closed_form(client):
+    """ε_AB of the crank-slider at constant ω: sin ψ = λ sin φ gives ψ″ = λ(λ² − 1) sin φ / (1 − λ²sin²φ)^{3/2},
+    ε = ω²ψ″; its largest value over a turn, rel 1e-5 (the answer is refined from 361 nodes, O(h³))."""
+    created = create(client, {"scene": "angular-acceleration", "variant": "crank_slider",
+                              "sliders": {"lam": {"vary": {"min": 0.2, "max": 0.8}}}, "questions": [{"id": "epsilon_max"}]})
+    variant = variant_of(client, created, "Lesya Ukrainka")
+    lam, omega = variant["values"]["lam"], variant["values"]["omega0"]
+    psi_dd = lambda phi: lam * (lam ** 2 - 1) * np.sin(phi) / (1 - (lam * np.sin(phi)) ** 2) ** 1.5
+    exact = omega ** 2 * extremum(psi_dd, True)
+    outcome = submit(client, created, "Lesya Ukrainka", "epsilon_max", exact * (1 + 1e-6)).json()
+    assert outcome["right"] and outcome["correct_value"] == pytest.approx(exact, rel=1e-5)
+
+
+@pytest.mark.parametrize("scene_id, question_id", [(s.id, q.id) for s in scenes().values() for q in s.questions])
+def test_every_question_has_an_answer_and_its_page_hides_it(client, scene_id, question_id):
+    """At the defaults of the first variant it applies to: a finite answer, and a student's page whose
+    requests hold none of the outputs the question hides."""
+    scene = scenes()[scene_id]
+    asked = next(q for q in scene.questions if q.id == question_id)
+    variant = next(v for v in scene.variants if not asked.variants or v.id in asked.variants)
+    created = create(client, {"scene": scene_id, "variant": variant.id, "questions": [{"id": question_id}]})
+    page = client.get(f"/assignments/{created['id']}", params={"student": "Default", "lang": "en"}).text
+    shown = json.loads(re.search(r'id="scene-data">(.*?)</script>', page, re.S).group(1).replace("<\\/", "</"))
+    shown_scene = Scene.model_validate(shown)
+    request = scene_request(shown_scene, shown_scene.variants[0])
+    assert not set(asked.hides) & set(request["outputs"])
+    _, resolved = load(created["id"])
+    assert np.isfinite(correct_answer(resolved, resolved.values(0), question_id))

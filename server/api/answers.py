@@ -20,18 +20,21 @@ def question(scene: Scene, question_id: str) -> Question:
 
 
 def _extremum(values: list, largest: bool) -> float:
-    """Largest (smallest) value of a periodic sampled function, refined by the parabola through the best
-    node and its neighbours: the error falls from O(h²) of the nodes to O(h³)."""
+    """Largest (smallest) value of a sampled function, refined by the parabola through the best node and
+    its neighbours: the error falls from O(h²) of the nodes to O(h³). A function over one cycle (first
+    and last nodes equal) wraps around; a time history's end node is taken as it is."""
     y = np.asarray([np.nan if v is None else v for v in values], float)
-    if y.size > 2 and np.isclose(y[0], y[-1], rtol=1e-9, atol=1e-12):
-        y = y[:-1]                                  # the cycle's closing node repeats the first
-    y = y if largest else -y
     if not np.all(np.isfinite(y)):
         raise SpecError("questions", "the quantity is undefined somewhere on the cycle (a singular position)")
+    periodic = y.size > 2 and np.isclose(y[0], y[-1], rtol=1e-9, atol=1e-12)
+    y = (y[:-1] if periodic else y) * (1 if largest else -1)
     i = int(np.argmax(y))
-    left, mid, right = y[i - 1], y[i], y[(i + 1) % y.size]
-    curvature = left - 2 * mid + right
-    best = mid if curvature >= 0 else mid - (right - left) ** 2 / (8 * curvature)
+    if not periodic and i in (0, y.size - 1):
+        best = y[i]
+    else:
+        left, mid, right = y[i - 1], y[i], y[(i + 1) % y.size]
+        curvature = left - 2 * mid + right
+        best = mid if curvature >= 0 else mid - (right - left) ** 2 / (8 * curvature)
     return float(best if largest else -best)
 
 
