@@ -89,8 +89,9 @@ def check_database(path: Path, assignment: str, acknowledged: list) -> dict:
     return totals
 
 
-@pytest.mark.parametrize("kill_after", [0.6, 1.3])
+@pytest.mark.parametrize("kill_after", [30, 150])
 def test_kill_during_a_burst_of_submissions(tmp_path, kill_after):
+    """kill_after: acknowledged submissions before the kill (counted, not timed: a loaded machine is slow)."""
     port = free_port()
     base = f"http://127.0.0.1:{port}"
     server = start_server(tmp_path, port)
@@ -103,7 +104,9 @@ def test_kill_during_a_burst_of_submissions(tmp_path, kill_after):
                    for seed in range(8)]
         for client in clients:
             client.start()
-        time.sleep(kill_after)
+        deadline = time.monotonic() + 60
+        while len(acknowledged) < kill_after and time.monotonic() < deadline:
+            time.sleep(0.005)
         server.send_signal(signal.SIGKILL)
         server.wait(timeout=10)
         stop.set()
@@ -112,7 +115,7 @@ def test_kill_during_a_burst_of_submissions(tmp_path, kill_after):
     finally:
         if server.poll() is None:
             server.kill()
-    assert len(acknowledged) > 20, "the burst did not get going before the kill"
+    assert len(acknowledged) >= kill_after, "the burst did not get going before the kill"
     print(f"{len(acknowledged)} submissions acknowledged before the kill")
     totals = check_database(tmp_path / DATABASE_FILE, created["id"], acknowledged)
     restarted = start_server(tmp_path, port)
