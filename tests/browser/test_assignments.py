@@ -184,6 +184,9 @@ def test_kinematics_assignment_page_never_asks_for_the_answer(chromium, app_url)
     last = [r for r in page.bodies if r.url.split("?")[0].endswith("/api/v1/kinematics")][-1]
     assert last.request.post_data_json["params"]["l2"] != pytest.approx(variant["values"]["lambda"] * 0.1)
     assert "u31" not in last.json()["outputs"]
+    page.click("#back-to-variant")
+    page.wait_for_load_state()
+    assert f"λ = l₂/l₁ = {variant['values']['lambda']:.2f}" in page.locator("#controls").inner_text()
     assert page.problems == []
     screenshot(page, "assignment_student_kinematics")
     context.close()

@@ -23,7 +23,13 @@ function showValues() {
   const variant = scene.variants[0];
   const parts = variant.sliders.map((slider) => labelledValue(slider.label[lang], formatQuantity(slider.default, lang, 6)));
   for (const toggle of variant.toggles) parts.push(`${toggle.label[lang]}: ${toggle.option_labels[0][lang]}`);
-  byId("assignment-values").textContent = `${t.assignment_your_data}: ${parts.join("; ")}`;
+  const line = byId("assignment-values");
+  line.textContent = `${t.assignment_your_data}: ${parts.join("; ")}`;
+  if (variant.sliders.some((slider) => !slider.locked)) {       // the student may explore: a way back
+    const mine = new URLSearchParams({ lang, student: assignment.student });
+    line.append(" · ", element("a", { id: "back-to-variant", href: `${location.pathname}?${mine}`,
+      textContent: t.assignment_back_to_mine }));
+  }
 }
 
 function feedbackText(state) {
