@@ -12,6 +12,7 @@ from ...core.dynamics.motors import Motor
 from ...core.dynamics.reduction import Inertias
 from ...core.dynamics.resistance import Load
 from ...core.mechanisms import MECHANISMS, GeometryError
+from .. import heavy
 from ..json_safe import finite_or_none
 from ..messages import localise_numerics, localise_study, translate
 from ..schemas import Language
@@ -22,14 +23,19 @@ router = APIRouter(tags=["dynamics"])
 LANG = Query("en", description="language of the warnings: ru, uk or en")
 
 
-def _respond(result: dict, notices, lang: str) -> JSONResponse:
+def payload(result: dict, notices, lang: str) -> dict:
+    """The answer's body: numerics and study in the reader's language, no NaN, the warnings once each."""
     warnings = dict.fromkeys(translate(n, lang) for n in notices)      # once each, in order
     if isinstance(result.get("study"), dict):
         result["study"] = localise_study(result["study"], lang)
     for holder in (result, result.get("startup") or {}):
         if isinstance(holder.get("numerics"), dict):
             holder["numerics"] = localise_numerics(holder["numerics"], lang)
-    return JSONResponse(finite_or_none(result) | {"warnings": list(warnings)})
+    return finite_or_none(result) | {"warnings": list(warnings)}
+
+
+def _respond(result: dict, notices, lang: str) -> JSONResponse:
+    return JSONResponse(payload(result, notices, lang))
 
 
 @router.post("/reduction", response_model=ReductionResponse,
@@ -69,11 +75,16 @@ def flywheel(request: FlywheelRequest, lang: Language = LANG):
 @router.post("/work-precision/motion", summary="Live work–precision study of the current machine's steady cycle "
                                                "(ours against solve_ivp integrating cycles, small budget)")
 def motion_work_precision(request: MotionRequest, lang: Language = LANG):
+    return JSONResponse(heavy.run(motion_study_answer, request, lang))
+
+
+def motion_study_answer(request: MotionRequest, lang: str) -> dict:
+    """The body of /work-precision/motion (seconds of solving: run in the heavy process)."""
     machine = _machine(request)
     if not machine.speed_dependent:
         raise GeometryError("motor.kind", "the study compares steady-cycle solvers: give a motor or "
                                           "friction that depends on speed", "study_needs_speed")
-    return _respond({"study": work_precision.motion_study(machine)}, [], lang)
+    return payload({"study": work_precision.motion_study(machine)}, [], lang)
 
 
 def _machine(request) -> Machine:

@@ -1,5 +1,6 @@
 """POST /api/v1/elastic: elastic machine models in time, with the solver chosen by measured stiffness."""
 from fastapi import APIRouter
+from fastapi.responses import JSONResponse
 
 from ...core.dynamics.motors import Motor
 from ...core.dynamics.reduction import Inertias
@@ -10,7 +11,8 @@ from ...core import work_precision
 from ...core.mechanisms import MECHANISMS, GeometryError
 from ..schemas import Language
 from ..schemas_elastic import ElasticRequest
-from .dynamics import LANG, _respond
+from .. import heavy
+from .dynamics import LANG, payload
 
 router = APIRouter(tags=["elastic"])
 
@@ -32,6 +34,17 @@ def _elastic_machine(request: ElasticRequest) -> ElasticMachine:
                                  "modal curves, the rigid solution, numerics",
              responses={422: {"description": "invalid input: the field and the reason"}})
 def elastic(request: ElasticRequest, lang: Language = LANG):
+    return JSONResponse(heavy.run(elastic_answer, request, lang))
+
+
+@router.post("/work-precision/elastic", summary="Live work–precision study of the current elastic machine "
+                                                "(error against run time of several solvers, small budget)")
+def elastic_work_precision(request: ElasticRequest, lang: Language = LANG):
+    return JSONResponse(heavy.run(study_answer, request, lang))
+
+
+def elastic_answer(request: ElasticRequest, lang: str) -> dict:
+    """The body of /elastic (run in the heavy process)."""
     machine = _elastic_machine(request)
     result, notices = {}, []
     if "histories" in request.outputs or "rigid" in request.outputs:
@@ -43,11 +56,10 @@ def elastic(request: ElasticRequest, lang: Language = LANG):
     if "bearings" in request.outputs:
         result["bearings"] = bearing_iteration(machine, Bearing(**request.bearing.model_dump()), request.t_end,
                                                request.n, request.rtol)
-    return _respond(result, notices, lang)
+    return payload(result, notices, lang)
 
 
-@router.post("/work-precision/elastic", summary="Live work–precision study of the current elastic machine "
-                                                "(error against run time of several solvers, small budget)")
-def elastic_work_precision(request: ElasticRequest, lang: Language = LANG):
+def study_answer(request: ElasticRequest, lang: str) -> dict:
+    """The body of /work-precision/elastic (run in the heavy process)."""
     machine = _elastic_machine(request)
-    return _respond({"study": work_precision.elastic_study(machine, min(request.t_end, 0.5))}, [], lang)
+    return payload({"study": work_precision.elastic_study(machine, min(request.t_end, 0.5))}, [], lang)

@@ -28,6 +28,14 @@ class GeometryError(ValueError):
         self.code = code
         self.context = context
 
+    def __reduce__(self):
+        """Picklable (it crosses from a computing process back to the server)."""
+        return _geometry_error, (self.field, self.reason, self.code, self.context)
+
+
+def _geometry_error(field: str, reason: str, code: str, context: dict) -> GeometryError:
+    return GeometryError(field, reason, code, **context)
+
 
 @dataclass(frozen=True)
 class Notice:

@@ -1,0 +1,52 @@
+"""Long computations run in a process of their own, beside the worker that serves the light requests.
+
+An elastic time integration or a live work–precision study holds the interpreter for up to seconds
+(scipy's explicit solvers step in Python); run in the worker's thread pool, it would queue every
+other student's 5-ms kinematics request behind it for the lock. In a separate process it uses the
+other CPU and the worker stays free. ``MDL_HEAVY_PROCESSES`` processes per worker (default 1; 0 runs
+them in the worker itself). A child that dies is replaced and the computation is tried once more.
+"""
+from __future__ import annotations
+
+import multiprocessing
+import os
+import threading
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from typing import Callable, TypeVar
+
+HEAVY_PROCESSES = int(os.environ.get("MDL_HEAVY_PROCESSES", "1"))
+T = TypeVar("T")
+_pool: ProcessPoolExecutor | None = None
+_lock = threading.Lock()
+
+
+def _current_pool() -> ProcessPoolExecutor:
+    global _pool
+    with _lock:
+        if _pool is None:                     # forkserver: no fork of a process that runs threads
+            _pool = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"))
+        return _pool
+
+
+def _discard(pool: ProcessPoolExecutor) -> None:
+    global _pool
+    with _lock:
+        if _pool is pool:
+            _pool = None
+    pool.shutdown(wait=False, cancel_futures=True)
+
+
+def run(function: Callable[..., T], *args) -> T:
+    """function(*args) in the heavy process (function and args picklable); its exceptions come back."""
+    if HEAVY_PROCESSES == 0:
+        return function(*args)
+    for attempt in range(2):
+        pool = _current_pool()
+        try:
+            return pool.submit(function, *args).result()
+        except BrokenProcessPool:
+            _discard(pool)
+            if attempt:
+                raise
+    raise AssertionError("unreachable")

@@ -1,0 +1,46 @@
+"""Long computations run in a process of their own: the answer, a refusal (422) and a dead child."""
+from __future__ import annotations
+
+import os
+import signal
+
+from fastapi.testclient import TestClient
+
+from server.api import heavy
+from server.api.app import app
+from server.api.content import scenes
+from server.api.scene_requests import scene_request
+from server.core.mechanisms import GeometryError
+
+
+def test_it_runs_elsewhere_and_a_refusal_comes_back_whole():
+    assert heavy.run(os.getpid) != os.getpid()
+    error = GeometryError("params.l2", "too short", "crank_cannot_turn", ratio=1.5)
+    try:
+        heavy.run(_raise, error)
+    except GeometryError as back:
+        assert (back.field, back.reason, back.code, back.context) == ("params.l2", "too short",
+                                                                      "crank_cannot_turn", {"ratio": 1.5})
+    else:
+        raise AssertionError("the refusal was lost")
+
+
+def _raise(error):
+    raise error
+
+
+def test_elastic_answers_and_refusals_through_the_process():
+    client = TestClient(app)
+    scene = scenes()["elastic-transmission"]
+    body = scene_request(scene, scene.variants[0])
+    answer = client.post("/api/v1/elastic", json=body)
+    assert answer.status_code == 200 and answer.json()["numerics"]["method"] in ("DOP853", "Radau")
+    refused = client.post("/api/v1/elastic", json=body | {"motor": {"kind": "indicator"}})
+    assert refused.status_code == 422
+
+
+def test_a_dead_child_is_replaced():
+    first = heavy.run(os.getpid)
+    os.kill(first, signal.SIGKILL)
+    second = heavy.run(os.getpid)
+    assert second not in (first, os.getpid())
