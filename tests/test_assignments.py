@@ -31,10 +31,10 @@ from server.classroom.variants import student_key
 API = "/api/v1/assignments"
 FLYWHEEL = {"scene": "flywheel", "variant": "rig", "title": "Lab 5",
             "sliders": {"delta": {"vary": {"min": 0.01, "max": 0.05}, "step": 0.001}, "omega_mean": {"value": 50}},
-            "questions": [{"id": "flywheel_inertia"}], "attempts": 2}
+            "questions": [{"id": "flywheel_inertia"}], "attempts": 2, "reveal_answers": True}
 CRANK = {"scene": "transfer-functions", "variant": "slider_crank",
          "sliders": {"lambda": {"vary": {"min": 2.5, "max": 5.0}}},
-         "questions": [{"id": "u31_max"}, {"id": "du31_min", "tolerance": 0.005}]}
+         "questions": [{"id": "u31_max"}, {"id": "du31_min", "tolerance": 0.005}], "reveal_answers": True}
 
 
 @pytest.fixture()
@@ -194,6 +194,15 @@ def variant_answer(client, created, name) -> float:
     return correct_answer(resolved, values, "flywheel_inertia")
 
 
+def test_answers_stay_hidden_unless_the_assignment_reveals_them(client):
+    created = create(client, FLYWHEEL | {"reveal_answers": False})
+    outcomes = [submit(client, created, "Quiet", "flywheel_inertia", 1.0).json() for _ in range(2)]
+    assert outcomes[-1]["closed"] and all(o["correct_value"] is None for o in outcomes)
+    assert variant_of(client, created, "Quiet")["questions"][0]["correct_value"] is None
+    right = submit(client, created, "Loud", "flywheel_inertia", variant_answer(client, created, "Loud")).json()
+    assert right["right"] and right["correct_value"] is None
+
+
 def test_concurrent_submitters_never_exceed_the_attempts(client):
     """Twelve threads submit wrong answers for one student at once: exactly `attempts` land (BEGIN IMMEDIATE)."""
     created = create(client, FLYWHEEL | {"attempts": 3})
@@ -305,7 +314,8 @@ def test_coupler_acceleration_answer_matches_the_closed_form(client):
     """ε_AB of the crank-slider at constant ω: sin ψ = λ sin φ gives ψ″ = λ(λ² − 1) sin φ / (1 − λ²sin²φ)^{3/2},
     ε = ω²ψ″; its largest value over a turn, rel 1e-5 (the answer is refined from 361 nodes, O(h³))."""
     created = create(client, {"scene": "angular-acceleration", "variant": "crank_slider",
-                              "sliders": {"lam": {"vary": {"min": 0.2, "max": 0.8}}}, "questions": [{"id": "epsilon_max"}]})
+                              "sliders": {"lam": {"vary": {"min": 0.2, "max": 0.8}}}, "questions": [{"id": "epsilon_max"}],
+                              "reveal_answers": True})
     variant = variant_of(client, created, "Lesya Ukrainka")
     lam, omega = variant["values"]["lam"], variant["values"]["omega0"]
     psi_dd = lambda phi: lam * (lam ** 2 - 1) * np.sin(phi) / (1 - (lam * np.sin(phi)) ** 2) ** 1.5

@@ -103,7 +103,8 @@ def question_states(record: AssignmentRecord, resolved: Plan, student: StudentRe
         states.append(QuestionState(
             **about.model_dump(), attempts_used=len(mine), attempts_left=left, right=right,
             answers=[s.answer for s in mine],
-            correct_value=correct_answer(resolved, student.parameters, about.id) if right or left == 0 else None))
+            correct_value=correct_answer(resolved, student.parameters, about.id)
+            if resolved.spec.reveal_answers and (right or left == 0) else None))
     return states
 
 

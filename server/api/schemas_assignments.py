@@ -39,7 +39,8 @@ class QuestionState(QuestionInfo):
     attempts_left: int
     right: bool
     answers: list[float]
-    correct_value: float | None = Field(description="given once the question is closed (right, or no attempt left)")
+    correct_value: float | None = Field(description="given once the question is closed (right, or no attempt left), "
+                                                    "if the assignment reveals answers")
 
 
 class StudentVariant(BaseModel):
@@ -63,7 +64,8 @@ class SubmissionOutcome(BaseModel):
     attempt: int
     attempts_left: int
     closed: bool
-    correct_value: float | None = Field(description="only once the question is closed")
+    correct_value: float | None = Field(description="only once the question is closed, if the assignment reveals "
+                                                    "answers")
 
 
 class ResultRow(BaseModel):

@@ -54,6 +54,9 @@ class AssignmentSpec(BaseModel):
     toggles: dict[str, float | str] = Field(default_factory=dict, max_length=10, description="fixed toggle values")
     questions: list[QuestionPick] = Field(min_length=1, max_length=MAX_QUESTIONS)
     attempts: int = Field(3, ge=1, le=MAX_ATTEMPTS, description="attempts per question")
+    reveal_answers: bool = Field(False, description="show the correct value once a question is closed (right, or "
+                                                    "no attempt left); off by default: a student could otherwise "
+                                                    "spend a made-up name's attempts on a variant like their own")
     deadline: datetime | None = Field(None, description="ISO 8601; without a zone it is UTC")
 
     @field_validator("deadline")

@@ -46,6 +46,7 @@ def make_assignment(page) -> tuple[str, str, float]:
     row.locator('[name="vary_max"]').fill("0.05")
     row.locator('[name="vary_step"]').fill("0.001")
     page.fill("#attempts", "2")
+    page.check("#reveal")
     page.fill("#title", "Flywheel lab")
     screenshot(page, "assignment_builder")
     page.click("#create-assignment")

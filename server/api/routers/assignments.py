@@ -91,7 +91,8 @@ def submit(submission: SubmissionRequest, request: Request, assignment_id: str =
         return _refuse(409, ["body", "question"], refused.reason, refused.code)
     left = 0 if right else resolved.spec.attempts - saved.attempt
     return SubmissionOutcome(question=submission.question, right=right, attempt=saved.attempt, attempts_left=left,
-                             closed=right or left == 0, correct_value=correct if right or left == 0 else None)
+                             closed=right or left == 0,
+                             correct_value=correct if resolved.spec.reveal_answers and (right or left == 0) else None)
 
 
 @router.get("/{assignment_id}/results/{token}", response_model=Results,

@@ -55,6 +55,7 @@ function spec() {
     scene: form.dataset.scene, variant: form.dataset.variant, lang: form.dataset.lang,
     title: form.querySelector("#title").value.trim(), sliders, toggles: toggles(), questions: questions(),
     attempts: number(form.querySelector("#attempts").value),
+    reveal_answers: form.querySelector("#reveal").checked,
     deadline: deadline ? new Date(deadline).toISOString() : null,     // the instructor's local time, sent in UTC
   };
 }
