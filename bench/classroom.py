@@ -30,6 +30,7 @@ import http.client
 import json
 import os
 import platform
+import signal
 import random
 import socket
 import subprocess
@@ -256,10 +257,12 @@ def server_command(port: int, workers: int) -> list[str]:
     return [sys.executable, "-m", "server", "--port", str(port), *(["--workers", str(workers)] if workers > 1 else [])]
 
 
-def process_tree_cpu_s(pid: int) -> float:
-    """User + system CPU seconds of a process and its children so far (from /proc)."""
+def session_processes(session: int) -> dict[int, float]:
+    """The processes of a session (the server started with start_new_session: its workers, and the processes
+    they start for long computations, which a forkserver may reparent to init) and their user + system CPU
+    seconds so far, from /proc."""
     ticks = os.sysconf("SC_CLK_TCK")
-    total = 0.0
+    found = {}
     for entry in Path("/proc").iterdir():
         if not entry.name.isdigit():
             continue
@@ -267,9 +270,13 @@ def process_tree_cpu_s(pid: int) -> float:
             fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
         except OSError:
             continue
-        if int(entry.name) == pid or int(fields[1]) == pid:      # fields[1] is the parent's pid
-            total += (int(fields[11]) + int(fields[12])) / ticks  # utime, stime
-    return total
+        if int(fields[3]) == session:                                 # state, ppid, pgrp, session, …
+            found[int(entry.name)] = (int(fields[11]) + int(fields[12])) / ticks   # utime, stime
+    return found
+
+
+def server_cpu_s(process: subprocess.Popen) -> float:
+    return sum(session_processes(process.pid).values())
 
 
 def machine_busy_cpu_s() -> float:
@@ -279,6 +286,22 @@ def machine_busy_cpu_s() -> float:
     return (sum(fields[:8]) - idle) / os.sysconf("SC_CLK_TCK")       # guest time is already in user time
 
 
+def end_session(session: int) -> int:
+    """End what is left of the server's session once the server has stopped (its own process group, by id);
+    returns how many processes had outlived it."""
+    left = session_processes(session)
+    if left:
+        for sig in (signal.SIGTERM, signal.SIGKILL):
+            try:
+                os.killpg(session, sig)
+            except ProcessLookupError:
+                break
+            deadline = time.monotonic() + 3
+            while session_processes(session) and time.monotonic() < deadline:
+                time.sleep(0.1)
+    return len(left)
+
+
 @contextmanager
 def running_server(workers: int):
     """The server on a free loopback port with MDL_DATA_DIR in a temporary folder; yields (port, process)."""
@@ -286,7 +309,7 @@ def running_server(workers: int):
         port = free_port()
         log = open(Path(data_dir) / "server.log", "wb")
         process = subprocess.Popen(server_command(port, workers), cwd=ROOT, stdout=log, stderr=subprocess.STDOUT,
-                                   env={**os.environ, "MDL_DATA_DIR": data_dir})
+                                   env={**os.environ, "MDL_DATA_DIR": data_dir}, start_new_session=True)
         try:
             deadline = time.monotonic() + 60
             while True:
@@ -308,6 +331,7 @@ def running_server(workers: int):
             except subprocess.TimeoutExpired:
                 process.kill()
                 process.wait()
+            process.outlived = end_session(process.pid)
             log.close()
 
 
@@ -319,19 +343,19 @@ def run(workers: int, client: str, students: int, seconds: float, seed: int) -> 
     record = Record()
     with running_server(workers) as (port, process):
         before = cache_stats_by_worker(port, workers)
-        server_cpu, client_cpu, busy = process_tree_cpu_s(process.pid), time.process_time(), machine_busy_cpu_s()
+        server_cpu, client_cpu, busy = server_cpu_s(process), time.process_time(), machine_busy_cpu_s()
         start = time.monotonic() + 0.2
         wall = time.perf_counter()
         CLIENTS[client][1](port, class_, start, start + seconds, record)
         wall = time.perf_counter() - wall
-        server_cpu, client_cpu = process_tree_cpu_s(process.pid) - server_cpu, time.process_time() - client_cpu
+        server_cpu, client_cpu = server_cpu_s(process) - server_cpu, time.process_time() - client_cpu
         busy = machine_busy_cpu_s() - busy
         after = cache_stats_by_worker(port, workers)
     hits = sum(after[pid]["hits"] - before.get(pid, {}).get("hits", 0) for pid in after)
     misses = sum(after[pid]["misses"] - before.get(pid, {}).get("misses", 0) for pid in after)
     return {"workers": workers, "client": client, "students": students, "seconds": seconds, "wall": wall,
             "rows": record.rows, "moves": sum(s.moves for s in class_), "server_cpu": server_cpu,
-            "client_cpu": client_cpu, "other_cpu": max(0.0, busy - server_cpu - client_cpu), "cache": {"hits": hits, "misses": misses, "workers": len(after),
+            "client_cpu": client_cpu, "outlived": process.outlived, "other_cpu": max(0.0, busy - server_cpu - client_cpu), "cache": {"hits": hits, "misses": misses, "workers": len(after),
                                                 "entries": sum(s["entries"] for s in after.values()),
                                                 "bytes": sum(s["bytes"] for s in after.values())},
             "command": "python3 -m server --port <free port>" + (f" --workers {workers}" if workers > 1 else ""),
@@ -390,7 +414,9 @@ def markdown_run(result: dict, title: str) -> list[str]:
               f"client CPU: {result['client_cpu']:.1f} s ({100 * result['client_cpu'] / result['wall'] / cpus:.0f} % "
               f"of the {cpus} CPUs, {1000 * result['client_cpu'] / max(requests, 1):.1f} ms per request); "
               f"other processes on the machine: {result['other_cpu']:.1f} s "
-              f"({100 * result['other_cpu'] / result['wall'] / cpus:.0f} % of the {cpus} CPUs).", ""]
+              f"({100 * result['other_cpu'] / result['wall'] / cpus:.0f} % of the {cpus} CPUs).",
+              f"* Processes of the server's session still running after it stopped (SIGTERM, 15 s): "
+              f"{result['outlived']}{' (ended by the benchmark)' if result['outlived'] else ''}.", ""]
     return lines
 
 
