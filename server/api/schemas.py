@@ -9,6 +9,7 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 from ..core.kinematics import MAX_POINTS
 
 MAX_ANGLE = 1000.0
+MAX_PARAMS = 16                  # a mechanism has at most 6 parameters; unknown names are refused
 Language = Literal["ru", "uk", "en"]
 MechanismName = Literal["sine", "slider_crank", "slotted_link", "four_bar"]
 
@@ -45,7 +46,7 @@ class KinematicsRequest(BaseModel):
          "outputs": ["s", "u31", "du31", "u21", "du21", "joints"]}]})
 
     mechanism: MechanismName = Field(description="which mechanism")
-    params: dict[str, float] = Field(default_factory=dict, description=(
+    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description=(
         "lengths in metres and switches; missing ones take the defaults of GET /api/v1/mechanisms"))
     phi: list[float] | None = Field(default=None, max_length=MAX_POINTS,
                                     description="crank angles in radians (give this or `n`)")

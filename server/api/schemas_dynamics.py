@@ -7,7 +7,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from ..core.dynamics.motors import INDICATOR_POINTS, polytropic_diagram
-from .schemas import MechanismName
+from .schemas import MAX_PARAMS, MechanismName
 
 Positive = Field(ge=0.0, le=1e6)
 
@@ -81,13 +81,13 @@ class ReductionRequest(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     mechanism: MechanismName
-    params: dict[str, float] = Field(default_factory=dict, description="lengths in metres, as for /kinematics")
+    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
     inertias: InertiaInput = Field(default_factory=InertiaInput)
     load: LoadInput = Field(default_factory=LoadInput)
     n: int = Field(361, ge=3, le=10001, description="points over one closed cycle")
     omega: float = Field(1.0, ge=0, le=1e4, description="crank speed for the viscous moment β ω Σu², rad/s")
     iteration_phi: float = Field(math.pi / 2, ge=-100, le=100, description="crank angle of the friction iteration, rad")
-    outputs: list[Literal["inertia", "resisting", "friction_iteration"]] = Field(min_length=1)
+    outputs: list[Literal["inertia", "resisting", "friction_iteration"]] = Field(min_length=1, max_length=3)
 
 
 class MotionRequest(BaseModel):
@@ -95,13 +95,13 @@ class MotionRequest(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     mechanism: MechanismName
-    params: dict[str, float] = Field(default_factory=dict, description="lengths in metres, as for /kinematics")
+    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
     inertias: InertiaInput = Field(default_factory=InertiaInput)
     load: LoadInput = Field(default_factory=LoadInput)
     motor: MotorInput
-    outputs: list[Literal["steady", "startup"]] = Field(min_length=1)
+    outputs: list[Literal["steady", "startup"]] = Field(min_length=1, max_length=2)
     omega0: float = Field(0.0, ge=0, le=1e4, description="crank speed at φ = 0 for the start-up, rad/s")
-    omega_mean: float | None = Field(None, gt=0, le=1e4, description=(
+    omega_mean: float | None = Field(None, ge=1e-3, le=1e4, description=(
         "mean crank speed (ω_max + ω_min)/2, rad/s: needed when the moments depend on φ alone"))
     balance: bool = Field(False, description="add the constant crank moment that balances the cycle work (engine)")
     rtol: float = Field(1e-8, ge=1e-11, le=1e-2, description="relative tolerance of the steady cycle")
@@ -141,17 +141,17 @@ class FlywheelRequest(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     mechanism: MechanismName
-    params: dict[str, float] = Field(default_factory=dict, description="lengths in metres, as for /kinematics")
+    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
     inertias: InertiaInput = Field(default_factory=InertiaInput, description="J1 + J_rotor·i² is the group I "
                                                                             "the machine already has (I₁₀)")
     load: LoadInput = Field(default_factory=LoadInput)
     motor: MotorInput
-    omega_mean: float = Field(gt=0, le=1e4, description="mean crank speed (ω_max + ω_min)/2, rad/s")
+    omega_mean: float = Field(ge=1e-3, le=1e4, description="mean crank speed (ω_max + ω_min)/2, rad/s")
     delta: float = Field(ge=1e-4, le=0.5, description="permissible coefficient of speed fluctuation [δ]")
     balance: bool = Field(True, description="constant crank moment M_c = A_д/Φ balancing the cycle work")
     width_ratio: float = Field(0.2, ge=0.02, le=2, description="disk width over diameter ψ_b = b/D")
     density: float = Field(7800.0, ge=500, le=25000, description="flywheel material density, kg/m³")
-    outputs: list[Literal["flywheel"]] = Field(["flywheel"], description="the whole flywheel study")
+    outputs: list[Literal["flywheel"]] = Field(["flywheel"], max_length=1, description="the whole flywheel study")
 
 
 class FlywheelResponse(BaseModel):

@@ -5,7 +5,7 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from .schemas import MechanismName
+from .schemas import MAX_PARAMS, MechanismName
 from .schemas_dynamics import InertiaInput, LoadInput, MotorInput
 
 
@@ -38,7 +38,7 @@ class ElasticRequest(BaseModel):
                     "three_mass: (1.40)–(1.42); elastic_linkage: c(φ) of the linkage (1.29)/(1.34), (1.31)–(1.32); "
                     "elastic_four_bar: seed 003's two-mass model with c_n(φ₁) and damping b_n")
     mechanism: MechanismName
-    params: dict[str, float] = Field(default_factory=dict, description="lengths in metres, as for /kinematics")
+    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
     inertias: InertiaInput = Field(default_factory=InertiaInput, description="the mechanism side; J1 is the crank")
     load: LoadInput = Field(default_factory=LoadInput)
     motor: MotorInput = Field(default_factory=lambda: MotorInput(kind="constant"))
@@ -51,13 +51,13 @@ class ElasticRequest(BaseModel):
     speed: float = Field(0.0, ge=0, le=1e4, description="kinematic drive: the motor side's constant speed, rad/s")
     omega0: float = Field(0.0, ge=0, le=1e4, description="initial speed of every mass, rad/s")
     twist0: float = Field(0.0, ge=-1, le=1, description="initial twist of the spring next to the mechanism, rad")
-    t_end: float = Field(1.0, gt=0, le=20, description="time span, s")
+    t_end: float = Field(1.0, ge=1e-3, le=20, description="time span, s")
     n: int = Field(801, ge=11, le=4001, description="samples of the time histories")
     rtol: float = Field(1e-6, ge=1e-10, le=1e-2, description="relative tolerance")
     method: Literal["auto", "DOP853", "RK45", "Radau", "BDF", "LSODA"] = Field(
         "auto", description="auto: chosen by the stiffness the server measures")
     bearing: BearingInput = Field(default_factory=lambda: BearingInput(), description="ball bearings in B and C")
-    outputs: list[Literal["histories", "modal", "rigid", "bearings"]] = Field(min_length=1, description=(
+    outputs: list[Literal["histories", "modal", "rigid", "bearings"]] = Field(min_length=1, max_length=4, description=(
         "histories: time histories with numerics; modal: c(φ), e(φ), natural frequency and damping ratio over a "
         "turn (closed forms); rigid: the rigid machine's start-up on the same times; bearings: the successive "
         "approximations of the ball-bearing stiffness (1.44) over the largest rod force (elastic crank-slider)"))

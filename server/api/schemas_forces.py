@@ -1,10 +1,11 @@
 """Request models of the force-analysis API (/forces, /wear, /efficiency-chain)."""
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from .schemas import MAX_PARAMS
 from .schemas_dynamics import MotorInput
 
 
@@ -47,8 +48,8 @@ class ForceLoadsInput(BaseModel):
 class ForcesRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider (seed 002 §3.1)")
-    outputs: list[Literal["forces", "wear"]] = Field(["forces"], description="what the scene shows")
-    params: dict[str, float] = Field(default_factory=dict, description="crank-slider lengths l1, l2, e (m) and a2")
+    outputs: list[Literal["forces", "wear"]] = Field(["forces"], max_length=2, description="what the scene shows")
+    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="crank-slider lengths l1, l2, e (m) and a2")
     loads: ForceLoadsInput = Field(default_factory=ForceLoadsInput)
     pairs: PairsInput = Field(default_factory=PairsInput)
     n: int = Field(361, ge=13, le=1441, description="points over one closed cycle")
@@ -58,15 +59,15 @@ class ForcesRequest(BaseModel):
 class WearRequest(ForcesRequest):
     """The wear of seed 002 §4 for a crank-slider (by default the two-stroke engine of §4.3)."""
 
-    pin_diameter: float = Field(0.02, gt=0, le=1, description="piston pin diameter d₂₃, m")
-    pin_length: float = Field(0.025, gt=0, le=1, description="pin bearing length l_z23, m")
-    piston_diameter: float = Field(0.075, gt=0, le=2, description="piston diameter D_p, m")
-    piston_length: float = Field(0.076, gt=0, le=2, description="piston length L_p, m")
+    pin_diameter: float = Field(0.02, ge=1e-3, le=1, description="piston pin diameter d₂₃, m")
+    pin_length: float = Field(0.025, ge=1e-3, le=1, description="pin bearing length l_z23, m")
+    piston_diameter: float = Field(0.075, ge=1e-3, le=2, description="piston diameter D_p, m")
+    piston_length: float = Field(0.076, ge=1e-3, le=2, description="piston length L_p, m")
     I_pin: float = Field(0.6e-10, gt=0, le=1e-3, description="wear intensity of the pin")
     I_bush: float = Field(1.0e-10, gt=0, le=1e-3, description="wear intensity of the bush")
     I_piston: float = Field(2e-12, gt=0, le=1e-3, description="wear intensity of the piston")
     I_cylinder: float = Field(3e-12, gt=0, le=1e-3, description="wear intensity of the cylinder liner")
-    rpm: float = Field(2400, gt=0, le=1e5, description="crank speed, rev/min (one cycle per revolution)")
+    rpm: float = Field(2400, ge=1, le=1e5, description="crank speed, rev/min (one cycle per revolution)")
     hours: float = Field(1000, gt=0, le=1e6, description="service life, h")
 
 
@@ -75,7 +76,8 @@ class ChainRequest(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     efficiencies: list[float] = Field(min_length=1, max_length=50, description="η_k of each mechanism, 0…1")
-    works: list[float] | None = Field(None, description="parallel only: driving work A_P,k of each branch, J")
+    works: list[Annotated[float, Field(ge=0, le=1e12)]] | None = Field(
+        None, max_length=50, description="parallel only: driving work A_P,k of each branch, J (0…10¹²)")
 
     @model_validator(mode="after")
     def sizes(self):

@@ -14,13 +14,13 @@ router = APIRouter(tags=["angular acceleration"])
 
 class AngularRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    outputs: list[Literal["angular"]] = Field(["angular"], description="the components and the points")
+    outputs: list[Literal["angular"]] = Field(["angular"], max_length=1, description="the components and the points")
     mechanism: Literal["crank_slider", "trammel"] = Field("crank_slider", description="central crank-slider or "
                                                                                        "elliptic trammel")
     lam: float = Field(0.5, gt=0, lt=1, description="λ = OA/AB (the paper's; the textbook's l₂/l₁ is 1/λ)")
     length: float = Field(1.0, gt=0, le=10, description="crank OA, m")
     law: Literal["constant", "accelerating", "harmonic"] = Field("constant", description="crank law")
-    omega0: float = Field(np.pi / 6, gt=0, le=1e3, description="crank speed ω₀ at t = 0, rad/s")
+    omega0: float = Field(np.pi / 6, ge=1e-3, le=1e3, description="crank speed ω₀ at t = 0, rad/s")
     epsilon0: float = Field(0.0, ge=-1e3, le=1e3, description="accelerating law: ε₀, rad/s²")
     amplitude: float = Field(0.0, ge=0, lt=1, description="harmonic law: ω = ω₀(1 + a sin νt), a")
     frequency: float = Field(1.0, gt=0, le=1e3, description="harmonic law: ν, rad/s")
