@@ -94,13 +94,16 @@ def wittenbauer(cycle: Cycle, omega_mean: float, delta: float) -> tuple[Method, 
 
 
 def periodic_speed(cycle: Cycle, inertia_i: float, omega_mean: float) -> np.ndarray:
-    """ω(φ) of the exact periodic solution with group-I inertia I_I and mean (ω_max + ω_min)/2 = ω_m."""
+    """ω(φ) of the exact periodic solution with group-I inertia I_I and mean (ω_max + ω_min)/2 = ω_m;
+    NaN everywhere when there is none (too little inertia for that mean speed: the speed would reach zero)."""
     total = inertia_i + cycle.inertia_ii
     lowest = float(np.max(-cycle.work))
     def mean_error(T0):
         omega = np.sqrt(2 * (T0 + cycle.work) / total)
         return 0.5 * (_extreme(omega, +1) + _extreme(omega, -1)) - omega_mean
     high = lowest + 0.5 * float(total.max()) * (2 * omega_mean) ** 2 + 1.0
+    if mean_error(lowest + 1e-12 * high) > 0:       # even as ω_min → 0 the mean exceeds ω_m: the machine would
+        return np.full_like(cycle.work, np.nan)     # stall within the cycle, there is no periodic motion
     T0 = brentq(mean_error, lowest + 1e-12 * high, high, xtol=1e-15 * high, rtol=1e-15)
     return np.sqrt(2 * (T0 + cycle.work) / total)
 
@@ -115,10 +118,16 @@ def exact(cycle: Cycle, omega_mean: float, delta: float, guess: float) -> Method
     """I_I of the periodic solution with exactly the target δ (δ falls monotonically as I_I grows)."""
     def error(log_inertia):
         return np.log(achieved_delta(cycle, float(np.exp(log_inertia)), omega_mean) / delta)
+    if achieved_delta(cycle, 0.0, omega_mean) <= delta:   # group II alone keeps δ: no group-I inertia needed
+        return Method("exact", 0.0, 0.0)                   # (the bracket below would widen for ever)
     low, high = np.log(guess) - 1.0, np.log(guess) + 1.0
-    while error(low) < 0:
+    for _ in range(200):                                   # a bracket in e^±400, never an endless loop
+        if not error(low) < 0:
+            break
         low -= 2.0
-    while error(high) > 0:
+    for _ in range(200):
+        if not error(high) > 0:
+            break
         high += 2.0
     inertia = float(np.exp(brentq(error, low, high, xtol=1e-14, rtol=1e-14)))
     return Method("exact", inertia, delta * inertia * omega_mean**2)

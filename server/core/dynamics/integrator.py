@@ -13,6 +13,7 @@ step is integrated in time instead, where the equation is regular.
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,12 +23,22 @@ from .machine import Machine
 
 
 REST_STEPS = 16   # steps integrated in time after a start from rest: T ≈ aφ − cφ^{3/2} is not smooth in φ there
+REST_BUDGET_S = 1.0   # wall time for those steps at most (milliseconds usually; a very steep motor is stiff in time)
+
+
+class RestBudget(Exception):
+    """Leaving rest took longer than REST_BUDGET_S of wall time."""
 
 
 def leave_rest(machine: Machine, phi: np.ndarray, t0: float) -> tuple[list[float], list[float]]:
     """T and t at the step nodes ``phi`` after a start from rest at phi[0]: J ω̇ = M − ½J′ω², φ̇ = ω
-    in time, regular at ω = 0 (unlike dT/dφ, whose solution has a φ^{3/2} term), by scipy's DOP853."""
+    in time, regular at ω = 0 (unlike dT/dφ, whose solution has a φ^{3/2} term), by scipy's DOP853.
+    Raises RestBudget past REST_BUDGET_S of wall time (a very steep motor crawls off in tiny steps)."""
+    deadline = time.perf_counter() + REST_BUDGET_S
+
     def rhs(_, y):
+        if time.perf_counter() > deadline:
+            raise RestBudget
         tables = machine.tables(np.array([y[0]]))
         moment = tables.net_phi[0]
         if machine.speed_dependent:
@@ -104,6 +115,9 @@ def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0) 
         T_new = T + h * (f1 + 2 * f2 + 2 * f3 + f4) / 6
         if T_new <= 0.0 or min(T + 0.5 * h * f1, T + 0.5 * h * f2) < 0.0:
             stall = float(phi[j])
+            break
+        if T > 0.0 and 0.5 * (T + T_new) + h * (f1 - f4) / 8 <= 0.0:   # T(φ) touches zero inside the step
+            stall = float(phi[j + 1])
             break
         s1 = g1 * S
         s2 = g2 * (S + 0.5 * h * s1)

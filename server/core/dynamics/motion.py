@@ -20,7 +20,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..mechanisms import Notice
-from .integrator import Run, integrate
+from .integrator import RestBudget, Run, integrate
 from .machine import Machine
 
 STEPS_START = 32           # RK4 steps per 2π at the coarsest level
@@ -275,6 +275,10 @@ def _level(machine: Machine, tables, steps: int, omega_mean: float | None):
         return 0.5 * (omega.max() + omega.min()) - omega_mean
     lowest = float(np.max(-work))                    # T₀ must keep T = T₀ + A > 0 everywhere
     high = lowest + 0.5 * J.max() * (2 * omega_mean) ** 2 + 1.0
+    if mean_of(lowest + 1e-12 * high) > 0:           # even as ω_min → 0 the mean exceeds ω_m: no periodic motion
+        stall = float(np.degrees(tables.phi[2 * int(np.argmin(work))]))
+        raise NoMotion("stall_in_cycle", f"Stall at φ = {stall:.1f}°: the kinetic energy runs out within the cycle; "
+                                         f"there is no steady motion at ω_m = {omega_mean:g} rad/s.", phi=stall)
     T0 = brentq(mean_of, lowest + 1e-12 * high, high, xtol=1e-14 * high)
     for _ in range(4):      # the same condition on the refined extremes: Newton with dω/dT₀ = 1/(Jω)
         run = integrate(machine, tables, T0, steps)
@@ -310,7 +314,14 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
         return motion
     pieces, t0, cycle = [], 0.0, machine.cycle()
     for n in range(min(max_cycles, MAX_CYCLES)):
-        run = integrate(machine, tables, T0, steps, t0)
+        try:
+            run = integrate(machine, tables, T0, steps, t0)
+        except RestBudget:                   # only the first cycle starts from rest: nothing to show yet
+            notice = Notice("elastic_partial", "The start from rest stopped at the work bound: the motor's "
+                                               "characteristic is too steep to follow in time; no start-up is shown.")
+            numerics.message = notice.text
+            motion.notices.append(notice)
+            return motion
         run.phi = run.phi + n * cycle
         pieces.append(run)
         numerics.cycles = n + 1

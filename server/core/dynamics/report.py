@@ -90,12 +90,14 @@ def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, ome
     return result, notices
 
 
-def _flywheel_error(machine: Machine, omega_mean: float, delta: float, balance: bool, steps: int, inertia: float) -> float:
+def _flywheel_error(machine: Machine, omega_mean: float, delta: float, balance: bool, steps: int, inertia: float) -> float | None:
     """Relative change of the exact inertia when the grid is halved (Simpson: the error is ~1/16 of it)."""
     half = node_tables(machine, steps_per_cycle(machine, steps // 2), balance)
     work = cumulative_simpson(half.net_phi, float(half.phi[2] - half.phi[0]))
     group_i = machine.inertias.J1 + machine.inertias.J_rotor * machine.inertias.gear_ratio**2
     coarse = fw.exact(fw.Cycle(half.phi[::2], work, half.J[::2] - group_i), omega_mean, delta, inertia).inertia
+    if inertia == 0:                     # group II alone keeps δ: nothing relative to compare unless both agree
+        return 0.0 if coarse == 0 else None
     return abs(coarse / inertia - 1)
 
 
@@ -135,6 +137,11 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
     flywheel_inertia = max(required - group_i_existing, 0.0)
     merz = rows[0]
     omega_before = fw.periodic_speed(cycle, group_i_existing, omega_mean)
+    if not np.isfinite(omega_before).all():
+        stall = float(np.degrees(phi[int(np.argmin(work))]))
+        notices.append(Notice("stall_in_cycle", f"Without the flywheel the machine cannot run at ω_m = {omega_mean:g} "
+                              f"rad/s: stall at φ = {stall:.1f}°, the kinetic energy runs out within the cycle.",
+                              {"phi": stall}))
     omega_after = fw.periodic_speed(cycle, chosen, omega_mean)
     total = chosen + cycle.inertia_ii
     moment = tables.net_phi[nodes]
@@ -149,7 +156,7 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
         "omega_before": omega_before, "omega_after": omega_after, "epsilon": epsilon}
     result = {
         "phi": phi[shown], "methods": rows, "group_i_existing": group_i_existing, "flywheel_inertia": flywheel_inertia,
-        "merzalov_excess": merz["inertia"] / required - 1,
+        "merzalov_excess": merz["inertia"] / required - 1 if required > 0 else None,
         "curves": {name: values[shown] for name, values in curves.items()},
         "wittenbauer": diagram,
         "disk": fw.disk(flywheel_inertia, width_ratio, density).__dict__,

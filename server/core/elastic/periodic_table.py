@@ -7,6 +7,8 @@ error O(h²).  Without derivatives it is piecewise linear (for loads with kinks)
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 
@@ -21,6 +23,8 @@ class PeriodicTable:
 
     def value_slope(self, phi: float) -> tuple[float, float]:
         """f(φ), f′(φ): the right-hand side's fast path."""
+        if not math.isfinite(phi):        # a diverged run: NaN, which the solver's caller reports in words
+            return math.nan, math.nan
         x = (phi % self.period) / self.h
         k = min(int(x), self.n - 1)
         s = x - k
@@ -36,6 +40,8 @@ class PeriodicTable:
 
     def __call__(self, phi: float) -> tuple[float, float, float]:
         """f(φ), f′(φ), f″(φ)."""
+        if not math.isfinite(phi):
+            return math.nan, math.nan, math.nan
         x = (phi % self.period) / self.h
         k = min(int(x), self.n - 1)
         s = x - k

@@ -58,6 +58,9 @@ def mechanism_side(machine: ElasticMachine) -> MechanismSide:
     phi = np.linspace(0.0, period, int(TABLE_POINTS * period / (2 * np.pi)) + 1)
     side = Inertias(**{**machine.inertias.__dict__, "J_rotor": 0.0})
     inertia = reduced_inertia(machine.mechanism, machine.params, side, phi)
+    if not inertia.J.min() > 0:                         # as for the rigid machine: no equation of motion
+        raise GeometryError("inertias", "the mechanism side's reduced moment of inertia is zero: give the crank "
+                                        "(J1) some inertia", "zero_inertia")
     moment = resisting_moment(machine.mechanism, machine.params, machine.load, phi, omega=1.0)
     if not np.isfinite(moment.useful + moment.dry).all():
         notice = moment.notices[0] if moment.notices else Notice("singular_position", "the load is undefined")
@@ -142,7 +145,7 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
                                   + (" (chosen by the request)" if method != "auto" else "")),
         "stiffness_ratio": ratio, "rtol": rtol, "steps": run.numerics["steps"], "rejected": run.numerics["rejected"],
         "nfev": run.numerics["nfev"], "njev": run.numerics["njev"], "nlu": run.numerics["nlu"],
-        "error_estimate": float(np.max(np.abs(twist_now[:common] - twist_check[:common]))) / scale,
+        "error_estimate": float(np.max(np.abs(twist_now[:common] - twist_check[:common]), initial=0.0)) / scale,
         "energy_residual": result.pop("energy_residual"), "message": run.numerics["message"],
         "table_points_per_turn": TABLE_POINTS,
         "runtime_ms": 1e3 * (time.perf_counter() - started)}
@@ -276,6 +279,8 @@ def bearing_iteration(machine: ElasticMachine, bearing: Bearing, t_end: float, s
         if time.perf_counter() > deadline:
             break
         result, _ = simulate(current, t_end, samples, rtol, budget_s=budget_s / 4)
+        if not result["t"].size:                    # stopped at the work bound before any sample: no rod force
+            break
         load = float(np.max(np.abs(rod_force(current, result["phi"], result["twist"]))))
         stiffness = bearing_stiffness(load, bearing.balls, bearing.r_inner, bearing.r_outer, bearing.young,
                                       bearing.poisson)

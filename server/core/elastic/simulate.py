@@ -47,6 +47,23 @@ def stiffness_ratio(model, y0: np.ndarray, slow_rate: float, probes: int = 24) -
     return decay / max(slow_rate, 1e-12), decay, fastest
 
 
+class WorkBound(Exception):
+    """The right-hand side was called past the run's evaluation or time budget."""
+
+
+def bounded(rhs, evaluations: int, deadline: float):
+    """rhs that raises WorkBound after `evaluations` calls or, checked every 256 calls, past `deadline`."""
+    calls = 0
+
+    def counted(t, y):
+        nonlocal calls
+        calls += 1
+        if calls > evaluations or (calls % 256 == 0 and time.perf_counter() > deadline):
+            raise WorkBound
+        return rhs(t, y)
+    return counted
+
+
 RK_STAGES = {"RK45": 6, "DOP853": 12}    # RHS calls per step attempt in scipy's explicit Runge–Kutta
 DENSE_EXTRA = {"RK45": 0, "DOP853": 3}   # extra calls per accepted step for DOP853's dense output
 
@@ -60,9 +77,16 @@ def integrate(model, y0: np.ndarray, t_end: float, rtol: float, method: str, sam
     stats = {"steps": 0, "rejected": 0 if method in RK_STAGES else None, "nfev": 0, "njev": 0, "nlu": 0}
     y, complete, message = np.asarray(y0, float), True, ""
     for a, b in zip(edges[:-1], edges[1:]):
-        with np.errstate(all="ignore"):          # a diverging explicit run is caught below and reported
-            solution = solve_ivp(model.rhs, (a, b), y, method=method, rtol=rtol, atol=atol, dense_output=True,
-                                 **implicit)
+        rhs = bounded(model.rhs, max_evaluations - stats["nfev"], deadline)
+        try:
+            with np.errstate(all="ignore"):          # a diverging explicit run is caught below and reported
+                solution = solve_ivp(rhs, (a, b), y, method=method, rtol=rtol, atol=atol, dense_output=True,
+                                     **implicit)
+        except WorkBound:                            # the bound is also kept inside a chunk (a very stiff spring)
+            complete = False
+            message = (f"stopped at t = {a:.4g} s of {t_end:.4g} s: the work bound was reached; "
+                       "the result is partial")
+            break
         accepted = solution.t.size - 1
         stats["steps"] += accepted
         stats["nfev"] += solution.nfev

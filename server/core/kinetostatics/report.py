@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..mechanisms import GeometryError
 from .crank_slider import ForceAnalysis, cross
 
 
@@ -81,6 +82,9 @@ def wear_report(analysis: ForceAnalysis, parts: dict, cycles: float) -> dict:
     final = analysis.final
     r23 = final.R23                                   # rod on the pin (link 3)
     p23 = mean_pressure(np.linalg.norm(r23, axis=1), parts["pin_length"], parts["pin_diameter"])
+    if p23 == 0:                                      # k = I_s/p_m (4.24) needs a pressure
+        raise GeometryError("loads", "nothing presses the piston pin: wear needs a load (the piston force, the "
+                                     "gas force or the masses)")
     beta = np.radians(np.arange(0, 361, 5))
     rod = analysis.points["B"] - analysis.points["A"]
     rod_angle = np.arctan2(rod[:, 1], rod[:, 0])     # the bush turns with the rod; the pin stays with the piston
@@ -93,6 +97,9 @@ def wear_report(analysis: ForceAnalysis, parts: dict, cycles: float) -> dict:
     side = 1 if np.nansum(np.clip(normal, 0, None)) >= np.nansum(np.clip(-normal, 0, None)) else -1
     pressed = np.where(np.sign(normal) == side, np.abs(normal), 0.0)
     p34 = mean_pressure(pressed, parts["piston_length"], parts["piston_diameter"])
+    if p34 == 0:
+        raise GeometryError("loads", "nothing presses the piston on the cylinder: wear needs a load across the "
+                                     "guide")
     u31 = values["u31"]
     x_b = analysis.points["B"][:, 0]
     travel = x_b.max() - x_b                          # piston crown from top dead centre

@@ -199,8 +199,10 @@ class FourBar(Mechanism):
         cycle = self.cycle(p)
         candidates, reach = [], []
         for ac, turn in ((l2 + l1, 0.0), (abs(l2 - l1), 0.0 if l2 < l1 else np.pi)):
+            if ac == 0:
+                continue   # l₁ = l₂ folded: C would sit on A, the triangle ACD has no angle at A
             cos_a = (l0**2 + ac**2 - l3**2) / (2 * l0 * ac)
-            if ac == 0 or abs(cos_a) > 1:
+            if abs(cos_a) > 1:
                 continue   # that line-up cannot be assembled: the output rotates fully
             alpha = np.arccos(cos_a)
             for phi in (turn + alpha, turn - alpha):
