@@ -1,4 +1,5 @@
 """The FastAPI application: versioned JSON API under /api/v1, pages, and our own static assets."""
+from contextlib import asynccontextmanager
 from pathlib import Path
 
 import plotly
@@ -9,6 +10,7 @@ from fastapi.staticfiles import StaticFiles
 
 from .content import REPO_ROOT
 from ..core.mechanisms import GeometryError
+from . import heavy
 from .errors import geometry_error, validation_error
 from .security import SecurityMiddleware
 from .response_cache import ResponseCache, ResponseCacheMiddleware
@@ -21,11 +23,18 @@ API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
 
 
+@asynccontextmanager
+async def lifespan(app: FastAPI):
+    yield
+    heavy.shutdown()                   # the heavy processes end with the worker
+
+
 def create_app() -> FastAPI:
     app = FastAPI(title="Mechanism Dynamics Lab API", version="1.0.0",
                   description="Kinematics and dynamics of planar linkages for the theory of machines and "
                               "mechanisms. SI units throughout; angles in radians.",
-                  openapi_url=f"{API_PREFIX}/openapi.json", docs_url=None, redoc_url=None)
+                  openapi_url=f"{API_PREFIX}/openapi.json", docs_url=None, redoc_url=None,
+                  lifespan=lifespan)
     api = APIRouter(prefix=API_PREFIX)
     for module in (mechanisms, kinematics, dynamics, elastic, forces, angular, scenes, assignments):
         api.include_router(module.router)
