@@ -5,8 +5,7 @@ from __future__ import annotations
 from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import HTMLResponse
 
-from ...classroom.spec import AssignmentSpec
-from ...classroom.variants import SpecError, plan
+from ...classroom.variants import SpecError
 from .. import assignments
 from ..answers import student_scene
 from ..content import scenes
@@ -65,5 +64,5 @@ def results_page(request: Request, assignment_id: str, token: str, lang: str | N
     context = _context(request, lang)
     return templates.TemplateResponse(request, "assignment_results.html", context | {
         "assignment": assignments.info(record, resolved, context["lang"]), "token": token,
-        "sliders": [s for s in resolved.variant.sliders] , "toggles": resolved.variant.toggles,
+        "sliders": resolved.variant.sliders, "toggles": resolved.variant.toggles,
         "rows": assignments.result_rows(record, resolved)})

@@ -6,7 +6,7 @@ import io
 import os
 import time
 
-from fastapi import APIRouter, HTTPException, Path, Query, Request, Response
+from fastapi import APIRouter, Path, Query, Request, Response
 from fastapi.responses import JSONResponse
 
 from ...classroom.spec import AssignmentSpec
