@@ -192,12 +192,18 @@ def test_kinematics_answer_overtaken_while_awaited_is_dropped_when_it_arrives(br
     assert page.problems == []
 
 
-def test_dynamics_page_keeps_one_request_in_flight_and_ends_on_the_final_value(browser_page):
-    page = browser_page
+def open_motion_scene(page) -> "SlowEndpoint":
+    """The equation-of-motion scene (linear motor) with /motion held, its first answer plotted."""
     slow = SlowEndpoint(page, "motion")
     page.goto("/scenes/equation-of-motion?lang=en&variant=linear")
     slow.settle()
     page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="omega_phi")
+    return slow
+
+
+def test_dynamics_page_keeps_one_request_in_flight_and_ends_on_the_final_value(browser_page):
+    page = browser_page
+    slow = open_motion_scene(page)
 
     count_inputs(page, "#slider-M0")
     before = len(slow.requests)
@@ -221,10 +227,7 @@ def test_dynamics_page_keeps_one_request_in_flight_and_ends_on_the_final_value(b
 
 def test_dynamics_answer_overtaken_while_awaited_is_dropped_when_it_arrives(browser_page):
     page = browser_page
-    slow = SlowEndpoint(page, "motion")
-    page.goto("/scenes/equation-of-motion?lang=en&variant=linear")
-    slow.settle()
-    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="omega_phi")
+    slow = open_motion_scene(page)
     shown_before = plotted(page, "omega_phi")
 
     slow.holding.add("main")
