@@ -13,8 +13,7 @@ folder, as a subprocess on loopback. Each simulated student behaves like a scene
   simulated (the kinematics page's λ overlay is off by default). Accept-Encoding: gzip, like a browser.
 
 Reported per endpoint: requests, throughput, p50/p95/p99 latency (send to last byte), errors (non-2xx or
-network), the cache's hit rate (X-Cache headers), and over the run the server's GET /api/v1/cache counters
-of every worker, the server's and the client's CPU time. The client runs on the same CPUs as the server.
+network), the cache's hit rate (X-Cache headers), and the cache counters every worker logs as it stops, the server's and the client's CPU time. The client runs on the same CPUs as the server.
 A short comparison of two client implementations (asyncio + httpx, threads + http.client) measures which
 costs the client less CPU per request; the lighter one drives the main runs.
 
@@ -48,6 +47,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from server.api.content import Scene, scenes  # noqa: E402
+from server.api.response_cache import CACHE_AT_EXIT  # noqa: E402
 from server.api.scene_requests import scene_request, slider_values  # noqa: E402
 
 TICK_S = 0.1                    # a slider move every 100 ms while dragging
@@ -228,7 +228,7 @@ def free_port() -> int:
 
 
 def get_json(port: int, path: str) -> dict:
-    """GET on a fresh connection (with several workers, each new connection may reach another one)."""
+    """GET on a fresh connection."""
     connection = http.client.HTTPConnection("127.0.0.1", port, timeout=5)
     try:
         connection.request("GET", path, headers={"Connection": "close"})
@@ -240,16 +240,22 @@ def get_json(port: int, path: str) -> dict:
         connection.close()
 
 
-def cache_stats_by_worker(port: int, workers: int, attempts: int = 200) -> dict[int, dict]:
-    """GET /api/v1/cache of every worker process (keyed by pid), asking on fresh connections until each has
-    answered."""
-    found: dict[int, dict] = {}
-    for _ in range(attempts):
-        stats = get_json(port, "/api/v1/cache")
-        found[stats["pid"]] = stats
-        if len(found) >= workers:
-            return found
-    raise RuntimeError(f"only {len(found)} of {workers} workers answered GET /api/v1/cache")
+def started_workers(log: str) -> int:
+    """Worker processes that have said 'Application startup complete.' in the server's log."""
+    return log.count("Application startup complete.")
+
+
+def cache_counters_at_exit(log: str) -> list[dict]:
+    """The response cache's counters that every worker logs as it stops (server.api.app.CACHE_AT_EXIT).
+
+    Asking GET /api/v1/cache of each worker is no way to collect them: the workers share one listening socket,
+    and an idle worker's event loop accepts every pending connection at once, so a few hundred requests in a
+    row may all reach the same worker."""
+    counters = []
+    for line in log.splitlines():
+        if CACHE_AT_EXIT in line:
+            counters.append(json.loads(line.split(CACHE_AT_EXIT, 1)[1]))
+    return counters
 
 
 def server_command(port: int, workers: int) -> list[str]:
@@ -304,10 +310,13 @@ def end_session(session: int) -> int:
 
 @contextmanager
 def running_server(workers: int):
-    """The server on a free loopback port with MDL_DATA_DIR in a temporary folder; yields (port, process)."""
+    """The server on a free loopback port with MDL_DATA_DIR in a temporary folder; yields (port, process).
+    Ready once every worker has started and one of them answers; once stopped, ``process.cache_at_exit`` holds
+    the cache counters its workers logged and ``process.outlived`` the processes that outlived it."""
     with tempfile.TemporaryDirectory(prefix="mdl-classroom-") as data_dir:
         port = free_port()
-        log = open(Path(data_dir) / "server.log", "wb")
+        log_path = Path(data_dir) / "server.log"
+        log = open(log_path, "wb")
         process = subprocess.Popen(server_command(port, workers), cwd=ROOT, stdout=log, stderr=subprocess.STDOUT,
                                    env={**os.environ, "MDL_DATA_DIR": data_dir}, start_new_session=True)
         try:
@@ -315,10 +324,11 @@ def running_server(workers: int):
             while True:
                 if process.poll() is not None:
                     raise RuntimeError(f"the server exited with code {process.returncode}: "
-                                       + (Path(data_dir) / "server.log").read_text(errors="replace")[-2000:])
+                                       + log_path.read_text(errors="replace")[-2000:])
                 try:
-                    cache_stats_by_worker(port, workers, attempts=50)
-                    break
+                    if started_workers(log_path.read_text(errors="replace")) >= workers:
+                        get_json(port, "/api/v1/cache")
+                        break
                 except (OSError, RuntimeError, http.client.HTTPException):
                     if time.monotonic() > deadline:
                         raise RuntimeError("the server did not answer within 60 s") from None
@@ -333,6 +343,7 @@ def running_server(workers: int):
                 process.wait()
             process.outlived = end_session(process.pid)
             log.close()
+            process.cache_at_exit = cache_counters_at_exit(log_path.read_text(errors="replace"))
 
 
 def run(workers: int, client: str, students: int, seconds: float, seed: int) -> dict:
@@ -342,7 +353,6 @@ def run(workers: int, client: str, students: int, seconds: float, seed: int) -> 
     class_ = [Student(all_scenes[scene_id], random.Random(rng.random())) for scene_id in apportion(students, SCENE_MIX)]
     record = Record()
     with running_server(workers) as (port, process):
-        before = cache_stats_by_worker(port, workers)
         server_cpu, client_cpu, busy = server_cpu_s(process), time.process_time(), machine_busy_cpu_s()
         start = time.monotonic() + 0.2
         wall = time.perf_counter()
@@ -350,14 +360,12 @@ def run(workers: int, client: str, students: int, seconds: float, seed: int) -> 
         wall = time.perf_counter() - wall
         server_cpu, client_cpu = server_cpu_s(process) - server_cpu, time.process_time() - client_cpu
         busy = machine_busy_cpu_s() - busy
-        after = cache_stats_by_worker(port, workers)
-    hits = sum(after[pid]["hits"] - before.get(pid, {}).get("hits", 0) for pid in after)
-    misses = sum(after[pid]["misses"] - before.get(pid, {}).get("misses", 0) for pid in after)
+    after = process.cache_at_exit           # the caches start empty: their counters at exit are the run's
     return {"workers": workers, "client": client, "students": students, "seconds": seconds, "wall": wall,
             "rows": record.rows, "moves": sum(s.moves for s in class_), "server_cpu": server_cpu,
-            "client_cpu": client_cpu, "outlived": process.outlived, "other_cpu": max(0.0, busy - server_cpu - client_cpu), "cache": {"hits": hits, "misses": misses, "workers": len(after),
-                                                "entries": sum(s["entries"] for s in after.values()),
-                                                "bytes": sum(s["bytes"] for s in after.values())},
+            "client_cpu": client_cpu, "outlived": process.outlived, "other_cpu": max(0.0, busy - server_cpu - client_cpu), "cache": {"hits": sum(s["hits"] for s in after), "misses": sum(s["misses"] for s in after),
+                                                "workers": len(after), "entries": sum(s["entries"] for s in after),
+                                                "bytes": sum(s["bytes"] for s in after)},
             "command": "python3 -m server --port <free port>" + (f" --workers {workers}" if workers > 1 else ""),
             "scenes": {scene: sum(1 for s in class_ if s.scene.id == scene) for scene in SCENE_MIX}}
 
@@ -406,9 +414,11 @@ def markdown_run(result: dict, title: str) -> list[str]:
     lines += ["", f"* Slider moves: {result['moves']}; requests sent: {requests} "
                   f"({percent(1 - requests / result['moves']) if result['moves'] else '–'} of the moves coalesced "
                   "into a later request while an answer was awaited).",
-              f"* Cache, GET /api/v1/cache of {cache['workers']} worker process(es) before and after: "
+              f"* Cache, the counters each worker process logs as it stops ({cache['workers']} of "
+              f"{result['workers']}): "
               f"{cache['hits']} hits, {cache['misses']} misses (hit rate {percent(cache['hits'] / looked_up if looked_up else None)}), "
-              f"{cache['entries']} entries, {cache['bytes'] / 1e6:.1f} MB at the end.",
+              f"{cache['entries']} entries, {cache['bytes'] / 1e6:.1f} MB at the end; the clients saw "
+              f"{sum(1 for r in result['rows'] if r[3] == 'hit')} answers with X-Cache: hit.",
               f"* Server CPU: {result['server_cpu']:.1f} s in {result['wall']:.1f} s "
               f"({100 * result['server_cpu'] / result['wall'] / cpus:.0f} % of the {cpus} CPUs); "
               f"client CPU: {result['client_cpu']:.1f} s ({100 * result['client_cpu'] / result['wall'] / cpus:.0f} % "

@@ -1,4 +1,6 @@
 """The FastAPI application: versioned JSON API under /api/v1, pages, and our own static assets."""
+import json
+import logging
 from contextlib import asynccontextmanager
 from pathlib import Path
 
@@ -13,7 +15,7 @@ from ..core.mechanisms import GeometryError
 from . import heavy
 from .errors import geometry_error, validation_error
 from .security import SecurityMiddleware
-from .response_cache import ResponseCache, ResponseCacheMiddleware
+from .response_cache import CACHE_AT_EXIT, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
 from ..classroom.variants import SpecError
 from .routers import (angular, assignment_pages, assignments, dynamics, elastic, forces, kinematics, mechanisms, pages,
@@ -27,6 +29,9 @@ PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
 async def lifespan(app: FastAPI):
     yield
     heavy.shutdown()                   # the heavy processes end with the worker
+    cache = getattr(app.state, "response_cache", None)
+    if cache is not None:              # one line per worker: its counters, as GET /api/v1/cache gives them
+        logging.getLogger("uvicorn.error").info("%s %s", CACHE_AT_EXIT, json.dumps(cache.stats()))
 
 
 def create_app() -> FastAPI:

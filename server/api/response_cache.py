@@ -19,7 +19,8 @@ budget (TIME_BUDGETS_S) are not stored.
 Entries are evicted least recently used first once their total size passes ``max_bytes`` (default 64 MB,
 environment variable MDL_CACHE_BYTES; 0 turns the cache off). The cache is per process: with several
 workers each has its own. Every cached path answers with the header ``X-Cache: hit`` or ``X-Cache: miss``;
-GET /api/v1/cache reports hits, misses, entries and bytes. An answer served from the cache is the stored
+GET /api/v1/cache reports hits, misses, entries and bytes of the worker that answers; as it stops, each
+worker logs the same counters in one line (CACHE_AT_EXIT). An answer served from the cache is the stored
 bytes of the first computation, its ``numerics.runtime_ms`` included.
 """
 from __future__ import annotations
@@ -44,7 +45,8 @@ SIGNIFICANT_DIGITS = 10
 # simulations half of the elastic budget); an answer at least this slow may be a partial one. The other
 # endpoints have no time budget.
 TIME_BUDGETS_S = {"motion": MOTION_BUDGET_S, "elastic": ELASTIC_BUDGET_S / 2}
-ENTRY_OVERHEAD_BYTES = 200          # key, bookkeeping and object headers of one entry, roughly
+ENTRY_OVERHEAD_BYTES = 200
+CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSON) after this as it stops          # key, bookkeeping and object headers of one entry, roughly
 
 # The computing endpoints whose answer is a function of (path, lang, body) alone.
 CACHED_ENDPOINTS = ("kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
