@@ -263,10 +263,11 @@ def server_command(port: int, workers: int) -> list[str]:
     return [sys.executable, "-m", "server", "--port", str(port), *(["--workers", str(workers)] if workers > 1 else [])]
 
 
-def session_processes(session: int) -> dict[int, float]:
+def session_processes(session: int, zombies: bool = True) -> dict[int, float]:
     """The processes of a session (the server started with start_new_session: its workers, and the processes
     they start for long computations, which a forkserver may reparent to init) and their user + system CPU
-    seconds so far, from /proc."""
+    seconds so far, from /proc. ``zombies=False`` leaves out those that have ended but are not yet reaped
+    (an orphan's parent is init, which on some machines reaps late or never)."""
     ticks = os.sysconf("SC_CLK_TCK")
     found = {}
     for entry in Path("/proc").iterdir():
@@ -276,7 +277,7 @@ def session_processes(session: int) -> dict[int, float]:
             fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
         except OSError:
             continue
-        if int(fields[3]) == session:                                 # state, ppid, pgrp, session, …
+        if int(fields[3]) == session and (zombies or fields[0] != "Z"):   # state, ppid, pgrp, session, …
             found[int(entry.name)] = (int(fields[11]) + int(fields[12])) / ticks   # utime, stime
     return found
 
@@ -295,7 +296,7 @@ def machine_busy_cpu_s() -> float:
 def end_session(session: int) -> int:
     """End what is left of the server's session once the server has stopped (its own process group, by id);
     returns how many processes had outlived it."""
-    left = session_processes(session)
+    left = session_processes(session, zombies=False)
     if left:
         for sig in (signal.SIGTERM, signal.SIGKILL):
             try:
@@ -303,7 +304,7 @@ def end_session(session: int) -> int:
             except ProcessLookupError:
                 break
             deadline = time.monotonic() + 3
-            while session_processes(session) and time.monotonic() < deadline:
+            while session_processes(session, zombies=False) and time.monotonic() < deadline:
                 time.sleep(0.1)
     return len(left)
 
