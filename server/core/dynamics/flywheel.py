@@ -118,8 +118,10 @@ def exact(cycle: Cycle, omega_mean: float, delta: float, guess: float) -> Method
     """I_I of the periodic solution with exactly the target δ (δ falls monotonically as I_I grows)."""
     def error(log_inertia):
         return np.log(achieved_delta(cycle, float(np.exp(log_inertia)), omega_mean) / delta)
-    if achieved_delta(cycle, 0.0, omega_mean) <= delta:   # group II alone keeps δ: no group-I inertia needed
-        return Method("exact", 0.0, 0.0)                   # (the bracket below would widen for ever)
+    # Group II alone may keep δ: then no group-I inertia is needed (and the bracket below would widen for
+    # ever). Where J_II is zero somewhere, group II alone cannot carry the machine through the cycle.
+    if cycle.inertia_ii.min() > 0 and achieved_delta(cycle, 0.0, omega_mean) <= delta:
+        return Method("exact", 0.0, 0.0)
     low, high = np.log(guess) - 1.0, np.log(guess) + 1.0
     for _ in range(200):                                   # a bracket in e^±400, never an endless loop
         if not error(low) < 0:
