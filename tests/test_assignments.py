@@ -10,6 +10,7 @@ import csv
 import io
 import json
 import re
+import sqlite3
 import threading
 from datetime import datetime, timedelta, timezone
 
@@ -25,7 +26,7 @@ from server.api.assignments import load
 from server.api.content import Scene, scenes
 from server.api.scene_requests import scene_request
 from server.api.routers import assignments as assignments_router
-from server.classroom.storage import SQLiteStore
+from server.classroom.storage import SCHEMA, SQLiteStore
 from server.classroom.variants import student_key
 
 API = "/api/v1/assignments"
@@ -230,6 +231,25 @@ def test_a_restart_loses_nothing(client, tmp_path):
     assert [(s.student_key, s.answer, s.attempt) for s in reopened.submissions(created["id"])] == [("melnyk", 3.0, 1)]
 
 
+def test_a_file_from_before_the_correct_values_gets_their_column(tmp_path):
+    """A database made before submissions kept the value they were checked against opens, keeps its rows
+    (their correct value unknown) and stores the value from then on."""
+    path = tmp_path / "old.sqlite3"
+    old = sqlite3.connect(path)
+    old.executescript(SCHEMA.replace("    correct_value REAL,\n", ""))
+    old.execute("INSERT INTO assignments VALUES ('a1', 'h', 0, '{}')")
+    old.execute("INSERT INTO students (assignment_id, key, name, variant, parameters, first_seen) "
+                "VALUES ('a1', 'ivan', 'Ivan', 0, '{}', 0)")
+    old.execute("INSERT INTO submissions (assignment_id, student_key, question, answer, correct, attempt, at, client) "
+                "VALUES ('a1', 'ivan', 'q', 1.5, 0, 1, 0, 'c')")
+    old.commit()
+    old.close()
+    store = SQLiteStore(path)
+    store.submit("a1", "ivan", "q", 2.5, True, 3, 1.0, "c", 2.51)
+    assert [(s.answer, s.correct_value) for s in store.submissions("a1")] == [(1.5, None), (2.5, 2.51)]
+    assert SQLiteStore(path).submissions("a1")[1].correct_value == 2.51          # a second opening changes nothing
+
+
 def test_the_deadline_closes_submissions(client):
     past = (datetime.now(timezone.utc) - timedelta(minutes=1)).isoformat()
     created = create(client, FLYWHEEL | {"deadline": past})
@@ -258,6 +278,9 @@ def test_results_and_csv_agree(client):
     for row, student in zip(rows, results["students"]):
         assert int(row["variant"]) == student["variant"] and float(row["delta"]) == student["values"]["delta"]
         assert int(row["score"]) == student["score"] and int(row["flywheel_inertia right"]) == student["score"]
+        checked_against = student["questions"]["flywheel_inertia"]["correct"]
+        assert checked_against == variant_answer(client, created, student["student"])
+        assert float(row["flywheel_inertia correct"]) == checked_against        # repr: every digit
     assert client.get(f"{API}/{created['id']}/results/wrong-token").status_code == 404
     assert client.get(f"/assignments/{created['id']}/results/wrong-token").status_code == 404
 

@@ -117,7 +117,8 @@ def result_rows(record: AssignmentRecord, resolved: Plan) -> list[ResultRow]:
         for pick in resolved.spec.questions:
             answers = [s for s in mine if s.question == pick.id]
             per_question[pick.id] = {"attempts": len(answers), "right": any(s.correct for s in answers),
-                                     "answer": answers[-1].answer if answers else None}
+                                     "answer": answers[-1].answer if answers else None,
+                                     "correct": answers[-1].correct_value if answers else None}
         rows.append(ResultRow(student=student.name, variant=student.variant + 1, values=student.parameters,
                               first_seen=iso(student.first_seen), last_submission=iso(student.last_at),
                               attempts=student.attempts, score=student.solved, questions=per_question))

@@ -76,7 +76,8 @@ class ResultRow(BaseModel):
     last_submission: str | None
     attempts: int
     score: int = Field(description="questions answered right")
-    questions: dict[str, dict] = Field(description="by question: attempts, right, last answer")
+    questions: dict[str, dict] = Field(description="by question: attempts, right, the last answer and the correct "
+                                                   "value it was checked against (null before an answer)")
 
 
 class Results(BaseModel):

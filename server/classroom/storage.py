@@ -43,6 +43,7 @@ CREATE TABLE IF NOT EXISTS submissions (
     question TEXT NOT NULL,
     answer REAL NOT NULL,
     correct INTEGER NOT NULL CHECK (correct IN (0, 1)),
+    correct_value REAL,
     attempt INTEGER NOT NULL CHECK (attempt >= 1),
     at REAL NOT NULL,
     client TEXT NOT NULL,
@@ -51,6 +52,8 @@ CREATE TABLE IF NOT EXISTS submissions (
 );
 CREATE INDEX IF NOT EXISTS submissions_by_client ON submissions (client, at);
 """
+# Columns added after the first release, for files made before them: (table, column, declaration).
+ADDED_COLUMNS = (("submissions", "correct_value", "REAL"),)
 
 
 @dataclass(frozen=True)
@@ -81,6 +84,7 @@ class Submission:
     correct: bool
     attempt: int
     at: float
+    correct_value: float | None = None      # the value the answer was checked against (None in older files)
 
 
 class AttemptRefused(Exception):
@@ -98,7 +102,7 @@ class AssignmentStore(Protocol):
     def student(self, assignment_id: str, key: str) -> StudentRecord | None: ...
     def students(self, assignment_id: str) -> list[StudentRecord]: ...
     def submit(self, assignment_id: str, key: str, question: str, answer: float, correct: bool,
-               attempts_allowed: int, at: float, client: str) -> Submission: ...
+               attempts_allowed: int, at: float, client: str, correct_value: float | None = None) -> Submission: ...
     def submissions(self, assignment_id: str, key: str | None = None) -> list[Submission]: ...
     def recent_by_client(self, client: str, since: float) -> int: ...
 
@@ -110,7 +114,11 @@ class SQLiteStore:
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._local = threading.local()
-        self._connection().executescript(SCHEMA)
+        connection = self._connection()
+        connection.executescript(SCHEMA)
+        for table, column, declaration in ADDED_COLUMNS:
+            if column not in {row[1] for row in connection.execute(f"PRAGMA table_info({table})")}:
+                connection.execute(f"ALTER TABLE {table} ADD COLUMN {column} {declaration}")
 
     def _connection(self) -> sqlite3.Connection:
         connection = getattr(self._local, "connection", None)
@@ -154,8 +162,9 @@ class SQLiteStore:
         return [StudentRecord(r[0], r[1], r[2], json.loads(r[3]), r[4], r[5], r[6], r[7]) for r in rows]
 
     def submit(self, assignment_id: str, key: str, question: str, answer: float, correct: bool,
-               attempts_allowed: int, at: float, client: str) -> Submission:
-        """Record one attempt and the student's totals in one transaction; AttemptRefused if none is left."""
+               attempts_allowed: int, at: float, client: str, correct_value: float | None = None) -> Submission:
+        """Record one attempt (with the value it was checked against) and the student's totals in one
+        transaction; AttemptRefused if none is left."""
         connection = self._connection()
         connection.execute("BEGIN IMMEDIATE")
         try:
@@ -168,9 +177,9 @@ class SQLiteStore:
             if used >= attempts_allowed:
                 raise AttemptRefused(f"all {attempts_allowed} attempts are used", "no_attempts_left")
             connection.execute(
-                "INSERT INTO submissions (assignment_id, student_key, question, answer, correct, attempt, at, client)"
-                " VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
-                (assignment_id, key, question, answer, int(correct), used + 1, at, client))
+                "INSERT INTO submissions (assignment_id, student_key, question, answer, correct, correct_value, "
+                "attempt, at, client) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                (assignment_id, key, question, answer, int(correct), correct_value, used + 1, at, client))
             connection.execute(
                 "UPDATE students SET attempts = attempts + 1, solved = solved + ?, last_at = ? "
                 "WHERE assignment_id = ? AND key = ?", (int(correct), at, assignment_id, key))
@@ -178,13 +187,13 @@ class SQLiteStore:
         except BaseException:
             connection.execute("ROLLBACK")
             raise
-        return Submission(key, question, answer, correct, used + 1, at)
+        return Submission(key, question, answer, correct, used + 1, at, correct_value)
 
     def submissions(self, assignment_id: str, key: str | None = None) -> list[Submission]:
-        query = ("SELECT student_key, question, answer, correct, attempt, at FROM submissions "
+        query = ("SELECT student_key, question, answer, correct, attempt, at, correct_value FROM submissions "
                  "WHERE assignment_id = ?" + (" AND student_key = ?" if key is not None else "") + " ORDER BY id")
         args = (assignment_id,) if key is None else (assignment_id, key)
-        return [Submission(r[0], r[1], r[2], bool(r[3]), r[4], r[5])
+        return [Submission(r[0], r[1], r[2], bool(r[3]), r[4], r[5], r[6])
                 for r in self._connection().execute(query, args).fetchall()]
 
     def recent_by_client(self, client: str, since: float) -> int:

@@ -154,6 +154,8 @@ def test_assignment_from_making_to_results(chromium, app_url, browser_page):
     table = {rows.nth(i).locator("td").nth(0).inner_text(): rows.nth(i).inner_text() for i in range(2)}
     assert "✓" in table[right_name] and "1 / 1" in table[right_name]
     assert "✗" in table[wrong_name] and "0 / 1" in table[wrong_name]
+    assert f"Correct answer: {students[wrong_name][2]:.6g}" in table[wrong_name]     # the instructor sees it
+    assert "Correct answer" not in table[right_name]
     screenshot(instructor, "assignment_results")
     exported = httpx.get(app_url + instructor.locator("#csv").get_attribute("href")).text.lstrip("\ufeff")
     exported_rows = {row["student"]: row for row in csv.DictReader(io.StringIO(exported))}
@@ -162,6 +164,7 @@ def test_assignment_from_making_to_results(chromium, app_url, browser_page):
         row = exported_rows[name]
         assert int(row["variant"]) == variant["variant"] and float(row["delta"]) == variant["values"]["delta"]
         assert row["score"] == ("1" if name == right_name else "0")
+        assert float(row["flywheel_inertia correct"]) == pytest.approx(students[name][2], rel=1e-9)
         assert f"{variant['variant']}" in table[name]
     assert instructor.problems == []
     context.close()

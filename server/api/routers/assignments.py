@@ -26,6 +26,10 @@ TOKEN = Path(max_length=60, description="the instructor's results token")
 SUBMISSIONS_PER_MINUTE = int(os.environ.get("MDL_SUBMISSIONS_PER_MINUTE", "300"))   # per client address
 
 
+def _number(value: float | None) -> str:
+    return "" if value is None else repr(value)
+
+
 def _refuse(status: int, loc: list, reason: str, code: str):
     return JSONResponse(status_code=status, content={"detail": [{"loc": loc, "msg": reason, "type": code}]})
 
@@ -86,7 +90,7 @@ def submit(submission: SubmissionRequest, request: Request, assignment_id: str =
     right = is_right(submission.answer, correct, tolerance(resolved, submission.question))
     try:
         saved = store().submit(record.id, student.key, submission.question, submission.answer, right,
-                               resolved.spec.attempts, now, client)
+                               resolved.spec.attempts, now, client, correct)
     except AttemptRefused as refused:
         return _refuse(409, ["body", "question"], refused.reason, refused.code)
     left = 0 if right else resolved.spec.attempts - saved.attempt
@@ -117,13 +121,13 @@ def results_csv(assignment_id: str = ID, token: str = TOKEN) -> Response:
     out = io.StringIO()
     writer = csv.writer(out)
     writer.writerow(["student", "variant", *parameters,
-                     *[f"{q} {part}" for q in questions for part in ("attempts", "right", "answer")],
+                     *[f"{q} {part}" for q in questions for part in ("attempts", "right", "answer", "correct")],
                      "score", "attempts", "first_seen", "last_submission"])
     for row in rows:
         writer.writerow([row.student, row.variant, *[row.values.get(p) for p in parameters],
                          *[v for q in questions for v in (row.questions[q]["attempts"], int(row.questions[q]["right"]),
-                                                          "" if row.questions[q]["answer"] is None
-                                                          else repr(row.questions[q]["answer"]))],
+                                                          _number(row.questions[q]["answer"]),
+                                                          _number(row.questions[q]["correct"]))],
                          row.score, row.attempts, row.first_seen, row.last_submission or ""])
     name = f"results-{record.id}.csv"
     return Response("\ufeff" + out.getvalue(), media_type="text/csv; charset=utf-8",
