@@ -17,8 +17,10 @@ class AngularRequest(BaseModel):
     outputs: list[Literal["angular"]] = Field(["angular"], max_length=1, description="the components and the points")
     mechanism: Literal["crank_slider", "trammel"] = Field("crank_slider", description="central crank-slider or "
                                                                                        "elliptic trammel")
-    lam: float = Field(0.5, gt=0, lt=1, description="λ = OA/AB (the paper's; the textbook's l₂/l₁ is 1/λ)")
-    length: float = Field(1.0, gt=0, le=10, description="crank OA, m")
+    lam: float = Field(0.5, ge=0.01, lt=1, description="λ = OA/AB (the paper's; the textbook's l₂/l₁ is 1/λ); "
+                                                    "from 0.01: a rod 100 cranks long is a straight-line guide")
+    length: float = Field(1.0, ge=1e-3, le=10, description="crank OA, m (from 1 mm: a subnormal length "
+                                                           "overflowed 1/AP)")
     law: Literal["constant", "accelerating", "harmonic"] = Field("constant", description="crank law")
     omega0: float = Field(np.pi / 6, ge=1e-3, le=1e3, description="crank speed ω₀ at t = 0, rad/s")
     epsilon0: float = Field(0.0, ge=-1e3, le=1e3, description="accelerating law: ε₀, rad/s²")
