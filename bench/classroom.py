@@ -293,9 +293,15 @@ def machine_busy_cpu_s() -> float:
     return (sum(fields[:8]) - idle) / os.sysconf("SC_CLK_TCK")       # guest time is already in user time
 
 
+OUTLIVE_GRACE_S = 3.0           # multiprocessing's resource tracker may still be cleaning up as the server exits
+
+
 def end_session(session: int) -> int:
-    """End what is left of the server's session once the server has stopped (its own process group, by id);
-    returns how many processes had outlived it."""
+    """End what is left of the server's session once the server has stopped (its own process group, by id)
+    and OUTLIVE_GRACE_S has passed; returns how many processes had outlived it."""
+    deadline = time.monotonic() + OUTLIVE_GRACE_S
+    while session_processes(session, zombies=False) and time.monotonic() < deadline:
+        time.sleep(0.1)
     left = session_processes(session, zombies=False)
     if left:
         for sig in (signal.SIGTERM, signal.SIGKILL):
@@ -426,7 +432,8 @@ def markdown_run(result: dict, title: str) -> list[str]:
               f"of the {cpus} CPUs, {1000 * result['client_cpu'] / max(requests, 1):.1f} ms per request); "
               f"other processes on the machine: {result['other_cpu']:.1f} s "
               f"({100 * result['other_cpu'] / result['wall'] / cpus:.0f} % of the {cpus} CPUs).",
-              f"* Processes of the server's session still running after it stopped (SIGTERM, 15 s): "
+              f"* Processes of the server's session still running {OUTLIVE_GRACE_S:g} s after it stopped "
+              f"(SIGTERM, 15 s): "
               f"{result['outlived']}{' (ended by the benchmark)' if result['outlived'] else ''}.", ""]
     return lines
 

@@ -3,7 +3,9 @@ from __future__ import annotations
 
 import os
 import signal
+from concurrent.futures.process import BrokenProcessPool
 
+import pytest
 from fastapi.testclient import TestClient
 
 from server.api import heavy
@@ -44,3 +46,15 @@ def test_a_dead_child_is_replaced():
     os.kill(first, signal.SIGKILL)
     second = heavy.run(os.getpid)
     assert second not in (first, os.getpid())
+
+
+def test_after_shutdown_no_new_process_is_started():
+    """A request still waiting when the worker stops must not start a pool that would outlive the server."""
+    heavy.run(os.getpid)
+    heavy.shutdown()
+    try:
+        with pytest.raises(BrokenProcessPool):
+            heavy.run(os.getpid)
+        assert heavy._pool is None
+    finally:
+        heavy._closed = False                  # the rest of the session's tests use the pool again

@@ -20,12 +20,15 @@ from typing import Callable, TypeVar
 HEAVY_PROCESSES = int(os.environ.get("MDL_HEAVY_PROCESSES", "1"))
 T = TypeVar("T")
 _pool: ProcessPoolExecutor | None = None
+_closed = False                           # the worker is stopping: no new heavy process
 _lock = threading.Lock()
 
 
 def _current_pool() -> ProcessPoolExecutor:
     global _pool
     with _lock:
+        if _closed:
+            raise BrokenProcessPool("the server is stopping")
         if _pool is None:                     # forkserver: no fork of a process that runs threads
             _pool = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"))
         return _pool
@@ -41,10 +44,11 @@ def _discard(pool: ProcessPoolExecutor) -> None:
 
 def shutdown() -> None:
     """End the heavy processes and their forkserver (the server is stopping): they are not our children
-    once the forkserver has started them, so they would outlive the worker."""
-    global _pool
+    once the forkserver has started them, so they would outlive the worker. A computation still waiting
+    for its answer (its client gone) then fails instead of starting a new pool that nobody would end."""
+    global _pool, _closed
     with _lock:
-        pool, _pool = _pool, None
+        pool, _pool, _closed = _pool, None, True
     if pool is not None:
         for process in list(getattr(pool, "_processes", {}).values()):
             process.kill()
