@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import os
 import signal
+import threading
+import time
 from concurrent.futures.process import BrokenProcessPool
 
 import pytest
@@ -48,13 +50,22 @@ def test_a_dead_child_is_replaced():
     assert second not in (first, os.getpid())
 
 
-def test_after_shutdown_no_new_process_is_started():
-    """A request still waiting when the worker stops must not start a pool that would outlive the server."""
+def test_a_computation_waiting_at_shutdown_starts_no_new_process():
+    """A request still waiting when the worker stops fails: a new pool started for it would outlive the server.
+    A later call (another app in the same process, as in the tests) gets a new pool."""
     heavy.run(os.getpid)
+    outcome = []
+
+    def waiting():
+        try:
+            outcome.append(heavy.run(time.sleep, 5))
+        except BrokenProcessPool as error:
+            outcome.append(error)
+    thread = threading.Thread(target=waiting)
+    thread.start()
+    time.sleep(0.5)                               # the sleep is running in the heavy process
     heavy.shutdown()
-    try:
-        with pytest.raises(BrokenProcessPool):
-            heavy.run(os.getpid)
-        assert heavy._pool is None
-    finally:
-        heavy._closed = False                  # the rest of the session's tests use the pool again
+    thread.join(10)
+    assert len(outcome) == 1 and isinstance(outcome[0], BrokenProcessPool)
+    assert heavy._pool is None                    # no pool was started for the retry
+    assert heavy.run(os.getpid) != os.getpid()

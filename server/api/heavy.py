@@ -13,6 +13,7 @@ import multiprocessing.forkserver
 import os
 import signal
 import threading
+import weakref
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from typing import Callable, TypeVar
@@ -20,15 +21,13 @@ from typing import Callable, TypeVar
 HEAVY_PROCESSES = int(os.environ.get("MDL_HEAVY_PROCESSES", "1"))
 T = TypeVar("T")
 _pool: ProcessPoolExecutor | None = None
-_closed = False                           # the worker is stopping: no new heavy process
+_stopped: weakref.WeakSet = weakref.WeakSet()   # pools ended by shutdown(): what broke there is not retried
 _lock = threading.Lock()
 
 
 def _current_pool() -> ProcessPoolExecutor:
     global _pool
     with _lock:
-        if _closed:
-            raise BrokenProcessPool("the server is stopping")
         if _pool is None:                     # forkserver: no fork of a process that runs threads
             _pool = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"))
         return _pool
@@ -46,10 +45,11 @@ def shutdown() -> None:
     """End the heavy processes and their forkserver (the server is stopping): they are not our children
     once the forkserver has started them, so they would outlive the worker. A computation still waiting
     for its answer (its client gone) then fails instead of starting a new pool that nobody would end."""
-    global _pool, _closed
+    global _pool
     with _lock:
-        pool, _pool, _closed = _pool, None, True
+        pool, _pool = _pool, None
     if pool is not None:
+        _stopped.add(pool)
         for process in list(getattr(pool, "_processes", {}).values()):
             process.kill()
         pool.shutdown(wait=False, cancel_futures=True)
@@ -71,6 +71,8 @@ def run(function: Callable[..., T], *args) -> T:
         try:
             return pool.submit(function, *args).result()
         except BrokenProcessPool:
+            if pool in _stopped:               # ended by shutdown(): the server is stopping
+                raise
             _discard(pool)
             if attempt:
                 raise
