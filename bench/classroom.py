@@ -13,7 +13,8 @@ folder, as a subprocess on loopback. Each simulated student behaves like a scene
   simulated (the kinematics page's λ overlay is off by default). Accept-Encoding: gzip, like a browser.
 
 Reported per endpoint: requests, throughput, p50/p95/p99 latency (send to last byte), errors (non-2xx or
-network), the cache's hit rate (X-Cache headers), and the cache counters every worker logs as it stops, the server's and the client's CPU time. The client runs on the same CPUs as the server.
+network), the cache's hit rate (X-Cache headers), the cache counters every worker logs as it stops, and the
+server's and the client's CPU time. The client runs on the same CPUs as the server.
 A short comparison of two client implementations (asyncio + httpx, threads + http.client) measures which
 costs the client less CPU per request; the lighter one drives the main runs.
 
@@ -246,7 +247,7 @@ def started_workers(log: str) -> int:
 
 
 def cache_counters_at_exit(log: str) -> list[dict]:
-    """The response cache's counters that every worker logs as it stops (server.api.app.CACHE_AT_EXIT).
+    """The response cache's counters that every worker logs as it stops (CACHE_AT_EXIT).
 
     Asking GET /api/v1/cache of each worker is no way to collect them: the workers share one listening socket,
     and an idle worker's event loop accepts every pending connection at once, so a few hundred requests in a
@@ -299,20 +300,24 @@ OUTLIVE_GRACE_S = 3.0           # multiprocessing's resource tracker may still b
 def end_session(session: int) -> int:
     """End what is left of the server's session once the server has stopped (its own process group, by id)
     and OUTLIVE_GRACE_S has passed; returns how many processes had outlived it."""
-    deadline = time.monotonic() + OUTLIVE_GRACE_S
-    while session_processes(session, zombies=False) and time.monotonic() < deadline:
-        time.sleep(0.1)
-    left = session_processes(session, zombies=False)
+    left = live_after(session, OUTLIVE_GRACE_S)
     if left:
         for sig in (signal.SIGTERM, signal.SIGKILL):
             try:
                 os.killpg(session, sig)
             except ProcessLookupError:
                 break
-            deadline = time.monotonic() + 3
-            while session_processes(session, zombies=False) and time.monotonic() < deadline:
-                time.sleep(0.1)
+            if not live_after(session, 3.0):
+                break
     return len(left)
+
+
+def live_after(session: int, seconds: float) -> dict[int, float]:
+    """The session's live processes once they have all ended or `seconds` have passed."""
+    deadline = time.monotonic() + seconds
+    while (live := session_processes(session, zombies=False)) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    return live
 
 
 @contextmanager
@@ -337,9 +342,10 @@ def running_server(workers: int):
                         get_json(port, "/api/v1/cache")
                         break
                 except (OSError, RuntimeError, http.client.HTTPException):
-                    if time.monotonic() > deadline:
-                        raise RuntimeError("the server did not answer within 60 s") from None
-                    time.sleep(0.2)
+                    pass
+                if time.monotonic() > deadline:
+                    raise RuntimeError(f"the server's {workers} worker(s) did not all start and answer within 60 s")
+                time.sleep(0.2)
             yield port, process
         finally:
             process.terminate()

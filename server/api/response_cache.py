@@ -45,8 +45,8 @@ SIGNIFICANT_DIGITS = 10
 # simulations half of the elastic budget); an answer at least this slow may be a partial one. The other
 # endpoints have no time budget.
 TIME_BUDGETS_S = {"motion": MOTION_BUDGET_S, "elastic": ELASTIC_BUDGET_S / 2}
-ENTRY_OVERHEAD_BYTES = 200
-CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSON) after this as it stops          # key, bookkeeping and object headers of one entry, roughly
+ENTRY_OVERHEAD_BYTES = 200          # key, bookkeeping and object headers of one entry, roughly
+CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSON) after this as it stops
 
 # The computing endpoints whose answer is a function of (path, lang, body) alone.
 CACHED_ENDPOINTS = ("kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",

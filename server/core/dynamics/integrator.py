@@ -70,6 +70,7 @@ class RestTable:
         terms = self.weights / difference
         return (terms @ self.values) / terms.sum()
 
+
 def leave_rest(machine: Machine, phi: np.ndarray, t0: float) -> tuple[list[float], list[float]]:
     """T and t at the step nodes ``phi`` after a start from rest at phi[0]: J ω̇ = M − ½J′ω², φ̇ = ω
     in time, regular at ω = 0 (unlike dT/dφ, whose solution has a φ^{3/2} term), by scipy's DOP853.
