@@ -5,6 +5,7 @@ import os
 import signal
 import threading
 import time
+from concurrent.futures import CancelledError
 from concurrent.futures.process import BrokenProcessPool
 
 import pytest
@@ -59,13 +60,13 @@ def test_a_computation_waiting_at_shutdown_starts_no_new_process():
     def waiting():
         try:
             outcome.append(heavy.run(time.sleep, 5))
-        except BrokenProcessPool as error:
+        except (BrokenProcessPool, CancelledError) as error:    # running, or still queued on a slow machine
             outcome.append(error)
     thread = threading.Thread(target=waiting)
     thread.start()
     time.sleep(0.5)                               # the sleep is running in the heavy process
     heavy.shutdown()
     thread.join(10)
-    assert len(outcome) == 1 and isinstance(outcome[0], BrokenProcessPool)
+    assert len(outcome) == 1 and isinstance(outcome[0], (BrokenProcessPool, CancelledError))
     assert heavy._pool is None                    # no pool was started for the retry
     assert heavy.run(os.getpid) != os.getpid()
