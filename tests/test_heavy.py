@@ -8,7 +8,6 @@ import time
 from concurrent.futures import CancelledError
 from concurrent.futures.process import BrokenProcessPool
 
-import pytest
 from fastapi.testclient import TestClient
 
 from server.api import heavy
