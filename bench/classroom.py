@@ -47,9 +47,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from server.api.content import Scene, scenes  # noqa: E402
+from server.lessons.scenes import Scene, scenes  # noqa: E402
 from server.api.response_cache import CACHE_AT_EXIT  # noqa: E402
-from server.api.scene_requests import scene_request, slider_values  # noqa: E402
+from server.lessons.requests import scene_request, slider_values  # noqa: E402
 
 TICK_S = 0.1                    # a slider move every 100 ms while dragging
 DRAG_TICKS = (30, 80)           # one drag lasts 3–8 s
@@ -457,7 +457,7 @@ def markdown(results: list[dict], comparison: list[dict], args) -> str:
         "",
         f"Each student keeps to one scene (share of the class, students): {mix}. A student drags one slider of "
         "one variant for 3–8 s, then another: a random walk over the slider's values, 1–3 positions every "
-        "100 ms, no pauses; the page's request (`server/api/scene_requests.py`) with at most one in flight, "
+        "100 ms, no pauses; the page's request (`server/lessons/requests.py`) with at most one in flight, "
         "the latest values sent when the answer arrives (`web/static/js/api.js`). Latency: from sending to the "
         "last byte of the gzip answer. The cache starts empty, at its default size (64 MB per worker process; "
         "MDL_CACHE_BYTES). *Cut short*: answers of /motion and /elastic that stopped at their wall-clock time "

@@ -23,8 +23,8 @@ from server.api import assignment_store
 from server.api.answers import correct_answer
 from server.api.app import app
 from server.api.assignments import load
-from server.api.content import Scene, scenes
-from server.api.scene_requests import scene_request
+from server.lessons.scenes import Scene, scenes
+from server.lessons.requests import scene_request
 from server.api.routers import assignments as assignments_router
 from server.classroom.storage import SCHEMA, SQLiteStore
 from server.classroom.variants import student_key

@@ -24,7 +24,7 @@ def test_the_class_is_spread_over_the_scenes_by_the_stated_shares():
 
 
 def test_a_student_walks_over_the_values_the_slider_can_express():
-    from server.api.content import scenes
+    from server.lessons.scenes import scenes
     student = classroom.Student(scenes()["transfer-functions"], random.Random(1))
     for _ in range(500):
         student.move()

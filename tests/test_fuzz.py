@@ -32,7 +32,7 @@ from schemathesis.checks import not_a_server_error
 from schemathesis.config import SchemathesisConfig
 
 from server.api.app import create_app
-from server.api.content import scenes
+from server.lessons.scenes import scenes
 from server.core.mechanisms import MECHANISMS
 
 SEED = int(os.environ.get("MDL_FUZZ_SEED", "20269"))
@@ -412,7 +412,7 @@ def test_a_work_precision_run_that_never_reaches_the_next_cycle_is_skipped_withi
     time integration from 0.9 ω of the steady cycle stalled, solve_ivp ran its 100 s span without the next
     cycle's event (IndexError on the empty event list), and the budget was checked only between cycles."""
     import time
-    from server.api.routers.dynamics import _machine
+    from server.api.endpoints import machine as _machine
     from server.api.schemas_dynamics import MotionRequest
     from server.core import work_precision
     body = {"mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3},

@@ -12,8 +12,8 @@ from fastapi.testclient import TestClient
 
 from server.api import heavy
 from server.api.app import app
-from server.api.content import scenes
-from server.api.scene_requests import scene_request
+from server.lessons.scenes import scenes
+from server.lessons.requests import scene_request
 from server.core.mechanisms import GeometryError
 
 

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from server.api.content import interface_texts
+from server.lessons.scenes import interface_texts
 
 SOURCES = list(Path(__file__).resolve().parents[1].joinpath("server").rglob("*.py"))
 CODE = re.compile(r'(?:Notice|NoMotion)\(\s*f?"([a-z_]+)(\{[^"]*\})?"')

@@ -4,18 +4,21 @@ evicted first; the cached answer is the one the server computes afresh.
 """
 from __future__ import annotations
 
+import functools
 import json
 import threading
+import time
 
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import response_cache
+from server.api import endpoints, heavy
 from server.api.app import create_app
-from server.api.content import scenes
 from server.api.response_cache import (CACHED_ENDPOINTS, CachedAnswer, ResponseCache, ResponseCacheMiddleware,
                                        canonical_body)
-from server.api.scene_requests import scene_request
+from server.core.dynamics import report
+from server.lessons.requests import scene_request
+from server.lessons.scenes import scenes
 
 API = "/api/v1"
 SLIDER_CRANK = {"mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3, "e": 0.0}, "n": 361,
@@ -191,15 +194,62 @@ def test_get_requests_are_never_cached():
     assert inner.calls == 2
 
 
-def test_an_answer_as_slow_as_its_time_budget_is_not_stored_since_the_budget_may_have_cut_it(monkeypatch):
-    monkeypatch.setitem(response_cache.TIME_BUDGETS_S, "motion", 0.0)
+class PartialApp(CountingApp):
+    """Answers 200 saying the answer is partial (a bound cut the computation short)."""
+
+    async def __call__(self, scope, receive, send):
+        self.calls += 1
+        while (await receive()).get("more_body"):
+            pass
+        await send({"type": "http.response.start", "status": 200,
+                    "headers": [(b"content-type", b"application/json"), (b"x-partial", b"1")]})
+        await send({"type": "http.response.body", "body": b'{"answer": %d}' % self.calls})
+
+
+def test_an_answer_that_says_it_is_partial_is_computed_every_time():
+    inner = PartialApp()
+    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache()))
+    answers = [client.post(f"{API}/elastic", json={}) for _ in range(2)]
+    assert inner.calls == 2 and [a.headers["x-cache"] for a in answers] == ["miss", "miss"]
+    assert all(a.headers["x-partial"] == "1" for a in answers)
+
+
+def test_a_complete_answer_is_stored_whatever_the_clock_says(monkeypatch):
+    """The rule reads the answer, not the time: a clock that jumps an hour per reading changes nothing."""
+    hours = iter(range(0, 10**9, 3600))
+    monkeypatch.setattr(time, "perf_counter", lambda: float(next(hours)))
     inner = CountingApp()
     client = TestClient(ResponseCacheMiddleware(inner, ResponseCache()))
-    for _ in range(2):
-        assert client.post(f"{API}/motion", json={}).headers["x-cache"] == "miss"
-        client.post(f"{API}/reduction", json={})                 # no time budget: stored
-    assert inner.calls == 3
+    answers = [client.post(f"{API}/elastic", json={}) for _ in range(2)]
+    assert inner.calls == 1 and [a.headers["x-cache"] for a in answers] == ["miss", "hit"]
 
+
+def test_a_motion_answer_cut_short_by_its_time_budget_says_so_and_is_not_stored(client, monkeypatch):
+    monkeypatch.setattr(report, "TIME_BUDGET_S", 0.0)          # the steady cycle stops after its first level
+    scene = scenes()["equation-of-motion"]
+    body = scene_request(scene, scene.variants[0]) | {"outputs": ["steady"]}
+    answers = [client.post(f"{API}/motion?lang=ru", json=body) for _ in range(2)]
+    assert [a.status_code for a in answers] == [200, 200]
+    assert [a.headers["x-cache"] for a in answers] == ["miss", "miss"]
+    assert all(a.headers["x-partial"] == "1" for a in answers)
+    assert "time budget" in answers[0].json()["numerics"]["message"]
+    assert stats(client)["entries"] == 0
+
+
+def test_an_elastic_answer_cut_short_by_its_work_bound_says_so_and_is_not_stored(client, monkeypatch):
+    monkeypatch.setattr(heavy, "HEAVY_PROCESSES", 0)            # in this process, where the bound is patched
+    monkeypatch.setattr(endpoints, "simulate", functools.partial(endpoints.simulate, max_evaluations=50))
+    scene = scenes()["elastic-transmission"]
+    body = scene_request(scene, scene.variants[0]) | {"outputs": ["histories"]}
+    answers = [client.post(f"{API}/elastic?lang=en", json=body) for _ in range(2)]
+    assert [a.status_code for a in answers] == [200, 200]
+    assert [a.headers["x-cache"] for a in answers] == ["miss", "miss"]
+    assert all(a.headers["x-partial"] == "1" for a in answers)
+    assert any("work bound" in w for w in answers[0].json()["warnings"])
+    monkeypatch.undo()
+    complete = [client.post(f"{API}/elastic?lang=en", json=body) for _ in range(2)]
+    assert "x-partial" not in complete[0].headers
+    assert [a.headers["x-cache"] for a in complete] == ["miss", "hit"]
 
 
 def test_the_work_precision_study_of_the_real_app_is_computed_every_time(client):

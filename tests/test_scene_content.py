@@ -7,7 +7,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from server.api.app import app
-from server.api.content import LANGUAGES, interface_texts, scenes
+from server.lessons.scenes import LANGUAGES, interface_texts, scenes
 
 client = TestClient(app)
 DYNAMIC = [(s.id, v.id) for s in scenes().values() if s.kind == "dynamics" for v in s.variants]

@@ -12,7 +12,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from server.api.app import app
-from server.api.content import scenes
+from server.lessons.scenes import scenes
 from server.api.security import MAX_BODY_BYTES, SECURITY_HEADERS
 
 API = "/api/v1"

@@ -8,9 +8,9 @@ from functools import lru_cache
 import numpy as np
 
 from ..classroom.variants import Plan, SpecError
-from .compute import compute
-from .content import Question, Scene, Slider, Toggle, scenes
-from .scene_requests import path_value, scene_request
+from .endpoints import compute
+from ..lessons.scenes import Question, Scene, Slider, Toggle, scenes
+from ..lessons.requests import path_value, scene_request
 
 ANSWER_POINTS_PER_TURN = 3600    # kinematics answers: 0.1° grid, extremum refined by a parabola (error ~h³)
 

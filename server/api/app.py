@@ -10,7 +10,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.middleware.gzip import GZipMiddleware
 from fastapi.staticfiles import StaticFiles
 
-from .content import REPO_ROOT
+from ..lessons.scenes import REPO_ROOT
 from ..core.mechanisms import GeometryError
 from . import heavy
 from .errors import geometry_error, validation_error

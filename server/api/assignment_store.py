@@ -4,7 +4,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from ..classroom.storage import AssignmentStore, SQLiteStore
-from .content import REPO_ROOT
+from ..lessons.scenes import REPO_ROOT
 
 DATABASE_FILE = "classroom.sqlite3"
 

@@ -15,7 +15,7 @@ from ..classroom.variants import MAX_NAME, Plan, SpecError, plan, student_key
 from ..core.mechanisms import GeometryError
 from .answers import correct_answer, question, tolerance
 from .assignment_store import store
-from .content import interface_texts, scenes
+from ..lessons.scenes import interface_texts, scenes
 from .schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow
 
 CHECKED_VARIANTS = 8        # variants whose answers are computed when the assignment is made

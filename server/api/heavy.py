@@ -8,6 +8,7 @@ them in the worker itself). A child that dies is replaced and the computation is
 """
 from __future__ import annotations
 
+import asyncio
 import multiprocessing
 import multiprocessing.forkserver
 import os
@@ -70,6 +71,24 @@ def run(function: Callable[..., T], *args) -> T:
         pool = _current_pool()
         try:
             return pool.submit(function, *args).result()
+        except BrokenProcessPool:
+            if pool in _stopped:               # ended by shutdown(): the server is stopping
+                raise
+            _discard(pool)
+            if attempt:
+                raise
+    raise AssertionError("unreachable")
+
+
+async def submit(function: Callable[..., T], *args) -> T:
+    """function(*args) in the heavy process, awaited without holding a thread of the worker (a thread when
+    HEAVY_PROCESSES is 0); a pool that broke is replaced and the computation tried once more, as in run()."""
+    if HEAVY_PROCESSES == 0:
+        return await asyncio.to_thread(function, *args)
+    for attempt in range(2):
+        pool = _current_pool()
+        try:
+            return await asyncio.wrap_future(pool.submit(function, *args))
         except BrokenProcessPool:
             if pool in _stopped:               # ended by shutdown(): the server is stopping
                 raise

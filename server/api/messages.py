@@ -5,7 +5,7 @@ import math
 
 from ..core.mechanisms import Notice
 from ..core.mechanisms.base import ranges_text
-from .content import interface_texts
+from ..lessons.scenes import interface_texts
 
 DECIMAL_COMMA = ("ru", "uk")
 

@@ -6,15 +6,15 @@ middleware keeps the 200 answers of the computing POST endpoints (CACHED_ENDPOIN
 a repeated question without computing. It sits inside the GZip middleware, so it keeps the uncompressed
 bodies and each client still gets the encoding it asked for.
 
-The key is the path, the query (``lang``) and the JSON body canonicalised: parsed, every float rounded to
+The key is the path, the query (``lang``, ``precision``) and the JSON body canonicalised: parsed, every float rounded to
 10 significant digits (0.1·3 and 0.3 are one question; the answers of two bodies that differ only past the
 10th digit differ by about 1e-10 relatively), keys sorted, hashed with SHA-256. A body that is not JSON
 (by its content type or by parsing) bypasses the cache, and so does every other path: the live
 work-precision studies (their answer is a timing measurement), the assignments, pages and files.
-Only complete 200 answers are stored; 422s and other errors are computed every time. The equation of
-motion and the elastic machines stop at a wall-clock time budget with a partial result, and whether that
-happens depends on the load at the time: their answers that took as long as the endpoint's shortest
-budget (TIME_BUDGETS_S) are not stored.
+Only complete 200 answers are stored; 422s and other errors are computed every time, and so is an answer
+that says it is partial (header X-Partial: 1, serialise.PARTIAL_HEADER): a time or work bound cut its
+computation short, and computing it again may get further. Whether an answer is stored depends on the
+answer alone, never on how long it took.
 
 Entries are evicted least recently used first once their total size passes ``max_bytes`` (default 64 MB,
 environment variable MDL_CACHE_BYTES; 0 turns the cache off). The cache is per process: with several
@@ -26,40 +26,36 @@ bytes of the first computation, its ``numerics.runtime_ms`` included.
 from __future__ import annotations
 
 import hashlib
-import json
 import math
 import os
 import threading
-import time
 from collections import OrderedDict
 from dataclasses import dataclass
 from urllib.parse import parse_qsl, urlencode
 
-from ..core.dynamics.report import TIME_BUDGET_S as MOTION_BUDGET_S
-from ..core.elastic.simulate import TIME_BUDGET_S as ELASTIC_BUDGET_S
+import orjson
+
+from .endpoints import ENDPOINTS
+from .serialise import PARTIAL_HEADER
 
 DEFAULT_MAX_BYTES = 64 * 1024 * 1024
 ENV_MAX_BYTES = "MDL_CACHE_BYTES"
 SIGNIFICANT_DIGITS = 10
-# The shortest wall-clock budget each endpoint may stop at (the elastic bearing iteration gives each of its
-# simulations half of the elastic budget); an answer at least this slow may be a partial one. The other
-# endpoints have no time budget.
-TIME_BUDGETS_S = {"motion": MOTION_BUDGET_S, "elastic": ELASTIC_BUDGET_S / 2}
+PARTIAL = PARTIAL_HEADER.lower().encode()
 ENTRY_OVERHEAD_BYTES = 200          # key, bookkeeping and object headers of one entry, roughly
 CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSON) after this as it stops
 
-# The computing endpoints whose answer is a function of (path, lang, body) alone.
-CACHED_ENDPOINTS = ("kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
-                    "angular-acceleration", "efficiency-chain")
+# The computing endpoints, whose answer is a function of (path, query, body) alone.
+CACHED_ENDPOINTS = tuple(ENDPOINTS)
 
 
-def canonical_body(raw: bytes) -> str | None:
-    """The body as one canonical string (floats to 10 significant digits, keys sorted), None if not JSON."""
+def canonical_body(raw: bytes) -> bytes | None:
+    """The body as one canonical JSON text (floats to 10 significant digits, keys sorted, no spaces), None if
+    it is not JSON (orjson: strict, so NaN and Infinity are not JSON either)."""
     try:
-        parsed = json.loads(raw)
-    except (ValueError, UnicodeDecodeError, RecursionError):
+        return orjson.dumps(_rounded(orjson.loads(raw)), option=orjson.OPT_SORT_KEYS)
+    except (orjson.JSONDecodeError, RecursionError):
         return None
-    return json.dumps(_rounded(parsed), sort_keys=True, separators=(",", ":"), ensure_ascii=False)
 
 
 def _rounded(value):
@@ -72,10 +68,10 @@ def _rounded(value):
     return value
 
 
-def cache_key(path: str, query: str, canonical: str) -> bytes:
+def cache_key(path: str, query: str, canonical: bytes) -> bytes:
     """SHA-256 of the path, the query's pairs sorted and the canonical body: 32 bytes per entry."""
     pairs = urlencode(sorted(parse_qsl(query, keep_blank_values=True)))
-    return hashlib.sha256("\n".join((path, pairs, canonical)).encode()).digest()
+    return hashlib.sha256(f"{path}\n{pairs}\n".encode() + canonical).digest()
 
 
 @dataclass(frozen=True)
@@ -176,7 +172,6 @@ class ResponseCacheMiddleware:
         self.app = app
         self.cache = cache
         self.paths = frozenset(f"{prefix}/{name}" for name in endpoints)
-        self.budgets = {f"{prefix}/{name}": seconds for name, seconds in TIME_BUDGETS_S.items()}
 
     async def __call__(self, scope, receive, send):
         if (scope["type"] != "http" or scope["method"] != "POST" or scope["path"] not in self.paths
@@ -216,7 +211,6 @@ class ResponseCacheMiddleware:
         await self._compute_and_store(scope, replay, send, key)
 
     async def _compute_and_store(self, scope, receive, send, key: bytes) -> None:
-        started, budget = time.perf_counter(), self.budgets.get(scope["path"], math.inf)
         headers: list = []
         body: list[bytes] = []
         keep = False
@@ -226,7 +220,8 @@ class ResponseCacheMiddleware:
             nonlocal headers, keep, size
             if message["type"] == "http.response.start":
                 headers = list(message.get("headers", []))
-                keep = message["status"] == 200 and not _header(headers, b"set-cookie")
+                keep = (message["status"] == 200 and not _header(headers, b"set-cookie")
+                        and not _header(headers, PARTIAL))
                 message = {**message, "headers": [*headers, (b"x-cache", b"miss")]}
             elif message["type"] == "http.response.body" and keep:
                 chunk = message.get("body", b"")
@@ -235,8 +230,7 @@ class ResponseCacheMiddleware:
                 if keep:
                     body.append(chunk)
                 if keep and not message.get("more_body", False):
-                    if time.perf_counter() - started < budget:
-                        self.cache.put(key, CachedAnswer(tuple(headers), b"".join(body)))
+                    self.cache.put(key, CachedAnswer(tuple(headers), b"".join(body)))
                     keep = False
             await send(message)
 

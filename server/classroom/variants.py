@@ -14,8 +14,8 @@ import unicodedata
 import numpy as np
 from dataclasses import dataclass, field
 
-from ..api.content import Scene, Variant
-from ..api.scene_requests import slider_values
+from ..lessons.scenes import Scene, Variant
+from ..lessons.requests import slider_values
 from .spec import AssignmentSpec
 
 MAX_NAME = 80

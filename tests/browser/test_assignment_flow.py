@@ -14,8 +14,8 @@ import httpx
 import numpy as np
 import pytest
 
-from server.api.content import scenes
-from server.api.scene_requests import scene_request
+from server.lessons.scenes import scenes
+from server.lessons.requests import scene_request
 from server.classroom.spec import AssignmentSpec
 from server.classroom.variants import plan, student_key
 

@@ -1,47 +1,16 @@
 """POST /api/v1/angular-acceleration: the two components of a coupler's angular acceleration (seed 001)."""
-from typing import Literal
-
-import numpy as np
 from fastapi import APIRouter
-from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from ...core.angular_acceleration import CrankLaw, crank_slider, trammel
-from .dynamics import LANG, _respond
+from .. import endpoints
 from ..schemas import Language
+from ..schemas_angular import AngularRequest
+from ..serialise import Precision, respond
+from .query import LANG, PRECISION
 
 router = APIRouter(tags=["angular acceleration"])
 
 
-class AngularRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
-    outputs: list[Literal["angular"]] = Field(["angular"], max_length=1, description="the components and the points")
-    mechanism: Literal["crank_slider", "trammel"] = Field("crank_slider", description="central crank-slider or "
-                                                                                       "elliptic trammel")
-    lam: float = Field(0.5, ge=0.01, lt=1, description="λ = OA/AB (the paper's; the textbook's l₂/l₁ is 1/λ); "
-                                                    "from 0.01: a rod 100 cranks long is a straight-line guide")
-    length: float = Field(1.0, ge=1e-3, le=10, description="crank OA, m (from 1 mm: a subnormal length "
-                                                           "overflowed 1/AP)")
-    law: Literal["constant", "accelerating", "harmonic"] = Field("constant", description="crank law")
-    omega0: float = Field(np.pi / 6, ge=1e-3, le=1e3, description="crank speed ω₀ at t = 0, rad/s")
-    epsilon0: float = Field(0.0, ge=-1e3, le=1e3, description="accelerating law: ε₀, rad/s²")
-    amplitude: float = Field(0.0, ge=0, lt=1, description="harmonic law: ω = ω₀(1 + a sin νt), a")
-    frequency: float = Field(1.0, gt=0, le=1e3, description="harmonic law: ν, rad/s")
-    t: list[float] | None = Field(None, max_length=10001, description="times, s (default: one crank turn)")
-    n: int = Field(361, ge=3, le=10001, description="samples over one turn when t is not given")
-
-    @model_validator(mode="after")
-    def forward(self):
-        if self.law == "accelerating" and self.epsilon0 < 0:
-            raise ValueError("a decelerating crank stops before a full turn: give ε₀ ≥ 0")
-        return self
-
-
-@router.post("/angular-acceleration", summary="ε*, ε** and ε_AB of the coupler, ω_AB, 1/AP and the points O, A, B, P")
-def angular_acceleration(request: AngularRequest, lang: Language = LANG):
-    law = CrankLaw(request.law, request.omega0, request.epsilon0, request.amplitude, request.frequency)
-    t = np.asarray(request.t, float) if request.t is not None else np.linspace(0.0, law.turn_time(), request.n)
-    if request.mechanism == "trammel":
-        result = trammel(request.length, law, t)
-    else:
-        result = crank_slider(request.lam, request.length, law, t)
-    return _respond(result, [], lang)
+@router.post("/angular-acceleration", responses={422: {"description": "invalid input: the field and the reason"}},
+             summary="ε*, ε** and ε_AB of the coupler, ω_AB, 1/AP and the points O, A, B, P")
+def angular_acceleration(request: AngularRequest, lang: Language = LANG, precision: Precision = PRECISION):
+    return respond(endpoints.angular_acceleration(request, lang), precision)

@@ -8,7 +8,7 @@ from fastapi.responses import HTMLResponse
 from ...classroom.variants import SpecError
 from .. import assignments
 from ..answers import student_scene
-from ..content import scenes
+from ...lessons.scenes import scenes
 from .pages import scene_context, templates, _context
 
 router = APIRouter(include_in_schema=False)

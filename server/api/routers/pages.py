@@ -5,7 +5,7 @@ from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import HTMLResponse
 from fastapi.templating import Jinja2Templates
 
-from ..content import LANGUAGES, REPO_ROOT, interface_texts, language, scenes
+from ...lessons.scenes import LANGUAGES, REPO_ROOT, interface_texts, language, scenes
 
 templates = Jinja2Templates(directory=Path(REPO_ROOT, "web", "templates"))
 

@@ -1,7 +1,7 @@
 """GET /api/v1/scenes: the lessons in content/, as data."""
 from fastapi import APIRouter, HTTPException
 
-from ..content import Scene, scenes
+from ...lessons.scenes import Scene, scenes
 
 router = APIRouter(tags=["scenes"])
 

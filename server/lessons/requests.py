@@ -12,7 +12,7 @@ from __future__ import annotations
 import copy
 import math
 
-from .content import Scene, Slider, Variant
+from .scenes import Scene, Slider, Variant
 
 TURN = 2 * math.pi
 POINTS_PER_TURN = 360          # the kinematics page's grid: 1° of crank angle

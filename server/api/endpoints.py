@@ -1,0 +1,261 @@
+"""Each computing endpoint's body, in one place: the validated request → the numeric core → the answer.
+
+A body function takes the endpoint's request model and the reader's language and returns an Answer: the
+payload (numpy arrays as they are, warnings translated, numerics localised) and whether a time or work bound
+cut it short. The routers only parse, call and serialise (server/api/serialise.py); the assignments and the
+family endpoint call ``compute``. Nothing is computed that the request did not ask for: each output is
+computed only when it is in ``outputs``, or when what is asked is made from it.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import orjson
+
+from ..core import work_precision
+from ..core.angular_acceleration import CrankLaw, crank_slider, trammel
+from ..core.dynamics import report
+from ..core.dynamics.machine import Machine
+from ..core.dynamics.motors import Motor
+from ..core.dynamics.reduction import Inertias
+from ..core.dynamics.resistance import Load
+from ..core.elastic.report import Bearing, ElasticMachine, bearing_iteration, modal, rigid, simulate
+from ..core.elastic.stiffness import Compliances
+from ..core.kinematics import compute_kinematics
+from ..core.kinetostatics.crank_slider import Loads, Pairs, analyse
+from ..core.kinetostatics.report import crank_check, forces_report, wear_report
+from ..core.kinetostatics.virtual_work import reduced_moment
+from ..core.mechanisms import MECHANISMS, GeometryError, Notice
+from .messages import localise_numerics, localise_study, translate
+from .schemas import KinematicsRequest, KinematicsResponse
+from .schemas_angular import AngularRequest
+from .schemas_dynamics import FlywheelRequest, MotionRequest, ReductionRequest
+from .schemas_elastic import ElasticRequest
+from .schemas_forces import ChainRequest, ForcesRequest, WearRequest
+from .serialise import Answer, serialise
+
+# The core's words when a bound stopped a computation with a partial result (server/core/dynamics/motion.py:
+# "stopped at the time budget …"; server/core/elastic/simulate.py and the start from rest: "… the work bound").
+PARTIAL_MARKERS = ("time budget", "work bound")
+
+
+def payload(result: dict, notices, lang: str) -> dict:
+    """The answer's body: numerics and study in the reader's language, the warnings once each, in order."""
+    warnings = dict.fromkeys(translate(n, lang) for n in notices)
+    if isinstance(result.get("study"), dict):
+        result["study"] = localise_study(result["study"], lang)
+    for holder in (result, result.get("startup") or {}):
+        if isinstance(holder.get("numerics"), dict):
+            holder["numerics"] = localise_numerics(holder["numerics"], lang)
+    return result | {"warnings": list(warnings)}
+
+
+def cut_short(result: dict, notices) -> bool:
+    """Whether a time or work bound stopped part of the computation: the core says so in the message of a
+    numerics dict (the answer's, the start-up's) or in a warning, in English before translation."""
+    texts = [notice.text for notice in notices]
+    for holder in (result, result.get("startup") or {}):
+        if isinstance(holder.get("numerics"), dict):
+            texts.append(str(holder["numerics"].get("message", "")))
+    return any(marker in text for text in texts for marker in PARTIAL_MARKERS)
+
+
+def answer(result: dict, notices, lang: str) -> Answer:
+    return Answer(payload(result, notices, lang), cut_short(result, notices))
+
+
+def count_undefined(value) -> int:
+    """Number of non-finite numbers inside an output (arrays, dicts and lists of them)."""
+    if isinstance(value, dict):
+        return sum(count_undefined(v) for v in value.values())
+    if isinstance(value, (list, tuple)):
+        return sum(count_undefined(v) for v in value)
+    if isinstance(value, np.ndarray) and value.dtype.kind == "f":
+        return int(np.count_nonzero(~np.isfinite(value)))
+    if isinstance(value, float):
+        return int(not math.isfinite(value))
+    return 0
+
+
+def kinematics(request: KinematicsRequest, lang: str) -> Answer:
+    """Position and transfer functions; each output's undefined points (singular positions) counted in words."""
+    result = compute_kinematics(request.mechanism, request.params, request.outputs,
+                                phi=None if request.phi is None else np.asarray(request.phi, float), n=request.n)
+    notices = list(result.warnings)
+    for name, value in result.outputs.items():
+        bad = count_undefined(value)
+        if bad:
+            notices.append(Notice("undefined_points", f"{name}: undefined at {bad} point(s), sent as null "
+                                  "(singular position).", {"output": name, "count": bad}))
+    units = {o.name: o.unit for o in MECHANISMS[request.mechanism].outputs}
+    body = KinematicsResponse.model_construct(     # built from checked numbers: no re-validation of the arrays
+        mechanism=result.mechanism, params=result.params, cycle=result.cycle, phi=result.phi,
+        outputs=result.outputs, units={name: units.get(name, "") for name in result.outputs},
+        warnings=[translate(notice, lang) for notice in notices])
+    return Answer(dict(body.__dict__))
+
+
+def reduction(request: ReductionRequest, lang: str) -> Answer:
+    result, notices = report.reduction(
+        request.mechanism, request.params, Inertias(**request.inertias.model_dump()),
+        Load(**request.load.model_dump()), request.n, request.omega, request.outputs, request.iteration_phi)
+    return answer(result, notices, lang)
+
+
+def machine(request: MotionRequest | FlywheelRequest) -> Machine:
+    """The machine of a request, checked: geometry, a piston engine only on a crank-slider, some inertia."""
+    params = MECHANISMS[request.mechanism].check(request.params)
+    if request.motor.kind == "indicator" and request.mechanism != "slider_crank":
+        raise GeometryError("motor.kind", "an indicator diagram drives a crank-slider (piston engine) only",
+                            "indicator_needs_slider")
+    built = Machine(request.mechanism, params, Inertias(**request.inertias.model_dump()),
+                    Load(**request.load.model_dump()), _motor(request.motor))
+    if built.tables(np.linspace(0, 2 * math.pi, 73)).J.min() <= 0:      # J = 0 somewhere: no equation of motion
+        raise GeometryError("inertias", "the reduced moment of inertia is zero: give the crank (J1) or the motor "
+                                        "rotor (J_rotor) some inertia", "zero_inertia")
+    return built
+
+
+def _motor(motor) -> Motor:
+    return Motor(**{**motor.model_dump(), "expansion": tuple(motor.expansion), "compression": tuple(motor.compression)})
+
+
+def motion(request: MotionRequest, lang: str) -> Answer:
+    result, notices = report.motion(machine(request), request.outputs, request.omega0, request.rtol,
+                                    request.omega_mean, request.balance, request.max_cycles)
+    return answer(result, notices, lang)
+
+
+def flywheel(request: FlywheelRequest, lang: str) -> Answer:
+    built = machine(request)
+    if built.speed_dependent:
+        raise GeometryError("motor.kind", "the flywheel methods of the lecture need moments of φ alone: a "
+                            "constant-torque motor or an indicator diagram, and no viscous friction",
+                            "flywheel_needs_phi_moments")
+    result, notices = report.flywheel(built, request.omega_mean, request.delta, request.balance,
+                                      request.width_ratio, request.density)
+    return answer(result, notices, lang)
+
+
+def motion_work_precision(request: MotionRequest, lang: str) -> Answer:
+    """The live study of the steady-cycle solvers (seconds of solving: run in the heavy process)."""
+    built = machine(request)
+    if not built.speed_dependent:
+        raise GeometryError("motor.kind", "the study compares steady-cycle solvers: give a motor or "
+                                          "friction that depends on speed", "study_needs_speed")
+    return answer({"study": work_precision.motion_study(built)}, [], lang)
+
+
+def elastic_machine(request: ElasticRequest) -> ElasticMachine:
+    if request.motor.kind == "indicator":
+        raise GeometryError("motor.kind", "the elastic models take a motor with a speed characteristic or a "
+                            "constant torque", "elastic_motor")
+    return ElasticMachine(
+        request.model, request.mechanism, MECHANISMS[request.mechanism].check(request.params),
+        Inertias(**request.inertias.model_dump()), Load(**request.load.model_dump()), _motor(request.motor),
+        request.J_motor, request.J_middle, request.c, Compliances(**request.compliances.model_dump()),
+        request.b, request.b1, request.speed, request.omega0, request.twist0)
+
+
+def elastic(request: ElasticRequest, lang: str) -> Answer:
+    """Histories (with numerics), the rigid start-up, modal curves, the bearing iteration: each only when
+    asked for; the rigid machine alone is sampled on the histories' times, t = 0 … t_end in n points."""
+    built = elastic_machine(request)
+    result, notices = {}, []
+    wants_rigid = "rigid" in request.outputs
+    if "histories" in request.outputs:
+        result, notices = simulate(built, request.t_end, request.n, request.rtol, request.method,
+                                   with_rigid=wants_rigid)
+    elif wants_rigid:
+        result["rigid"] = rigid(built, np.linspace(0.0, request.t_end, request.n))
+    if "modal" in request.outputs:
+        result["modal"] = modal(built)
+    if "bearings" in request.outputs:
+        result["bearings"] = bearing_iteration(built, Bearing(**request.bearing.model_dump()), request.t_end,
+                                               request.n, request.rtol)
+    return answer(result, notices, lang)
+
+
+def elastic_work_precision(request: ElasticRequest, lang: str) -> Answer:
+    """The live study of the elastic solvers over at most 0.5 s (run in the heavy process)."""
+    study = work_precision.elastic_study(elastic_machine(request), min(request.t_end, 0.5))
+    return answer({"study": study}, [], lang)
+
+
+def _force_analysis(request: ForcesRequest, omega: float | None = None):
+    params = MECHANISMS["slider_crank"].check(request.params)
+    fields = request.loads.model_dump()
+    fields["gas"] = None if request.loads.gas is None else _motor(request.loads.gas)
+    if omega is not None:
+        fields["omega"] = omega
+    loads, pairs = Loads(**fields), Pairs(**request.pairs.model_dump())
+    phi = np.linspace(0.0, 2 * np.pi, request.n)
+    return params, loads, pairs, analyse(params, loads, pairs, phi, request.tolerance)
+
+
+def forces(request: ForcesRequest, lang: str) -> Answer:
+    """The force report and the check (3.2) of the balancing moment against virtual work, with and without
+    friction (without friction in the pairs, the analysis is already the frictionless one)."""
+    params, loads, pairs, analysis = _force_analysis(request)
+    rough = any((pairs.f12, pairs.f23, pairs.f34, pairs.f14))
+    frictionless = analyse(params, loads, Pairs(), analysis.phi) if rough else analysis
+    result = forces_report(analysis, pairs)
+    result["crank_check"] = crank_check(analysis, frictionless, reduced_moment(params, analysis.applied, analysis.phi))
+    return answer(result, analysis.notices, lang)
+
+
+def wear(request: WearRequest, lang: str) -> Answer:
+    """Wear at the request's speed over its service life (cycles = 60 · rpm · hours)."""
+    _, _, _, analysis = _force_analysis(request, omega=request.rpm * 2 * np.pi / 60)
+    parts = request.model_dump(include={"pin_diameter", "pin_length", "piston_diameter", "piston_length",
+                                        "I_pin", "I_bush", "I_piston", "I_cylinder"})
+    return answer(wear_report(analysis, parts, 60 * request.rpm * request.hours), analysis.notices, lang)
+
+
+def efficiency_chain(request: ChainRequest, lang: str) -> Answer:
+    """η of mechanisms in series, Π η_k (3.39), and in parallel, Σ A_k η_k / Σ A_k (3.40); no words to
+    translate."""
+    series = float(np.prod(request.efficiencies))
+    if request.works is None:
+        return Answer({"series": series})
+    total = sum(request.works)
+    parallel = sum(a * e for a, e in zip(request.works, request.efficiencies)) / total if total > 0 else None
+    return Answer({"series": series, "parallel": parallel})
+
+
+def angular_acceleration(request: AngularRequest, lang: str) -> Answer:
+    law = CrankLaw(request.law, request.omega0, request.epsilon0, request.amplitude, request.frequency)
+    t = np.asarray(request.t, float) if request.t is not None else np.linspace(0.0, law.turn_time(), request.n)
+    if request.mechanism == "trammel":
+        result = trammel(request.length, law, t)
+    else:
+        result = crank_slider(request.lam, request.length, law, t)
+    return answer(result, [], lang)
+
+
+# POST /api/v1/<name>: the request model and the body; the answer is a function of (name, lang, body) alone.
+ENDPOINTS = {
+    "kinematics": (KinematicsRequest, kinematics),
+    "reduction": (ReductionRequest, reduction),
+    "motion": (MotionRequest, motion),
+    "flywheel": (FlywheelRequest, flywheel),
+    "elastic": (ElasticRequest, elastic),
+    "forces": (ForcesRequest, forces),
+    "wear": (WearRequest, wear),
+    "angular-acceleration": (AngularRequest, angular_acceleration),
+    "efficiency-chain": (ChainRequest, efficiency_chain),
+}
+
+
+def compute_answer(endpoint: str, body: dict, lang: str = "en") -> Answer:
+    """POST /api/v1/<endpoint> in-process: validates body with the endpoint's model (pydantic's
+    ValidationError) and computes (the core's GeometryError) exactly where the route would answer 422."""
+    model, body_function = ENDPOINTS[endpoint]
+    return body_function(model.model_validate(body), lang)
+
+
+def compute(endpoint: str, body: dict, lang: str = "en") -> dict:
+    """The JSON answer of POST /api/v1/<endpoint>?precision=full as Python data: lists and numbers,
+    null (None) for every non-finite number, as a client parses it."""
+    return orjson.loads(serialise(compute_answer(endpoint, body, lang).payload, digits=None))

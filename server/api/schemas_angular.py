@@ -1,0 +1,31 @@
+"""Request model of /angular-acceleration: the coupler's angular acceleration (seed 001), every input with its unit."""
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+
+class AngularRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    outputs: list[Literal["angular"]] = Field(["angular"], max_length=1, description="the components and the points")
+    mechanism: Literal["crank_slider", "trammel"] = Field("crank_slider", description="central crank-slider or "
+                                                                                       "elliptic trammel")
+    lam: float = Field(0.5, ge=0.01, lt=1, description="λ = OA/AB (the paper's; the textbook's l₂/l₁ is 1/λ); "
+                                                    "from 0.01: a rod 100 cranks long is a straight-line guide")
+    length: float = Field(1.0, ge=1e-3, le=10, description="crank OA, m (from 1 mm: a subnormal length "
+                                                           "overflowed 1/AP)")
+    law: Literal["constant", "accelerating", "harmonic"] = Field("constant", description="crank law")
+    omega0: float = Field(np.pi / 6, ge=1e-3, le=1e3, description="crank speed ω₀ at t = 0, rad/s")
+    epsilon0: float = Field(0.0, ge=-1e3, le=1e3, description="accelerating law: ε₀, rad/s²")
+    amplitude: float = Field(0.0, ge=0, lt=1, description="harmonic law: ω = ω₀(1 + a sin νt), a")
+    frequency: float = Field(1.0, gt=0, le=1e3, description="harmonic law: ν, rad/s")
+    t: list[float] | None = Field(None, max_length=10001, description="times, s (default: one crank turn)")
+    n: int = Field(361, ge=3, le=10001, description="samples over one turn when t is not given")
+
+    @model_validator(mode="after")
+    def forward(self):
+        if self.law == "accelerating" and self.epsilon0 < 0:
+            raise ValueError("a decelerating crank stops before a full turn: give ε₀ ≥ 0")
+        return self
