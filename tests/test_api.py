@@ -8,6 +8,7 @@ input with HTTP 422 naming the field and the reason, changing nothing.
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -108,16 +109,33 @@ def test_kinematics_returns_phi_and_exactly_the_requested_outputs(client, mechan
         assert len(data["outputs"][name]) == 19
 
 
-def test_kinematics_values_are_the_numeric_core_values_unchanged(client):
-    body = {"mechanism": "four_bar", "params": {"l0": 0.4, "l1": 0.1, "l2": 0.35, "l3": 0.3, "assembly": -1},
-            "phi": [0.0, 0.3, 1.7, 4.0, 6.2], "outputs": ["s", "u31", "du31", "u21", "joints"]}
-    _, data = post(client, body)
+FOUR_BAR_AT_ANGLES = {"mechanism": "four_bar", "params": {"l0": 0.4, "l1": 0.1, "l2": 0.35, "l3": 0.3, "assembly": -1},
+                      "phi": [0.0, 0.3, 1.7, 4.0, 6.2], "outputs": ["s", "u31", "du31", "u21", "joints"]}
+
+
+def test_kinematics_values_at_full_precision_are_the_numeric_core_values_unchanged(client):
+    body = FOUR_BAR_AT_ANGLES
+    _, data = post(client, body, precision="full")
     core = compute_kinematics("four_bar", body["params"], body["outputs"], phi=np.array(body["phi"]))
     assert data["phi"] == body["phi"]
     for name in ("s", "u31", "du31", "u21"):
         assert data["outputs"][name] == core.outputs[name].tolist()   # JSON floats round-trip exactly
     for joint, xy in core.outputs["joints"].items():
         assert data["outputs"]["joints"][joint] == xy.tolist()
+
+
+def test_kinematics_values_at_plot_precision_are_the_core_values_to_seven_significant_digits(client):
+    """The default: each float is the core's rounded to 7 significant digits, so within half a unit of the 7th
+    digit, |sent − exact| ≤ 5·10⁻⁷ |exact| (and a little more for the double nearest the decimal: 1e-15)."""
+    body = FOUR_BAR_AT_ANGLES
+    response, data = post(client, body)
+    core = compute_kinematics("four_bar", body["params"], body["outputs"], phi=np.array(body["phi"]))
+    for name in ("s", "u31", "du31", "u21"):
+        sent, exact = np.array(data["outputs"][name]), core.outputs[name]
+        assert np.all(np.abs(sent - exact) <= (5e-7 + 1e-15) * np.abs(exact))
+    mantissas = re.findall(rb"(\d+(?:\.\d+)?)(?:e[-+]?\d+)?", response.content.split(b'"outputs"')[1])
+    assert mantissas and max(len(m.replace(b".", b"").strip(b"0")) for m in mantissas) <= 7
+    assert len(response.content) < len(post(client, body, precision="full")[0].content)
 
 
 def test_joints_are_lists_of_points_one_per_angle(client):

@@ -11,6 +11,8 @@ import io
 import json
 import re
 import sqlite3
+import subprocess
+import sys
 import threading
 from datetime import datetime, timedelta, timezone
 
@@ -23,10 +25,10 @@ from server.api import assignment_store
 from server.api.answers import correct_answer
 from server.api.app import app
 from server.api.assignments import load
-from server.lessons.scenes import Scene, scenes
-from server.lessons.requests import scene_request
 from server.api.routers import assignments as assignments_router
 from server.classroom.storage import SCHEMA, SQLiteStore
+from server.lessons.requests import scene_request
+from server.lessons.scenes import Scene, scenes
 from server.classroom.variants import student_key
 
 API = "/api/v1/assignments"
@@ -114,7 +116,7 @@ def test_flywheel_answer_is_what_the_flywheel_endpoint_computes_for_the_variant(
     scene = scenes()["flywheel"]
     body = scene_request(scene, scene.variants[0], variant["values"])
     assert body["delta"] == variant["values"]["delta"]
-    direct = client.post("/api/v1/flywheel", json=body).json()["flywheel_inertia"]
+    direct = client.post("/api/v1/flywheel?precision=full", json=body).json()["flywheel_inertia"]
     wrong = submit(client, created, "Kovalenko", "flywheel_inertia", direct * 1.05).json()
     assert not wrong["right"] and wrong["correct_value"] is None and wrong["attempts_left"] == 1
     right = submit(client, created, "Kovalenko", "flywheel_inertia", direct * 1.019).json()
@@ -362,3 +364,13 @@ def test_every_question_has_an_answer_and_its_page_hides_it(client, scene_id, qu
     assert not set(asked.hides) & set(request["outputs"])
     _, resolved = load(created["id"])
     assert np.isfinite(correct_answer(resolved, resolved.values(0), question_id))
+
+
+def test_the_classroom_and_the_lessons_do_not_import_the_http_layer():
+    """server/classroom and server/lessons build on the lesson model alone: importing them loads no module of
+    server/api (a fresh interpreter, so nothing else has imported it)."""
+    code = ("import sys, server.classroom.spec, server.classroom.storage, server.classroom.variants, "
+            "server.lessons.requests, server.lessons.scenes; "
+            "print(sorted(m for m in sys.modules if m.startswith('server.api')))")
+    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert loaded.strip() == "[]"

@@ -66,10 +66,10 @@ def _rounded(value, digits: int):
 
 
 def _fallback(value):
-    """What orjson does not write itself: numeric arrays that are not C-contiguous (slices with a step) and
-    arrays of other kinds (objects)."""
+    """What orjson does not write itself: arrays that are not C-contiguous (slices with a step: copied), and
+    contiguous ones of a kind it does not know (objects, float16: as lists)."""
     if isinstance(value, np.ndarray):
-        return np.ascontiguousarray(value) if value.dtype.kind in "fiub" else value.tolist()
+        return value.tolist() if value.flags.c_contiguous else np.ascontiguousarray(value)
     if isinstance(value, np.generic):
         return value.item()
     raise TypeError(f"{type(value).__name__} is not JSON")
