@@ -331,3 +331,21 @@ def test_openapi_documents_the_kinematics_endpoint_and_its_fields(client):
     assert set(request_schema["properties"]) >= {"mechanism", "params", "phi", "n", "outputs"}
     assert all(field.get("description") for field in request_schema["properties"].values())
     assert f"{API}/mechanisms" in spec["paths"] and "get" in spec["paths"][f"{API}/mechanisms"]
+
+
+def test_the_server_warms_the_compiled_code_before_its_first_request(monkeypatch):
+    from server.api import app as app_module
+    from server.api.app import create_app
+    calls = []
+    monkeypatch.setattr(app_module, "warm_up_compiled", lambda: calls.append("warmed"))
+    with TestClient(create_app()) as client:
+        assert calls == ["warmed"]
+        assert client.post(f"{API}/kinematics", json={"mechanism": "sine", "n": 5, "outputs": ["s"]}).status_code == 200
+
+
+def test_the_warm_up_calls_each_compiled_module_that_is_there(monkeypatch):
+    from server.api import app as app_module
+    calls = []
+    monkeypatch.setattr(json, "warm_up", lambda: calls.append("json"), raising=False)
+    monkeypatch.setattr(app_module, "COMPILED", ("json", "server.core.no_such_module"))
+    assert app_module.warm_up_compiled() == ["json"] and calls == ["json"]

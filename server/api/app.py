@@ -1,6 +1,9 @@
 """The FastAPI application: versioned JSON API under /api/v1, pages, and our own static assets."""
+import importlib
+import importlib.util
 import json
 import logging
+import time
 from contextlib import asynccontextmanager
 from pathlib import Path
 
@@ -23,10 +26,27 @@ from .routers import (angular, assignment_pages, assignments, dynamics, elastic,
 
 API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
+COMPILED = ("server.core.dynamics.compiled", "server.core.elastic.compiled")   # each has warm_up()
+
+
+def warm_up_compiled() -> list[str]:
+    """Compile, or load from numba's disk cache, the jitted code before the first request, so no student waits
+    for the JIT: the equation of motion's RK4 in φ (steady cycle and start-up; server.core.dynamics.compiled)
+    and the elastic models' right-hand sides and integrators (server.core.elastic.compiled), by each module's
+    warm_up(). A module of COMPILED that is not there is skipped; the log line names the modules warmed."""
+    started, warmed = time.perf_counter(), []
+    for name in COMPILED:
+        if importlib.util.find_spec(name) is not None:
+            importlib.import_module(name).warm_up()
+            warmed.append(name)
+    logging.getLogger("uvicorn.error").info("compiled code warmed in %.2f s: %s", time.perf_counter() - started,
+                                            ", ".join(warmed) or "none")
+    return warmed
 
 
 @asynccontextmanager
 async def lifespan(app: FastAPI):
+    warm_up_compiled()                 # in this worker, before its first request
     yield
     heavy.shutdown()                   # the heavy processes end with the worker
     cache = getattr(app.state, "response_cache", None)
