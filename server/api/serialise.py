@@ -21,6 +21,8 @@ from fastapi.responses import Response
 PLOT_DIGITS = 7
 Precision = Literal["plot", "full"]
 PARTIAL_HEADER = "X-Partial"
+with np.errstate(over="ignore"):
+    POWERS_OF_TEN = 10.0 ** np.arange(400)             # 10ᵏ, exact up to 10²²; past 10³⁰⁸ infinite
 _OPTIONS = orjson.OPT_SERIALIZE_NUMPY
 
 
@@ -37,32 +39,65 @@ class Answer:
 def _significant(x: np.ndarray, digits: int) -> np.ndarray:
     """x rounded to `digits` significant digits, element-wise; 0, ±inf and NaN unchanged.
 
-    The integer is scaled back by an exact power of ten (10ᵏ is exact for |k| ≤ 22): dividing by 10ᵏ rather
-    than multiplying by the inexact 10⁻ᵏ gives the double nearest to the decimal, whose shortest repr is
-    the decimal itself. Beyond 10²² (|x| < 10⁻¹⁶ or > 10²⁸) the last bit may differ: still rounded, a
-    longer repr."""
+    x·10ᵏ is rounded to an integer and scaled back, k = digits − 1 − ⌊log₁₀|x|⌋, with 10^|k| from a table:
+    for k < 0 it divides by 10^|k| rather than multiplying by the inexact 10ᵏ, so while 10^|k| is exact
+    (|k| ≤ 22, i.e. 10⁻¹⁶ ≤ |x| < 10²⁸) the result is the double nearest to the decimal, whose shortest
+    repr is the decimal itself; beyond, the last bit may differ (still rounded, a longer repr)."""
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        exponent = (digits - 1) - np.floor(np.log10(np.abs(x)))
-        exponent = np.where(np.isfinite(exponent), exponent, 0.0)
-        up = np.where(exponent >= 0, 10.0 ** np.abs(exponent), 1.0)
-        down = np.where(exponent < 0, 10.0 ** np.abs(exponent), 1.0)
-        rounded = np.round(x * up / down) / up * down
-    return np.where(np.isfinite(rounded), rounded, x)       # subnormals (10ᵉ overflows) are sent as they are
+        exponent = np.log10(np.abs(x))
+        np.floor(exponent, out=exponent)
+        np.subtract(digits - 1, exponent, out=exponent)
+        exponent[~np.isfinite(exponent)] = 0.0            # 0, ±inf, NaN: scaled by 1, left as they are
+        k = np.clip(exponent.astype(np.int64), 1 - POWERS_OF_TEN.size, POWERS_OF_TEN.size - 1)
+        up, down = POWERS_OF_TEN[np.maximum(k, 0)], POWERS_OF_TEN[np.maximum(-k, 0)]
+        rounded = x * up
+        rounded /= down
+        np.round(rounded, out=rounded)
+        rounded /= up
+        rounded *= down
+    lost = ~np.isfinite(rounded)                            # subnormals (10ᵏ overflows): sent as they are
+    rounded[lost] = x[lost]
+    return rounded
 
 
-def _rounded(value, digits: int):
-    """The payload with its floats rounded; arrays of other kinds, ints, strings and bools as they are."""
+def _float_arrays(value, found: list) -> None:
+    """The payload's float arrays, in the order _rebuilt meets them."""
     if isinstance(value, dict):
-        return {key: _rounded(item, digits) for key, item in value.items()}
+        for item in value.values():
+            _float_arrays(item, found)
+    elif isinstance(value, (list, tuple)):
+        for item in value:
+            _float_arrays(item, found)
+    elif isinstance(value, np.ndarray) and value.dtype.kind == "f":
+        found.append(value)
+
+
+def _rebuilt(value, digits: int, arrays):
+    """The payload with each float array taken from `arrays` (rounded, in walk order), each float rounded;
+    arrays of other kinds, ints, strings and bools as they are."""
+    if isinstance(value, dict):
+        return {key: _rebuilt(item, digits, arrays) for key, item in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_rounded(item, digits) for item in value]
+        return [_rebuilt(item, digits, arrays) for item in value]
     if isinstance(value, np.ndarray):
         if value.dtype.kind == "f":
-            return _significant(value.astype(float), digits)
+            return next(arrays)
         return _rounded(value.tolist(), digits) if value.dtype.kind == "O" else value
     if isinstance(value, (float, np.floating)):       # np.float64 is a float; the decimal rounding is exact
         return float(f"{value:.{digits}g}")
     return value
+
+
+def _rounded(payload, digits: int):
+    """The payload with every float rounded to `digits` significant digits: all float arrays in one
+    vectorised pass (one buffer, so the cost is per number, not per array)."""
+    found: list[np.ndarray] = []
+    _float_arrays(payload, found)
+    if not found:
+        return _rebuilt(payload, digits, iter(()))
+    flat = _significant(np.concatenate([a.ravel() for a in found]).astype(float, copy=False), digits)
+    parts = np.split(flat, np.cumsum([a.size for a in found])[:-1])
+    return _rebuilt(payload, digits, (part.reshape(a.shape) for part, a in zip(parts, found)))
 
 
 def _fallback(value):
