@@ -11,7 +11,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from server.api.app import create_app
-from server.api.endpoints import compute, compute_answer
+from server.api.endpoints import ENDPOINTS, compute, compute_answer
 from server.api.serialise import PLOT_DIGITS, serialise
 from server.lessons.requests import scene_request
 from server.lessons.scenes import scenes
@@ -135,3 +135,12 @@ def test_every_scene_answers_at_both_precisions_as_the_standard_library_reads_th
     close(full_data, reference(compute_answer(scene.endpoint, body, "en").payload), 0.0)
     close(plot_data, full_data, 5e-7 + 1e-15)
     assert compute(scene.endpoint, body, "en").keys() == full_data.keys()
+
+
+def test_every_computing_endpoint_documents_its_precision_parameter(client):
+    schema = client.get(f"{API}/openapi.json").json()
+    for name in ENDPOINTS:
+        parameters = {p["name"]: p for p in schema["paths"][f"{API}/{name}"]["post"]["parameters"]}
+        precision = parameters["precision"]
+        assert precision["schema"]["enum"] == ["plot", "full"] and "7 significant digits" in precision["description"]
+    assert "X-Partial" in schema["info"]["description"]

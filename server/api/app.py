@@ -57,7 +57,13 @@ async def lifespan(app: FastAPI):
 def create_app() -> FastAPI:
     app = FastAPI(title="Mechanism Dynamics Lab API", version="1.0.0",
                   description="Kinematics and dynamics of planar linkages for the theory of machines and "
-                              "mechanisms. SI units throughout; angles in radians.",
+                              "mechanisms. SI units throughout; angles in radians.\n\n"
+                              "**Precision.** The computing endpoints send every float rounded to 7 significant "
+                              "digits by default (`?precision=plot`: a relative change below 5·10⁻⁷, enough for "
+                              "any plot or table); `?precision=full` sends every float64 as computed. "
+                              "Non-finite numbers are `null` in both.\n\n"
+                              "**Partial answers.** An answer that a time or work bound cut short says so in "
+                              "`numerics.message` and `warnings` and carries the header `X-Partial: 1`.",
                   openapi_url=f"{API_PREFIX}/openapi.json", docs_url=None, redoc_url=None,
                   lifespan=lifespan)
     api = APIRouter(prefix=API_PREFIX)
