@@ -20,7 +20,8 @@ from ..core.dynamics.machine import Machine
 from ..core.dynamics.motors import Motor
 from ..core.dynamics.reduction import Inertias
 from ..core.dynamics.resistance import Load
-from ..core.elastic.report import Bearing, ElasticMachine, bearing_iteration, modal, rigid, simulate
+from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, mechanism_side, modal, rigid,
+                                   simulate)
 from ..core.elastic.stiffness import Compliances
 from ..core.kinematics import compute_kinematics
 from ..core.kinetostatics.crank_slider import Loads, Pairs, analyse
@@ -160,7 +161,8 @@ def elastic_machine(request: ElasticRequest) -> ElasticMachine:
 
 def elastic(request: ElasticRequest, lang: str) -> Answer:
     """Histories (with numerics), the rigid start-up, modal curves, the bearing iteration: each only when
-    asked for; the rigid machine alone is sampled on the histories' times, t = 0 … t_end in n points."""
+    asked for; the rigid machine alone is sampled on the histories' times, t = 0 … t_end in n points, and
+    refused where the elastic machine is (no inertia on the mechanism side, an undefined load)."""
     built = elastic_machine(request)
     result, notices = {}, []
     wants_rigid = "rigid" in request.outputs
@@ -168,6 +170,7 @@ def elastic(request: ElasticRequest, lang: str) -> Answer:
         result, notices = simulate(built, request.t_end, request.n, request.rtol, request.method,
                                    with_rigid=wants_rigid)
     elif wants_rigid:
+        mechanism_side(built)                      # refuses the elastic machine as its other outputs would
         result["rigid"] = rigid(built, np.linspace(0.0, request.t_end, request.n))
     if "modal" in request.outputs:
         result["modal"] = modal(built)
