@@ -63,7 +63,8 @@ def cut_short(result: dict, notices) -> bool:
 
 
 def answer(result: dict, notices, lang: str) -> Answer:
-    return Answer(payload(result, notices, lang), cut_short(result, notices))
+    partial = cut_short(result, notices)               # before the texts are translated
+    return Answer(payload(result, notices, lang), partial)
 
 
 def count_undefined(value) -> int:
