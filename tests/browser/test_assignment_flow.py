@@ -60,7 +60,7 @@ def correct_inertia(app_url: str, values: dict) -> float:
     """The answer as the flywheel endpoint gives it for the student's values (the test is not the student)."""
     scene = scenes()["flywheel"]
     body = scene_request(scene, scene.variants[0], values)
-    return httpx.post(f"{app_url}/api/v1/flywheel", json=body, timeout=30).json()["flywheel_inertia"]
+    return httpx.post(f"{app_url}/api/v1/flywheel?precision=full", json=body, timeout=30).json()["flywheel_inertia"]
 
 
 def open_as_student(context, student_url: str, name: str):
