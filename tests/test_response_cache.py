@@ -240,7 +240,7 @@ def test_an_elastic_answer_cut_short_by_its_work_bound_says_so_and_is_not_stored
     monkeypatch.setattr(heavy, "HEAVY_PROCESSES", 0)            # in this process, where the bound is patched
     monkeypatch.setattr(endpoints, "simulate", functools.partial(endpoints.simulate, max_evaluations=50))
     scene = scenes()["elastic-transmission"]
-    body = scene_request(scene, scene.variants[0]) | {"outputs": ["histories"]}
+    body = scene_request(scene, scene.variants[0]) | {"outputs": ["histories"], "t_end": 0.3, "n": 61}
     answers = [client.post(f"{API}/elastic?lang=en", json=body) for _ in range(2)]
     assert [a.status_code for a in answers] == [200, 200]
     assert [a.headers["x-cache"] for a in answers] == ["miss", "miss"]
