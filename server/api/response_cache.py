@@ -50,7 +50,7 @@ CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSO
 
 # The computing endpoints whose answer is a function of (path, lang, body) alone.
 CACHED_ENDPOINTS = ("kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
-                    "angular-acceleration", "efficiency-chain")
+                    "angular-acceleration", "efficiency-chain", "family")
 
 
 def canonical_body(raw: bytes) -> str | None:

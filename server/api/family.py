@@ -1,0 +1,432 @@
+"""A slider's family: one endpoint's answer at N values across the slider's range, every other parameter fixed,
+so that dragging the slider is a lookup (POST /api/v1/family; the contract is in the README's API section).
+
+Members. A member's body is a deep copy of the request with each varied dotted path set to value × factor.
+The first members are 9 values evenly spaced from min to max (in log(value) when ``log``). The members are
+computed coarse to fine (min, max, the middle, the quarters, ...), so a family cut short by its time budget
+still spans the whole range.
+
+Interpolation (the page draws the same): for a value v between members a = answer(v_k) and b = answer(v_k+1),
+w = (v − v_k)/(v_k+1 − v_k) (in log(v) when ``log``) and, leaf by leaf,
+    number in both                         → (1 − w)·a + w·b,
+    arrays of equal length in both         → element by element, by this rule,
+    objects in both                        → key by key (the keys of the nearer member), by this rule,
+    null in either                         → null,
+    anything else (strings, booleans, arrays of different lengths, a key in one member only)
+                                           → the nearer member's leaf (a when w < 1/2, else b).
+A refused member's answer is null, so the values between it and its neighbours interpolate to null.
+
+Refinement. The span of a leaf is max − min over all members of every element of that leaf (numbers only).
+Each interval's midpoint is computed exactly and compared with the interpolation at it; the interval is halved
+(the midpoint becomes a member) while the largest |interpolation − exact| / span of any checked leaf exceeds
+TOLERANCE, at most MAX_MEMBERS members; where the cap leaves an interval above the tolerance, the numerics'
+message says between which values and for which quantity. Checked leaves are floats and arrays of floats
+outside ``numerics``, ``study`` and ``warnings`` (whole numbers, such as step counters, strings and booleans are
+not plotted quantities). An interval between an answered and a refused value is halved down to 1/64 of the
+range (the limit found to that resolution); a refused midpoint between two answered members becomes a member.
+
+The comparison uses the members as sent: every float rounded to SIGNIFICANT digits (NaN and ±inf → null), so
+the reported interpolation error includes the rounding the page sees.
+"""
+from __future__ import annotations
+
+import copy
+import math
+import time
+from bisect import bisect_right
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+from pydantic import ValidationError
+
+from ..core.mechanisms import GeometryError
+from .messages import CommaFloat, DECIMAL_COMMA, ReadableFloat
+from .content import interface_texts
+
+TOLERANCE = 0.005               # 0.5 % of a plotted quantity's span: below a plot's resolution (issue 13)
+START_MEMBERS = 9
+MAX_MEMBERS = 65                # 8 intervals halved three times over the whole range, at most
+FINEST_FRACTION = 1 / 64        # an answered–refused interval is halved down to this fraction of the range
+TIME_BUDGET_S = 5.0             # wall-clock bound of one family (each member keeps its endpoint's own budget)
+SIGNIFICANT = 5                 # significant digits of every float in the family's answer
+ROUNDOFF = 1e-12                # below this fraction of its siblings' size a quantity's span is round-off
+UNCHECKED = frozenset({"numerics", "study", "warnings"})
+PARTIAL_MARKS = ("work bound", "time budget")   # the core's words for a result cut short (numerics.message)
+COARSE_TO_FINE = (0, 8, 4, 2, 6, 1, 3, 5, 7)    # the order of the first 9 members
+
+
+@dataclass(frozen=True)
+class Vary:
+    """One dotted path of the request set to value × factor (factor converts the slider's units to SI)."""
+
+    path: str
+    factor: float
+
+
+def member_body(request: dict, vary: list[Vary], value: float) -> dict:
+    """The request with each varied path set to value × factor (a deep copy: the request is shared)."""
+    body = copy.deepcopy(request)
+    for item in vary:
+        *keys, last = item.path.split(".")
+        holder = body
+        for key in keys:
+            holder = holder[key]
+        holder[last] = value * item.factor
+    return body
+
+
+def path_exists(request: dict, path: str) -> bool:
+    """Whether the dotted path names a number (not a boolean) in the request."""
+    holder = request
+    for key in path.split("."):
+        if not isinstance(holder, dict) or key not in holder:
+            return False
+        holder = holder[key]
+    return isinstance(holder, (int, float)) and not isinstance(holder, bool)
+
+
+# ---- spacing ---------------------------------------------------------------------------------------------
+
+def coordinate(value: float, log: bool) -> float:
+    """The coordinate in which members are spaced and interpolated: the value, or its logarithm."""
+    return math.log(value) if log else value
+
+
+def from_coordinate(x: float, log: bool) -> float:
+    return math.exp(x) if log else x
+
+
+def spaced(low: float, high: float, count: int, log: bool) -> list[float]:
+    """count values evenly spaced from low to high (in log when ``log``), the ends exact."""
+    a, b = coordinate(low, log), coordinate(high, log)
+    inner = [_as_sent(from_coordinate(a + (b - a) * k / (count - 1), log), low, high) for k in range(1, count - 1)]
+    return [low, *inner, high]
+
+
+def midpoint(low: float, high: float, log: bool) -> float:
+    return _as_sent(from_coordinate((coordinate(low, log) + coordinate(high, log)) / 2, log), low, high)
+
+
+def _as_sent(value: float, low: float, high: float) -> float:
+    """The value to SIGNIFICANT digits (so the member is computed at the value sent), unless that would
+    leave the open interval (low, high)."""
+    short = rounded(value)
+    return short if low < short < high else value
+
+
+# ---- the interpolation rule -------------------------------------------------------------------------------
+
+def _is_number(x) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def interpolate(a, b, w: float):
+    """The contract's rule between two members' leaves a (weight 1 − w) and b (weight w); see the module."""
+    if a is None or b is None:
+        return None
+    if isinstance(a, np.ndarray) and isinstance(b, np.ndarray) and a.shape == b.shape:
+        return (1 - w) * a + w * b                      # NaN (null) in either stays NaN (null)
+    if _is_number(a) and _is_number(b):
+        return (1 - w) * a + w * b
+    if isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
+        return [interpolate(x, y, w) for x, y in zip(a, b)]
+    if isinstance(a, dict) and isinstance(b, dict):
+        near, far = (a, b) if w < 0.5 else (b, a)
+        return {key: (interpolate(a[key], b[key], w) if key in far else value) for key, value in near.items()}
+    return a if w < 0.5 else b
+
+
+def interpolate_family(values: list[float], answers: list, value: float, log: bool):
+    """The family's answer at value by the rule (values ascending; outside the range, the end member)."""
+    if value <= values[0]:
+        return answers[0]
+    if value >= values[-1]:
+        return answers[-1]
+    k = bisect_right(values, value) - 1
+    a, b = coordinate(values[k], log), coordinate(values[k + 1], log)
+    return interpolate(answers[k], answers[k + 1], (coordinate(value, log) - a) / (b - a))
+
+
+# ---- answers as trees of arrays ---------------------------------------------------------------------------
+
+def as_tree(answer):
+    """A member's answer with every array of numbers (and nulls) as a float ndarray, null → NaN, each float
+    rounded to SIGNIFICANT digits as sent. Arrays of whole numbers alone stay lists (counters)."""
+    if isinstance(answer, dict):
+        return {key: as_tree(value) for key, value in answer.items()}
+    if isinstance(answer, np.ndarray):
+        return rounded_array(answer.astype(float)) if answer.dtype.kind == "f" else answer.tolist()
+    if isinstance(answer, (list, tuple)):
+        array = _numeric_array(answer)
+        return [as_tree(x) for x in answer] if array is None else rounded_array(array)
+    if isinstance(answer, (float, np.floating)):
+        return rounded(float(answer))
+    return answer
+
+
+NUMBERS = frozenset({float, int, type(None)})
+
+
+def _numeric_array(items: list) -> np.ndarray | None:
+    """The list as a float array if it is a (nested, rectangular) array of numbers and nulls with a float."""
+    kinds = {type(x) for x in items}
+    if kinds == {list}:                                  # a table: its rows' elements decide
+        kinds = {type(y) for x in items for y in x}
+        if kinds == {list}:
+            rows = [_numeric_array(x) for x in items]
+            if any(row is None for row in rows) or len({row.shape for row in rows}) != 1:
+                return None
+            return np.stack(rows)
+    if float not in kinds or not kinds <= NUMBERS:
+        return None
+    try:
+        return np.array(items, dtype=float)
+    except ValueError:                                   # ragged rows
+        return None
+
+
+def rounded(x: float) -> float | None:
+    """x to SIGNIFICANT digits; NaN and ±inf → None (sent as null)."""
+    return float(f"{x:.{SIGNIFICANT}g}") if math.isfinite(x) else None
+
+
+def rounded_array(x: np.ndarray) -> np.ndarray:
+    """Each element to SIGNIFICANT digits, non-finite → NaN (null). Scaling by an exact power of ten
+    (multiply for 10^k, k ≥ 0; divide by 10^−k otherwise) keeps the shortest decimal form of each result."""
+    x = np.where(np.isfinite(x), x, np.nan)
+    magnitude = np.abs(x)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        exponent = np.floor(np.log10(np.where(magnitude > 0, magnitude, 1.0)))
+    k = np.clip(SIGNIFICANT - 1 - exponent, -300, 300)
+    up = k >= 0
+    scale = 10.0 ** np.abs(k)
+    with np.errstate(over="ignore", invalid="ignore"):
+        return np.where(up, np.round(x * scale) / scale, np.round(x / scale) * scale)
+
+
+# ---- spans and the error of interpolation -----------------------------------------------------------------
+
+def checked_leaves(tree, path: tuple = ()):
+    """(path, float or float array) of each plotted quantity: floats outside numerics, study and warnings."""
+    if isinstance(tree, dict):
+        for key, value in tree.items():
+            if key not in UNCHECKED:
+                yield from checked_leaves(value, (*path, key))
+    elif isinstance(tree, list):
+        for index, value in enumerate(tree):
+            yield from checked_leaves(value, (*path, index))
+    elif isinstance(tree, np.ndarray) or isinstance(tree, float):
+        yield path, tree
+
+
+def spans(answers: list) -> dict[tuple, float]:
+    """The width each checked leaf's interpolation error is measured against: its span, max − min of every
+    element of the leaf over all members (refused members and nulls aside), but at least ROUNDOFF × the
+    largest magnitude among the leaf and its siblings (the quantities of one object, drawn side by side): a
+    quantity that is zero in exact arithmetic (a central crank-slider's cosine harmonics, ~1e-17) is noise
+    whose 'span' is noise too, not a curve to resolve."""
+    low: dict[tuple, float] = {}
+    high: dict[tuple, float] = {}
+    for answer in answers:
+        if answer is None:
+            continue
+        for path, leaf in checked_leaves(answer):
+            finite = leaf[np.isfinite(leaf)] if isinstance(leaf, np.ndarray) else np.asarray([leaf])
+            if finite.size:
+                low[path] = min(low.get(path, math.inf), float(finite.min()))
+                high[path] = max(high.get(path, -math.inf), float(finite.max()))
+    magnitude: dict[tuple, float] = {}
+    for path in low:
+        parent = path[:-1]
+        magnitude[parent] = max(magnitude.get(parent, 0.0), abs(low[path]), abs(high[path]))
+    return {path: max(high[path] - low[path], ROUNDOFF * magnitude[path[:-1]]) for path in low}
+
+
+def _leaf(tree, path: tuple):
+    for key in path:
+        try:
+            tree = tree[key]
+        except (KeyError, IndexError, TypeError):
+            return None
+    return tree
+
+
+def deviation(approx, exact, span: dict[tuple, float]) -> tuple[float, tuple]:
+    """The largest |approx − exact| / span over the checked leaves of exact, and that leaf's path. A leaf of
+    zero span that differs counts as infinitely wrong; nulls on either side are not compared."""
+    worst, where = 0.0, ()
+    for path, leaf in checked_leaves(exact):
+        guess = _leaf(approx, path)
+        if guess is None or np.shape(guess) != np.shape(leaf) or not isinstance(guess, (float, np.ndarray)):
+            continue
+        with np.errstate(invalid="ignore"):
+            difference = np.abs(np.asarray(guess, float) - np.asarray(leaf, float))
+        difference = float(np.max(difference, initial=0.0, where=np.isfinite(difference)))
+        if difference == 0.0:
+            continue
+        width = span.get(path, 0.0)
+        error = difference / width if width > 0 else math.inf
+        if error > worst:
+            worst, where = error, path
+    return worst, where
+
+
+# ---- members that are refused or partial ------------------------------------------------------------------
+
+def refusal(error: Exception) -> dict:
+    """{code, message} of a member refused as HTTP would refuse it (the 422's detail)."""
+    if isinstance(error, GeometryError):
+        return {"code": error.code, "message": f"{error.field}: {error.reason}"}
+    first = error.errors()[0]
+    where = ".".join(str(part) for part in first["loc"])
+    return {"code": first["type"], "message": f"{where}: {first['msg']}" if where else first["msg"]}
+
+
+def is_partial(answer) -> bool:
+    """Whether some numerics of the answer say the computation stopped at its work bound or time budget."""
+    if isinstance(answer, dict):
+        numerics = answer.get("numerics")
+        if isinstance(numerics, dict) and any(mark in str(numerics.get("message", "")) for mark in PARTIAL_MARKS):
+            return True
+        return any(is_partial(value) for value in answer.values())
+    return False
+
+
+# ---- the family -------------------------------------------------------------------------------------------
+
+@dataclass
+class _Check:
+    """An interval's midpoint, computed exactly, and how far the interpolation is from it."""
+
+    value: float
+    answer: dict | None
+    error: dict | None
+    partial: bool
+    deviation: float = 0.0
+    where: tuple = ()
+
+
+@dataclass
+class Family:
+    """The members computed so far, ascending, and the checked midpoints of the intervals between them."""
+
+    log: bool
+    values: list[float] = field(default_factory=list)
+    answers: list = field(default_factory=list)
+    errors: list = field(default_factory=list)
+    partial: list[bool] = field(default_factory=list)
+    checks: dict[tuple[float, float], _Check] = field(default_factory=dict)
+    checked: int = 0                    # midpoints computed, those that became members included
+
+    def add(self, value: float, answer, error, partial: bool) -> None:
+        k = bisect_right(self.values, value)
+        for column, item in ((self.values, value), (self.answers, answer), (self.errors, error),
+                             (self.partial, partial)):
+            column.insert(k, item)
+
+    def intervals(self) -> list[tuple[float, float]]:
+        return list(zip(self.values[:-1], self.values[1:]))
+
+    def score(self, interval: tuple[float, float], span: dict, finest: float) -> float:
+        """How much an interval asks to be halved: its relative interpolation error; 1 (100 %) for an
+        answered–refused interval wider than the finest spacing; infinite for a refused midpoint."""
+        check = self.checks[interval]
+        k = self.values.index(interval[0])
+        ends = (self.answers[k], self.answers[k + 1])
+        if ends[0] is None and ends[1] is None:
+            return 0.0
+        if ends[0] is None or ends[1] is None:
+            width = coordinate(interval[1], self.log) - coordinate(interval[0], self.log)
+            return 1.0 if width > finest * (1 + 1e-9) else 0.0
+        if check.answer is None:
+            return math.inf
+        approx = interpolate_family(self.values, self.answers, check.value, self.log)
+        check.deviation, check.where = deviation(approx, check.answer, span)
+        return check.deviation
+
+
+def build(member: Callable[[float], dict], low: float, high: float, log: bool, lang: str = "en",
+          budget_s: float = TIME_BUDGET_S) -> tuple[dict, bool]:
+    """The family's answer (see the module) and whether it is partial: member(value) is the endpoint's
+    answer at value; it raises pydantic's ValidationError or GeometryError where the endpoint refuses it."""
+    started = time.perf_counter()
+    deadline = started + budget_s
+    family = Family(log)
+    finest = (coordinate(high, log) - coordinate(low, log)) * FINEST_FRACTION
+    cut = False
+
+    def computed(value: float) -> tuple:
+        try:
+            answer = member(value)
+        except (ValidationError, GeometryError) as error:
+            return None, refusal(error), False
+        return as_tree(answer), None, is_partial(answer)
+
+    first = spaced(low, high, START_MEMBERS, log)
+    for index in COARSE_TO_FINE:
+        if time.perf_counter() > deadline:
+            cut = True
+            break
+        family.add(first[index], *computed(first[index]))
+    while not cut:
+        for interval in family.intervals():
+            if interval in family.checks:
+                continue
+            if time.perf_counter() > deadline:
+                cut = True
+                break
+            value = midpoint(*interval, log)
+            family.checks[interval] = _Check(value, *computed(value))
+            family.checked += 1
+        span = spans(family.answers)
+        scores = sorted(((family.score(i, span, finest), i) for i in family.intervals() if i in family.checks),
+                        key=lambda item: item[0], reverse=True)
+        halve = [i for score, i in scores if score > TOLERANCE][:MAX_MEMBERS - len(family.values)]
+        if not halve:
+            break
+        for interval in halve:
+            check = family.checks.pop(interval)
+            family.add(check.value, check.answer, check.error, check.partial)
+    return _answer(family, lang, cut, started, finest)
+
+
+def _answer(family: Family, lang: str, cut: bool, started: float, finest: float) -> tuple[dict, bool]:
+    """The answer of the contract, and whether it is partial (cut at the time budget, or a member is)."""
+    span = spans(family.answers)
+    scores = {i: family.score(i, span, finest) for i in family.intervals() if i in family.checks}
+    compared = {i: score for i, score in scores.items() if family.checks[i].answer is not None
+                and family.answers[family.values.index(i[0])] is not None
+                and family.answers[family.values.index(i[1])] is not None}
+    error = max(compared.values(), default=None)
+    texts = interface_texts(lang)
+    number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
+    sentences = []
+    if cut:
+        sentences.append(texts["family_time_budget"].format(seconds=number(TIME_BUDGET_S), points=len(family.values)))
+    unmet = [(score, i) for i, score in compared.items() if score > TOLERANCE]
+    if unmet:
+        score, (a, b) = max(unmet, key=lambda item: item[0])
+        check = family.checks[(a, b)]
+        where = {"low": number(rounded(a)), "high": number(rounded(b)), "cap": MAX_MEMBERS}
+        if math.isfinite(score):
+            sentences.append(texts["family_cap_unmet"].format(
+                **where, error=number(rounded(100 * score)), tolerance=number(100 * TOLERANCE),
+                quantity=".".join(str(part) for part in check.where)))
+        else:
+            sentences.append(texts["family_refused_inside"].format(**where))
+    partial = [v for v, p in zip(family.values, family.partial) if p]
+    if partial:
+        sentences.append(texts["family_partial_members"].format(
+            count=len(partial), values=", ".join(f"{number(rounded(v)):g}" for v in partial)))
+    method = texts["family_method_log" if family.log else "family_method_linear"].format(
+        start=START_MEMBERS, tolerance=number(100 * TOLERANCE), cap=MAX_MEMBERS)
+    return {
+        "values": [rounded(v) for v in family.values],
+        "answers": family.answers,
+        "errors": family.errors,
+        "interpolation_error": rounded(error) if error is not None else None,   # inf (refused inside) → null
+        "tolerance": TOLERANCE,
+        "numerics": {"method": method, "points": len(family.values), "checked": family.checked,
+                     "runtime_ms": rounded(1e3 * (time.perf_counter() - started)), "message": " ".join(sentences)},
+    }, cut or bool(partial)
