@@ -47,10 +47,11 @@ from .content import interface_texts
 TOLERANCE = 0.005               # 0.5 % of a plotted quantity's span: below a plot's resolution (issue 13)
 START_MEMBERS = 9
 MAX_MEMBERS = 65                # 8 intervals halved three times over the whole range, at most
-FINEST_FRACTION = 1 / 64        # an answered–refused interval is halved down to this fraction of the range
+FINEST_FRACTION = 1 / 1024      # an interval this narrow (of the range) is not halved: no slider resolves it
 TIME_BUDGET_S = 5.0             # wall-clock bound of one family (each member keeps its endpoint's own budget)
 SIGNIFICANT = 5                 # significant digits of every float in the family's answer
 ROUNDOFF = 1e-12                # below this fraction of its siblings' size a quantity's span is round-off
+SAME_KIND = 1e-4                # ... or, inside one object, invisible beside its siblings (see spans)
 UNCHECKED = frozenset({"numerics", "study", "warnings"})
 PARTIAL_MARKS = ("work bound", "time budget")   # the core's words for a result cut short (numerics.message)
 COARSE_TO_FINE = (0, 8, 4, 2, 6, 1, 3, 5, 7)    # the order of the first 9 members
@@ -150,18 +151,20 @@ def interpolate_family(values: list[float], answers: list, value: float, log: bo
 
 # ---- answers as trees of arrays ---------------------------------------------------------------------------
 
-def as_tree(answer):
-    """A member's answer with every array of numbers (and nulls) as a float ndarray, null → NaN, each float
-    rounded to SIGNIFICANT digits as sent. Arrays of whole numbers alone stay lists (counters)."""
+def as_tree(answer, sent: bool = True):
+    """A member's answer with every array of numbers (and nulls) as a float ndarray, null → NaN, and (when
+    ``sent``) each float rounded to SIGNIFICANT digits as sent. Arrays of whole numbers alone stay lists."""
     if isinstance(answer, dict):
-        return {key: as_tree(value) for key, value in answer.items()}
-    if isinstance(answer, np.ndarray):
-        return rounded_array(answer.astype(float)) if answer.dtype.kind == "f" else answer.tolist()
-    if isinstance(answer, (list, tuple)):
-        array = _numeric_array(answer)
-        return [as_tree(x) for x in answer] if array is None else rounded_array(array)
+        return {key: as_tree(value, sent) for key, value in answer.items()}
+    if isinstance(answer, np.ndarray) and answer.dtype.kind != "f":
+        return answer.tolist()
+    if isinstance(answer, (list, tuple, np.ndarray)):
+        array = answer.astype(float) if isinstance(answer, np.ndarray) else _numeric_array(answer)
+        if array is None:
+            return [as_tree(x, sent) for x in answer]
+        return rounded_array(array) if sent else np.where(np.isfinite(array), array, np.nan)
     if isinstance(answer, (float, np.floating)):
-        return rounded(float(answer))
+        return rounded(float(answer)) if sent else float(answer)
     return answer
 
 
@@ -222,10 +225,12 @@ def checked_leaves(tree, path: tuple = ()):
 
 def spans(answers: list) -> dict[tuple, float]:
     """The width each checked leaf's interpolation error is measured against: its span, max − min of every
-    element of the leaf over all members (refused members and nulls aside), but at least ROUNDOFF × the
-    largest magnitude among the leaf and its siblings (the quantities of one object, drawn side by side): a
-    quantity that is zero in exact arithmetic (a central crank-slider's cosine harmonics, ~1e-17) is noise
-    whose 'span' is noise too, not a curve to resolve."""
+    element of the leaf over all members (refused members and nulls aside), but at least a fraction of the
+    largest magnitude among the leaf and its siblings. Inside an object (the works of a cycle, a harmonic
+    series: quantities of one kind, drawn side by side) the fraction is SAME_KIND: the net work of a steady
+    cycle, zero but for the solver's residual (~1e-7 of the driving work), is invisible beside the driving
+    work and is not a curve to resolve. At the answer's top level (quantities of different units side by
+    side) it is ROUNDOFF: only what is zero but for round-off (~1e-17) is left out."""
     low: dict[tuple, float] = {}
     high: dict[tuple, float] = {}
     for answer in answers:
@@ -240,7 +245,8 @@ def spans(answers: list) -> dict[tuple, float]:
     for path in low:
         parent = path[:-1]
         magnitude[parent] = max(magnitude.get(parent, 0.0), abs(low[path]), abs(high[path]))
-    return {path: max(high[path] - low[path], ROUNDOFF * magnitude[path[:-1]]) for path in low}
+    return {path: max(high[path] - low[path], (SAME_KIND if len(path) > 1 else ROUNDOFF) * magnitude[path[:-1]])
+            for path in low}
 
 
 def _leaf(tree, path: tuple):
@@ -252,21 +258,22 @@ def _leaf(tree, path: tuple):
     return tree
 
 
-def deviation(approx, exact, span: dict[tuple, float]) -> tuple[float, tuple]:
-    """The largest |approx − exact| / span over the checked leaves of exact, and that leaf's path. A leaf of
-    zero span that differs counts as infinitely wrong; nulls on either side are not compared."""
+def deviation(approx, exact, span: dict[tuple, float], ends: tuple = ()) -> tuple[float, tuple]:
+    """The largest |approx − exact| / span over the checked leaves of exact, and that leaf's path. Nulls on
+    either side are not compared, nor a leaf whose shape differs between the interval's ends (``ends``) or
+    from exact: the page draws the nearer member's curve there (a steady cycle refined to more steps, a
+    start-up that settles a cycle sooner), a curve on its own grid, not an interpolation."""
     worst, where = 0.0, ()
     for path, leaf in checked_leaves(exact):
         guess = _leaf(approx, path)
-        if guess is None or np.shape(guess) != np.shape(leaf) or not isinstance(guess, (float, np.ndarray)):
+        if guess is None or not isinstance(guess, (float, np.ndarray)) or any(
+                np.shape(x) != np.shape(leaf) for x in (guess, *(_leaf(end, path) for end in ends))):
             continue
         with np.errstate(invalid="ignore"):
             difference = np.abs(np.asarray(guess, float) - np.asarray(leaf, float))
         difference = float(np.max(difference, initial=0.0, where=np.isfinite(difference)))
-        if difference == 0.0:
-            continue
         width = span.get(path, 0.0)
-        error = difference / width if width > 0 else math.inf
+        error = 0.0 if not difference else difference / width if width > 0 else 1.0   # out of nothing: 100 %
         if error > worst:
             worst, where = error, path
     return worst, where
@@ -328,30 +335,31 @@ class Family:
     def intervals(self) -> list[tuple[float, float]]:
         return list(zip(self.values[:-1], self.values[1:]))
 
-    def score(self, interval: tuple[float, float], span: dict, finest: float) -> float:
+    def width(self, interval: tuple[float, float]) -> float:
+        return coordinate(interval[1], self.log) - coordinate(interval[0], self.log)
+
+    def score(self, interval: tuple[float, float], span: dict) -> float:
         """How much an interval asks to be halved: its relative interpolation error; 1 (100 %) for an
-        answered–refused interval wider than the finest spacing; infinite for a refused midpoint."""
+        answered–refused interval (the limit between them is to be found); infinite for a refused midpoint."""
         check = self.checks[interval]
         k = self.values.index(interval[0])
         ends = (self.answers[k], self.answers[k + 1])
         if ends[0] is None and ends[1] is None:
             return 0.0
         if ends[0] is None or ends[1] is None:
-            width = coordinate(interval[1], self.log) - coordinate(interval[0], self.log)
-            return 1.0 if width > finest * (1 + 1e-9) else 0.0
+            return 1.0
         if check.answer is None:
             return math.inf
         approx = interpolate_family(self.values, self.answers, check.value, self.log)
-        check.deviation, check.where = deviation(approx, check.answer, span)
+        check.deviation, check.where = deviation(approx, check.answer, span, ends)
         return check.deviation
 
 
-def build(member: Callable[[float], dict], low: float, high: float, log: bool, lang: str = "en",
-          budget_s: float = TIME_BUDGET_S) -> tuple[dict, bool]:
+def build(member: Callable[[float], dict], low: float, high: float, log: bool, lang: str = "en") -> tuple[dict, bool]:
     """The family's answer (see the module) and whether it is partial: member(value) is the endpoint's
     answer at value; it raises pydantic's ValidationError or GeometryError where the endpoint refuses it."""
     started = time.perf_counter()
-    deadline = started + budget_s
+    deadline = started + TIME_BUDGET_S
     family = Family(log)
     finest = (coordinate(high, log) - coordinate(low, log)) * FINEST_FRACTION
     cut = False
@@ -365,7 +373,7 @@ def build(member: Callable[[float], dict], low: float, high: float, log: bool, l
 
     first = spaced(low, high, START_MEMBERS, log)
     for index in COARSE_TO_FINE:
-        if time.perf_counter() > deadline:
+        if len(family.values) >= 2 and time.perf_counter() > deadline:       # min and max always
             cut = True
             break
         family.add(first[index], *computed(first[index]))
@@ -380,7 +388,8 @@ def build(member: Callable[[float], dict], low: float, high: float, log: bool, l
             family.checks[interval] = _Check(value, *computed(value))
             family.checked += 1
         span = spans(family.answers)
-        scores = sorted(((family.score(i, span, finest), i) for i in family.intervals() if i in family.checks),
+        scores = sorted(((family.score(i, span), i) for i in family.intervals()
+                         if i in family.checks and family.width(i) > finest * (1 + 1e-9)),
                         key=lambda item: item[0], reverse=True)
         halve = [i for score, i in scores if score > TOLERANCE][:MAX_MEMBERS - len(family.values)]
         if not halve:
@@ -394,27 +403,27 @@ def build(member: Callable[[float], dict], low: float, high: float, log: bool, l
 def _answer(family: Family, lang: str, cut: bool, started: float, finest: float) -> tuple[dict, bool]:
     """The answer of the contract, and whether it is partial (cut at the time budget, or a member is)."""
     span = spans(family.answers)
-    scores = {i: family.score(i, span, finest) for i in family.intervals() if i in family.checks}
-    compared = {i: score for i, score in scores.items() if family.checks[i].answer is not None
-                and family.answers[family.values.index(i[0])] is not None
-                and family.answers[family.values.index(i[1])] is not None}
-    error = max(compared.values(), default=None)
+    scores = {i: family.score(i, span) for i in family.intervals() if i in family.checks}
+    answered = {i: score for i, score in scores.items() if family.answers[family.values.index(i[0])] is not None
+                and family.answers[family.values.index(i[1])] is not None}       # both ends answered
+    error = max((score for i, score in answered.items() if family.checks[i].answer is not None), default=None)
     texts = interface_texts(lang)
     number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
     sentences = []
     if cut:
         sentences.append(texts["family_time_budget"].format(seconds=number(TIME_BUDGET_S), points=len(family.values)))
-    unmet = [(score, i) for i, score in compared.items() if score > TOLERANCE]
+    unmet = [(score, i) for i, score in answered.items() if score > TOLERANCE]
     if unmet:
         score, (a, b) = max(unmet, key=lambda item: item[0])
         check = family.checks[(a, b)]
         where = {"low": number(rounded(a)), "high": number(rounded(b)), "cap": MAX_MEMBERS}
-        if math.isfinite(score):
-            sentences.append(texts["family_cap_unmet"].format(
-                **where, error=number(rounded(100 * score)), tolerance=number(100 * TOLERANCE),
-                quantity=".".join(str(part) for part in check.where)))
-        else:
+        if not math.isfinite(score):
             sentences.append(texts["family_refused_inside"].format(**where))
+        else:
+            key = "family_unresolved" if family.width((a, b)) <= finest * (1 + 1e-9) else "family_cap_unmet"
+            sentences.append(texts[key].format(**where, error=number(rounded(100 * score)),
+                                               tolerance=number(100 * TOLERANCE),
+                                               quantity=".".join(str(part) for part in check.where)))
     partial = [v for v, p in zip(family.values, family.partial) if p]
     if partial:
         sentences.append(texts["family_partial_members"].format(
@@ -425,7 +434,7 @@ def _answer(family: Family, lang: str, cut: bool, started: float, finest: float)
         "values": [rounded(v) for v in family.values],
         "answers": family.answers,
         "errors": family.errors,
-        "interpolation_error": rounded(error) if error is not None else None,   # inf (refused inside) → null
+        "interpolation_error": rounded(error) if error is not None else None,
         "tolerance": TOLERANCE,
         "numerics": {"method": method, "points": len(family.values), "checked": family.checked,
                      "runtime_ms": rounded(1e3 * (time.perf_counter() - started)), "message": " ".join(sentences)},
