@@ -1,10 +1,10 @@
 """A slider's family: one endpoint's answer at N values across the slider's range, every other parameter fixed,
-so that dragging the slider is a lookup (POST /api/v1/family; the contract is in the README's API section).
+so that dragging the slider is a lookup (POST /api/v1/family, issue 13).
 
 Members. A member's body is a deep copy of the request with each varied dotted path set to value × factor.
-The first members are 9 values evenly spaced from min to max (in log(value) when ``log``). The members are
-computed coarse to fine (min, max, the middle, the quarters, ...), so a family cut short by its time budget
-still spans the whole range.
+The first members are 9 values evenly spaced from min to max (in log(value) when ``log``), computed coarse to
+fine (min, max, the middle, the quarters, ...) so that a family cut short by its time budget still spans the
+range. Inner values are rounded to SIGNIFICANT digits before they are computed: the values sent are exact.
 
 Interpolation (the page draws the same): for a value v between members a = answer(v_k) and b = answer(v_k+1),
 w = (v − v_k)/(v_k+1 − v_k) (in log(v) when ``log``) and, leaf by leaf,
@@ -16,14 +16,16 @@ w = (v − v_k)/(v_k+1 − v_k) (in log(v) when ``log``) and, leaf by leaf,
                                            → the nearer member's leaf (a when w < 1/2, else b).
 A refused member's answer is null, so the values between it and its neighbours interpolate to null.
 
-Refinement. The span of a leaf is max − min over all members of every element of that leaf (numbers only).
-Each interval's midpoint is computed exactly and compared with the interpolation at it; the interval is halved
-(the midpoint becomes a member) while the largest |interpolation − exact| / span of any checked leaf exceeds
-TOLERANCE, at most MAX_MEMBERS members; where the cap leaves an interval above the tolerance, the numerics'
-message says between which values and for which quantity. Checked leaves are floats and arrays of floats
-outside ``numerics``, ``study`` and ``warnings`` (whole numbers, such as step counters, strings and booleans are
-not plotted quantities). An interval between an answered and a refused value is halved down to 1/64 of the
-range (the limit found to that resolution); a refused midpoint between two answered members becomes a member.
+Refinement. Each interval's midpoint is computed exactly and compared with the interpolation there; the
+interval is halved (the midpoint becomes a member) while the largest |interpolation − exact| / span of a
+checked leaf exceeds TOLERANCE (spans: see ``spans``), worst intervals first, at most MAX_MEMBERS members.
+Checked leaves are floats and arrays of floats outside ``numerics``, ``study`` and ``warnings`` (whole numbers
+such as step counters, strings and booleans are not plotted quantities) whose shape is the same at both ends
+and at the midpoint. An interval between an answered and a refused value is halved too (the limit is found),
+and so is one whose midpoint is refused. No interval narrower than FINEST_FRACTION of the range is halved:
+no slider resolves it, and an answer that jumps (an efficiency that is 0 at zero load and 0.97 just above)
+or bends at a corner too steep to resolve is named in the message instead of taking every member. Where the cap or a jump leaves an interval above the
+tolerance, numerics.message says between which values and for which quantity.
 
 The comparison uses the members as sent: every float rounded to SIGNIFICANT digits (NaN and ±inf → null), so
 the reported interpolation error includes the rounding the page sees.
@@ -196,16 +198,20 @@ def rounded(x: float) -> float | None:
 
 def rounded_array(x: np.ndarray) -> np.ndarray:
     """Each element to SIGNIFICANT digits, non-finite → NaN (null). Scaling by an exact power of ten
-    (multiply for 10^k, k ≥ 0; divide by 10^−k otherwise) keeps the shortest decimal form of each result."""
+    (multiply by 10^k, 0 ≤ k ≤ 22; divide by 10^−k, −22 ≤ k < 0) keeps the shortest decimal form of each
+    result; the few elements further from 1 (below 1e-18 or above 1e26) are formatted one by one."""
     x = np.where(np.isfinite(x), x, np.nan)
     magnitude = np.abs(x)
     with np.errstate(divide="ignore", invalid="ignore"):
         exponent = np.floor(np.log10(np.where(magnitude > 0, magnitude, 1.0)))
-    k = np.clip(SIGNIFICANT - 1 - exponent, -300, 300)
-    up = k >= 0
-    scale = 10.0 ** np.abs(k)
+    k = SIGNIFICANT - 1 - exponent
+    scale = 10.0 ** np.clip(np.abs(k), 0, 22)
     with np.errstate(over="ignore", invalid="ignore"):
-        return np.where(up, np.round(x * scale) / scale, np.round(x / scale) * scale)
+        result = np.where(k >= 0, np.round(x * scale) / scale, np.round(x / scale) * scale)
+    far = np.abs(k) > 22
+    if far.any():
+        result[far] = [float(f"{value:.{SIGNIFICANT}g}") for value in x[far]]
+    return result
 
 
 # ---- spans and the error of interpolation -----------------------------------------------------------------
@@ -412,22 +418,24 @@ def _answer(family: Family, lang: str, cut: bool, started: float, finest: float)
     sentences = []
     if cut:
         sentences.append(texts["family_time_budget"].format(seconds=number(TIME_BUDGET_S), points=len(family.values)))
-    unmet = [(score, i) for i, score in answered.items() if score > TOLERANCE]
-    if unmet:
-        score, (a, b) = max(unmet, key=lambda item: item[0])
-        check = family.checks[(a, b)]
-        where = {"low": number(rounded(a)), "high": number(rounded(b)), "cap": MAX_MEMBERS}
-        if not math.isfinite(score):
-            sentences.append(texts["family_refused_inside"].format(**where))
-        else:
-            key = "family_unresolved" if family.width((a, b)) <= finest * (1 + 1e-9) else "family_cap_unmet"
-            sentences.append(texts[key].format(**where, error=number(rounded(100 * score)),
-                                               tolerance=number(100 * TOLERANCE),
-                                               quantity=".".join(str(part) for part in check.where)))
+    worst: dict[str, tuple[float, tuple]] = {}          # the worst interval left above the tolerance, by why
+    for interval, score in answered.items():
+        if score > TOLERANCE:
+            why = ("family_refused_inside" if family.checks[interval].answer is None else
+                   "family_unresolved" if family.width(interval) <= finest * (1 + 1e-9) else
+                   None if cut else "family_cap_unmet")    # cut short: the budget, said above
+            if why and score > worst.get(why, (0.0,))[0]:
+                worst[why] = (score, interval)
+    for why, (score, (a, b)) in worst.items():
+        where = family.checks[(a, b)].where
+        sentences.append(texts[why].format(
+            low=number(rounded(a)), high=number(rounded(b)), cap=MAX_MEMBERS, tolerance=number(100 * TOLERANCE),
+            error=number(rounded(100 * score)) if math.isfinite(score) else score,
+            quantity=".".join(str(part) for part in where)))
     partial = [v for v, p in zip(family.values, family.partial) if p]
     if partial:
-        sentences.append(texts["family_partial_members"].format(
-            count=len(partial), values=", ".join(f"{number(rounded(v)):g}" for v in partial)))
+        shown = ", ".join(f"{number(rounded(v)):g}" for v in partial[:8]) + (", …" if len(partial) > 8 else "")
+        sentences.append(texts["family_partial_members"].format(count=len(partial), values=shown))
     method = texts["family_method_log" if family.log else "family_method_linear"].format(
         start=START_MEMBERS, tolerance=number(100 * TOLERANCE), cap=MAX_MEMBERS)
     return {
@@ -438,4 +446,4 @@ def _answer(family: Family, lang: str, cut: bool, started: float, finest: float)
         "tolerance": TOLERANCE,
         "numerics": {"method": method, "points": len(family.values), "checked": family.checked,
                      "runtime_ms": rounded(1e3 * (time.perf_counter() - started)), "message": " ".join(sentences)},
-    }, cut or bool(partial)
+    }, cut or bool(partial) or any(check.partial for check in family.checks.values())
