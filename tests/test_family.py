@@ -257,6 +257,8 @@ def test_the_interpolation_rule_of_the_contract():
     assert np.allclose(near_a["y"][:2], [0.5, 2.5]) and np.isnan(near_a["y"][2])   # element-wise, null → null
     assert near_a["name"] == "a" and list(near_a["z"]) == [1.0]       # strings, other lengths: the nearer
     assert near_a["m"] is None and near_a["only_a"] == 5.0
+    undefined = family.interpolate(family.as_tree([1.0, 2.0]), family.as_tree([None, None]), 0.1)
+    assert np.isnan(undefined).all()                                  # a curve undefined in one: null
     near_b = family.interpolate(a, b, 0.75)
     assert near_b["name"] == "b" and "only_a" not in near_b and near_b["y"][2] is None
     assert family.interpolate(None, b, 0.9) is None

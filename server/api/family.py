@@ -155,7 +155,8 @@ def interpolate_family(values: list[float], answers: list, value: float, log: bo
 
 def as_tree(answer, sent: bool = True):
     """A member's answer with every array of numbers (and nulls) as a float ndarray, null → NaN, and (when
-    ``sent``) each float rounded to SIGNIFICANT digits as sent. Arrays of whole numbers alone stay lists."""
+    ``sent``) each float rounded to SIGNIFICANT digits as sent. Arrays of whole numbers alone stay lists
+    (interpolated element by element all the same)."""
     if isinstance(answer, dict):
         return {key: as_tree(value, sent) for key, value in answer.items()}
     if isinstance(answer, np.ndarray) and answer.dtype.kind != "f":
@@ -174,7 +175,8 @@ NUMBERS = frozenset({float, int, type(None)})
 
 
 def _numeric_array(items: list) -> np.ndarray | None:
-    """The list as a float array if it is a (nested, rectangular) array of numbers and nulls with a float."""
+    """The list as a float array if it is a (nested, rectangular) array of numbers and nulls with a float, or
+    of nulls alone (a curve undefined at every angle, interpolated element by element like any other)."""
     kinds = {type(x) for x in items}
     if kinds == {list}:                                  # a table: its rows' elements decide
         kinds = {type(y) for x in items for y in x}
@@ -183,7 +185,7 @@ def _numeric_array(items: list) -> np.ndarray | None:
             if any(row is None for row in rows) or len({row.shape for row in rows}) != 1:
                 return None
             return np.stack(rows)
-    if float not in kinds or not kinds <= NUMBERS:
+    if not kinds <= NUMBERS or not (float in kinds or kinds == {type(None)}):     # whole numbers: counters
         return None
     try:
         return np.array(items, dtype=float)
