@@ -136,11 +136,13 @@ def test_the_family_reports_its_interpolation_error_and_names_what_it_cannot_res
         assert 9 <= numerics["points"] <= family.MAX_MEMBERS and numerics["checked"] >= numerics["points"] - 1
         assert numerics["method"] and numerics["runtime_ms"] >= 0
         if name.startswith("flywheel"):
-            assert answer["interpolation_error"] > TOLERANCE
-            assert "disk.width" in numerics["message"] and "steep corner" in numerics["message"]
+            assert answer["interpolation_error"] > TOLERANCE and "steep corner" in numerics["message"]
             low, high = (float(x) for x in re.findall(r"between ([\d.]+) and ([\d.]+)", numerics["message"], re.I)[0])
-            widths = {v: (a or {}).get("disk", {}).get("width") for v, a in zip(answer["values"], answer["answers"])}
-            assert widths[low] > 0 and not widths[high]        # the interval where the flywheel ceases
+            assert math.log(high / low) <= math.log(0.2 / 0.001) / 1024 * 1.05    # narrower than a slider resolves
+            widths = [(a or {}).get("disk", {}).get("width") for a in answer["answers"]]
+            ceases = next(k for k, width in enumerate(widths) if not width)      # no flywheel from here on
+            assert widths[ceases - 1] > 0 and math.log(answer["values"][ceases] / answer["values"][ceases - 1]) \
+                <= math.log(0.2 / 0.001) / 1024 * 1.05                           # the corner found to that width
         else:
             assert 0 <= answer["interpolation_error"] <= TOLERANCE and not numerics["message"], name
 
