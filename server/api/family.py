@@ -231,7 +231,19 @@ def checked_leaves(tree, path: tuple = ()):
         yield path, tree
 
 
-def spans(answers: list) -> dict[tuple, float]:
+def ranges(answer, into: dict[tuple, list[float]] | None = None) -> dict[tuple, list[float]]:
+    """[min, max] of every element of each checked leaf of the answer (nulls aside), merged into ``into``."""
+    into = {} if into is None else into
+    for path, leaf in checked_leaves(answer):
+        finite = leaf[np.isfinite(leaf)] if isinstance(leaf, np.ndarray) else np.asarray([leaf])
+        if finite.size:
+            low, high = float(finite.min()), float(finite.max())
+            known = into.setdefault(path, [low, high])
+            known[0], known[1] = min(known[0], low), max(known[1], high)
+    return into
+
+
+def widths(extent: dict[tuple, list[float]]) -> dict[tuple, float]:
     """The width each checked leaf's interpolation error is measured against: its span, max − min of every
     element of the leaf over all members (refused members and nulls aside), but at least a fraction of the
     largest magnitude among the leaf and its siblings. Inside an object (the works of a cycle, a harmonic
@@ -239,22 +251,20 @@ def spans(answers: list) -> dict[tuple, float]:
     cycle, zero but for the solver's residual (~1e-7 of the driving work), is invisible beside the driving
     work and is not a curve to resolve. At the answer's top level (quantities of different units side by
     side) it is ROUNDOFF: only what is zero but for round-off (~1e-17) is left out."""
-    low: dict[tuple, float] = {}
-    high: dict[tuple, float] = {}
-    for answer in answers:
-        if answer is None:
-            continue
-        for path, leaf in checked_leaves(answer):
-            finite = leaf[np.isfinite(leaf)] if isinstance(leaf, np.ndarray) else np.asarray([leaf])
-            if finite.size:
-                low[path] = min(low.get(path, math.inf), float(finite.min()))
-                high[path] = max(high.get(path, -math.inf), float(finite.max()))
     magnitude: dict[tuple, float] = {}
-    for path in low:
-        parent = path[:-1]
-        magnitude[parent] = max(magnitude.get(parent, 0.0), abs(low[path]), abs(high[path]))
-    return {path: max(high[path] - low[path], (SAME_KIND if len(path) > 1 else ROUNDOFF) * magnitude[path[:-1]])
-            for path in low}
+    for path, (low, high) in extent.items():
+        magnitude[path[:-1]] = max(magnitude.get(path[:-1], 0.0), abs(low), abs(high))
+    return {path: max(high - low, (SAME_KIND if len(path) > 1 else ROUNDOFF) * magnitude[path[:-1]])
+            for path, (low, high) in extent.items()}
+
+
+def spans(answers: list) -> dict[tuple, float]:
+    """widths over the members (None: refused)."""
+    extent: dict[tuple, list[float]] = {}
+    for answer in answers:
+        if answer is not None:
+            ranges(answer, extent)
+    return widths(extent)
 
 
 def _leaf(tree, path: tuple):
@@ -266,12 +276,12 @@ def _leaf(tree, path: tuple):
     return tree
 
 
-def deviation(approx, exact, span: dict[tuple, float], ends: tuple = ()) -> tuple[float, tuple]:
-    """The largest |approx − exact| / span over the checked leaves of exact, and that leaf's path. Nulls on
-    either side are not compared, nor a leaf whose shape differs between the interval's ends (``ends``) or
-    from exact: the page draws the nearer member's curve there (a steady cycle refined to more steps, a
-    start-up that settles a cycle sooner), a curve on its own grid, not an interpolation."""
-    worst, where = 0.0, ()
+def differences(approx, exact, ends: tuple = ()) -> dict[tuple, float]:
+    """max |approx − exact| of each checked leaf of exact. Nulls on either side are not compared, nor a leaf
+    whose shape differs between the interval's ends (``ends``) or from exact: the page draws the nearer
+    member's curve there (a steady cycle refined to more steps, a start-up that settles a cycle sooner), a
+    curve on its own grid, not an interpolation."""
+    found = {}
     for path, leaf in checked_leaves(exact):
         guess = _leaf(approx, path)
         if guess is None or not isinstance(guess, (float, np.ndarray)) or any(
@@ -279,9 +289,17 @@ def deviation(approx, exact, span: dict[tuple, float], ends: tuple = ()) -> tupl
             continue
         with np.errstate(invalid="ignore"):
             difference = np.abs(np.asarray(guess, float) - np.asarray(leaf, float))
-        difference = float(np.max(difference, initial=0.0, where=np.isfinite(difference)))
+        found[path] = float(np.max(difference, initial=0.0, where=np.isfinite(difference)))
+    return found
+
+
+def deviation(found: dict[tuple, float], span: dict[tuple, float]) -> tuple[float, tuple]:
+    """The largest difference / span over the leaves, and that leaf's path; a difference where the span is
+    zero (out of nothing) counts 100 %."""
+    worst, where = 0.0, ()
+    for path, difference in found.items():
         width = span.get(path, 0.0)
-        error = 0.0 if not difference else difference / width if width > 0 else 1.0   # out of nothing: 100 %
+        error = 0.0 if not difference else difference / width if width > 0 else 1.0
         if error > worst:
             worst, where = error, path
     return worst, where
@@ -318,6 +336,7 @@ class _Check:
     answer: dict | None
     error: dict | None
     partial: bool
+    differences: dict | None = None     # per checked leaf, against the interpolation (the ends do not change)
     deviation: float = 0.0
     where: tuple = ()
 
@@ -333,8 +352,11 @@ class Family:
     partial: list[bool] = field(default_factory=list)
     checks: dict[tuple[float, float], _Check] = field(default_factory=dict)
     checked: int = 0                    # midpoints computed, those that became members included
+    extent: dict[tuple, list[float]] = field(default_factory=dict)     # ranges of the members' leaves
 
     def add(self, value: float, answer, error, partial: bool) -> None:
+        if answer is not None:
+            ranges(answer, self.extent)
         k = bisect_right(self.values, value)
         for column, item in ((self.values, value), (self.answers, answer), (self.errors, error),
                              (self.partial, partial)):
@@ -358,8 +380,10 @@ class Family:
             return 1.0
         if check.answer is None:
             return math.inf
-        approx = interpolate_family(self.values, self.answers, check.value, self.log)
-        check.deviation, check.where = deviation(approx, check.answer, span, ends)
+        if check.differences is None:
+            approx = interpolate_family(self.values, self.answers, check.value, self.log)
+            check.differences = differences(approx, check.answer, ends)
+        check.deviation, check.where = deviation(check.differences, span)
         return check.deviation
 
 
@@ -395,7 +419,7 @@ def build(member: Callable[[float], dict], low: float, high: float, log: bool, l
             value = midpoint(*interval, log)
             family.checks[interval] = _Check(value, *computed(value))
             family.checked += 1
-        span = spans(family.answers)
+        span = widths(family.extent)
         scores = sorted(((family.score(i, span), i) for i in family.intervals()
                          if i in family.checks and family.width(i) > finest * (1 + 1e-9)),
                         key=lambda item: item[0], reverse=True)
@@ -410,7 +434,7 @@ def build(member: Callable[[float], dict], low: float, high: float, log: bool, l
 
 def _answer(family: Family, lang: str, cut: bool, started: float, finest: float) -> tuple[dict, bool]:
     """The answer of the contract, and whether it is partial (cut at the time budget, or a member is)."""
-    span = spans(family.answers)
+    span = widths(family.extent)
     scores = {i: family.score(i, span) for i in family.intervals() if i in family.checks}
     answered = {i: score for i, score in scores.items() if family.answers[family.values.index(i[0])] is not None
                 and family.answers[family.values.index(i[1])] is not None}       # both ends answered
