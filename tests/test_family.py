@@ -212,10 +212,14 @@ def test_invalid_family_requests_are_refused_naming_the_field(client, change, lo
         assert word.lower() in error["msg"].lower(), error
 
 
-def test_non_finite_numbers_are_refused(client):
-    text = json.dumps(family_body("transfer-functions", "slider_crank", "lambda")).replace('"max": 8.0', '"max": Infinity')
+@pytest.mark.parametrize("field, loc", [('"max": 8.0', ["body", "max"]), ('"min": 1.05', ["body", "min"]),
+                                        ('"factor": 0.1', ["body", "vary", 0, "factor"])])
+def test_non_finite_numbers_are_refused(client, field, loc):
+    text = json.dumps(family_body("transfer-functions", "slider_crank", "lambda"))
+    assert field in text
+    text = text.replace(field, field.split(":")[0] + ": NaN")
     response = client.post(f"{API}/family", content=text, headers={"content-type": "application/json"})
-    assert response.status_code == 422 and strict_json(response.text)["detail"][0]["loc"] == ["body", "max"]
+    assert response.status_code == 422 and strict_json(response.text)["detail"][0]["loc"] == loc
 
 
 def test_the_endpoint_choice_is_every_computing_endpoint(client):
