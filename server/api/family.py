@@ -323,6 +323,8 @@ def is_partial(answer) -> bool:
         if isinstance(numerics, dict) and any(mark in str(numerics.get("message", "")) for mark in PARTIAL_MARKS):
             return True
         return any(is_partial(value) for value in answer.values())
+    if isinstance(answer, list) and answer and isinstance(answer[0], dict):      # a list of results
+        return any(is_partial(value) for value in answer)
     return False
 
 
