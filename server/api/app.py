@@ -23,6 +23,7 @@ from .routers import cache as cache_stats
 from ..classroom.variants import SpecError
 from .routers import (angular, assignment_pages, assignments, dynamics, elastic, forces, kinematics, mechanisms, pages,
                       scenes)
+from .routers import family
 
 API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
@@ -67,7 +68,7 @@ def create_app() -> FastAPI:
                   openapi_url=f"{API_PREFIX}/openapi.json", docs_url=None, redoc_url=None,
                   lifespan=lifespan)
     api = APIRouter(prefix=API_PREFIX)
-    for module in (mechanisms, kinematics, dynamics, elastic, forces, angular, scenes, assignments):
+    for module in (mechanisms, kinematics, dynamics, elastic, forces, angular, family, scenes, assignments):
         api.include_router(module.router)
     api.include_router(cache_stats.router)  # GET /api/v1/cache
     app.include_router(api)

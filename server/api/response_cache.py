@@ -45,8 +45,8 @@ PARTIAL = PARTIAL_HEADER.lower().encode()
 ENTRY_OVERHEAD_BYTES = 200          # key, bookkeeping and object headers of one entry, roughly
 CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSON) after this as it stops
 
-# The computing endpoints, whose answer is a function of (path, query, body) alone.
-CACHED_ENDPOINTS = tuple(ENDPOINTS)
+# The computing endpoints and the slider families, whose answer is a function of (path, query, body) alone.
+CACHED_ENDPOINTS = (*ENDPOINTS, "family")
 
 
 def canonical_body(raw: bytes) -> bytes | None:

@@ -1,0 +1,101 @@
+"""POST /api/v1/family: a slider's family of answers (server/api/family.py), computed in the heavy process."""
+from __future__ import annotations
+
+import math
+from typing import Any, Literal
+
+from fastapi import APIRouter
+from fastapi.responses import Response
+from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator
+
+from .. import family, heavy
+from ..endpoints import ENDPOINTS, compute_answer
+from ..schemas import Language
+from ..serialise import Answer, respond
+from .query import LANG
+
+router = APIRouter(tags=["family"])
+Endpoint = Literal[tuple(ENDPOINTS)]
+
+
+class VaryItem(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    path: str = Field(min_length=1, max_length=200, description="dotted path of a number in `request`, "
+                                                                "e.g. params.l2")
+    factor: float = Field(1.0, allow_inf_nan=False, description="the path is set to value × factor (the "
+                                                                "slider's units to SI and its scale)")
+
+
+class FamilyRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    endpoint: Endpoint = Field(description="the computing endpoint whose answers make the family")
+    request: dict[str, Any] = Field(description="the endpoint's body exactly as the page sends it")
+    vary: list[VaryItem] = Field(min_length=1, max_length=8, description="the paths the slider sets")
+    log: bool = Field(False, description="members spaced (and interpolated) in log(value); needs min > 0")
+    min: float = Field(allow_inf_nan=False, description="the slider's lowest value, in its shown units")
+    max: float = Field(allow_inf_nan=False, description="the slider's highest value, in its shown units")
+
+    @field_validator("vary")
+    @classmethod
+    def paths_in_request(cls, vary: list[VaryItem], info: ValidationInfo) -> list[VaryItem]:
+        request = info.data.get("request")
+        if request is not None:
+            for index, item in enumerate(vary):
+                if not family.path_exists(request, item.path):
+                    raise ValueError(f"vary[{index}].path: {item.path!r} is not a number in request")
+        return vary
+
+    @field_validator("min")
+    @classmethod
+    def positive_for_log(cls, low: float, info: ValidationInfo) -> float:
+        if info.data.get("log") and low <= 0:
+            raise ValueError("a log-spaced family needs min > 0")
+        return low
+
+    @field_validator("max")
+    @classmethod
+    def above_min(cls, high: float, info: ValidationInfo) -> float:
+        low = info.data.get("min")
+        if low is not None and not high > low:
+            raise ValueError("max must be greater than min")
+        if low is not None and not math.isfinite(high - low):
+            raise ValueError("max − min must be a finite number")
+        return high
+
+
+class FamilyNumerics(BaseModel):
+    method: str
+    points: int = Field(description="members in the family")
+    checked: int = Field(description="midpoints computed exactly to check the interpolation")
+    runtime_ms: float
+    message: str = Field(description="in words: the cap or the time budget that stopped the family, partial members")
+
+
+class FamilyResponse(BaseModel):
+    values: list[float] = Field(description="the members' slider values, ascending, min and max included")
+    answers: list[dict | None] = Field(description="the endpoint's answer at each value; null where refused")
+    errors: list[dict | None] = Field(description="{code, message} of a refused value, else null")
+    interpolation_error: float | None = Field(description="largest |interpolation − exact| / span at the checked "
+                                                          "midpoints")
+    tolerance: float = Field(description="the target: 0.5 % of each plotted quantity's span over the family")
+    numerics: FamilyNumerics
+
+
+@router.post("/family", summary="A slider's family: the endpoint's answer at values across the slider's range, "
+                                "spaced so that linear interpolation is within 0.5 % of each quantity's span",
+             responses={200: {"model": FamilyResponse,
+                              "description": "the family; header X-Partial: 1 when cut short by a work bound"},
+                        422: {"description": "invalid input: the field and the reason"}})
+async def family_route(request: FamilyRequest, lang: Language = LANG) -> Response:
+    # the family rounds its floats to family.SIGNIFICANT digits itself: sent as they are
+    return respond(Answer(*await heavy.submit(family_answer, request.model_dump(), lang)), "full")
+
+
+def family_answer(body: dict, lang: str) -> tuple[dict, bool]:
+    """The family's answer and whether it is partial (run in the heavy process)."""
+    vary = [family.Vary(item["path"], item["factor"]) for item in body["vary"]]
+
+    def member(value: float) -> Answer:
+        return compute_answer(body["endpoint"], family.member_body(body["request"], vary, value), lang)
+
+    return family.build(member, body["min"], body["max"], body["log"], lang)
