@@ -17,6 +17,7 @@ from ..lessons.scenes import REPO_ROOT
 from ..core.mechanisms import GeometryError
 from . import heavy
 from .errors import geometry_error, validation_error
+from .admission import AdmissionMiddleware
 from .security import SecurityMiddleware
 from .response_cache import CACHE_AT_EXIT, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
@@ -79,6 +80,7 @@ def create_app() -> FastAPI:
     app.state.response_cache = ResponseCache.from_env()  # MDL_CACHE_BYTES, default 64 MB, 0 = off
     app.add_middleware(ResponseCacheMiddleware, cache=app.state.response_cache, prefix=API_PREFIX)  # inside gzip
     app.add_middleware(GZipMiddleware, minimum_size=1000, compresslevel=3)  # cheap CPU, ~4x smaller
+    app.add_middleware(AdmissionMiddleware)  # per-client computations in flight (429), the mdl_client cookie
     app.add_middleware(SecurityMiddleware)  # outermost: headers on every response, bodies ≤ 1 MiB
     app.mount("/static", StaticFiles(directory=REPO_ROOT / "web" / "static"), name="static")
     app.mount("/vendor/plotly", StaticFiles(directory=PLOTLY_DIR), name="plotly")
