@@ -19,6 +19,7 @@ from . import heavy
 from .errors import geometry_error, validation_error
 from .admission import AdmissionMiddleware
 from .security import SecurityMiddleware
+from .static_files import content_version, mount_versioned
 from .response_cache import CACHE_AT_EXIT, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
 from ..classroom.variants import SpecError
@@ -27,6 +28,7 @@ from .routers import (angular, assignment_pages, assignments, dynamics, elastic,
 
 API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
+STATIC_DIR = REPO_ROOT / "web" / "static"
 COMPILED = ("server.core.dynamics.compiled", "server.core.elastic.compiled")   # each has warm_up()
 
 
@@ -82,8 +84,9 @@ def create_app() -> FastAPI:
     app.add_middleware(GZipMiddleware, minimum_size=1000, compresslevel=3)  # cheap CPU, ~4x smaller
     app.add_middleware(AdmissionMiddleware)  # per-client computations in flight (429), the mdl_client cookie
     app.add_middleware(SecurityMiddleware)  # outermost: headers on every response, bodies ≤ 1 MiB
-    app.mount("/static", StaticFiles(directory=REPO_ROOT / "web" / "static"), name="static")
-    app.mount("/vendor/plotly", StaticFiles(directory=PLOTLY_DIR), name="plotly")
+    static = mount_versioned(app, "/static", STATIC_DIR, content_version(STATIC_DIR), "static")
+    plotly_js = mount_versioned(app, "/vendor/plotly", PLOTLY_DIR, plotly.__version__, "plotly")
+    pages.templates.env.globals.update(static=static, plotly=plotly_js)   # {{ static }}/js/api.js in templates
     app.mount("/bench-results", StaticFiles(directory=REPO_ROOT / "bench" / "results"), name="bench")
     return app
 
