@@ -6,7 +6,7 @@ import re
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api.app import app
+from server.api.app import PLOTLY_DIR, app
 from server.api.static_files import IMMUTABLE, content_version
 
 ASSET = re.compile(r'(?:src|href)="(/(?:static|vendor)/[^"]+)"')
@@ -49,3 +49,15 @@ def test_the_version_changes_with_any_file_name_or_content(tmp_path):
     (tmp_path / "js" / "a.js").rename(tmp_path / "js" / "b.js")
     renamed = content_version(tmp_path)
     assert len({first, changed, renamed}) == 3 and re.fullmatch(r"[0-9a-f]{12}", first)
+
+
+def test_text_files_come_gzipped_from_one_compressed_copy(client):
+    url = next(u for u in ASSET.findall(client.get("/scenes/transfer-functions").text) if u.endswith("plotly.min.js"))
+    first, second = (client.get(url, headers={"accept-encoding": "gzip"}) for _ in range(2))
+    original = (PLOTLY_DIR / "plotly.min.js").read_bytes()
+    for answer in (first, second):
+        assert answer.headers["content-encoding"] == "gzip" and answer.headers["cache-control"] == IMMUTABLE
+        assert answer.content == original and int(answer.headers["content-length"]) < len(original) / 2
+    plain = client.get(url, headers={"accept-encoding": "identity"})
+    assert plain.content == original and "content-encoding" not in plain.headers
+    assert client.get(url, headers={"if-none-match": first.headers["etag"]}).status_code == 304
