@@ -142,6 +142,25 @@ def test_new_ids_on_one_address_count_toward_the_address_cap():
     run(scenario)
 
 
+def test_heavy_requests_have_a_smaller_limit_of_their_own():
+    """A client's elastic runs and studies queue for the heavy process: two at most, its light requests still go."""
+    async def scenario():
+        app = HeldApp()
+        middleware = AdmissionMiddleware(app, per_client=8, per_address=64, per_client_heavy=2)
+        held = [Exchange(middleware, path=path) for path in ("/api/v1/elastic", "/api/v1/work-precision/motion")]
+        await settle()
+        third = Exchange(middleware, path="/api/v1/elastic")
+        light = Exchange(middleware, path="/api/v1/kinematics")
+        other = Exchange(middleware, path="/api/v1/elastic", client_id=ID_B)
+        await settle()
+        assert third.status == 429 and json.loads(third.sent[1]["body"])["detail"][0]["ctx"]["scope"] == "heavy"
+        assert light.status is None and other.status is None and app.started == 4
+        app.release.set()
+        await asyncio.gather(*(e.task for e in held), light.task, other.task)
+        assert not middleware.in_flight
+    run(scenario)
+
+
 def test_only_computing_posts_are_counted():
     async def scenario():
         app = HeldApp()

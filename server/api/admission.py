@@ -4,8 +4,11 @@ A pure ASGI middleware (no numerics, no routes). A client is its address (uvicor
 from ``X-Forwarded-For`` for a trusted proxy) together with the random id of the ``mdl_client`` cookie that
 every HTML page gives a browser that has none — a class of 30 behind one NAT address is 30 clients, not one.
 Each client may hold ``MDL_CLIENT_CONCURRENCY`` computing requests in flight (default 8: the busiest page asks
-for a main answer, three overlays and a slider's family at once), and one address ``MDL_ADDRESS_CONCURRENCY``
-(default 64), so that minting ids does not escape the limit; 0 switches a limit off. A request past a limit is
+for a main answer, three overlays and a slider's family at once), of them ``MDL_CLIENT_HEAVY_CONCURRENCY``
+(default 2: an elastic scene's answer and its work–precision study) of the heavy kind that queue for the heavy
+process one after another, so that one client's heavy requests do not stand before every other client's; and
+one address ``MDL_ADDRESS_CONCURRENCY`` (default 64), so that minting ids does not escape the limit; 0 switches
+a limit off. A request past a limit is
 answered at once with 429, ``Retry-After: 1`` and a body in FastAPI's error format; the page waits and resends.
 A request without the cookie (a script) counts as the address's anonymous client. The counts are per worker.
 
@@ -26,6 +29,7 @@ COOKIE_MAX_AGE_S = 365 * 24 * 3600
 RETRY_AFTER_S = 1
 COMPUTING = re.compile(r"/api/v1/(kinematics|reduction|motion|flywheel|elastic|forces|wear|angular-acceleration"
                        r"|efficiency-chain|family|work-precision/[a-z-]+)")
+HEAVY = re.compile(r"/api/v1/(elastic|work-precision/[a-z-]+)")      # run in the heavy process (heavy.submit)
 _ID = re.compile(r"[A-Za-z0-9_-]{16,64}")
 
 
@@ -34,9 +38,11 @@ def _env_limit(name: str, default: int) -> int:
 
 
 def too_busy_detail(scope: str, limit: int) -> list[dict]:
-    """The 429's body in FastAPI's validation-error format (the page reads detail[0].ctx.code)."""
-    who = "this client" if scope == "client" else "this address"
-    return [{"loc": ["client"], "msg": f"{who} already has {limit} computations in flight; retry after "
+    """The 429's body in FastAPI's validation-error format (the page reads detail[0].ctx.code); scope is the
+    limit reached: "client", "heavy" (the client's heavy computations) or "address"."""
+    who = "this address" if scope == "address" else "this client"
+    kind = "heavy computations" if scope == "heavy" else "computations"
+    return [{"loc": ["client"], "msg": f"{who} already has {limit} {kind} in flight; retry after "
                                        f"{RETRY_AFTER_S} s", "type": "too_many_requests",
              "ctx": {"code": "busy", "limit": limit, "scope": scope, "retry_after": RETRY_AFTER_S}}]
 
@@ -56,11 +62,14 @@ class AdmissionMiddleware:
     """At most `per_client` computing requests in flight per (address, mdl_client id) and `per_address` per
     address; the cookie handed to HTML pages that arrive without one."""
 
-    def __init__(self, app, per_client: int | None = None, per_address: int | None = None):
+    def __init__(self, app, per_client: int | None = None, per_address: int | None = None,
+                 per_client_heavy: int | None = None):
         self.app = app
         self.per_client = _env_limit("MDL_CLIENT_CONCURRENCY", 8) if per_client is None else per_client
+        self.per_client_heavy = (_env_limit("MDL_CLIENT_HEAVY_CONCURRENCY", 2) if per_client_heavy is None
+                                 else per_client_heavy)
         self.per_address = _env_limit("MDL_ADDRESS_CONCURRENCY", 64) if per_address is None else per_address
-        self.in_flight: Counter = Counter()   # ("address", host) and ("client", host, id) → requests in flight
+        self.in_flight: Counter = Counter()   # ("address", host), ("client"|"heavy", host, id) → requests in flight
 
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http":
@@ -73,9 +82,12 @@ class AdmissionMiddleware:
             await self.app(scope, receive, send)
 
     async def _admit(self, scope, receive, send) -> None:
-        host = (scope.get("client") or ("",))[0]
-        keys = (("address", host), ("client", host, client_id(scope)))
-        for key, limit in zip(keys, (self.per_address, self.per_client)):
+        host, who = (scope.get("client") or ("",))[0], client_id(scope)
+        limits = {("address", host): self.per_address, ("client", host, who): self.per_client}
+        if HEAVY.fullmatch(scope["path"]):
+            limits[("heavy", host, who)] = self.per_client_heavy
+        keys = tuple(limits)
+        for key, limit in limits.items():
             if limit and self.in_flight[key] >= limit:
                 await _refuse(send, key[0], limit)
                 return
