@@ -8,9 +8,9 @@ for a main answer, three overlays and a slider's family at once), of them ``MDL_
 (default 2: an elastic scene's answer and its work–precision study) of the heavy kind that queue for the heavy
 process one after another, so that one client's heavy requests do not stand before every other client's; and
 one address ``MDL_ADDRESS_CONCURRENCY`` (default 64), so that minting ids does not escape the limit; 0 switches
-a limit off. A request past a limit is
-answered at once with 429, ``Retry-After: 1`` and a body in FastAPI's error format; the page waits and resends.
-A request without the cookie (a script) counts as the address's anonymous client. The counts are per worker.
+a limit off. A request past a limit is answered at once with 429, ``Retry-After: 1`` and a body in FastAPI's
+error format; the page waits and resends. A request without the cookie (a script) counts as the address's
+anonymous client. The counts are per worker (with two workers a client may hold twice as many).
 
 A client that goes away while its computation waits has the computation cancelled (a heavy one leaves the
 process pool's queue) and its place released; a light one already running in a thread finishes unseen.
