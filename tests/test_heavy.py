@@ -1,6 +1,7 @@
 """Long computations run in a process of their own: the answer, a refusal (422) and a dead child."""
 from __future__ import annotations
 
+import asyncio
 import os
 import signal
 import threading
@@ -69,3 +70,56 @@ def test_a_computation_waiting_at_shutdown_starts_no_new_process():
     assert len(outcome) == 1 and isinstance(outcome[0], (BrokenProcessPool, CancelledError))
     assert heavy._pool is None                    # no pool was started for the retry
     assert heavy.run(os.getpid) != os.getpid()
+
+
+def test_submit_answers_brings_refusals_back_and_replaces_a_dead_child():
+    async def scenario():
+        pid = await heavy.submit(os.getpid)
+        try:
+            await heavy.submit(_raise, GeometryError("params.l2", "too short", "crank_cannot_turn"))
+        except GeometryError as back:
+            assert back.code == "crank_cannot_turn"
+        else:
+            raise AssertionError("the refusal was lost")
+        os.kill(pid, signal.SIGKILL)
+        return pid, await heavy.submit(os.getpid)
+
+    first, second = asyncio.run(scenario())
+    assert first != os.getpid() and second not in (first, os.getpid())
+
+
+def test_a_submit_cancelled_while_queued_is_never_computed():
+    """A request cancelled while it waits (its client gone) leaves the queue. The pool hands a process the
+    call it runs plus up to two more already marked running (one process): those two are fillers."""
+    marker = f"/tmp/mdl-heavy-{os.getpid()}-{time.monotonic_ns()}"
+
+    async def scenario():
+        started = [asyncio.ensure_future(heavy.submit(time.sleep, 0.5)),
+                   *(asyncio.ensure_future(heavy.submit(os.getpid)) for _ in range(2))]
+        queued = [asyncio.ensure_future(heavy.submit(_touch, marker)) for _ in range(3)]
+        await asyncio.sleep(0.1)
+        for task in queued:
+            task.cancel()
+        await asyncio.gather(*started)
+        return [task.cancelled() for task in queued]
+
+    heavy.run(os.getpid)                                   # the process is up
+    assert all(asyncio.run(scenario()))
+    heavy.run(os.getpid)                                   # whatever was still queued has run by now
+    assert not os.path.exists(marker)
+
+
+def _touch(path):
+    open(path, "w").close()
+
+
+def test_with_no_heavy_processes_submit_runs_in_a_thread_of_its_own(monkeypatch):
+    """MDL_HEAVY_PROCESSES=0: the computation runs in the worker, in a thread that is neither the event loop's
+    nor one of the pool that serves the light routes."""
+    monkeypatch.setattr(heavy, "HEAVY_PROCESSES", 0)
+
+    async def scenario():
+        return await heavy.submit(threading.current_thread), threading.current_thread()
+
+    worker, loop_thread = asyncio.run(scenario())
+    assert worker is not loop_thread and worker.name.startswith("mdl-heavy")

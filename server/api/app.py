@@ -17,7 +17,9 @@ from ..lessons.scenes import REPO_ROOT
 from ..core.mechanisms import GeometryError
 from . import heavy
 from .errors import geometry_error, validation_error
+from .admission import AdmissionMiddleware
 from .security import SecurityMiddleware
+from .static_files import content_version, mount_versioned
 from .response_cache import CACHE_AT_EXIT, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
 from ..classroom.variants import SpecError
@@ -27,6 +29,7 @@ from .routers import family
 
 API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
+STATIC_DIR = REPO_ROOT / "web" / "static"
 COMPILED = ("server.core.dynamics.compiled", "server.core.elastic.compiled")   # each has warm_up()
 
 
@@ -80,9 +83,11 @@ def create_app() -> FastAPI:
     app.state.response_cache = ResponseCache.from_env()  # MDL_CACHE_BYTES, default 64 MB, 0 = off
     app.add_middleware(ResponseCacheMiddleware, cache=app.state.response_cache, prefix=API_PREFIX)  # inside gzip
     app.add_middleware(GZipMiddleware, minimum_size=1000, compresslevel=3)  # cheap CPU, ~4x smaller
+    app.add_middleware(AdmissionMiddleware)  # per-client computations in flight (429), the mdl_client cookie
     app.add_middleware(SecurityMiddleware)  # outermost: headers on every response, bodies ≤ 1 MiB
-    app.mount("/static", StaticFiles(directory=REPO_ROOT / "web" / "static"), name="static")
-    app.mount("/vendor/plotly", StaticFiles(directory=PLOTLY_DIR), name="plotly")
+    static = mount_versioned(app, "/static", STATIC_DIR, content_version(STATIC_DIR), "static")
+    plotly_js = mount_versioned(app, "/vendor/plotly", PLOTLY_DIR, plotly.__version__, "plotly")
+    pages.templates.env.globals.update(static=static, plotly=plotly_js)   # {{ static }}/js/api.js in templates
     app.mount("/bench-results", StaticFiles(directory=REPO_ROOT / "bench" / "results"), name="bench")
     return app
 

@@ -4,7 +4,12 @@ An elastic time integration or a live work–precision study holds the interpret
 (scipy's explicit solvers step in Python); run in the worker's thread pool, it would queue every
 other student's 5-ms kinematics request behind it for the lock. In a separate process it uses the
 other CPU and the worker stays free. ``MDL_HEAVY_PROCESSES`` processes per worker (default 1; 0 runs
-them in the worker itself). A child that dies is replaced and the computation is tried once more.
+them in the worker itself, in one thread of their own). A child that dies is replaced and the computation is
+tried once more.
+
+A route awaits ``submit``: the wait holds no thread, so heavy requests never take the tokens of the thread
+pool that runs the light (sync) routes — 64 waiting elastic requests cost 64 suspended coroutines, not 64 of
+anyio's 40 threads. ``run`` is the blocking form for code that is not async.
 """
 from __future__ import annotations
 
@@ -15,7 +20,7 @@ import os
 import signal
 import threading
 import weakref
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from typing import Callable, TypeVar
 
@@ -24,6 +29,7 @@ T = TypeVar("T")
 _pool: ProcessPoolExecutor | None = None
 _stopped: weakref.WeakSet = weakref.WeakSet()   # pools ended by shutdown(): what broke there is not retried
 _lock = threading.Lock()
+_in_worker: ThreadPoolExecutor | None = None   # MDL_HEAVY_PROCESSES=0: one thread, not the light routes' pool
 
 
 def _current_pool() -> ProcessPoolExecutor:
@@ -40,6 +46,14 @@ def _discard(pool: ProcessPoolExecutor) -> None:
         if _pool is pool:
             _pool = None
     pool.shutdown(wait=False, cancel_futures=True)
+
+
+def _local_threads() -> ThreadPoolExecutor:
+    global _in_worker
+    with _lock:
+        if _in_worker is None:
+            _in_worker = ThreadPoolExecutor(1, thread_name_prefix="mdl-heavy")
+        return _in_worker
 
 
 def shutdown() -> None:
@@ -72,27 +86,30 @@ def run(function: Callable[..., T], *args) -> T:
         try:
             return pool.submit(function, *args).result()
         except BrokenProcessPool:
-            if pool in _stopped:               # ended by shutdown(): the server is stopping
-                raise
-            _discard(pool)
-            if attempt:
+            if not _replaced(pool, attempt):
                 raise
     raise AssertionError("unreachable")
 
 
 async def submit(function: Callable[..., T], *args) -> T:
-    """function(*args) in the heavy process, awaited without holding a thread of the worker (a thread when
-    HEAVY_PROCESSES is 0); a pool that broke is replaced and the computation tried once more, as in run()."""
+    """function(*args) in the heavy process, awaited without holding a thread; its exceptions come back.
+    Cancelled while it waits (its client gone), it leaves the queue; one already running finishes unseen."""
     if HEAVY_PROCESSES == 0:
-        return await asyncio.to_thread(function, *args)
+        return await asyncio.wrap_future(_local_threads().submit(function, *args))
     for attempt in range(2):
         pool = _current_pool()
         try:
             return await asyncio.wrap_future(pool.submit(function, *args))
         except BrokenProcessPool:
-            if pool in _stopped:               # ended by shutdown(): the server is stopping
-                raise
-            _discard(pool)
-            if attempt:
+            if not _replaced(pool, attempt):
                 raise
     raise AssertionError("unreachable")
+
+
+def _replaced(pool: ProcessPoolExecutor, attempt: int) -> bool:
+    """Whether a broken pool is replaced for one more try: not when shutdown() ended it (the server is
+    stopping), nor after the second try."""
+    if pool in _stopped:
+        return False
+    _discard(pool)
+    return attempt == 0

@@ -1,7 +1,8 @@
 """Safety at the edge of the app, for classroom use: security headers on every response and a cap on request bodies.
 
 A pure ASGI middleware (no numerics, no routes): it adds the headers to every HTTP response (pages, static
-files, the JSON API, errors) and refuses a request body over MAX_BODY_BYTES with HTTP 413 in FastAPI's error
+files, the JSON API, errors), marks HTML pages ``Cache-Control: no-cache`` (a page names the current versioned
+static URLs, and a result page carries a private token: always revalidated), and refuses a request body over MAX_BODY_BYTES with HTTP 413 in FastAPI's error
 format — at once when Content-Length says so, or as soon as a chunked body grows past the limit while read.
 """
 from __future__ import annotations
@@ -62,9 +63,12 @@ class SecurityMiddleware:
             nonlocal started
             if message["type"] == "http.response.start":
                 started = True
-                present = {name.lower() for name, _ in message.get("headers", [])}
-                message = {**message, "headers": [*message.get("headers", []),
-                                                  *(h for h in _RAW_HEADERS if h[0] not in present)]}
+                headers = message.get("headers", [])
+                present = {name.lower(): value for name, value in headers}
+                extra = [h for h in _RAW_HEADERS if h[0] not in present]
+                if present.get(b"content-type", b"").startswith(b"text/html") and b"cache-control" not in present:
+                    extra.append((b"cache-control", b"no-cache"))
+                message = {**message, "headers": [*headers, *extra]}
             await send(message)
 
         if self._declared_length(scope) > self.max_body:

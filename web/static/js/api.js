@@ -9,10 +9,42 @@
  * An answer is {ok: true, data} with the response body, or {ok: false, error: {code, message}} where
  * code is the error code of the 422 answer (content/i18n has err_<code>; null when the answer names none,
  * and its message is shown), "network" or "server".
+ *
+ * A server that has as many of this browser's computations in flight as it admits answers 429 with
+ * Retry-After (seconds): the client waits that long (plus up to half again, so that a class does not come
+ * back all at once), then sends the latest request for the key. Meanwhile the page says "busy, retrying";
+ * the student never sees the 429 as an error.
  */
+const RETRY_JITTER = 0.5;
+const MAX_RETRY_AFTER_S = 10;
+let retrying = 0;                      // requests of this page waiting to be sent again
+
+/** Show or hide the page's "busy, retrying" note (one for every client on the page). */
+function noteRetrying(delta) {
+  retrying += delta;
+  let note = document.getElementById("busy-retrying");
+  if (!note) {
+    const texts = JSON.parse(document.getElementById("interface-texts")?.textContent ?? "{}");
+    note = Object.assign(document.createElement("p"), {
+      id: "busy-retrying", className: "retry-note", textContent: texts.busy_retrying ?? "…" });
+    note.setAttribute("role", "status");
+    document.body.append(note);
+  }
+  note.hidden = retrying === 0;
+}
+
+/** Milliseconds to wait before sending again, from the answer's Retry-After (delta-seconds). */
+function retryDelay(response) {
+  const seconds = Number.parseInt(response.headers.get("Retry-After") ?? "", 10);
+  const base = Number.isFinite(seconds) ? Math.min(Math.max(seconds, 0), MAX_RETRY_AFTER_S) : 1;
+  return 1000 * Math.max(base, 0.25) * (1 + RETRY_JITTER * Math.random());
+}
+
+const pause = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
 export class ApiClient {
   #slots = new Map();
-  #inFlight = 0;
+  #active = 0;
 
   /**
    * endpoint: "kinematics", "reduction", "motion", …; lang: language of the warnings;
@@ -42,20 +74,32 @@ export class ApiClient {
 
   async #drain(slot) {
     slot.busy = true;
+    if (this.#active++ === 0) this.onBusy(true);
     while (slot.waiting) {
       const request = slot.waiting;
       slot.waiting = null;
       const answer = await this.#post(request.text);
-      if (slot.latest === request) request.onAnswer(answer);
+      if (answer.retryAfter !== undefined) {
+        if (!slot.waiting && slot.latest === request) slot.waiting = request;   // else a newer one goes
+        if (slot.waiting) {
+          noteRetrying(+1);
+          await pause(answer.retryAfter);
+          noteRetrying(-1);
+        }
+      } else if (slot.latest === request) {
+        request.onAnswer(answer);
+      }
     }
     slot.busy = false;
+    if (--this.#active === 0) this.onBusy(false);
   }
 
+  /** The answer to one POST; {retryAfter: ms} when the server is busy with this browser's requests. */
   async #post(text) {
-    if (this.#inFlight++ === 0) this.onBusy(true);
     try {
       const response = await fetch(this.url, {
         method: "POST", headers: { "Content-Type": "application/json" }, body: text });
+      if (response.status === 429) return { retryAfter: retryDelay(response) };
       const payload = await response.json().catch(() => null);
       if (response.ok && payload) return { ok: true, data: payload };
       const detail = Array.isArray(payload?.detail) ? payload.detail[0] : null;
@@ -63,8 +107,6 @@ export class ApiClient {
       return { ok: false, error: { code: detail.ctx?.code ?? null, message: detail.msg } };
     } catch (error) {
       return { ok: false, error: { code: "network", message: String(error) } };
-    } finally {
-      if (--this.#inFlight === 0) this.onBusy(false);
     }
   }
 }
