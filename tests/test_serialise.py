@@ -88,6 +88,15 @@ def test_plot_precision_is_the_decimal_rounding_to_seven_significant_digits():
     assert values[5:] == [5e-324, 1e-310]              # subnormals (10ᵏ overflows) go out as they are
 
 
+def test_a_single_number_is_sent_whole_and_a_curve_rounded():
+    """A field holding one number (the 4π cycle a page divides by) keeps every digit; a list or array of them
+    (a curve) is rounded to plot precision."""
+    cycle = 4 * np.pi
+    parsed = strict(serialise({"cycle": cycle, "numerics": {"error_estimate": 1 / 3}, "phi": [cycle], "u": np.array([cycle])}))
+    assert parsed["cycle"] == cycle and parsed["numerics"]["error_estimate"] == 1 / 3
+    assert parsed["phi"] == parsed["u"] == [12.56637]
+
+
 def test_integers_strings_and_booleans_are_left_as_they_are():
     payload = {"n": 12345678901, "flag": True, "name": "φ = 0.123456789", "counts": np.array([1, 2], np.int64)}
     assert strict(serialise(payload)) == {"n": 12345678901, "flag": True, "name": "φ = 0.123456789", "counts": [1, 2]}

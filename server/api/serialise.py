@@ -1,10 +1,13 @@
 """Every computed answer leaves the server through here: numpy arrays written directly by orjson, no NaN or
 infinity ever sent (null instead), floats at the precision a plot needs unless the client asks for all.
 
-Plot precision (the default): each float is rounded to PLOT_DIGITS = 7 significant digits,
+Plot precision (the default): each float of an array or a list (the curves: where the bytes are) is rounded to
+PLOT_DIGITS = 7 significant digits,
 x ↦ round(x·10ᵉ)·10⁻ᵉ with e = 6 − ⌊log₁₀|x|⌋ (vectorised over arrays; a relative change below 5·10⁻⁷,
 about a thousandth of a pixel on a 2000-pixel plot), and orjson writes the shortest decimal that reads back
-as that double, so 0.30000000000000004 goes out as 0.3. ``?precision=full`` sends every float64 as it is
+as that double, so 0.30000000000000004 goes out as 0.3. A single number (a field of an object: the cycle 4π,
+ω_mean, δ, an error estimate) is sent whole, as it costs no bytes worth saving and a page may compute with it
+(the 4π cycle's axis ends at 720°, not 719.99996°). ``?precision=full`` sends every float64 as it is
 (shortest round-trip repr: 17 significant digits at most). Non-finite numbers become null in both modes,
 as JSON has no NaN: orjson writes null for a non-finite float, scalar or array element; `_rounded` keeps
 them non-finite, and `serialise` checks no other spelling can occur (tests/test_serialise.py).
@@ -75,8 +78,9 @@ def _float_arrays(value, found: list) -> None:
 def _rebuilt(value, digits: int, arrays):
     """The payload with each float array taken from `arrays` (rounded, in walk order), each float rounded;
     arrays of other kinds, ints, strings and bools as they are."""
-    if isinstance(value, dict):
-        return {key: _rebuilt(item, digits, arrays) for key, item in value.items()}
+    if isinstance(value, dict):             # a field that is one number is sent whole
+        return {key: item if isinstance(item, float) else _rebuilt(item, digits, arrays)
+                for key, item in value.items()}
     if isinstance(value, (list, tuple)):
         return [_rebuilt(item, digits, arrays) for item in value]
     if isinstance(value, np.ndarray):
