@@ -99,7 +99,7 @@ def test_default_parameters_of_every_mechanism_can_be_assembled_and_run(client):
                          ids=lambda o: "+".join(o))
 @pytest.mark.parametrize("mechanism", sorted(MECHANISM_NAMES))
 def test_kinematics_returns_phi_and_exactly_the_requested_outputs(client, mechanism, outputs):
-    response, data = post(client, {"mechanism": mechanism, "n": 19, "outputs": outputs})
+    response, data = post(client, {"mechanism": mechanism, "n": 19, "outputs": outputs}, precision="full")
     assert response.status_code == 200, response.text
     assert set(data["outputs"]) == set(outputs)
     assert set(data["units"]) == set(outputs)
