@@ -3,8 +3,9 @@
 stdin, one JSON answer line each on the original stdout (the tree's own prints go to stderr).
 
 The compute timed is what the server does for a request up to the answer's bytes, without HTTP:
-* a tree with ``server.api.endpoints.compute`` (issue 13): that call, plus the serialisation of its answer
-  when it returns an object rather than bytes (``server.api.serialise``);
+* a tree with ``server.api.endpoints.compute_answer`` and ``server.api.serialise.serialise`` (issue 13): the
+  answer and its serialisation at the default (plot) precision, the bytes the page gets; failing those,
+  ``server.api.endpoints.compute`` and the serialisation of its answer when it is not bytes;
 * the base tree: validation and the route function of ``server.api.compute.ENDPOINTS`` — the JSONResponse it
   returns has rendered the bytes — leaving out the ``json.loads`` that ``compute()`` adds for its callers.
 Long computations run in this process (MDL_HEAVY_PROCESSES=0), as the in-process ``compute`` does.
@@ -50,6 +51,16 @@ def serialiser():
 
 def compute_function():
     """(function(endpoint, body, lang) → answer bytes or object, description)."""
+    try:
+        from server.api.endpoints import compute_answer
+        from server.api.serialise import serialise
+
+        def compute_plot(endpoint: str, body: dict, lang: str) -> bytes:
+            return serialise(compute_answer(endpoint, body, lang).payload)
+        return compute_plot, ("server.api.endpoints.compute_answer + server.api.serialise.serialise (the bytes "
+                              "the page gets, plot precision)")
+    except ImportError:
+        pass
     try:
         from server.api.endpoints import compute
     except ImportError:
