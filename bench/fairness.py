@@ -17,7 +17,8 @@ got from its scene's page):
 
 The light client does the same on the idle server first. Reported: the light client's p50/p95/p99 with and
 without the load, its errors and 429s; the heavy requests sent, answered, refused with 429 and failed while
-the heavy client ran; the server's CPU while the light client ran.
+the heavy client ran; the server's and the clients' CPU while the light client ran (the clients share the
+machine's CPUs with the server: a client sending again at once costs CPU of its own).
 
     python bench/fairness.py [--old /tmp/mdl-old] [--new .] [--heavy 64] [--seconds 20] [--ramp 3]
                              [--workers 1] [--output bench/results/fairness.md]
@@ -174,12 +175,13 @@ def phase(tree: Path, load: str, args) -> dict:
             heavy = HeavyClient(heavy_browser, args.heavy, honours=load == "honours")
             heavy.start()
             time.sleep(args.ramp)
-        cpu, wall = server_cpu_s(process), time.perf_counter()
+        cpu, client_cpu, wall = server_cpu_s(process), time.process_time(), time.perf_counter()
         light = light_client(light_browser, args.seconds)
         if heavy:
             heavy.stop.set()
         wall, cpu = time.perf_counter() - wall, server_cpu_s(process) - cpu
-    return {"light": light, "heavy": heavy.counts if heavy else None, "wall": wall, "server_cpu": cpu,
+        client_cpu = time.process_time() - client_cpu
+    return {"light": light, "heavy": heavy.counts if heavy else None, "wall": wall, "server_cpu": cpu, "client_cpu": client_cpu,
             "cookies": {"light": sorted(light_browser.cookies), "heavy": sorted(heavy_browser.cookies)}}
 
 
@@ -201,8 +203,8 @@ def markdown(args, results: dict) -> str:
              "Each client keeps its own cookies. Target: light p95 ≤ 100 ms under the load (new).", "",
              "| tree | load | light requests | light p50 (ms) | light p95 (ms) | light p99 (ms) | p95 loaded / idle "
              "| light ≤ 100 ms p95 | light non-200 | heavy sent | heavy answered | heavy 429 | heavy failed "
-             "| server CPU (s) | cookies light / heavy |",
-             "|---|---|---:|---:|---:|---:|---:|---|---|---:|---:|---:|---:|---:|---|"]
+             "| server CPU (s) | clients' CPU (s) | cookies light / heavy |",
+             "|---|---|---:|---:|---:|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---|"]
     for load, label in LOADS.items():
         for tree in ("old", "new"):
             result = results.get((tree, load))
@@ -218,7 +220,7 @@ def markdown(args, results: dict) -> str:
                 f"{p95 / idle:.1f}× | {'yes' if p95 <= TARGET_P95_MS else '**no**'} | "
                 f"{', '.join(f'{s or NETWORK}: {n}' for s, n in others.items()) or '0'} | "
                 f"{heavy.get('sent', '–')} | {heavy.get('answered', '–')} | {heavy.get('429', '–')} | "
-                f"{heavy.get('failed', '–')} | {result['server_cpu']:.1f} | "
+                f"{heavy.get('failed', '–')} | {result['server_cpu']:.1f} | {result['client_cpu']:.1f} | "
                 f"{', '.join(result['cookies']['light']) or '–'} / {', '.join(result['cookies']['heavy']) or '–'} |")
     for load, label in list(LOADS.items())[1:]:
         if ("old", load) in results and ("new", load) in results:
@@ -226,7 +228,8 @@ def markdown(args, results: dict) -> str:
             new = percentiles(results[("new", load)]["light"]["times"], (95,))[0]
             lines.append(f"\n* {label}: light p95 old/new {old / new:.1f}×.")
     lines.append("\nHeavy counts: from the heavy client's start to the light client's end (requests still in "
-                 "flight then are counted as sent only); server CPU: while the light client ran.")
+                 "flight then are counted as sent only); CPU of the server (its session) and of both clients (this "
+                 "process, on the same CPUs): while the light client ran.")
     return "\n".join(lines) + "\n"
 
 
