@@ -1,7 +1,7 @@
 """Server compute of every scene over slider sweeps, old tree beside new (issue 13, point 1: ≤ 20 ms at p95).
 
-For every scene, variant and slider, the slider is swept across its range (``--points`` values among those the
-slider can express, evenly spaced in the slider's own positions: log steps on a log slider; the other sliders
+For every scene, variant and slider, the slider is swept across its range (``--points`` values in equal steps,
+log steps on a log slider, each the nearest value the slider can express; the other sliders
 at their defaults; a variant without sliders counts once, at its defaults), and the request the page sends for
 those values (the tree's ``scene_request``) is computed in-process by each tree's ``compute`` (see
 bench/tree_runner.py for exactly what is timed), each tree in a process of its own with its own ``server``
@@ -54,10 +54,17 @@ class Tree:
 
 
 def sweep_values(slider, slider_values, points: int) -> list[float]:
-    """`points` of the values the slider can express, evenly spaced over its positions, both ends included."""
-    positions = slider_values(slider)
-    picks = np.unique(np.round(np.linspace(0, len(positions) - 1, min(points, len(positions)))).astype(int))
-    return [positions[k] for k in picks]
+    """`points` values across the slider's range, both ends included, in equal steps of the value (of its
+    logarithm on a log slider), each moved to the nearest value the slider can express."""
+    positions = np.array(slider_values(slider))
+    count = min(points, len(positions))
+    if slider.log:
+        targets = np.geomspace(positions[0], positions[-1], count)
+        nearest = np.abs(np.log(positions)[None, :] - np.log(targets)[:, None]).argmin(axis=1)
+    else:
+        targets = np.linspace(positions[0], positions[-1], count)
+        nearest = np.abs(positions[None, :] - targets[:, None]).argmin(axis=1)
+    return [float(positions[k]) for k in sorted(set(nearest.tolist()))]
 
 
 def sweep_plan(points: int, only: list[str] | None, shared: dict) -> list[tuple[str, str, str, dict]]:
