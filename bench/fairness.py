@@ -181,7 +181,8 @@ def phase(tree: Path, load: str, args) -> dict:
             heavy.stop.set()
         wall, cpu = time.perf_counter() - wall, server_cpu_s(process) - cpu
         client_cpu = time.process_time() - client_cpu
-    return {"light": light, "heavy": heavy.counts if heavy else None, "wall": wall, "server_cpu": cpu, "client_cpu": client_cpu,
+    return {"light": light, "heavy": heavy.counts if heavy else None, "wall": wall, "server_cpu": cpu,
+            "client_cpu": client_cpu,
             "cookies": {"light": sorted(light_browser.cookies), "heavy": sorted(heavy_browser.cookies)}}
 
 
