@@ -8,7 +8,8 @@ bench/tree_runner.py for exactly what is timed), each tree in a process of its o
 package. The two processes take turns point by point (old first on even points, new first on odd ones) so they
 share the machine's load. Each process first computes every scene's default request once (warm-up: imports,
 compilation, disk caches; its time is reported). Answers refused with a 422 (a geometry that does not assemble)
-are timed and counted too.
+are timed and counted too. The two trees' answers at each point are compared as well (the largest
+difference relative to each quantity's span), as a check that the faster answers are the same answers.
 
     python bench/scene_sweep.py [--old /tmp/mdl-old] [--new .] [--points 21] [--rounds 1] [--scenes ID ...]
                                 [--output bench/results/scene_sweep.md]
@@ -86,6 +87,61 @@ def sweep_plan(points: int, only: list[str] | None, shared: dict) -> list[tuple[
     return plan
 
 
+NEAR_CONSTANT = 1e-3
+UNCOMPARED = {"numerics", "warnings", "study", "message", "messages", "notices"}
+
+
+def numeric_array(value) -> np.ndarray | None:
+    """A list of numbers (or nulls: NaN), or of such lists of one shape, as one flat float array; else None."""
+    try:
+        array = np.array(value, dtype=float)          # None → NaN; ragged or non-numeric lists raise
+    except (TypeError, ValueError):
+        return None
+    return array.ravel() if array.dtype == float and array.size else None
+
+
+def numeric_leaves(value, path: str = ""):
+    """(path, flat float array) for every number and every (nested) array of numbers in an answer, leaving out
+    the keys that describe the computation rather than its result (UNCOMPARED)."""
+    if isinstance(value, dict):
+        for key, item in value.items():
+            if key not in UNCOMPARED:
+                yield from numeric_leaves(item, f"{path}.{key}" if path else key)
+    elif isinstance(value, list):
+        array = numeric_array(value) if not any(isinstance(v, (str, dict, bool)) for v in value) else None
+        if array is not None:
+            yield path, array
+        else:
+            for k, item in enumerate(value):
+                yield from numeric_leaves(item, f"{path}[{k}]")
+    elif isinstance(value, (int, float)) and not isinstance(value, bool):
+        yield path, np.array([value], float)
+
+
+def difference(old: dict, new: dict) -> tuple[float, str]:
+    """The largest |new − old| relative to the old leaf's span (max − min, at least NEAR_CONSTANT of its largest
+    magnitude: a leaf constant up to rounding noise is compared by its size; a single number: its size) over the numeric leaves both answers have, and where; inf where the sizes or the nulls differ."""
+    new_leaves = dict(numeric_leaves(new))
+    worst = (0.0, "")
+    for path, a in numeric_leaves(old):
+        b = new_leaves.get(path)
+        if b is None:
+            continue
+        if a.size != b.size:
+            return float("inf"), f"{path}: {a.size} numbers old, {b.size} new"
+        if not np.array_equal(np.isnan(a), np.isnan(b)):
+            return float("inf"), f"{path}: nulls differ"
+        a, b = a[~np.isnan(a)], b[~np.isnan(b)]
+        if not a.size:
+            continue
+        span = np.abs(a[0]) if a.size == 1 else max(np.ptp(a), NEAR_CONSTANT * np.abs(a).max())
+        gap = np.abs(b - a).max()
+        relative = gap / span if span else (0.0 if gap == 0 else float("inf"))
+        if relative > worst[0]:
+            worst = (float(relative), path)
+    return worst
+
+
 def shared_scenes(old: dict, new: dict) -> dict:
     return {scene: {variant: [s for s in sliders if s in old[scene][variant]]
                     for variant, sliders in variants.items() if variant in old[scene]}
@@ -99,20 +155,27 @@ def run(args) -> dict:
         warm = {tree.name: tree.ask(op="warm", scenes=args.scenes)["ms"] for tree in trees}
         plan = sweep_plan(args.points, args.scenes, shared_scenes(infos["old"]["scenes"], infos["new"]["scenes"]))
         rows = []           # (scene, variant, slider, value, tree, ms, outcome, detail)
+        differences = []    # (scene, variant, slider, value, largest relative difference, where)
         started = time.monotonic()
         for round_ in range(args.rounds):
             for k, (scene, variant, slider, values) in enumerate(plan):
+                answers = {}
                 for tree in (trees if (k + round_) % 2 == 0 else trees[::-1]):
-                    answer = tree.ask(op="time", scene=scene, variant=variant, values=values)
+                    answer = tree.ask(op="time", scene=scene, variant=variant, values=values, answer=round_ == 0)
                     rows.append((scene, variant, slider, values.get(slider), tree.name, answer["ms"],
                                  answer["outcome"], answer["detail"]))
+                    answers[tree.name] = answer.get("answer")
+                if answers["old"] is not None and answers["new"] is not None:
+                    differences.append((scene, variant, slider, values.get(slider),
+                                        *difference(answers["old"], answers["new"])))
                 if k % 50 == 0:
                     print(f"round {round_ + 1}, point {k + 1}/{len(plan)} ({scene} {variant} {slider}), "
                           f"{time.monotonic() - started:.0f} s", file=sys.stderr, flush=True)
     finally:
         for tree in trees:
             tree.close()
-    return {"infos": infos, "warm": warm, "rows": rows, "points": args.points, "rounds": args.rounds,
+    return {"infos": infos, "warm": warm, "rows": rows, "differences": differences, "points": args.points,
+            "rounds": args.rounds,
             "commits": {"old": commit_of(args.old), "new": commit_of(args.new)}}
 
 
@@ -174,6 +237,20 @@ def markdown(result: dict, args) -> str:
         p95o, p95n = np.percentile(t["old"], 95), np.percentile(t["new"], 95)
         lines.append(f"| {scene_id} | {variant} | {slider or '(defaults)'} | {len(t['new'])} | {fmt(p95o)} | "
                      f"{fmt(p95n)} | {fmt(max(t['new']))} | {p95o / p95n:.1f}× |")
+    lines += ["", "## Do old and new give the same answers?", "",
+              "At every point both answered, the largest |new − old| over every number and array of the answer "
+              "(not numerics, warnings, study), relative to the old leaf's span (at least 0.1 % of its largest magnitude; a single number: relative to itself): the new answers are sent with the "
+              "plot precision (7 significant digits: ~1e-7) where the old ones had every digit, and a different "
+              "integrator agrees only to its tolerance. A size or null pattern that differs shows as inf (a run cut short by a wall-clock budget gives a shorter history).", "",
+              "| scene | points compared | largest relative difference | where (slider, value, leaf) |",
+              "|---|---:|---:|---|"]
+    by_scene: dict = defaultdict(list)
+    for item in result["differences"]:
+        by_scene[item[0]].append(item)
+    for scene_id, items in by_scene.items():
+        worst = max(items, key=lambda item: item[4])
+        where = f"{worst[1]} {worst[2]}={worst[3]:g}, {worst[5]}" if worst[2] else f"{worst[1]}, {worst[5]}"
+        lines.append(f"| {scene_id} | {len(items)} | {worst[4]:.1e} | {where} |")
     failures = sorted({(r[4], r[0], r[1], r[2], r[7]) for r in rows if r[6] == "error"})
     if failures:
         lines += ["", "## Failures (not a 422)", ""] + [f"* {t} {s} {v} {sl}: {d}" for t, s, v, sl, d in failures[:40]]

@@ -11,7 +11,8 @@ The compute timed is what the server does for a request up to the answer's bytes
 Long computations run in this process (MDL_HEAVY_PROCESSES=0), as the in-process ``compute`` does.
 
 Commands: {"op": "info"}; {"op": "warm"} (every scene's default request once, untimed by the sweep);
-{"op": "time", "scene": id, "variant": id, "values": {slider: value}} → {"ms", "outcome", "detail", "bytes"}.
+{"op": "time", "scene": id, "variant": id, "values": {slider: value}, "answer": bool} → {"ms", "outcome",
+"detail", "bytes"[, "answer": the JSON answer, parsed after the timing]}.
 """
 from __future__ import annotations
 
@@ -94,7 +95,8 @@ def variant_of(scene_id: str, variant_id: str):
     return scene, next(v for v in scene.variants if v.id == variant_id)
 
 
-def timed(scene_id: str, variant_id: str, values: dict) -> dict:
+def timed(scene_id: str, variant_id: str, values: dict, with_answer: bool = False) -> dict:
+    """The compute's time (ms), outcome, size; with the answer itself (parsed, after the timing) if asked."""
     scene, variant = variant_of(scene_id, variant_id)
     body = scene_request(scene, variant, values)
     start = time.perf_counter()
@@ -106,8 +108,12 @@ def timed(scene_id: str, variant_id: str, values: dict) -> dict:
         kind = type(error).__name__
         outcome, detail = ("refused" if kind in REFUSED else "error"), f"{kind}: {str(error)[:200]}"
     ms = 1000 * (time.perf_counter() - start)
-    size = len(answer) if isinstance(answer, (bytes, bytearray)) else len(json.dumps(answer, default=str))
-    return {"ms": ms, "outcome": outcome, "detail": detail, "bytes": size}
+    if not isinstance(answer, (bytes, bytearray)):
+        answer = json.dumps(answer, default=str).encode()
+    found = {"ms": ms, "outcome": outcome, "detail": detail, "bytes": len(answer)}
+    if with_answer and outcome == "ok":
+        found["answer"] = json.loads(answer)
+    return found
 
 
 def info() -> dict:
@@ -136,7 +142,7 @@ def main() -> None:
         elif op == "warm":
             answer = warm(command.get("scenes"))
         else:
-            answer = timed(command["scene"], command["variant"], command["values"])
+            answer = timed(command["scene"], command["variant"], command["values"], command.get("answer", False))
         PROTOCOL.write(json.dumps(answer) + "\n")
 
 
