@@ -1,25 +1,37 @@
-"""Classroom load test: N students dragging sliders of the scenes, against the server started as the README says.
+"""Classroom load test: N students working the sliders of the scenes, against the server started as the README says.
 
 The server is ``python3 -m server --port <free port>`` (then ``--workers 2``), with MDL_DATA_DIR in a temporary
-folder, as a subprocess on loopback. Each simulated student behaves like a scene page:
+folder, as a subprocess on loopback (``--tree`` names another source tree to run, e.g. the commit before a
+change). Each simulated student keeps to one scene, the class spread over the scenes by SCENE_MIX (largest
+remainders), and behaves like a scene page in one of two request patterns (``--pattern``):
 
-* keeps to one scene, the class spread over the scenes by SCENE_MIX (largest remainders);
-* drags one slider of one of the scene's variants for 3–8 s, then picks another variant and slider: a random
-  walk over the values the slider can express (``slider_values``), a few positions per move, one move every
-  100 ms (TICK_S), without pauses (a worst case: real students also read);
-* sends the request the page sends for the values (``scene_request``, the Python twin of the pages' request
-  builders) with at most one request in flight: while an answer is awaited, moves only change the values,
-  and the latest ones are sent as soon as the answer arrives (web/static/js/api.js). Only the main panel is
-  simulated (the kinematics page's λ overlay is off by default). Accept-Encoding: gzip, like a browser.
+* **old** (the page before issue 13): drags one slider of one of the scene's variants for 3–8 s, then picks
+  another variant and slider: a random walk over the values the slider can express (``slider_values``), a few
+  positions per move, one move every 100 ms (TICK_S), without pauses (a worst case: real students also read);
+  sends the request the page sends for the values (``scene_request``, the Python twin of the pages' request
+  builders) with at most one request in flight: while an answer is awaited, moves only change the values, and
+  the latest ones are sent as soon as the answer arrives (web/static/js/api.js).
+* **new** (dragging is a lookup): grabs a slider of a variant and at once asks for its family (one
+  ``POST /api/v1/family``, bench/family_request.py, on a connection of its own); drags it 1–3 s with the same
+  random walk; while the family has not arrived the page sends the old pattern's coalesced exact requests,
+  once it is there no request at all; on release one exact request for the final value (unless that very
+  request was the last one sent); looks 1–2 s; grabs again.
 
-Reported per endpoint: requests, throughput, p50/p95/p99 latency (send to last byte), errors (non-2xx or
-network), the cache's hit rate (X-Cache headers), the cache counters every worker logs as it stops, and the
-server's and the client's CPU time. The client runs on the same CPUs as the server.
-A short comparison of two client implementations (asyncio + httpx, threads + http.client) measures which
-costs the client less CPU per request; the lighter one drives the main runs.
+Only the main panel is simulated (the kinematics page's λ overlay is off by default). Accept-Encoding: gzip,
+like a browser; each student keeps its cookies (a client id such as ``mdl_client``), got first from its scene's
+page. A 429 is waited out as its Retry-After says and the request sent again, as the page does; the latency of
+that answer counts from the first send.
 
-    python bench/classroom.py [--students 60] [--seconds 60] [--workers 1 2] [--client threads]
-                              [--compare-clients 15] [--output bench/results/classroom.md]
+Reported per endpoint, and for exact answers and families on the light and the elastic scenes: requests,
+throughput, p50/p95/p99 latency (send to last byte), errors (non-2xx other than a 429 waited out, or network),
+429s, the cache's hit rate (X-Cache headers), answers cut short by a time budget, the cache counters every
+worker logs as it stops, and the server's and the client's CPU time. The client runs on the same CPUs as the
+server. A short comparison of two client implementations (asyncio + httpx, threads + http.client; old pattern)
+measures which costs the client less CPU per request; the lighter one drives the main runs.
+
+    python bench/classroom.py [--students 60] [--seconds 60] [--workers 1 2] [--pattern old new]
+                              [--tree .] [--client threads] [--compare-clients 15]
+                              [--output bench/results/classroom.md]
 """
 from __future__ import annotations
 
@@ -30,36 +42,40 @@ import http.client
 import json
 import os
 import platform
-import signal
 import random
-import socket
-import subprocess
 import sys
-import tempfile
 import threading
 import time
 from collections import defaultdict
-from contextlib import contextmanager
+from http.cookies import SimpleCookie
 from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from family_request import family_body  # noqa: E402
+from trees import OUTLIVE_GRACE_S, ROOT, check_tree, commit_of, lessons, running_server, server_cpu_s  # noqa: E402
 
-from server.lessons.scenes import Scene, scenes  # noqa: E402
-from server.api.response_cache import CACHE_AT_EXIT  # noqa: E402
-from server.lessons.requests import scene_request, slider_values  # noqa: E402
+sys.path.insert(0, str(ROOT))
+scenes, scene_request, slider_values, _, _ = lessons()
 
 TICK_S = 0.1                    # a slider move every 100 ms while dragging
-DRAG_TICKS = (30, 80)           # one drag lasts 3–8 s
+DRAG_TICKS = (30, 80)           # old pattern: one drag lasts 3–8 s, no pauses
+GRAB_DRAG_S = (1.0, 3.0)        # new pattern: one drag lasts 1–3 s …
+LOOK_S = (1.0, 2.0)             # … then the student looks 1–2 s
 STEP_POSITIONS = (1, 3)         # positions per move
 TURN_PROBABILITY = 0.2          # the hand changes direction
 LANG = "ru"
 HEADERS = {"Content-Type": "application/json", "Accept-Encoding": "gzip", "Accept": "*/*"}
 REQUEST_TIMEOUT_S = 60
+DEFAULT_RETRY_AFTER_S = 1.0     # a 429 without a readable Retry-After
 BUDGETED = ("motion", "elastic")                 # endpoints that stop at a wall-clock time budget
 BUDGET_MARKERS = (b"time budget", b"work bound")  # server/core/dynamics/motion.py, server/core/elastic/simulate.py
+CACHE_AT_EXIT = "response cache at exit:"        # server/api/response_cache.py: each worker logs its counters
+ELASTIC = "elastic"
+# Targets at 100 students (issue 13, point 4), ms: p95 of exact answers and of families, light and elastic scenes.
+TARGETS_P95_MS = {("exact", "light"): 150, ("exact", "elastic"): 500, ("family", "light"): 500,
+                  ("family", "elastic"): 1500}
 # Share of the class on each scene (%): kinematics first, then the dynamics lessons; the three elastic scenes
 # share 5 %, the wear scene (a calculator read once) gets none.
 SCENE_MIX = {"transfer-functions": 30, "equation-of-motion": 15, "flywheel": 15, "resisting-moment": 10,
@@ -80,11 +96,12 @@ def apportion(students: int, mix: dict[str, float]) -> list[str]:
 class Student:
     """One student's hand on the sliders of one scene: a random walk, one move per tick."""
 
-    def __init__(self, scene: Scene, rng: random.Random):
+    def __init__(self, scene, rng: random.Random):
         self.scene, self.rng = scene, rng
         self.variants = [v for v in scene.variants if v.sliders]
         self.values: dict[str, dict[str, float]] = {}
         self.moves = 0
+        self.cookies: dict[str, str] = {}
         self._new_drag()
 
     def _new_drag(self) -> None:
@@ -96,6 +113,11 @@ class Student:
         self.index = min(range(len(self.positions)), key=lambda k: abs(self.positions[k] - current))
         self.direction = self.rng.choice((-1, 1))
         self.ticks_left = self.rng.randint(*DRAG_TICKS)
+
+    def grab(self) -> None:
+        """New pattern: take hold of a slider (of any variant), for as long as the page script says."""
+        self._new_drag()
+        self.ticks_left = -1                             # never ends by itself
 
     def move(self) -> None:
         if self.ticks_left == 0:
@@ -116,16 +138,35 @@ class Student:
         request = scene_request(self.scene, self.variant, self.values[self.variant.id])
         return json.dumps(request, separators=(",", ":")).encode()
 
+    def family(self) -> bytes:
+        request = family_body(self.scene, self.variant, self.slider, self.values[self.variant.id])
+        return json.dumps(request, separators=(",", ":")).encode()
+
     @property
     def path(self) -> str:
         return f"/api/v1/{self.scene.endpoint}?lang={LANG}"
 
+    family_path = f"/api/v1/family?lang={LANG}"
+
+    @property
+    def light(self) -> str:
+        return ELASTIC if self.scene.endpoint == ELASTIC else "light"
+
+    def cookie_header(self) -> dict:
+        return {"Cookie": "; ".join(f"{k}={v}" for k, v in self.cookies.items())} if self.cookies else {}
+
+    def keep_cookies(self, headers: list[tuple[str, str]]) -> None:
+        for name, value in headers:
+            if name.lower() == "set-cookie":
+                for key, morsel in SimpleCookie(value).items():
+                    self.cookies[key] = morsel.value
+
 
 def page_script(student: Student, start: float, end: float):
-    """What the page does, as commands for a driver: a float is a wait in seconds; bytes are a body to post,
-    and the driver comes back once its answer has arrived. The moves made meanwhile only change the values;
-    the latest are sent next (one request in flight, like web/static/js/api.js); the same body is not
-    sent twice in a row."""
+    """The old page, as commands for a driver: a float is a wait in seconds; bytes are a body to post, and the
+    driver comes back once its answer has arrived. The moves made meanwhile only change the values; the latest
+    are sent next (one request in flight, like web/static/js/api.js); the same body is not sent twice in a
+    row."""
     next_tick = start + student.rng.uniform(0, TICK_S)
     last_sent = None
     while True:
@@ -145,9 +186,12 @@ def page_script(student: Student, start: float, end: float):
             yield max(0.0, min(next_tick, end) - now)
 
 
-def cut_short(endpoint: str, raw: bytes, encoding: str | None) -> bool:
-    """Whether an answer of an endpoint with a wall-clock time budget (motion, elastic) says it stopped there
-    with a partial result (the core's sentence in numerics.message, English in every language)."""
+def cut_short(endpoint: str, raw: bytes, encoding: str | None, partial_header: str | None = None) -> bool:
+    """Whether an answer (or a family of answers) says a budget cut it short: the header X-Partial: 1 (issue 13),
+    or, from an endpoint with a wall-clock time budget (motion, elastic), the core's sentence in
+    numerics.message (English in every language)."""
+    if partial_header == "1":
+        return True
     if endpoint not in BUDGETED:
         return False
     body = gzip.decompress(raw) if encoding == "gzip" else raw
@@ -155,17 +199,83 @@ def cut_short(endpoint: str, raw: bytes, encoding: str | None) -> bool:
 
 
 class Record:
-    """Every answer: (endpoint, latency s, status or 0 for a network error, X-Cache or '', cut short)."""
+    """Every answer: (endpoint, latency s, status or 0 for a network error, X-Cache or '', cut short, kind:
+    'exact' or 'family', 'light' or 'elastic'); the 429s waited out, and the requests still waiting one out
+    when the run ended."""
 
     def __init__(self):
-        self.rows: list[tuple[str, float, int, str, bool]] = []
+        self.rows: list[tuple] = []
+        self.throttled: list[tuple[str, str, str]] = []  # (kind, light, endpoint) of every 429 received
+        self.abandoned = 0
 
-    def add(self, endpoint: str, seconds: float, status: int, cache: str, partial: bool = False) -> None:
-        self.rows.append((endpoint, seconds, status, cache, partial))      # list.append is atomic in CPython
+    def add(self, endpoint: str, seconds: float, status: int, cache: str, partial: bool = False,
+            kind: str = "exact", light: str = "light") -> None:
+        self.rows.append((endpoint, seconds, status, cache, partial, kind, light))  # list.append is atomic
+
+
+def retry_after_s(value: str | None) -> float:
+    try:
+        return max(0.0, float(value))
+    except (TypeError, ValueError):
+        return DEFAULT_RETRY_AFTER_S
+
+
+class Connection:
+    """One student's keep-alive http.client connection: posts a body, waits out 429s, records the answer."""
+
+    def __init__(self, port: int, student: Student, record: Record, end: float):
+        self.port, self.student, self.record, self.end = port, student, record, end
+        self.connection = http.client.HTTPConnection("127.0.0.1", port, timeout=REQUEST_TIMEOUT_S)
+
+    def _reopen(self) -> None:
+        self.connection.close()
+        self.connection = http.client.HTTPConnection("127.0.0.1", self.port, timeout=REQUEST_TIMEOUT_S)
+
+    def get(self, path: str) -> None:
+        """A page load: keeps the cookies it sets; not recorded."""
+        try:
+            self.connection.request("GET", path, headers={"Accept-Encoding": "gzip"})
+            answer = self.connection.getresponse()
+            answer.read()
+            self.student.keep_cookies(answer.getheaders())
+        except (OSError, http.client.HTTPException):
+            self._reopen()
+
+    def post(self, path: str, body: bytes, kind: str = "exact") -> int:
+        """Post until answered (a 429 waited out and sent again; given up when the run ends while waiting);
+        returns the status (0: network error, -1: given up)."""
+        student, sent = self.student, time.perf_counter()
+        while True:
+            try:
+                self.connection.request("POST", path, body=body, headers={**HEADERS, **student.cookie_header()})
+                answer = self.connection.getresponse()
+                raw = answer.read()
+            except (OSError, http.client.HTTPException):
+                self.record.add(student.scene.endpoint, time.perf_counter() - sent, 0, "", False, kind, student.light)
+                self._reopen()
+                return 0
+            student.keep_cookies(answer.getheaders())
+            if answer.status != 429:
+                break
+            self.record.throttled.append((kind, student.light, student.scene.endpoint))
+            wait = retry_after_s(answer.getheader("retry-after"))
+            if time.monotonic() + wait >= self.end:
+                self.record.abandoned += 1
+                return -1
+            time.sleep(wait)
+        self.record.add(student.scene.endpoint, time.perf_counter() - sent, answer.status,
+                        answer.getheader("x-cache", ""),
+                        cut_short(student.scene.endpoint, raw, answer.getheader("content-encoding"),
+                                  answer.getheader("x-partial")), kind,
+                        student.light)
+        return answer.status
+
+    def close(self) -> None:
+        self.connection.close()
 
 
 async def drive_asyncio(port: int, students: list[Student], start: float, end: float, record: Record) -> None:
-    """One coroutine and one keep-alive httpx.AsyncClient connection per student."""
+    """Old pattern only: one coroutine and one keep-alive httpx.AsyncClient connection per student."""
     import httpx
 
     async def one(student: Student) -> None:
@@ -181,69 +291,110 @@ async def drive_asyncio(port: int, students: list[Student], start: float, end: f
                         raw = b"".join([chunk async for chunk in answer.aiter_raw()])   # not decompressed
                     record.add(student.scene.endpoint, time.perf_counter() - sent, answer.status_code,
                                answer.headers.get("x-cache", ""),
-                               cut_short(student.scene.endpoint, raw, answer.headers.get("content-encoding")))
+                               cut_short(student.scene.endpoint, raw, answer.headers.get("content-encoding")),
+                               "exact", student.light)
                 except httpx.HTTPError:
-                    record.add(student.scene.endpoint, time.perf_counter() - sent, 0, "")
+                    record.add(student.scene.endpoint, time.perf_counter() - sent, 0, "", False, "exact",
+                               student.light)
 
     await asyncio.gather(*(one(student) for student in students))
 
 
-def drive_threads(port: int, students: list[Student], start: float, end: float, record: Record) -> None:
-    """One thread and one keep-alive http.client connection per student."""
+def old_page(port: int, student: Student, start: float, end: float, record: Record) -> None:
+    connection = Connection(port, student, record, end)
+    connection.get(f"/scenes/{student.scene.id}")
+    for command in page_script(student, start, end):
+        if isinstance(command, float):
+            time.sleep(command)
+        else:
+            connection.post(student.path, command)
+    connection.close()
 
-    def one(student: Student) -> None:
-        connection = http.client.HTTPConnection("127.0.0.1", port, timeout=REQUEST_TIMEOUT_S)
-        for command in page_script(student, start, end):
-            if isinstance(command, float):
-                time.sleep(command)
-                continue
-            sent = time.perf_counter()
-            try:
-                connection.request("POST", student.path, body=command, headers=HEADERS)
-                answer = connection.getresponse()
-                raw = answer.read()
-                record.add(student.scene.endpoint, time.perf_counter() - sent, answer.status,
-                           answer.getheader("x-cache", ""),
-                           cut_short(student.scene.endpoint, raw, answer.getheader("content-encoding")))
-            except (OSError, http.client.HTTPException):
-                record.add(student.scene.endpoint, time.perf_counter() - sent, 0, "")
-                connection.close()
-                connection = http.client.HTTPConnection("127.0.0.1", port, timeout=REQUEST_TIMEOUT_S)
-        connection.close()
 
-    threads = [threading.Thread(target=one, args=(student,), daemon=True) for student in students]
+class FamilyFetcher:
+    """The new page's family requests: a thread and a connection of their own, one family in flight; a grab
+    while one is in flight asks for its own family once that has come back (the latest grab only)."""
+
+    def __init__(self, port: int, student: Student, record: Record, end: float):
+        self.connection = Connection(port, student, record, end)
+        self.end = end
+        self.changed = threading.Condition()
+        self.wanted: tuple[int, bytes] | None = None
+        self.arrived_grab = 0
+        self.thread = threading.Thread(target=self._run, daemon=True)
+        self.thread.start()
+
+    def ask(self, grab: int, body: bytes) -> None:
+        with self.changed:
+            self.wanted = (grab, body)
+            self.changed.notify()
+
+    def arrived(self, grab: int) -> bool:
+        return self.arrived_grab == grab
+
+    def _run(self) -> None:
+        while True:
+            with self.changed:
+                while self.wanted is None and time.monotonic() < self.end:
+                    self.changed.wait(timeout=0.2)
+                if self.wanted is None:
+                    break
+                (grab, body), self.wanted = self.wanted, None
+            if self.connection.post(Student.family_path, body, kind="family") == 200:
+                self.arrived_grab = grab
+        self.connection.close()
+
+
+def new_page(port: int, student: Student, start: float, end: float, record: Record) -> None:
+    """Grab → family (asynchronous) → drag 1–3 s (exact requests only while the family is missing) → release:
+    one exact request → look 1–2 s → grab again."""
+    exact = Connection(port, student, record, end)
+    exact.get(f"/scenes/{student.scene.id}")
+    families = FamilyFetcher(port, student, record, end)
+    time.sleep(max(0.0, start + student.rng.uniform(0, TICK_S) - time.monotonic()))
+    grab = 0
+    while time.monotonic() < end:
+        grab += 1
+        student.grab()
+        families.ask(grab, student.family())
+        release = min(end, time.monotonic() + student.rng.uniform(*GRAB_DRAG_S))
+        next_tick, last_sent = time.monotonic(), None
+        while (now := time.monotonic()) < release:
+            while next_tick <= now:
+                student.move()
+                next_tick += TICK_S
+            body = student.body()
+            if not families.arrived(grab) and body != last_sent:
+                last_sent = body
+                exact.post(student.path, body)
+            else:
+                time.sleep(max(0.0, min(next_tick, release) - time.monotonic()))
+        if time.monotonic() >= end:
+            break
+        body = student.body()
+        if body != last_sent:                      # the exact answer for where the slider came to rest
+            exact.post(student.path, body)
+        time.sleep(max(0.0, min(end, time.monotonic() + student.rng.uniform(*LOOK_S)) - time.monotonic()))
+    exact.close()
+    families.thread.join(timeout=REQUEST_TIMEOUT_S)
+
+
+PAGES = {"old": old_page, "new": new_page}
+
+
+def drive_threads(port: int, students: list[Student], start: float, end: float, record: Record,
+                  pattern: str = "old") -> None:
+    """One thread and one keep-alive http.client connection per student (and per family fetcher)."""
+    threads = [threading.Thread(target=PAGES[pattern], args=(port, student, start, end, record), daemon=True)
+               for student in students]
     for thread in threads:
         thread.start()
     for thread in threads:
         thread.join()
 
 
-CLIENTS = {"asyncio": ("asyncio + httpx.AsyncClient", lambda *a: asyncio.run(drive_asyncio(*a))),
+CLIENTS = {"asyncio": ("asyncio + httpx.AsyncClient", lambda *a: asyncio.run(drive_asyncio(*a[:5]))),
            "threads": ("threads + http.client", drive_threads)}
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
-
-
-def get_json(port: int, path: str) -> dict:
-    """GET on a fresh connection."""
-    connection = http.client.HTTPConnection("127.0.0.1", port, timeout=5)
-    try:
-        connection.request("GET", path, headers={"Connection": "close"})
-        answer = connection.getresponse()
-        if answer.status != 200:
-            raise RuntimeError(f"GET {path}: HTTP {answer.status}")
-        return json.loads(answer.read())
-    finally:
-        connection.close()
-
-
-def started_workers(log: str) -> int:
-    """Worker processes that have said 'Application startup complete.' in the server's log."""
-    return log.count("Application startup complete.")
 
 
 def cache_counters_at_exit(log: str) -> list[dict]:
@@ -259,34 +410,6 @@ def cache_counters_at_exit(log: str) -> list[dict]:
     return counters
 
 
-def server_command(port: int, workers: int) -> list[str]:
-    """The README's command: python3 -m server, plus --port (and --workers when more than one)."""
-    return [sys.executable, "-m", "server", "--port", str(port), *(["--workers", str(workers)] if workers > 1 else [])]
-
-
-def session_processes(session: int, zombies: bool = True) -> dict[int, float]:
-    """The processes of a session (the server started with start_new_session: its workers, and the processes
-    they start for long computations, which a forkserver may reparent to init) and their user + system CPU
-    seconds so far, from /proc. ``zombies=False`` leaves out those that have ended but are not yet reaped
-    (an orphan's parent is init, which on some machines reaps late or never)."""
-    ticks = os.sysconf("SC_CLK_TCK")
-    found = {}
-    for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit():
-            continue
-        try:
-            fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        if int(fields[3]) == session and (zombies or fields[0] != "Z"):   # state, ppid, pgrp, session, …
-            found[int(entry.name)] = (int(fields[11]) + int(fields[12])) / ticks   # utime, stime
-    return found
-
-
-def server_cpu_s(process: subprocess.Popen) -> float:
-    return sum(session_processes(process.pid).values())
-
-
 def machine_busy_cpu_s() -> float:
     """CPU seconds all processes of the machine have used so far, summed over the CPUs (from /proc/stat)."""
     fields = [int(v) for v in Path("/proc/stat").read_text().splitlines()[0].split()[1:]]
@@ -294,111 +417,76 @@ def machine_busy_cpu_s() -> float:
     return (sum(fields[:8]) - idle) / os.sysconf("SC_CLK_TCK")       # guest time is already in user time
 
 
-OUTLIVE_GRACE_S = 3.0           # multiprocessing's resource tracker may still be cleaning up as the server exits
-
-
-def end_session(session: int) -> int:
-    """End what is left of the server's session once the server has stopped (its own process group, by id)
-    and OUTLIVE_GRACE_S has passed; returns how many processes had outlived it."""
-    left = live_after(session, OUTLIVE_GRACE_S)
-    if left:
-        for sig in (signal.SIGTERM, signal.SIGKILL):
-            try:
-                os.killpg(session, sig)
-            except ProcessLookupError:
-                break
-            if not live_after(session, 3.0):
-                break
-    return len(left)
-
-
-def live_after(session: int, seconds: float) -> dict[int, float]:
-    """The session's live processes once they have all ended or `seconds` have passed."""
-    deadline = time.monotonic() + seconds
-    while (live := session_processes(session, zombies=False)) and time.monotonic() < deadline:
-        time.sleep(0.1)
-    return live
-
-
-@contextmanager
-def running_server(workers: int):
-    """The server on a free loopback port with MDL_DATA_DIR in a temporary folder; yields (port, process).
-    Ready once every worker has started and one of them answers; once stopped, ``process.cache_at_exit`` holds
-    the cache counters its workers logged and ``process.outlived`` the processes that outlived it."""
-    with tempfile.TemporaryDirectory(prefix="mdl-classroom-") as data_dir:
-        port = free_port()
-        log_path = Path(data_dir) / "server.log"
-        log = open(log_path, "wb")
-        process = subprocess.Popen(server_command(port, workers), cwd=ROOT, stdout=log, stderr=subprocess.STDOUT,
-                                   env={**os.environ, "MDL_DATA_DIR": data_dir}, start_new_session=True)
-        try:
-            deadline = time.monotonic() + 60
-            while True:
-                if process.poll() is not None:
-                    raise RuntimeError(f"the server exited with code {process.returncode}: "
-                                       + log_path.read_text(errors="replace")[-2000:])
-                try:
-                    if started_workers(log_path.read_text(errors="replace")) >= workers:
-                        get_json(port, "/api/v1/cache")
-                        break
-                except (OSError, RuntimeError, http.client.HTTPException):
-                    pass
-                if time.monotonic() > deadline:
-                    raise RuntimeError(f"the server's {workers} worker(s) did not all start and answer within 60 s")
-                time.sleep(0.2)
-            yield port, process
-        finally:
-            process.terminate()
-            try:
-                process.wait(timeout=15)
-            except subprocess.TimeoutExpired:
-                process.kill()
-                process.wait()
-            process.outlived = end_session(process.pid)
-            log.close()
-            process.cache_at_exit = cache_counters_at_exit(log_path.read_text(errors="replace"))
-
-
-def run(workers: int, client: str, students: int, seconds: float, seed: int) -> dict:
+def run(workers: int, client: str, students: int, seconds: float, seed: int, pattern: str = "old",
+        tree: Path = ROOT) -> dict:
     """One configuration: start the server, let the class work for `seconds`, collect the numbers."""
     all_scenes = scenes()
     rng = random.Random(seed)
     class_ = [Student(all_scenes[scene_id], random.Random(rng.random())) for scene_id in apportion(students, SCENE_MIX)]
     record = Record()
-    with running_server(workers) as (port, process):
+    with running_server(workers, tree=tree) as (port, process):
         server_cpu, client_cpu, busy = server_cpu_s(process), time.process_time(), machine_busy_cpu_s()
         start = time.monotonic() + 0.2
         wall = time.perf_counter()
-        CLIENTS[client][1](port, class_, start, start + seconds, record)
+        if client == "threads":
+            drive_threads(port, class_, start, start + seconds, record, pattern)
+        else:
+            CLIENTS[client][1](port, class_, start, start + seconds, record)
         wall = time.perf_counter() - wall
         server_cpu, client_cpu = server_cpu_s(process) - server_cpu, time.process_time() - client_cpu
         busy = machine_busy_cpu_s() - busy
-    after = process.cache_at_exit           # the caches start empty: their counters at exit are the run's
-    return {"workers": workers, "client": client, "students": students, "seconds": seconds, "wall": wall,
-            "rows": record.rows, "moves": sum(s.moves for s in class_), "server_cpu": server_cpu,
-            "client_cpu": client_cpu, "outlived": process.outlived, "other_cpu": max(0.0, busy - server_cpu - client_cpu), "cache": {"hits": sum(s["hits"] for s in after), "misses": sum(s["misses"] for s in after),
-                                                "workers": len(after), "entries": sum(s["entries"] for s in after),
-                                                "bytes": sum(s["bytes"] for s in after)},
+    after = cache_counters_at_exit(process.log_text)   # the caches start empty: their counters at exit are the run's
+    return {"workers": workers, "client": client, "pattern": pattern, "students": students, "seconds": seconds,
+            "wall": wall, "rows": record.rows, "throttled": record.throttled, "abandoned": record.abandoned,
+            "moves": sum(s.moves for s in class_), "server_cpu": server_cpu,
+            "client_cpu": client_cpu, "outlived": process.outlived,
+            "other_cpu": max(0.0, busy - server_cpu - client_cpu),
+            "cache": {"hits": sum(s["hits"] for s in after), "misses": sum(s["misses"] for s in after),
+                      "workers": len(after), "entries": sum(s["entries"] for s in after),
+                      "bytes": sum(s["bytes"] for s in after)},
             "command": "python3 -m server --port <free port>" + (f" --workers {workers}" if workers > 1 else ""),
             "scenes": {scene: sum(1 for s in class_ if s.scene.id == scene) for scene in SCENE_MIX}}
 
 
-def endpoint_rows(result: dict) -> list[dict]:
-    """Per endpoint (and all together): requests, req/s, latency percentiles (ms), errors, hit rate."""
-    groups: dict[str, list] = defaultdict(list)
-    for row in result["rows"]:
-        groups[row[0]].append(row)
-    table = []
-    for name, rows in [*sorted(groups.items()), ("all", result["rows"])]:
-        latencies = 1000 * np.array([r[1] for r in rows]) if rows else np.zeros(1)
-        p50, p95, p99 = np.percentile(latencies, [50, 95, 99])
-        looked_up = [r for r in rows if r[3] in ("hit", "miss")]
-        table.append({
-            "endpoint": name, "requests": len(rows), "rate": len(rows) / result["wall"], "p50": p50, "p95": p95,
+def row_name(row: tuple) -> str:
+    return row[0] if row[5] == "exact" else f"family ({row[0]})"
+
+
+def latency_row(name: str, rows: list, wall: float, throttled: int) -> dict:
+    latencies = 1000 * np.array([r[1] for r in rows]) if rows else np.full(1, np.nan)
+    p50, p95, p99 = np.percentile(latencies, [50, 95, 99])
+    looked_up = [r for r in rows if r[3] in ("hit", "miss")]
+    return {"endpoint": name, "requests": len(rows), "rate": len(rows) / wall, "p50": p50, "p95": p95,
             "p99": p99, "client_errors": sum(1 for r in rows if 400 <= r[2] < 500),
             "server_errors": sum(1 for r in rows if r[2] >= 500), "network_errors": sum(1 for r in rows if r[2] == 0),
+            "throttled": throttled,
             "hit_rate": sum(1 for r in looked_up if r[3] == "hit") / len(looked_up) if looked_up else None,
-            "partial": sum(1 for r in rows if r[4]) if name in (*BUDGETED, "all") else None})
+            "partial": sum(1 for r in rows if r[4])}
+
+
+def endpoint_rows(result: dict) -> list[dict]:
+    """Per endpoint (families apart) and all together: requests, req/s, latency percentiles (ms), errors, 429s,
+    hit rate, answers cut short."""
+    groups: dict[str, list] = defaultdict(list)
+    for row in result["rows"]:
+        groups[row_name(row)].append(row)
+    throttled = defaultdict(int)
+    for kind, _, endpoint in result["throttled"]:
+        throttled[endpoint if kind == "exact" else f"family ({endpoint})"] += 1
+    table = [latency_row(name, rows, result["wall"], throttled[name]) for name, rows in sorted(groups.items())]
+    table.append(latency_row("all", result["rows"], result["wall"], len(result["throttled"])))
+    return table
+
+
+def kind_rows(result: dict) -> list[dict]:
+    """Exact answers and families, on the light and on the elastic scenes, with the issue's p95 targets."""
+    table = []
+    for (kind, light), target in TARGETS_P95_MS.items():
+        rows = [r for r in result["rows"] if r[5] == kind and r[6] == light]
+        throttled = sum(1 for t in result["throttled"] if t[:2] == (kind, light))
+        if rows or throttled:
+            table.append(latency_row(f"{kind}, {'elastic' if light == ELASTIC else 'light'} scenes", rows,
+                                     result["wall"], throttled) | {"target": target})
     return table
 
 
@@ -410,23 +498,38 @@ def percent(value: float | None) -> str:
     return "–" if value is None else f"{100 * value:.0f} %"
 
 
+def ms(value: float) -> str:
+    return "–" if value != value else f"{value:.0f}"
+
+
 def markdown_run(result: dict, title: str) -> list[str]:
     cpus = os.cpu_count() or 1
     requests = len(result["rows"])
     cache = result["cache"]
     looked_up = cache["hits"] + cache["misses"]
-    lines = [f"## {title}", "", f"`{result['command']}`; client: {CLIENTS[result['client']][0]}.", "",
-             "| endpoint | requests | req/s | p50 (ms) | p95 (ms) | p99 (ms) | errors (4xx / 5xx / network) "
-             "| cache hits | cut short by the time budget |", "|---|---:|---:|---:|---:|---:|---|---:|---:|"]
+    lines = [f"## {title}", "", f"`{result['command']}`; client: {CLIENTS[result['client']][0]}; "
+             f"{result['pattern']} page pattern.", "",
+             "| endpoint | requests | req/s | p50 (ms) | p95 (ms) | p99 (ms) | errors (4xx / 5xx / network) | 429s "
+             "| cache hits | cut short by a budget |", "|---|---:|---:|---:|---:|---:|---|---:|---:|---:|"]
     for row in endpoint_rows(result):
-        name = f"**{row['endpoint']}**" if row["endpoint"] == "all" else f"`/api/v1/{row['endpoint']}`"
-        lines.append(f"| {name} | {row['requests']} | {row['rate']:.1f} | {row['p50']:.0f} | {row['p95']:.0f} | "
-                     f"{row['p99']:.0f} | {row['client_errors'] + row['server_errors'] + row['network_errors']} "
+        name = f"**{row['endpoint']}**" if row["endpoint"] == "all" else f"`{row['endpoint']}`"
+        lines.append(f"| {name} | {row['requests']} | {row['rate']:.1f} | {ms(row['p50'])} | {ms(row['p95'])} | "
+                     f"{ms(row['p99'])} | {row['client_errors'] + row['server_errors'] + row['network_errors']} "
                      f"({row['client_errors']} / {row['server_errors']} / {row['network_errors']}) | "
-                     f"{percent(row['hit_rate'])} | {'–' if row['partial'] is None else row['partial']} |")
+                     f"{row['throttled']} | {percent(row['hit_rate'])} | {row['partial']} |")
+    lines += ["", "| answers | requests | p50 (ms) | p95 (ms) | p99 (ms) | errors | 429s | cut short | p95 target (ms) "
+                  "| met |", "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
+    for row in kind_rows(result):
+        failed = row["client_errors"] + row["server_errors"] + row["network_errors"]
+        met = row["p95"] <= row["target"] and failed == 0 and not row["partial"]
+        lines.append(f"| {row['endpoint']} | {row['requests']} | {ms(row['p50'])} | {ms(row['p95'])} | "
+                     f"{ms(row['p99'])} | {failed} | {row['throttled']} | {row['partial']} | {row['target']} | "
+                     f"{'yes' if met else '**no**'} |")
     lines += ["", f"* Slider moves: {result['moves']}; requests sent: {requests} "
                   f"({percent(1 - requests / result['moves']) if result['moves'] else '–'} of the moves coalesced "
-                  "into a later request while an answer was awaited).",
+                  "into a later request while an answer was awaited, or previewed from a family).",
+              f"* 429 answers waited out: {len(result['throttled'])}; requests still waiting one out when the run "
+              f"ended: {result['abandoned']}.",
               f"* Cache, the counters each worker process logs as it stops ({cache['workers']} of "
               f"{result['workers']}): "
               f"{cache['hits']} hits, {cache['misses']} misses (hit rate {percent(cache['hits'] / looked_up if looked_up else None)}), "
@@ -453,24 +556,31 @@ def markdown(results: list[dict], comparison: list[dict], args) -> str:
         f"{time.strftime('%Y-%m-%d %H:%M')}, Python {platform.python_version()}, {platform.machine()}, "
         f"**{os.cpu_count()} CPUs shared by the server and the client** (the simulated class runs on the same "
         f"machine, over loopback; its CPU use is reported below). `python bench/classroom.py --students "
-        f"{args.students} --seconds {args.seconds:g}`, seed {args.seed}.",
+        f"{args.students} --seconds {args.seconds:g} --pattern {' '.join(args.pattern)}`, seed {args.seed}; "
+        f"server tree `{args.tree}` ({commit_of(args.tree)}).",
         "",
-        f"Each student keeps to one scene (share of the class, students): {mix}. A student drags one slider of "
-        "one variant for 3–8 s, then another: a random walk over the slider's values, 1–3 positions every "
-        "100 ms, no pauses; the page's request (`server/lessons/requests.py`) with at most one in flight, "
-        "the latest values sent when the answer arrives (`web/static/js/api.js`). Latency: from sending to the "
-        "last byte of the gzip answer. The cache starts empty, at its default size (64 MB per worker process; "
-        "MDL_CACHE_BYTES). *Cut short*: answers of /motion and /elastic that stopped at their wall-clock time "
-        "budget with a partial result (and say so). Other jobs may share the machine: their CPU time during each "
-        "run is given, and when it is large the numbers understate what the server does on its own.",
+        f"Each student keeps to one scene (share of the class, students): {mix}. *Old page pattern*: a student "
+        "drags one slider of one variant for 3–8 s, then another: a random walk over the slider's values, 1–3 "
+        "positions every 100 ms, no pauses; the page's request (`scene_request`) with at most one in flight, the "
+        "latest values sent when the answer arrives (`web/static/js/api.js`). *New page pattern*: grab a slider → "
+        "one `POST /api/v1/family` (bench/family_request.py) → drag 1–3 s (the old pattern's exact requests only "
+        "until the family has arrived) → release: one exact request → look 1–2 s → grab again. A 429 is waited "
+        "out (Retry-After) and sent again; its answer's latency counts from the first send. Latency: from "
+        "sending to the last byte of the gzip answer. The cache starts empty, at its default size "
+        "(MDL_CACHE_BYTES). *Cut short*: answers marked `X-Partial: 1`, or answers of /motion and /elastic (or "
+        "families of them) that say they stopped at their wall-clock time budget with a partial result. Targets (issue 13, at 100 students): "
+        "p95 ≤ 150 ms for exact answers on the light scenes, ≤ 500 ms on the elastic ones; families ≤ 500 ms "
+        "light, ≤ 1.5 s elastic; no errors, nothing cut short. Other jobs may share the machine: their CPU time "
+        "during each run is given, and when it is large the numbers understate what the server does on its own.",
         "",
     ]
     for result in results:
-        lines += markdown_run(result, f"{result['workers']} worker{'s' if result['workers'] > 1 else ''}")
+        lines += markdown_run(result, f"{result['workers']} worker{'s' if result['workers'] > 1 else ''}, "
+                                      f"{result['pattern']} page pattern")
     if comparison:
         lines += ["## Client implementations", "",
-                  f"The same class for {comparison[0]['seconds']:g} s each against one worker; the client's CPU per "
-                  "request decides which drives the runs above.", "",
+                  f"The same class for {comparison[0]['seconds']:g} s each against one worker, old page pattern; the "
+                  "client's CPU per request decides which drives the runs above.", "",
                   "| client | requests | client CPU (s) | client CPU per request (ms) | share of the CPUs |",
                   "|---|---:|---:|---:|---:|"]
         for result in comparison:
@@ -487,16 +597,23 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--students", type=int, default=60)
     parser.add_argument("--seconds", type=float, default=60)
     parser.add_argument("--workers", type=int, nargs="+", default=[1, 2], help="server configurations to run")
+    parser.add_argument("--pattern", choices=sorted(PAGES), nargs="+", default=["old", "new"],
+                        help="the pages' request patterns to run (new: a family on each grab)")
+    parser.add_argument("--tree", type=Path, default=ROOT, help="the source tree whose server runs (default: this one)")
     parser.add_argument("--client", choices=sorted(CLIENTS), default="threads", help="the client of the runs")
     parser.add_argument("--compare-clients", type=float, default=15, metavar="SECONDS",
-                        help="also run both clients for SECONDS against one worker (0: skip)")
+                        help="also run both clients for SECONDS against one worker, old pattern (0: skip)")
     parser.add_argument("--seed", type=int, default=2026)
     parser.add_argument("--output", type=Path, default=ROOT / "bench" / "results" / "classroom.md")
     args = parser.parse_args(argv)
+    args.tree = check_tree(args.tree)
+    if args.client != "threads" and "new" in args.pattern:
+        parser.error("the new page pattern runs on the threads client")
 
-    comparison = [run(1, client, args.students, args.compare_clients, args.seed) for client in sorted(CLIENTS)
-                  ] if args.compare_clients > 0 else []
-    results = [run(workers, args.client, args.students, args.seconds, args.seed) for workers in args.workers]
+    comparison = [run(1, client, args.students, args.compare_clients, args.seed, "old", args.tree)
+                  for client in sorted(CLIENTS)] if args.compare_clients > 0 else []
+    results = [run(workers, args.client, args.students, args.seconds, args.seed, pattern, args.tree)
+               for workers in args.workers for pattern in args.pattern]
     text = markdown(results, comparison, args)
     print(text)
     args.output.parent.mkdir(parents=True, exist_ok=True)

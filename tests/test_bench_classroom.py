@@ -1,8 +1,12 @@
 """Smoke test of the classroom load test (bench/classroom.py): a class of 3 students for 3 seconds against the
-servers it starts (1 and 2 workers) writes its tables, with requests answered and no errors."""
+servers it starts (1 and 2 workers) writes its tables, with requests answered and no errors (the old page
+pattern); the new pattern's family requests are built per the POST /api/v1/family contract from the scene
+JSON, and a family the server cannot give is reported as an error, never hidden."""
 from __future__ import annotations
 
 import importlib.util
+import json
+import math
 import random
 import re
 import subprocess
@@ -24,8 +28,7 @@ def test_the_class_is_spread_over_the_scenes_by_the_stated_shares():
 
 
 def test_a_student_walks_over_the_values_the_slider_can_express():
-    from server.lessons.scenes import scenes
-    student = classroom.Student(scenes()["transfer-functions"], random.Random(1))
+    student = classroom.Student(classroom.scenes()["transfer-functions"], random.Random(1))
     for _ in range(500):
         student.move()
         value = student.values[student.variant.id][student.slider.id]
@@ -36,7 +39,7 @@ def test_a_student_walks_over_the_values_the_slider_can_express():
 def test_three_students_for_three_seconds_write_the_tables_without_errors(tmp_path):
     output = tmp_path / "classroom.md"
     run = subprocess.run([sys.executable, "bench/classroom.py", "--students", "3", "--seconds", "3",
-                          "--compare-clients", "0", "--output", str(output)],
+                          "--compare-clients", "0", "--pattern", "old", "--output", str(output)],
                          cwd=REPO, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr[-3000:]
     text = output.read_text(encoding="utf-8")
@@ -50,3 +53,87 @@ def test_three_students_for_three_seconds_write_the_tables_without_errors(tmp_pa
                             r"answers with X-Cache: hit", text)
         assert counted and counted[1] == counted[2], text
     assert text.count("s after it stopped (SIGTERM, 15 s): 0.") == 2, text       # no process outlives it
+
+
+FAMILY_ENDPOINTS = {"kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
+                    "angular-acceleration"}          # the contract's cached computing endpoints
+
+
+def substituted(request: dict, vary: list[dict], value: float) -> dict:
+    """What the family server does for one member: each path in the request set to value × factor."""
+    body = json.loads(json.dumps(request))
+    for item in vary:
+        *keys, last = item["path"].split(".")
+        node = body
+        for key in keys:
+            node = node[key]
+        assert last in node, item["path"]           # a path the page's request has, not a new field
+        node[last] = value * item["factor"]
+    return body
+
+
+def close(a, b) -> bool:
+    """Equal structures, numbers to 1e-12 relative (value × factor against the page's own product)."""
+    if isinstance(a, dict):
+        return isinstance(b, dict) and a.keys() == b.keys() and all(close(a[k], b[k]) for k in a)
+    if isinstance(a, list):
+        return isinstance(b, list) and len(a) == len(b) and all(close(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) or isinstance(b, float):
+        return math.isclose(a, b, rel_tol=1e-12, abs_tol=1e-300)
+    return a == b
+
+
+def test_the_family_request_of_every_slider_follows_the_contract():
+    """For every scene, variant and slider, with the other sliders at random positions: the body has the
+    contract's fields; its request is the page's request; setting the vary paths to v × factor reproduces the
+    page's request at any other slider value v (checked at the slider's ends and a random position, against
+    scene_request, which is independent of the factors); min, max and log are the slider's, as in the scene JSON."""
+    rng = random.Random(13)
+    scene_request, slider_values = classroom.scene_request, classroom.slider_values
+    checked = 0
+    for scene in classroom.scenes().values():
+        raw = json.loads((REPO / "content" / "scenes" / f"{scene.id.replace('-', '_')}.json").read_text("utf-8"))
+        for variant, raw_variant in zip(scene.variants, raw["variants"]):
+            for slider, raw_slider in zip(variant.sliders, raw_variant.get("sliders", [])):
+                values = {s.id: rng.choice(slider_values(s)) for s in variant.sliders}
+                body = classroom.family_body(scene, variant, slider, values)
+                assert set(body) == {"endpoint", "request", "vary", "min", "max", "log"}
+                assert body["endpoint"] == scene.endpoint and body["endpoint"] in FAMILY_ENDPOINTS
+                assert body["request"] == scene_request(scene, variant, values)
+                assert (body["min"], body["max"], body["log"]) == \
+                    (raw_slider["min"], raw_slider["max"], raw_slider.get("log", False))
+                assert body["min"] < body["max"] and (not body["log"] or body["min"] > 0)
+                paths = [item["path"] for item in body["vary"]]
+                expected = [f"params.{raw_slider['param']}"] if scene.kind == "kinematics" else \
+                    [raw_slider["param"], *raw_slider.get("also", [])]
+                assert paths == expected
+                assert all(math.isfinite(item["factor"]) and item["factor"] > 0 for item in body["vary"])
+                for value in (slider.min, slider.max, rng.choice(slider_values(slider))):
+                    assert close(substituted(body["request"], body["vary"], value),
+                                 scene_request(scene, variant, values | {slider.id: value})), (scene.id, slider.id)
+                json.dumps(body, allow_nan=False)
+                checked += 1
+    assert checked > 50
+
+
+def test_the_new_page_pattern_reports_a_family_the_server_cannot_give_as_errors(tmp_path):
+    """Three students on the new pattern for 3 s against one worker. Without the family route (404) every
+    family request is an error in the table and the page goes on with exact requests, answered without error;
+    with it, no errors at all."""
+    output = tmp_path / "classroom_new.md"
+    run = subprocess.run([sys.executable, "bench/classroom.py", "--students", "3", "--seconds", "3", "--workers", "1",
+                          "--compare-clients", "0", "--pattern", "new", "--output", str(output)],
+                         cwd=REPO, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr[-3000:]
+    text = output.read_text(encoding="utf-8")
+    assert "## 1 worker, new page pattern" in text
+    rows = re.findall(r"^\| `(family \([a-z-]+\)|[a-z-]+)` \| (\d+) \|.*\| (\d+) \((\d+) / (\d+) / (\d+)\) \|",
+                      text, re.MULTILINE)
+    families = [(int(n), int(e), int(c)) for name, n, e, c, _, _ in rows if name.startswith("family")]
+    exact = [(int(n), int(e)) for name, n, e, *_ in rows if not name.startswith("family")]
+    assert families and sum(n for n, _, _ in families) >= 3, text          # one family per grab at least
+    assert exact and all(e == 0 for _, e in exact), text
+    if (REPO / "server" / "api" / "routers" / "family.py").exists():
+        assert all(e == 0 for _, e, _ in families), text
+    else:
+        assert all(e == n == c for n, e, c in families), text             # every family a 4xx, counted
