@@ -8,6 +8,7 @@ time budgets lifted, so that no answer depends on how fast the machine is.
 """
 from __future__ import annotations
 
+import copy
 import json
 import math
 import random
@@ -276,6 +277,19 @@ def test_same_family_twice_is_answered_from_the_cache(client):
     second, again = post_family(client, body)
     assert second.headers["x-cache"] == "hit" and again == answer
     assert "x-partial" not in first.headers
+
+
+def test_students_whose_slider_stands_elsewhere_share_the_family(client):
+    """The family does not depend on where the slider stands now (every member sets the varied paths): a
+    second student with the same other values, the slider at another value, gets the first one's answer."""
+    body = family_body("transfer-functions", "slider_crank", "offset", min=-0.2, max=0.2)
+    first, answer = post_family(client, body)
+    moved = family.member_body(body["request"], [family.Vary(v["path"], v["factor"]) for v in body["vary"]], 0.123)
+    second, again = post_family(client, body | {"request": moved})
+    assert second.headers["x-cache"] == "hit" and again == answer
+    other = copy.deepcopy(body)
+    other["request"]["params"]["l1"] *= 1.01                      # another value of a fixed parameter: its own
+    assert post_family(client, other)[0].headers["x-cache"] == "miss"
 
 
 def test_a_family_cut_by_its_time_budget_spans_the_range_and_says_it_is_partial(client, monkeypatch):

@@ -79,6 +79,17 @@ def member_body(request: dict, vary: list[Vary], value: float) -> dict:
     return body
 
 
+def shared(body):
+    """The family body as the response cache keys it: the varied paths' current values left out (every member
+    sets them), so that students whose other values agree share one family wherever their slider stands.
+    A body that is not a well-formed family request is returned as it is (validation refuses it later)."""
+    try:
+        varied = member_body(body["request"], [Vary(item["path"], 0.0) for item in body["vary"]], 0.0)
+    except (KeyError, TypeError, AttributeError, IndexError):
+        return body
+    return body | {"request": varied}
+
+
 def path_exists(request: dict, path: str) -> bool:
     """Whether the dotted path names a number (not a boolean) in the request."""
     holder = request

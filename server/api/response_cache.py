@@ -35,6 +35,7 @@ from urllib.parse import parse_qsl, urlencode
 
 import orjson
 
+from . import family
 from .endpoints import ENDPOINTS
 from .serialise import PARTIAL_HEADER
 
@@ -47,13 +48,17 @@ CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSO
 
 # The computing endpoints and the slider families, whose answer is a function of (path, query, body) alone.
 CACHED_ENDPOINTS = (*ENDPOINTS, "family")
+# What an answer depends on, where it is less than the whole body: a family not on its slider's current value.
+KEY_FORMS = {"family": family.shared}
 
 
-def canonical_body(raw: bytes) -> bytes | None:
+def canonical_body(raw: bytes, form=None) -> bytes | None:
     """The body as one canonical JSON text (floats to 10 significant digits, keys sorted, no spaces), None if
-    it is not JSON (orjson: strict, so NaN and Infinity are not JSON either)."""
+    it is not JSON (orjson: strict, so NaN and Infinity are not JSON either); `form` first maps the parsed body
+    to what the answer depends on (KEY_FORMS)."""
     try:
-        return orjson.dumps(_rounded(orjson.loads(raw)), option=orjson.OPT_SORT_KEYS)
+        parsed = orjson.loads(raw)
+        return orjson.dumps(_rounded(form(parsed) if form else parsed), option=orjson.OPT_SORT_KEYS)
     except (orjson.JSONDecodeError, RecursionError):
         return None
 
@@ -172,6 +177,7 @@ class ResponseCacheMiddleware:
         self.app = app
         self.cache = cache
         self.paths = frozenset(f"{prefix}/{name}" for name in endpoints)
+        self.forms = {f"{prefix}/{name}": form for name, form in KEY_FORMS.items()}
 
     async def __call__(self, scope, receive, send):
         if (scope["type"] != "http" or scope["method"] != "POST" or scope["path"] not in self.paths
@@ -196,7 +202,7 @@ class ResponseCacheMiddleware:
                 return {"type": "http.request", "body": raw, "more_body": False}
             return await receive()
 
-        canonical = canonical_body(raw) if _is_json(_header(scope["headers"], b"content-type")) else None
+        canonical = canonical_body(raw, self.forms.get(scope["path"])) if _is_json(_header(scope["headers"], b"content-type")) else None
         if canonical is None:
             self.cache.count_bypass()
             await self.app(scope, replay, send)
