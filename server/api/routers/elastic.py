@@ -48,9 +48,8 @@ def elastic_answer(request: ElasticRequest, lang: str) -> dict:
     machine = _elastic_machine(request)
     result, notices = {}, []
     if "histories" in request.outputs or "rigid" in request.outputs:
-        result, notices = simulate(machine, request.t_end, request.n, request.rtol, request.method)
-        if "rigid" not in request.outputs:
-            result.pop("rigid")
+        result, notices = simulate(machine, request.t_end, request.n, request.rtol, request.method,
+                                   with_rigid="rigid" in request.outputs)
     if "modal" in request.outputs:
         result["modal"] = modal(machine)
     if "bearings" in request.outputs:
