@@ -8,6 +8,7 @@ error O(h²).  Without derivatives it is piecewise linear (for loads with kinks)
 from __future__ import annotations
 
 import math
+from functools import cached_property
 
 import numpy as np
 
@@ -20,8 +21,15 @@ class PeriodicTable:
         self.h = period / self.n
         self.nodes = np.ascontiguousarray(values, dtype=float)
         self.tangents = None if derivatives is None else np.ascontiguousarray(derivatives * self.h, dtype=float)
-        self.values = self.nodes.tolist()           # lists: the scalar reads below are faster on floats
-        self.derivatives = None if self.tangents is None else self.tangents.tolist()
+
+    @cached_property
+    def values(self) -> list[float]:
+        """The nodes as a list: the scalar reads below (the Python reference path) are faster on floats."""
+        return self.nodes.tolist()
+
+    @cached_property
+    def derivatives(self) -> list[float] | None:
+        return None if self.tangents is None else self.tangents.tolist()
 
     def evaluate(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """f(φ), f′(φ), f″(φ) at every φ of an array, vectorised (NaN where φ is not finite); the

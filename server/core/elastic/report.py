@@ -18,7 +18,7 @@ from ..dynamics.motors import Motor
 from ..dynamics.reduction import Inertias, reduced_inertia
 from ..dynamics.resistance import Load, resisting_moment
 from ..mechanisms import MECHANISMS, GeometryError, Notice
-from .compiled import MOTOR_KINDS, pack
+from .compiled import MOTOR_KINDS, pack, ready
 from .models import Drive, MechanismSide, ThreeMass, TwoMass
 from .periodic_table import PeriodicTable
 from .simulate import MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio
@@ -141,6 +141,7 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
              engine: str = "compiled") -> tuple[dict, list]:
     """Time histories, the energy balance and the numerics; the rigid machine's start-up for comparison
     only with_rigid. engine: "compiled" or "scipy" (the reference path, see simulate.integrate)."""
+    ready()
     started = time.perf_counter()
     deadline = started + budget_s
     model, y0 = build(machine)

@@ -24,7 +24,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from . import dop853, radau
-from .compiled import jac_of
+from .compiled import jac_of, ready
 
 STIFF_RATIO = 1e3
 CHUNKS = 16
@@ -137,12 +137,13 @@ def integrate_compiled(compiled, y0: np.ndarray, t_end: float, rtol: float, meth
                        deadline: float, atol: np.ndarray | float, max_evaluations: int) -> ElasticRun:
     """integrate() with each chunk one call of the compiled DOP853 or Radau: the same chunks, samples, counts
     and messages as the solve_ivp path; the evaluation bound is kept inside the compiled loop."""
+    ready()
     edges = np.linspace(0.0, t_end, CHUNKS + 1)
-    atol = np.ascontiguousarray(np.broadcast_to(np.asarray(atol, float), (compiled.size,)))
-    samples = np.ascontiguousarray(samples, dtype=float)
+    atol = np.array(np.broadcast_to(np.asarray(atol, float), (compiled.size,)))    # writable, C: warm_up's types
+    samples = np.array(samples, dtype=float)
     pieces_t, pieces_y = [], []
     stats = {"steps": 0, "rejected": 0, "nfev": 0, "njev": 0, "nlu": 0}
-    y, complete, message = np.ascontiguousarray(y0, dtype=float), True, ""
+    y, complete, message = np.array(y0, dtype=float), True, ""
     for a, b in zip(edges[:-1], edges[1:]):
         inside = samples[(samples >= a) & ((samples < b) | (b == t_end))]
         out = np.empty((compiled.size, inside.size))
