@@ -246,7 +246,7 @@ def rigid(machine: ElasticMachine, t: np.ndarray) -> dict | None:
     inertias = Inertias(**{**machine.inertias.__dict__, "J1": machine.inertias.J1 + J_extra, "J_rotor": 0.0})
     rigid_machine = Machine(machine.mechanism, machine.params, inertias, machine.load, machine.motor)
     spanned = no_load_speed(machine) * t[-1] / rigid_machine.cycle()    # cycles at the motor's no-load speed
-    cycles = min(RIGID_CYCLES, max(4, int(np.ceil(1.2 * spanned)) + 2))
+    cycles = min(RIGID_CYCLES, max(4, int(np.ceil(spanned)) + 1))     # the mean speed stays below it
     while True:        # rtol = 0 never settles: the first cycles of a longer run are these, so stop past t[-1]
         run = startup(rigid_machine, 0.0, rtol=0.0, max_cycles=cycles).transient
         if run is None or run.t.size < 2 or run.t[-1] >= t[-1] or cycles >= RIGID_CYCLES:
