@@ -163,7 +163,8 @@ def integrate_compiled(compiled, y0: np.ndarray, t_end: float, rtol: float, meth
             break
         if status != dop853.FINISHED or not np.isfinite(y_end).all():
             complete = False
-            message = f"the solver stopped at t = {a:.4g} s: {TOO_SMALL_STEP if status != dop853.FINISHED else 'the state diverged'}"
+            reason = TOO_SMALL_STEP if status == dop853.TOO_SMALL_STEP else "the state diverged"
+            message = f"the solver stopped at t = {a:.4g} s: {reason}"
             break
         pieces_t.append(inside)
         pieces_y.append(out)
