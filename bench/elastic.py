@@ -1,18 +1,31 @@
-"""Benchmark: explicit against implicit solvers on the elastic models, error against run time.
+"""Benchmark: the elastic machines, the compiled path against scipy's, and explicit against implicit solvers.
 
-For three problems — a belt drive of moderate stiffness, a very stiff and heavily damped one
-(stiffness ratio ~1e6), and seed 003's elastic four-bar — every solve_ivp method runs at
-several tolerances on the same first-order model (twists as states, analytic Jacobian for the
-implicit methods).  Error: the largest twist difference against a reference (Radau at rtol 1e-11
-for the stiff problem, DOP853 at 1e-11 otherwise), relative to the largest twist.  The method
-the server picks by its stiffness measurement is marked.
+1. Each elastic scene's default request (every variant; its own outputs): the server's compute with scipy's
+   solve_ivp stepping a Python right-hand side (engine "scipy", the reference path) against the compiled path
+   (numba: scipy's DOP853 and Radau ported into compiled loops, engine "compiled"), side by side in one
+   process; the error of the twist of both against a tight reference (compiled DOP853 at rtol 1e-11, 16
+   times more steps), relative to the largest twist, beside the error estimate the answer carries.
+2. Each variant's sliders swept over their ranges (9 positions each, the others at their defaults): the
+   compiled request's compute time, median and p95.
+3. Compile time of the compiled functions: cold (an empty numba cache) and cached (a fresh process loading
+   numba's disk cache), each in a process of its own.
+4. For four problems — a belt drive of moderate stiffness, a very stiff and heavily damped one (stiffness
+   ratio ~1e4), an elastic crank-slider linkage and seed 003's elastic four-bar — every solve_ivp method and the two compiled solvers at
+   several tolerances on the same first-order model (twists as states, analytic Jacobian for the implicit
+   methods).  Error: the largest twist difference against a reference (Radau at rtol 1e-11 for the stiff
+   problem, DOP853 at 1e-11 otherwise; compiled), relative to the largest twist.  The method the server picks by its
+   stiffness measurement is marked.
 
-Run:  python bench/elastic.py      (writes bench/results/elastic.md)
+Run:  python bench/elastic.py      (writes bench/results/elastic.md; about ten minutes, mostly part 4's scipy
+      rows; --quick leaves part 4 out)
 """
 from __future__ import annotations
 
+import os
 import statistics
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -20,11 +33,16 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from server.api.content import scenes                                            # noqa: E402
+from server.api.routers.elastic import _elastic_machine                          # noqa: E402
+from server.api.scene_requests import scene_request, slider_values               # noqa: E402
+from server.api.schemas_elastic import ElasticRequest                            # noqa: E402
 from server.core.dynamics.motors import Motor                                    # noqa: E402
 from server.core.dynamics.reduction import Inertias                              # noqa: E402
 from server.core.dynamics.resistance import Load                                 # noqa: E402
+from server.core.elastic.compiled import ready                                   # noqa: E402
 from server.core.elastic.report import (ElasticMachine, absolute_tolerances,    # noqa: E402
-                                        build, no_load_speed)
+                                        build, modal, no_load_speed, simulate)
 from server.core.elastic.simulate import STIFF_RATIO, integrate, stiffness_ratio  # noqa: E402
 from server.core.elastic.stiffness import Compliances                            # noqa: E402
 from server.core.mechanisms import MECHANISMS                                    # noqa: E402
@@ -43,22 +61,123 @@ PROBLEMS = {
         "elastic_four_bar", "four_bar", FOUR_BAR, Inertias(J1=0.01, J3=0.05), Load(0.5), Motor("linear", M0=2.0, b=0.05),
         J_motor=0.02, compliances=Compliances(2e-6, 1e-9, 3e-6), b=0.02), 0.5),
 }
-METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
+METHODS = (("RK45", "scipy"), ("DOP853", "scipy"), ("DOP853", "compiled"), ("Radau", "scipy"),
+           ("Radau", "compiled"), ("BDF", "scipy"), ("LSODA", "scipy"))
 TOLERANCES = (1e-3, 1e-5, 1e-7, 1e-9)
 BUDGET_S = 30.0
 REFERENCE_RTOL = 1e-11
 
 
-def run(machine, t_end, method, rtol, budget=BUDGET_S):
+SWEEP_POSITIONS = 9
+
+
+def run(machine, t_end, method, rtol, budget=BUDGET_S, engine="compiled"):
     model, y0 = build(machine)
     samples = np.linspace(0, t_end, 501)
     start = time.perf_counter()
     result = integrate(model, y0, t_end, rtol, method, samples, start + budget,
-                       absolute_tolerances(machine, model, rtol), max_evaluations=5_000_000)
+                       absolute_tolerances(machine, model, rtol), max_evaluations=5_000_000, engine=engine)
     return time.perf_counter() - start, result
 
 
+def answer(request: ElasticRequest, engine: str) -> tuple[float, dict]:
+    """The core of /elastic for the request (what elastic_answer computes, without the JSON, with a time budget
+    that a loaded machine does not reach): seconds, result."""
+    machine = _elastic_machine(request)
+    start = time.perf_counter()
+    result = {}
+    if "histories" in request.outputs or "rigid" in request.outputs:
+        result = simulate(machine, request.t_end, request.n, request.rtol, request.method,
+                          budget_s=BUDGET_S, with_rigid="rigid" in request.outputs, engine=engine)[0]
+    if "modal" in request.outputs:
+        result["modal"] = modal(machine)
+    return time.perf_counter() - start, result
+
+
+def elastic_variants():
+    return [(scene, variant) for scene in scenes().values() if scene.endpoint == "elastic"
+            for variant in scene.variants if variant.id != "bearings"]
+
+
+def scene_defaults() -> list[str]:
+    """Part 1: old (scipy) and new (compiled) per default request, with errors against a tight reference."""
+    lines = ["## Default requests of the elastic scenes: scipy's stepping against the compiled path\n",
+             "Server compute of the request's outputs (the core, without the JSON), median of 3 after one warm run; "
+             "error: the twist against compiled DOP853 at rtol 1e-11, relative to the largest twist.\n",
+             "| scene / variant | outputs | scipy, ms | compiled, ms | ratio | steps (scipy / compiled) | "
+             "error scipy | error compiled | error estimate |", "|---|---|---:|---:|---:|---|---:|---:|---:|"]
+    for scene, variant in elastic_variants():
+        request = ElasticRequest.model_validate(scene_request(scene, variant))
+        times, results = {}, {}
+        for engine in ("scipy", "compiled"):
+            answer(request, engine)
+            runs = [answer(request, engine) for _ in range(3)]
+            times[engine] = statistics.median(seconds for seconds, _ in runs)
+            results[engine] = runs[0][1]
+        machine = _elastic_machine(request)
+        reference = simulate(machine, request.t_end, request.n, 1e-11, "DOP853", budget_s=120.0,
+                             max_evaluations=50_000_000, with_rigid=False)[0]["twist"]
+        scale = np.max(np.abs(reference))
+        errors = {e: np.max(np.abs(r["twist"] - reference)) / scale for e, r in results.items()}
+        numerics = {e: r["numerics"] for e, r in results.items()}
+        lines.append(f"| {scene.id} / {variant.id} | {', '.join(request.outputs)} | {1e3 * times['scipy']:.0f} | "
+                     f"{1e3 * times['compiled']:.1f} | {times['scipy'] / times['compiled']:.0f} | "
+                     f"{numerics['scipy']['steps']} / {numerics['compiled']['steps']} | {errors['scipy']:.1e} | "
+                     f"{errors['compiled']:.1e} | {numerics['compiled']['error_estimate']:.1e} |")
+    return lines
+
+
+def slider_sweeps() -> list[str]:
+    """Part 2: the compiled request's compute time over each slider's range."""
+    lines = ["\n## Slider sweeps, compiled path\n",
+             f"Each slider at {SWEEP_POSITIONS} positions over its range (the others at their defaults), each request "
+             "once (a fresh machine: no table shared with the previous request unless the slider leaves the "
+             "mechanism's tables alone, as the damping does).\n",
+             "| scene / variant | slider | requests | median, ms | p95, ms | max, ms | partial answers |",
+             "|---|---|---:|---:|---:|---:|---:|"]
+    for scene, variant in elastic_variants():
+        for slider in variant.sliders:
+            values = slider_values(slider)
+            picks = [values[round(k * (len(values) - 1) / (SWEEP_POSITIONS - 1))] for k in range(SWEEP_POSITIONS)]
+            times, partial = [], 0
+            for value in picks:
+                request = ElasticRequest.model_validate(scene_request(scene, variant, {slider.id: value}))
+                seconds, result = answer(request, "compiled")
+                times.append(1e3 * seconds)
+                partial += bool(result.get("numerics", {}).get("message"))
+            lines.append(f"| {scene.id} / {variant.id} | {slider.id} | {len(times)} | {statistics.median(times):.1f} | "
+                         f"{np.percentile(times, 95):.1f} | {max(times):.1f} | {partial} |")
+    return lines
+
+
+def compile_times() -> list[str]:
+    """Part 3: warm_up() in a fresh process, with an empty numba cache and with the disk cache."""
+    code = ("import sys, time; sys.path.insert(0, %r); start = time.perf_counter(); "
+            "from server.core.elastic.compiled import warm_up; imported = time.perf_counter() - start; "
+            "print(imported, warm_up())" % str(Path(__file__).resolve().parents[1]))
+    rows = []
+    with tempfile.TemporaryDirectory() as empty:
+        for label, env in (("cold (empty cache)", {"NUMBA_CACHE_DIR": empty}), ("cached (the same cache, new process)",
+                                                                                 {"NUMBA_CACHE_DIR": empty})):
+            output = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                                    env=os.environ | env).stdout.split()
+            rows.append(f"| {label} | {float(output[0]):.2f} | {float(output[1]):.2f} |")
+    return ["\n## Compile time of the compiled functions (warm_up())\n",
+            "| numba cache | import, s | warm_up(), s |", "|---|---:|---:|", *rows]
+
+
 def main() -> None:
+    ready()
+    lines = ["# Elastic models: compiled against scipy, error against run time\n", *scene_defaults(),
+             *slider_sweeps(), *compile_times()]
+    if "--quick" not in sys.argv:
+        lines += ["\n## Methods at several tolerances (part 4)"] + method_study()
+    text = "\n".join(lines) + "\n"
+    print(text)
+    (Path(__file__).with_name("results") / "elastic.md").write_text(text, encoding="utf-8")
+
+
+def method_study() -> list[str]:
     lines = []
     for name, (machine, t_end) in PROBLEMS.items():
         model, y0 = build(machine)
@@ -70,24 +189,24 @@ def main() -> None:
         twist_ref = reference.y[2]
         lines += [f"\n### {name}\n", f"Stiffness ratio {ratio:.3g} (fastest decay {decay:.3g} 1/s, fastest |λ| "
                   f"{fastest:.3g} 1/s): the server picks **{picked}**. Reference: {reference_method} at rtol {REFERENCE_RTOL:g}.\n",
-                  "| method | rtol | error | run time, ms | steps | RHS calls |", "|---|---|---:|---:|---:|---:|"]
-        for method in METHODS:
+                  "| method | engine | rtol | error | run time, ms | steps | RHS calls |",
+                  "|---|---|---|---:|---:|---:|---:|"]
+        for method, engine in METHODS:
             for rtol in TOLERANCES:
                 times, result = [], None
                 for _ in range(2):
-                    seconds, result = run(machine, t_end, method, rtol)
+                    seconds, result = run(machine, t_end, method, rtol, engine=engine)
                     times.append(seconds)
                 if not result.complete or result.t.size != twist_ref.size:
-                    lines.append(f"| {method} | {rtol:.0e} | did not finish in budget | {1e3 * min(times):.0f} | "
-                                 f"{result.numerics['steps']} | {result.numerics['nfev']} |")
+                    lines.append(f"| {method} | {engine} | {rtol:.0e} | did not finish in budget | "
+                                 f"{1e3 * min(times):.0f} | {result.numerics['steps']} | {result.numerics['nfev']} |")
                     continue
                 error = np.max(np.abs(result.y[2] - twist_ref)) / np.max(np.abs(twist_ref))
                 mark = " ←" if method == picked else ""
-                lines.append(f"| {method}{mark} | {rtol:.0e} | {error:.1e} | {1e3 * statistics.median(times):.0f} | "
-                             f"{result.numerics['steps']} | {result.numerics['nfev']} |")
-    text = "# Elastic models: error against run time\n" + "\n".join(lines) + "\n"
-    print(text)
-    (Path(__file__).with_name("results") / "elastic.md").write_text(text, encoding="utf-8")
+                lines.append(f"| {method}{mark} | {engine} | {rtol:.0e} | {error:.1e} | "
+                             f"{1e3 * statistics.median(times):.1f} | {result.numerics['steps']} | "
+                             f"{result.numerics['nfev']} |")
+    return lines
 
 
 if __name__ == "__main__":

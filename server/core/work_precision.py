@@ -16,6 +16,7 @@ from scipy.integrate import solve_ivp
 from .dynamics.machine import Machine
 from .dynamics.motion import steady_cycle
 from .elastic.report import ElasticMachine, absolute_tolerances, build, no_load_speed
+from .elastic.compiled import ready
 from .elastic.simulate import STIFF_RATIO, WorkBound, bounded, integrate, stiffness_ratio
 
 BUDGET_S = 6.0
@@ -90,11 +91,13 @@ def motion_study(machine: Machine) -> dict:
 
 def elastic_study(machine: ElasticMachine, t_end: float) -> dict:
     """Every method at loose tolerances first, then tighter ones, so each gets its cheap points in the budget;
-    the server's own pick (by the measured stiffness) is labelled ours."""
+    the server's own pick (by the measured stiffness) runs as the server runs it, compiled, and is labelled ours;
+    the others are scipy's solve_ivp (the reference path); the reference is compiled DOP853 (Radau) at 1e-10."""
     model, y0 = build(machine)
     samples = np.linspace(0.0, t_end, 201)
     ratio = stiffness_ratio(model, y0, max(2 * np.pi / t_end, machine.speed, no_load_speed(machine)))[0]
     picked = "Radau" if ratio > STIFF_RATIO else "DOP853"
+    ready()                                            # compiled before the clock starts
     started = time.perf_counter()
     reference = integrate(model, y0, t_end, 1e-10, "DOP853", samples, started + BUDGET_S,
                           absolute_tolerances(machine, model, 1e-10))
@@ -109,12 +112,14 @@ def elastic_study(machine: ElasticMachine, t_end: float) -> dict:
     rows, skipped = [], []
     for rtol in (1e-3, 1e-5, 1e-7):
         for method in ("DOP853", "Radau", "LSODA", "RK45"):
-            label = f"ours: {method}" if method == picked else method
+            engine = "compiled" if method == picked else "scipy"
+            label = f"ours: compiled {method}" if method == picked else method
             if time.perf_counter() > deadline:
                 skipped.append(f"{label} {rtol:.0e}")
                 continue
             start = time.perf_counter()
-            run = integrate(model, y0, t_end, rtol, method, samples, deadline, absolute_tolerances(machine, model, rtol))
+            run = integrate(model, y0, t_end, rtol, method, samples, deadline, absolute_tolerances(machine, model, rtol),
+                            engine=engine)
             if not run.complete:
                 skipped.append(f"{label} {rtol:.0e}")
                 continue

@@ -36,6 +36,12 @@ class MechanismSide:
             return self.stiffness(phi)
         return self.stiffness, 0.0, 0.0
 
+    def stiff_at(self, phi: np.ndarray) -> np.ndarray:
+        """c at every φ of an array."""
+        if isinstance(self.stiffness, PeriodicTable):
+            return self.stiffness.evaluate(phi)[0]
+        return np.full(np.shape(phi), float(self.stiffness))
+
     def fast(self, phi: float, omega: float, twist: float, force_of) -> tuple[float, float, float, float]:
         """The right-hand side's path: c(φ), the spring force F = force_of(c), ω̇ of the mechanism and M_c."""
         J, dJ = self.inertia.value_slope(phi)
@@ -132,13 +138,14 @@ class TwoMass:
         jac[6, 3] = 2 * self.b * rate
         return jac
 
-    def energy(self, t: float, y) -> float:
-        """Kinetic plus elastic energy, J."""
+    def energy(self, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """Kinetic plus elastic energy, J, at the times t of the states y (columns)."""
         phi2, w2 = self.mechanism_state(t, y)
         motor = 0.0 if self.kinematic else 0.5 * self.J1 * (w2 + y[3]) ** 2
-        return motor + 0.5 * self.side.inertia(phi2)[0] * w2 * w2 + 0.5 * self.side.stiff(phi2)[0] * y[2] ** 2
+        return motor + 0.5 * self.side.inertia.evaluate(phi2)[0] * w2 * w2 + 0.5 * self.side.stiff_at(phi2) * y[2] ** 2
 
-    def motor_state(self, t: float, y) -> tuple[float, float]:
+    def motor_state(self, t, y) -> tuple:
+        """φ₁, ω₁ of the motor side (scalars or arrays over the columns of y)."""
         phi2, w2 = self.mechanism_state(t, y)
         return phi2 + y[2], w2 + y[3]
 
@@ -186,11 +193,13 @@ class ThreeMass:
         jac[8, 3], jac[8, 5] = 2 * self.b2 * rate2, 2 * self.b1 * rate1
         return jac
 
-    def energy(self, t: float, y) -> float:
+    def energy(self, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """Kinetic plus elastic energy, J, at the times t of the states y (columns)."""
         phi3, w3, twist2, rate2, twist1, rate1 = y[:6]
         w2, w1 = w3 + rate2, w3 + rate2 + rate1
-        return (0.5 * self.J1 * w1 * w1 + 0.5 * self.J2 * w2 * w2 + 0.5 * self.side.inertia(phi3)[0] * w3 * w3
-                + 0.5 * self.c1 * twist1 * twist1 + 0.5 * self.side.stiff(phi3)[0] * twist2 * twist2)
+        return (0.5 * self.J1 * w1 * w1 + 0.5 * self.J2 * w2 * w2 + 0.5 * self.side.inertia.evaluate(phi3)[0] * w3 * w3
+                + 0.5 * self.c1 * twist1 * twist1 + 0.5 * self.side.stiff_at(phi3) * twist2 * twist2)
 
-    def motor_state(self, t: float, y) -> tuple[float, float]:
+    def motor_state(self, t, y) -> tuple:
+        """φ₁, ω₁ of the motor side (scalars or arrays over the columns of y)."""
         return y[0] + y[2] + y[4], y[1] + y[3] + y[5]

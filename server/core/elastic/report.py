@@ -18,6 +18,7 @@ from ..dynamics.motors import Motor
 from ..dynamics.reduction import Inertias, reduced_inertia
 from ..dynamics.resistance import Load, resisting_moment
 from ..mechanisms import MECHANISMS, GeometryError, Notice
+from .compiled import MOTOR_KINDS, pack, ready
 from .models import Drive, MechanismSide, ThreeMass, TwoMass
 from .periodic_table import PeriodicTable
 from .simulate import MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio
@@ -25,6 +26,7 @@ from .stiffness import Compliances, bearing_stiffness, link_angles, linkage_stif
 
 TABLE_POINTS = 4096
 LARGE_TWIST = 0.05       # rad: a linear spring is an idealisation well before this
+RIGID_CYCLES = 400       # the rigid start-up's longest run, cycles
 SENSITIVE = 1e-2         # relative error estimate above which the scene says so
 MODELS = ("two_mass", "kinematic_drive", "three_mass", "elastic_linkage", "elastic_four_bar")
 LINKAGE_STIFFNESS = ("three_mass", "elastic_linkage", "elastic_four_bar")
@@ -52,8 +54,23 @@ class ElasticMachine:
     twist0: float = 0.0         # initial twist of the spring next to the mechanism, rad
 
 
+_last_side: list = [None, None]        # (what the tables depend on, the tables) of the latest machine
+
+
 def mechanism_side(machine: ElasticMachine) -> MechanismSide:
-    """Periodic tables of J(φ), c(φ), M_c(φ) and S(φ) for the mechanism side."""
+    """Periodic tables of J(φ), c(φ), M_c(φ) and S(φ) for the mechanism side; the latest machine's are kept,
+    so that a request's time histories and modal curves tabulate the mechanism once."""
+    key = (machine.model in LINKAGE_STIFFNESS, machine.mechanism, machine.params, machine.inertias, machine.load,
+           machine.compliances, machine.c)
+    last_key, last = _last_side
+    if last_key == key:
+        return last
+    side = tabulate(machine)
+    _last_side[:] = key, side
+    return side
+
+
+def tabulate(machine: ElasticMachine) -> MechanismSide:
     period = MECHANISMS[machine.mechanism].cycle(machine.params)
     phi = np.linspace(0.0, period, int(TABLE_POINTS * period / (2 * np.pi)) + 1)
     side = Inertias(**{**machine.inertias.__dict__, "J_rotor": 0.0})
@@ -108,6 +125,8 @@ def build(machine: ElasticMachine):
         model = ThreeMass(machine.J_motor, machine.J_middle, machine.c, machine.b1, side, machine.b, drive)
     else:
         model = TwoMass(machine.J_motor, side, machine.b, drive)
+    if machine.motor.kind in MOTOR_KINDS:
+        model.compiled = pack(model, machine.motor, machine.inertias.gear_ratio)
     y0 = np.zeros(model.size)
     y0[2] = machine.twist0
     if machine.model == "kinematic_drive":
@@ -118,9 +137,11 @@ def build(machine: ElasticMachine):
 
 
 def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, method: str = "auto",
-             budget_s: float = TIME_BUDGET_S, max_evaluations: int = MAX_EVALUATIONS,
-             with_rigid: bool = True) -> tuple[dict, list]:
-    """Time histories, the energy balance and the numerics; the rigid solution for comparison if with_rigid."""
+             budget_s: float = TIME_BUDGET_S, max_evaluations: int = MAX_EVALUATIONS, with_rigid: bool = True,
+             engine: str = "compiled") -> tuple[dict, list]:
+    """Time histories, the energy balance and the numerics; the rigid machine's start-up for comparison
+    only with_rigid. engine: "compiled" or "scipy" (the reference path, see simulate.integrate)."""
+    ready()
     started = time.perf_counter()
     deadline = started + budget_s
     model, y0 = build(machine)
@@ -129,9 +150,9 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
     chosen = method if method != "auto" else ("Radau" if ratio > STIFF_RATIO else "DOP853")
     times = np.linspace(0.0, t_end, samples)
     atol = absolute_tolerances(machine, model, rtol)
-    run = integrate(model, y0, t_end, rtol, chosen, times, deadline, atol, max_evaluations)
+    run = integrate(model, y0, t_end, rtol, chosen, times, deadline, atol, max_evaluations, engine)
     check = integrate(model, y0, run.t[-1] if run.t.size else t_end, rtol / 10, chosen,
-                      run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations)
+                      run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations, engine)
     result = histories(machine, model, run)
     twist_now, twist_check = result["twist"], histories(machine, model, check)["twist"]
     common = min(twist_now.size, twist_check.size)
@@ -180,7 +201,7 @@ def absolute_tolerances(machine: ElasticMachine, model, rtol: float) -> np.ndarr
     """Per state: angles and speeds to rtol·1e-3; the twists to rtol times a millionth of the static twist
     scale M/c (so a stiff spring's tiny twist keeps its digits); works to rtol·1e-3 J."""
     atol = np.full(model.size, rtol * 1e-3)
-    stiffest = max(machine.c, float(np.max(model.side.stiffness.values)) if machine.model in LINKAGE_STIFFNESS else 0.0)
+    stiffest = max(machine.c, float(np.max(model.side.stiffness.nodes)) if machine.model in LINKAGE_STIFFNESS else 0.0)
     twist_scale = max(machine.load.force * machine.params.get("l1", 1.0), 1.0) / max(stiffest, 1e-300)
     twist_rows = (2, 3, 4, 5) if machine.model == "three_mass" else (2, 3)
     atol[list(twist_rows)] = rtol * 1e-3 * min(twist_scale, 1.0)
@@ -190,29 +211,29 @@ def absolute_tolerances(machine: ElasticMachine, model, rtol: float) -> np.ndarr
 def histories(machine: ElasticMachine, model, run) -> dict:
     """Angles, speeds, twist, its rate, the driving moment and I_n(t) from the state histories."""
     y, t = run.y, run.t
-    phi1, w1 = np.array([model.motor_state(tk, yk) for tk, yk in zip(t, y.T)]).reshape(-1, 2).T
+    phi1, w1 = model.motor_state(t, y)
     if machine.model == "kinematic_drive":
         phi2, w2 = machine.speed * t - y[2], machine.speed - y[3]
     else:
         phi2, w2 = y[0], y[1]
     side = model.side
-    tables = [side.inertia(p) for p in phi2]
-    stiffness = [side.stiff(p)[0] for p in phi2]
+    inertia = side.inertia.evaluate(phi2)[0]
+    stiffness = side.stiff_at(phi2)
     spring_near, rate_near = y[2], y[3]
     if machine.model == "kinematic_drive":
-        drive = np.array(stiffness) * spring_near + machine.b * rate_near
+        drive = stiffness * spring_near + machine.b * rate_near
     else:
         i = machine.inertias.gear_ratio
         drive = i * machine.motor.torque(i * w1)[0]
     w_in, w_load, w_diss = y[-3], y[-2], y[-1]
-    energy = np.array([model.energy(tk, yk) for tk, yk in zip(t, y.T)])
+    energy = model.energy(t, y)
     residual = w_in - (energy - energy[0]) - w_load - w_diss if t.size else np.zeros(0)
     scale = max(float(np.max(np.abs(w_in))) if t.size else 0.0, 1e-300)
     total_twist = y[2] + y[4] if machine.model == "three_mass" else y[2]
     total_rate = y[3] + y[5] if machine.model == "three_mass" else y[3]
     return {"t": t, "phi_motor": phi1, "omega_motor": w1, "phi": phi2, "omega": w2,
             "twist": total_twist, "twist_rate": total_rate, "spring_twist": spring_near, "driving_moment": drive,
-            "inertia": np.array([v[0] for v in tables]), "stiffness": np.array(stiffness),
+            "inertia": inertia, "stiffness": stiffness,
             "work_in": w_in, "work_load": w_load, "work_dissipated": w_diss,
             "energy_residual": float(np.max(np.abs(residual))) / scale if t.size else 0.0}
 
@@ -224,7 +245,16 @@ def rigid(machine: ElasticMachine, t: np.ndarray) -> dict | None:
     J_extra = machine.J_motor + machine.J_middle
     inertias = Inertias(**{**machine.inertias.__dict__, "J1": machine.inertias.J1 + J_extra, "J_rotor": 0.0})
     rigid_machine = Machine(machine.mechanism, machine.params, inertias, machine.load, machine.motor)
-    run = startup(rigid_machine, 0.0, rtol=0.0, max_cycles=400).transient
+    spanned = no_load_speed(machine) * t[-1] / rigid_machine.cycle()    # cycles at the motor's no-load speed
+    cycles = min(RIGID_CYCLES, max(4, int(np.ceil(spanned)) + 1))     # the mean speed stays below it
+    while True:        # rtol = 0 never settles: the first cycles of a longer run are these, so stop past t[-1]
+        run = startup(rigid_machine, 0.0, rtol=0.0, max_cycles=cycles).transient
+        if run is None or run.t.size < 2 or run.t[-1] >= t[-1] or cycles >= RIGID_CYCLES:
+            break
+        done = run.phi[-1] / rigid_machine.cycle()           # cycles completed (fewer after a stall)
+        if done < cycles - 0.5:
+            break
+        cycles = min(RIGID_CYCLES, max(2 * cycles, int(np.ceil(cycles * t[-1] / run.t[-1] * 1.2)) + 1))
     if run is None or run.t[-1] < t[-1] * 0.999:
         reach = t <= (run.t[-1] if run is not None else 0.0)
     else:
@@ -240,8 +270,8 @@ def modal(machine: ElasticMachine, points: int = 361) -> dict:
     side = mechanism_side(machine)
     period = side.inertia.period
     phi = np.linspace(0.0, period, points)
-    J = np.array([side.inertia(p)[0] for p in phi])
-    c = np.array([side.stiff(p)[0] for p in phi])
+    J = side.inertia.evaluate(phi)[0]
+    c = side.stiff_at(phi)
     c = np.where(c <= 1e-12 * c.max(), 0.0, c)          # the dead positions: round-off of sin²θ₁₂ is zero
     J_eq = machine.J_motor * J / (machine.J_motor + J)
     with np.errstate(divide="ignore"):

@@ -9,6 +9,11 @@ there the explicit DOP853 is the cheaper one per step (measured in bench/elastic
 The span is integrated in chunks; a request that passes its step or time budget stops with the
 partial result and says so.  The error estimate is the largest difference of the twist against
 a run at ten times tighter tolerance (same method), relative to the largest twist.
+
+Engines: "compiled" (default) runs DOP853 and Radau as scipy's algorithms ported into numba loops
+(dop853.py, radau.py) on the compiled right-hand side (compiled.py), chunk by chunk exactly as
+solve_ivp is called here, so the steps are scipy's; "scipy" runs solve_ivp on the Python model, the
+reference path the tests compare with and the only one for RK45, BDF and LSODA.
 """
 from __future__ import annotations
 
@@ -17,6 +22,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_ivp
+
+from . import dop853, radau
+from .compiled import jac_of, ready
 
 STIFF_RATIO = 1e3
 CHUNKS = 16
@@ -36,12 +44,14 @@ def stiffness_ratio(model, y0: np.ndarray, slow_rate: float, probes: int = 24) -
     """max|Re λ| / slow rate over a turn of the mechanism; and the largest decay rate and |λ| themselves."""
     fastest = decay = 0.0
     kinematic = getattr(model, "kinematic", False)
+    compiled = getattr(model, "compiled", None)
+    jacobian = jac_of(compiled) if compiled is not None else model.jac
     for k in range(probes):
         angle = 2 * np.pi * k / probes          # the mechanism's angle: row 0, or ωt for a kinematic drive
         y = np.array(y0, float)
         if not kinematic:
             y[0] += angle
-        eigen = np.linalg.eigvals(model.jac(angle / model.drive.speed if kinematic else 0.0, y))
+        eigen = np.linalg.eigvals(jacobian(angle / model.drive.speed if kinematic else 0.0, y))
         fastest = max(fastest, float(np.max(np.abs(eigen))))
         decay = max(decay, float(np.max(-eigen.real)))
     return decay / max(slow_rate, 1e-12), decay, fastest
@@ -68,9 +78,18 @@ RK_STAGES = {"RK45": 6, "DOP853": 12}    # RHS calls per step attempt in scipy's
 DENSE_EXTRA = {"RK45": 0, "DOP853": 3}   # extra calls per accepted step for DOP853's dense output
 
 
+COMPILED = {"DOP853": dop853.chunk, "Radau": radau.chunk}
+TOO_SMALL_STEP = "Required step size is less than spacing between numbers."      # scipy's words
+
+
 def integrate(model, y0: np.ndarray, t_end: float, rtol: float, method: str, samples: np.ndarray,
-              deadline: float, atol: np.ndarray | float = 1e-12, max_evaluations: int = MAX_EVALUATIONS) -> ElasticRun:
-    """solve_ivp in chunks; stops at the work bound with the partial result and a message."""
+              deadline: float, atol: np.ndarray | float = 1e-12, max_evaluations: int = MAX_EVALUATIONS,
+              engine: str = "compiled") -> ElasticRun:
+    """The run in CHUNKS chunks, compiled where the model and method allow, else solve_ivp; stops at the
+    work bound with the partial result and a message."""
+    if engine == "compiled" and getattr(model, "compiled", None) is not None and method in COMPILED:
+        return integrate_compiled(model.compiled, y0, t_end, rtol, method, samples, deadline, atol,
+                                  max_evaluations)
     edges = np.linspace(0.0, t_end, CHUNKS + 1)
     implicit = {"jac": model.jac} if method in ("Radau", "BDF", "LSODA") else {}
     pieces_t, pieces_y = [], []
@@ -103,6 +122,53 @@ def integrate(model, y0: np.ndarray, t_end: float, rtol: float, method: str, sam
         pieces_t.append(inside)
         pieces_y.append(solution.sol(inside) if inside.size else np.zeros((len(y), 0)))
         y = solution.y[:, -1]
+        if stats["nfev"] > max_evaluations or time.perf_counter() > deadline:
+            if b < t_end:
+                complete = False
+                message = (f"stopped at t = {b:.4g} s of {t_end:.4g} s: the work bound was reached; "
+                           "the result is partial")
+            break
+    t = np.concatenate(pieces_t) if pieces_t else np.zeros(0)
+    y_all = np.concatenate(pieces_y, axis=1) if pieces_y else np.zeros((len(y0), 0))
+    return ElasticRun(t, y_all, stats | {"message": message}, complete)
+
+
+def integrate_compiled(compiled, y0: np.ndarray, t_end: float, rtol: float, method: str, samples: np.ndarray,
+                       deadline: float, atol: np.ndarray | float, max_evaluations: int) -> ElasticRun:
+    """integrate() with each chunk one call of the compiled DOP853 or Radau: the same chunks, samples, counts
+    and messages as the solve_ivp path; the evaluation bound is kept inside the compiled loop."""
+    ready()
+    edges = np.linspace(0.0, t_end, CHUNKS + 1)
+    atol = np.array(np.broadcast_to(np.asarray(atol, float), (compiled.size,)))    # writable, C: warm_up's types
+    samples = np.array(samples, dtype=float)
+    pieces_t, pieces_y = [], []
+    stats = {"steps": 0, "rejected": 0, "nfev": 0, "njev": 0, "nlu": 0}
+    y, complete, message = np.array(y0, dtype=float), True, ""
+    for a, b in zip(edges[:-1], edges[1:]):
+        inside = samples[(samples >= a) & ((samples < b) | (b == t_end))]
+        out = np.empty((compiled.size, inside.size))
+        answer = COMPILED[method](compiled.kind, compiled.p, compiled.tab, float(a), float(b), y, float(rtol), atol,
+                                  inside, out, max_evaluations - stats["nfev"])
+        status, y_end, accepted, rejected, nfev = answer[:5]
+        stats["steps"] += accepted
+        stats["rejected"] += rejected
+        stats["nfev"] += nfev
+        if method == "Radau":
+            stats["njev"] += answer[5]
+            stats["nlu"] += answer[6]
+        if status == dop853.WORK_BOUND:
+            complete = False
+            message = (f"stopped at t = {a:.4g} s of {t_end:.4g} s: the work bound was reached; "
+                       "the result is partial")
+            break
+        if status != dop853.FINISHED or not np.isfinite(y_end).all():
+            complete = False
+            reason = TOO_SMALL_STEP if status == dop853.TOO_SMALL_STEP else "the state diverged"
+            message = f"the solver stopped at t = {a:.4g} s: {reason}"
+            break
+        pieces_t.append(inside)
+        pieces_y.append(out)
+        y = y_end
         if stats["nfev"] > max_evaluations or time.perf_counter() > deadline:
             if b < t_end:
                 complete = False
