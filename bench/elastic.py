@@ -33,9 +33,9 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from server.api.content import scenes                                            # noqa: E402
-from server.api.routers.elastic import _elastic_machine                          # noqa: E402
-from server.api.scene_requests import scene_request, slider_values               # noqa: E402
+from server.lessons.scenes import scenes                                            # noqa: E402
+from server.api.endpoints import elastic_machine                          # noqa: E402
+from server.lessons.requests import scene_request, slider_values               # noqa: E402
 from server.api.schemas_elastic import ElasticRequest                            # noqa: E402
 from server.core.dynamics.motors import Motor                                    # noqa: E402
 from server.core.dynamics.reduction import Inertias                              # noqa: E402
@@ -83,7 +83,7 @@ def run(machine, t_end, method, rtol, budget=BUDGET_S, engine="compiled"):
 def answer(request: ElasticRequest, engine: str) -> tuple[float, dict]:
     """The core of /elastic for the request (what elastic_answer computes, without the JSON, with a time budget
     that a loaded machine does not reach): seconds, result."""
-    machine = _elastic_machine(request)
+    machine = elastic_machine(request)
     start = time.perf_counter()
     result = {}
     if "histories" in request.outputs or "rigid" in request.outputs:
@@ -114,7 +114,7 @@ def scene_defaults() -> list[str]:
             runs = [answer(request, engine) for _ in range(3)]
             times[engine] = statistics.median(seconds for seconds, _ in runs)
             results[engine] = runs[0][1]
-        machine = _elastic_machine(request)
+        machine = elastic_machine(request)
         reference = simulate(machine, request.t_end, request.n, 1e-11, "DOP853", budget_s=120.0,
                              max_evaluations=50_000_000, with_rigid=False)[0]["twist"]
         scale = np.max(np.abs(reference))

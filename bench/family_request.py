@@ -4,7 +4,7 @@ docs): the page's own request at the current values, and how the slider's value 
 Kinematics scenes set ``params[slider.param] = value × params[slider.scale]``: one path, ``params.<param>``,
 with the factor ``params[slider.scale]`` (1 without a scale). Dynamics scenes put ``value × to_si × (value at
 slider.scale)`` at ``slider.param`` and every ``slider.also`` path: each of them with that factor
-(server/lessons/scene_requests.py, formerly server/api/scene_requests.py). The range is the slider's, in shown
+(server/lessons/requests.py, formerly server/api/scene_requests.py). The range is the slider's, in shown
 units: ``min``, ``max`` and ``log``.
 """
 from __future__ import annotations

@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from server.api.content import scenes
-from server.api.routers.elastic import _elastic_machine
-from server.api.scene_requests import scene_request, slider_values
+from server.lessons.scenes import scenes
+from server.api.endpoints import elastic_machine
+from server.lessons.requests import scene_request, slider_values
 from server.api.schemas_elastic import ElasticRequest
 from server.core.elastic import report
 from server.core.elastic.compiled import jac_of, ready, rhs_of
@@ -34,7 +34,7 @@ def random_machine(rng, scene, variant, motor=None, viscous=False):
         body["motor"] = motor
     if viscous:
         body["load"] = body["load"] | {"beta": 50.0}
-    return _elastic_machine(ElasticRequest.model_validate(body))
+    return elastic_machine(ElasticRequest.model_validate(body))
 
 
 def random_state(rng, model, y0):
@@ -104,7 +104,7 @@ def test_vectorised_table_reads_equal_the_scalar_ones():
 
 def seed_003_four_bar():
     scene = scenes()["elastic-four-bar"]
-    return _elastic_machine(ElasticRequest.model_validate(scene_request(scene, scene.variants[0])))
+    return elastic_machine(ElasticRequest.model_validate(scene_request(scene, scene.variants[0])))
 
 
 def test_compiled_dop853_takes_scipys_steps_on_the_seed_003_four_bar():
