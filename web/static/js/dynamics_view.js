@@ -118,9 +118,29 @@ export class DynamicsView {
     } else {
       this.notices.replaceChildren();
     }
-    this.data = data;
+    this.data = this.plotted = data;
     this.drawAt(this.phi);
     this.scheduler.refresh();
+  }
+
+  /**
+   * Draw an answer's data interpolated from a slider's family (a preview) now: the graphs and drawings that
+   * hold it follow it; figures, tables and numerics keep the last exact answer's numbers.
+   */
+  preview(data) {
+    if (!this.data) return Promise.resolve();
+    this.plotted = data;
+    for (const panel of this.panels) {
+      if (panel.figure.hidden) continue;
+      if (panel.graph) panel.stale ||= holdsPanel(panel, data);
+      else if (panel.view?.drawAt && panel.view.holds?.(data)) panel.view.show(data);
+    }
+    return this.scheduler.drawNow();
+  }
+
+  /** Resolves once every graph in view shows what it was last given. */
+  drawn() {
+    return this.scheduler.drawn();
   }
 
   /** Put the drawings and the plot cursors at crank angle phi (rad). */
@@ -171,9 +191,9 @@ export class DynamicsView {
   }
 
   #draw(panel) {
-    if (!this.data) return;
-    const figure = panel.spec.kind === "polar" ? polarFigure(panel.spec, this.data, this.texts)
-      : plotFigure(panel.spec, this.data, this.texts);
-    Plotly.react(panel.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => panel.cursor?.follow(panel.graph));
+    if (!this.plotted) return null;
+    const figure = panel.spec.kind === "polar" ? polarFigure(panel.spec, this.plotted, this.texts)
+      : plotFigure(panel.spec, this.plotted, this.texts);
+    return Plotly.react(panel.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => panel.cursor?.follow(panel.graph));
   }
 }
