@@ -83,6 +83,11 @@ def plotted(page, panel: str) -> list:
     return page.evaluate(f"id => {GRAPH}.data[0].y", panel)
 
 
+def curves(page, panel: str) -> list[str]:
+    """The SVG paths of the panel's drawn curves (a preview moves them in place; gd.data is the exact answer's)."""
+    return page.eval_on_selector_all(f"#panel-{panel} .scatterlayer path.js-line", "paths => paths.map((p) => p.getAttribute('d'))")
+
+
 def marks(page, name: str) -> int:
     return page.evaluate("name => performance.getEntriesByName(name).length", name)
 
@@ -122,10 +127,11 @@ def preview_shown(page) -> bool:
 
 def release_and_wait_for_exact(page, endpoint: str) -> dict:
     """Release the mouse; returns the exact answer the page asked for, once it is drawn."""
+    drawn = marks(page, "exact-drawn")
     with page.expect_response(lambda r: f"/api/v1/{endpoint}?" in r.url) as response:
         page.mouse.up()
     answer = response.value.json()
-    page.wait_for_function("() => performance.getEntriesByName('exact-drawn').length > 0")
+    page.wait_for_function("n => performance.getEntriesByName('exact-drawn').length > n", arg=drawn)
     return answer
 
 
@@ -142,11 +148,11 @@ def test_transfer_functions_drag_is_drawn_from_the_family_and_ends_on_the_exact_
     assert family["vary"] == [{"path": "params.l2", "factor": family["request"]["params"]["l1"]}]
     assert not sent(page, "kinematics", before)
 
-    u31, linkage = plotted(page, "u31"), page.inner_html("#linkage svg .moving")
+    u31, linkage = curves(page, "u31"), page.inner_html("#linkage svg .moving")
     status = page.inner_text("#status")
     drag_through(page, x, y, [0.30, 0.35, 0.42, 0.5])
     assert not sent(page, "kinematics", before)                  # the drag asked nothing
-    assert plotted(page, "u31") != u31
+    assert curves(page, "u31") != u31
     assert page.inner_html("#linkage svg .moving") != linkage
     assert preview_shown(page)
     assert page.inner_text("#status") == status                  # numbers stay those of the exact answer
@@ -213,10 +219,10 @@ def test_equation_of_motion_lambda_drag_is_drawn_from_the_family(family_page):
     assert family["endpoint"] == "motion"
     assert family["vary"] == [{"path": "params.l2", "factor": family["request"]["params"]["l1"]}]
 
-    omega, figures = plotted(page, "omega_phi"), page.inner_text("#panel-figures")
+    omega, figures = curves(page, "omega_phi"), page.inner_text("#panel-figures")
     drag_through(page, x, y, [0.25, 0.3, 0.4])
     assert not sent(page, "motion", before)
-    assert plotted(page, "omega_phi") != omega
+    assert curves(page, "omega_phi") != omega
     assert preview_shown(page)
     assert page.inner_text("#panel-figures") == figures           # numbers stay those of the exact answer
     assert page.eval_on_selector("#panel-figures", "e => Number(getComputedStyle(e).opacity)") < 1
@@ -286,4 +292,37 @@ def test_interpolation_rule_of_the_page(family_page):
     assert result["refused"] is None and result["outside"] is None
     assert result["first"] == family["answers"][0]
     assert result["log"]["x"] == pytest.approx(1 + 2 * math.log(2) / math.log(4))   # halfway in log v
+    assert page.problems == []
+
+
+def test_curves_moved_in_place_lie_where_plotly_draws_them(family_page):
+    """family_plot.js redraws a preview's lines through Plotly's laid-out axes (cartesian and polar): given the
+    figure Plotly has just drawn, its paths start and end where Plotly's do (Plotly may drop collinear points
+    in between) and pass through Plotly's points, to a tenth of a pixel."""
+    page = family_page
+    page.goto("/scenes/equation-of-motion?lang=en&variant=linear")
+    for panel in ("portrait", "omega_phi"):
+        page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg=panel)
+    result = page.evaluate("""async () => {
+        const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
+        const { moveCurves } = await import(new URL("family_plot.js", src));
+        const paths = (graph) => [...graph.querySelectorAll(".scatterlayer path.js-line")].map((p) => p.getAttribute("d"));
+        const out = {};
+        for (const id of ["portrait", "omega_phi"]) {
+          const graph = document.querySelector(`#panel-${id} .graph`);
+          const plotly = paths(graph);
+          const moved = moveCurves(graph, graph.data);
+          out[id] = { moved, plotly, ours: paths(graph) };
+        }
+        return out;
+    }""")
+    points = lambda d: [tuple(map(float, p.split(","))) for p in d.replace("M", "L").split("L") if p]
+    for panel, drawn in result.items():
+        assert drawn["moved"], panel
+        assert len(drawn["ours"]) == len(drawn["plotly"]) > 0
+        for ours, plotly in zip(drawn["ours"], drawn["plotly"]):
+            ours, plotly = points(ours), points(plotly)
+            assert ours[0] == pytest.approx(plotly[0], abs=0.1) and ours[-1] == pytest.approx(plotly[-1], abs=0.1), panel
+            ours_set = {(round(x), round(y)) for x, y in ours}
+            assert all((round(x), round(y)) in ours_set for x, y in plotly[:: max(1, len(plotly) // 50)]), panel
     assert page.problems == []

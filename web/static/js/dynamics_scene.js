@@ -7,8 +7,8 @@
  * the family (a preview, marked and with the numbers of the last exact answer dimmed) and nothing is asked;
  * the exact answer is asked for when the slider comes to rest.
  *
- * Performance marks (bench/browser.py): plots-drawn after a preview's redraw, exact-requested when a
- * resting slider asks for its exact answer, exact-drawn once that answer is plotted.
+ * Performance marks (bench/browser.py): plots-drawn after a preview's redraw, exact-requested when an
+ * exact answer is asked for, exact-drawn once it is plotted.
  */
 import { AnimationControls } from "./animation_controls.js";
 import { CrankAnimation } from "./animation.js";
@@ -50,6 +50,7 @@ const previews = new FamilyPreview(scene.endpoint, lang, model);
 const markPreview = previewMark(results, texts);
 
 function requestExact() {
+  performance.mark("exact-requested");
   const body = model.request();
   if (body.outputs.length) client.submit("main", body, (answer) => model.receive(answer));
   else model.receive({ ok: true, data: { warnings: [] } });   // an assignment hid every computed panel
@@ -61,21 +62,18 @@ model.on("params", () => {
   else requestExact();
 });
 model.on("rest", () => {
-  if (!previews.showing) return;
-  performance.mark("exact-requested");
-  requestExact();
+  if (previews.showing) requestExact();
 });
 previews.on("preview", (answer) => {
   markPreview(true);
   view.preview(answer.data).then(() => performance.mark("plots-drawn"));
 });
 model.on("result", (answer) => {
-  const wasPreview = previews.showing;
   previews.end();
   markPreview(false);
   if (view.animated && answer.ok && Array.isArray(answer.data.phi)) animation.setCycle(wholeTurns(answer.data.phi.at(-1)));
   view.show(answer);
-  if (wasPreview) view.drawn().then(() => performance.mark("exact-drawn"));
+  view.drawn().then(() => performance.mark("exact-drawn"));
 });
 animation.on("phi", (phi) => view.drawAt(phi));
 

@@ -5,8 +5,8 @@
  * (a preview, marked and with the numbers of the last exact table dimmed) and nothing is asked; the exact
  * table is asked for when the slider comes to rest.
  *
- * Performance marks (bench/browser.py): plots-drawn after a preview's redraw, exact-requested when a
- * resting slider asks for its exact table, exact-drawn once that table is plotted.
+ * Performance marks (bench/browser.py): plots-drawn after a preview's redraw, exact-requested when an
+ * exact table is asked for, exact-drawn once it is plotted.
  */
 import { AnimationControls } from "./animation_controls.js";
 import { CrankAnimation } from "./animation.js";
@@ -48,6 +48,7 @@ const markPreview = previewMark(stage, texts);
 let previewed = null;      // the preview on the screen, if any
 
 function requestExact() {
+  performance.mark("exact-requested");
   const body = model.request();
   client.submit("main", body, (answer) => model.receive(body, answer));
   requestOverlays();
@@ -59,9 +60,7 @@ model.on("params", () => {
   else requestExact();
 });
 model.on("rest", () => {
-  if (!previews.showing) return;
-  performance.mark("exact-requested");
-  requestExact();
+  if (previews.showing) requestExact();
 });
 model.on("overlay", () => {
   requestOverlays();
@@ -74,7 +73,6 @@ previews.on("preview", (answer) => {
   plots.preview(answer, model.overlays).then(() => performance.mark("plots-drawn"));
 });
 model.on("result", (answer) => {
-  const wasPreview = previewed !== null;
   previews.end();
   previewed = null;
   markPreview(false);
@@ -82,7 +80,7 @@ model.on("result", (answer) => {
   linkage.show(answer, animation.phi);
   plots.show(answer, model.overlays);
   status.show(answer, model.overlays);
-  if (wasPreview) plots.drawn().then(() => performance.mark("exact-drawn"));
+  plots.drawn().then(() => performance.mark("exact-drawn"));
 });
 model.on("overlays", () => {
   if (!model.answer) return;

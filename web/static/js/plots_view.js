@@ -2,10 +2,12 @@
  * The plot panels of the variant: one Plotly graph per panel, its title, caption (largest error of an
  * approximation) and note. A cursor line (PlotCursor) over each φ-plot follows the animation.
  * Plots are redrawn by a PanelScheduler: one per animation frame, only those in view; a preview (an answer
- * interpolated from a slider's family) redraws every plot in view at once. Captions and the cursors'
+ * interpolated from a slider's family) redraws every plot in view at once, moving the curves in place where
+ * it can (family_plot.js). Captions and the cursors'
  * values are numbers: they always come from the last exact answer.
  */
 import { element } from "./dom.js";
+import { moveCurves } from "./family_plot.js";
 import { approximationErrors, exactOutputs, panelFigure } from "./figures.js";
 import { geometryMessage } from "./messages.js";
 import { formatNumber, symbol } from "./notation.js";
@@ -96,6 +98,7 @@ export class PlotsView {
     const { data, layout } = panelFigure(panel.spec, this.plotted, panel.overlays, this.texts);
     if (!panel.captioned) panel.caption.textContent = approximationErrors(panel.spec, this.table, this.texts);
     panel.captioned = true;
+    if (this.plotted !== this.table && moveCurves(panel.graph, data)) return Promise.resolve();   // a preview
     return Plotly.react(panel.graph, data, layout, PLOTLY_CONFIG).then(() => {
       if (panel.hasCursor) panel.cursor.follow(panel.graph);
     });
