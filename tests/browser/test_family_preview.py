@@ -148,11 +148,20 @@ def test_transfer_functions_drag_is_drawn_from_the_family_and_ends_on_the_exact_
     assert family["vary"] == [{"path": "params.l2", "factor": family["request"]["params"]["l1"]}]
     assert not sent(page, "kinematics", before)
 
-    u31, linkage = curves(page, "u31"), page.inner_html("#linkage svg .moving")
-    status = page.inner_text("#status")
+    in_view = page.evaluate("() => [...document.querySelectorAll('.panel')].filter((p) =>"
+                            " p.getBoundingClientRect().top < innerHeight).map((p) => p.id.slice(6))")
+    shown = {panel: curves(page, panel) for panel in in_view}
+    linkage, status = page.inner_html("#linkage svg .moving"), page.inner_text("#status")
     drag_through(page, x, y, [0.30, 0.35, 0.42, 0.5])
     assert not sent(page, "kinematics", before)                  # the drag asked nothing
-    assert curves(page, "u31") != u31
+    assert len(in_view) >= 4
+    for panel in in_view:                                         # every plot in view follows the preview
+        assert curves(page, panel) != shown[panel], panel
+        shown[panel] = curves(page, panel)
+    drawn = marks(page, "plots-drawn")
+    page.mouse.move(x(0.55), y)                                   # one more input: one preview frame
+    page.wait_for_function("n => performance.getEntriesByName('plots-drawn').length > n", arg=drawn)
+    assert all(curves(page, panel) != shown[panel] for panel in in_view)   # all of them in that one frame
     assert page.inner_html("#linkage svg .moving") != linkage
     assert preview_shown(page)
     assert page.inner_text("#status") == status                  # numbers stay those of the exact answer

@@ -17,7 +17,7 @@ import { element } from "./dom.js";
 import { pathValue } from "./dotted_paths.js";
 import { heldCurves, heldSeries, holds, plotFigure, polarFigure } from "./dynamics_figures.js";
 import { EfficiencyChainView } from "./efficiency_chain_view.js";
-import { moveCurves } from "./family_plot.js";
+import { moveCurves, roomy } from "./family_plot.js";
 import { FlywheelDrawingView } from "./flywheel_drawing_view.js";
 import { FreeBodyView } from "./free_body_view.js";
 import { GearTrainView } from "./gear_train_view.js";
@@ -193,9 +193,12 @@ export class DynamicsView {
 
   #draw(panel) {
     if (!this.plotted) return null;
-    const figure = panel.spec.kind === "polar" ? polarFigure(panel.spec, this.plotted, this.texts)
+    let figure = panel.spec.kind === "polar" ? polarFigure(panel.spec, this.plotted, this.texts)
       : plotFigure(panel.spec, this.plotted, this.texts);
-    if (this.plotted !== this.data && moveCurves(panel.graph, figure.data)) return Promise.resolve();   // a preview
+    if (this.plotted !== this.data) {             // a preview
+      if (moveCurves(panel.graph, figure.data)) return Promise.resolve();
+      figure = roomy(figure);
+    }
     return Plotly.react(panel.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => panel.cursor?.follow(panel.graph));
   }
 }

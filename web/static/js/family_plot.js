@@ -74,3 +74,41 @@ export function moveCurves(graph, data) {
   for (const [paths, pieces] of updates) paths.forEach((path, i) => path.setAttribute("d", pieces[i]));
   return true;
 }
+
+const ROOM = 0.2;     // a preview drawn by Plotly.react leaves this fraction of its data's span free each side
+
+/**
+ * The figure for a preview that Plotly.react must draw (a curve left the axes): every axis Plotly would
+ * range automatically gets a fixed range with ROOM around the data, so the next preview frames fit and are
+ * moved in place again. The exact answer's figure ranges its axes as usual.
+ */
+export function roomy({ data, layout }) {
+  const extents = new Map();      // layout key → [low, high] of the data on it
+  const widen = (key, values) => {
+    const numbers = values.filter(Number.isFinite);
+    if (!numbers.length) return;
+    const [low, high] = extents.get(key) ?? [Infinity, -Infinity];
+    extents.set(key, [Math.min(low, ...numbers), Math.max(high, ...numbers)]);
+  };
+  for (const trace of data) {
+    if (trace.type === "scatter") {
+      widen(`xaxis${(trace.xaxis ?? "x").slice(1)}`, trace.x);
+      widen(`yaxis${(trace.yaxis ?? "y").slice(1)}`, trace.y);
+    } else if (trace.type === "scatterpolar" && layout.polar) {
+      widen("polar", trace.r);
+    }
+  }
+  const roomier = { ...layout };
+  for (const [key, [low, high]] of extents) {
+    const room = (high - low) * ROOM || Math.abs(high) * ROOM || 1;
+    if (key === "polar") {
+      roomier.polar = { ...layout.polar, radialaxis: { ...layout.polar.radialaxis, range: [0, high + room], autorange: false } };
+      continue;
+    }
+    const axis = layout[key] ?? {};
+    if (axis.autorange === false || axis.range) continue;         // a fixed axis (φ) stays as it is
+    const from = axis.rangemode === "tozero" ? Math.min(0, low) : low - room;
+    roomier[key] = { ...axis, range: [from, high + room], autorange: false };
+  }
+  return { data, layout: roomier };
+}

@@ -7,7 +7,7 @@
  * values are numbers: they always come from the last exact answer.
  */
 import { element } from "./dom.js";
-import { moveCurves } from "./family_plot.js";
+import { moveCurves, roomy } from "./family_plot.js";
 import { approximationErrors, exactOutputs, panelFigure } from "./figures.js";
 import { geometryMessage } from "./messages.js";
 import { formatNumber, symbol } from "./notation.js";
@@ -95,10 +95,13 @@ export class PlotsView {
   }
 
   #render(panel) {
-    const { data, layout } = panelFigure(panel.spec, this.plotted, panel.overlays, this.texts);
+    let { data, layout } = panelFigure(panel.spec, this.plotted, panel.overlays, this.texts);
     if (!panel.captioned) panel.caption.textContent = approximationErrors(panel.spec, this.table, this.texts);
     panel.captioned = true;
-    if (this.plotted !== this.table && moveCurves(panel.graph, data)) return Promise.resolve();   // a preview
+    if (this.plotted !== this.table) {            // a preview
+      if (moveCurves(panel.graph, data)) return Promise.resolve();
+      ({ layout } = roomy({ data, layout }));
+    }
     return Plotly.react(panel.graph, data, layout, PLOTLY_CONFIG).then(() => {
       if (panel.hasCursor) panel.cursor.follow(panel.graph);
     });
