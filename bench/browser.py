@@ -139,8 +139,9 @@ def measure_scene(browser, url: str, scene: dict) -> dict:
         page = context.new_page()
         problems = []
         page.on("pageerror", lambda error: problems.append(str(error)))
+        held_routes = []
         if held:
-            page.route("**/api/v1/family?*", lambda route: None)
+            page.route("**/api/v1/family?*", held_routes.append)
         page.goto(address)
         page.wait_for_function("() => performance.getEntriesByName('exact-drawn').length > 0",
                                timeout=ANSWER_WAIT_S * 1000)
@@ -149,6 +150,8 @@ def measure_scene(browser, url: str, scene: dict) -> dict:
         graphs = page.evaluate("() => [...document.querySelectorAll('.graph')].filter((g) => g.data"
                                " && g.getBoundingClientRect().top < innerHeight).length")
         marks = drag(page, slider["id"], +1 if held else -1, held)
+        for route in held_routes:
+            route.abort()
         context.close()
         release = marks["bench-release"][-1]
         inputs = [t for t in marks["slider-input"] if t < release]

@@ -12,52 +12,56 @@
  * under a heading that says there is no steady motion. A refused request (HTTP 422) says why instead.
  * A panel that needs nothing from the answer ("needs": [], e.g. a calculator) is always shown. A panel
  * of a kind this page has no view for is left out, so new content never breaks an older page.
+ *
+ * A panel view's module is loaded (import()) only when a variant has such a panel: a scene fetches the
+ * code it shows and no more. Its panel stays hidden until the view has arrived, then takes the latest answer.
  */
 import { element } from "./dom.js";
 import { pathValue } from "./dotted_paths.js";
 import { heldCurves, heldSeries, holds, plotFigure, polarFigure } from "./dynamics_figures.js";
-import { EfficiencyChainView } from "./efficiency_chain_view.js";
 import { moveCurves, roomy } from "./family_plot.js";
-import { FlywheelDrawingView } from "./flywheel_drawing_view.js";
-import { FreeBodyView } from "./free_body_view.js";
-import { GearTrainView } from "./gear_train_view.js";
-import { IndicatorDiagramView } from "./indicator_diagram_view.js";
 import { refusalMessage } from "./messages.js";
 import { formatQuantity } from "./notation.js";
 import { PanelScheduler } from "./panel_scheduler.js";
 import { sampleAt } from "./phi_samples.js";
 import { PlotCursor } from "./plot_cursor.js";
 import { holdsReadings, readings } from "./readings_view.js";
-import { WittenbauerView } from "./wittenbauer_view.js";
-import { WorkPrecisionView } from "./work_precision_view.js";
 
 const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
 const GRAPH_KINDS = ["plot", "polar"];
 const READING_KINDS = ["figures", "table", "numerics"];
 
 /**
- * Panel kinds drawn by views of their own: new View(body, spec, {t, lang}, model) (model: the scene's
- * DynamicsModel, for views that read or edit the request) has
+ * Panel kinds drawn by views of their own, each loaded on first use: load() gives the class View, and
+ * new View(body, spec, {t, lang}, model) (model: the scene's DynamicsModel, for views that read or edit the
+ * request) has
  *   holds(data)   true if the answer's data holds what the panel shows
  *   show(data)    take the answer's data
- *   drawAt(phi)   drawings (and diagrams that follow the crank angle): show them at crank angle phi (rad)
+ *   drawAt(phi)   drawings (and diagrams that follow the crank angle): show them at crank angle phi (rad);
+ *                 such a view is marked drawing: true here (the page shows the crank-angle clock for it)
  *   paramsChanged()  optional: a value changed (a view with results of its own marks them as earlier)
  * A view without holds needs nothing from the answer (as a panel with "needs": []): always shown, never given show.
  */
 const PANEL_VIEWS = {
-  efficiency_chain: EfficiencyChainView,
-  flywheel_drawing: FlywheelDrawingView,
-  free_body: FreeBodyView,
-  gear_train: GearTrainView,
-  indicator_diagram: IndicatorDiagramView,
-  wittenbauer: WittenbauerView,
-  work_precision: WorkPrecisionView,
+  efficiency_chain: { load: () => import("./efficiency_chain_view.js").then((m) => m.EfficiencyChainView) },
+  flywheel_drawing: { load: () => import("./flywheel_drawing_view.js").then((m) => m.FlywheelDrawingView), drawing: true },
+  free_body: { load: () => import("./free_body_view.js").then((m) => m.FreeBodyView), drawing: true },
+  gear_train: { load: () => import("./gear_train_view.js").then((m) => m.GearTrainView), drawing: true },
+  indicator_diagram: { load: () => import("./indicator_diagram_view.js").then((m) => m.IndicatorDiagramView) },
+  wittenbauer: { load: () => import("./wittenbauer_view.js").then((m) => m.WittenbauerView), drawing: true },
+  work_precision: { load: () => import("./work_precision_view.js").then((m) => m.WorkPrecisionView) },
 };
+const loadedViews = new Map();          // kind → promise of its view class, one import per kind
 
-/** The view class of a panel kind, or null (also for names such as "constructor" that every object has). */
+/** The view entry of a panel kind, or null (also for names such as "constructor" that every object has). */
 const panelView = (kind) => (Object.hasOwn(PANEL_VIEWS, kind) ? PANEL_VIEWS[kind] : null);
 const isShown = (spec) => [...GRAPH_KINDS, ...READING_KINDS].includes(spec?.kind) || panelView(spec?.kind) !== null;
-const isDrawing = (spec) => typeof panelView(spec.kind)?.prototype.drawAt === "function";
+const isDrawing = (spec) => panelView(spec.kind)?.drawing === true;
+
+function loadView(kind) {
+  if (!loadedViews.has(kind)) loadedViews.set(kind, panelView(kind).load());
+  return loadedViews.get(kind);
+}
 
 /** True if the answer's data holds what the panel shows. */
 function holdsPanel(panel, data) {
@@ -88,6 +92,7 @@ export class DynamicsView {
     for (const panel of this.panels) if (panel.graph) Plotly.purge(panel.graph);
     const specs = variant.panels.map((id) => [id, this.scene.panels[id]]).filter(([, spec]) => isShown(spec));
     this.animated = specs.some(([, spec]) => isDrawing(spec));
+    this.answered = false;
     this.panels = specs.map(([id, spec]) => this.#panel(id, spec));
     this.container.replaceChildren(...this.panels.map((panel) => panel.figure));
     this.notices.replaceChildren();
@@ -99,16 +104,7 @@ export class DynamicsView {
     const { t } = this.texts;
     const data = answer.ok ? answer.data : null;
     const missing = [];
-    for (const panel of this.panels) {
-      const independent = panel.spec.needs?.length === 0 || (panel.view !== undefined && !panel.view.holds);
-      const held = independent || (Boolean(data) && holdsPanel(panel, data));
-      panel.figure.hidden = !held;
-      if (data && !held) missing.push(panel);
-      if (!held || independent) continue;
-      if (panel.graph) panel.stale = true;
-      else if (panel.view) panel.view.show(data);
-      else panel.body.replaceChildren(...readings(panel.spec, data, this.texts));
-    }
+    for (const panel of this.panels) if (this.#fill(panel, data) === false && data) missing.push(panel);
     if (!answer.ok) {
       this.notices.replaceChildren(refusalMessage(t.computation_refused, answer.error, t));
     } else if (data.warnings.length) {
@@ -120,6 +116,7 @@ export class DynamicsView {
       this.notices.replaceChildren();
     }
     this.data = this.plotted = data;
+    this.answered = true;
     this.drawAt(this.phi);
     this.scheduler.refresh();
   }
@@ -132,7 +129,7 @@ export class DynamicsView {
     if (!this.data) return Promise.resolve();
     this.plotted = data;
     for (const panel of this.panels) {
-      if (panel.figure.hidden) continue;
+      if (panel.figure.hidden || panel.loading) continue;
       if (panel.graph) panel.stale ||= holdsPanel(panel, data);
       else if (panel.view?.drawAt && panel.view.holds?.(data)) panel.view.show(data);
     }
@@ -142,6 +139,28 @@ export class DynamicsView {
   /** Resolves once every graph in view shows what it was last given. */
   drawn() {
     return this.scheduler.drawn();
+  }
+
+  /** Show or hide one panel for the answer's data (null: refused); whether it holds it, null while loading. */
+  #fill(panel, data) {
+    if (panel.loading) return null;
+    const independent = panel.spec.needs?.length === 0 || (panel.view !== undefined && !panel.view.holds);
+    const held = independent || (Boolean(data) && holdsPanel(panel, data));
+    panel.figure.hidden = !held;
+    if (!held || independent) return held;
+    if (panel.graph) panel.stale = true;
+    else if (panel.view) panel.view.show(data);
+    else panel.body.replaceChildren(...readings(panel.spec, data, this.texts));
+    return held;
+  }
+
+  /** A panel view has loaded: make it, and give it the answer already shown (and the crank angle). */
+  #viewLoaded(panel, View) {
+    if (!this.panels.includes(panel)) return;            // another variant was built meanwhile
+    panel.view = new View(panel.body, panel.spec, this.texts, this.model);
+    panel.loading = false;
+    if (this.answered) this.#fill(panel, this.data);
+    if (this.data && !panel.figure.hidden) panel.view.drawAt?.(this.phi);
   }
 
   /** Put the drawings and the plot cursors at crank angle phi (rad). */
@@ -161,10 +180,11 @@ export class DynamicsView {
     const make = (content, ...more) => element("figure", {
       className: `panel panel-${spec.kind}${isDrawing(spec) ? " panel-drawing" : ""}`, id: `panel-${id}`, hidden: true },
     ...title, content, ...more);
-    const View = panelView(spec.kind);
-    if (View) {
+    if (panelView(spec.kind)) {
       const body = element("div", { className: `${spec.kind}-body` });
-      return { id, spec, figure: make(body), view: new View(body, spec, this.texts, this.model) };
+      const panel = { id, spec, figure: make(body), body, loading: true };
+      loadView(spec.kind).then((View) => this.#viewLoaded(panel, View));
+      return panel;
     }
     if (GRAPH_KINDS.includes(spec.kind)) {
       const graph = element("div", { className: "graph" });
