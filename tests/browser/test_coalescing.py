@@ -6,6 +6,9 @@ keeps at most one request in flight per panel key (the main request; each λ ove
 has its own key), sends far fewer requests than there are input events, sends the final value last and
 ends showing the answer to it. An answer that is overtaken (the slider moved on while it was awaited) is
 dropped even when it arrives: the page shows the next one.
+
+The slider's family (POST /api/v1/family, asked when a slider is grabbed) is never answered here: these
+are the drags of a scene whose family is not there yet, which behave as before families (issue 13).
 """
 from __future__ import annotations
 
@@ -42,6 +45,7 @@ class SlowEndpoint:
         self.in_flight, self.most_in_flight = Counter(), Counter()
         self.holding: set[str] = set()
         page.route(f"**/api/v1/{endpoint}?*", self._arrive)
+        page.route("**/api/v1/family?*", lambda route: None)        # held: no family arrives
 
     def _arrive(self, route) -> None:
         body = json.loads(route.request.post_data)

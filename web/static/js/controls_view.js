@@ -2,7 +2,9 @@
  * View of the scene's inputs: the variant (mechanism) picker, the sliders with the textbook convention
  * and the English one beside it, the toggles, the overlay switch (kinematics), and the variant's
  * description. The model is a SceneSettings that also tells the length a ratio slider sets (setting).
- * Sliders report on every `input` event; the coalescing client keeps dragging cheap.
+ * Sliders report on every `input` event, and when the reader takes hold of one (pointer down, keyboard
+ * focus), it comes to rest (`change`, pointer up) and it is let go (blur): dragging is drawn from the
+ * slider's family (family_preview.js) or, before that arrives, kept cheap by the coalescing client.
  */
 import { element } from "./dom.js";
 import { formatNumber, formatQuantity, labelledValue, paramSymbol, unitText } from "./notation.js";
@@ -86,7 +88,14 @@ export class ControlsView {
     const main = element("span", { className: "readout" });
     const length = element("span", { className: "length" });
     this.readouts.set(slider.id, { main, length, input, scale });
-    input.addEventListener("input", () => this.model.setValue(slider.id, scale.value(Number(input.value))));
+    input.addEventListener("input", () => {
+      performance.mark("slider-input");
+      this.model.setValue(slider.id, scale.value(Number(input.value)));
+    });
+    for (const type of ["pointerdown", "focus"]) input.addEventListener(type, () => this.model.grab(slider.id));
+    // "change" when the value moved; pointerup also when the thumb was put back where it was taken from
+    for (const type of ["change", "pointerup"]) input.addEventListener(type, () => this.model.rest());
+    input.addEventListener("blur", () => this.model.letGo());
     return element("label", { className: slider.locked ? "slider locked" : "slider", htmlFor: input.id },
       element("span", { className: "slider-text" }, main, length), input);
   }

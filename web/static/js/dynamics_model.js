@@ -21,6 +21,12 @@ export class DynamicsModel extends SceneSettings {
     return pathValue(this.request(), slider.param);
   }
 
+  /** What slider sets, as the family request's vary: value × to_si × (value at scale) at each of its paths. */
+  familyVary(slider) {
+    const factor = slider.to_si * (slider.scale ? pathValue(this.request(), slider.scale) : 1);
+    return [slider.param, ...slider.also].map((path) => ({ path, factor }));
+  }
+
   /** Body of the request for the current values. */
   request() {
     const variant = this.variant;

@@ -3,6 +3,12 @@
  * /forces, …) and the views. One request per change of the values; while a slider is dragged the client
  * keeps one in flight and sends only the latest values next. A variant with a drawing gets the
  * crank-angle clock and its controls above the parameters; animation frames only interpolate in the answer.
+ * While a slider is dragged and its family has arrived, plots and drawings follow answers interpolated from
+ * the family (a preview, marked and with the numbers of the last exact answer dimmed) and nothing is asked;
+ * the exact answer is asked for when the slider comes to rest.
+ *
+ * Performance marks (bench/browser.py): plots-drawn after a preview's redraw, exact-requested when an
+ * exact answer is asked for, exact-drawn once it is plotted.
  */
 import { AnimationControls } from "./animation_controls.js";
 import { CrankAnimation } from "./animation.js";
@@ -11,6 +17,7 @@ import { ControlsView } from "./controls_view.js";
 import { element } from "./dom.js";
 import { DynamicsModel } from "./dynamics_model.js";
 import { DynamicsView } from "./dynamics_view.js";
+import { FamilyPreview, previewMark } from "./family_preview.js";
 import { PresetsView } from "./presets_view.js";
 import { readState, writeState } from "./url_state.js";
 import { byId, lang, scene, t, texts } from "./page_data.js";
@@ -39,15 +46,34 @@ model.on("variant", (variant) => {
     animationBar.remove();
   }
 });
-model.on("params", () => {
+const previews = new FamilyPreview(scene.endpoint, lang, model);
+const markPreview = previewMark(results, texts);
+
+function requestExact() {
+  performance.mark("exact-requested");
   const body = model.request();
   if (body.outputs.length) client.submit("main", body, (answer) => model.receive(answer));
   else model.receive({ ok: true, data: { warnings: [] } });   // an assignment hid every computed panel
+}
+
+model.on("params", () => {
   writeState(model, lang);
+  if (previews.preview()) client.forget("main");     // drawn from the family: an answer on its way is old
+  else requestExact();
+});
+model.on("rest", () => {
+  if (previews.showing) requestExact();
+});
+previews.on("preview", (answer) => {
+  markPreview(true);
+  view.preview(answer.data).then(() => performance.mark("plots-drawn"));
 });
 model.on("result", (answer) => {
+  previews.end();
+  markPreview(false);
   if (view.animated && answer.ok && Array.isArray(answer.data.phi)) animation.setCycle(wholeTurns(answer.data.phi.at(-1)));
   view.show(answer);
+  view.drawn().then(() => performance.mark("exact-drawn"));
 });
 animation.on("phi", (phi) => view.drawAt(phi));
 

@@ -19,6 +19,7 @@
 import { element } from "./dom.js";
 import { pathValue } from "./dotted_paths.js";
 import { heldCurves, heldSeries, holds, plotFigure, polarFigure } from "./dynamics_figures.js";
+import { moveCurves, roomy } from "./family_plot.js";
 import { refusalMessage } from "./messages.js";
 import { formatQuantity } from "./notation.js";
 import { PanelScheduler } from "./panel_scheduler.js";
@@ -114,10 +115,30 @@ export class DynamicsView {
     } else {
       this.notices.replaceChildren();
     }
-    this.data = data;
+    this.data = this.plotted = data;
     this.answered = true;
     this.drawAt(this.phi);
     this.scheduler.refresh();
+  }
+
+  /**
+   * Draw an answer's data interpolated from a slider's family (a preview) now: the graphs and drawings that
+   * hold it follow it; figures, tables and numerics keep the last exact answer's numbers.
+   */
+  preview(data) {
+    if (!this.data) return Promise.resolve();
+    this.plotted = data;
+    for (const panel of this.panels) {
+      if (panel.figure.hidden || panel.loading) continue;
+      if (panel.graph) panel.stale ||= holdsPanel(panel, data);
+      else if (panel.view?.drawAt && panel.view.holds?.(data)) panel.view.show(data);
+    }
+    return this.scheduler.drawNow();
+  }
+
+  /** Resolves once every graph in view shows what it was last given. */
+  drawn() {
+    return this.scheduler.drawn();
   }
 
   /** Show or hide one panel for the answer's data (null: refused); whether it holds it, null while loading. */
@@ -191,9 +212,13 @@ export class DynamicsView {
   }
 
   #draw(panel) {
-    if (!this.data) return;
-    const figure = panel.spec.kind === "polar" ? polarFigure(panel.spec, this.data, this.texts)
-      : plotFigure(panel.spec, this.data, this.texts);
-    Plotly.react(panel.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => panel.cursor?.follow(panel.graph));
+    if (!this.plotted) return null;
+    let figure = panel.spec.kind === "polar" ? polarFigure(panel.spec, this.plotted, this.texts)
+      : plotFigure(panel.spec, this.plotted, this.texts);
+    if (this.plotted !== this.data) {             // a preview
+      if (moveCurves(panel.graph, figure.data)) return Promise.resolve();
+      figure = roomy(figure);
+    }
+    return Plotly.react(panel.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => panel.cursor?.follow(panel.graph));
   }
 }

@@ -1,11 +1,18 @@
 /**
  * Kinematics scene page: wires the scene model, the kinematics client, the crank-angle clock and the views.
- * One kinematics table per parameter change; animation frames only interpolate in it.
+ * One kinematics table per parameter change; animation frames only interpolate in it. While a slider is
+ * dragged and its family has arrived, the drawing and the plots follow tables interpolated from the family
+ * (a preview, marked and with the numbers of the last exact table dimmed) and nothing is asked; the exact
+ * table is asked for when the slider comes to rest.
+ *
+ * Performance marks (bench/browser.py): plots-drawn after a preview's redraw, exact-requested when an
+ * exact table is asked for, exact-drawn once it is plotted.
  */
 import { AnimationControls } from "./animation_controls.js";
 import { CrankAnimation } from "./animation.js";
 import { ApiClient } from "./api.js";
 import { ControlsView } from "./controls_view.js";
+import { FamilyPreview, previewMark } from "./family_preview.js";
 import { LinkageView } from "./linkage_view.js";
 import { PlotsView } from "./plots_view.js";
 import { SceneModel } from "./scene_model.js";
@@ -36,25 +43,49 @@ function requestOverlays() {
 }
 
 model.on("variant", (variant) => plots.build(variant));
-model.on("params", () => {
+const previews = new FamilyPreview(scene.endpoint, lang, model);
+const markPreview = previewMark(stage, texts);
+let previewed = null;      // the preview on the screen, if any
+
+function requestExact() {
+  performance.mark("exact-requested");
   const body = model.request();
   client.submit("main", body, (answer) => model.receive(body, answer));
   requestOverlays();
+}
+
+model.on("params", () => {
   writeState(model, lang);
+  if (previews.preview()) client.forget("main");     // drawn from the family: an answer on its way is old
+  else requestExact();
+});
+model.on("rest", () => {
+  if (previews.showing) requestExact();
 });
 model.on("overlay", () => {
   requestOverlays();
   writeState(model, lang);
 });
+previews.on("preview", (answer) => {
+  previewed = answer;
+  markPreview(true);
+  linkage.show(answer, animation.phi);
+  plots.preview(answer, model.overlays).then(() => performance.mark("plots-drawn"));
+});
 model.on("result", (answer) => {
+  previews.end();
+  previewed = null;
+  markPreview(false);
   if (answer.ok) animation.setCycle(answer.data.cycle);
   linkage.show(answer, animation.phi);
   plots.show(answer, model.overlays);
   status.show(answer, model.overlays);
+  plots.drawn().then(() => performance.mark("exact-drawn"));
 });
 model.on("overlays", () => {
   if (!model.answer) return;
-  plots.show(model.answer, model.overlays);
+  if (previewed) plots.preview(previewed, model.overlays);
+  else plots.show(model.answer, model.overlays);
   status.show(model.answer, model.overlays);
 });
 animation.on("phi", (phi) => {

@@ -1,9 +1,13 @@
 /**
  * The plot panels of the variant: one Plotly graph per panel, its title, caption (largest error of an
  * approximation) and note. A cursor line (PlotCursor) over each φ-plot follows the animation.
- * Plots are redrawn by a PanelScheduler: one per animation frame, only those in view.
+ * Plots are redrawn by a PanelScheduler: one per animation frame, only those in view; a preview (an answer
+ * interpolated from a slider's family) redraws every plot in view at once, moving the curves in place where
+ * it can (family_plot.js). Captions and the cursors'
+ * values are numbers: they always come from the last exact answer.
  */
 import { element } from "./dom.js";
+import { moveCurves, roomy } from "./family_plot.js";
 import { approximationErrors, exactOutputs, panelFigure } from "./figures.js";
 import { geometryMessage } from "./messages.js";
 import { formatNumber, symbol } from "./notation.js";
@@ -37,12 +41,30 @@ export class PlotsView {
   show(answer, overlays) {
     this.message.replaceChildren(...(answer.ok ? [] : [geometryMessage(answer.error, this.texts.t)]));
     this.table = answer.ok ? answer.data : null;
+    this.plotted = this.table;
     for (const panel of this.panels) {
       panel.figure.hidden = !answer.ok;
       panel.overlays = overlays;
       panel.stale = answer.ok;
+      panel.captioned = false;
     }
     this.scheduler.refresh();
+  }
+
+  /** Draw the preview answer (and the overlay tables) in every plot in view now; resolves once drawn. */
+  preview(answer, overlays) {
+    if (!this.table) return Promise.resolve();       // nothing exact shown yet: the panels stay as they are
+    this.plotted = answer.data;
+    for (const panel of this.panels) {
+      panel.overlays = overlays;
+      panel.stale = true;
+    }
+    return this.scheduler.drawNow();
+  }
+
+  /** Resolves once every plot in view shows what it was last given. */
+  drawn() {
+    return this.scheduler.drawn();
   }
 
   /** Move the cursors to crank angle phi (rad) and show the values there. */
@@ -73,9 +95,14 @@ export class PlotsView {
   }
 
   #render(panel) {
-    const { data, layout } = panelFigure(panel.spec, this.table, panel.overlays, this.texts);
-    panel.caption.textContent = approximationErrors(panel.spec, this.table, this.texts);
-    Plotly.react(panel.graph, data, layout, PLOTLY_CONFIG).then(() => {
+    let { data, layout } = panelFigure(panel.spec, this.plotted, panel.overlays, this.texts);
+    if (!panel.captioned) panel.caption.textContent = approximationErrors(panel.spec, this.table, this.texts);
+    panel.captioned = true;
+    if (this.plotted !== this.table) {            // a preview
+      if (moveCurves(panel.graph, data)) return Promise.resolve();
+      ({ layout } = roomy({ data, layout }));
+    }
+    return Plotly.react(panel.graph, data, layout, PLOTLY_CONFIG).then(() => {
       if (panel.hasCursor) panel.cursor.follow(panel.graph);
     });
   }

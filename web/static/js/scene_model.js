@@ -43,6 +43,11 @@ export class SceneModel extends SceneSettings {
     return this.params()[slider.param];
   }
 
+  /** What slider sets, as the family request's vary: params[param] = value × params[scale]. */
+  familyVary(slider) {
+    return [{ path: `params.${slider.param}`, factor: slider.scale ? this.params()[slider.scale] : 1 }];
+  }
+
   /** Mechanism parameters (metres and switches) for the given slider and toggle values. */
   params(values = this.values) {
     const params = { ...this.variant.fixed };

@@ -6,6 +6,8 @@
  * Events:
  *   "variant"   the variant changed: controls and panels are rebuilt
  *   "params"    a value changed: a new request is due
+ *   "grab"      the reader took hold of a slider (pointer down or keyboard focus): its slider
+ *   "rest"      the held slider came to rest (released, a key press done, or let go)
  */
 import { Emitter } from "./emitter.js";
 
@@ -40,6 +42,25 @@ export class SceneSettings extends Emitter {
     this.emit("params");
   }
 
+  /** The reader took hold of slider id; it stays grabbed until let go. */
+  grab(id) {
+    const slider = this.variant.sliders.find((s) => s.id === id);
+    if (!slider || slider.locked) return;
+    this.grabbed = slider;
+    this.emit("grab", slider);
+  }
+
+  /** The held slider came to rest. */
+  rest() {
+    if (this.grabbed) this.emit("rest");
+  }
+
+  /** The reader let go of the slider (it lost the focus). */
+  letGo() {
+    this.rest();
+    this.grabbed = null;
+  }
+
   /** True if value is allowed for the slider (a number in its range) or the toggle (one of its options) id. */
   accepts(id, value) {
     const slider = this.variant.sliders.find((s) => s.id === id);
@@ -52,6 +73,7 @@ export class SceneSettings extends Emitter {
   /** Make variant the current one, its sliders and toggles at their defaults. */
   useVariant(variant) {
     this.variant = variant;
+    this.grabbed = null;      // the slider the reader holds, if any
     this.values = Object.fromEntries([...variant.sliders, ...variant.toggles].map((c) => [c.id, c.default]));
   }
 }

@@ -1,0 +1,337 @@
+"""Dragging is a lookup (issue 13): grabbing a slider asks once for its family (POST /api/v1/family), the
+drag is drawn from it as a marked preview without a request, and the exact answer replaces the preview
+when the slider rests. On the transfer-functions scene (crank-slider, λ) and on the equation-of-motion
+scene (λ, a slider with a scale: params.l2 = λ·params.l1).
+
+When the app has no /api/v1/family yet (it is built beside this page), the tests answer it with a double
+(FamilyDouble): the contract's answer assembled from the app's own answers of the scene's endpoint at
+evenly spaced members, so the page is still checked against the app's exact answers. With the real
+endpoint present the double is not installed.
+"""
+from __future__ import annotations
+
+import copy
+import json
+import math
+from urllib.parse import parse_qs, urlparse
+
+import httpx
+import pytest
+
+from conftest import interface_texts, screenshot
+
+pytestmark = pytest.mark.browser
+
+GRAPH = "document.querySelector(`#panel-${id} .graph`)"
+MEMBERS = 9                    # the double's family: the contract's starting members, evenly spaced
+
+
+def set_path(body: dict, path: str, value) -> None:
+    *parents, last = path.split(".")
+    for key in parents:
+        body = body.setdefault(key, {})
+    body[last] = value
+
+
+class FamilyDouble:
+    """Answers POST /api/v1/family as the contract says, from the app's answers at MEMBERS values."""
+
+    def __init__(self, page, app_url: str):
+        self.app_url = app_url
+        page.route("**/api/v1/family?*", self._answer)
+
+    def _answer(self, route) -> None:
+        family = json.loads(route.request.post_data)
+        lang = parse_qs(urlparse(route.request.url).query).get("lang", ["ru"])[0]
+        low, high = family["min"], family["max"]
+        values = [low * (high / low) ** (k / (MEMBERS - 1)) if family["log"] else low + (high - low) * k / (MEMBERS - 1)
+                  for k in range(MEMBERS)]
+        answers, errors = [], []
+        for value in values:
+            body = copy.deepcopy(family["request"])
+            for vary in family["vary"]:
+                set_path(body, vary["path"], value * vary["factor"])
+            reply = httpx.post(f"{self.app_url}/api/v1/{family['endpoint']}", params={"lang": lang}, json=body, timeout=120)
+            refused = reply.status_code != 200
+            detail = reply.json()["detail"][0] if refused else None
+            answers.append(None if refused else reply.json())
+            errors.append({"code": detail.get("ctx", {}).get("code"), "message": detail["msg"]} if refused else None)
+        route.fulfill(status=200, content_type="application/json", body=json.dumps({
+            "values": values, "answers": answers, "errors": errors, "interpolation_error": None, "tolerance": 0.005,
+            "numerics": {"method": "test double: the app's answers at evenly spaced members", "points": MEMBERS,
+                         "checked": 0, "runtime_ms": 0, "message": ""}}))
+
+
+@pytest.fixture
+def family_page(browser_page, app_url):
+    """The browser page, with the family double when the app has no /api/v1/family, and a log of the
+    computing requests it sends: page.sent = [(endpoint, body)]."""
+    page = browser_page
+    if httpx.post(f"{app_url}/api/v1/family", json={}).status_code == 404:
+        FamilyDouble(page, app_url)
+    page.sent = []
+    page.on("request", lambda r: "/api/v1/" in r.url and r.method == "POST" and page.sent.append(
+        (urlparse(r.url).path.rsplit("/", 1)[-1], json.loads(r.post_data))))
+    return page
+
+
+def sent(page, endpoint: str, since: int = 0) -> list[dict]:
+    return [body for name, body in page.sent[since:] if name == endpoint]
+
+
+def plotted(page, panel: str) -> list:
+    return page.evaluate(f"id => {GRAPH}.data[0].y", panel)
+
+
+def curves(page, panel: str) -> list[str]:
+    """The SVG paths of the panel's drawn curves (a preview moves them in place; gd.data is the exact answer's)."""
+    return page.eval_on_selector_all(f"#panel-{panel} .scatterlayer path.js-line", "paths => paths.map((p) => p.getAttribute('d'))")
+
+
+def marks(page, name: str) -> int:
+    return page.evaluate("name => performance.getEntriesByName(name).length", name)
+
+
+def thumb(page, selector: str):
+    """x(fraction of the track) and y of the range input's thumb, as conftest.drag_slider finds them."""
+    page.locator(selector).scroll_into_view_if_needed()
+    box = page.locator(selector).bounding_box()
+    return (lambda f: box["x"] + 8 + (box["width"] - 16) * f), box["y"] + box["height"] / 2
+
+
+def fraction(page, selector: str) -> float:
+    value, low, high = page.eval_on_selector(selector, "e => [e.value, e.min, e.max].map(Number)")
+    return (value - low) / (high - low)
+
+
+def grab(page, selector: str) -> tuple:
+    """Press the mouse on the slider's thumb and wait for its family; returns x, y of the track."""
+    x, y = thumb(page, selector)
+    page.mouse.move(x(fraction(page, selector)), y)
+    page.mouse.down()
+    page.wait_for_function("() => performance.getEntriesByName('family-arrived').length > 0", timeout=60_000)
+    return x, y
+
+
+def drag_through(page, x, y, fractions: list[float]) -> None:
+    """Move the held thumb through fractions of the track, waiting for each preview to be drawn."""
+    for f in fractions:
+        drawn = marks(page, "plots-drawn")
+        page.mouse.move(x(f), y)
+        page.wait_for_function("n => performance.getEntriesByName('plots-drawn').length > n", arg=drawn)
+
+
+def preview_shown(page) -> bool:
+    return page.is_visible(".preview-note") and page.locator(".scene-layout.preview").count() == 1
+
+
+def release_and_wait_for_exact(page, endpoint: str) -> dict:
+    """Release the mouse; returns the exact answer the page asked for, once it is drawn."""
+    drawn = marks(page, "exact-drawn")
+    with page.expect_response(lambda r: f"/api/v1/{endpoint}?" in r.url) as response:
+        page.mouse.up()
+    answer = response.value.json()
+    page.wait_for_function("n => performance.getEntriesByName('exact-drawn').length > n", arg=drawn)
+    return answer
+
+
+def test_transfer_functions_drag_is_drawn_from_the_family_and_ends_on_the_exact_answer(family_page):
+    page = family_page
+    page.goto("/scenes/transfer-functions?lang=ru&variant=slider_crank")
+    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="u31")
+    page.wait_for_load_state("networkidle")
+    before = len(page.sent)
+    x, y = grab(page, "#slider-lambda")
+    family, = sent(page, "family", before)
+    assert family["endpoint"] == "kinematics" and family["log"] is False
+    assert (family["min"], family["max"]) == (1.05, 8)
+    assert family["vary"] == [{"path": "params.l2", "factor": family["request"]["params"]["l1"]}]
+    assert not sent(page, "kinematics", before)
+
+    in_view = page.evaluate("() => [...document.querySelectorAll('.panel')].filter((p) =>"
+                            " p.getBoundingClientRect().top < innerHeight).map((p) => p.id.slice(6))")
+    shown = {panel: curves(page, panel) for panel in in_view}
+    linkage, status = page.inner_html("#linkage svg .moving"), page.inner_text("#status")
+    drag_through(page, x, y, [0.30, 0.35, 0.42, 0.5])
+    assert not sent(page, "kinematics", before)                  # the drag asked nothing
+    assert len(in_view) >= 4
+    for panel in in_view:                                         # every plot in view follows the preview
+        assert curves(page, panel) != shown[panel], panel
+        shown[panel] = curves(page, panel)
+    drawn = marks(page, "plots-drawn")
+    page.mouse.move(x(0.55), y)                                   # one more input: one preview frame
+    page.wait_for_function("n => performance.getEntriesByName('plots-drawn').length > n", arg=drawn)
+    assert all(curves(page, panel) != shown[panel] for panel in in_view)   # all of them in that one frame
+    assert page.inner_html("#linkage svg .moving") != linkage
+    assert preview_shown(page)
+    assert page.inner_text("#status") == status                  # numbers stay those of the exact answer
+    assert page.eval_on_selector("#status", "e => Number(getComputedStyle(e).opacity)") < 1
+    screenshot(page, "family_preview_transfer_functions_ru")
+
+    answer = release_and_wait_for_exact(page, "kinematics")
+    exact, = sent(page, "kinematics", before)
+    assert exact["params"]["l2"] == pytest.approx(float(page.input_value("#slider-lambda")) * exact["params"]["l1"])
+    page.wait_for_function("() => !document.querySelector('.scene-layout.preview')")
+    assert not page.is_visible(".preview-note")
+    assert plotted(page, "u31") == answer["outputs"]["u31"]
+    assert plotted(page, "position") == answer["outputs"]["s"]
+    assert len(sent(page, "family", before)) == 1
+    assert page.problems == []
+
+
+def test_a_second_grab_with_the_same_other_values_reuses_the_family(family_page):
+    page = family_page
+    page.goto("/scenes/transfer-functions?lang=en&variant=slider_crank")
+    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="u31")
+    page.wait_for_load_state("networkidle")
+    x, y = grab(page, "#slider-lambda")
+    drag_through(page, x, y, [0.4])
+    release_and_wait_for_exact(page, "kinematics")
+    before = len(page.sent)
+
+    page.mouse.move(x(fraction(page, "#slider-lambda")), y)
+    page.mouse.down()
+    drag_through(page, x, y, [0.6, 0.7])
+    assert sent(page, "family", before) == [] and sent(page, "kinematics", before) == []
+    release_and_wait_for_exact(page, "kinematics")
+    assert len(sent(page, "kinematics", before)) == 1
+    assert page.problems == []
+
+
+def test_keyboard_focus_asks_for_the_family_and_each_key_press_ends_exact(family_page):
+    page = family_page
+    page.goto("/scenes/transfer-functions?lang=uk&variant=slider_crank")
+    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="u31")
+    page.wait_for_load_state("networkidle")
+    before = len(page.sent)
+    page.focus("#slider-lambda")
+    page.wait_for_function("() => performance.getEntriesByName('family-arrived').length > 0", timeout=60_000)
+    assert len(sent(page, "family", before)) == 1
+    with page.expect_response(lambda r: "/api/v1/kinematics?" in r.url) as response:
+        page.keyboard.press("ArrowRight")                          # λ 3.00 → 3.01
+    answer = response.value.json()
+    assert sent(page, "kinematics", before)[-1]["params"]["l2"] == pytest.approx(0.301)
+    page.wait_for_function("y => { const shown = document.querySelector('#panel-u31 .graph').data[0].y;"
+                           " return !document.querySelector('.scene-layout.preview')"
+                           " && shown.every((v, i) => v === y[i]); }", arg=answer["outputs"]["u31"])
+    assert page.problems == []
+
+
+def test_equation_of_motion_lambda_drag_is_drawn_from_the_family(family_page):
+    page = family_page
+    page.goto("/scenes/equation-of-motion?lang=ru&variant=linear")
+    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="omega_phi")
+    page.wait_for_load_state("networkidle")
+    before = len(page.sent)
+    x, y = grab(page, "#slider-lambda")
+    family, = sent(page, "family", before)
+    assert family["endpoint"] == "motion"
+    assert family["vary"] == [{"path": "params.l2", "factor": family["request"]["params"]["l1"]}]
+
+    omega, figures = curves(page, "omega_phi"), page.inner_text("#panel-figures")
+    drag_through(page, x, y, [0.25, 0.3, 0.4])
+    assert not sent(page, "motion", before)
+    assert curves(page, "omega_phi") != omega
+    assert preview_shown(page)
+    assert page.inner_text("#panel-figures") == figures           # numbers stay those of the exact answer
+    assert page.eval_on_selector("#panel-figures", "e => Number(getComputedStyle(e).opacity)") < 1
+    screenshot(page, "family_preview_equation_of_motion_ru")
+
+    answer = release_and_wait_for_exact(page, "motion")
+    exact, = sent(page, "motion", before)
+    assert exact["params"]["l2"] == pytest.approx(float(page.input_value("#slider-lambda")) * exact["params"]["l1"])
+    page.wait_for_function("() => !document.querySelector('.scene-layout.preview')")
+    assert plotted(page, "omega_phi") == answer["omega"]
+    assert page.inner_text("#panel-figures") != figures
+    assert page.problems == []
+
+
+@pytest.mark.parametrize("scene, variant, slider, panel, ready", [
+    ("transfer-functions", "slider_crank", "lambda", "u31", "#linkage svg .moving line"),
+    ("equation-of-motion", "linear", "lambda", "omega_phi", "#panel-portrait:not([hidden])")])
+def test_preview_on_a_phone(family_page, scene, variant, slider, panel, ready):
+    """On a phone the plots are below the controls: the slider and the mark are in view during the drag, and
+    a plot scrolled into view while the slider is held shows the preview."""
+    page = family_page
+    page.set_viewport_size({"width": 390, "height": 844})
+    page.goto(f"/scenes/{scene}?lang=ru&variant={variant}")
+    page.wait_for_selector(ready, state="attached")
+    page.wait_for_load_state("networkidle")
+    x, y = grab(page, f"#slider-{slider}")
+    drag_through(page, x, y, [0.3, 0.45])
+    assert preview_shown(page)
+    assert page.inner_text(".preview-note") == interface_texts("ru")["preview"]
+    box = page.locator(".preview-note").bounding_box()               # the mark is in view beside the slider
+    assert 0 <= box["x"] and box["x"] + box["width"] <= 390 and 0 <= box["y"] and box["y"] + box["height"] <= 844
+    page.screenshot(path=f"test-artifacts/family_preview_{scene}_phone_ru.png")
+    page.locator(f"#panel-{panel}").scroll_into_view_if_needed()
+    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg=panel)
+    assert preview_shown(page)
+    screenshot(page, f"family_preview_{scene}_phone_ru_full")
+    page.mouse.up()
+    assert page.problems == []
+
+
+def test_interpolation_rule_of_the_page(family_page):
+    """The page's rule (web/static/js/family_model.js) against the contract's rule worked by hand."""
+    page = family_page
+    page.goto("/scenes/transfer-functions?lang=en")
+    family = {"values": [1, 2, 4], "log": False, "answers": [
+        {"x": 1.0, "y": [0, 10, None], "s": "one", "n": [1, 2], "warnings": ["a"], "numerics": {"steps": 10},
+         "joints": {"A": [[0, 0], [1, 1]]}, "special": [{"kind": "dead", "phi": 0.0}]},
+        {"x": 3.0, "y": [2, 20, 5], "s": "two", "n": [1, 2, 3], "warnings": ["b"], "numerics": {"steps": 20},
+         "joints": {"A": [[2, 2], [3, 5]]}, "special": [{"kind": "dead", "phi": 1.0}]},
+        None]}
+    result = page.evaluate("""async ([family, log]) => {
+        const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
+        const { interpolate } = await import(new URL("family_model.js", src));
+        const at = (v, f = family) => interpolate(f, v);
+        return { quarter: at(1.25), near: at(1.75), member: at(2), refused: at(3), outside: at(0.5),
+                 first: at(1), log: interpolate({ ...family, values: [1, 4, 16], log: true }, 2) };
+    }""", [family, True])
+    quarter = result["quarter"]                                    # w = 0.25: (1 − w)·a + w·b
+    assert quarter["x"] == 1.5 and quarter["y"] == [0.5, 12.5, None]
+    assert quarter["s"] == "one" and quarter["n"] == [1, 2]        # nearer member's leaf
+    assert quarter["warnings"] == ["a"] and quarter["numerics"] == {"steps": 10}
+    assert quarter["joints"] == {"A": [[0.5, 0.5], [1.5, 2]]}
+    assert quarter["special"] == [{"kind": "dead", "phi": 0.25}]
+    near = result["near"]                                          # w = 0.75
+    assert near["x"] == 2.5 and near["s"] == "two" and near["n"] == [1, 2, 3] and near["warnings"] == ["b"]
+    assert result["member"] == family["answers"][1]
+    assert result["refused"] is None and result["outside"] is None
+    assert result["first"] == family["answers"][0]
+    assert result["log"]["x"] == pytest.approx(1 + 2 * math.log(2) / math.log(4))   # halfway in log v
+    assert page.problems == []
+
+
+def test_curves_moved_in_place_lie_where_plotly_draws_them(family_page):
+    """family_plot.js redraws a preview's lines through Plotly's laid-out axes (cartesian and polar): given the
+    figure Plotly has just drawn, its paths start and end where Plotly's do (Plotly may drop collinear points
+    in between) and pass through Plotly's points, to a tenth of a pixel."""
+    page = family_page
+    page.goto("/scenes/equation-of-motion?lang=en&variant=linear")
+    for panel in ("portrait", "omega_phi"):
+        page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg=panel)
+    result = page.evaluate("""async () => {
+        const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
+        const { moveCurves } = await import(new URL("family_plot.js", src));
+        const paths = (graph) => [...graph.querySelectorAll(".scatterlayer path.js-line")].map((p) => p.getAttribute("d"));
+        const out = {};
+        for (const id of ["portrait", "omega_phi"]) {
+          const graph = document.querySelector(`#panel-${id} .graph`);
+          const plotly = paths(graph);
+          const moved = moveCurves(graph, graph.data);
+          out[id] = { moved, plotly, ours: paths(graph) };
+        }
+        return out;
+    }""")
+    points = lambda d: [tuple(map(float, p.split(","))) for p in d.replace("M", "L").split("L") if p]
+    for panel, drawn in result.items():
+        assert drawn["moved"], panel
+        assert len(drawn["ours"]) == len(drawn["plotly"]) > 0
+        for ours, plotly in zip(drawn["ours"], drawn["plotly"]):
+            ours, plotly = points(ours), points(plotly)
+            assert ours[0] == pytest.approx(plotly[0], abs=0.1) and ours[-1] == pytest.approx(plotly[-1], abs=0.1), panel
+            ours_set = {(round(x), round(y)) for x, y in ours}
+            assert all((round(x), round(y)) in ours_set for x, y in plotly[:: max(1, len(plotly) // 50)]), panel
+    assert page.problems == []

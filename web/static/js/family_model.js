@@ -1,0 +1,78 @@
+/**
+ * A slider's family (POST /api/v1/family): the scene's answer at several values of one slider, every other
+ * value fixed, and the answer between them by the contract's interpolation rule. No DOM.
+ *
+ * Rule (the server checks its families with the same rule): for a value v between members k and k+1
+ * (positions in log v for a logarithmic slider) with weight w = (v − v_k)/(v_{k+1} − v_k),
+ *   a number in both                  → (1 − w)·a + w·b
+ *   null in either                    → null
+ *   arrays of equal length            → element by element (numbers, [x, y] joints, lists of objects)
+ *   objects                           → key by key (the nearer member's keys)
+ *   anything else (strings, booleans, arrays of different length) and everything under
+ *   "warnings", "numerics" and "study" → the nearer member's leaf.
+ * A value equal to a member's gives that member's answer as it is.
+ *
+ * Families are kept by the request with the slider's paths removed (familyKey): the same other values
+ * give the same family, whichever value the slider had when it was asked for.
+ */
+import { setPath } from "./dotted_paths.js";
+
+const NEAREST_ONLY = new Set(["warnings", "numerics", "study"]);
+
+/** Mix of two members' leaves a and b at weight w (0 → a, 1 → b). */
+export function blend(a, b, w) {
+  if (typeof a === "number" && typeof b === "number") return (1 - w) * a + w * b;
+  if (a === null || b === null) return null;
+  if (Array.isArray(a)) {
+    if (!Array.isArray(b) || a.length !== b.length) return w < 0.5 ? a : b;
+    const mixed = new Array(a.length);
+    for (let i = 0; i < a.length; i++) {
+      const [x, y] = [a[i], b[i]];
+      mixed[i] = typeof x === "number" && typeof y === "number" ? (1 - w) * x + w * y : blend(x, y, w);
+    }
+    return mixed;
+  }
+  if (typeof a === "object" && typeof b === "object" && !Array.isArray(b)) {
+    const [near, far] = w < 0.5 ? [a, b] : [b, a];
+    const mixed = {};
+    for (const [key, value] of Object.entries(near)) {
+      mixed[key] = NEAREST_ONLY.has(key) || !(key in far) ? value : blend(a[key], b[key], w);
+    }
+    return mixed;
+  }
+  return w < 0.5 ? a : b;
+}
+
+/**
+ * Where value falls among the family's members: {k, w} with w ∈ [0, 1] towards member k + 1, or null
+ * when it is outside the family or a neighbour was refused (no answer to interpolate from).
+ */
+export function memberInterval(family, value) {
+  const { values, answers } = family;
+  const position = family.log ? Math.log : (v) => v;
+  if (!(value >= values[0] && value <= values.at(-1)) || (family.log && value <= 0)) return null;
+  let k = 0;
+  while (k < values.length - 2 && value > values[k + 1]) k++;
+  if (values.length === 1) return answers[0] ? { k: 0, w: 0 } : null;
+  const [low, high] = [position(values[k]), position(values[k + 1])];
+  const w = Math.min(1, Math.max(0, (position(value) - low) / (high - low)));
+  const needed = w === 0 ? [k] : w === 1 ? [k + 1] : [k, k + 1];
+  return needed.every((i) => answers[i]) ? { k, w } : null;
+}
+
+/** The answer the family gives for value (see the rule above), or null where it gives none. */
+export function interpolate(family, value) {
+  const at = memberInterval(family, value);
+  if (!at) return null;
+  const { answers } = family;
+  if (at.w === 0) return answers[at.k];
+  if (at.w === 1) return answers[at.k + 1];
+  return blend(answers[at.k], answers[at.k + 1], at.w);
+}
+
+/** Key of the family of the slider that sets these paths: the request body with them removed. */
+export function familyKey(body, paths) {
+  const rest = structuredClone(body);
+  for (const path of paths) setPath(rest, path, undefined);
+  return JSON.stringify([paths, rest]);
+}

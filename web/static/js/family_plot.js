@@ -1,0 +1,114 @@
+/**
+ * A preview frame's fast path for a Plotly graph: the line curves (scatter, scatterpolar) of a figure of
+ * the same shape as the one drawn are moved in place — each line's SVG path is recomputed through the axes Plotly laid out — with
+ * no Plotly.react (whose full replot, axes and annotations included, takes several frames for a scene's
+ * plots). Only what a preview needs: the axes, titles, special-position marks and hover data stay those
+ * of the last drawing until the next Plotly.react (the exact answer). Where that would mislead or cannot
+ * be done — a curve leaving the drawn axes' range, a trace that is not a plain line, a different number
+ * of traces or of gaps — it answers false and the caller draws with Plotly.react.
+ */
+
+const within = (value, range) => value >= Math.min(...range) && value <= Math.max(...range);
+const linear = (...axes) => axes.every((axis) => axis?.range && axis.type === "linear");
+
+/**
+ * How a laid-out trace maps its points to pixels: (u, v) → [x, y], or null when a point leaves the drawn
+ * axes; null for a trace this fast path does not draw. A cartesian trace's (x, y) go through its axes
+ * ("y2" → layout.yaxis2); a polar trace's (θ in degrees, r) through the polar subplot's angular and radial
+ * axes to the plane and then its x and y axes, as Plotly's scatterpolar draws them.
+ */
+function pixels(graph, trace) {
+  const layout = graph._fullLayout;
+  if (trace.type === "scatter") {
+    const [xa, ya] = [layout[`xaxis${trace.xaxis.slice(1)}`], layout[`yaxis${trace.yaxis.slice(1)}`]];
+    if (!linear(xa, ya)) return null;
+    return (x, y) => (within(x, xa.range) && within(y, ya.range) ? [xa.c2p(x), ya.c2p(y)] : null);
+  }
+  const polar = trace.type === "scatterpolar" ? layout[trace.subplot]?._subplot : null;
+  const [xa, ya] = [trace._xA, trace._yA];
+  if (!polar || !linear(polar.radialAxis, xa, ya) || polar.angularAxis?.type !== "linear"
+    || trace.thetaunit !== "degrees") return null;
+  return (theta, r) => {      // a linear angular axis computes in radians
+    if (!within(r, polar.radialAxis.range)) return null;
+    const [g, angle] = [polar.radialAxis.c2g(r), polar.angularAxis.c2g(theta * Math.PI / 180)];
+    return [xa.c2p(g * Math.cos(angle)), ya.c2p(g * Math.sin(angle))];
+  };
+}
+
+/** Pieces of a curve between its gaps (null values) as SVG path data, or null if a point leaves the range. */
+function segments(us, vs, toPixels) {
+  const pieces = [];
+  let current = "";
+  for (let i = 0; i < vs.length; i++) {
+    const [u, v] = [us[i], vs[i]];
+    if (u === null || v === null || u === undefined || v === undefined) {
+      if (current) pieces.push(current);
+      current = "";
+      continue;
+    }
+    const point = toPixels(u, v);
+    if (!point) return null;
+    current += `${current ? "L" : "M"}${point[0].toFixed(2)},${point[1].toFixed(2)}`;
+  }
+  if (current) pieces.push(current);
+  return pieces;
+}
+
+/** Redraw graph's line curves for the figure's data in place; false if it must be drawn by Plotly.react. */
+export function moveCurves(graph, data) {
+  const drawn = graph._fullData;
+  if (!drawn || drawn.length !== data.length || !graph._fullLayout) return false;
+  const updates = [];
+  for (const group of graph.querySelectorAll(".scatterlayer .trace")) {
+    const trace = group.__data__?.[0]?.trace;
+    const next = data[trace?.index];
+    if (!next || next.type !== trace.type || next.mode !== "lines" || trace.mode !== "lines") return false;
+    const toPixels = pixels(graph, trace);
+    if (!toPixels) return false;
+    const paths = group.querySelectorAll("path.js-line");
+    const pieces = trace.type === "scatter" ? segments(next.x, next.y, toPixels) : segments(next.theta, next.r, toPixels);
+    if (!pieces || pieces.length !== paths.length) return false;
+    updates.push([paths, pieces]);
+  }
+  if (updates.length !== data.length) return false;
+  for (const [paths, pieces] of updates) paths.forEach((path, i) => path.setAttribute("d", pieces[i]));
+  return true;
+}
+
+const ROOM = 0.2;     // a preview drawn by Plotly.react leaves this fraction of its data's span free each side
+
+/**
+ * The figure for a preview that Plotly.react must draw (a curve left the axes): every axis Plotly would
+ * range automatically gets a fixed range with ROOM around the data, so the next preview frames fit and are
+ * moved in place again. The exact answer's figure ranges its axes as usual.
+ */
+export function roomy({ data, layout }) {
+  const extents = new Map();      // layout key → [low, high] of the data on it
+  const widen = (key, values) => {
+    const numbers = values.filter(Number.isFinite);
+    if (!numbers.length) return;
+    const [low, high] = extents.get(key) ?? [Infinity, -Infinity];
+    extents.set(key, [Math.min(low, ...numbers), Math.max(high, ...numbers)]);
+  };
+  for (const trace of data) {
+    if (trace.type === "scatter") {
+      widen(`xaxis${(trace.xaxis ?? "x").slice(1)}`, trace.x);
+      widen(`yaxis${(trace.yaxis ?? "y").slice(1)}`, trace.y);
+    } else if (trace.type === "scatterpolar" && layout.polar) {
+      widen("polar", trace.r);
+    }
+  }
+  const roomier = { ...layout };
+  for (const [key, [low, high]] of extents) {
+    const room = (high - low) * ROOM || Math.abs(high) * ROOM || 1;
+    if (key === "polar") {
+      roomier.polar = { ...layout.polar, radialaxis: { ...layout.polar.radialaxis, range: [0, high + room], autorange: false } };
+      continue;
+    }
+    const axis = layout[key] ?? {};
+    if (axis.autorange === false || axis.range) continue;         // a fixed axis (φ) stays as it is
+    const from = axis.rangemode === "tozero" ? Math.min(0, low) : low - room;
+    roomier[key] = { ...axis, range: [from, high + room], autorange: false };
+  }
+  return { data, layout: roomier };
+}

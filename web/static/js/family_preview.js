@@ -1,0 +1,112 @@
+/**
+ * Dragging is a lookup: when the reader grabs a slider (pointer down or keyboard focus) the page asks once
+ * for the slider's family (POST /api/v1/family: the scene's answer at values across the slider's range,
+ * every other value as it is now). While that slider moves and its family covers the value, the views are
+ * given an answer interpolated from the family (family_model.js), at most once per animation frame and
+ * without a request; the page asks for the exact answer when the slider comes to rest.
+ *
+ * The model is the scene's SceneSettings (a SceneModel or a DynamicsModel): request() is the body sent
+ * now, familyVary(slider) the paths the slider sets with their factors, grabbed the slider held.
+ *
+ * Events:
+ *   "preview"  {ok: true, data, preview: true}: draw this interpolated answer (plots, drawings, cursors);
+ *              numbers in tables and readouts stay those of the last exact answer
+ *
+ * Performance marks (bench/browser.py): family-requested, family-arrived.
+ */
+import { ApiClient } from "./api.js";
+import { element } from "./dom.js";
+import { Emitter } from "./emitter.js";
+import { familyKey, interpolate, memberInterval } from "./family_model.js";
+
+const KEPT = 4;     // families kept on the page: the latest asked (a family may hold several MB)
+
+export class FamilyPreview extends Emitter {
+  #families = new Map();     // familyKey → the family, or null while it is on its way
+  #due = null;               // the family and value of the next frame's preview
+  #frameRequested = false;
+
+  /** showing: a preview is on the screen (or due) and no exact answer has replaced it yet. */
+  showing = false;
+
+  constructor(endpoint, lang, model) {
+    super();
+    this.endpoint = endpoint;
+    this.model = model;
+    this.client = new ApiClient("family", lang, () => {});
+    model.on("grab", (slider) => this.#ask(slider));
+    model.on("variant", () => this.end());
+  }
+
+  /**
+   * If the grabbed slider's family covers the current values: draw them from it at the next animation
+   * frame and return true; else false (the page asks for the exact answer as usual).
+   */
+  preview() {
+    const slider = this.model.grabbed;
+    if (!slider) return false;
+    const family = this.#families.get(this.#question(slider).key);
+    const value = this.model.values[slider.id];
+    if (!family || !memberInterval(family, value)) return false;
+    this.#due = { family, value };
+    this.showing = true;
+    if (!this.#frameRequested) {
+      this.#frameRequested = true;
+      requestAnimationFrame(this.#draw);
+    }
+    return true;
+  }
+
+  /** The exact answer is shown: the preview is over. */
+  end() {
+    this.showing = false;
+    this.#due = null;
+  }
+
+  /** The family request for the slider at the current values, and its key. */
+  #question(slider) {
+    const request = this.model.request();
+    const vary = this.model.familyVary(slider);
+    const body = { endpoint: this.endpoint, request, vary, min: slider.min, max: slider.max, log: slider.log };
+    return { body, key: familyKey(request, vary.map((v) => v.path)) };
+  }
+
+  #ask(slider) {
+    if (slider.locked) return;
+    const { body, key } = this.#question(slider);
+    if (this.#families.has(key) || body.request.outputs?.length === 0) return;     // there, or on its way
+    this.#families.set(key, null);
+    for (const old of [...this.#families.keys()].slice(0, -KEPT)) {
+      this.#families.delete(old);
+      this.client.forget(old);
+    }
+    performance.mark("family-requested");
+    this.client.submit(key, body, (answer) => {
+      if (!this.#families.has(key)) return;
+      if (!answer.ok) {            // no family: dragging stays as without one, the next grab asks again
+        this.#families.delete(key);
+        return;
+      }
+      performance.mark("family-arrived");
+      this.#families.set(key, { ...answer.data, log: body.log });
+    });
+  }
+
+  #draw = () => {
+    this.#frameRequested = false;
+    if (!this.showing || !this.#due) return;
+    const { family, value } = this.#due;
+    this.emit("preview", { ok: true, data: interpolate(family, value), preview: true });
+  };
+}
+
+/**
+ * The mark that says the page shows a preview: a badge in container and the class "preview" on the scene
+ * layout, which dims the numbers kept from the last exact answer (app.css).
+ */
+export function previewMark(container, { t }) {
+  const layout = container.closest(".scene-layout") ?? container;
+  const badge = element("p", { className: "preview-note", role: "status", textContent: t.preview, title: t.preview_hint });
+  container.append(badge);
+  return (on) => layout.classList.toggle("preview", on);
+}
