@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from . import compiled
 from .machine import Machine
 
 
@@ -122,13 +123,50 @@ class Run:
     stall_phi: float | None = None
 
 
-def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0) -> Run:
-    """Integrate over the nodes of ``tables`` (2·steps + 1 nodes, step and half-step) from T₀."""
+def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0, compiled: bool | None = None) -> Run:
+    """Integrate over the nodes of ``tables`` (2·steps + 1 nodes, step and half-step) from T₀.
+
+    compiled: the numba loop of compiled.py (default, ``COMPILED``) or the plain Python loop below, the
+    reference the compiled one is tested against (tests/test_motion_compiled.py)."""
+    phi = tables.phi
+    h = float(phi[2] - phi[0])
+    T_nodes, t_nodes = np.empty(steps + 1), np.empty(steps + 1)
+    T_nodes[0], t_nodes[0] = T0, t0
+    stall, first, count, S = None, 0, 1, 1.0
+    if T0 == 0.0:
+        first = min(REST_STEPS, steps)
+        T_rest, t_rest = leave_rest(machine, phi[0:2 * first + 1:2], t0)
+        count = len(T_rest) + 1
+        T_nodes[1:count], t_nodes[1:count] = T_rest, t_rest
+        if len(T_rest) < first:            # came to rest again before the first few steps
+            stall, first = float(phi[2 * len(T_rest)]), steps
+    if first < steps:
+        loop = _steps_compiled if (COMPILED if compiled is None else compiled) else _steps_python
+        count, S, stall_node = loop(machine, tables, h, T_nodes, t_nodes, first, steps)
+        stall = float(phi[stall_node]) if stall_node >= 0 else None
+    T_arr = T_nodes[:count]
+    J_nodes = tables.J[0:2 * count - 1:2]
+    return Run(phi=phi[0:2 * count - 1:2], T=T_arr, omega=np.sqrt(2 * T_arr / J_nodes), t=t_nodes[:count].copy(),
+               sensitivity=S, stall_phi=stall)
+
+
+COMPILED = True       # integrate's default loop; the benchmark switches it to compare with the reference
+
+
+def _steps_compiled(machine: Machine, tables, h: float, T_nodes, t_nodes, first: int, steps: int):
+    speed, kind, params = compiled.speed_parameters(machine)
+    return compiled.rk4_steps(np.ascontiguousarray(tables.J, dtype=np.float64),
+                              np.ascontiguousarray(tables.net_phi, dtype=np.float64),
+                              np.ascontiguousarray(tables.sliding, dtype=np.float64),
+                              h, speed, kind, params, T_nodes, t_nodes, first, steps)
+
+
+def _steps_python(machine: Machine, tables, h: float, T_nodes, t_nodes, first: int, steps: int):
+    """The reference loop: steps first … steps−1 from node ``first``; fills the following nodes and returns
+    (nodes filled, S = dT(end)/dT₀, stall node index or −1)."""
     J = tables.J.tolist()
     base = tables.net_phi.tolist()
     sliding = tables.sliding.tolist()
-    phi = tables.phi
-    h = float(phi[2] - phi[0])
     speed = machine.speed_dependent
     speed_moment = machine.speed_moment
 
@@ -139,17 +177,8 @@ def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0) 
         moment, slope = speed_moment(omega, sliding[j])
         return base[j] + moment, (slope / (J[j] * omega) if omega > 0.0 else 0.0)
 
-    T_nodes, t_nodes = [T0], [t0]
-    S, T, t = 1.0, T0, t0
-    stall, first = None, 0
-    if T0 == 0.0:
-        first = min(REST_STEPS, steps)
-        T_rest, t_rest = leave_rest(machine, phi[0:2 * first + 1:2], t0)
-        T_nodes += T_rest
-        t_nodes += t_rest
-        T, t = T_nodes[-1], t_nodes[-1]
-        if len(T_rest) < first:            # came to rest again before the first few steps
-            stall, first = float(phi[2 * len(T_rest)]), steps
+    S, T, t = 1.0, float(T_nodes[first]), float(t_nodes[first])
+    stall, count = -1, first + 1
     for k in range(first, steps):
         j = 2 * k
         f1, g1 = rate(j, T)
@@ -158,10 +187,10 @@ def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0) 
         f4, g4 = rate(j + 2, T + h * f3)
         T_new = T + h * (f1 + 2 * f2 + 2 * f3 + f4) / 6
         if T_new <= 0.0 or min(T + 0.5 * h * f1, T + 0.5 * h * f2) < 0.0:
-            stall = float(phi[j])
+            stall = j
             break
         if T > 0.0 and 0.5 * (T + T_new) + h * (f1 - f4) / 8 <= 0.0:   # T(φ) touches zero inside the step
-            stall = float(phi[j + 1])
+            stall = j + 1
             break
         s1 = g1 * S
         s2 = g2 * (S + 0.5 * h * s1)
@@ -177,9 +206,6 @@ def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0) 
             w_half = math.sqrt(2 * max(T_mid, 0.0) / J[j + 1])
             t += h * (1 / w0 + 4 / w_half + 1 / w1) / 6
         T = T_new
-        T_nodes.append(T)
-        t_nodes.append(t)
-    T_arr = np.array(T_nodes)
-    J_nodes = tables.J[0:2 * len(T_nodes) - 1:2]
-    return Run(phi=phi[0:2 * len(T_nodes) - 1:2], T=T_arr, omega=np.sqrt(2 * T_arr / J_nodes), t=np.array(t_nodes),
-               sensitivity=S, stall_phi=stall)
+        T_nodes[count], t_nodes[count] = T, t
+        count += 1
+    return count, S, stall

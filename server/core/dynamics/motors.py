@@ -17,6 +17,7 @@ interpolation.  φ = 0 is the inner (bottom) dead centre: a two-stroke cycle com
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
@@ -96,6 +97,12 @@ def driving_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: 
     return indicator_moment(motor, mechanism, params, phi)
 
 
+@lru_cache(maxsize=64)
+def diagram_curve(ratios: tuple[float, ...]) -> PchipInterpolator:
+    """p/p_max over x/H = 0…1 through the diagram's equally spaced points (built once per diagram)."""
+    return PchipInterpolator(np.linspace(0.0, 1.0, INDICATOR_POINTS), ratios)
+
+
 def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray) -> np.ndarray:
     """Gas force on the crank-slider's piston, N, from the indicator diagram (seed 004 (L15)–(L16)):
     p/p_max interpolated over the piston travel from top dead centre; it pushes towards the crank."""
@@ -103,9 +110,8 @@ def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray) -> np.nda
     values = mech.evaluate(params, phi, set()).values
     stroke = next(sp.value for sp in mech.special_positions(params) if sp.kind == "dead_centre" and sp.value)
     x = np.clip((stroke - values["s"]) / stroke, 0.0, 1.0)      # piston travel from top dead centre, x/H
-    grid = np.linspace(0.0, 1.0, INDICATOR_POINTS)
-    expansion = PchipInterpolator(grid, motor.expansion)(x)
-    compression = PchipInterpolator(grid, motor.compression)(x)
+    expansion = diagram_curve(motor.expansion)(x)
+    compression = diagram_curve(motor.compression)(x)
     phase = np.mod(phi, motor.cycle()) / np.pi                  # stroke number 0, 1, (2, 3)
     ratio = np.select([phase < 1, phase < 2], [compression, expansion], 0.0)
     return motor.p_max * ratio * np.pi * motor.piston_diameter**2 / 4

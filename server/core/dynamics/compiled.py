@@ -1,0 +1,121 @@
+"""The RK4-in-φ loop of the equation of motion compiled with numba: the same scalar arithmetic as the
+reference loop in integrator.py, operation for operation, so the two agree to rounding.
+
+    dT/dφ = M_φ(φ) + M_ω(ω, φ),  ω = √(2T/J(φ)),   dS/dφ = (∂M_ω/∂ω)/(J ω) · S      seed 000 (1.9), (1.13)
+
+The speed-dependent moment i·M(iω) − β ω S(φ) (motors.py, Machine.speed_moment) is dispatched on a small
+integer kind with its parameters in one float array (``speed_parameters``). Compiled code is cached on disk
+(``cache=True``); ``warm_up`` compiles every signature the server uses, so no request waits for the JIT.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+from numba import njit
+
+NO_MOTOR, LINEAR, INDUCTION, KLOSS = 0, 1, 2, 3          # speed characteristics of motors.py (others: NO_MOTOR)
+MOTOR_KINDS = {"linear": LINEAR, "induction": INDUCTION, "kloss": KLOSS}
+# parameter vector: i, β, M₀, b, M_н, ω_н, ω_с, M_к, s_к
+GEAR, BETA, M0, SLOPE_B, M_NOMINAL, OMEGA_NOMINAL, OMEGA_SYNC, M_MAX, S_CRITICAL = range(9)
+
+
+def speed_parameters(machine) -> tuple[bool, int, np.ndarray]:
+    """(speed dependent?, motor kind code, parameter vector) of a Machine for the compiled loop."""
+    motor = machine.motor
+    kind = MOTOR_KINDS.get(motor.kind, NO_MOTOR)
+    params = np.array([machine.inertias.gear_ratio, machine.load.beta, motor.M0, motor.b, motor.M_nominal,
+                       motor.omega_nominal, motor.omega_sync, motor.M_max, motor.s_critical], dtype=np.float64)
+    return bool(machine.speed_dependent), kind, params
+
+
+@njit(cache=True)
+def speed_moment(kind, p, omega, sliding):
+    """ω-dependent moment and ∂/∂ω: i·M(iω) − β ω S(φ); Machine.speed_moment and Motor.torque written out."""
+    i = p[GEAR]
+    moment = -p[BETA] * omega * sliding
+    slope = -p[BETA] * sliding
+    if kind == NO_MOTOR:
+        return moment, slope
+    w = i * omega
+    if kind == LINEAR:                      # M = M₀ − b ω_m
+        torque = p[M0] - p[SLOPE_B] * w
+        torque_slope = -p[SLOPE_B] + 0 * w
+    elif kind == INDUCTION:                 # M = M_н (ω_с − ω_m)/(ω_с − ω_н)
+        linear = -p[M_NOMINAL] / (p[OMEGA_SYNC] - p[OMEGA_NOMINAL])
+        torque = linear * (w - p[OMEGA_SYNC])
+        torque_slope = linear + 0 * w
+    else:                                   # Kloss: M = 2M_к/(s/s_к + s_к/s)
+        s = (p[OMEGA_SYNC] - w) / p[OMEGA_SYNC]
+        sk = p[S_CRITICAL]
+        denominator = s * s + sk * sk
+        torque = 2 * p[M_MAX] * s * sk / denominator
+        torque_slope = -2 * p[M_MAX] * sk * (sk * sk - s * s) / denominator**2 / p[OMEGA_SYNC]
+    moment += i * torque
+    slope += i * i * torque_slope
+    return moment, slope
+
+
+@njit(cache=True)
+def _rate(J, base, sliding, speed, kind, p, j, T):
+    """F(φ_j, T) and ∂F/∂T."""
+    omega = math.sqrt(2.0 * T / J[j]) if T > 0.0 else 0.0
+    if not speed:
+        return base[j], 0.0
+    moment, slope = speed_moment(kind, p, omega, sliding[j])
+    return base[j] + moment, (slope / (J[j] * omega) if omega > 0.0 else 0.0)
+
+
+@njit(cache=True)
+def rk4_steps(J, base, sliding, h, speed, kind, p, T_nodes, t_nodes, first, steps):
+    """Steps first … steps−1 of RK4 in φ on the step/half-step nodes (j = 2k, 2k+1, 2k+2), from
+    T_nodes[first], t_nodes[first]; fills the following nodes. Returns (nodes filled, S, stall node index
+    or −1). Stall detection and Simpson's t(φ) exactly as integrator.integrate's reference loop."""
+    T, t, S = T_nodes[first], t_nodes[first], 1.0
+    stall = -1
+    count = first + 1
+    for k in range(first, steps):
+        j = 2 * k
+        f1, g1 = _rate(J, base, sliding, speed, kind, p, j, T)
+        f2, g2 = _rate(J, base, sliding, speed, kind, p, j + 1, T + 0.5 * h * f1)
+        f3, g3 = _rate(J, base, sliding, speed, kind, p, j + 1, T + 0.5 * h * f2)
+        f4, g4 = _rate(J, base, sliding, speed, kind, p, j + 2, T + h * f3)
+        T_new = T + h * (f1 + 2 * f2 + 2 * f3 + f4) / 6
+        if T_new <= 0.0 or min(T + 0.5 * h * f1, T + 0.5 * h * f2) < 0.0:
+            stall = j
+            break
+        if T > 0.0 and 0.5 * (T + T_new) + h * (f1 - f4) / 8 <= 0.0:
+            stall = j + 1
+            break
+        s1 = g1 * S
+        s2 = g2 * (S + 0.5 * h * s1)
+        s3 = g3 * (S + 0.5 * h * s2)
+        s4 = g4 * (S + h * s3)
+        S += h * (s1 + 2 * s2 + 2 * s3 + s4) / 6
+        w0 = math.sqrt(2 * T / J[j])
+        w1 = math.sqrt(2 * T_new / J[j + 2])
+        if w0 == 0.0:
+            t += 2 * h / w1
+        else:
+            T_mid = 0.5 * (T + T_new) + h * (f1 - f4) / 8
+            w_half = math.sqrt(2 * max(T_mid, 0.0) / J[j + 1])
+            t += h * (1 / w0 + 4 / w_half + 1 / w1) / 6
+        T = T_new
+        T_nodes[count] = T
+        t_nodes[count] = t
+        count += 1
+    return count, S, stall
+
+
+def warm_up() -> float:
+    """Compile (or load from the disk cache) every signature the server calls; returns the seconds taken."""
+    started = time.perf_counter()
+    nodes = np.linspace(1.0, 2.0, 9)
+    for kind in (NO_MOTOR, LINEAR, INDUCTION, KLOSS):
+        params = np.array([2.0, 0.1, 10.0, 0.1, 10.0, 90.0, 100.0, 20.0, 0.1])
+        T_nodes, t_nodes = np.zeros(5), np.zeros(5)
+        T_nodes[0] = 1.0
+        for speed in (False, True):
+            rk4_steps(nodes, nodes, nodes, 0.1, speed, kind, params, T_nodes, t_nodes, 0, 4)
+    return time.perf_counter() - started
