@@ -109,13 +109,16 @@ def rk4_steps(J, base, sliding, h, speed, kind, p, T_nodes, t_nodes, first, step
 
 
 def warm_up() -> float:
-    """Compile (or load from the disk cache) every signature the server calls; returns the seconds taken."""
+    """Compile (or load from the disk cache) every signature the server calls: the RK4 loop here and
+    DOP853 leaving rest (dop853.py); returns the seconds taken. The server calls it at start."""
+    from . import dop853                                    # it imports this module's speed_moment
     started = time.perf_counter()
     nodes = np.linspace(1.0, 2.0, 9)
+    params = np.array([2.0, 0.1, 10.0, 0.1, 10.0, 90.0, 100.0, 20.0, 0.1])
     for kind in (NO_MOTOR, LINEAR, INDUCTION, KLOSS):
-        params = np.array([2.0, 0.1, 10.0, 0.1, 10.0, 90.0, 100.0, 20.0, 0.1])
         T_nodes, t_nodes = np.zeros(5), np.zeros(5)
         T_nodes[0] = 1.0
         for speed in (False, True):
             rk4_steps(nodes, nodes, nodes, 0.1, speed, kind, params, T_nodes, t_nodes, 0, 4)
+    dop853.warm_up()
     return time.perf_counter() - started

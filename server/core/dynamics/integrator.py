@@ -19,11 +19,14 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from . import compiled
+from . import compiled as motor_kernel
+from . import dop853
 from .machine import Machine
 
 
+COMPILED = True   # default path: the numba loops (compiled.py, dop853.py); False: the Python/scipy reference
 REST_STEPS = 16   # steps integrated in time after a start from rest: T ≈ aφ − cφ^{3/2} is not smooth in φ there
+REST_REACH = 1.0   # the compiled path's table reaches this many times the nodes' span past the last node
 REST_BUDGET_S = 1.0   # wall time for those steps at most (milliseconds usually; a very steep motor is stiff in time)
 
 
@@ -73,13 +76,31 @@ class RestTable:
         return (terms @ self.values) / terms.sum()
 
 
-def leave_rest(machine: Machine, phi: np.ndarray, t0: float) -> tuple[list[float], list[float]]:
+def leave_rest(machine: Machine, phi: np.ndarray, t0: float,
+               compiled: bool | None = None) -> tuple[list[float], list[float]]:
     """T and t at the step nodes ``phi`` after a start from rest at phi[0]: J ω̇ = M − ½J′ω², φ̇ = ω
     in time, regular at ω = 0 (unlike dT/dφ, whose solution has a φ^{3/2} term), by scipy's DOP853.
     The φ-dependent parts come from a RestTable over the steps and a little past them (DOP853's stages
     may look ahead of the last node). Raises RestBudget past REST_BUDGET_S of wall time (a very steep
-    motor crawls off in tiny steps)."""
+    motor crawls off in tiny steps).
+
+    compiled: the same DOP853 compiled (dop853.py; default ``COMPILED``) on a table reaching REST_REACH
+    past the last node, when that table applies and no stage leaves it; else scipy's solve_ivp, the
+    reference path."""
     deadline = time.perf_counter() + REST_BUDGET_S
+    span = float(phi[-1] - phi[0])
+    if COMPILED if compiled is None else compiled:
+        wide = RestTable(machine, float(phi[0]), float(phi[-1]) + REST_REACH * span)
+        if wide.tabulated:
+            speed, kind, params = motor_kernel.speed_parameters(machine)
+            t_first, omega_first = np.empty(phi.size - 1), np.empty(phi.size - 1)
+            outcome = dop853.leave_rest(wide.nodes, wide.weights, np.ascontiguousarray(wide.values), wide.a, wide.b,
+                                        speed, kind, params, np.ascontiguousarray(phi[1:], dtype=np.float64),
+                                        _time_bound(machine, wide, phi), 1e-11, 1e-14, deadline, t_first, omega_first)
+            if outcome == dop853.OUT_OF_TIME:
+                raise RestBudget
+            if outcome == dop853.DONE:
+                return _passings(machine, phi, t0, t_first[:, None], omega_first[:, None])
     table = RestTable(machine, float(phi[0]), float(phi[-1] + 0.25 * (phi[-1] - phi[0])))
 
     def rhs(_, y):
@@ -99,16 +120,29 @@ def leave_rest(machine: Machine, phi: np.ndarray, t0: float) -> tuple[list[float
     def stalls(_, y):                 # back to rest after leaving it: the load wins
         return y[1]
     stalls.terminal, stalls.direction = True, -1
+    solution = solve_ivp(rhs, (0.0, _time_bound(machine, table, phi)), [phi[0], 0.0], method="DOP853", rtol=1e-11,
+                         atol=1e-14, events=[passing(node) for node in phi[1:]] + [stalls])
+    return _passings(machine, phi, t0, solution.t_events[:-1], [y[:, 1] if y.size else y for y in solution.y_events[:-1]])
+
+
+def _time_bound(machine: Machine, table: RestTable, phi: np.ndarray) -> float:
+    """The end of the time interval: 20 × the time to cover the nodes at the starting acceleration, + 1 s."""
+    J, _, moment, sliding = table.at(float(phi[0]))
+    if machine.speed_dependent:
+        moment += machine.speed_moment(0.0, sliding)[0]
     start = machine.tables(phi[:1])
-    scale = math.sqrt(2 * (phi[-1] - phi[0]) * start.J[0] / max(abs(rhs(0, [phi[0], 0.0])[1]) * start.J[0], 1e-300))
-    solution = solve_ivp(rhs, (0.0, 20 * scale + 1.0), [phi[0], 0.0], method="DOP853", rtol=1e-11, atol=1e-14,
-                         events=[passing(node) for node in phi[1:]] + [stalls])
-    solution.t_events, solution.y_events = solution.t_events[:-1], solution.y_events[:-1]
-    reached = [k for k, e in enumerate(solution.t_events) if e.size and solution.y_events[k][0][1] > 0]
+    scale = math.sqrt(2 * (phi[-1] - phi[0]) * start.J[0] / max(abs(moment / J) * start.J[0], 1e-300))
+    return 20 * scale + 1.0
+
+
+def _passings(machine: Machine, phi: np.ndarray, t0: float, times, speeds) -> tuple[list[float], list[float]]:
+    """T and t at the nodes passed, contiguous from the start, from each node's passing times and speeds
+    (NaN or none: not passed; the first passing counts)."""
+    reached = [k for k, t in enumerate(times) if t.size and np.isfinite(t[0]) and speeds[k][0] > 0]
     reached = reached[:next((n for n, k in enumerate(reached) if k != n), len(reached))]   # contiguous from the start
-    omega = np.array([float(solution.y_events[k][0][1]) for k in reached])
+    omega = np.array([float(speeds[k][0]) for k in reached])
     J = machine.tables(phi[1:len(reached) + 1]).J
-    return (0.5 * J * omega**2).tolist(), [t0 + float(solution.t_events[k][0]) for k in reached]
+    return (0.5 * J * omega**2).tolist(), [t0 + float(times[k][0]) for k in reached]
 
 
 @dataclass
@@ -135,7 +169,7 @@ def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0, 
     stall, first, count, S = None, 0, 1, 1.0
     if T0 == 0.0:
         first = min(REST_STEPS, steps)
-        T_rest, t_rest = leave_rest(machine, phi[0:2 * first + 1:2], t0)
+        T_rest, t_rest = leave_rest(machine, phi[0:2 * first + 1:2], t0, compiled)
         count = len(T_rest) + 1
         T_nodes[1:count], t_nodes[1:count] = T_rest, t_rest
         if len(T_rest) < first:            # came to rest again before the first few steps
@@ -150,12 +184,9 @@ def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0, 
                sensitivity=S, stall_phi=stall)
 
 
-COMPILED = True       # integrate's default loop; the benchmark switches it to compare with the reference
-
-
 def _steps_compiled(machine: Machine, tables, h: float, T_nodes, t_nodes, first: int, steps: int):
-    speed, kind, params = compiled.speed_parameters(machine)
-    return compiled.rk4_steps(np.ascontiguousarray(tables.J, dtype=np.float64),
+    speed, kind, params = motor_kernel.speed_parameters(machine)
+    return motor_kernel.rk4_steps(np.ascontiguousarray(tables.J, dtype=np.float64),
                               np.ascontiguousarray(tables.net_phi, dtype=np.float64),
                               np.ascontiguousarray(tables.sliding, dtype=np.float64),
                               h, speed, kind, params, T_nodes, t_nodes, first, steps)
