@@ -87,6 +87,7 @@ def leave_rest(machine: Machine, phi: np.ndarray, t0: float,
     compiled: the same DOP853 compiled (dop853.py; default ``COMPILED``) on a table reaching REST_REACH
     past the last node, when that table applies and no stage leaves it; else scipy's solve_ivp, the
     reference path."""
+    motor_kernel.warm_up()                  # compiled before the clock starts (once per process)
     deadline = time.perf_counter() + REST_BUDGET_S
     span = float(phi[-1] - phi[0])
     if COMPILED if compiled is None else compiled:

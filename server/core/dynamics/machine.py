@@ -57,10 +57,13 @@ class Machine:
         return max(MECHANISMS[self.mechanism].cycle(self.params), self.motor.cycle())
 
     def tables(self, phi: np.ndarray) -> Tables:
-        inertia = reduced_inertia(self.mechanism, self.params, self.inertias, phi)
-        resisting = resisting_moment(self.mechanism, self.params, self.load, phi, omega=1.0)
+        """The tables at phi from one evaluation of the mechanism there."""
+        kinematics = MECHANISMS[self.mechanism].evaluate(self.params, phi, set())
+        inertia = reduced_inertia(self.mechanism, self.params, self.inertias, phi, kinematics)
+        resisting = resisting_moment(self.mechanism, self.params, self.load, phi, 1.0, kinematics)
         if self.motor.kind == "indicator":
-            drive = driving_moment(self.motor, self.mechanism, self.params, phi, 0.0, self.inertias.gear_ratio)
+            drive = driving_moment(self.motor, self.mechanism, self.params, phi, 0.0, self.inertias.gear_ratio,
+                                   kinematics)
         elif self.motor.kind == "constant":
             drive = np.full_like(phi, self.motor.M0 * self.inertias.gear_ratio)
         else:

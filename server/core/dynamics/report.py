@@ -6,6 +6,7 @@ import time
 import numpy as np
 
 from ..mechanisms import MECHANISMS, GeometryError, Notice
+from . import compiled
 from . import flywheel as fw
 from .friction_iteration import friction_iteration
 from .machine import Machine
@@ -69,6 +70,7 @@ def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, ome
            balance: bool, max_cycles: int) -> tuple[dict, list[Notice]]:
     """The steady cycle and/or the start-up transient, each with its numerics."""
     result, notices = {}, []
+    compiled.warm_up()                      # compiled before the clock starts (once per process)
     deadline = time.perf_counter() + TIME_BUDGET_S
     if "steady" in outputs:
         steady = steady_cycle(machine, rtol, omega_mean, balance, deadline)
