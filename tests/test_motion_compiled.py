@@ -149,3 +149,25 @@ def test_steady_cycle_and_start_up_agree_between_the_paths(monkeypatch, seed):
         # the start from rest differs within DOP853's tolerance (1e-9 above); it carries into the cycles
         assert fast_start.transient.omega == pytest.approx(slow_start.transient.omega, rel=1e-8)
         assert fast_start.transient.t == pytest.approx(slow_start.transient.t, rel=1e-8)
+
+
+def test_the_compiled_mean_of_the_extremes_is_the_numpy_one_exactly():
+    """flywheel.periodic_speed's equation (ω_max + ω_min)/2 = ω_m, compiled without arrays, against
+    _extreme on the numpy array: the same divisions, square roots and parabola in the same order, so equal to
+    the last bit, also where a zero inertia gives inf or a negative energy NaN (numpy's argmax takes the
+    first NaN)."""
+    from server.core.dynamics.compiled import mean_of_extremes
+    from server.core.dynamics.flywheel import _extreme
+    rng = np.random.default_rng(7)
+    phi = np.linspace(0, 2 * np.pi, 2049)
+    for trial in range(200):
+        work = (rng.normal() * np.sin(phi + rng.uniform()) + 0.3 * rng.normal() * np.sin(3 * phi) if trial % 3
+                else np.cumsum(rng.normal(size=phi.size)) * 0.01)
+        total = rng.uniform(0.5, 2) + rng.uniform(0, 1) * np.cos(phi) ** 2
+        if trial % 10 == 0:
+            total[int(rng.integers(0, phi.size))] = 0.0
+        T0 = float(rng.uniform(-0.5, 3))
+        with np.errstate(all="ignore"):
+            omega = np.sqrt(2 * (T0 + work) / total)
+            expected = 0.5 * (_extreme(omega, +1) + _extreme(omega, -1))
+        assert mean_of_extremes(work, total, T0) == pytest.approx(expected, rel=0, abs=0, nan_ok=True)

@@ -109,6 +109,43 @@ def rk4_steps(J, base, sliding, h, speed, kind, p, T_nodes, t_nodes, first, step
     return count, S, stall
 
 
+@njit(cache=True, error_model="numpy")
+def _periodic_omega(work, total, T0):
+    """ω = √(2(T₀ + A)/I) with numpy's rules: x/0 = ±inf, √(negative) = NaN."""
+    return np.sqrt(2 * (T0 + work) / total)
+
+
+@njit(cache=True, error_model="numpy")
+def _refined(work, total, T0, k, sign):
+    """The parabola through sample k and its periodic neighbours when it bends the right way (flywheel._extreme)."""
+    n = work.size - 1
+    left = _periodic_omega(work[(k - 1) % n], total[(k - 1) % n], T0)
+    mid = _periodic_omega(work[k], total[k], T0)
+    right = _periodic_omega(work[(k + 1) % n], total[(k + 1) % n], T0)
+    curvature = left - 2 * mid + right
+    return mid - (right - left) ** 2 / (8 * curvature) if curvature * sign < 0 else mid
+
+
+@njit(cache=True, error_model="numpy")
+def mean_of_extremes(work, total, T0):
+    """(ω_max + ω_min)/2 of ω(φ) = √(2(T₀ + A(φ))/I(φ)), both extremes refined by a parabola: what
+    flywheel.periodic_speed solves for, with the arithmetic of its numpy version (_extreme of the array)
+    element for element: the first largest and smallest samples of the open cycle (a NaN counts as both, as
+    in numpy's argmax), in one pass without the array."""
+    n = work.size - 1
+    k_max, k_min, largest, smallest = 0, 0, -np.inf, -np.inf       # smallest: the largest −ω
+    for i in range(n):
+        omega = _periodic_omega(work[i], total[i], T0)
+        if np.isnan(omega):
+            k_max = k_min = i
+            break
+        if omega > largest:
+            k_max, largest = i, omega
+        if -omega > smallest:
+            k_min, smallest = i, -omega
+    return 0.5 * (_refined(work, total, T0, k_max, 1.0) + _refined(work, total, T0, k_min, -1.0))
+
+
 @lru_cache(maxsize=1)
 def warm_up() -> float:
     """Compile (or load from the disk cache) every signature the server calls: the RK4 loop here and
@@ -124,5 +161,6 @@ def warm_up() -> float:
         T_nodes[0] = 1.0
         for speed in (False, True):
             rk4_steps(nodes, nodes, nodes, 0.1, speed, kind, params, T_nodes, t_nodes, 0, 4)
+    mean_of_extremes(nodes, nodes, 1.0)
     dop853.warm_up()
     return time.perf_counter() - started
