@@ -37,9 +37,10 @@ def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: i
         notices += moment.notices
         means, errors = {}, {}
         fine = np.linspace(0.0, mech.cycle(p), MEAN_POINTS + 1)
+        kinematics = mech.evaluate(p, fine, set())          # one evaluation for both conventions
         for convention in CONVENTIONS:
             total = resisting_moment(mechanism, p, Load(**{**load.__dict__, "convention": convention}), fine,
-                                     omega).total
+                                     omega, kinematics).total
             means[convention] = mean_over_cycle(total)
             errors[convention] = abs(means[convention] - mean_over_cycle(total[::2]))
         result["numerics"] = {
