@@ -34,6 +34,11 @@ class Tables:
     notices: list[Notice]
     balancing_moment: float = 0.0   # constant crank moment added to balance the cycle work, N·m
 
+    def part(self, nodes: slice) -> Tables:
+        """The tables on a slice of the nodes."""
+        return Tables(self.phi[nodes], self.J[nodes], self.dJ[nodes], self.drive_phi[nodes], self.useful[nodes],
+                      self.dry[nodes], self.sliding[nodes], self.notices, self.balancing_moment)
+
     @property
     def net_phi(self) -> np.ndarray:
         """M_д,φ − M_c,φ: everything that does not depend on ω."""

@@ -26,6 +26,7 @@ from .machine import Machine
 STEPS_START = 32           # RK4 steps per 2π at the coarsest level
 STEPS_MAX = 1 << 15        # per 2π: bounds the work of one request
 NEWTON_MAX = 30
+SUBSTEPS = 64              # sub-steps per step where extreme_speed integrates again around an extreme
 MAX_CYCLES = 200
 
 
@@ -141,15 +142,37 @@ def cycle_figures(machine: Machine, tables, run: Run, fine: dict | None = None) 
     works = {"driving": work(drive), "useful": work(tables.useful[nodes]), "dry_friction": work(tables.dry[nodes]),
              "viscous_friction": work(viscous)}
     works["net"] = works["driving"] - works["useful"] - works["dry_friction"] - works["viscous_friction"]
-    w_max = extreme_speed(machine, tables, run, int(np.argmax(omega)), +1, fine=fine)
-    w_min = extreme_speed(machine, tables, run, int(np.argmin(omega)), -1, fine=fine)
+    k_max, k_min = int(np.argmax(omega)), int(np.argmin(omega))
+    fine = {} if fine is None else fine
+    sub_step_tables(machine, tables, run, (k_max, k_min), fine)
+    w_max = extreme_speed(machine, tables, run, k_max, +1, fine=fine)
+    w_min = extreme_speed(machine, tables, run, k_min, -1, fine=fine)
     mean = 0.5 * (w_max + w_min)
     return Steady(run.phi, omega, run.t - run.t[0], epsilon, mean, float((run.phi[-1] - run.phi[0]) / (run.t[-1] - run.t[0])),
                   (w_max - w_min) / mean, abs(works["useful"]) / works["driving"] if works["driving"] > 0 else 0.0,
                   works)
 
 
-def extreme_speed(machine: Machine, tables, run: Run, k: int, sign: int, substeps: int = 64,
+def sub_step_tables(machine: Machine, tables, run: Run, nodes, fine: dict, substeps: int = SUBSTEPS) -> None:
+    """Put into ``fine`` the sub-step tables extreme_speed needs around each node k of ``nodes`` that it
+    lacks, from one evaluation of the machine on all their angles (element for element the same values)."""
+    last = run.phi.size - 1
+    wanted = dict.fromkeys((max(k - 1, 0), min(k + 1, last)) for k in nodes)
+    missing = [(a, b) for a, b in wanted if a != b and (a, b, substeps) not in fine]
+    if not missing:
+        return
+    grids = [np.linspace(run.phi[a], run.phi[b], 2 * substeps * (b - a) + 1) for a, b in missing]
+    joint = machine.tables(np.concatenate(grids))
+    start = 0
+    for (a, b), grid in zip(missing, grids):
+        sub = joint.part(slice(start, start + grid.size))
+        start += grid.size
+        sub.useful = sub.useful + tables.balancing_moment
+        sub.balancing_moment = tables.balancing_moment
+        fine[a, b, substeps] = sub
+
+
+def extreme_speed(machine: Machine, tables, run: Run, k: int, sign: int, substeps: int = SUBSTEPS,
                   fine: dict | None = None) -> float:
     """ω_max (sign +1) or ω_min (−1) between the step nodes around node k: the two steps are integrated
     again with ``substeps`` sub-steps each, and a parabola through the best fine node and its neighbours
@@ -290,6 +313,8 @@ def _level(machine: Machine, tables, steps: int, omega_mean: float | None, fine:
     for _ in range(4):      # the same condition on the refined extremes: Newton with dω/dT₀ = 1/(Jω)
         run = integrate(machine, tables, T0, steps)
         k_max, k_min = int(np.argmax(run.omega)), int(np.argmin(run.omega))
+        if fine is not None:
+            sub_step_tables(machine, tables, run, (k_max, k_min), fine)
         w_max = extreme_speed(machine, tables, run, k_max, +1, fine=fine)
         w_min = extreme_speed(machine, tables, run, k_min, -1, fine=fine)
         slope = 0.5 * (1 / (J[k_max] * w_max) + 1 / (J[k_min] * w_min))

@@ -104,12 +104,19 @@ def diagram_curve(ratios: tuple[float, ...]) -> PchipInterpolator:
     return PchipInterpolator(np.linspace(0.0, 1.0, INDICATOR_POINTS), ratios)
 
 
+@lru_cache(maxsize=256)
+def piston_stroke(l1: float, l2: float, e: float) -> float:
+    """H: the piston's travel between the dead centres of the crank-slider (once per geometry)."""
+    positions = MECHANISMS["slider_crank"].special_positions({"l1": l1, "l2": l2, "e": e})
+    return next(sp.value for sp in positions if sp.kind == "dead_centre" and sp.value)
+
+
 def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray, kinematics=None) -> np.ndarray:
     """Gas force on the crank-slider's piston, N, from the indicator diagram (seed 004 (L15)–(L16)):
     p/p_max interpolated over the piston travel from top dead centre; it pushes towards the crank."""
     mech = MECHANISMS["slider_crank"]
     values = (kinematics or mech.evaluate(params, phi, set())).values
-    stroke = next(sp.value for sp in mech.special_positions(params) if sp.kind == "dead_centre" and sp.value)
+    stroke = piston_stroke(params["l1"], params["l2"], params["e"])
     x = np.clip((stroke - values["s"]) / stroke, 0.0, 1.0)      # piston travel from top dead centre, x/H
     expansion = diagram_curve(motor.expansion)(x)
     compression = diagram_curve(motor.compression)(x)
