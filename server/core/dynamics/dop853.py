@@ -154,10 +154,12 @@ def _event_root(index, nodes_phi, F, y_old, t_old, t_new, h, y):
 @njit(cache=True)
 def leave_rest(nodes, weights, values, a, b, speed, kind, p, nodes_phi, t_bound, rtol, atol, deadline,
                t_first, omega_first):
-    """Integrate from (φ₀ = nodes_phi[0] − ..., ω = 0) at t = 0: ``nodes_phi`` are the step nodes after the
-    start, the last one terminal; the stall (ω falling through 0) is terminal too. Fills t_first[k],
-    omega_first[k] at the first passing of node k (t_first[k] stays NaN if it is not passed) and returns
-    DONE, OFF_TABLE or OUT_OF_TIME (the wall clock passed ``deadline``, time.perf_counter's scale)."""
+    """Integrate from rest at the table's start (φ = a, ω = 0, t = 0) towards t_bound. The table: J, J′,
+    M(φ), S(φ) at the Chebyshev ``nodes`` of [a, b] with barycentric ``weights``; the motor: ``speed``,
+    ``kind``, ``p`` of compiled.speed_parameters. Events: passing each of ``nodes_phi`` (the step nodes after
+    the start; the last one terminal) and the stall (ω falling through 0, terminal). Fills t_first[k],
+    omega_first[k] at the first passing of node k (NaN if it is not passed) and returns DONE, OFF_TABLE or
+    OUT_OF_TIME (the wall clock passed ``deadline``, on time.perf_counter's scale)."""
     table = (nodes, weights, values, a, b)
     count = nodes_phi.size
     events = count + 1
