@@ -206,7 +206,7 @@ def leave_rest(nodes, weights, values, a, b, speed, kind, p, nodes_phi, t_bound,
     steps = 0
     while True:
         steps += 1
-        if steps % CLOCK_EVERY == 0:
+        if steps % CLOCK_EVERY == 1:                   # from the first step on: warm_up runs this block too
             with objmode(now="float64"):
                 now = time.perf_counter()
             if now > deadline:
