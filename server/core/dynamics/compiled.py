@@ -127,22 +127,35 @@ def _refined(work, total, T0, k, sign):
 
 
 @njit(cache=True, error_model="numpy")
+def _first_with_speed(work, total, T0, last, q_bound, above, speed):
+    """The first sample up to ``last`` whose ω equals ``speed``; only samples whose ω² lies within 1e-15 of
+    it (``q_bound``: the side given by ``above``) can, as √ rounds at most two neighbouring doubles to one."""
+    for i in range(last + 1):
+        q = 2 * (T0 + work[i]) / total[i]
+        if (q >= q_bound if above else q <= q_bound) and np.sqrt(q) == speed:
+            return i
+    return last
+
+
+@njit(cache=True, error_model="numpy")
 def mean_of_extremes(work, total, T0):
     """(ω_max + ω_min)/2 of ω(φ) = √(2(T₀ + A(φ))/I(φ)), both extremes refined by a parabola: what
     flywheel.periodic_speed solves for, with the arithmetic of its numpy version (_extreme of the array)
-    element for element: the first largest and smallest samples of the open cycle (a NaN counts as both, as
-    in numpy's argmax), in one pass without the array."""
+    element for element, without the array: the first largest and smallest samples of the open cycle (a NaN
+    counts as both, as in numpy's argmax). The scan compares ω² = 2(T₀ + A)/I (√ is monotone) and takes the
+    square root only to find the first sample whose ω ties with the extreme."""
     n = work.size - 1
-    k_max, k_min, largest, smallest = 0, 0, -np.inf, -np.inf       # smallest: the largest −ω
+    q_max, q_min, k_max, k_min = -np.inf, np.inf, 0, 0
     for i in range(n):
-        omega = _periodic_omega(work[i], total[i], T0)
-        if np.isnan(omega):
-            k_max = k_min = i
-            break
-        if omega > largest:
-            k_max, largest = i, omega
-        if -omega > smallest:
-            k_min, smallest = i, -omega
+        q = 2 * (T0 + work[i]) / total[i]
+        if not q >= 0.0:                       # ω is NaN here: numpy's argmax stops at the first NaN
+            return 0.5 * (_refined(work, total, T0, i, 1.0) + _refined(work, total, T0, i, -1.0))
+        if q > q_max:
+            q_max, k_max = q, i
+        if q < q_min:
+            q_min, k_min = q, i
+    k_max = _first_with_speed(work, total, T0, k_max, q_max * (1 - 1e-15), True, np.sqrt(q_max))
+    k_min = _first_with_speed(work, total, T0, k_min, q_min * (1 + 1e-15), False, np.sqrt(q_min))
     return 0.5 * (_refined(work, total, T0, k_max, 1.0) + _refined(work, total, T0, k_min, -1.0))
 
 
