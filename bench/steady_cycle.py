@@ -6,7 +6,13 @@ in time, J(φ)ω̇ + ½J′ω² = M_д − M_c, cycle after cycle until ω at φ
 same tolerance.  Error: relative error of ω(φ = 0) and of δ on the steady cycle against a
 reference computed by DOP853 at rtol = 1e-13 (a different method from ours).
 
-Run:  python bench/steady_cycle.py      (writes bench/results/steady_cycle.md)
+Our path is timed twice, side by side in the same run: with the numba-compiled loops (RK4 in φ, DOP853
+leaving rest: the server's path) and with the reference loops they are tested against (plain Python RK4,
+scipy's DOP853): the ratio is the compiled code's speed-up. The start-up from rest (up to 80 cycles) is timed
+the same way.
+
+Run:  python bench/steady_cycle.py            (writes bench/results/steady_cycle.md)
+      python bench/steady_cycle.py --paths    (only compiled against reference, printed, nothing written)
 """
 from __future__ import annotations
 
@@ -20,8 +26,9 @@ from scipy.optimize import minimize_scalar
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from server.core.dynamics import compiled, integrator    # noqa: E402
 from server.core.dynamics.machine import Machine          # noqa: E402
-from server.core.dynamics.motion import steady_cycle      # noqa: E402
+from server.core.dynamics.motion import startup, steady_cycle  # noqa: E402
 from server.core.dynamics.motors import Motor             # noqa: E402
 from server.core.dynamics.reduction import Inertias       # noqa: E402
 from server.core.dynamics.resistance import Load          # noqa: E402
@@ -62,15 +69,47 @@ def timed(function, repeat=3):
     return statistics.median(times), result
 
 
+def on_path(compiled_loops: bool, function):
+    """function() with integrate's loops compiled (the server's path) or the reference ones."""
+    saved, integrator.COMPILED = integrator.COMPILED, compiled_loops
+    try:
+        return function()
+    finally:
+        integrator.COMPILED = saved
+
+
+def paths_table(omega_ref: float, delta_ref: float) -> list[str]:
+    """Our steady cycle and start-up, compiled and reference loops side by side, with the ratio."""
+    lines = ["| computation | rtol | reference loops, ms | compiled, ms | speed-up | error of ω(0), compiled | "
+             "error of ω(0), reference |", "|---|---|---|---|---|---|---|"]
+    for rtol in (1e-3, 1e-6, 1e-8, 1e-10):
+        slow, old = on_path(False, lambda: timed(lambda: steady_cycle(MACHINE, rtol=rtol)))
+        fast, new = on_path(True, lambda: timed(lambda: steady_cycle(MACHINE, rtol=rtol)))
+        lines.append(f"| steady cycle ({new.numerics.steps} steps × {new.numerics.iterations} Newton runs) | {rtol:.0e} | "
+                     f"{1e3 * slow:.1f} | {1e3 * fast:.2f} | {slow / fast:.0f}× | "
+                     f"{abs(new.steady.omega[0] / omega_ref - 1):.1e} | {abs(old.steady.omega[0] / omega_ref - 1):.1e} |")
+    slow, old = on_path(False, lambda: timed(lambda: startup(MACHINE, 0.0, 1e-8, 80)))
+    fast, new = on_path(True, lambda: timed(lambda: startup(MACHINE, 0.0, 1e-8, 80)))
+    settle = abs(new.transient.omega[-1] / old.transient.omega[-1] - 1)
+    lines.append(f"| start-up from rest ({new.numerics.cycles} cycles; final ω of the paths differ by {settle:.0e}) | 1e-08 | "
+                 f"{1e3 * slow:.1f} | {1e3 * fast:.2f} | {slow / fast:.0f}× | — | — |")
+    return lines
+
+
 def main() -> None:
+    warm = compiled.warm_up()
     ours_ref = steady_cycle(MACHINE, rtol=1e-10).steady
+    if "--paths" in sys.argv:
+        print("\n".join(paths_table(ours_ref.omega[0], ours_ref.delta)))
+        return
     omega_ref, delta_ref, _, _ = time_domain("DOP853", 1e-13, ours_ref.omega[0] * 0.9)
     rows = []
     for rtol in (1e-3, 1e-4, 1e-6, 1e-8, 1e-10):
         seconds, motion = timed(lambda: steady_cycle(MACHINE, rtol=rtol))
         s = motion.steady
-        rows.append(("ours: Newton shooting, RK4 in φ", rtol, abs(s.omega[0] / omega_ref - 1), abs(s.delta / delta_ref - 1),
-                     seconds, f"{motion.numerics.steps} steps × {motion.numerics.iterations} Newton runs", "—"))
+        rows.append(("ours: Newton shooting, RK4 in φ (compiled)", rtol, abs(s.omega[0] / omega_ref - 1),
+                     abs(s.delta / delta_ref - 1), seconds,
+                     f"{motion.numerics.steps} steps × {motion.numerics.iterations} Newton runs", "—"))
     start = ours_ref.omega[0] * 0.9
     for method in ("RK45", "DOP853", "Radau", "LSODA"):
         for rtol in (1e-4, 1e-6, 1e-8):
@@ -80,6 +119,9 @@ def main() -> None:
     lines = ["| method | rtol | error of ω(0) | error of δ | run time, ms | work | cycles |", "|---|---|---|---|---|---|---|"]
     lines += [f"| {m} | {r:.0e} | {e1:.1e} | {e2:.1e} | {1e3 * s:.1f} | {w} | {c} |" for m, r, e1, e2, s, w, c in rows]
     text = "\n".join(lines)
+    text += ("\n\nCompiled loops (numba: RK4 in φ, DOP853 leaving rest) against the reference loops they are tested "
+             f"against (plain Python RK4, scipy's DOP853), same run (compiling or loading them took {warm:.2f} s "
+             "before the timings):\n\n" + "\n".join(paths_table(omega_ref, delta_ref)))
     header = (f"Crank-slider l₁ = 0.1 m, λ = 3, linear motor M = 60 − 0.3ω_m, i = 5, P_c = 2000 N, k_p = 0.2, f = 0.1.\n"
               f"Reference ω(0) = {omega_ref:.12g} rad/s, δ = {delta_ref:.10g} (DOP853, rtol 1e-13, in time). "
               f"solve_ivp starts at 0.9·ω(0) of the steady cycle.\n\n")

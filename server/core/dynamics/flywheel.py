@@ -21,6 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
+from .compiled import mean_of_extremes
+
 GUTYAR_WINDOW = np.pi / 4      # half-width of the curve pieces Gutyar draws around the extremes, rad
 
 
@@ -96,11 +98,11 @@ def wittenbauer(cycle: Cycle, omega_mean: float, delta: float) -> tuple[Method, 
 def periodic_speed(cycle: Cycle, inertia_i: float, omega_mean: float) -> np.ndarray:
     """ω(φ) of the exact periodic solution with group-I inertia I_I and mean (ω_max + ω_min)/2 = ω_m;
     NaN everywhere when there is none (too little inertia for that mean speed: the speed would reach zero)."""
-    total = inertia_i + cycle.inertia_ii
+    total = np.ascontiguousarray(inertia_i + cycle.inertia_ii, dtype=np.float64)
+    work = np.ascontiguousarray(cycle.work, dtype=np.float64)
     lowest = float(np.max(-cycle.work))
-    def mean_error(T0):
-        omega = np.sqrt(2 * (T0 + cycle.work) / total)
-        return 0.5 * (_extreme(omega, +1) + _extreme(omega, -1)) - omega_mean
+    def mean_error(T0):             # 0.5 (_extreme(ω, +1) + _extreme(ω, −1)) − ω_m, compiled: no arrays per call
+        return mean_of_extremes(work, total, T0) - omega_mean
     high = lowest + 0.5 * float(total.max()) * (2 * omega_mean) ** 2 + 1.0
     if mean_error(lowest + 1e-12 * high) > 0:       # even as ω_min → 0 the mean exceeds ω_m: the machine would
         return np.full_like(cycle.work, np.nan)     # stall within the cycle, there is no periodic motion

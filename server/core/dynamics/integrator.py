@@ -19,10 +19,14 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from . import compiled as motor_kernel
+from . import dop853
 from .machine import Machine
 
 
+COMPILED = True   # default path: the numba loops (compiled.py, dop853.py); False: the Python/scipy reference
 REST_STEPS = 16   # steps integrated in time after a start from rest: T ≈ aφ − cφ^{3/2} is not smooth in φ there
+REST_REACH = 1.0   # the compiled path's table reaches this many times the nodes' span past the last node
 REST_BUDGET_S = 1.0   # wall time for those steps at most (milliseconds usually; a very steep motor is stiff in time)
 
 
@@ -72,13 +76,32 @@ class RestTable:
         return (terms @ self.values) / terms.sum()
 
 
-def leave_rest(machine: Machine, phi: np.ndarray, t0: float) -> tuple[list[float], list[float]]:
+def leave_rest(machine: Machine, phi: np.ndarray, t0: float,
+               compiled: bool | None = None) -> tuple[list[float], list[float]]:
     """T and t at the step nodes ``phi`` after a start from rest at phi[0]: J ω̇ = M − ½J′ω², φ̇ = ω
     in time, regular at ω = 0 (unlike dT/dφ, whose solution has a φ^{3/2} term), by scipy's DOP853.
     The φ-dependent parts come from a RestTable over the steps and a little past them (DOP853's stages
     may look ahead of the last node). Raises RestBudget past REST_BUDGET_S of wall time (a very steep
-    motor crawls off in tiny steps)."""
+    motor crawls off in tiny steps).
+
+    compiled: the same DOP853 compiled (dop853.py; default ``COMPILED``) on a table reaching REST_REACH
+    past the last node, when that table applies and no stage leaves it; else scipy's solve_ivp, the
+    reference path."""
+    motor_kernel.warm_up()                  # compiled before the clock starts (once per process)
     deadline = time.perf_counter() + REST_BUDGET_S
+    span = float(phi[-1] - phi[0])
+    if COMPILED if compiled is None else compiled:
+        wide = RestTable(machine, float(phi[0]), float(phi[-1]) + REST_REACH * span)
+        if wide.tabulated:
+            speed, kind, params = motor_kernel.speed_parameters(machine)
+            t_first, omega_first = np.empty(phi.size - 1), np.empty(phi.size - 1)
+            outcome = dop853.leave_rest(wide.nodes, wide.weights, np.ascontiguousarray(wide.values), wide.a, wide.b,
+                                        speed, kind, params, np.ascontiguousarray(phi[1:], dtype=np.float64),
+                                        _time_bound(machine, wide, phi), 1e-11, 1e-14, deadline, t_first, omega_first)
+            if outcome == dop853.OUT_OF_TIME:
+                raise RestBudget
+            if outcome == dop853.DONE:
+                return _passings(machine, phi, t0, t_first[:, None], omega_first[:, None])
     table = RestTable(machine, float(phi[0]), float(phi[-1] + 0.25 * (phi[-1] - phi[0])))
 
     def rhs(_, y):
@@ -98,16 +121,29 @@ def leave_rest(machine: Machine, phi: np.ndarray, t0: float) -> tuple[list[float
     def stalls(_, y):                 # back to rest after leaving it: the load wins
         return y[1]
     stalls.terminal, stalls.direction = True, -1
+    solution = solve_ivp(rhs, (0.0, _time_bound(machine, table, phi)), [phi[0], 0.0], method="DOP853", rtol=1e-11,
+                         atol=1e-14, events=[passing(node) for node in phi[1:]] + [stalls])
+    return _passings(machine, phi, t0, solution.t_events[:-1], [y[:, 1] if y.size else y for y in solution.y_events[:-1]])
+
+
+def _time_bound(machine: Machine, table: RestTable, phi: np.ndarray) -> float:
+    """The end of the time interval: 20 × the time to cover the nodes at the starting acceleration, + 1 s."""
+    J, _, moment, sliding = table.at(float(phi[0]))
+    if machine.speed_dependent:
+        moment += machine.speed_moment(0.0, sliding)[0]
     start = machine.tables(phi[:1])
-    scale = math.sqrt(2 * (phi[-1] - phi[0]) * start.J[0] / max(abs(rhs(0, [phi[0], 0.0])[1]) * start.J[0], 1e-300))
-    solution = solve_ivp(rhs, (0.0, 20 * scale + 1.0), [phi[0], 0.0], method="DOP853", rtol=1e-11, atol=1e-14,
-                         events=[passing(node) for node in phi[1:]] + [stalls])
-    solution.t_events, solution.y_events = solution.t_events[:-1], solution.y_events[:-1]
-    reached = [k for k, e in enumerate(solution.t_events) if e.size and solution.y_events[k][0][1] > 0]
+    scale = math.sqrt(2 * (phi[-1] - phi[0]) * start.J[0] / max(abs(moment / J) * start.J[0], 1e-300))
+    return 20 * scale + 1.0
+
+
+def _passings(machine: Machine, phi: np.ndarray, t0: float, times, speeds) -> tuple[list[float], list[float]]:
+    """T and t at the nodes passed, contiguous from the start, from each node's passing times and speeds
+    (NaN or none: not passed; the first passing counts)."""
+    reached = [k for k, t in enumerate(times) if t.size and np.isfinite(t[0]) and speeds[k][0] > 0]
     reached = reached[:next((n for n, k in enumerate(reached) if k != n), len(reached))]   # contiguous from the start
-    omega = np.array([float(solution.y_events[k][0][1]) for k in reached])
+    omega = np.array([float(speeds[k][0]) for k in reached])
     J = machine.tables(phi[1:len(reached) + 1]).J
-    return (0.5 * J * omega**2).tolist(), [t0 + float(solution.t_events[k][0]) for k in reached]
+    return (0.5 * J * omega**2).tolist(), [t0 + float(times[k][0]) for k in reached]
 
 
 @dataclass
@@ -122,13 +158,47 @@ class Run:
     stall_phi: float | None = None
 
 
-def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0) -> Run:
-    """Integrate over the nodes of ``tables`` (2·steps + 1 nodes, step and half-step) from T₀."""
+def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0, compiled: bool | None = None) -> Run:
+    """Integrate over the nodes of ``tables`` (2·steps + 1 nodes, step and half-step) from T₀.
+
+    compiled: the numba loop of compiled.py (default, ``COMPILED``) or the plain Python loop below, the
+    reference the compiled one is tested against (tests/test_motion_compiled.py)."""
+    phi = tables.phi
+    h = float(phi[2] - phi[0])
+    T_nodes, t_nodes = np.empty(steps + 1), np.empty(steps + 1)
+    T_nodes[0], t_nodes[0] = T0, t0
+    stall, first, count, S = None, 0, 1, 1.0
+    if T0 == 0.0:
+        first = min(REST_STEPS, steps)
+        T_rest, t_rest = leave_rest(machine, phi[0:2 * first + 1:2], t0, compiled)
+        count = len(T_rest) + 1
+        T_nodes[1:count], t_nodes[1:count] = T_rest, t_rest
+        if len(T_rest) < first:            # came to rest again before the first few steps
+            stall, first = float(phi[2 * len(T_rest)]), steps
+    if first < steps:
+        loop = _steps_compiled if (COMPILED if compiled is None else compiled) else _steps_python
+        count, S, stall_node = loop(machine, tables, h, T_nodes, t_nodes, first, steps)
+        stall = float(phi[stall_node]) if stall_node >= 0 else None
+    T_arr = T_nodes[:count]
+    J_nodes = tables.J[0:2 * count - 1:2]
+    return Run(phi=phi[0:2 * count - 1:2], T=T_arr, omega=np.sqrt(2 * T_arr / J_nodes), t=t_nodes[:count].copy(),
+               sensitivity=S, stall_phi=stall)
+
+
+def _steps_compiled(machine: Machine, tables, h: float, T_nodes, t_nodes, first: int, steps: int):
+    speed, kind, params = motor_kernel.speed_parameters(machine)
+    return motor_kernel.rk4_steps(np.ascontiguousarray(tables.J, dtype=np.float64),
+                              np.ascontiguousarray(tables.net_phi, dtype=np.float64),
+                              np.ascontiguousarray(tables.sliding, dtype=np.float64),
+                              h, speed, kind, params, T_nodes, t_nodes, first, steps)
+
+
+def _steps_python(machine: Machine, tables, h: float, T_nodes, t_nodes, first: int, steps: int):
+    """The reference loop: steps first … steps−1 from node ``first``; fills the following nodes and returns
+    (nodes filled, S = dT(end)/dT₀, stall node index or −1)."""
     J = tables.J.tolist()
     base = tables.net_phi.tolist()
     sliding = tables.sliding.tolist()
-    phi = tables.phi
-    h = float(phi[2] - phi[0])
     speed = machine.speed_dependent
     speed_moment = machine.speed_moment
 
@@ -139,17 +209,8 @@ def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0) 
         moment, slope = speed_moment(omega, sliding[j])
         return base[j] + moment, (slope / (J[j] * omega) if omega > 0.0 else 0.0)
 
-    T_nodes, t_nodes = [T0], [t0]
-    S, T, t = 1.0, T0, t0
-    stall, first = None, 0
-    if T0 == 0.0:
-        first = min(REST_STEPS, steps)
-        T_rest, t_rest = leave_rest(machine, phi[0:2 * first + 1:2], t0)
-        T_nodes += T_rest
-        t_nodes += t_rest
-        T, t = T_nodes[-1], t_nodes[-1]
-        if len(T_rest) < first:            # came to rest again before the first few steps
-            stall, first = float(phi[2 * len(T_rest)]), steps
+    S, T, t = 1.0, float(T_nodes[first]), float(t_nodes[first])
+    stall, count = -1, first + 1
     for k in range(first, steps):
         j = 2 * k
         f1, g1 = rate(j, T)
@@ -158,10 +219,10 @@ def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0) 
         f4, g4 = rate(j + 2, T + h * f3)
         T_new = T + h * (f1 + 2 * f2 + 2 * f3 + f4) / 6
         if T_new <= 0.0 or min(T + 0.5 * h * f1, T + 0.5 * h * f2) < 0.0:
-            stall = float(phi[j])
+            stall = j
             break
         if T > 0.0 and 0.5 * (T + T_new) + h * (f1 - f4) / 8 <= 0.0:   # T(φ) touches zero inside the step
-            stall = float(phi[j + 1])
+            stall = j + 1
             break
         s1 = g1 * S
         s2 = g2 * (S + 0.5 * h * s1)
@@ -177,9 +238,6 @@ def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0) 
             w_half = math.sqrt(2 * max(T_mid, 0.0) / J[j + 1])
             t += h * (1 / w0 + 4 / w_half + 1 / w1) / 6
         T = T_new
-        T_nodes.append(T)
-        t_nodes.append(t)
-    T_arr = np.array(T_nodes)
-    J_nodes = tables.J[0:2 * len(T_nodes) - 1:2]
-    return Run(phi=phi[0:2 * len(T_nodes) - 1:2], T=T_arr, omega=np.sqrt(2 * T_arr / J_nodes), t=np.array(t_nodes),
-               sensitivity=S, stall_phi=stall)
+        T_nodes[count], t_nodes[count] = T, t
+        count += 1
+    return count, S, stall

@@ -34,6 +34,11 @@ class Tables:
     notices: list[Notice]
     balancing_moment: float = 0.0   # constant crank moment added to balance the cycle work, N·m
 
+    def part(self, nodes: slice) -> Tables:
+        """The tables on a slice of the nodes."""
+        return Tables(self.phi[nodes], self.J[nodes], self.dJ[nodes], self.drive_phi[nodes], self.useful[nodes],
+                      self.dry[nodes], self.sliding[nodes], self.notices, self.balancing_moment)
+
     @property
     def net_phi(self) -> np.ndarray:
         """M_д,φ − M_c,φ: everything that does not depend on ω."""
@@ -57,10 +62,13 @@ class Machine:
         return max(MECHANISMS[self.mechanism].cycle(self.params), self.motor.cycle())
 
     def tables(self, phi: np.ndarray) -> Tables:
-        inertia = reduced_inertia(self.mechanism, self.params, self.inertias, phi)
-        resisting = resisting_moment(self.mechanism, self.params, self.load, phi, omega=1.0)
+        """The tables at phi from one evaluation of the mechanism there."""
+        kinematics = MECHANISMS[self.mechanism].evaluate(self.params, phi, set())
+        inertia = reduced_inertia(self.mechanism, self.params, self.inertias, phi, kinematics)
+        resisting = resisting_moment(self.mechanism, self.params, self.load, phi, 1.0, kinematics)
         if self.motor.kind == "indicator":
-            drive = driving_moment(self.motor, self.mechanism, self.params, phi, 0.0, self.inertias.gear_ratio)
+            drive = driving_moment(self.motor, self.mechanism, self.params, phi, 0.0, self.inertias.gear_ratio,
+                                   kinematics)
         elif self.motor.kind == "constant":
             drive = np.full_like(phi, self.motor.M0 * self.inertias.gear_ratio)
         else:

@@ -26,6 +26,7 @@ from .machine import Machine
 STEPS_START = 32           # RK4 steps per 2π at the coarsest level
 STEPS_MAX = 1 << 15        # per 2π: bounds the work of one request
 NEWTON_MAX = 30
+SUBSTEPS = 64              # sub-steps per step where extreme_speed integrates again around an extreme
 MAX_CYCLES = 200
 
 
@@ -111,57 +112,85 @@ def mean_speed_balance(machine: Machine, tables) -> float | None:
     """ω̄ where the cycle-mean moment vanishes: a start for Newton, None when the motor cannot carry the load."""
     base = float(np.mean(tables.net_phi[:-1]))
     sliding = float(np.mean(tables.sliding[:-1]))
-    def mean_moment(w):
+    def mean_moment(w):                   # w: a speed or an array of speeds
         return base + machine.speed_moment(w, sliding)[0]
     top = machine.motor.omega_sync / machine.inertias.gear_ratio if machine.motor.omega_sync else None
     if top is None:                       # linear motor: no-load speed M₀/b, or viscous only
         top = (machine.motor.M0 / machine.motor.b / machine.inertias.gear_ratio if machine.motor.b
                else 1e4)
     grid = np.linspace(top, 1e-9 * top, 400)   # from no-load speed down: the first root is the stable one
-    values = [mean_moment(w) for w in grid]
+    values = mean_moment(grid).tolist()
     for a, b, va, vb in zip(grid[:-1], grid[1:], values[:-1], values[1:]):
         if va <= 0.0 <= vb or vb <= 0.0 <= va:
             return brentq(mean_moment, b, a, xtol=1e-12 * top)
     return None
 
 
-def cycle_figures(machine: Machine, tables, run: Run) -> Steady:
-    """δ, mean speeds, ε(φ) and the cycle works of the steady solution."""
+def cycle_figures(machine: Machine, tables, run: Run, fine: dict | None = None) -> Steady:
+    """δ, mean speeds, ε(φ) and the cycle works of the steady solution (``fine``: see extreme_speed)."""
     nodes = slice(0, None, 2)
     J, dJ = tables.J[nodes], tables.dJ[nodes]
     omega = run.omega
-    moment = tables.net_phi[nodes] + np.array([machine.speed_moment(w, s)[0]
-                                               for w, s in zip(omega, tables.sliding[nodes])])
+    moment = tables.net_phi[nodes] + machine.speed_moment(omega, tables.sliding[nodes])[0]
     epsilon = (moment - 0.5 * dJ * omega**2) / J
     h = float(run.phi[1] - run.phi[0])
     def work(values):
         return float(simpson(values, h))
-    drive = tables.drive_phi[nodes] + (np.array([machine.speed_moment(w, 0.0)[0] for w in omega])
+    drive = tables.drive_phi[nodes] + (machine.speed_moment(omega, np.zeros_like(omega))[0]
                                        if machine.motor.speed_dependent else 0.0)
     viscous = machine.load.beta * omega * tables.sliding[nodes]
     works = {"driving": work(drive), "useful": work(tables.useful[nodes]), "dry_friction": work(tables.dry[nodes]),
              "viscous_friction": work(viscous)}
     works["net"] = works["driving"] - works["useful"] - works["dry_friction"] - works["viscous_friction"]
-    w_max = extreme_speed(machine, tables, run, int(np.argmax(omega)), +1)
-    w_min = extreme_speed(machine, tables, run, int(np.argmin(omega)), -1)
+    k_max, k_min = int(np.argmax(omega)), int(np.argmin(omega))
+    fine = {} if fine is None else fine
+    sub_step_tables(machine, tables, run, (k_max, k_min), fine)
+    w_max = extreme_speed(machine, tables, run, k_max, +1, fine=fine)
+    w_min = extreme_speed(machine, tables, run, k_min, -1, fine=fine)
     mean = 0.5 * (w_max + w_min)
     return Steady(run.phi, omega, run.t - run.t[0], epsilon, mean, float((run.phi[-1] - run.phi[0]) / (run.t[-1] - run.t[0])),
                   (w_max - w_min) / mean, abs(works["useful"]) / works["driving"] if works["driving"] > 0 else 0.0,
                   works)
 
 
-def extreme_speed(machine: Machine, tables, run: Run, k: int, sign: int, substeps: int = 64) -> float:
+def sub_step_tables(machine: Machine, tables, run: Run, nodes, fine: dict, substeps: int = SUBSTEPS) -> None:
+    """Put into ``fine`` the sub-step tables extreme_speed needs around each node k of ``nodes`` that it
+    lacks, from one evaluation of the machine on all their angles (element for element the same values)."""
+    last = run.phi.size - 1
+    wanted = dict.fromkeys((max(k - 1, 0), min(k + 1, last)) for k in nodes)
+    missing = [(a, b) for a, b in wanted if a != b and (a, b, substeps) not in fine]
+    if not missing:
+        return
+    grids = [np.linspace(run.phi[a], run.phi[b], 2 * substeps * (b - a) + 1) for a, b in missing]
+    joint = machine.tables(np.concatenate(grids))
+    start = 0
+    for (a, b), grid in zip(missing, grids):
+        sub = joint.part(slice(start, start + grid.size))
+        start += grid.size
+        sub.useful = sub.useful + tables.balancing_moment
+        sub.balancing_moment = tables.balancing_moment
+        fine[a, b, substeps] = sub
+
+
+def extreme_speed(machine: Machine, tables, run: Run, k: int, sign: int, substeps: int = SUBSTEPS,
+                  fine: dict | None = None) -> float:
     """ω_max (sign +1) or ω_min (−1) between the step nodes around node k: the two steps are integrated
     again with ``substeps`` sub-steps each, and a parabola through the best fine node and its neighbours
-    gives the extreme (error ~ (h/substeps)³ instead of the node spacing's h²)."""
+    gives the extreme (error ~ (h/substeps)³ instead of the node spacing's h²).
+
+    fine: the tables of the sub-steps already evaluated for these ``tables``, by node pair (a, b); the
+    Newton iterations of _level and cycle_figures come back to the same steps with another T₀."""
     last = run.phi.size - 1
     a, b = max(k - 1, 0), min(k + 1, last)
     if a == b:
         return float(run.omega[k])
-    fine = machine.tables(np.linspace(run.phi[a], run.phi[b], 2 * substeps * (b - a) + 1))
-    fine.useful = fine.useful + tables.balancing_moment
-    fine.balancing_moment = tables.balancing_moment
-    values = integrate(machine, fine, float(run.T[a]), substeps * (b - a)).omega
+    fine = {} if fine is None else fine
+    if (a, b, substeps) not in fine:
+        sub = machine.tables(np.linspace(run.phi[a], run.phi[b], 2 * substeps * (b - a) + 1))
+        sub.useful = sub.useful + tables.balancing_moment
+        sub.balancing_moment = tables.balancing_moment
+        fine[a, b, substeps] = sub
+    values = integrate(machine, fine[a, b, substeps], float(run.T[a]), substeps * (b - a)).omega
     j = int(np.argmax(sign * values))
     if 0 < j < values.size - 1:
         left, mid, right = values[j - 1], values[j], values[j + 1]
@@ -202,11 +231,12 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
             motion.notices += blocked(tables)
             numerics.message = motion.notices[0].text
             break
+        fine = {}                          # sub-step tables of extreme_speed on these nodes
         try:
             if machine.speed_dependent:
                 run, T0 = _shoot(machine, tables, steps, T0, numerics)
             else:
-                run = _level(machine, tables, steps, omega_mean)
+                run = _level(machine, tables, steps, omega_mean, fine)
         except NoMotion as stop:
             motion.notices.append(stop.notice)
             numerics.message = stop.notice.text
@@ -215,7 +245,7 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
         if previous is not None:
             numerics.error_estimate = float(np.max(np.abs(run.omega[::2] - previous.omega)) / 15 / run.omega.max())
             if numerics.error_estimate <= rtol:
-                motion.steady = cycle_figures(machine, tables, run)
+                motion.steady = cycle_figures(machine, tables, run, fine)
                 motion.steady.works["balancing_moment"] = tables.balancing_moment
                 motion.transient = None
                 numerics.energy_residual = abs(motion.steady.works["net"]) / max(motion.steady.works["driving"], 1e-300)
@@ -223,7 +253,7 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
         previous = run
         per_2pi *= 2
         if time.perf_counter() > deadline:
-            motion.steady = cycle_figures(machine, tables, run)
+            motion.steady = cycle_figures(machine, tables, run, fine)
             if numerics.error_estimate == 0.0:
                 numerics.error_estimate = None     # one level only: nothing to compare with
             numerics.message = (f"stopped at the time budget before reaching rtol = {rtol:g}; the result is the "
@@ -257,7 +287,7 @@ def _shoot(machine: Machine, tables, steps: int, T0: float | None, numerics: Num
     raise NoMotion("newton_failed", "Newton's method did not converge on the cycle map.")
 
 
-def _level(machine: Machine, tables, steps: int, omega_mean: float | None):
+def _level(machine: Machine, tables, steps: int, omega_mean: float | None, fine: dict | None = None):
     """φ-only moments: the energy level T₀ at φ₀ for which (ω_max + ω_min)/2 equals the given mean speed."""
     work = cumulative_simpson(tables.net_phi, float(tables.phi[2] - tables.phi[0]))   # A(φ) on the step nodes
     cycle_work = work[-1]
@@ -283,8 +313,10 @@ def _level(machine: Machine, tables, steps: int, omega_mean: float | None):
     for _ in range(4):      # the same condition on the refined extremes: Newton with dω/dT₀ = 1/(Jω)
         run = integrate(machine, tables, T0, steps)
         k_max, k_min = int(np.argmax(run.omega)), int(np.argmin(run.omega))
-        w_max = extreme_speed(machine, tables, run, k_max, +1)
-        w_min = extreme_speed(machine, tables, run, k_min, -1)
+        if fine is not None:
+            sub_step_tables(machine, tables, run, (k_max, k_min), fine)
+        w_max = extreme_speed(machine, tables, run, k_max, +1, fine=fine)
+        w_min = extreme_speed(machine, tables, run, k_min, -1, fine=fine)
         slope = 0.5 * (1 / (J[k_max] * w_max) + 1 / (J[k_min] * w_min))
         correction = (omega_mean - 0.5 * (w_max + w_min)) / slope
         T0 += correction

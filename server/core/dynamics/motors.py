@@ -17,6 +17,7 @@ interpolation.  φ = 0 is the inner (bottom) dead centre: a two-stroke cycle com
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
@@ -89,31 +90,45 @@ class Motor:
 
 
 def driving_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray,
-                   omega: np.ndarray | float, gear_ratio: float = 1.0) -> np.ndarray:
-    """M_д at crank angles φ and crank speed ω, reduced to the crank shaft (N·m)."""
+                   omega: np.ndarray | float, gear_ratio: float = 1.0, kinematics=None) -> np.ndarray:
+    """M_д at crank angles φ and crank speed ω, reduced to the crank shaft (N·m); ``kinematics``: the
+    mechanism already evaluated at phi, to share one evaluation."""
     if motor.kind != "indicator":
         return gear_ratio * motor.torque(gear_ratio * np.asarray(omega, float) + 0 * phi)[0]
-    return indicator_moment(motor, mechanism, params, phi)
+    return indicator_moment(motor, mechanism, params, phi, kinematics)
 
 
-def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray) -> np.ndarray:
+@lru_cache(maxsize=64)
+def diagram_curve(ratios: tuple[float, ...]) -> PchipInterpolator:
+    """p/p_max over x/H = 0…1 through the diagram's equally spaced points (built once per diagram)."""
+    return PchipInterpolator(np.linspace(0.0, 1.0, INDICATOR_POINTS), ratios)
+
+
+@lru_cache(maxsize=256)
+def piston_stroke(l1: float, l2: float, e: float) -> float:
+    """H: the piston's travel between the dead centres of the crank-slider (once per geometry)."""
+    positions = MECHANISMS["slider_crank"].special_positions({"l1": l1, "l2": l2, "e": e})
+    return next(sp.value for sp in positions if sp.kind == "dead_centre" and sp.value)
+
+
+def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray, kinematics=None) -> np.ndarray:
     """Gas force on the crank-slider's piston, N, from the indicator diagram (seed 004 (L15)–(L16)):
     p/p_max interpolated over the piston travel from top dead centre; it pushes towards the crank."""
     mech = MECHANISMS["slider_crank"]
-    values = mech.evaluate(params, phi, set()).values
-    stroke = next(sp.value for sp in mech.special_positions(params) if sp.kind == "dead_centre" and sp.value)
+    values = (kinematics or mech.evaluate(params, phi, set())).values
+    stroke = piston_stroke(params["l1"], params["l2"], params["e"])
     x = np.clip((stroke - values["s"]) / stroke, 0.0, 1.0)      # piston travel from top dead centre, x/H
-    grid = np.linspace(0.0, 1.0, INDICATOR_POINTS)
-    expansion = PchipInterpolator(grid, motor.expansion)(x)
-    compression = PchipInterpolator(grid, motor.compression)(x)
+    expansion = diagram_curve(motor.expansion)(x)
+    compression = diagram_curve(motor.compression)(x)
     phase = np.mod(phi, motor.cycle()) / np.pi                  # stroke number 0, 1, (2, 3)
     ratio = np.select([phase < 1, phase < 2], [compression, expansion], 0.0)
     return motor.p_max * ratio * np.pi * motor.piston_diameter**2 / 4
 
 
-def indicator_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray) -> np.ndarray:
+def indicator_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray,
+                     kinematics=None) -> np.ndarray:
     """M_д = F·V_qC·cos(F, V) with F = p A_p on the piston (seed 004 (L17)); gas pushes towards the crank."""
     if mechanism != "slider_crank":
         raise ValueError("an indicator diagram drives a crank-slider (piston engine) only")
-    u31 = MECHANISMS[mechanism].evaluate(params, phi, set()).values["u31"]
-    return -gas_force(motor, params, phi) * u31
+    kinematics = kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())
+    return -gas_force(motor, params, phi, kinematics) * kinematics.values["u31"]

@@ -61,9 +61,10 @@ LINK3_MOTION = {"sine": "translation", "slider_crank": "translation", "slotted_l
 
 
 def reduced_inertia(mechanism: str, params: dict[str, float], inertias: Inertias,
-                    phi: np.ndarray) -> ReducedInertia:
-    """J(φ) and dJ/dφ reduced to the crank, from closed-form velocity and acceleration analogs."""
-    values = MECHANISMS[mechanism].evaluate(params, phi, set()).values
+                    phi: np.ndarray, kinematics=None) -> ReducedInertia:
+    """J(φ) and dJ/dφ reduced to the crank, from closed-form velocity and acceleration analogs
+    (``kinematics``: the mechanism already evaluated at phi, to share one evaluation)."""
+    values = (kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())).values
     v, a = values["v_s2"], values["a_s2"]
     constant = inertias.J1 + inertias.J_rotor * inertias.gear_ratio**2
     parts = {"constant": np.full_like(phi, constant),

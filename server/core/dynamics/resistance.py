@@ -70,9 +70,10 @@ def stroke_factor(u31: np.ndarray, k: float) -> np.ndarray:
 
 
 def resisting_moment(mechanism: str, params: dict[str, float], load: Load, phi: np.ndarray,
-                     omega: np.ndarray | float = 0.0) -> ResistingMoment:
-    """M_c(φ, ω) reduced to the crank shaft; ω (rad/s) enters only through viscous friction."""
-    kinematics = MECHANISMS[mechanism].evaluate(params, phi, set())
+                     omega: np.ndarray | float = 0.0, kinematics=None) -> ResistingMoment:
+    """M_c(φ, ω) reduced to the crank shaft; ω (rad/s) enters only through viscous friction
+    (``kinematics``: the mechanism already evaluated at phi, to share one evaluation)."""
+    kinematics = kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())
     values = kinematics.values
     u31, u21 = values["u31"], values["u21"]
     k = stroke_factor(u31, load.return_factor)

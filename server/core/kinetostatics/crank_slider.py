@@ -120,25 +120,19 @@ def solve_dyad(points: dict, applied: dict, friction: dict) -> tuple[np.ndarray,
 
     Rod: R₁₂ − R₂₃ + G₂ + F_in2 = 0;  (B − A)×(−R₂₃) + (S₂ − A)×(G₂ + F_in2) + M_in2 + M_fr2 = 0.
     Slider: R₂₃ + (0, N) + (F_fr34, 0) + F_3p + G₃ + F_in3 = 0.
+    The system is triangular once ordered: the slider's x equation gives R₂₃ₓ, the rod's moment equation
+    about A (AB_y R₂₃ₓ − AB_x R₂₃ᵧ = −(AS × rod load + M_in2 + M_fr2)) gives R₂₃ᵧ (AB_x = l₂ cos ψ ≠ 0 for
+    λ > 1), the slider's y equation N and the rod's force equation R₁₂: solved in closed form at all angles.
     """
-    n = points["A"].shape[0]
     AB, AS = points["B"] - points["A"], points["S2"] - points["A"]
     rod_load = applied["G2"] + applied["F_in2"]
-    slider_load = applied["F_3p"] + applied["G3"] + applied["F_in3"] + np.stack([friction["F34"], np.zeros(n)], 1)
-    matrix = np.zeros((n, 5, 5))
-    rhs = np.zeros((n, 5))
-    # unknowns: R12x, R12y, R23x, R23y, N
-    matrix[:, 0, 0], matrix[:, 0, 2] = 1, -1
-    matrix[:, 1, 1], matrix[:, 1, 3] = 1, -1
-    rhs[:, 0], rhs[:, 1] = -rod_load[:, 0], -rod_load[:, 1]
-    # moment about A of −R₂₃ at B: −(AB_x R23y − AB_y R23x)
-    matrix[:, 2, 2], matrix[:, 2, 3] = AB[:, 1], -AB[:, 0]
-    rhs[:, 2] = -(cross(AS, rod_load) + applied["M_in2"] + friction["M2"])
-    matrix[:, 3, 2] = 1
-    matrix[:, 4, 3], matrix[:, 4, 4] = 1, 1
-    rhs[:, 3], rhs[:, 4] = -slider_load[:, 0], -slider_load[:, 1]
-    x = np.linalg.solve(matrix, rhs[..., None])[..., 0]
-    return x[:, 0:2], x[:, 2:4], x[:, 4]
+    slider_load = applied["F_3p"] + applied["G3"] + applied["F_in3"]
+    moment = -(cross(AS, rod_load) + applied["M_in2"] + friction["M2"])
+    R23 = np.empty_like(rod_load)
+    R23[:, 0] = -(slider_load[:, 0] + friction["F34"])
+    R23[:, 1] = (AB[:, 1] * R23[:, 0] - moment) / AB[:, 0]
+    N = -slider_load[:, 1] - R23[:, 1]
+    return R23 - rod_load, R23, N
 
 
 def friction_loads(pairs: Pairs, applied: dict, R12, R23, N, R41, omega1_ccw: float) -> dict:

@@ -25,10 +25,10 @@ def revolute_wear(phi: np.ndarray, reaction: np.ndarray, relative_rate: np.ndarr
 
     reaction: (n, 2) force the mating element exerts on this one; relative_rate: |u_j1 − u_{j+1,1}|;
     link_angle: the element's angle in the frame (its points turn with it); journal: a pin is pressed on
-    the side facing against the force (γ* = γ + π), a bush on the side the force points to (γ* = γ)."""
+    the side facing against the force (γ* = γ + π), a bush on the side the force points to (γ* = γ).
+    In contact where ψ wrapped to (−π, π] has |ψ| ≤ π/2, i.e. where cos ψ ≥ 0: the cosine pressure max(cos ψ, 0)."""
     gamma = np.arctan2(reaction[:, 1], reaction[:, 0]) + (np.pi if journal else 0.0)
-    psi = np.angle(np.exp(1j * (link_angle[None, :] + beta[:, None] - gamma[None, :])))
-    contact = np.where(np.abs(psi) <= np.pi / 2, np.cos(psi), 0.0)
+    contact = np.maximum(np.cos(link_angle[None, :] + beta[:, None] - gamma[None, :]), 0.0)
     integrand = np.linalg.norm(reaction, axis=1)[None, :] * relative_rate[None, :] * contact
     a = 2e6 * k * cycles / (np.pi * length)
     return a * np.trapezoid(integrand, phi, axis=1)
