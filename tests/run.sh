@@ -8,4 +8,5 @@ if ! command -v /usr/bin/chromium >/dev/null 2>&1; then
     else sudo apt-get update -qq && sudo apt-get install -y -qq chromium >/dev/null; fi
 fi
 mkdir -p test-artifacts
+python3 -m server.core.warm_up     # compile the numba kernels once into their disk cache (tens of seconds when new)
 python3 -m pytest -q "$@"

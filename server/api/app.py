@@ -1,6 +1,4 @@
 """The FastAPI application: versioned JSON API under /api/v1, pages, and our own static assets."""
-import importlib
-import importlib.util
 import json
 import logging
 import time
@@ -15,6 +13,7 @@ from fastapi.staticfiles import StaticFiles
 
 from ..lessons.scenes import REPO_ROOT
 from ..core.mechanisms import GeometryError
+from ..core.warm_up import warm_up
 from . import heavy
 from .errors import geometry_error, validation_error
 from .admission import AdmissionMiddleware
@@ -23,34 +22,21 @@ from .static_files import content_version, mount_versioned
 from .response_cache import CACHE_AT_EXIT, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
 from ..classroom.variants import SpecError
-from .routers import (angular, assignment_pages, assignments, dynamics, elastic, forces, kinematics, mechanisms, pages,
-                      scenes)
-from .routers import family
+from .routers import (angular, assignment_pages, assignments, dynamics, elastic, family, forces, kinematics,
+                      mechanisms, pages, scenes)
 
 API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
 STATIC_DIR = REPO_ROOT / "web" / "static"
-COMPILED = ("server.core.dynamics.compiled", "server.core.elastic.compiled")   # each has warm_up()
-
-
-def warm_up_compiled() -> list[str]:
-    """Compile, or load from numba's disk cache, the jitted code before the first request, so no student waits
-    for the JIT: the equation of motion's RK4 in φ (steady cycle and start-up; server.core.dynamics.compiled)
-    and the elastic models' right-hand sides and integrators (server.core.elastic.compiled), by each module's
-    warm_up(). A module of COMPILED that is not there is skipped; the log line names the modules warmed."""
-    started, warmed = time.perf_counter(), []
-    for name in COMPILED:
-        if importlib.util.find_spec(name) is not None:
-            importlib.import_module(name).warm_up()
-            warmed.append(name)
-    logging.getLogger("uvicorn.error").info("compiled code warmed in %.2f s: %s", time.perf_counter() - started,
-                                            ", ".join(warmed) or "none")
-    return warmed
 
 
 @asynccontextmanager
 async def lifespan(app: FastAPI):
-    warm_up_compiled()                 # in this worker, before its first request
+    heavy.start()                      # the heavy processes warm their kernels meanwhile
+    started = time.perf_counter()      # the compiled kernels, in this worker, before its first request
+    parts = warm_up()
+    logging.getLogger("uvicorn.error").info("compiled code ready in %.2f s (%s)", time.perf_counter() - started,
+                                            ", ".join(f"{part} {seconds:.2f} s" for part, seconds in parts.items()))
     yield
     heavy.shutdown()                   # the heavy processes end with the worker
     cache = getattr(app.state, "response_cache", None)

@@ -24,6 +24,8 @@ from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from typing import Callable, TypeVar
 
+from ..core.warm_up import warm_up
+
 HEAVY_PROCESSES = int(os.environ.get("MDL_HEAVY_PROCESSES", "1"))
 T = TypeVar("T")
 _pool: ProcessPoolExecutor | None = None
@@ -36,8 +38,16 @@ def _current_pool() -> ProcessPoolExecutor:
     global _pool
     with _lock:
         if _pool is None:                     # forkserver: no fork of a process that runs threads
-            _pool = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"))
+            _pool = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"),
+                                        initializer=warm_up)     # a new process loads the compiled kernels first
         return _pool
+
+
+def start() -> None:
+    """Start the heavy processes now (the server is starting), so that loading their compiled kernels does not
+    fall on the first student's elastic request."""
+    if HEAVY_PROCESSES:
+        _current_pool().submit(int)
 
 
 def _discard(pool: ProcessPoolExecutor) -> None:

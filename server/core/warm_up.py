@@ -1,0 +1,20 @@
+"""Compile (or load from numba's disk cache, `__pycache__` beside each module) every compiled kernel before the
+first request, so that no student waits for the JIT: the equation of motion's RK4 in φ, the flywheel's periodic
+solution and DOP853 leaving rest (server.core.dynamics.compiled), and the elastic models' right-hand sides,
+DOP853 and Radau IIA (server.core.elastic.compiled). The first compile on a fresh machine takes tens of seconds
+(tests/run.sh and the Dockerfile do it once, `python3 -m server.core.warm_up`); a process that finds the cache
+loads it in about a second.
+"""
+from __future__ import annotations
+
+from .dynamics import compiled as dynamics
+from .elastic import compiled as elastic
+
+
+def warm_up() -> dict[str, float]:
+    """Seconds each part took: {"equation of motion": …, "elastic machines": …}."""
+    return {"equation of motion": dynamics.warm_up(), "elastic machines": elastic.warm_up()}
+
+
+if __name__ == "__main__":
+    print(", ".join(f"{part}: {seconds:.1f} s" for part, seconds in warm_up().items()))
