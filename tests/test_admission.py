@@ -13,6 +13,7 @@ from fastapi.testclient import TestClient
 
 from server.api.admission import COOKIE, AdmissionMiddleware
 from server.api.app import create_app
+from event_loop import run_to_end
 from tests.test_security import assert_security_headers
 
 ID_A, ID_B, ID_C = "a" * 22, "b" * 22, "c" * 22
@@ -77,7 +78,7 @@ async def settle():
 
 
 def run(scenario):
-    asyncio.run(scenario())
+    run_to_end(scenario())
 
 
 def test_past_the_client_limit_429_with_retry_after_while_another_client_is_admitted():

@@ -16,6 +16,7 @@ from server.api.app import app
 from server.lessons.scenes import scenes
 from server.lessons.requests import scene_request
 from server.core.mechanisms import GeometryError
+from event_loop import run_to_end
 
 
 def test_it_runs_elsewhere_and_a_refusal_comes_back_whole():
@@ -84,7 +85,7 @@ def test_submit_answers_brings_refusals_back_and_replaces_a_dead_child():
         os.kill(pid, signal.SIGKILL)
         return pid, await heavy.submit(os.getpid)
 
-    first, second = asyncio.run(scenario())
+    first, second = run_to_end(scenario())
     assert first != os.getpid() and second not in (first, os.getpid())
 
 
@@ -104,7 +105,7 @@ def test_a_submit_cancelled_while_queued_is_never_computed():
         return [task.cancelled() for task in queued]
 
     heavy.run(os.getpid)                                   # the process is up
-    assert all(asyncio.run(scenario()))
+    assert all(run_to_end(scenario()))
     heavy.run(os.getpid)                                   # whatever was still queued has run by now
     assert not os.path.exists(marker)
 
@@ -121,5 +122,5 @@ def test_with_no_heavy_processes_submit_runs_in_a_thread_of_its_own(monkeypatch)
     async def scenario():
         return await heavy.submit(threading.current_thread), threading.current_thread()
 
-    worker, loop_thread = asyncio.run(scenario())
+    worker, loop_thread = run_to_end(scenario())
     assert worker is not loop_thread and worker.name.startswith("mdl-heavy")

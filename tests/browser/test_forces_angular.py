@@ -104,7 +104,8 @@ def test_wear_scene_draws_its_polar_plot_in_degrees_and_micrometres(browser_page
     polar = page.evaluate("""() => document.querySelector('#panel-joint .graph').data
         .map(trace => [trace.type, Math.max(...trace.theta), Math.max(...trace.r)])""")
     assert [kind for kind, _, _ in polar] == ["scatterpolar"] * 2
-    assert all(theta == 360 and 1 < r < 1000 for _, theta, r in polar)      # β in degrees, wear in µm
+    # β in degrees (to 1e-4°: the answer's angles come at plot precision, 7 significant digits of 2π), wear in µm
+    assert all(abs(theta - 360) < 1e-4 and 1 < r < 1000 for _, theta, r in polar)
     piston = WEAR["panels"]["figures"]["items"][0]["label"]["ru"]
     assert figure_value(page, piston).endswith(interface_texts("ru")["units_um"])
     assert page.locator(".animation").count() == 0
@@ -148,7 +149,9 @@ def test_gear_train_follows_the_crank_and_turns_into_parallel_lines_at_90_degree
     limit = gear_train(page)
     assert "display: none" in limit["wheel"].get("style", "") and "display: none" in limit["mark"].get("style", "")
     assert "display: none" not in limit["line"].get("style", "")
-    assert abs(float(limit["line"]["y1"]) - float(limit["line"]["y2"])) < 1e-6     # through A, perpendicular to OA
+    # through A, perpendicular to OA: level to 0.01 px (the crank angle comes at plot precision, 7 significant
+    # digits, which tilts a line a few thousand px long by at most 5e-7 rad)
+    assert abs(float(limit["line"]["y1"]) - float(limit["line"]["y2"])) < 1e-2
     page.wait_for_selector(".instant-centre-note", state="visible")
     assert reading(page, "AP") == "∞"
     assert "NaN" not in limit["html"] and shows_no_nan(page)
