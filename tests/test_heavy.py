@@ -35,6 +35,12 @@ def _raise(error):
     raise error
 
 
+def test_the_heavy_process_yields_the_cpu_to_the_worker():
+    """Scheduling, not timing: the heavy process runs at a lower priority (a higher nice value) than the worker,
+    so a light answer is not made to wait behind a family or an elastic run."""
+    assert heavy.run(os.nice, 0) == min(os.nice(0) + heavy.HEAVY_NICENESS, 19)      # 19: the lowest priority
+
+
 def test_elastic_answers_and_refusals_through_the_process():
     client = TestClient(app)
     scene = scenes()["elastic-transmission"]

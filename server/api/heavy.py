@@ -27,6 +27,7 @@ from typing import Callable, TypeVar
 from ..core.warm_up import warm_up
 
 HEAVY_PROCESSES = int(os.environ.get("MDL_HEAVY_PROCESSES", "1"))
+HEAVY_NICENESS = 10            # the heavy processes' scheduling priority below the workers' (man 2 nice)
 T = TypeVar("T")
 _pool: ProcessPoolExecutor | None = None
 _stopped: weakref.WeakSet = weakref.WeakSet()   # pools ended by shutdown(): what broke there is not retried
@@ -39,8 +40,15 @@ def _current_pool() -> ProcessPoolExecutor:
     with _lock:
         if _pool is None:                     # forkserver: no fork of a process that runs threads
             _pool = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"),
-                                        initializer=warm_up)     # a new process loads the compiled kernels first
+                                        initializer=_start_heavy_process)
         return _pool
+
+
+def _start_heavy_process() -> None:
+    """A new heavy process yields the CPU to the workers (nice HEAVY_NICENESS) and loads the compiled kernels:
+    a student's 5-ms answer is not made to wait behind seconds of a family or an elastic run."""
+    os.nice(HEAVY_NICENESS)
+    warm_up()
 
 
 def start() -> None:
