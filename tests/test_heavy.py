@@ -36,9 +36,12 @@ def _raise(error):
 
 
 def test_the_heavy_process_yields_the_cpu_to_the_worker():
-    """Scheduling, not timing: the heavy process runs at a lower priority (a higher nice value) than the worker,
-    so a light answer is not made to wait behind a family or an elastic run."""
-    assert heavy.run(os.nice, 0) == min(os.nice(0) + heavy.HEAVY_NICENESS, 19)      # 19: the lowest priority
+    """Scheduling, not timing: the heavy processes run at a lower priority (a higher nice value) than the worker,
+    the families' lower still, so a light answer does not wait behind an elastic run, nor an elastic one behind a
+    family."""
+    for lane, niceness in heavy.LANES.items():           # 19: the lowest priority there is
+        assert heavy.run(os.nice, 0, lane=lane) == min(os.nice(0) + niceness, 19)
+    assert heavy.LANES["answers"] < heavy.LANES["families"]
 
 
 def test_elastic_answers_and_refusals_through_the_process():
@@ -75,7 +78,7 @@ def test_a_computation_waiting_at_shutdown_starts_no_new_process():
     heavy.shutdown()
     thread.join(10)
     assert len(outcome) == 1 and isinstance(outcome[0], (BrokenProcessPool, CancelledError))
-    assert heavy._pool is None                    # no pool was started for the retry
+    assert not heavy._pools                       # no pool was started for the retry
     assert heavy.run(os.getpid) != os.getpid()
 
 

@@ -3,8 +3,9 @@
 An elastic time integration or a live work–precision study holds the interpreter for up to seconds
 (scipy's explicit solvers step in Python); run in the worker's thread pool, it would queue every
 other student's 5-ms kinematics request behind it for the lock. In a separate process it uses the
-other CPU and the worker stays free. ``MDL_HEAVY_PROCESSES`` processes per worker (default 1; 0 runs
-them in the worker itself, in one thread of their own). A child that dies is replaced and the computation is
+other CPU and the worker stays free. Two lanes (LANES), each ``MDL_HEAVY_PROCESSES`` processes per worker
+(default 1; 0 runs them in the worker itself, in one thread of their own): the answers a student waits for,
+and the slider families at a lower priority still, so that a family never delays an answer. A child that dies is replaced and the computation is
 tried once more.
 
 A route awaits ``submit``: the wait holds no thread, so heavy requests never take the tokens of the thread
@@ -27,42 +28,45 @@ from typing import Callable, TypeVar
 from ..core.warm_up import warm_up
 
 HEAVY_PROCESSES = int(os.environ.get("MDL_HEAVY_PROCESSES", "1"))
-HEAVY_NICENESS = 10            # the heavy processes' scheduling priority below the workers' (man 2 nice)
+# Lanes of heavy work, each in processes of its own, and their scheduling priority below the workers' (man 2 nice):
+# the answers a student waits for (an elastic machine, a live study) before the slider families, which only
+# make dragging smoother and so take the CPU that is left.
+LANES = {"answers": 5, "families": 15}
 T = TypeVar("T")
-_pool: ProcessPoolExecutor | None = None
+_pools: dict[str, ProcessPoolExecutor] = {}
 _stopped: weakref.WeakSet = weakref.WeakSet()   # pools ended by shutdown(): what broke there is not retried
 _lock = threading.Lock()
 _in_worker: ThreadPoolExecutor | None = None   # MDL_HEAVY_PROCESSES=0: one thread, not the light routes' pool
 
 
-def _current_pool() -> ProcessPoolExecutor:
-    global _pool
+def _current_pool(lane: str) -> ProcessPoolExecutor:
     with _lock:
-        if _pool is None:                     # forkserver: no fork of a process that runs threads
-            _pool = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"),
-                                        initializer=_start_heavy_process)
-        return _pool
+        if lane not in _pools:                # forkserver: no fork of a process that runs threads
+            _pools[lane] = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"),
+                                               initializer=_start_heavy_process, initargs=(LANES[lane],))
+        return _pools[lane]
 
 
-def _start_heavy_process() -> None:
-    """A new heavy process yields the CPU to the workers (nice HEAVY_NICENESS) and loads the compiled kernels:
-    a student's 5-ms answer is not made to wait behind seconds of a family or an elastic run."""
-    os.nice(HEAVY_NICENESS)
+def _start_heavy_process(niceness: int) -> None:
+    """A new heavy process yields the CPU (nice `niceness`) and loads the compiled kernels: a student's 5-ms
+    answer is not made to wait behind seconds of an elastic run, nor an elastic answer behind a family."""
+    os.nice(niceness)
     warm_up()
 
 
 def start() -> None:
     """Start the heavy processes now (the server is starting), so that loading their compiled kernels does not
-    fall on the first student's elastic request."""
+    fall on the first student's elastic request or family."""
     if HEAVY_PROCESSES:
-        _current_pool().submit(int)
+        for lane in LANES:
+            _current_pool(lane).submit(int)
 
 
 def _discard(pool: ProcessPoolExecutor) -> None:
-    global _pool
     with _lock:
-        if _pool is pool:
-            _pool = None
+        for lane, current in list(_pools.items()):
+            if current is pool:
+                del _pools[lane]
     pool.shutdown(wait=False, cancel_futures=True)
 
 
@@ -78,10 +82,10 @@ def shutdown() -> None:
     """End the heavy processes and their forkserver (the server is stopping): they are not our children
     once the forkserver has started them, so they would outlive the worker. A computation still waiting
     for its answer (its client gone) then fails instead of starting a new pool that nobody would end."""
-    global _pool
     with _lock:
-        pool, _pool = _pool, None
-    if pool is not None:
+        pools = list(_pools.values())
+        _pools.clear()
+    for pool in pools:
         _stopped.add(pool)
         for process in list(getattr(pool, "_processes", {}).values()):
             process.kill()
@@ -95,12 +99,12 @@ def shutdown() -> None:
             pass
 
 
-def run(function: Callable[..., T], *args) -> T:
-    """function(*args) in the heavy process (function and args picklable); its exceptions come back."""
+def run(function: Callable[..., T], *args, lane: str = "answers") -> T:
+    """function(*args) in a heavy process of `lane` (function and args picklable); its exceptions come back."""
     if HEAVY_PROCESSES == 0:
         return function(*args)
     for attempt in range(2):
-        pool = _current_pool()
+        pool = _current_pool(lane)
         try:
             return pool.submit(function, *args).result()
         except BrokenProcessPool:
@@ -109,13 +113,14 @@ def run(function: Callable[..., T], *args) -> T:
     raise AssertionError("unreachable")
 
 
-async def submit(function: Callable[..., T], *args) -> T:
-    """function(*args) in the heavy process, awaited without holding a thread; its exceptions come back.
+async def submit(function: Callable[..., T], *args, lane: str = "answers") -> T:
+    """function(*args) in a heavy process of `lane` (LANES), awaited without holding a thread; its exceptions
+    come back.
     Cancelled while it waits (its client gone), it leaves the queue; one already running finishes unseen."""
     if HEAVY_PROCESSES == 0:
         return await asyncio.wrap_future(_local_threads().submit(function, *args))
     for attempt in range(2):
-        pool = _current_pool()
+        pool = _current_pool(lane)
         try:
             return await asyncio.wrap_future(pool.submit(function, *args))
         except BrokenProcessPool:

@@ -88,7 +88,7 @@ class FamilyResponse(BaseModel):
                         422: {"description": "invalid input: the field and the reason"}})
 async def family_route(request: FamilyRequest, lang: Language = LANG) -> Response:
     # the family rounds its floats to family.SIGNIFICANT digits itself: sent as they are
-    return respond(Answer(*await heavy.submit(family_answer, request.model_dump(), lang)), "full")
+    return respond(Answer(*await heavy.submit(family_answer, request.model_dump(), lang, lane="families")), "full")
 
 
 def family_answer(body: dict, lang: str) -> tuple[dict, bool]:
