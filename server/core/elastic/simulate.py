@@ -74,6 +74,18 @@ def bounded(rhs, evaluations: int, deadline: float):
     return counted
 
 
+def work_bound_message(at: float, t_end: float) -> str:
+    """What a run cut short by its evaluation or time budget says (the API marks such an answer partial)."""
+    return f"stopped at t = {at:.4g} s of {t_end:.4g} s: the work bound was reached; the result is partial"
+
+
+def joined(pieces_t: list, pieces_y: list, size: int, numerics: dict, complete: bool) -> ElasticRun:
+    """The chunks' samples as one run (no samples: empty arrays of the state's size)."""
+    t = np.concatenate(pieces_t) if pieces_t else np.zeros(0)
+    y = np.concatenate(pieces_y, axis=1) if pieces_y else np.zeros((size, 0))
+    return ElasticRun(t, y, numerics, complete)
+
+
 RK_STAGES = {"RK45": 6, "DOP853": 12}    # RHS calls per step attempt in scipy's explicit Runge–Kutta
 DENSE_EXTRA = {"RK45": 0, "DOP853": 3}   # extra calls per accepted step for DOP853's dense output
 
@@ -103,8 +115,7 @@ def integrate(model, y0: np.ndarray, t_end: float, rtol: float, method: str, sam
                                      **implicit)
         except WorkBound:                            # the bound is also kept inside a chunk (a very stiff spring)
             complete = False
-            message = (f"stopped at t = {a:.4g} s of {t_end:.4g} s: the work bound was reached; "
-                       "the result is partial")
+            message = work_bound_message(a, t_end)
             break
         accepted = solution.t.size - 1
         stats["steps"] += accepted
@@ -125,12 +136,9 @@ def integrate(model, y0: np.ndarray, t_end: float, rtol: float, method: str, sam
         if stats["nfev"] > max_evaluations or time.perf_counter() > deadline:
             if b < t_end:
                 complete = False
-                message = (f"stopped at t = {b:.4g} s of {t_end:.4g} s: the work bound was reached; "
-                           "the result is partial")
+                message = work_bound_message(b, t_end)
             break
-    t = np.concatenate(pieces_t) if pieces_t else np.zeros(0)
-    y_all = np.concatenate(pieces_y, axis=1) if pieces_y else np.zeros((len(y0), 0))
-    return ElasticRun(t, y_all, stats | {"message": message}, complete)
+    return joined(pieces_t, pieces_y, len(y0), stats | {"message": message}, complete)
 
 
 def integrate_compiled(compiled, y0: np.ndarray, t_end: float, rtol: float, method: str, samples: np.ndarray,
@@ -158,8 +166,7 @@ def integrate_compiled(compiled, y0: np.ndarray, t_end: float, rtol: float, meth
             stats["nlu"] += answer[6]
         if status == dop853.WORK_BOUND:
             complete = False
-            message = (f"stopped at t = {a:.4g} s of {t_end:.4g} s: the work bound was reached; "
-                       "the result is partial")
+            message = work_bound_message(a, t_end)
             break
         if status != dop853.FINISHED or not np.isfinite(y_end).all():
             complete = False
@@ -172,9 +179,6 @@ def integrate_compiled(compiled, y0: np.ndarray, t_end: float, rtol: float, meth
         if stats["nfev"] > max_evaluations or time.perf_counter() > deadline:
             if b < t_end:
                 complete = False
-                message = (f"stopped at t = {b:.4g} s of {t_end:.4g} s: the work bound was reached; "
-                           "the result is partial")
+                message = work_bound_message(b, t_end)
             break
-    t = np.concatenate(pieces_t) if pieces_t else np.zeros(0)
-    y_all = np.concatenate(pieces_y, axis=1) if pieces_y else np.zeros((len(y0), 0))
-    return ElasticRun(t, y_all, stats | {"message": message}, complete)
+    return joined(pieces_t, pieces_y, len(y0), stats | {"message": message}, complete)
