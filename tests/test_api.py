@@ -150,6 +150,19 @@ def test_largest_grid_of_10001_points_is_accepted(client):
     assert response.status_code == 200 and len(data["outputs"]["u31"]) == MAX_POINTS == 10001
 
 
+def test_a_long_table_answered_in_a_thread_agrees_with_a_short_one_answered_inline(client):
+    """Up to INLINE_POINTS angles the route answers on the event loop, beyond in a thread: one answer either
+    way. With n = 10001 and n = 11 over one turn, every 1000th angle of the long table is an angle of the
+    short one: the same closed form at the same angle, to round-off of the angle grid (1e-12)."""
+    from server.api.routers.kinematics import INLINE_POINTS
+    long_body = {"mechanism": "four_bar", "n": MAX_POINTS, "outputs": ["u31", "s"]}
+    assert MAX_POINTS > INLINE_POINTS >= 11
+    _, long = post(client, long_body, precision="full")
+    _, short = post(client, {**long_body, "n": 11}, precision="full")
+    for name in ("u31", "s"):
+        assert np.allclose(np.array(long["outputs"][name])[::1000], short["outputs"][name], rtol=1e-12, atol=1e-12)
+
+
 def test_special_positions_are_returned_with_kind_angle_and_value(client):
     _, data = post(client, {"mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3}, "n": 2,
                             "outputs": ["special"]})

@@ -5,10 +5,12 @@ evicted first; the cached answer is the one the server computes afresh.
 from __future__ import annotations
 
 import functools
+import gzip
 import json
 import threading
 import time
 
+import orjson
 import pytest
 from fastapi.testclient import TestClient
 
@@ -67,13 +69,29 @@ def test_an_identical_request_is_a_hit_with_the_same_bytes(client):
     assert {k: stats(client)[k] for k in ("hits", "misses", "entries")} == {"hits": 1, "misses": 1, "entries": 1}
 
 
-def test_the_cache_keeps_uncompressed_bodies_and_each_client_gets_its_own_encoding(client):
+def test_the_cache_keeps_both_encodings_and_each_client_gets_its_own(client):
     computed = kinematics(client)
     cached = client.post(f"{API}/kinematics", params={"lang": "en"}, json=SLIDER_CRANK,
                          headers={"accept-encoding": "identity"})
-    assert computed.headers["content-encoding"] == "gzip"              # the cache sits inside the gzip layer
+    zipped = client.post(f"{API}/kinematics", params={"lang": "en"}, json=SLIDER_CRANK,
+                         headers={"accept-encoding": "gzip, deflate"})
+    assert computed.headers["content-encoding"] == "gzip" and computed.headers["vary"] == "Accept-Encoding"
     assert cached.headers["x-cache"] == "hit" and "content-encoding" not in cached.headers
-    assert cached.content == computed.content
+    assert zipped.headers["x-cache"] == "hit" and zipped.headers["content-encoding"] == "gzip"
+    assert cached.content == computed.content == zipped.content          # httpx decodes the gzip bodies
+    assert int(zipped.headers["content-length"]) < len(zipped.content) / 2    # sent compressed: curves shrink
+
+
+def test_a_stored_answer_is_compressed_once_and_reads_back_as_its_body():
+    body = orjson.dumps({"phi": [k / 7 for k in range(500)]})
+    answer = CachedAnswer.of(((b"content-type", b"application/json"),), body)
+    assert gzip.decompress(answer.gzipped) == body
+    assert CachedAnswer.of((), body).gzipped == answer.gzipped               # mtime 0: the same bytes each time
+    assert CachedAnswer.of((), b"{}").gzipped is None                         # too small to gain from it
+    start = answer.message_start(True, b"hit")
+    headers = dict(start["headers"])
+    assert headers[b"content-encoding"] == b"gzip" and headers[b"content-length"] == str(len(answer.gzipped)).encode()
+    assert answer.body_for(True) is answer.gzipped and answer.body_for(False) is body
 
 
 def test_a_slider_value_reached_by_arithmetic_hits_the_entry_of_the_value_typed():
@@ -119,7 +137,9 @@ def test_a_body_that_is_not_json_bypasses_the_cache(client):
 
 
 def test_the_byte_bound_holds_and_the_least_recently_used_answer_goes_first(monkeypatch):
-    size = len(kinematics(app_client(monkeypatch, 0)).content)
+    sizing = app_client(monkeypatch, 10**8)
+    kinematics(sizing)
+    size = stats(sizing)["bytes"]                                       # one entry: plain and gzip bodies, headers
     client = app_client(monkeypatch, int(2.5 * size))                  # room for two answers, not three
     bodies = [{**SLIDER_CRANK, "params": {"l1": 0.1, "l2": 0.3 + 0.01 * k, "e": 0.0}} for k in range(4)]
     kinematics(client, bodies[0])

@@ -19,7 +19,7 @@ from .errors import geometry_error, validation_error
 from .admission import AdmissionMiddleware
 from .security import SecurityMiddleware
 from .static_files import content_version, mount_versioned
-from .response_cache import CACHE_AT_EXIT, ResponseCache, ResponseCacheMiddleware
+from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
 from ..classroom.variants import SpecError
 from .routers import (angular, assignment_pages, assignments, dynamics, elastic, family, forces, kinematics,
@@ -68,7 +68,7 @@ def create_app() -> FastAPI:
     app.add_exception_handler(SpecError, assignments.spec_error)
     app.state.response_cache = ResponseCache.from_env()  # MDL_CACHE_BYTES, default 64 MB, 0 = off
     app.add_middleware(ResponseCacheMiddleware, cache=app.state.response_cache, prefix=API_PREFIX)  # inside gzip
-    app.add_middleware(GZipMiddleware, minimum_size=1000, compresslevel=3)  # cheap CPU, ~4x smaller
+    app.add_middleware(GZipMiddleware, minimum_size=GZIP_MINIMUM_SIZE, compresslevel=GZIP_LEVEL)
     app.add_middleware(AdmissionMiddleware)  # per-client computations in flight (429), the mdl_client cookie
     app.add_middleware(SecurityMiddleware)  # outermost: headers on every response, bodies ≤ 1 MiB
     static = mount_versioned(app, "/static", STATIC_DIR, content_version(STATIC_DIR), "static")

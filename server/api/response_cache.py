@@ -3,8 +3,11 @@
 Thirty students dragging the same slider of the same scene send the same bodies: the sliders' values are
 quantised to their step, so the same few hundred positions come back again and again. This pure ASGI
 middleware keeps the 200 answers of the computing POST endpoints (CACHED_ENDPOINTS) in memory and answers
-a repeated question without computing. It sits inside the GZip middleware, so it keeps the uncompressed
-bodies and each client still gets the encoding it asked for.
+a repeated question without computing. It sits inside the GZip middleware and keeps each answer both as it
+is and gzip-compressed (GZIP_LEVEL, from GZIP_MINIMUM_SIZE bytes, as the GZip middleware would): a client
+that accepts gzip (every browser) gets the compressed bytes, compressed once when the answer was computed
+and never again on a hit; any other client gets the plain body. The GZip middleware leaves an answer that
+already names its Content-Encoding alone.
 
 The key is the path, the query (``lang``, ``precision``) and the JSON body canonicalised: parsed, every float rounded to
 10 significant digits (0.1·3 and 0.3 are one question; the answers of two bodies that differ only past the
@@ -26,6 +29,7 @@ bytes of the first computation, its ``numerics.runtime_ms`` included.
 from __future__ import annotations
 
 import hashlib
+import gzip
 import math
 import os
 import threading
@@ -43,6 +47,8 @@ DEFAULT_MAX_BYTES = 64 * 1024 * 1024
 ENV_MAX_BYTES = "MDL_CACHE_BYTES"
 SIGNIFICANT_DIGITS = 10
 PARTIAL = PARTIAL_HEADER.lower().encode()
+GZIP_MINIMUM_SIZE = 1000           # smaller bodies gain nothing from compression (the app's GZip middleware too)
+GZIP_LEVEL = 3                      # cheap CPU, ~5× smaller for curves (the app's GZip middleware too)
 ENTRY_OVERHEAD_BYTES = 200          # key, bookkeeping and object headers of one entry, roughly
 CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSON) after this as it stops
 
@@ -81,14 +87,35 @@ def cache_key(path: str, query: str, canonical: bytes) -> bytes:
 
 @dataclass(frozen=True)
 class CachedAnswer:
-    """A complete 200 answer: its raw ASGI headers and body."""
+    """A complete 200 answer: its raw ASGI headers and body, and the body gzip-compressed (None when too small
+    to gain from it)."""
 
     headers: tuple[tuple[bytes, bytes], ...]
     body: bytes
+    gzipped: bytes | None = None
+
+    @classmethod
+    def of(cls, headers, body: bytes) -> "CachedAnswer":
+        """The answer with its compressed body made once (mtime 0: the same bytes for the same body)."""
+        small = len(body) < GZIP_MINIMUM_SIZE
+        return cls(tuple(headers), body, None if small else gzip.compress(body, GZIP_LEVEL, mtime=0))
 
     @property
     def size(self) -> int:
-        return len(self.body) + sum(len(n) + len(v) for n, v in self.headers) + ENTRY_OVERHEAD_BYTES
+        return (len(self.body) + len(self.gzipped or b"") + sum(len(n) + len(v) for n, v in self.headers)
+                + ENTRY_OVERHEAD_BYTES)
+
+    def message_start(self, gzip_accepted: bool, cache: bytes) -> dict:
+        """The http.response.start of this answer in the encoding the client accepts, X-Cache: cache."""
+        if not (gzip_accepted and self.gzipped is not None):
+            return {"type": "http.response.start", "status": 200, "headers": [*self.headers, (b"x-cache", cache)]}
+        headers = [(name, value) for name, value in self.headers if name.lower() != b"content-length"]
+        return {"type": "http.response.start", "status": 200,
+                "headers": [*headers, (b"content-encoding", b"gzip"), (b"content-length", str(len(self.gzipped)).encode()),
+                            (b"vary", b"Accept-Encoding"), (b"x-cache", cache)]}
+
+    def body_for(self, gzip_accepted: bool) -> bytes:
+        return self.gzipped if gzip_accepted and self.gzipped is not None else self.body
 
 
 class ResponseCache:
@@ -208,36 +235,38 @@ class ResponseCacheMiddleware:
             await self.app(scope, replay, send)
             return
         key = cache_key(scope["path"], scope.get("query_string", b"").decode("latin-1"), canonical)
+        gzip_accepted = b"gzip" in _header(scope["headers"], b"accept-encoding")
         cached = self.cache.get(key)
         if cached is not None:
-            await send({"type": "http.response.start", "status": 200,
-                        "headers": [*cached.headers, (b"x-cache", b"hit")]})
-            await send({"type": "http.response.body", "body": cached.body})
+            await send(cached.message_start(gzip_accepted, b"hit"))
+            await send({"type": "http.response.body", "body": cached.body_for(gzip_accepted)})
             return
-        await self._compute_and_store(scope, replay, send, key)
+        await self._compute_and_store(scope, replay, send, key, gzip_accepted)
 
-    async def _compute_and_store(self, scope, receive, send, key: bytes) -> None:
-        headers: list = []
-        body: list[bytes] = []
-        keep = False
-        size = 0
+    async def _compute_and_store(self, scope, receive, send, key: bytes, gzip_accepted: bool) -> None:
+        """Compute; a complete 200 answer in one body message (every computing endpoint's) is stored and sent
+        in the client's encoding from the stored entry; anything else passes as it comes, marked a miss."""
+        start: dict | None = None
 
         async def send_and_keep(message):
-            nonlocal headers, keep, size
+            nonlocal start
             if message["type"] == "http.response.start":
                 headers = list(message.get("headers", []))
-                keep = (message["status"] == 200 and not _header(headers, b"set-cookie")
-                        and not _header(headers, PARTIAL))
+                if (message["status"] == 200 and not _header(headers, b"set-cookie")
+                        and not _header(headers, PARTIAL)):
+                    start = {**message, "headers": headers}      # held until the body shows it complete
+                    return
                 message = {**message, "headers": [*headers, (b"x-cache", b"miss")]}
-            elif message["type"] == "http.response.body" and keep:
-                chunk = message.get("body", b"")
-                size += len(chunk)
-                keep = size <= self.cache.max_bytes
-                if keep:
-                    body.append(chunk)
-                if keep and not message.get("more_body", False):
-                    self.cache.put(key, CachedAnswer(tuple(headers), b"".join(body)))
-                    keep = False
+            elif message["type"] == "http.response.body" and start is not None:
+                held, start = start, None
+                body = message.get("body", b"")
+                if not message.get("more_body", False) and len(body) <= self.cache.max_bytes:
+                    answer = CachedAnswer.of(held["headers"], body)
+                    self.cache.put(key, answer)
+                    await send(answer.message_start(gzip_accepted, b"miss"))
+                    await send({"type": "http.response.body", "body": answer.body_for(gzip_accepted)})
+                    return
+                await send({**held, "headers": [*held["headers"], (b"x-cache", b"miss")]})
             await send(message)
 
         await self.app(scope, receive, send_and_keep)
