@@ -126,18 +126,21 @@ def test_a_place_is_given_back_on_error_and_on_disconnect():
 
 def test_new_ids_on_one_address_count_toward_the_address_cap():
     async def scenario():
-        app = HeldApp()
-        middleware = AdmissionMiddleware(app, per_client=2, per_address=3)
+        app, time = HeldApp(), FakeTime()
+        middleware = AdmissionMiddleware(app, per_client=2, per_address=3, clock=time.clock, sleep=time.sleep)
         held = [Exchange(middleware, client_id=ID_A), Exchange(middleware, client_id=ID_A),
                 Exchange(middleware, client_id=ID_B)]
         await settle()
         minted = Exchange(middleware, client_id=ID_C)
-        anonymous = Exchange(middleware, client_id=None)
         elsewhere = Exchange(middleware, host="10.0.0.2", client_id=ID_C)
         await settle()
-        assert minted.status == anonymous.status == 429
+        assert minted.status == 429
         assert json.loads(minted.sent[1]["body"])["detail"][0]["ctx"]["scope"] == "address"
         assert elsewhere.status is None and app.started == 4   # another address is admitted
+        anonymous = Exchange(middleware, client_id=None)       # the address was told to wait: so does it
+        time.wake.set()
+        await anonymous.task
+        assert time.asked == [1.0] and anonymous.status == 429
         app.release.set()
         await asyncio.gather(*(e.task for e in held), elsewhere.task)
     run(scenario)
@@ -222,3 +225,68 @@ def test_through_the_app_the_429_has_the_security_headers_and_pages_hand_out_the
         answers = [future.result(30) for future in in_flight]
         assert all(a.status_code == 200 and "set-cookie" not in a.headers for a in answers)
         assert client.post("/api/v1/kinematics", json={}).status_code == 200
+
+
+class FakeTime:
+    """The middleware's clock and sleep: time stands still until the test moves it; a sleep is held until the
+    test lets it end (what it asked for is recorded)."""
+
+    def __init__(self):
+        self.now = 100.0
+        self.asked: list[float] = []
+        self.wake = asyncio.Event()
+
+    def clock(self) -> float:
+        return self.now
+
+    async def sleep(self, seconds: float) -> None:
+        self.asked.append(seconds)
+        await self.wake.wait()
+        self.now += seconds
+
+
+def test_a_client_that_asks_again_before_its_retry_after_waits_it_out_and_then_is_admitted_if_a_place_is_free():
+    async def scenario():
+        app, time = HeldApp(), FakeTime()
+        middleware = AdmissionMiddleware(app, per_client=1, per_address=10, clock=time.clock, sleep=time.sleep)
+        held = Exchange(middleware)
+        await settle()
+        first = Exchange(middleware)                            # refused at once, told to wait 1 s
+        await settle()
+        assert first.status == 429 and time.asked == []
+        time.now += 0.25
+        again = Exchange(middleware)                            # ignores Retry-After: waits the remaining 0.75 s
+        await settle()
+        assert again.status is None and not again.task.done() and time.asked == [0.75]
+        app.release.set()                                       # meanwhile the held computation ends
+        await held.task
+        time.wake.set()
+        await again.task
+        assert again.status == 200 and app.started == 2         # admitted after its wait, not refused
+        assert not middleware.in_flight
+    run(scenario)
+
+
+def test_a_client_that_waited_its_retry_after_is_answered_at_once_and_a_still_full_one_is_refused_after_the_wait():
+    async def scenario():
+        app, time = HeldApp(), FakeTime()
+        middleware = AdmissionMiddleware(app, per_client=1, per_address=10, clock=time.clock, sleep=time.sleep)
+        held = Exchange(middleware)
+        await settle()
+        assert Exchange(middleware).task is not None
+        await settle()
+        time.now += 1.0                                         # honoured Retry-After: 1
+        honest = Exchange(middleware)
+        await settle()
+        assert honest.status == 429 and time.asked == []        # refused at once, no waiting imposed
+        impatient = Exchange(middleware)                        # at once again: waits out the new second
+        time.wake.set()
+        await impatient.task
+        assert time.asked == [1.0] and impatient.status == 429  # still full after the wait: refused
+        other = Exchange(middleware, client_id=ID_B)            # another student on the address: not slowed
+        await settle()
+        assert other.status is None and app.started == 2
+        app.release.set()
+        await asyncio.gather(held.task, other.task)
+        assert other.status == 200
+    run(scenario)

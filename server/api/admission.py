@@ -12,6 +12,12 @@ a limit off. A request past a limit is answered at once with 429, ``Retry-After:
 error format; the page waits and resends. A request without the cookie (a script) counts as the address's
 anonymous client. The counts are per worker (with two workers a client may hold twice as many).
 
+A client that asks again before the Retry-After it was given has run out (a script resending at once; the
+page never does) is not refused at once: its request waits out the rest of that second and is then admitted
+if a place has come free, else refused again. So a client that ignores Retry-After gets its answers no sooner
+than one that honours it, and its resends cost the server one sleeping coroutine each instead of a busy loop
+of 429s that would take the event loop from everyone else (bench/results/fairness.md).
+
 A client that goes away while its computation waits has the computation cancelled (a heavy one leaves the
 process pool's queue) and its place released; a light one already running in a thread finishes unseen.
 """
@@ -22,6 +28,7 @@ import json
 import os
 import re
 import secrets
+import time
 from collections import Counter
 
 from .endpoints import ENDPOINTS
@@ -34,6 +41,7 @@ HEAVY_NAMES = ("elastic", "family", r"work-precision/[a-z-]+")
 COMPUTING = re.compile(rf"/api/v1/({'|'.join([*map(re.escape, ENDPOINTS), *HEAVY_NAMES])})")
 HEAVY = re.compile(rf"/api/v1/({'|'.join(HEAVY_NAMES)})")
 _ID = re.compile(r"[A-Za-z0-9_-]{16,64}")
+TOLD_TO_WAIT_KEPT = 4096        # past this many clients told to wait, those whose wait is over are forgotten
 
 
 def _env_limit(name: str, default: int) -> int:
@@ -66,8 +74,10 @@ class AdmissionMiddleware:
     address; the cookie handed to HTML pages that arrive without one."""
 
     def __init__(self, app, per_client: int | None = None, per_address: int | None = None,
-                 per_client_heavy: int | None = None):
+                 per_client_heavy: int | None = None, clock=time.monotonic, sleep=asyncio.sleep):
         self.app = app
+        self.clock, self.sleep = clock, sleep
+        self.told_to_wait: dict[tuple, float] = {}   # client → the time its Retry-After runs out
         self.per_client = _env_limit("MDL_CLIENT_CONCURRENCY", 8) if per_client is None else per_client
         self.per_client_heavy = (_env_limit("MDL_CLIENT_HEAVY_CONCURRENCY", 2) if per_client_heavy is None
                                  else per_client_heavy)
@@ -90,10 +100,14 @@ class AdmissionMiddleware:
         if HEAVY.fullmatch(scope["path"]):
             limits[("heavy", host, who)] = self.per_client_heavy
         keys = tuple(limits)
-        for key, limit in limits.items():
-            if limit and self.in_flight[key] >= limit:
-                await _refuse(send, key[0], limit)
-                return
+        full = self._full(limits)
+        if full and (early := max(self.told_to_wait.get(key, 0.0) for key in keys) - self.clock()) > 0:
+            await self.sleep(early)             # asked again too soon: answered when it should have asked
+            full = self._full(limits)
+        if full:
+            self._tell_to_wait(full[0])
+            await _refuse(send, full[0][0], full[1])
+            return
         for key in keys:
             self.in_flight[key] += 1
         try:
@@ -103,6 +117,18 @@ class AdmissionMiddleware:
                 self.in_flight[key] -= 1
                 if not self.in_flight[key]:
                     del self.in_flight[key]
+
+
+    def _full(self, limits: dict) -> tuple | None:
+        """(key, limit) of the first limit the client has reached, or None."""
+        return next(((key, limit) for key, limit in limits.items() if limit and self.in_flight[key] >= limit), None)
+
+    def _tell_to_wait(self, key: tuple) -> None:
+        """Note when the Retry-After given to the client (or address) whose limit `key` is runs out."""
+        now = self.clock()
+        if len(self.told_to_wait) >= TOLD_TO_WAIT_KEPT:
+            self.told_to_wait = {known: until for known, until in self.told_to_wait.items() if until > now}
+        self.told_to_wait[key] = now + RETRY_AFTER_S
 
 
 async def _run_until_disconnect(app, scope, receive, send) -> None:
