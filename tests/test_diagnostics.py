@@ -247,3 +247,27 @@ def test_cumulative_simpson_follows_the_antiderivative():
     bound = 3 * (x[1] - x[0]) ** 4 / 180 * np.exp(3)                        # (b − a)h⁴/180·max|f⁗|, h the node spacing
     assert running == pytest.approx(np.exp(x[::2]) - 1, abs=bound)
     assert math.isclose(running[-1], simpson(np.exp(x), x[1] - x[0]), rel_tol=1e-14)
+
+
+# --- the reduction's words about the friction iteration come from the series' ratio, not from a step cap ------------
+
+def iteration_answer(f):
+    body = {"mechanism": "slider_crank", "params": {"l1": 1.0, "l2": 1.03}, "load": {"force": 100.0, "f": f},
+            "iteration_phi": math.pi / 2, "outputs": ["friction_iteration"]}
+    return strict(client.post("/api/v1/reduction", json=body))
+
+
+def test_a_slowly_converging_series_is_not_called_diverging():
+    """λ = 1.03, f = 0.2 at φ = 90°: tan ψ = (1/1.03)/√(1 − 1/1.03²) = 4.05, ratio f·tan ψ = 0.81 < 1 (geometry by
+    hand, not the code): the series converges, however many steps the table shows."""
+    tan_psi = (1 / 1.03) / math.sqrt(1 - 1 / 1.03**2)
+    data = iteration_answer(0.2)
+    assert data["friction_iteration"]["ratio"] == pytest.approx(0.2 * tan_psi, rel=1e-12)
+    assert not any("diverge" in w for w in data["warnings"])
+    assert data["friction_iteration"]["limit"]["F_T"] == pytest.approx(100 * 0.2 * tan_psi / (1 - 0.2 * tan_psi), rel=1e-12)
+    assert data["friction_iteration"]["converged"] or any("limit" in w for w in data["warnings"])
+
+
+def test_a_series_with_ratio_above_one_is_self_locking():
+    data = iteration_answer(0.3)                                            # ratio 0.3 · 4.05 = 1.22
+    assert any("Self-locking" in w and "diverge" in w for w in data["warnings"])

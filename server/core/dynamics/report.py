@@ -60,10 +60,14 @@ def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: i
         log = friction_iteration(mechanism, p, iteration_phi, load.force, load.f)
         result["friction_iteration"] = {"phi": iteration_phi, "ratio": log.ratio, "converged": log.converged,
                                         "steps": log.steps, "limit": log.limit}
-        if not log.converged:
-            notices.append(Notice("iteration_diverges", f"Self-locking at φ = {np.degrees(iteration_phi):.1f}°: the "
-                                  f"ratio of the series is {log.ratio:.3g} ≥ 1, the approximations diverge.",
-                                  {"phi": float(np.degrees(iteration_phi)), "ratio": log.ratio}))
+        where = {"phi": float(np.degrees(iteration_phi)), "ratio": log.ratio}
+        if log.ratio >= 1:                      # the physics decides divergence: the series' ratio, not a step cap
+            notices.append(Notice("iteration_diverges", f"Self-locking at φ = {where['phi']:.1f}°: the ratio of the "
+                                  f"series is {log.ratio:.3g} ≥ 1, the approximations diverge.", where))
+        elif not log.converged:
+            notices.append(Notice("iteration_unfinished", f"At φ = {where['phi']:.1f}° the series converges (ratio "
+                                  f"{log.ratio:.3g} < 1), but the steps shown stop before their tolerance; its limit "
+                                  "is the value to use.", where))
     return result, notices
 
 
