@@ -37,17 +37,13 @@ def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: i
         started = time.perf_counter()
         moment = resisting_moment(mechanism, p, load, phi, omega)
         notices += moment.notices
-        means, errors = {}, {}
         fine = np.linspace(0.0, mech.cycle(p), MEAN_POINTS + 1)
         kinematics = mech.evaluate(p, fine, set())          # one evaluation for both conventions
-        for convention in CONVENTIONS:
-            fine_total = resisting_moment(mechanism, p, Load(**{**load.__dict__, "convention": convention}), fine,
-                                          omega, kinematics).total
-            means[convention] = mean_over_cycle(fine_total)
-            errors[convention] = abs(means[convention] - mean_over_cycle(fine_total[::2]))
-            if convention == load.convention:
-                total = fine_total
-        result["numerics"] = _mean_numerics(total, errors[load.convention], started)
+        totals = {convention: resisting_moment(mechanism, p, Load(**{**load.__dict__, "convention": convention}),
+                                               fine, omega, kinematics).total for convention in CONVENTIONS}
+        means = {convention: mean_over_cycle(total) for convention, total in totals.items()}
+        error = abs(means[load.convention] - mean_over_cycle(totals[load.convention][::2]))
+        result["numerics"] = _mean_numerics(totals[load.convention], error, started)
         locked = moment.self_locking
         result["resisting"] = {
             "total": moment.total, "useful": moment.useful, "dry": moment.dry, "viscous": moment.viscous,
