@@ -63,7 +63,8 @@ def test_trammel_keeps_ap_equal_to_oa_and_reverses_the_acceleration():
     B, D = result["points"]["B"], result["points"]["D"]
     assert np.linalg.norm(B - A, axis=1) == pytest.approx(np.full(31, 0.2)) and np.linalg.norm(D - A, axis=1) == \
         pytest.approx(np.full(31, 0.2))
-    bd_angle = np.unwrap(np.arctan2(D[:, 1] - B[:, 1], D[:, 0] - B[:, 0]))
+    # counted in the crank's sense, which is clockwise in the drawing (one convention: angular_acceleration.py)
+    bd_angle = -np.unwrap(np.arctan2(D[:, 1] - B[:, 1], D[:, 0] - B[:, 0]))
     h = t[1] - t[0]
     second = (bd_angle[2:] - 2 * bd_angle[1:-1] + bd_angle[:-2]) / h**2
     assert second == pytest.approx(result["epsilon"][1:-1], abs=0.05)       # O(h²) with h = 0.1 s

@@ -165,7 +165,8 @@ def test_reduction_error_estimate_against_the_closed_form_mean():
     body = {"mechanism": "sine", "params": {"l1": 1}, "load": {"force": 1, "f": 0.15, "convention": "textbook"},
             "outputs": ["resisting"]}
     answer = strict(client.post("/api/v1/reduction", json=body))
-    true = abs(answer["resisting"]["mean"] - 2 * (1 + 0.15**2) * 1.15 / math.pi)
+    exact = 2 * (1 + 0.15**2) * 1.15 / math.pi           # M_c ≥ 0 here: the cycle mean of |M_c| is M_c0 itself
+    true = abs(answer["resisting"]["mean"] / exact - 1)
     assert true <= 10 * answer["numerics"]["error_estimate"]
 
 
@@ -180,3 +181,107 @@ def test_wear_at_extreme_speed_and_life():
     body = {"params": {"l1": 0.045, "l2": 0.18, "a2": 0.38}, "rpm": 20000, "hours": 1e5,
             "loads": {"m2": 1.8, "m3": 1.33, "gas": {"kind": "indicator", "p_max": 3e6, "piston_diameter": 0.075}}}
     assert no_non_finite(strict(client.post("/api/v1/wear", json=body)))
+
+
+# --- no diagnostic beyond its physical meaning, across the grid (issue 14, acceptance 3) ----------------------------
+# Every answer's numerics (the answer's own, the start-up's, any nested one) and every efficiency η:
+#   error_estimate: a finite number ≥ 0, or null with the reason in words (numerics.message or a warning);
+#   energy_residual: |net work| / driving work, within [0, 1] (a residual above 1 says nothing about energy);
+#   η within [0, 1] (0 ≤ useful work ≤ driving work), or null with the reason in words;
+#   and nothing non-finite anywhere (strict parse: text in words instead).
+
+FRICTIONLESS = RIG | {"load": {"force": 2000, "return_factor": 0.2}}
+FOUR_BAR = {"mechanism": "four_bar", "params": {"l0": 0.42, "l1": 0.095, "l2": 0.33, "l3": 0.27, "a2": 0.44, "assembly": 1},
+            "inertias": {"J1": 0.21, "m2": 2.6, "J_S2": 0.024, "J3": 0.085, "J_rotor": 0.0047, "gear_ratio": 4.3},
+            "load": {"force": 150.0, "return_factor": 0.27, "crank_moment": 3.3},
+            "motor": {"kind": "induction", "M_nominal": 12.5, "omega_nominal": 141.0, "omega_sync": 152.0}, "rtol": 1e-09}
+STILL_TWO_MASS = {"model": "two_mass", "mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3},
+                  "inertias": {"J1": 0.5}, "motor": {"kind": "constant", "M0": 0}, "J_motor": 0.25, "c": 10000,
+                  "twist0": 0.01, "t_end": 0.2, "outputs": ["histories"]}
+FORCES = {"params": {"l1": 0.1, "l2": 0.13}, "loads": {"force": 1000, "gravity": False, "omega": 10}, "n": 73}
+
+GRID = [
+    ("motion", RIG | {"outputs": ["steady", "startup"]}, "rig"),
+    ("motion", FRICTIONLESS | {"outputs": ["steady", "startup"]}, "rig-frictionless"),
+    ("motion", RIG | {"motor": {"kind": "constant", "M0": 25.0}, "outputs": ["steady", "startup"]}, "constant-torque"),
+    ("motion", RIG | {"inertias": {"J1": 5e-7, "m2": 5e-6, "m3": 1e-5, "J_rotor": 0.01, "gear_ratio": 5},
+                      "outputs": ["steady"]}, "rig-light"),
+    ("motion", RIG | {"inertias": {"J1": 500, "m2": 5e3, "m3": 1e4, "J_rotor": 0.01, "gear_ratio": 5},
+                      "outputs": ["steady"]}, "rig-heavy"),
+    ("motion", FOUR_BAR | {"outputs": ["steady", "startup"]}, "four-bar-reversal"),
+    ("motion", ENGINE | {"load": {}, "balance": True, "outputs": ["steady"]}, "engine"),
+    ("flywheel", ENGINE | {"delta": 0.001}, "flywheel-0.001"),
+    ("flywheel", ENGINE | {"delta": 0.2}, "flywheel-0.2"),
+    *[("reduction", {"mechanism": m, "params": p, "load": {"force": 1, "f": f, "beta": 0.5}, "omega": 3.0,
+                     "inertias": {"J1": 1, "m3": 1, "J3": 1}, "outputs": ["resisting", "inertia"]}, f"reduction-{m}-{p}-f{f}")
+      for m, p in (("sine", {"l1": 1}), ("slider_crank", {"l1": 1, "l2": 1.02}), ("slotted_link", {"l0": 1, "l1": 1}))
+      for f in (0.0, 0.99, 1.5)],
+    *[("elastic", ELASTIC | {"c": c, "b": b, "outputs": ["histories"]}, f"elastic-c{c:g}-b{b:g}")
+      for c, b in ((1e2, 0.0), (1e5, 0.0), (1e8, 1e5))],
+    ("elastic", ELASTIC | {"c": 1e5, "b": 5.0, "load": {"force": 2000, "return_factor": 0.2}, "outputs": ["histories"]},
+     "elastic-frictionless"),
+    ("elastic", STILL_TWO_MASS, "elastic-no-input-work"),
+    ("elastic", ELASTIC | {"model": "elastic_linkage", "compliances": {"e1": 1e-6, "e2": 1e-9}, "b": 100.0,
+                           "outputs": ["histories", "modal"]}, "elastic-linkage"),
+    *[("forces", FORCES | {"pairs": {"f12": f, "f23": f, "f34": f, "f14": f}}, f"forces-f{f}") for f in (0.0, 0.3, 0.9)],
+    ("forces", FORCES | {"pairs": {"f34": 0.8}}, "forces-slow-iteration"),
+    ("angular-acceleration", {"lam": 0.999, "law": "harmonic", "amplitude": 0.9, "n": 2001}, "angular-near-locking"),
+    ("angular-acceleration", {"mechanism": "trammel", "law": "accelerating", "epsilon0": 3.0}, "trammel"),
+]
+
+
+def numerics_and_efficiencies(value, path="answer"):
+    """(path, kind, item) for every numerics dict and every efficiency anywhere in an answer."""
+    if isinstance(value, dict):
+        for key, item in value.items():
+            where = f"{path}.{key}"
+            if key == "numerics" and isinstance(item, dict):
+                yield where, "numerics", item
+            elif key == "efficiency":
+                yield where, "efficiency", item
+            else:
+                yield from numerics_and_efficiencies(item, where)
+    elif isinstance(value, list):
+        for i, item in enumerate(value):
+            if isinstance(item, (dict, list)):
+                yield from numerics_and_efficiencies(item, f"{path}[{i}]")
+
+
+def beyond_meaning(data: dict) -> list[str]:
+    """The diagnostics of an answer that exceed their physical meaning, each in words."""
+    problems, words = [], bool(data.get("warnings"))
+    for where, kind, item in numerics_and_efficiencies(data):
+        if kind == "efficiency":
+            for eta in item if isinstance(item, list) else [item]:
+                if eta is None and not words:
+                    problems.append(f"{where}: η null without a warning saying why")
+                elif eta is not None and not 0.0 <= eta <= 1.0:
+                    problems.append(f"{where}: η = {eta!r} outside [0, 1]")
+            continue
+        estimate, residual = item.get("error_estimate"), item.get("energy_residual")
+        said = words or bool(item.get("message"))
+        if estimate is None and not said:
+            problems.append(f"{where}.error_estimate: null without words")
+        elif estimate is not None and not (isinstance(estimate, (int, float)) and estimate >= 0):
+            problems.append(f"{where}.error_estimate = {estimate!r}, not a number ≥ 0")
+        if residual is not None and not 0.0 <= residual <= 1.0:
+            problems.append(f"{where}.energy_residual = {residual!r} outside [0, 1]")
+        if item.get("runtime_ms") is not None and item["runtime_ms"] < 0:
+            problems.append(f"{where}.runtime_ms = {item['runtime_ms']!r} < 0")
+    return problems
+
+
+@pytest.mark.parametrize("endpoint, body", [(e, b) for e, b, _ in GRID], ids=[name for _, _, name in GRID])
+def test_no_diagnostic_exceeds_its_physical_meaning(endpoint, body):
+    data = strict(client.post(f"/api/v1/{endpoint}", json=body))
+    assert "detail" not in data, data["detail"]                      # every grid point is a valid request
+    assert no_non_finite(data)
+    assert beyond_meaning(data) == []
+
+
+def test_the_grid_check_itself_flags_what_it_should():
+    """The checker against hand-made answers (so that a pass above means something)."""
+    assert beyond_meaning({"numerics": {"error_estimate": 1e-9, "energy_residual": 0.5}, "efficiency": 1.0}) == []
+    assert len(beyond_meaning({"numerics": {"error_estimate": None, "energy_residual": 3.5e294, "message": ""},
+                               "startup": {"numerics": {"error_estimate": -1.0}}, "efficiency": 1.0000005})) == 4
+    assert beyond_meaning({"numerics": {"error_estimate": None, "message": "one level only"}}) == []

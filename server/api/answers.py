@@ -8,6 +8,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..classroom.variants import Plan, SpecError
+from ..core.numerics import parabola_extremum
 from .endpoints import compute
 from ..lessons.scenes import Question, Scene, Slider, Toggle, scenes
 from ..lessons.requests import path_value, scene_request
@@ -27,15 +28,7 @@ def _extremum(values: list, largest: bool) -> float:
     if not np.all(np.isfinite(y)):
         raise SpecError("questions", "the quantity is undefined somewhere on the cycle (a singular position)")
     periodic = y.size > 2 and np.isclose(y[0], y[-1], rtol=1e-9, atol=1e-12)
-    y = (y[:-1] if periodic else y) * (1 if largest else -1)
-    i = int(np.argmax(y))
-    if not periodic and i in (0, y.size - 1):
-        best = y[i]
-    else:
-        left, mid, right = y[i - 1], y[i], y[(i + 1) % y.size]
-        curvature = left - 2 * mid + right
-        best = mid if curvature >= 0 else mid - (right - left) ** 2 / (8 * curvature)
-    return float(best if largest else -best)
+    return parabola_extremum(y, 1 if largest else -1, periodic)
 
 
 @lru_cache(maxsize=4096)

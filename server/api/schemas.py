@@ -82,3 +82,32 @@ class KinematicsResponse(BaseModel):
         "{name: [[x, y], …]}, special positions as a list"))
     units: dict[str, str] = Field(description="unit of each returned output")
     warnings: list[str] = Field(description="sentences about singular or near-singular positions")
+
+
+class NumericsModel(BaseModel):
+    """How a result was computed (server/core/numerics.py, ``Numerics``): declared once for every answer.
+    A field the method has no use for is null."""
+
+    model_config = ConfigDict(extra="forbid")
+    method: str = Field(description="what was computed and how, in the reader's language")
+    code: str = Field("", description="names the method for the interface's translations")
+    why: str | None = Field(None, description="why this method was chosen (stiffness, smoothness)")
+    rtol: float | None = Field(None, gt=0, description="relative tolerance asked")
+    steps: int | None = Field(None, ge=0, description="accepted steps or grid intervals")
+    rejected: int | None = Field(None, ge=0, description="rejected steps")
+    nfev: int | None = Field(None, ge=0, description="evaluations of the right-hand side")
+    njev: int | None = Field(None, ge=0, description="evaluations of the Jacobian")
+    nlu: int | None = Field(None, ge=0, description="LU decompositions")
+    iterations: int | None = Field(None, ge=0, description="iterations of the outer loop (shooting, root finding, "
+                                                           "successive approximations)")
+    cycles: int | None = Field(None, ge=0, description="cycles integrated")
+    stiffness_ratio: float | None = Field(None, ge=0, description="largest ratio of the eigenvalues' magnitudes")
+    converged: bool | None = Field(None, description="whether the iteration met its tolerance (null: nothing iterates)")
+    runtime_ms: float | None = Field(None, ge=0, description="wall-clock time, ms")
+    error_estimate: float | None = Field(None, ge=0, description="estimated relative error of the result (null: "
+                                                                 "nothing to compare with)")
+    energy_residual: float | None = Field(None, ge=0, description="|net work| / driving work over the run")
+    message: str = Field("", description="how it ended, in words")
+    message_code: str = Field("", description="names a routine message for the interface's translations")
+    message_context: dict[str, Any] = Field(default_factory=dict, description="the numbers of that message")
+    why_context: dict[str, Any] = Field(default_factory=dict, description="the numbers of the `why` text")

@@ -1,10 +1,13 @@
-"""Request model of /angular-acceleration: the coupler's angular acceleration (seed 001), every input with its unit."""
+"""Request and response models of /angular-acceleration: the coupler's angular acceleration (seed 001), every input
+with its unit; signs in the one convention of server/core/angular_acceleration.py."""
 from __future__ import annotations
 
 from typing import Literal
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from .schemas import NumericsModel
 
 
 class AngularRequest(BaseModel):
@@ -29,3 +32,21 @@ class AngularRequest(BaseModel):
         if self.law == "accelerating" and self.epsilon0 < 0:
             raise ValueError("a decelerating crank stops before a full turn: give ε₀ ≥ 0")
         return self
+
+
+class AngularResponse(BaseModel):
+    t: list[float] = Field(description="times, s")
+    phi: list[float] = Field(description="crank angle from the slider's line, φ = 0 with the crank pointing away "
+                                         "from the slider, in the sense the crank turns, rad")
+    omega: list[float] = Field(description="crank speed ω, rad/s")
+    epsilon_crank: list[float] = Field(description="crank acceleration ε_OA, rad/s²")
+    psi: list[float] | None = Field(None, description="crank-slider: rod angle ψ, in the crank's sense, rad")
+    omega_coupler: list[float] = Field(description="coupler speed ω_AB (ω_BD), positive in the crank's sense, rad/s")
+    inv_AP: list[float] = Field(description="1/AP, AP signed from A towards O, m⁻¹ (0 where P is at infinity)")
+    epsilon_star: list[float] = Field(description="ε* = a_A^τ/AP, rad/s²")
+    epsilon_star2: list[float] = Field(description="ε** = V_A·d(1/AP)/dt, rad/s²")
+    epsilon: list[float] = Field(description="ε_AB = ε* + ε**, rad/s²")
+    psi_dd: list[float] = Field(description="the coupler's angular acceleration by the independent route, rad/s²")
+    points: dict[str, list[list[float | None]]] = Field(description="O, A, B (and D), P, m; P null at infinity")
+    numerics: NumericsModel
+    warnings: list[str]

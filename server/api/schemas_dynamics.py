@@ -1,4 +1,5 @@
-"""Request models of the dynamics API (/reduction, /motion): every input with its unit."""
+"""Request and response models of the dynamics API (/reduction, /motion, /flywheel): every input with its unit,
+every answer's numerics in the one declared form (NumericsModel)."""
 from __future__ import annotations
 
 import math
@@ -7,7 +8,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from ..core.dynamics.motors import INDICATOR_POINTS, polytropic_diagram
-from .schemas import MAX_PARAMS, MechanismName
+from .schemas import MAX_PARAMS, MechanismName, NumericsModel
 
 Positive = Field(ge=0.0, le=1e6)
 
@@ -117,7 +118,15 @@ class ReductionResponse(BaseModel):
                                                      "the angles of self-locking, if any")
     friction_iteration: dict | None = Field(None, description="the successive approximations at iteration_phi: "
                                                               "forces of each step (N), ratio of the series, converged")
+    numerics: NumericsModel | None = Field(None, description="how M_c and its mean M_c0 were computed")
     warnings: list[str]
+
+
+class StartupOutput(BaseModel):
+    phi: list[float] | None = Field(None, description="crank angle of the run, rad (at most ~4000 points)")
+    omega: list[float] | None = Field(None, description="ω(φ) from the start, rad/s")
+    t: list[float] | None = Field(None, description="t(φ) from the start, s")
+    numerics: NumericsModel = Field(description="how the start-up was computed")
 
 
 class MotionResponse(BaseModel):
@@ -130,9 +139,8 @@ class MotionResponse(BaseModel):
     delta: float | None = Field(None, description="coefficient of speed fluctuation (ω_max − ω_min)/ω_mean")
     efficiency: float | None = Field(None, description="η = |A_useful|/A_driving over the steady cycle")
     works: dict | None = Field(None, description="works over the cycle, J: driving, useful, dry and viscous friction, net")
-    numerics: dict | None = Field(None, description="method, rtol, steps, iterations, runtime_ms, error_estimate, "
-                                                    "energy_residual, message")
-    startup: dict | None = Field(None, description="start-up transient: phi, omega, t and its own numerics")
+    numerics: NumericsModel | None = Field(None, description="how the steady cycle was computed")
+    startup: StartupOutput | None = Field(None, description="start-up transient with its own numerics")
     warnings: list[str]
 
 
@@ -164,5 +172,5 @@ class FlywheelResponse(BaseModel):
     wittenbauer: dict | None = Field(None, description="energy–mass diagram: tangent intercepts, slopes, contact "
                                                        "angles and the intersection (origin of the true axes)")
     disk: dict | None = Field(None, description="solid disk: diameter, width (m), mass (kg)")
-    numerics: dict | None = None
+    numerics: NumericsModel | None = Field(None, description="how the flywheel was computed")
     warnings: list[str]

@@ -2,24 +2,35 @@
 
     ε = d/dt (V_A/AP) = ε* + ε**,   ε* = (dV_A/dt)/AP = a_A^τ/AP,   ε** = V_A·d(1/AP)/dt      (1)–(4)
 
-Central crank-slider, λ = OA/AB < 1 (the paper's λ; the textbook's l₂/l₁ is 1/λ): O at the origin,
-A = OA(cos φ, sin φ), B on the x axis, sin ψ = λ sin φ.  P, the instantaneous centre of AB, is where
-line OA meets the normal to the guide at B, so (signed)
+One convention for both mechanisms and for the transfer-function scenes (Eremyants, Fig. 2.2): O at the
+origin, the slider's guide along the x axis; φ is measured from that line, φ = 0 with the crank pointing
+away from the slider (inner dead centre of the crank-slider), A = OA(−cos φ, sin φ); the angle and the
+angular speed of every link are positive in the sense the crank turns (clockwise in the drawing).  AP is
+signed, counted from A towards O: positive when P lies on the crank's side of A (the rod turns with the
+crank), so that ω_coupler = V_A/AP with V_A = ω·OA in both mechanisms.
 
-    1/AP = cos φ/(AB cos ψ),   ω_AB = ω λ cos φ/cos ψ = V_A/AP,
+Central crank-slider, λ = OA/AB < 1 (the paper's λ; the textbook's l₂/l₁ is 1/λ): B = (−OA cos φ +
+AB cos ψ, 0), sin ψ = λ sin φ, ψ the rod's angle in the crank's sense.  P, the instantaneous centre of
+AB, is where line OA meets the normal to the guide at B, so
+
+    1/AP = cos φ/(AB cos ψ),   ω_AB = ψ̇ = ω λ cos φ/cos ψ = V_A/AP,
     ε* = ε_OA λ cos φ/cos ψ,   ε** = ω λ(−ω sin φ cos ψ + ω_AB sin ψ cos φ)/cos²ψ.
 
 1/AP is finite everywhere (0 at φ = 90°, 270°, where P goes to infinity); AP itself is never used.
 Independent check: ψ̈ = [λ(ε_OA cos φ − ω² sin φ) + ω_AB² sin ψ]/cos ψ from OA sin φ = AB sin ψ.
-Elliptic trammel: A the midpoint of BD, B and D in perpendicular guides; P is the fourth corner of the
-rectangle on O, B, D, so AP = OA, ε** ≡ 0 and ε_BD = −ε_OA (BD turns the other way).
+Elliptic trammel: A the midpoint of BD, B and D in perpendicular guides (B along x, D along y); P is the
+fourth corner of the rectangle on O, B, D, P = 2A, so AP = −OA (P beyond A), ε** ≡ 0 and
+ω_BD = −ω_OA, ε_BD = −ε_OA (BD turns against the crank).
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq
+
+from .numerics import Numerics
 
 
 @dataclass(frozen=True)
@@ -56,6 +67,7 @@ class CrankLaw:
 
 def crank_slider(lam: float, length: float, law: CrankLaw, t: np.ndarray) -> dict:
     """Components of ε_AB, ψ̈ by the independent route, ω_AB, 1/AP and the points O, A, B, P."""
+    started = time.perf_counter()
     phi, w, eps = law.at(t)
     s, c = np.sin(phi), np.cos(phi)
     sin_psi = lam * s
@@ -66,23 +78,39 @@ def crank_slider(lam: float, length: float, law: CrankLaw, t: np.ndarray) -> dic
     e_star = eps * lam * c / cos_psi
     e_star2 = w * lam * (-w * s * cos_psi + w_ab * sin_psi * c) / cos_psi**2
     psi_dd = (lam * (eps * c - w**2 * s) + w_ab**2 * sin_psi) / cos_psi
-    A = np.stack([length * c, length * s], 1)
-    B = np.stack([length * c + rod * cos_psi, 0 * t], 1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        distance = np.where(np.abs(inv_ap) > 1e-12, 1 / inv_ap, np.nan)      # signed AP; NaN where P is at infinity
-    P = A + distance[:, None] * np.stack([c, s], 1)
+    A = np.stack([-length * c, length * s], 1)
+    x_b = -length * c + rod * cos_psi
+    with np.errstate(divide="ignore", invalid="ignore"):     # P on line OA above B; NaN where P is at infinity
+        P = np.stack([x_b, np.where(np.abs(c) > 1e-12, -x_b * s / c, np.nan)], 1)
+    P[np.isnan(P[:, 1])] = np.nan
     return {"t": t, "phi": phi, "omega": w, "epsilon_crank": eps, "psi": np.arcsin(sin_psi), "omega_coupler": w_ab,
             "inv_AP": inv_ap, "epsilon_star": e_star, "epsilon_star2": e_star2, "epsilon": e_star + e_star2,
-            "psi_dd": psi_dd, "points": {"O": np.zeros_like(A), "A": A, "B": B, "P": P}}
+            "psi_dd": psi_dd, "points": {"O": np.zeros_like(A), "A": A, "B": np.stack([x_b, 0 * t], 1), "P": P},
+            "numerics": _numerics(e_star + e_star2, psi_dd, started)}
 
 
 def trammel(length: float, law: CrankLaw, t: np.ndarray) -> dict:
-    """Elliptic trammel with OA = AB = AD: AP = OA, ε* = ε_OA·OA/AP, ε** = 0, ε_BD = −ε_OA (signed)."""
+    """Elliptic trammel with OA = AB = AD: AP = −OA, ε* = ε_OA·OA/AP = −ε_OA, ε** = 0 (signed as above)."""
+    started = time.perf_counter()
     phi, w, eps = law.at(t)
     c, s = np.cos(phi), np.sin(phi)
-    A = np.stack([length * c, length * s], 1)
+    A = np.stack([-length * c, length * s], 1)
+    psi_dd = -eps                                    # the angle of BD in the crank's sense is −φ (+ const)
     return {"t": t, "phi": phi, "omega": w, "epsilon_crank": eps, "omega_coupler": -w,
-            "inv_AP": np.full_like(t, 1 / length), "epsilon_star": -eps, "epsilon_star2": np.zeros_like(t),
-            "epsilon": -eps, "psi_dd": -eps,
-            "points": {"O": np.zeros_like(A), "A": A, "B": np.stack([2 * length * c, 0 * t], 1),
-                       "D": np.stack([0 * t, 2 * length * s], 1), "P": 2 * A}}
+            "inv_AP": np.full_like(t, -1 / length), "epsilon_star": -eps, "epsilon_star2": np.zeros_like(t),
+            "epsilon": -eps, "psi_dd": psi_dd,
+            "points": {"O": np.zeros_like(A), "A": A, "B": np.stack([-2 * length * c, 0 * t], 1),
+                       "D": np.stack([0 * t, 2 * length * s], 1), "P": 2 * A},
+            "numerics": _numerics(-eps, psi_dd, started)}
+
+
+def _numerics(epsilon: np.ndarray, psi_dd: np.ndarray, started: float) -> dict:
+    """Closed forms at each instant; the error estimate is the largest relative difference between the
+    two routes, ε* + ε** and ψ̈ (rounding only: both are exact)."""
+    scale = float(np.max(np.abs(psi_dd))) if psi_dd.size else 0.0
+    difference = float(np.max(np.abs(epsilon - psi_dd))) if psi_dd.size else 0.0
+    return Numerics(method="closed forms at each instant: ε* + ε** from 1/AP, checked against ψ̈ from "
+                           "OA sin φ = AB sin ψ; the error estimate is their largest relative difference",
+                    code="angular_closed_forms", steps=int(epsilon.size),
+                    runtime_ms=1e3 * (time.perf_counter() - started),
+                    error_estimate=difference / scale if scale > 0 else difference).as_dict()

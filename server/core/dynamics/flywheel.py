@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
+from ..numerics import parabola_extremum
 from .compiled import mean_of_extremes
 
 GUTYAR_WINDOW = np.pi / 4      # half-width of the curve pieces Gutyar draws around the extremes, rad
@@ -42,22 +43,9 @@ class Method:
     energy_swing: float         # ΔT used, J
 
 
-def _extreme(values: np.ndarray, sign: int, allowed: np.ndarray | None = None) -> float:
-    """max (sign +1) or min (−1) of a smooth sampled periodic curve (closed grid), refined by a parabola
-    through the best sample and its neighbours; ``allowed`` restricts the search to part of the cycle."""
-    n = values.size - 1
-    allowed = np.ones(n, bool) if allowed is None else allowed[:-1]
-    k = int(np.argmax(np.where(allowed, sign * values[:-1], -np.inf)))
-    if not (allowed[(k - 1) % n] and allowed[(k + 1) % n]):
-        return float(values[k])
-    left, mid, right = values[(k - 1) % n], values[k], values[(k + 1) % n]
-    curvature = left - 2 * mid + right
-    return float(mid - (right - left) ** 2 / (8 * curvature)) if curvature * sign < 0 else float(mid)
-
-
 def merzalov(cycle: Cycle, omega_mean: float, delta: float) -> Method:
     group_one = cycle.work - 0.5 * cycle.inertia_ii * omega_mean**2
-    swing = _extreme(group_one, +1) - _extreme(group_one, -1)
+    swing = parabola_extremum(group_one, +1) - parabola_extremum(group_one, -1)
     return Method("merzalov", swing / (delta * omega_mean**2), swing)
 
 
@@ -75,7 +63,7 @@ def tangent_intercepts(cycle: Cycle, omega_mean: float, delta: float, window: fl
         near_top, near_bottom = near(int(np.argmax(group_one))), near(int(np.argmin(group_one)))
     k_up = int(np.argmax(np.where(near_top, upper, -np.inf)))
     k_low = int(np.argmin(np.where(near_bottom, lower, np.inf)))
-    return (_extreme(upper, +1, near_top), _extreme(lower, -1, near_bottom),
+    return (parabola_extremum(upper, +1, allowed=near_top), parabola_extremum(lower, -1, allowed=near_bottom),
             float(cycle.phi[k_up]), float(cycle.phi[k_low]))
 
 
@@ -101,7 +89,7 @@ def periodic_speed(cycle: Cycle, inertia_i: float, omega_mean: float) -> np.ndar
     total = np.ascontiguousarray(inertia_i + cycle.inertia_ii, dtype=np.float64)
     work = np.ascontiguousarray(cycle.work, dtype=np.float64)
     lowest = float(np.max(-cycle.work))
-    def mean_error(T0):             # 0.5 (_extreme(ω, +1) + _extreme(ω, −1)) − ω_m, compiled: no arrays per call
+    def mean_error(T0):             # ½(max ω + min ω) − ω_m by the parabola vertex, compiled: no arrays per call
         return mean_of_extremes(work, total, T0) - omega_mean
     high = lowest + 0.5 * float(total.max()) * (2 * omega_mean) ** 2 + 1.0
     if mean_error(lowest + 1e-12 * high) > 0:       # even as ω_min → 0 the mean exceeds ω_m: the machine would
@@ -112,7 +100,7 @@ def periodic_speed(cycle: Cycle, inertia_i: float, omega_mean: float) -> np.ndar
 
 def achieved_delta(cycle: Cycle, inertia_i: float, omega_mean: float) -> float:
     omega = periodic_speed(cycle, inertia_i, omega_mean)
-    w_max, w_min = _extreme(omega, +1), _extreme(omega, -1)
+    w_max, w_min = parabola_extremum(omega, +1), parabola_extremum(omega, -1)
     return (w_max - w_min) / (0.5 * (w_max + w_min))
 
 

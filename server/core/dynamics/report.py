@@ -10,7 +10,8 @@ from . import compiled
 from . import flywheel as fw
 from .friction_iteration import friction_iteration
 from .machine import Machine
-from .motion import cumulative_simpson, node_tables, startup, steady_cycle, steps_per_cycle
+from .motion import node_tables, startup, steady_cycle, steps_per_cycle
+from ..numerics import Numerics, cumulative_simpson
 from .reduction import Inertias, reduced_inertia, textbook_inertia_approximation
 from .resistance import CONVENTIONS, Load, mean_over_cycle, resisting_moment
 
@@ -33,21 +34,16 @@ def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: i
                              "parts": inertia.parts,
                              "approximation": textbook_inertia_approximation(mechanism, p, inertias, phi)}
     if "resisting" in outputs:
+        started = time.perf_counter()
         moment = resisting_moment(mechanism, p, load, phi, omega)
         notices += moment.notices
-        means, errors = {}, {}
         fine = np.linspace(0.0, mech.cycle(p), MEAN_POINTS + 1)
         kinematics = mech.evaluate(p, fine, set())          # one evaluation for both conventions
-        for convention in CONVENTIONS:
-            total = resisting_moment(mechanism, p, Load(**{**load.__dict__, "convention": convention}), fine,
-                                     omega, kinematics).total
-            means[convention] = mean_over_cycle(total)
-            errors[convention] = abs(means[convention] - mean_over_cycle(total[::2]))
-        result["numerics"] = {
-            "code": "closed_forms",
-            "method": "closed forms at each angle; M_c0 by the trapezoid rule on a closed uniform grid, error "
-                      "estimated against the grid of half as many points",
-            "points": MEAN_POINTS, "error_estimate": errors[load.convention]}
+        totals = {convention: resisting_moment(mechanism, p, Load(**{**load.__dict__, "convention": convention}),
+                                               fine, omega, kinematics).total for convention in CONVENTIONS}
+        means = {convention: mean_over_cycle(total) for convention, total in totals.items()}
+        error = abs(means[load.convention] - mean_over_cycle(totals[load.convention][::2]))
+        result["numerics"] = _mean_numerics(totals[load.convention], error, started)
         locked = moment.self_locking
         result["resisting"] = {
             "total": moment.total, "useful": moment.useful, "dry": moment.dry, "viscous": moment.viscous,
@@ -60,10 +56,14 @@ def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: i
         log = friction_iteration(mechanism, p, iteration_phi, load.force, load.f)
         result["friction_iteration"] = {"phi": iteration_phi, "ratio": log.ratio, "converged": log.converged,
                                         "steps": log.steps, "limit": log.limit}
-        if not log.converged:
-            notices.append(Notice("iteration_diverges", f"Self-locking at φ = {np.degrees(iteration_phi):.1f}°: the "
-                                  f"ratio of the series is {log.ratio:.3g} ≥ 1, the approximations diverge.",
-                                  {"phi": float(np.degrees(iteration_phi)), "ratio": log.ratio}))
+        where = {"phi": float(np.degrees(iteration_phi)), "ratio": log.ratio}
+        if log.ratio >= 1:                      # the physics decides divergence: the series' ratio, not a step cap
+            notices.append(Notice("iteration_diverges", f"Self-locking at φ = {where['phi']:.1f}°: the ratio of the "
+                                  f"series is {log.ratio:.3g} ≥ 1, the approximations diverge.", where))
+        elif not log.converged:
+            notices.append(Notice("iteration_unfinished", f"At φ = {where['phi']:.1f}° the series converges (ratio "
+                                  f"{log.ratio:.3g} < 1), but the steps shown stop before their tolerance; its limit "
+                                  "is the value to use.", where))
     return result, notices
 
 
@@ -76,7 +76,7 @@ def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, ome
     if "steady" in outputs:
         steady = steady_cycle(machine, rtol, omega_mean, balance, deadline)
         notices += steady.notices
-        result["numerics"] = steady.numerics.as_dict()
+        result["numerics"] = declared(steady.numerics)
         if steady.steady is not None:
             s = steady.steady
             result |= {"phi": s.phi, "omega": s.omega, "t": s.t, "epsilon": s.epsilon, "omega_mean": s.omega_mean,
@@ -86,11 +86,32 @@ def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, ome
         start = startup(machine, omega0, max(rtol, 1e-9), max_cycles, balance, deadline)
         notices += start.notices
         run = start.transient
-        result["startup"] = {"numerics": start.numerics.as_dict()}
+        result["startup"] = {"numerics": declared(start.numerics)}
         if run is not None:
             keep = slice(None, None, max(1, run.phi.size // 4000))   # at most ~4000 points to draw
             result["startup"] |= {"phi": run.phi[keep], "omega": run.omega[keep], "t": run.t[keep]}
     return result, notices
+
+
+def _mean_numerics(total: np.ndarray, error: float, started: float) -> dict:
+    """How M_c0 was computed; its error relative to the cycle mean of |M_c| (M_c0 itself may be zero)."""
+    numerics = Numerics(
+        method="closed forms at each angle; M_c0 by the trapezoid rule on a closed uniform grid, error estimated "
+               "against the grid of half as many points, relative to the cycle mean of |M_c|",
+        code="closed_forms", steps=MEAN_POINTS, runtime_ms=1e3 * (time.perf_counter() - started))
+    if not np.isfinite(total).all():
+        numerics.message = "no M_c0: the moment is not finite at every angle (self-locking or a singular position)"
+        numerics.message_code = "no_mean_moment"
+        return numerics.as_dict()
+    scale = mean_over_cycle(np.abs(total))
+    numerics.error_estimate = error / scale if scale > 0 else 0.0
+    return numerics.as_dict()
+
+
+def declared(numerics) -> dict:
+    """A motion result's numerics in the one declared form (server/core/numerics.py): its fields checked
+    against the declaration, non-finite numbers said in words."""
+    return Numerics(**numerics.as_dict()).as_dict()
 
 
 def _flywheel_error(machine: Machine, omega_mean: float, delta: float, balance: bool, steps: int, inertia: float) -> float | None:
@@ -151,6 +172,7 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
     epsilon = (moment - 0.5 * tables.dJ[nodes] * omega_after**2) / total
     group_one = work - 0.5 * cycle.inertia_ii * omega_mean**2
     delta_t_i = group_one - group_one[0]
+    delta_residual = abs(rows[-1]["delta_achieved"] / delta - 1)
     shown = slice(0, None, max(1, (phi.size - 1) // DISPLAY_POINTS))   # computed finely, sent coarsely
     curves = {
         "work_driving": driving, "work_resisting": driving - work, "work_total": work,
@@ -167,10 +189,13 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
         "rim": fw.rim(flywheel_inertia, fw.disk(flywheel_inertia, width_ratio, density).diameter, density)
         if flywheel_inertia > 0 else None,
         "balancing_moment": tables.balancing_moment,
-        "numerics": {"code": "flywheel_simpson", "error_estimate": _flywheel_error(machine, omega_mean, delta, balance,
-                                                                                   steps, rows[-1]["inertia"]),
-                     "method": "Simpson's rule for A(φ) on a uniform grid; exact inertia by Brent's method on the "
-                               "periodic energy solution", "steps": steps, "runtime_ms": 1e3 * (time.perf_counter() - started),
-                     "delta_residual": abs(rows[-1]["delta_achieved"] / delta - 1)},
+        "numerics": Numerics(
+            method="Simpson's rule for A(φ) on a uniform grid; exact inertia by Brent's method on the periodic "
+                   "energy solution", code="flywheel_simpson", steps=steps,
+            runtime_ms=1e3 * (time.perf_counter() - started),
+            error_estimate=_flywheel_error(machine, omega_mean, delta, balance, steps, rows[-1]["inertia"]),
+            energy_residual=abs(work[-1]) / driving_cycle,
+            message=f"the exact inertia gives δ to a relative {delta_residual:.1e}",
+            message_code="flywheel_delta", message_context={"residual": f"{delta_residual:.1e}"}).as_dict(),
     }
     return result, notices

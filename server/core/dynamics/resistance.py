@@ -81,8 +81,7 @@ def resisting_moment(mechanism: str, params: dict[str, float], load: Load, phi: 
                "four_bar": _four_bar}[mechanism]
     result = builder(params, load, phi, values, k)
     result.notices = kinematics.warnings + result.notices     # singular positions of the linkage itself
-    sliding = {"sine": u21**2 + u31**2, "slider_crank": u31**2, "slotted_link": u21**2,
-               "four_bar": np.zeros_like(phi)}[mechanism]
+    sliding = MECHANISMS[mechanism].sliding_squares(params, kinematics)     # finite at removable singularities
     result.viscous = load.beta * np.asarray(omega) * sliding
     result.useful = result.useful + load.crank_moment
     return result

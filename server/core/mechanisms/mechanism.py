@@ -21,6 +21,7 @@ class Mechanism(ABC):
     conventions: str
     params: tuple[ParamSpec, ...]
     extra_outputs: tuple[OutputSpec, ...] = ()
+    sliding_pairs: tuple[str, ...] = ()     # transfer functions of the prismatic pairs' sliding speeds
 
     @property
     def outputs(self) -> tuple[OutputSpec, ...]:
@@ -65,6 +66,11 @@ class Mechanism(ABC):
     @abstractmethod
     def evaluate(self, p: dict[str, float], phi: np.ndarray, wanted: set[str]) -> Evaluation:
         """Compute the wanted outputs at crank angles ``phi`` (rad)."""
+
+    def sliding_squares(self, p: dict[str, float], ev: Evaluation) -> np.ndarray:
+        """S(φ) = Σ u² over the prismatic pairs, so that viscous friction gives M_T = β ω S(φ)
+        (Eremyants (3.15)–(3.17), (3.33), (3.50*)); ``ev``: the mechanism evaluated at ev.phi."""
+        return sum((ev.values[name] ** 2 for name in self.sliding_pairs), np.zeros_like(ev.phi, dtype=float))
 
     @abstractmethod
     def special_positions(self, p: dict[str, float]) -> list[SpecialPosition]:

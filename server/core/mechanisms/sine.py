@@ -25,6 +25,7 @@ class Sine(Mechanism):
     conventions = ("Crank pivot O at the origin, x to the right, y up. φ = 0: crank along −x, yoke at its "
                    "left extreme; φ grows clockwise. s = x = l₁(1 − cos φ) is the yoke travel (m); "
                    "s2 = y = l₁ sin φ is the block's travel along the slot (m).")
+    sliding_pairs = ("u21", "u31")
     params = (ParamSpec("l1", "m", "crank length OA", 0.1, 0.01, 1.0),)
 
     def check_geometry(self, p):

@@ -35,6 +35,7 @@ class SliderCrank(Mechanism):
                    "clockwise (seed 000, Fig. 2.2). s = slider travel from the inner dead centre (m); "
                    "s2 = rod angle ψ, clockwise, sin ψ = (l₁ sin φ − e)/l₂ (rad). λ = l₂/l₁ (textbook), "
                    "r/l = l₁/l₂ = 1/λ (English texts).")
+    sliding_pairs = ("u31",)
     params = (
         ParamSpec("l1", "m", "crank length OA", 0.1, 0.01, 1.0),
         ParamSpec("l2", "m", "connecting-rod length AB", 0.3, 0.01, 10.0),

@@ -13,7 +13,8 @@ clockwise from the vertical, B = (l₁sin φ, l₁cos φ).  λ = l₀/l₁ (pivo
     u′₂₁ = l₁λ/√D · (cos φ + λ sin²φ/D),  D = 1 + λ² + 2λ cos φ           (2.32)
 
 At λ = 1 and φ = π the block sits on the lever pivot (D = 0): u₂₁, u′₂₁ and ψ are
-undefined there (the textbook's jamming position, §3.3).
+undefined there (the textbook's jamming position, §3.3); u₂₁ jumps from +l₁ to −l₁, but
+u₂₁² = l₁² sin²(φ/2) → l₁² is continuous, so the viscous moment keeps its limit (sliding_squares).
 """
 from __future__ import annotations
 
@@ -30,6 +31,7 @@ class SlottedLink(Mechanism):
                    "block B above A; φ and ψ grow clockwise. s = lever angle ψ (rad); s2 = block travel y along "
                    "the lever from φ = 0 (m). λ = l₀/l₁: λ < 1 rotating lever, λ > 1 oscillating "
                    "(quick-return) lever.")
+    sliding_pairs = ("u21",)
     params = (
         ParamSpec("l0", "m", "distance AC between the crank and lever pivots", 0.05, 0.001, 10.0),
         ParamSpec("l1", "m", "crank length AB", 0.1, 0.01, 1.0),
@@ -74,6 +76,17 @@ class SlottedLink(Mechanism):
             ev.joints = {"A": point(0 * phi, 0 * phi), "B": point(l1 * s, l1 * c), "C": point(0 * phi, -l0 + 0 * phi),
                          "lever_end": point(lever * np.sin(psi), -l0 + lever * np.cos(psi))}
         return ev
+
+    def sliding_squares(self, p, ev):
+        """S(φ) = u₂₁² = l₁²λ² sin²φ/D (Eremyants (3.50*)), written with sin φ = 2 sin(φ/2) cos(φ/2) and
+        D = (1 − λ)² + 4λ cos²(φ/2) so that the removable singularity at λ = 1, φ = π cancels: there u₂₁
+        jumps from +l₁ to −l₁ (undefined) but u₂₁² = l₁² sin²(φ/2) → l₁², (3.53*), and the viscous moment
+        β ω l₁² is finite."""
+        lam, half = p["l0"] / p["l1"], ev.phi / 2
+        d2 = (1 - lam) ** 2 + 4 * lam * np.cos(half) ** 2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(d2 > 0, 4 * lam**2 * np.cos(half) ** 2 / d2, lam)   # d2 = 0 only at λ = 1
+        return p["l1"] ** 2 * np.sin(half) ** 2 * ratio
 
     def special_positions(self, p):
         lam = p["l0"] / p["l1"]

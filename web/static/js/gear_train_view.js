@@ -119,7 +119,7 @@ export class GearTrainView {
     setAttributes(this.lines.normalB, line(at.B, [0, 1]));
     if (this.lines.normalD) setAttributes(this.lines.normalD, line(at.D, [1, 0]));
 
-    const inverse = sample(data.inv_AP);                   // 1/AP, m⁻¹, signed along OA
+    const inverse = sample(data.inv_AP);                   // 1/AP, m⁻¹, AP signed from A towards O
     const radius = inverse === null ? Infinity : scale.k / Math.abs(inverse);
     const atInfinity = !(radius < LARGEST_RADIUS);
     this.couplerWheel.style.display = atInfinity ? "none" : "";
@@ -129,7 +129,7 @@ export class GearTrainView {
     if (atInfinity) {
       setAttributes(this.couplerLine, line(A, [-u[1], u[0]]));
     } else {
-      const along = Math.sign(inverse) * radius;
+      const along = -Math.sign(inverse) * radius;        // u points from O to A
       const P = [A[0] + u[0] * along, A[1] + u[1] * along];
       setAttributes(this.couplerWheel, { cx: P[0], cy: P[1], r: radius });
       this.moveCentre(P);
