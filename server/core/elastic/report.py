@@ -21,7 +21,7 @@ from ..mechanisms import MECHANISMS, GeometryError, Notice
 from .compiled import MOTOR_KINDS, pack, ready
 from .models import Drive, MechanismSide, ThreeMass, TwoMass
 from .periodic_table import PeriodicTable
-from .simulate import MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio
+from .simulate import CHUNKS, MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio
 from .stiffness import Compliances, bearing_stiffness, link_angles, linkage_stiffness
 
 TABLE_POINTS = 4096
@@ -30,6 +30,7 @@ RIGID_CYCLES = 400       # the rigid start-up's longest run, cycles
 SENSITIVE = 1e-2         # relative error estimate above which the scene says so
 MODELS = ("two_mass", "kinematic_drive", "three_mass", "elastic_linkage", "elastic_four_bar")
 LINKAGE_STIFFNESS = ("three_mass", "elastic_linkage", "elastic_four_bar")
+CHECK_CHUNKS = 23 - 16 + CHUNKS     # the check run restarts its steps at other times than the run (see simulate())
 
 
 @dataclass(frozen=True)
@@ -54,44 +55,60 @@ class ElasticMachine:
     twist0: float = 0.0         # initial twist of the spring next to the mechanism, rad
 
 
-_last_side: list = [None, None]        # (what the tables depend on, the tables) of the latest machine
+TABLE_CACHE = 16         # tables of each kind kept per process (a slider family touches one kind at a time)
+_tables: dict = {"inertia": {}, "load": {}, "stiffness": {}}
+
+
+def cached(kind: str, key, compute):
+    """The table of `kind` for `key` from this process's cache, computed on a miss (oldest dropped past
+    TABLE_CACHE): J(φ) depends only on the mechanism and its inertias, M_c(φ) on the mechanism and its load,
+    c(φ) on the mechanism and its compliances, so a slider of one of them tabulates only its own table."""
+    store = _tables[kind]
+    if key not in store:
+        if len(store) >= TABLE_CACHE:
+            store.pop(next(iter(store)))
+        store[key] = compute()
+    return store[key]
 
 
 def mechanism_side(machine: ElasticMachine) -> MechanismSide:
-    """Periodic tables of J(φ), c(φ), M_c(φ) and S(φ) for the mechanism side; the latest machine's are kept,
-    so that a request's time histories and modal curves tabulate the mechanism once."""
-    key = (machine.model in LINKAGE_STIFFNESS, machine.mechanism, machine.params, machine.inertias, machine.load,
-           machine.compliances, machine.c)
-    last_key, last = _last_side
-    if last_key == key:
-        return last
-    side = tabulate(machine)
-    _last_side[:] = key, side
-    return side
-
-
-def tabulate(machine: ElasticMachine) -> MechanismSide:
+    """Periodic tables of J(φ), c(φ), M_c(φ) and S(φ) for the mechanism side on TABLE_POINTS nodes per turn,
+    each taken from the process's cache when its machine data were tabulated before."""
+    params = tuple(sorted(machine.params.items()))
     period = MECHANISMS[machine.mechanism].cycle(machine.params)
     phi = np.linspace(0.0, period, int(TABLE_POINTS * period / (2 * np.pi)) + 1)
+    inertia = cached("inertia", (machine.mechanism, params, machine.inertias),
+                     lambda: inertia_table(machine, phi, period))
+    load, sliding = cached("load", (machine.mechanism, params, machine.load), lambda: load_tables(machine, phi, period))
+    if machine.model in LINKAGE_STIFFNESS:
+        stiffness = cached("stiffness", (machine.mechanism, params, machine.compliances),
+                           lambda: PeriodicTable(period, *linkage_stiffness(machine.mechanism, machine.params,
+                                                                            machine.compliances, phi)[:2]))
+    else:
+        stiffness = machine.c
+    return MechanismSide(inertia, stiffness, load, sliding, machine.load.beta)
+
+
+def inertia_table(machine: ElasticMachine, phi: np.ndarray, period: float) -> PeriodicTable:
+    """J(φ) with its exact J′ of the mechanism side (the crank and the links; J_rotor is not on this side)."""
     side = Inertias(**{**machine.inertias.__dict__, "J_rotor": 0.0})
     inertia = reduced_inertia(machine.mechanism, machine.params, side, phi)
     if not inertia.J.min() > 0:                         # as for the rigid machine: no equation of motion
         raise GeometryError("inertias", "the mechanism side's reduced moment of inertia is zero: give the crank "
                                         "(J1) some inertia", "zero_inertia")
+    return PeriodicTable(period, inertia.J, inertia.dJ)
+
+
+def load_tables(machine: ElasticMachine, phi: np.ndarray, period: float) -> tuple[PeriodicTable, PeriodicTable]:
+    """M_c(φ) (useful and dry parts) and the viscous S(φ) = M_viscous/β, with central-difference slopes."""
     moment = resisting_moment(machine.mechanism, machine.params, machine.load, phi, omega=1.0)
     if not np.isfinite(moment.useful + moment.dry).all():
         notice = moment.notices[0] if moment.notices else Notice("singular_position", "the load is undefined")
         raise GeometryError("load", notice.text, notice.code, **notice.context)
     sliding = moment.viscous / machine.load.beta if machine.load.beta else np.zeros_like(phi)
-    if machine.model in LINKAGE_STIFFNESS:
-        c, dc, _ = linkage_stiffness(machine.mechanism, machine.params, machine.compliances, phi)
-        stiffness = PeriodicTable(period, c, dc)
-    else:
-        stiffness = machine.c
     load = moment.useful + moment.dry
-    return MechanismSide(PeriodicTable(period, inertia.J, inertia.dJ), stiffness,
-                         PeriodicTable(period, load, periodic_slope(load, period)),
-                         PeriodicTable(period, sliding, periodic_slope(sliding, period)), machine.load.beta)
+    return PeriodicTable(period, load, periodic_slope(load, period)), PeriodicTable(period, sliding,
+                                                                                    periodic_slope(sliding, period))
 
 
 def periodic_slope(values: np.ndarray, period: float) -> np.ndarray:
@@ -152,7 +169,7 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
     atol = absolute_tolerances(machine, model, rtol)
     run = integrate(model, y0, t_end, rtol, chosen, times, deadline, atol, max_evaluations, engine)
     check = integrate(model, y0, run.t[-1] if run.t.size else t_end, rtol / 10, chosen,
-                      run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations, engine)
+                      run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations, engine, CHECK_CHUNKS)
     result = histories(machine, model, run)
     twist_now, twist_check = result["twist"], histories(machine, model, check)["twist"]
     common = min(twist_now.size, twist_check.size)
@@ -228,7 +245,7 @@ def histories(machine: ElasticMachine, model, run) -> dict:
     w_in, w_load, w_diss = y[-3], y[-2], y[-1]
     energy = model.energy(t, y)
     residual = w_in - (energy - energy[0]) - w_load - w_diss if t.size else np.zeros(0)
-    scale = max(float(np.max(np.abs(w_in))) if t.size else 0.0, 1e-300)
+    scale = energy_scale(energy, w_in, w_load, w_diss)
     total_twist = y[2] + y[4] if machine.model == "three_mass" else y[2]
     total_rate = y[3] + y[5] if machine.model == "three_mass" else y[3]
     return {"t": t, "phi_motor": phi1, "omega_motor": w1, "phi": phi2, "omega": w2,
@@ -238,10 +255,35 @@ def histories(machine: ElasticMachine, model, run) -> dict:
             "energy_residual": float(np.max(np.abs(residual))) / scale if t.size else 0.0}
 
 
+def energy_scale(energy: np.ndarray, *works: np.ndarray) -> float:
+    """The energy the balance W_in = ΔE + W_load + W_diss is measured against: the largest of the machine's
+    kinetic + elastic energy over the run and of each work's magnitude (a free vibration does no work, yet
+    its energy is the scale of the histories' errors); 1e-300 J only for a machine at rest with no work."""
+    if not energy.size:
+        return 1e-300
+    return max(float(np.max(np.abs(energy))), *(float(np.max(np.abs(w))) for w in works), 1e-300)
+
+
+RIGID_CACHE = 16
+_rigid_runs: dict = {}
+
+
 def rigid(machine: ElasticMachine, t: np.ndarray) -> dict | None:
-    """The rigid machine's start-up from rest (issue 3's solver), resampled on t, for comparison."""
+    """The rigid machine's start-up (rigid_start_up) on the times t, kept in the process for the rigid machine
+    and the times: the sliders of the springs and dampers leave it unchanged."""
     if machine.model == "kinematic_drive" or t.size == 0:
         return None
+    key = (machine.mechanism, tuple(sorted(machine.params.items())), machine.inertias, machine.load, machine.motor,
+           machine.J_motor + machine.J_middle, t.size, float(t[0]), float(t[-1]))
+    if key not in _rigid_runs:
+        if len(_rigid_runs) >= RIGID_CACHE:
+            _rigid_runs.pop(next(iter(_rigid_runs)))
+        _rigid_runs[key] = rigid_start_up(machine, t)
+    return {name: values.copy() for name, values in _rigid_runs[key].items()}
+
+
+def rigid_start_up(machine: ElasticMachine, t: np.ndarray) -> dict:
+    """The rigid machine's start-up from rest (issue 3's solver), resampled on t, for comparison."""
     J_extra = machine.J_motor + machine.J_middle
     inertias = Inertias(**{**machine.inertias.__dict__, "J1": machine.inertias.J1 + J_extra, "J_rotor": 0.0})
     rigid_machine = Machine(machine.mechanism, machine.params, inertias, machine.load, machine.motor)
