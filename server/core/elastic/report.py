@@ -7,6 +7,7 @@ table rounds them over one node spacing).
 """
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 
@@ -154,9 +155,10 @@ def build(machine: ElasticMachine):
 
 def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, method: str = "auto",
              budget_s: float = TIME_BUDGET_S, max_evaluations: int = MAX_EVALUATIONS, with_rigid: bool = True,
-             engine: str = "compiled") -> tuple[dict, list]:
+             engine: str = "compiled", check: bool = True) -> tuple[dict, list]:
     """Time histories, the energy balance and the numerics; the rigid machine's start-up for comparison
-    only with_rigid. engine: "compiled" or "scipy" (the reference path, see simulate.integrate)."""
+    only with_rigid. engine: "compiled" or "scipy" (the reference path, see simulate.integrate). Without the
+    check run (check=False, for a caller that reads no error estimate) the error estimate is None."""
     ready()
     started = time.perf_counter()
     deadline = started + budget_s
@@ -167,12 +169,16 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
     times = np.linspace(0.0, t_end, samples)
     atol = absolute_tolerances(machine, model, rtol)
     run = integrate(model, y0, t_end, rtol, chosen, times, deadline, atol, max_evaluations, engine)
-    check = integrate(model, y0, run.t[-1] if run.t.size else t_end, rtol / 10, chosen,
-                      run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations, engine, CHECK_CHUNKS)
     result = histories(machine, model, run)
-    twist_now, twist_check = result["twist"], histories(machine, model, check)["twist"]
-    common = min(twist_now.size, twist_check.size)
+    twist_now = result["twist"]
     scale = max(float(np.max(np.abs(twist_now))) if twist_now.size else 0.0, 1e-300)
+    estimate = None
+    if check:
+        rerun = integrate(model, y0, run.t[-1] if run.t.size else t_end, rtol / 10, chosen,
+                          run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations, engine, CHECK_CHUNKS)
+        twist_check = histories(machine, model, rerun)["twist"]
+        common = min(twist_now.size, twist_check.size)
+        estimate = float(np.max(np.abs(twist_now[:common] - twist_check[:common]), initial=0.0)) / scale
     numerics = {
         "method": chosen, "code": "elastic_" + ("implicit" if chosen in ("Radau", "BDF", "LSODA") else "explicit"),
         "why_context": {"ratio": ratio, "decay": decay, "slow": slow, "fastest": fastest, "threshold": STIFF_RATIO},
@@ -183,7 +189,7 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
                                   + (" (chosen by the request)" if method != "auto" else "")),
         "stiffness_ratio": ratio, "rtol": rtol, "steps": run.numerics["steps"], "rejected": run.numerics["rejected"],
         "nfev": run.numerics["nfev"], "njev": run.numerics["njev"], "nlu": run.numerics["nlu"],
-        "error_estimate": float(np.max(np.abs(twist_now[:common] - twist_check[:common]), initial=0.0)) / scale,
+        "error_estimate": estimate,
         "energy_residual": result.pop("energy_residual"), "message": run.numerics["message"],
         "table_points_per_turn": TABLE_POINTS,
         "runtime_ms": 1e3 * (time.perf_counter() - started)}
@@ -194,7 +200,7 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
         notices.append(Notice("large_twist_dead" if near_dead else "large_twist",
                               f"The twist reaches {largest:.3g} rad: far beyond the small deformations the linear "
                               f"spring assumes{near_dead}.", {"twist": largest}))
-    if numerics["error_estimate"] > SENSITIVE:
+    if estimate is not None and estimate > SENSITIVE:
         notices.append(Notice("sensitive_motion", f"The run at ten times tighter tolerance differs by "
                               f"{100 * numerics['error_estimate']:.2g} % of the largest twist: the details of this "
                               "motion are sensitive; more damping makes them reliable.",
@@ -337,25 +343,57 @@ def rod_force(machine: ElasticMachine, phi: np.ndarray, twist: np.ndarray) -> np
 
 
 def bearing_iteration(machine: ElasticMachine, bearing: Bearing, t_end: float, samples: int, rtol: float,
-                      tolerance: float = 1e-3, max_rounds: int = 8, budget_s: float = 2 * TIME_BUDGET_S) -> dict:
+                      tolerance: float = 1e-3, max_rounds: int = 12,
+                      budget_s: float = 2 * TIME_BUDGET_S) -> dict:
     """Successive approximations of seed 000 §1.4: rigid bearings → R_m → c_n (1.44) → e = e₁ + (e₂ + 2/c_n)λ₁₂²
-    (1.43) → R_m again, until R_m changes by less than ``tolerance``."""
-    rounds, current, previous = [], machine, None
+    (1.43) → R_m again: the fixed point R = g(R). Each round is one run (no check run: only R_m is read).
+    Convergence is decided from the iteration's own contraction q = |R_{k+1} − R_k|/|R_k − R_{k−1}|: for q < 1
+    the fixed point lies within q/(1 − q)·|R_{k+1} − R_k| of R_{k+1} (Banach), and the rounds stop when that
+    bound and the last change are within ``tolerance``·R. q ≥ 1 in two successive rounds: the approximations
+    do not contract, and the answer says so in words (message, with message_code and message_context for the
+    other languages, as bearing_notice reads them); so it does when the rounds or the time run out first."""
+    rounds, current, changes = [], machine, []
     deadline = time.perf_counter() + budget_s
-    for _ in range(max_rounds):
-        if time.perf_counter() > deadline:
-            break
-        result, _ = simulate(current, t_end, samples, rtol, budget_s=budget_s / 4, with_rigid=False)
+    outcome = {"rounds": rounds, "converged": False, "message": "", "message_code": "", "message_context": {}}
+    while len(rounds) < max_rounds and time.perf_counter() < deadline:
+        result, _ = simulate(current, t_end, samples, rtol, budget_s=max(deadline - time.perf_counter(), 0.0),
+                             with_rigid=False, check=False)
         if not result["t"].size:                    # stopped at the work bound before any sample: no rod force
             break
         load = float(np.max(np.abs(rod_force(current, result["phi"], result["twist"]))))
         stiffness = bearing_stiffness(load, bearing.balls, bearing.r_inner, bearing.r_outer, bearing.young,
                                       bearing.poisson)
+        if rounds:
+            changes.append(abs(load - rounds[-1]["R_m"]))
         rounds.append({"R_m": load, "c_n": stiffness, "e2_total": current.compliances.e2})
-        if previous is not None and abs(load - previous) <= tolerance * load:
-            return {"rounds": rounds, "converged": True}
-        previous = load
+        if len(changes) >= 2:
+            ratio = changes[-1] / max(changes[-2], 1e-300)
+            if ratio < 1 and max(changes[-1], ratio / (1 - ratio) * changes[-1]) <= tolerance * load:
+                return outcome | {"converged": True, "ratio": ratio, "limit": {"R_m": load, "c_n": stiffness}}
+            if ratio >= 1 and len(changes) >= 3 and changes[-2] >= changes[-3]:
+                return outcome | {"ratio": ratio, "message_code": "bearings_not_contracting",
+                                  "message_context": {"ratio": ratio},
+                                  "message": f"The successive approximations of the bearing stiffness do not contract "
+                                             f"(each change of R_m is {ratio:.3g} times the previous one): they do "
+                                             "not converge."}
+        elif changes and changes[-1] == 0.0:        # the bearings change nothing the run can see
+            return outcome | {"converged": True, "limit": {"R_m": load, "c_n": stiffness}}
         joints = 2.0 / stiffness                    # e_B + e_C, two equal bearings
         current = ElasticMachine(**{**machine.__dict__, "compliances": Compliances(
             machine.compliances.e1, machine.compliances.e2 + joints, machine.compliances.e3)})
-    return {"rounds": rounds, "converged": False}
+    if not rounds:
+        return outcome | {"message_code": "bearings_no_run", "message": "The run stopped at its work bound before "
+                          "its first sample: no rod force, so no bearing stiffness."}
+    change = changes[-1] / rounds[-1]["R_m"] if changes and rounds[-1]["R_m"] > 0 else math.nan
+    return outcome | {"message_code": "bearings_unconverged", "message_context": {"rounds": len(rounds),
+                                                                                 "percent": 100 * change},
+                      "message": f"The successive approximations of the bearing stiffness stopped after {len(rounds)} "
+                                 f"rounds (the rounds or the time allowed ran out), the last change of R_m "
+                                 f"{100 * change:.2g} %: not converged."}
+
+
+def bearing_notice(outcome: dict) -> list[Notice]:
+    """The iteration's message as a notice (none when it converged)."""
+    if not outcome["message"]:
+        return []
+    return [Notice(outcome["message_code"], outcome["message"], outcome["message_context"])]
