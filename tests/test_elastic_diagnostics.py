@@ -120,3 +120,40 @@ def test_an_unconverged_bearing_iteration_says_so_in_words():
     assert not outcome["converged"] and "ratio" not in outcome
     notice, = bearing_notice(outcome)
     assert notice.code == "bearings_unconverged" and "not converged" in notice.text and notice.context["rounds"] == 2
+
+
+def seed_003_critical_damping(phi, sign, e=(2e-6, 1e-9, 3e-6), l=(1.0, 0.3, 1.0, 0.8), I1=0.01, I3=0.05, I_d=0.02):
+    """2√(c_n I_eq) from seed 003's own closed forms: position (3)–(5), φ₂ by (6) reconstructed, u₃₁ by (8) with
+    its sign corrected, c_n by (2), I_n = I₁ + I₃u₃₁², I_eq = I_dI_n/(I_d + I_n); and c_n."""
+    l0, l1, l2, l3 = l
+    l_gamma = np.hypot(l0 - l1 * np.cos(phi), l1 * np.sin(phi))
+    gamma = np.arctan2(-l1 * np.sin(phi), l0 - l1 * np.cos(phi))
+    phi3 = sign * np.arccos((l2**2 - l_gamma**2 - l3**2) / (2 * l_gamma * l3)) + gamma
+    phi2 = np.arctan2(l3 * np.sin(phi3) - l1 * np.sin(phi), l0 + l3 * np.cos(phi3) - l1 * np.cos(phi))
+    u31 = l1 * np.sin(phi - phi2) / (l3 * np.sin(phi3 - phi2))
+    S, R = np.sin(phi - phi2) ** 2, np.sin(phi2 - phi3) ** 2
+    c = l1**2 * S / (e[0] * l1**2 * S + e[1] + e[2] * l3**2 * R)
+    inertia = I1 + I3 * u31**2
+    return 2 * np.sqrt(c * I_d * inertia / (I_d + inertia)), c
+
+
+def test_the_scene_says_why_seed_003s_damping_claim_fails_for_its_values():
+    """Defect 6: the numbers of the elastic-four-bar text (b_n = 57 N·m·s/rad needed for ζ ≥ 1 everywhere, ζ ≈ 7e-4
+    over most of the turn at b_n = 0.02, ζ ≥ 1 only within 0.13° of the dead positions) from seed 003's closed
+    forms, independent of the app's tables; the app's modal ζ(φ) agrees with them (0.1 %)."""
+    assert seed_003_critical_damping(0.7, +1, e=(2e-4, 1e-7, 3e-4))[1] == pytest.approx(1.829090, rel=1e-6)  # notes §4
+    phi = np.linspace(0.0, 2 * np.pi, 360_001)
+    critical, _ = seed_003_critical_damping(phi, +1)
+    zeta = 0.02 / critical
+    assert np.max(critical) == pytest.approx(57, rel=0.01)
+    assert np.median(zeta) == pytest.approx(7e-4, rel=0.05)
+    assert 0.1 <= 360 * np.mean(zeta >= 1) <= 0.14
+    scene = scenes()["elastic-four-bar"]
+    for lang, words in (("en", "57 N·m·s/rad"), ("ru", "57 Н·м·с/рад"), ("uk", "57 Н·м·с/рад")):
+        assert words in scene.text[lang] and ("7·10⁻⁴" in scene.text[lang])
+    from server.core.elastic.report import modal
+    machine = elastic_machine(ElasticRequest.model_validate(scene_request(scene, scene.variants[0], {"b": 0.02})))
+    modes = modal(machine, points=3601)
+    finite = modes["stiffness"] > 0
+    app_critical = 0.02 / modes["damping_ratio"][finite]
+    assert np.max(app_critical) == pytest.approx(np.max(critical), rel=1e-3)
