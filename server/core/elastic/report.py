@@ -176,7 +176,7 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
     if check:
         rerun = integrate(model, y0, run.t[-1] if run.t.size else t_end, rtol / 10, chosen,
                           run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations, engine, CHECK_CHUNKS)
-        twist_check = histories(machine, model, rerun)["twist"]
+        twist_check = total_twist(machine, rerun.y)
         common = min(twist_now.size, twist_check.size)
         estimate = float(np.max(np.abs(twist_now[:common] - twist_check[:common]), initial=0.0)) / scale
     numerics = {
@@ -230,6 +230,11 @@ def absolute_tolerances(machine: ElasticMachine, model, rtol: float) -> np.ndarr
     return atol
 
 
+def total_twist(machine: ElasticMachine, y: np.ndarray) -> np.ndarray:
+    """The twist between motor and mechanism: θ, or θ₁ + θ₂ of the three masses."""
+    return y[2] + y[4] if machine.model == "three_mass" else y[2]
+
+
 def histories(machine: ElasticMachine, model, run) -> dict:
     """Angles, speeds, twist, its rate, the driving moment and I_n(t) from the state histories."""
     y, t = run.y, run.t
@@ -251,10 +256,9 @@ def histories(machine: ElasticMachine, model, run) -> dict:
     energy = model.energy(t, y)
     residual = w_in - (energy - energy[0]) - w_load - w_diss if t.size else np.zeros(0)
     scale = energy_scale(energy, w_in, w_load, w_diss)
-    total_twist = y[2] + y[4] if machine.model == "three_mass" else y[2]
     total_rate = y[3] + y[5] if machine.model == "three_mass" else y[3]
     return {"t": t, "phi_motor": phi1, "omega_motor": w1, "phi": phi2, "omega": w2,
-            "twist": total_twist, "twist_rate": total_rate, "spring_twist": spring_near, "driving_moment": drive,
+            "twist": total_twist(machine, y), "twist_rate": total_rate, "spring_twist": spring_near, "driving_moment": drive,
             "inertia": inertia, "stiffness": stiffness,
             "work_in": w_in, "work_load": w_load, "work_dissipated": w_diss,
             "energy_residual": float(np.max(np.abs(residual))) / scale if t.size else 0.0}
