@@ -1,9 +1,10 @@
 """The elastic scenes' computations: build the model from the machine data, integrate, report.
 
-Everything on the mechanism side is tabulated once per request on TABLE_POINTS nodes per turn
-(closed forms, vectorised): J(φ) and c(φ) as cubic Hermite tables with their exact derivatives,
-the load M_c(φ) with central-difference slopes (it has kinks at the dead centres, where the
-table rounds them over one node spacing).
+Everything on the mechanism side is tabulated on TABLE_POINTS nodes per turn (closed forms,
+vectorised) and kept in the process by what it depends on: J(φ) and c(φ) as cubic Hermite tables
+with their exact derivatives, the load M_c(φ) with central-difference slopes (it has kinks at the
+dead centres, where the table rounds them over one node spacing).  The rigid machine compared
+with runs on the same tables (rigid_start_up).
 """
 from __future__ import annotations
 
