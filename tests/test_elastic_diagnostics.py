@@ -157,3 +157,29 @@ def test_the_scene_says_why_seed_003s_damping_claim_fails_for_its_values():
     finite = modes["stiffness"] > 0
     app_critical = 0.02 / modes["damping_ratio"][finite]
     assert np.max(app_critical) == pytest.approx(np.max(critical), rel=1e-3)
+
+
+def test_answers_from_the_process_caches_equal_answers_computed_afresh():
+    """The tables (by inertias, load, compliances) and the rigid start-up (by the rigid machine) kept in the process:
+    a slider moved away and back gives the answer of a process that never saw the other values."""
+    from server.core.elastic import report
+    scene = scenes()["elastic-transmission"]
+    variant = scene.variants[0]
+
+    def answer(values):
+        machine = elastic_machine(ElasticRequest.model_validate(scene_request(scene, variant, values)))
+        result, _ = simulate(machine, 0.2, 101, 1e-6)
+        return result
+
+    def forget():
+        for store in report._tables.values():
+            store.clear()
+        report._rigid_runs.clear()
+
+    forget()
+    fresh = answer({"load": 1000.0})
+    for values in ({"load": 3000.0}, {"b": 50.0}, {"c": 1e5}, {"load": 1000.0}):
+        cached = answer(values)
+    for key in ("twist", "omega", "stiffness", "inertia"):
+        np.testing.assert_array_equal(cached[key], fresh[key])
+    np.testing.assert_array_equal(cached["rigid"]["omega"], fresh["rigid"]["omega"])

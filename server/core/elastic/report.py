@@ -9,6 +9,7 @@ with runs on the same tables (rigid_start_up).
 from __future__ import annotations
 
 import math
+import threading
 import time
 from dataclasses import dataclass, field
 
@@ -58,15 +59,21 @@ class ElasticMachine:
 
 TABLE_CACHE = 16         # tables of each kind kept per process (a slider family touches one kind at a time)
 _tables: dict = {"inertia": {}, "load": {}, "stiffness": {}}
+_cache_lock = threading.RLock()        # a server may answer from several threads of one process; re-entered by rigid()
 
 
 def cached(kind: str, key, compute):
     """The table of `kind` for `key` from this process's cache, computed on a miss (oldest dropped past
     TABLE_CACHE): J(φ) depends only on the mechanism and its inertias, M_c(φ) on the mechanism and its load,
     c(φ) on the mechanism and its compliances, so a slider of one of them tabulates only its own table."""
-    store = _tables[kind]
+    with _cache_lock:
+        return remembered(_tables[kind], key, compute, TABLE_CACHE)
+
+
+def remembered(store: dict, key, compute, size: int):
+    """store[key], computed on a miss; the oldest entry dropped past `size` (call under _cache_lock)."""
     if key not in store:
-        if len(store) >= TABLE_CACHE:
+        if len(store) >= size:
             store.pop(next(iter(store)))
         store[key] = compute()
     return store[key]
@@ -285,11 +292,9 @@ def rigid(machine: ElasticMachine, t: np.ndarray) -> dict | None:
         return None
     key = (machine.mechanism, tuple(sorted(machine.params.items())), machine.inertias, machine.load, machine.motor,
            machine.J_motor + machine.J_middle, t.size, float(t[0]), float(t[-1]))
-    if key not in _rigid_runs:
-        if len(_rigid_runs) >= RIGID_CACHE:
-            _rigid_runs.pop(next(iter(_rigid_runs)))
-        _rigid_runs[key] = rigid_start_up(machine, t)
-    return {name: values.copy() for name, values in _rigid_runs[key].items()}
+    with _cache_lock:
+        run = remembered(_rigid_runs, key, lambda: rigid_start_up(machine, t), RIGID_CACHE)
+    return {name: values.copy() for name, values in run.items()}
 
 
 def rigid_start_up(machine: ElasticMachine, t: np.ndarray) -> dict:
