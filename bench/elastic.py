@@ -16,11 +16,20 @@
    problem, DOP853 at 1e-11 otherwise; compiled), relative to the largest twist.  The method the server picks by its
    stiffness measurement is marked.
 
+0. (--versus OLD) Old beside new: the CPU time (time.process_time, not the wall clock: the machine is shared)
+   of the server's compute and serialisation of every elastic variant's default request and of each slider's
+   sweep (9 positions), each tree in processes of its own (its own ``server`` package and numba cache), the
+   two trees taking turns, ROUNDS rounds, the least time of the rounds per request.
+
 Run:  python bench/elastic.py      (writes bench/results/elastic.md; about ten minutes, mostly part 4's scipy
       rows; --quick leaves part 4 out)
+      python bench/elastic.py --versus /tmp/elastic-old    (part 0 only, written to bench/results/elastic.md's
+      first section; OLD e.g. ``mkdir /tmp/elastic-old && git archive 9b8d9d3 | tar -x -C /tmp/elastic-old``
+      and ``python3 -m server.core.warm_up`` there)
 """
 from __future__ import annotations
 
+import json
 import os
 import statistics
 import subprocess
@@ -166,7 +175,81 @@ def compile_times() -> list[str]:
             "| numba cache | import, s | warm_up(), s |", "|---|---:|---:|", *rows]
 
 
+ROUNDS = 3
+TIMER = r"""
+import json, os, sys, time
+os.environ["MDL_HEAVY_PROCESSES"] = "0"
+sys.path.insert(0, os.getcwd())
+from server.lessons.scenes import scenes
+from server.lessons.requests import scene_request, slider_values
+from server.api.endpoints import compute_answer
+from server.api.serialise import serialise
+from server.core.warm_up import warm_up
+warm_up()
+times = {}
+for scene in scenes().values():
+    if scene.endpoint != "elastic":
+        continue
+    for variant in scene.variants:
+        points = [("(default)", {})]
+        for slider in variant.sliders:
+            values = slider_values(slider)
+            points += [(slider.id, {slider.id: values[round(k * (len(values) - 1) / 8)]}) for k in range(9)]
+        for slider, values in points:
+            body = scene_request(scene, variant, values)
+            start = time.process_time()
+            serialise(compute_answer("elastic", body, "en").payload)
+            times.setdefault(f"{scene.id}|{variant.id}|{slider}", []).append(1e3 * (time.process_time() - start))
+print(json.dumps(times))
+"""
+
+
+def versus(old: Path) -> list[str]:
+    """Part 0: CPU ms per request, old tree beside this one (see the module's docstring)."""
+    trees = {"old": old.resolve(), "new": Path(__file__).resolve().parents[1]}
+    best: dict = {"old": {}, "new": {}}
+    for _ in range(ROUNDS):
+        for name, tree in trees.items():
+            output = subprocess.run([sys.executable, "-c", TIMER], cwd=tree, capture_output=True, text=True,
+                                    check=True).stdout
+            for key, values in json.loads(output.splitlines()[-1]).items():
+                best[name][key] = [min(a, b) for a, b in zip(best[name].get(key, values), values)]
+    lines = ["## Old beside new: CPU time per answer (compute + serialisation), ms\n",
+             f"`python bench/elastic.py --versus {old}` on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
+             f"load average {os.getloadavg()[0]:.1f}; least of {ROUNDS} rounds per request, each tree in its own "
+             "processes taking turns, each round a fresh process (empty caches) computing the requests in order. "
+             "(default): the variant's default request; a slider: 9 positions over its "
+             "range, the others at their defaults.\n",
+             "| scene / variant | request | old p50 | old max | new p50 | new max | p50 old/new |",
+             "|---|---|---:|---:|---:|---:|---:|"]
+    per_scene: dict = {}
+    for key in best["new"]:
+        scene, variant, slider = key.split("|")
+        old_ms, new_ms = np.array(best["old"][key]), np.array(best["new"][key])
+        per_scene.setdefault(scene, ([], []))[0].extend(old_ms)
+        per_scene[scene][1].extend(new_ms)
+        lines.append(f"| {scene} / {variant} | {slider} | {np.median(old_ms):.1f} | {old_ms.max():.1f} | "
+                     f"{np.median(new_ms):.1f} | {new_ms.max():.1f} | {np.median(old_ms) / np.median(new_ms):.1f}× |")
+    lines += ["\n| scene | requests | old p50 | old p95 | new p50 | new p95 | p95 old/new | new p95 ≤ 20 ms |",
+              "|---|---:|---:|---:|---:|---:|---:|---|"]
+    for scene, (old_ms, new_ms) in per_scene.items():
+        p95_old, p95_new = np.percentile(old_ms, 95), np.percentile(new_ms, 95)
+        lines.append(f"| {scene} | {len(new_ms)} | {np.median(old_ms):.1f} | {p95_old:.1f} | {np.median(new_ms):.1f} | "
+                     f"{p95_new:.1f} | {p95_old / p95_new:.1f}× | {'yes' if p95_new <= 20 else '**no**'} |")
+    return lines
+
+
 def main() -> None:
+    if "--versus" in sys.argv:
+        section = "\n".join(versus(Path(sys.argv[sys.argv.index("--versus") + 1]))) + "\n"
+        print(section)
+        path = Path(__file__).with_name("results") / "elastic.md"
+        text = path.read_text(encoding="utf-8")
+        start = text.find("## Old beside new")
+        rest = text[text.find("\n## ", start + 1) + 1:] if start >= 0 else text[text.find("\n## ") + 1:]
+        title = text[:text.find("\n## ") + 1] if start < 0 else text[:start]
+        path.write_text(title + section + "\n" + rest, encoding="utf-8")
+        return
     ready()
     lines = ["# Elastic models: compiled against scipy, error against run time\n", *scene_defaults(),
              *slider_sweeps(), *compile_times()]

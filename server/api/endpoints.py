@@ -20,8 +20,8 @@ from ..core.dynamics.machine import Machine
 from ..core.dynamics.motors import Motor
 from ..core.dynamics.reduction import Inertias
 from ..core.dynamics.resistance import Load
-from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, mechanism_side, modal, rigid,
-                                   simulate)
+from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, bearing_notice, mechanism_side,
+                                   modal, rigid, simulate)
 from ..core.elastic.stiffness import Compliances
 from ..core.kinematics import compute_kinematics
 from ..core.kinetostatics.crank_slider import Loads, Pairs, analyse
@@ -178,6 +178,7 @@ def elastic(request: ElasticRequest, lang: str) -> Answer:
     if "bearings" in request.outputs:
         result["bearings"] = bearing_iteration(built, Bearing(**request.bearing.model_dump()), request.t_end,
                                                request.n, request.rtol)
+        notices = [*notices, *bearing_notice(result["bearings"])]
     return answer(result, notices, lang)
 
 

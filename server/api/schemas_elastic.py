@@ -29,6 +29,16 @@ class BearingInput(BaseModel):
     poisson: float = Field(0.3, ge=0, lt=0.5, description="Poisson's ratio μ")
 
 
+COMMON_FIELDS = {"model", "mechanism", "params", "inertias", "load", "t_end", "n", "rtol", "method", "outputs"}
+MODEL_FIELDS = {        # the fields each model reads besides the common ones (bearing: with the "bearings" output)
+    "two_mass": {"motor", "J_motor", "c", "b", "omega0", "twist0"},
+    "kinematic_drive": {"c", "b", "speed", "omega0", "twist0"},
+    "three_mass": {"motor", "J_motor", "J_middle", "c", "compliances", "b", "b1", "omega0", "twist0"},
+    "elastic_linkage": {"motor", "J_motor", "compliances", "b", "omega0", "twist0"},
+    "elastic_four_bar": {"motor", "J_motor", "compliances", "b", "omega0", "twist0"},
+}
+
+
 class ElasticRequest(BaseModel):
     """An elastic machine, its time span and the outputs wanted."""
 
@@ -61,6 +71,20 @@ class ElasticRequest(BaseModel):
         "histories: time histories with numerics; modal: c(φ), e(φ), natural frequency and damping ratio over a "
         "turn (closed forms); rigid: the rigid machine's start-up on the same times; bearings: the successive "
         "approximations of the ball-bearing stiffness (1.44) over the largest rod force (elastic crank-slider)"))
+
+    @model_validator(mode="after")
+    def only_used_fields(self):
+        """A field the model does not use is refused by name (it would be ignored silently otherwise)."""
+        used = COMMON_FIELDS | MODEL_FIELDS[self.model] | ({"bearing"} if "bearings" in self.outputs else set())
+        for name in sorted(self.model_fields_set - used):
+            raise ValueError(f"{name}: the {self.model} model does not use it")
+        if "J_rotor" in self.inertias.model_fields_set:
+            raise ValueError("inertias.J_rotor: the elastic models take the motor side's inertia as J_motor, reduced "
+                             "to the crank (the rotor sits on the other side of the spring)")
+        if self.model == "kinematic_drive" and "gear_ratio" in self.inertias.model_fields_set:
+            raise ValueError("inertias.gear_ratio: the kinematic_drive model prescribes the crank-side speed; no "
+                             "motor characteristic is reduced through a gear")
+        return self
 
     @model_validator(mode="after")
     def complete(self):

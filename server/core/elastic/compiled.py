@@ -3,7 +3,9 @@
 The same formulas as models.py (two masses, kinematic drive, three masses) and periodic_table.py
 (cubic Hermite on a uniform periodic grid), written once more without Python objects so that an
 integrator loop compiled beside them (dop853.py, radau.py) calls them with no interpreter per step.
-A model is (kind, p, tab): kind one of TWO_MASS, KINEMATIC, THREE_MASS; p the numbers at the P_*
+A model is (kind, p, tab): kind one of TWO_MASS, KINEMATIC, THREE_MASS, or RIGID (the rigid machine
+J(φ)ω̇ + ½J′(φ)ω² = M_д(ω) − M_c(φ, ω) with the motor-side masses J_extra added at P_J1, states φ, ω;
+right-hand side only, for the rigid start-up that the elastic scenes compare with); p the numbers at the P_*
 indices; tab the tables' nodes, rows INERTIA, STIFFNESS, LOAD, SLIDING (values) each followed by
 its node slopes times the spacing h.  The motor is dispatched on an integer kind (MOTOR_KINDS) with
 the formulas of dynamics/motors.py, reduced to the crank as (i·M(iω), i²·M′(iω)) (report.reduced_torque).
@@ -20,7 +22,7 @@ from pathlib import Path
 import numpy as np
 from numba import njit
 
-TWO_MASS, KINEMATIC, THREE_MASS = 0, 1, 2
+TWO_MASS, KINEMATIC, THREE_MASS, RIGID = 0, 1, 2, 3
 MOTOR_KINDS = {"constant": 0, "linear": 1, "induction": 2, "kloss": 3}
 (P_J1, P_J2, P_C1, P_B1, P_B, P_SPEED, P_BETA, P_C, P_STIFF_TABLE, P_PERIOD, P_H, P_N, P_MOTOR, P_I, P_M0,
  P_MB, P_MN, P_WN, P_WS, P_MMAX, P_SK) = range(21)
@@ -65,6 +67,22 @@ def pack(model, motor, gear_ratio: float) -> CompiledModel:
     p[P_M0], p[P_MB], p[P_MN], p[P_WN] = motor.M0, motor.b, motor.M_nominal, motor.omega_nominal
     p[P_WS], p[P_MMAX], p[P_SK] = motor.omega_sync, motor.M_max, motor.s_critical
     return CompiledModel(kind, p, tab, model.size)
+
+
+def pack_rigid(side, J_extra: float, motor, gear_ratio: float) -> CompiledModel:
+    """Arrays of the rigid machine: the mechanism side's tables (a models.MechanismSide), J_extra kg·m² turning
+    with the crank, `motor` behind the gear ratio i."""
+    tab = np.zeros((8, side.inertia.n + 1))
+    tab[INERTIA], tab[INERTIA + 1] = side.inertia.nodes, side.inertia.tangents
+    tab[LOAD], tab[LOAD + 1] = side.load.nodes, side.load.tangents
+    tab[SLIDING], tab[SLIDING + 1] = side.sliding.nodes, side.sliding.tangents
+    p = np.zeros(21)
+    p[P_J1], p[P_BETA] = J_extra, side.beta
+    p[P_PERIOD], p[P_H], p[P_N] = side.inertia.period, side.inertia.h, side.inertia.n
+    p[P_MOTOR], p[P_I] = MOTOR_KINDS[motor.kind], gear_ratio
+    p[P_M0], p[P_MB], p[P_MN], p[P_WN] = motor.M0, motor.b, motor.M_nominal, motor.omega_nominal
+    p[P_WS], p[P_MMAX], p[P_SK] = motor.omega_sync, motor.M_max, motor.s_critical
+    return CompiledModel(RIGID, p, np.ascontiguousarray(tab), 2)
 
 
 @njit(cache=True)
@@ -142,8 +160,19 @@ def mechanism_fast(p, tab, phi, omega, twist, rate):
 
 @njit(cache=True)
 def rhs(kind, p, tab, t, y, out):
-    """y′ = f(t, y) into out (models.TwoMass.rhs, ThreeMass.rhs)."""
+    """y′ = f(t, y) into out (models.TwoMass.rhs, ThreeMass.rhs; RIGID: φ′ = ω, ω′ = (M_д − M_c − ½J′ω²)/J)."""
     b = p[P_B]
+    if kind == RIGID:
+        phi, w = y[0], y[1]
+        k, s = cell(p, phi)
+        h = p[P_H]
+        J, dJ = value_slope(tab, INERTIA, k, s, h)
+        m = value_slope(tab, LOAD, k, s, h)[0]
+        if p[P_BETA] != 0.0:
+            m += p[P_BETA] * w * value_slope(tab, SLIDING, k, s, h)[0]
+        out[0] = w
+        out[1] = (motor_torque(p, w)[0] - m - 0.5 * dJ * w * w) / (J + p[P_J1])
+        return
     if kind == THREE_MASS:
         phi3, w3, twist2, rate2, twist1, rate1 = y[0], y[1], y[2], y[3], y[4], y[5]
         w1 = w3 + rate2 + rate1

@@ -1,35 +1,38 @@
 """The elastic scenes' computations: build the model from the machine data, integrate, report.
 
-Everything on the mechanism side is tabulated once per request on TABLE_POINTS nodes per turn
-(closed forms, vectorised): J(φ) and c(φ) as cubic Hermite tables with their exact derivatives,
-the load M_c(φ) with central-difference slopes (it has kinks at the dead centres, where the
-table rounds them over one node spacing).
+Everything on the mechanism side is tabulated on TABLE_POINTS nodes per turn (closed forms,
+vectorised) and kept in the process by what it depends on: J(φ) and c(φ) as cubic Hermite tables
+with their exact derivatives, the load M_c(φ) with central-difference slopes (it has kinks at the
+dead centres, where the table rounds them over one node spacing).  The rigid machine compared
+with runs on the same tables (rigid_start_up).
 """
 from __future__ import annotations
 
+import math
+import threading
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..dynamics.machine import Machine
-from ..dynamics.motion import startup
 from ..dynamics.motors import Motor
 from ..dynamics.reduction import Inertias, reduced_inertia
 from ..dynamics.resistance import Load, resisting_moment
 from ..mechanisms import MECHANISMS, GeometryError, Notice
-from .compiled import MOTOR_KINDS, pack, ready
+from . import dop853
+from .compiled import MOTOR_KINDS, pack, pack_rigid, ready
 from .models import Drive, MechanismSide, ThreeMass, TwoMass
 from .periodic_table import PeriodicTable
-from .simulate import MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio
+from .simulate import CHUNKS, MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio
 from .stiffness import Compliances, bearing_stiffness, link_angles, linkage_stiffness
 
 TABLE_POINTS = 4096
 LARGE_TWIST = 0.05       # rad: a linear spring is an idealisation well before this
-RIGID_CYCLES = 400       # the rigid start-up's longest run, cycles
+RIGID_RTOL = 1e-10       # the rigid start-up's tolerance: its error far below the elastic twist's effect
 SENSITIVE = 1e-2         # relative error estimate above which the scene says so
 MODELS = ("two_mass", "kinematic_drive", "three_mass", "elastic_linkage", "elastic_four_bar")
 LINKAGE_STIFFNESS = ("three_mass", "elastic_linkage", "elastic_four_bar")
+CHECK_CHUNKS = 23 - 16 + CHUNKS     # the check run restarts its steps at other times than the run (see simulate())
 
 
 @dataclass(frozen=True)
@@ -54,44 +57,66 @@ class ElasticMachine:
     twist0: float = 0.0         # initial twist of the spring next to the mechanism, rad
 
 
-_last_side: list = [None, None]        # (what the tables depend on, the tables) of the latest machine
+TABLE_CACHE = 16         # tables of each kind kept per process (a slider family touches one kind at a time)
+_tables: dict = {"inertia": {}, "load": {}, "stiffness": {}}
+_cache_lock = threading.RLock()        # a server may answer from several threads of one process; re-entered by rigid()
+
+
+def cached(kind: str, key, compute):
+    """The table of `kind` for `key` from this process's cache, computed on a miss (oldest dropped past
+    TABLE_CACHE): J(φ) depends only on the mechanism and its inertias, M_c(φ) on the mechanism and its load,
+    c(φ) on the mechanism and its compliances, so a slider of one of them tabulates only its own table."""
+    with _cache_lock:
+        return remembered(_tables[kind], key, compute, TABLE_CACHE)
+
+
+def remembered(store: dict, key, compute, size: int):
+    """store[key], computed on a miss; the oldest entry dropped past `size` (call under _cache_lock)."""
+    if key not in store:
+        if len(store) >= size:
+            store.pop(next(iter(store)))
+        store[key] = compute()
+    return store[key]
 
 
 def mechanism_side(machine: ElasticMachine) -> MechanismSide:
-    """Periodic tables of J(φ), c(φ), M_c(φ) and S(φ) for the mechanism side; the latest machine's are kept,
-    so that a request's time histories and modal curves tabulate the mechanism once."""
-    key = (machine.model in LINKAGE_STIFFNESS, machine.mechanism, machine.params, machine.inertias, machine.load,
-           machine.compliances, machine.c)
-    last_key, last = _last_side
-    if last_key == key:
-        return last
-    side = tabulate(machine)
-    _last_side[:] = key, side
-    return side
-
-
-def tabulate(machine: ElasticMachine) -> MechanismSide:
+    """Periodic tables of J(φ), c(φ), M_c(φ) and S(φ) for the mechanism side on TABLE_POINTS nodes per turn,
+    each taken from the process's cache when its machine data were tabulated before."""
+    params = tuple(sorted(machine.params.items()))
     period = MECHANISMS[machine.mechanism].cycle(machine.params)
     phi = np.linspace(0.0, period, int(TABLE_POINTS * period / (2 * np.pi)) + 1)
+    inertia = cached("inertia", (machine.mechanism, params, machine.inertias),
+                     lambda: inertia_table(machine, phi, period))
+    load, sliding = cached("load", (machine.mechanism, params, machine.load), lambda: load_tables(machine, phi, period))
+    if machine.model in LINKAGE_STIFFNESS:
+        stiffness = cached("stiffness", (machine.mechanism, params, machine.compliances),
+                           lambda: PeriodicTable(period, *linkage_stiffness(machine.mechanism, machine.params,
+                                                                            machine.compliances, phi)[:2]))
+    else:
+        stiffness = machine.c
+    return MechanismSide(inertia, stiffness, load, sliding, machine.load.beta)
+
+
+def inertia_table(machine: ElasticMachine, phi: np.ndarray, period: float) -> PeriodicTable:
+    """J(φ) with its exact J′ of the mechanism side (the crank and the links; J_rotor is not on this side)."""
     side = Inertias(**{**machine.inertias.__dict__, "J_rotor": 0.0})
     inertia = reduced_inertia(machine.mechanism, machine.params, side, phi)
     if not inertia.J.min() > 0:                         # as for the rigid machine: no equation of motion
         raise GeometryError("inertias", "the mechanism side's reduced moment of inertia is zero: give the crank "
                                         "(J1) some inertia", "zero_inertia")
+    return PeriodicTable(period, inertia.J, inertia.dJ)
+
+
+def load_tables(machine: ElasticMachine, phi: np.ndarray, period: float) -> tuple[PeriodicTable, PeriodicTable]:
+    """M_c(φ) (useful and dry parts) and the viscous S(φ) = M_viscous/β, with central-difference slopes."""
     moment = resisting_moment(machine.mechanism, machine.params, machine.load, phi, omega=1.0)
     if not np.isfinite(moment.useful + moment.dry).all():
         notice = moment.notices[0] if moment.notices else Notice("singular_position", "the load is undefined")
         raise GeometryError("load", notice.text, notice.code, **notice.context)
     sliding = moment.viscous / machine.load.beta if machine.load.beta else np.zeros_like(phi)
-    if machine.model in LINKAGE_STIFFNESS:
-        c, dc, _ = linkage_stiffness(machine.mechanism, machine.params, machine.compliances, phi)
-        stiffness = PeriodicTable(period, c, dc)
-    else:
-        stiffness = machine.c
     load = moment.useful + moment.dry
-    return MechanismSide(PeriodicTable(period, inertia.J, inertia.dJ), stiffness,
-                         PeriodicTable(period, load, periodic_slope(load, period)),
-                         PeriodicTable(period, sliding, periodic_slope(sliding, period)), machine.load.beta)
+    return PeriodicTable(period, load, periodic_slope(load, period)), PeriodicTable(period, sliding,
+                                                                                    periodic_slope(sliding, period))
 
 
 def periodic_slope(values: np.ndarray, period: float) -> np.ndarray:
@@ -138,9 +163,10 @@ def build(machine: ElasticMachine):
 
 def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, method: str = "auto",
              budget_s: float = TIME_BUDGET_S, max_evaluations: int = MAX_EVALUATIONS, with_rigid: bool = True,
-             engine: str = "compiled") -> tuple[dict, list]:
+             engine: str = "compiled", check: bool = True) -> tuple[dict, list]:
     """Time histories, the energy balance and the numerics; the rigid machine's start-up for comparison
-    only with_rigid. engine: "compiled" or "scipy" (the reference path, see simulate.integrate)."""
+    only with_rigid. engine: "compiled" or "scipy" (the reference path, see simulate.integrate). Without the
+    check run (check=False, for a caller that reads no error estimate) the error estimate is None."""
     ready()
     started = time.perf_counter()
     deadline = started + budget_s
@@ -151,12 +177,16 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
     times = np.linspace(0.0, t_end, samples)
     atol = absolute_tolerances(machine, model, rtol)
     run = integrate(model, y0, t_end, rtol, chosen, times, deadline, atol, max_evaluations, engine)
-    check = integrate(model, y0, run.t[-1] if run.t.size else t_end, rtol / 10, chosen,
-                      run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations, engine)
     result = histories(machine, model, run)
-    twist_now, twist_check = result["twist"], histories(machine, model, check)["twist"]
-    common = min(twist_now.size, twist_check.size)
+    twist_now = result["twist"]
     scale = max(float(np.max(np.abs(twist_now))) if twist_now.size else 0.0, 1e-300)
+    estimate = None
+    if check:
+        rerun = integrate(model, y0, run.t[-1] if run.t.size else t_end, rtol / 10, chosen,
+                          run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations, engine, CHECK_CHUNKS)
+        twist_check = total_twist(machine, rerun.y)
+        common = min(twist_now.size, twist_check.size)
+        estimate = float(np.max(np.abs(twist_now[:common] - twist_check[:common]), initial=0.0)) / scale
     numerics = {
         "method": chosen, "code": "elastic_" + ("implicit" if chosen in ("Radau", "BDF", "LSODA") else "explicit"),
         "why_context": {"ratio": ratio, "decay": decay, "slow": slow, "fastest": fastest, "threshold": STIFF_RATIO},
@@ -167,7 +197,7 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
                                   + (" (chosen by the request)" if method != "auto" else "")),
         "stiffness_ratio": ratio, "rtol": rtol, "steps": run.numerics["steps"], "rejected": run.numerics["rejected"],
         "nfev": run.numerics["nfev"], "njev": run.numerics["njev"], "nlu": run.numerics["nlu"],
-        "error_estimate": float(np.max(np.abs(twist_now[:common] - twist_check[:common]), initial=0.0)) / scale,
+        "error_estimate": estimate,
         "energy_residual": result.pop("energy_residual"), "message": run.numerics["message"],
         "table_points_per_turn": TABLE_POINTS,
         "runtime_ms": 1e3 * (time.perf_counter() - started)}
@@ -178,7 +208,7 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
         notices.append(Notice("large_twist_dead" if near_dead else "large_twist",
                               f"The twist reaches {largest:.3g} rad: far beyond the small deformations the linear "
                               f"spring assumes{near_dead}.", {"twist": largest}))
-    if numerics["error_estimate"] > SENSITIVE:
+    if estimate is not None and estimate > SENSITIVE:
         notices.append(Notice("sensitive_motion", f"The run at ten times tighter tolerance differs by "
                               f"{100 * numerics['error_estimate']:.2g} % of the largest twist: the details of this "
                               "motion are sensitive; more damping makes them reliable.",
@@ -208,6 +238,11 @@ def absolute_tolerances(machine: ElasticMachine, model, rtol: float) -> np.ndarr
     return atol
 
 
+def total_twist(machine: ElasticMachine, y: np.ndarray) -> np.ndarray:
+    """The twist between motor and mechanism: θ, or θ₁ + θ₂ of the three masses."""
+    return y[2] + y[4] if machine.model == "three_mass" else y[2]
+
+
 def histories(machine: ElasticMachine, model, run) -> dict:
     """Angles, speeds, twist, its rate, the driving moment and I_n(t) from the state histories."""
     y, t = run.y, run.t
@@ -228,40 +263,55 @@ def histories(machine: ElasticMachine, model, run) -> dict:
     w_in, w_load, w_diss = y[-3], y[-2], y[-1]
     energy = model.energy(t, y)
     residual = w_in - (energy - energy[0]) - w_load - w_diss if t.size else np.zeros(0)
-    scale = max(float(np.max(np.abs(w_in))) if t.size else 0.0, 1e-300)
-    total_twist = y[2] + y[4] if machine.model == "three_mass" else y[2]
+    scale = energy_scale(energy, w_in, w_load, w_diss)
     total_rate = y[3] + y[5] if machine.model == "three_mass" else y[3]
     return {"t": t, "phi_motor": phi1, "omega_motor": w1, "phi": phi2, "omega": w2,
-            "twist": total_twist, "twist_rate": total_rate, "spring_twist": spring_near, "driving_moment": drive,
+            "twist": total_twist(machine, y), "twist_rate": total_rate, "spring_twist": spring_near, "driving_moment": drive,
             "inertia": inertia, "stiffness": stiffness,
             "work_in": w_in, "work_load": w_load, "work_dissipated": w_diss,
             "energy_residual": float(np.max(np.abs(residual))) / scale if t.size else 0.0}
 
 
+def energy_scale(energy: np.ndarray, *works: np.ndarray) -> float:
+    """The energy the balance W_in = ΔE + W_load + W_diss is measured against: the largest of the machine's
+    kinetic + elastic energy over the run and of each work's magnitude (a free vibration does no work, yet
+    its energy is the scale of the histories' errors); 1e-300 J only for a machine at rest with no work."""
+    if not energy.size:
+        return 1e-300
+    return max(float(np.max(np.abs(energy))), *(float(np.max(np.abs(w))) for w in works), 1e-300)
+
+
+RIGID_CACHE = 16
+_rigid_runs: dict = {}
+
+
 def rigid(machine: ElasticMachine, t: np.ndarray) -> dict | None:
-    """The rigid machine's start-up from rest (issue 3's solver), resampled on t, for comparison."""
+    """The rigid machine's start-up (rigid_start_up) on the times t, kept in the process for the rigid machine
+    and the times: the sliders of the springs and dampers leave it unchanged."""
     if machine.model == "kinematic_drive" or t.size == 0:
         return None
-    J_extra = machine.J_motor + machine.J_middle
-    inertias = Inertias(**{**machine.inertias.__dict__, "J1": machine.inertias.J1 + J_extra, "J_rotor": 0.0})
-    rigid_machine = Machine(machine.mechanism, machine.params, inertias, machine.load, machine.motor)
-    spanned = no_load_speed(machine) * t[-1] / rigid_machine.cycle()    # cycles at the motor's no-load speed
-    cycles = min(RIGID_CYCLES, max(4, int(np.ceil(spanned)) + 1))     # the mean speed stays below it
-    while True:        # rtol = 0 never settles: the first cycles of a longer run are these, so stop past t[-1]
-        run = startup(rigid_machine, 0.0, rtol=0.0, max_cycles=cycles).transient
-        if run is None or run.t.size < 2 or run.t[-1] >= t[-1] or cycles >= RIGID_CYCLES:
-            break
-        done = run.phi[-1] / rigid_machine.cycle()           # cycles completed (fewer after a stall)
-        if done < cycles - 0.5:
-            break
-        cycles = min(RIGID_CYCLES, max(2 * cycles, int(np.ceil(cycles * t[-1] / run.t[-1] * 1.2)) + 1))
-    if run is None or run.t[-1] < t[-1] * 0.999:
-        reach = t <= (run.t[-1] if run is not None else 0.0)
-    else:
-        reach = np.ones_like(t, bool)
-    omega = np.where(reach, np.interp(t, run.t, run.omega) if run is not None else 0.0, np.nan)
-    phi = np.where(reach, np.interp(t, run.t, run.phi) if run is not None else 0.0, np.nan)
-    return {"phi": phi, "omega": omega}
+    key = (machine.mechanism, tuple(sorted(machine.params.items())), machine.inertias, machine.load, machine.motor,
+           machine.J_motor + machine.J_middle, t.size, float(t[0]), float(t[-1]))
+    with _cache_lock:
+        run = remembered(_rigid_runs, key, lambda: rigid_start_up(machine, t), RIGID_CACHE)
+    return {name: values.copy() for name, values in run.items()}
+
+
+def rigid_start_up(machine: ElasticMachine, t: np.ndarray) -> dict:
+    """The rigid machine's start from rest at φ = 0 on the times t: J(φ)ω̇ + ½J′(φ)ω² = M_д(ω) − M_c(φ, ω)
+    (Lagrange's equation of the machine reduced to the crank, in time), J(φ) the mechanism side's table plus the
+    motor-side masses J_motor (+ J_middle) turning with it, by the compiled DOP853 at RIGID_RTOL in one call
+    (regular at ω = 0, unlike dT/dφ). Past a stall (ω back to zero after leaving rest: the load wins; or a start
+    the motor cannot make) the rigid machine stands, and φ, ω are NaN (null in the answer) from there on."""
+    model = pack_rigid(mechanism_side(machine), machine.J_motor + machine.J_middle, machine.motor,
+                       machine.inertias.gear_ratio)
+    states = np.full((2, t.size), np.nan)
+    dop853.chunk(model.kind, model.p, model.tab, float(t[0]), float(t[-1]), np.zeros(2), RIGID_RTOL,
+                 np.full(2, RIGID_RTOL * 1e-2), np.ascontiguousarray(t, dtype=float), states, MAX_EVALUATIONS)
+    stalled = np.flatnonzero(~(states[1, 1:] > 0.0))          # NaN past a work bound counts as not moving
+    if stalled.size:
+        states[:, stalled[0] + 1:] = np.nan
+    return {"phi": states[0], "omega": states[1]}
 
 
 def modal(machine: ElasticMachine, points: int = 361) -> dict:
@@ -303,25 +353,57 @@ def rod_force(machine: ElasticMachine, phi: np.ndarray, twist: np.ndarray) -> np
 
 
 def bearing_iteration(machine: ElasticMachine, bearing: Bearing, t_end: float, samples: int, rtol: float,
-                      tolerance: float = 1e-3, max_rounds: int = 8, budget_s: float = 2 * TIME_BUDGET_S) -> dict:
+                      tolerance: float = 1e-3, max_rounds: int = 12,
+                      budget_s: float = 2 * TIME_BUDGET_S) -> dict:
     """Successive approximations of seed 000 §1.4: rigid bearings → R_m → c_n (1.44) → e = e₁ + (e₂ + 2/c_n)λ₁₂²
-    (1.43) → R_m again, until R_m changes by less than ``tolerance``."""
-    rounds, current, previous = [], machine, None
+    (1.43) → R_m again: the fixed point R = g(R). Each round is one run (no check run: only R_m is read).
+    Convergence is decided from the iteration's own contraction q = |R_{k+1} − R_k|/|R_k − R_{k−1}|: for q < 1
+    the fixed point lies within q/(1 − q)·|R_{k+1} − R_k| of R_{k+1} (Banach), and the rounds stop when that
+    bound and the last change are within ``tolerance``·R. q ≥ 1 in two successive rounds: the approximations
+    do not contract, and the answer says so in words (message, with message_code and message_context for the
+    other languages, as bearing_notice reads them); so it does when the rounds or the time run out first."""
+    rounds, current, changes = [], machine, []
     deadline = time.perf_counter() + budget_s
-    for _ in range(max_rounds):
-        if time.perf_counter() > deadline:
-            break
-        result, _ = simulate(current, t_end, samples, rtol, budget_s=budget_s / 4, with_rigid=False)
+    outcome = {"rounds": rounds, "converged": False, "message": "", "message_code": "", "message_context": {}}
+    while len(rounds) < max_rounds and time.perf_counter() < deadline:
+        result, _ = simulate(current, t_end, samples, rtol, budget_s=max(deadline - time.perf_counter(), 0.0),
+                             with_rigid=False, check=False)
         if not result["t"].size:                    # stopped at the work bound before any sample: no rod force
             break
         load = float(np.max(np.abs(rod_force(current, result["phi"], result["twist"]))))
         stiffness = bearing_stiffness(load, bearing.balls, bearing.r_inner, bearing.r_outer, bearing.young,
                                       bearing.poisson)
+        if rounds:
+            changes.append(abs(load - rounds[-1]["R_m"]))
         rounds.append({"R_m": load, "c_n": stiffness, "e2_total": current.compliances.e2})
-        if previous is not None and abs(load - previous) <= tolerance * load:
-            return {"rounds": rounds, "converged": True}
-        previous = load
+        if len(changes) >= 2:
+            ratio = changes[-1] / max(changes[-2], 1e-300)
+            if ratio < 1 and max(changes[-1], ratio / (1 - ratio) * changes[-1]) <= tolerance * load:
+                return outcome | {"converged": True, "ratio": ratio, "limit": {"R_m": load, "c_n": stiffness}}
+            if ratio >= 1 and len(changes) >= 3 and changes[-2] >= changes[-3]:
+                return outcome | {"ratio": ratio, "message_code": "bearings_not_contracting",
+                                  "message_context": {"ratio": ratio},
+                                  "message": f"The successive approximations of the bearing stiffness do not contract "
+                                             f"(each change of R_m is {ratio:.3g} times the previous one): they do "
+                                             "not converge."}
+        elif changes and changes[-1] == 0.0:        # the bearings change nothing the run can see
+            return outcome | {"converged": True, "limit": {"R_m": load, "c_n": stiffness}}
         joints = 2.0 / stiffness                    # e_B + e_C, two equal bearings
         current = ElasticMachine(**{**machine.__dict__, "compliances": Compliances(
             machine.compliances.e1, machine.compliances.e2 + joints, machine.compliances.e3)})
-    return {"rounds": rounds, "converged": False}
+    if not rounds:
+        return outcome | {"message_code": "bearings_no_run", "message": "The run stopped at its work bound before "
+                          "its first sample: no rod force, so no bearing stiffness."}
+    change = changes[-1] / rounds[-1]["R_m"] if changes and rounds[-1]["R_m"] > 0 else math.nan
+    return outcome | {"message_code": "bearings_unconverged", "message_context": {"rounds": len(rounds),
+                                                                                 "percent": 100 * change},
+                      "message": f"The successive approximations of the bearing stiffness stopped after {len(rounds)} "
+                                 f"rounds (the rounds or the time allowed ran out), the last change of R_m "
+                                 f"{100 * change:.2g} %: not converged."}
+
+
+def bearing_notice(outcome: dict) -> list[Notice]:
+    """The iteration's message as a notice (none when it converged)."""
+    if not outcome["message"]:
+        return []
+    return [Notice(outcome["message_code"], outcome["message"], outcome["message_context"])]
