@@ -55,7 +55,7 @@ class Numerics:
     cycles: int = 0
     iterations: int = 0
     runtime_ms: float = 0.0
-    error_estimate: float | None = 0.0
+    error_estimate: float | None = None   # None: nothing computed, or nothing to estimate it from
     energy_residual: float = 0.0
     message: str = ""
 
@@ -323,15 +323,15 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
         previous = run
         per_2pi *= 2
         if time.perf_counter() > deadline:
-            motion.steady = cycle_figures(machine, tables, run, fine)
-            if not differences:
-                numerics.error_estimate = None     # one level only: nothing to compare with
+            motion.steady = cycle_figures(machine, tables, run, fine)   # one level only: no estimate (None)
             numerics.energy_residual = energy_residual(motion.steady.works)
             numerics.message = (f"stopped at the time budget before reaching rtol = {rtol:g}; the result is the "
                                 f"last refinement, with its error estimate")
             break
     else:
         numerics.message = f"the tolerance rtol = {rtol:g} was not reached within {STEPS_MAX} steps per revolution"
+    if motion.steady is None:
+        numerics.error_estimate = None              # no result, nothing estimated
     numerics.runtime_ms = 1e3 * (time.perf_counter() - started)
     return motion
 
@@ -351,8 +351,9 @@ def _shoot(machine: Machine, tables: Tables, steps: int, T0: float | None, numer
             raise NoMotion("stall_in_cycle", f"Stall at φ = {np.degrees(run.stall_phi):.1f}°: the kinetic energy runs "
                                              "out within the cycle; there is no steady motion.",
                            phi=float(np.degrees(run.stall_phi)))
-        step = (run.T[-1] - T0) / (run.sensitivity - 1.0)
-        T0 = max(T0 - step, 0.25 * T0)
+        slope = run.sensitivity - 1.0
+        step = (run.T[-1] - T0) / slope if slope != 0.0 else math.copysign(math.inf, T0 - run.T[-1])
+        T0 = min(max(T0 - step, 0.25 * T0), 4.0 * T0)      # a step by a factor 4 at most either way
         if abs(step) <= 1e-13 * T0:
             return integrate(machine, tables, T0, steps), T0
     raise NoMotion("newton_failed", "Newton's method did not converge on the cycle map.")
@@ -476,9 +477,10 @@ def startup_error(machine: Machine, kinks: np.ndarray, pieces: list[Run], balanc
     the steps, and ``richardson`` of the largest differences at the shared nodes (ω relative to its largest
     value, t to the run's duration). A start from rest is shared: the coarser runs start where its DOP853
     steps end (integrator.leave_rest, at rtol 1e-11), so the estimate covers every RK4 step. None when there
-    is no RK4 step, or a coarser run does not get as far (it stalls earlier)."""
+    is no RK4 step, or the run stalls: towards the stop ω ∝ √(φ_s − φ) is not smooth in φ and no estimate of
+    a fixed order holds there (the stall's angle is the answer then)."""
     first = REST_STEPS if pieces[0].T[0] == 0.0 else 0
-    if pieces[0].T.size <= first + 1 and len(pieces) == 1:
+    if pieces[-1].stall_phi is not None or (pieces[0].T.size <= first + 1 and len(pieces) == 1):
         return None
     levels = [(pieces, 0)]
     for factor in (2, 4):
