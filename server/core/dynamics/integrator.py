@@ -58,11 +58,15 @@ def kinked_tables(machine: Machine, edges: np.ndarray, counts: np.ndarray, sided
         angles.append(inside)
         starts.append(first + 2 * np.arange(n))
         first += 2 * n + 1
-    tables = machine.tables(np.concatenate(angles))
+    inside, kinks = np.concatenate(angles), edges[sided]
+    both = machine.tables(np.concatenate([inside, kinks]))     # the kinks themselves too: a singular position?
+    tables = both.part(slice(0, inside.size))
     tables.phi = np.concatenate(nodes)
     tables.starts = np.concatenate(starts)
     tables.kink_nodes = np.zeros(tables.starts.size + 1, bool)
     tables.kink_nodes[np.concatenate([[0], np.cumsum(counts)])] = sided
+    for kink in kinks[~np.isfinite(both.net_phi[inside.size:])]:    # undefined on the kink: not beside it either
+        tables.dry = np.where(tables.phi == kink, np.nan, tables.dry)
     return tables
 
 

@@ -427,7 +427,7 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
     numerics.cycles = len(pieces)
     if pieces[-1].stall_phi is not None:
         where = float(np.degrees(pieces[-1].stall_phi))
-        notice = Notice("stall_startup_from", f"Stall of the start-up from ω₀ = {omega0:g} rad/s at φ = {where:.1f}°: "
+        notice = Notice("stall_startup_from", f"Stall at φ = {where:.1f}° on the start-up from ω₀ = {omega0:g} rad/s: "
                         "started this way, the machine comes to rest because the load takes more work than the motor "
                         "gives. This concerns the start-up only: a steady cycle, if one is shown, is the motion of the "
                         "machine once it runs.", {"phi": where, "omega0": float(omega0)})
