@@ -188,6 +188,17 @@ def efficiency(machine: Machine, works: dict[str, float]) -> float | None:
     return works["useful"] / (works["useful"] + losses) if works["useful"] + losses > 0 else 1.0
 
 
+def no_efficiency(steady: Steady) -> list[Notice]:
+    """Why η is not given, in words (none when it is)."""
+    if steady.efficiency is not None:
+        return []
+    useful, losses = steady.works["useful"], steady.works["dry_friction"] + steady.works["viscous_friction"]
+    return [Notice("efficiency_undefined", f"η is not given: over the cycle the useful work is {useful:.4g} J and the "
+                   f"work of friction {losses:.4g} J; with one of them below zero (the textbook's printed formulas let "
+                   "friction help the crank on the return stroke; a balancing moment can drive) their ratio is no "
+                   "efficiency.", {"useful": useful, "losses": losses})]
+
+
 def energy_residual(works: dict[str, float]) -> float:
     """|A_driving − A_useful − A_losses| over the sum of their magnitudes (≤ 1; 0 when nothing does work)."""
     turnover = abs(works["driving"]) + abs(works["useful"]) + abs(works["dry_friction"]) + abs(works["viscous_friction"])
@@ -319,12 +330,14 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
                 motion.steady.works["balancing_moment"] = tables.balancing_moment
                 motion.transient = None
                 numerics.energy_residual = energy_residual(motion.steady.works)
+                motion.notices += no_efficiency(motion.steady)
                 break
         previous = run
         per_2pi *= 2
         if time.perf_counter() > deadline:
             motion.steady = cycle_figures(machine, tables, run, fine)   # one level only: no estimate (None)
             numerics.energy_residual = energy_residual(motion.steady.works)
+            motion.notices += no_efficiency(motion.steady)
             numerics.message = (f"stopped at the time budget before reaching rtol = {rtol:g}; the result is the "
                                 f"last refinement, with its error estimate")
             break
