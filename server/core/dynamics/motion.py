@@ -31,7 +31,8 @@ STEPS_MAX = 1 << 15        # per 2π: bounds the work of one request
 NEWTON_MAX = 30
 SUBSTEPS = 64              # sub-steps per step where extreme_speed integrates again around an extreme
 MAX_CYCLES = 200
-STARTUP_PER_2PI = 256      # RK4 steps per 2π of the start-up
+STARTUP_PER_2PI = 256      # RK4 steps per 2π of the start-up, halved until its estimate meets rtol …
+STARTUP_MAX_PER_2PI = 4096  # … down to this
 
 
 class NoMotion(Exception):
@@ -411,8 +412,9 @@ def _level(machine: Machine, tables: Tables, steps: int, omega_mean: float | Non
 
 def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycles: int = 60,
             balance: bool = False, deadline: float = math.inf) -> Motion:
-    """From ω₀ at φ = 0 until the cycle-start energy settles (phase portrait spiralling onto the cycle);
-    the error estimate covers the whole run (``startup_error``)."""
+    """From ω₀ at φ = 0 until the cycle-start energy settles to rtol (phase portrait spiralling onto the cycle);
+    the error estimate covers the whole run (``startup_error``), and the step is halved until it meets rtol
+    (rtol = 0: never settles, one run of max_cycles at STARTUP_PER_2PI)."""
     started = time.perf_counter()
     numerics = Numerics(method="RK4 in φ on dT/dφ = M(φ, ω) from the given start", rtol=rtol, code="startup_rk4")
     motion = Motion(numerics=numerics)
@@ -429,14 +431,26 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
         numerics.message = notice.text
         motion.notices.append(notice)
         return motion
-    try:
-        pieces, settled = _cycles(machine, tables, T0, max_cycles, rtol, deadline)
-    except RestBudget:                       # only the first cycle starts from rest: nothing to show yet
-        notice = Notice("elastic_partial", "The start from rest stopped at the work bound: the motor's "
-                                           "characteristic is too steep to follow in time; no start-up is shown.")
-        numerics.message = notice.text
-        motion.notices.append(notice)
-        return motion
+    per_2pi, done = STARTUP_PER_2PI, None
+    while True:                    # halve the step until the estimate meets rtol (rtol = 0: one fixed run)
+        try:
+            pieces, settled = _cycles(machine, tables, T0, max_cycles, rtol, deadline)
+        except RestBudget:
+            if done is None:       # only the first cycle starts from rest: nothing to show yet
+                notice = Notice("elastic_partial", "The start from rest stopped at the work bound: the motor's "
+                                                   "characteristic is too steep to follow in time; no start-up is shown.")
+                numerics.message = notice.text
+                motion.notices.append(notice)
+                return motion
+            break
+        done = pieces, settled, startup_error(machine, kinks, pieces, balance, per_2pi), per_2pi
+        estimate = done[2]
+        if (rtol <= 0 or estimate is None or estimate <= rtol or 2 * per_2pi > STARTUP_MAX_PER_2PI
+                or time.perf_counter() > deadline):
+            break
+        per_2pi *= 2
+        tables = cycle_tables(machine, kinks, per_2pi, balance)
+    pieces, settled, estimate, per_2pi = done
     numerics.cycles = len(pieces)
     if pieces[-1].stall_phi is not None:
         where = float(np.degrees(pieces[-1].stall_phi))
@@ -457,7 +471,10 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
                            np.concatenate([p.omega for p in pieces]), np.concatenate([p.t for p in pieces]),
                            pieces[-1].sensitivity, pieces[-1].stall_phi)
     numerics.steps = sum(p.phi.size - 1 for p in pieces)
-    numerics.error_estimate = startup_error(machine, kinks, pieces, balance)
+    numerics.error_estimate = estimate
+    if rtol > 0 and estimate is not None and estimate > rtol:
+        numerics.message += (f"; the error estimate {estimate:.2g} is above rtol = {rtol:g} at {per_2pi} steps per "
+                             "2π (the finest level, or the time budget)")
     numerics.runtime_ms = 1e3 * (time.perf_counter() - started)
     return motion
 
@@ -485,7 +502,7 @@ def _cycles(machine: Machine, tables: Tables, T0: float, max_cycles: int, rtol: 
     return pieces, False
 
 
-def startup_error(machine: Machine, kinks: np.ndarray, pieces: list[Run], balance: bool) -> float | None:
+def startup_error(machine: Machine, kinks: np.ndarray, pieces: list[Run], balance: bool, per_2pi: int) -> float | None:
     """Richardson estimate of the whole start-up: the same run over as many cycles with half and a quarter of
     the steps, and ``richardson`` of the largest differences at the shared nodes (ω relative to its largest
     value, t to the run's duration). A start from rest is shared: the coarser runs start where its DOP853
@@ -498,7 +515,7 @@ def startup_error(machine: Machine, kinks: np.ndarray, pieces: list[Run], balanc
     levels = [(pieces, 0)]
     for factor in (2, 4):
         try:
-            tables = cycle_tables(machine, kinks, STARTUP_PER_2PI // factor, balance)
+            tables = cycle_tables(machine, kinks, per_2pi // factor, balance)
             levels.append((_cycles(machine, tables, float(pieces[0].T[first]), len(pieces), None,
                                    first=first // factor, t0=float(pieces[0].t[first]))[0], first // factor))
         except RestBudget:
