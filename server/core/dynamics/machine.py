@@ -113,8 +113,8 @@ class Machine:
     def kinks(self) -> np.ndarray:
         """The kinks in [0, Φ), sorted: the mechanism's jumps and every sign change of ``switching`` over the
         cycle, bracketed on KINK_SCAN samples per turn and refined, all brackets at once, by the Illinois
-        variant of regula falsi (Dahlquist & Björck, Numerical Methods, §6.2.3) until the bracket is a few
-        doubles wide. A kink within KINK_MERGE of another or of the cycle's ends is that one."""
+        variant of regula falsi (Dahlquist & Björck, Numerical Methods, §6.2.3) until the bracket, or the step
+        between two guesses, is a few doubles wide. A kink within KINK_MERGE of another or of the cycle's ends is that one."""
         cycle = self.cycle()
         phi = np.linspace(0.0, cycle, KINK_SCAN * math.ceil(cycle / (2 * np.pi) - 1e-9) + 1)
         values = self.switching(phi)
@@ -123,18 +123,24 @@ class Machine:
         low, high = phi[cols], phi[cols + 1]
         f_low, f_high = values[rows, cols], values[rows, cols + 1]
         high = np.where(f_low == 0, low, high)
-        index = np.arange(rows.size)
+        index, previous, moved = np.arange(rows.size), np.full(rows.size, np.inf), np.zeros(rows.size)
         for _ in range(KINK_ITERATIONS):
-            open_ = (high - low > 4 * np.spacing(np.maximum(np.abs(low), np.abs(high)))) & (f_low != f_high)
+            ulps = 4 * np.spacing(np.maximum(np.abs(low), np.abs(high)))
+            open_ = (high - low > ulps) & (f_low != f_high)
             if not open_.any():
                 break
             guess = np.where(open_, (low * f_high - high * f_low) / np.where(open_, f_high - f_low, 1.0), low)
             guess = np.where((guess > low) & (guess < high), guess, 0.5 * (low + high))   # rounding: bisect
+            settled = open_ & (np.abs(guess - previous) <= ulps)      # two guesses a few doubles apart: converged
+            low, high = np.where(settled, guess, low), np.where(settled, guess, high)
+            open_ &= ~settled
+            previous = guess
             f_guess = self.switching(guess)[rows, index]
             left = open_ & (np.sign(f_guess) == np.sign(f_low))        # the root lies in [guess, high]
             right = open_ & ~left
-            f_high = np.where(left, 0.5 * f_high, f_high)                # Illinois: halve the kept end's value
-            f_low = np.where(right, 0.5 * f_low, f_low)
+            f_high = np.where(left & (moved > 0), 0.5 * f_high, f_high)  # Illinois: an end kept twice in a row
+            f_low = np.where(right & (moved < 0), 0.5 * f_low, f_low)    # has its value halved
+            moved = np.where(left, 1.0, np.where(right, -1.0, moved))
             low, f_low = np.where(left, guess, low), np.where(left, f_guess, f_low)
             high, f_high = np.where(right, guess, high), np.where(right, f_guess, f_high)
         found = np.concatenate([0.5 * (low + high), MECHANISMS[self.mechanism].jumps(self.params)])
