@@ -64,7 +64,11 @@ def test_work_of_all_moments_over_the_steady_cycle_is_zero():
     steady = steady_cycle(crank_slider_machine(load=Load(2000.0, 0.2, 0.1, beta=20.0)), rtol=1e-9).steady
     w = steady.works
     assert abs(w["net"]) <= 1e-8 * w["driving"]
-    assert steady.efficiency == pytest.approx(w["useful"] / w["driving"], rel=1e-12)
+    # η = A_useful/(A_useful + A_losses) (the driving work by the energy balance of the cycle); the driving
+    # work integrated directly agrees to the energy residual, ≤ 1e-8 here
+    assert steady.efficiency == pytest.approx(w["useful"] / (w["useful"] + w["dry_friction"] + w["viscous_friction"]),
+                                              rel=1e-15)
+    assert steady.efficiency == pytest.approx(w["useful"] / w["driving"], rel=1e-8)
     assert 0 < steady.efficiency < 1
 
 

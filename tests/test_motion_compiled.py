@@ -22,7 +22,7 @@ from scipy.integrate import solve_ivp
 
 from server.core.dynamics import compiled, dop853, integrator
 from server.core.dynamics.machine import Machine
-from server.core.dynamics.motion import node_tables, startup, steady_cycle
+from server.core.dynamics.motion import cycle_tables, node_tables, startup, steady_cycle
 from server.core.dynamics.motors import Motor
 from server.core.dynamics.reduction import Inertias
 from server.core.dynamics.resistance import Load
@@ -60,6 +60,21 @@ def test_compiled_rk4_agrees_with_the_python_loop(seed):
     reference = integrator.integrate(machine, tables, T0, 256, compiled=False)
     assert fast.stall_phi == reference.stall_phi
     assert fast.T.size == reference.T.size
+    assert fast.T == pytest.approx(reference.T, rel=1e-12)
+    assert fast.t == pytest.approx(reference.t, rel=1e-12)
+    assert fast.sensitivity == pytest.approx(reference.sensitivity, rel=1e-12)
+
+
+@pytest.mark.parametrize("seed", RNG_SEEDS)
+def test_compiled_rk4_agrees_with_the_python_loop_with_the_kinks_on_nodes(seed):
+    """The same on motion.cycle_tables: segments between the kinks, each kink a node on either side."""
+    machine = random_machine(seed)
+    tables = cycle_tables(machine, machine.kinks(), 256)
+    steps = tables.starts.size
+    T0 = 0.5 * tables.J[0] * float(np.random.default_rng(seed).uniform(5, 40)) ** 2
+    fast = integrator.integrate(machine, tables, T0, steps, compiled=True)
+    reference = integrator.integrate(machine, tables, T0, steps, compiled=False)
+    assert fast.stall_phi == reference.stall_phi and fast.T.size == reference.T.size
     assert fast.T == pytest.approx(reference.T, rel=1e-12)
     assert fast.t == pytest.approx(reference.t, rel=1e-12)
     assert fast.sensitivity == pytest.approx(reference.sensitivity, rel=1e-12)

@@ -137,7 +137,9 @@ class MotionResponse(BaseModel):
     omega_mean: float | None = Field(None, description="(ω_max + ω_min)/2, rad/s")
     omega_time_mean: float | None = Field(None, description="cycle angle / cycle time, rad/s")
     delta: float | None = Field(None, description="coefficient of speed fluctuation (ω_max − ω_min)/ω_mean")
-    efficiency: float | None = Field(None, description="η = |A_useful|/A_driving over the steady cycle")
+    efficiency: float | None = Field(None, description="η = A_useful/A_driving over the steady cycle, A_driving = "
+                                                       "A_useful + A_friction: 1 without friction, in [0, 1]; null "
+                                                       "(with a warning) where the friction work is negative")
     works: dict | None = Field(None, description="works over the cycle, J: driving, useful, dry and viscous friction, net")
     numerics: NumericsModel | None = Field(None, description="how the steady cycle was computed")
     startup: StartupOutput | None = Field(None, description="start-up transient with its own numerics")

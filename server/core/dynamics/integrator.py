@@ -9,6 +9,12 @@ not depend on T (moments of φ alone) the scheme is Simpson's rule applied to th
 integral (1.9): T(φ) = T₀ + ∫ (M_д − M_c) dφ.  Time follows from dt = dφ/ω (1.11) by
 Simpson's rule per step.  A start from rest is singular in t (ω ∝ √(φ − φ₀)); that first
 step is integrated in time instead, where the equation is regular.
+
+The moments have kinks (machine.py): the nodes are uniform between them and every kink is a node
+(``kinked_tables``), so each step sees a smooth right-hand side and RK4 keeps its fourth order; at a
+kink the step after it starts on a node of its own, evaluated just inside its side (KINK_SIDE), so that
+a jump of the moment (a reversal with friction, an indicator diagram's change of stroke) is taken from
+the side each step lies on.
 """
 from __future__ import annotations
 
@@ -21,7 +27,7 @@ from scipy.integrate import solve_ivp
 
 from . import compiled as motor_kernel
 from . import dop853
-from .machine import Machine
+from .machine import Machine, Tables
 
 
 COMPILED = True   # default path: the numba loops (compiled.py, dop853.py); False: the Python/scipy reference
@@ -32,6 +38,36 @@ REST_BUDGET_S = 1.0   # wall time for those steps at most (milliseconds usually;
 
 class RestBudget(Exception):
     """Leaving rest took longer than REST_BUDGET_S of wall time."""
+
+
+KINK_SIDE = 4e-12        # rad: a kink's node is evaluated this far inside the step's own side (> KINK_MERGE)
+
+
+def kinked_tables(machine: Machine, edges: np.ndarray, counts: np.ndarray, sided: np.ndarray) -> Tables:
+    """Tables on the step and half-step nodes of the segments between consecutive ``edges``, counts[i]
+    uniform steps in segment i. Each segment has nodes of its own, so an inner edge has two, one per side;
+    sided[i]: edge i is a kink, its nodes are evaluated KINK_SIDE inside their segments (Tables.kink_nodes
+    marks those step nodes)."""
+    nodes, angles, starts, first = [], [], [], 0
+    for i, (a, b, n) in enumerate(zip(edges[:-1], edges[1:], counts)):
+        segment = np.linspace(a, b, 2 * n + 1)
+        nodes.append(segment)
+        inside = segment.copy()
+        inside[0] += KINK_SIDE if sided[i] else 0.0
+        inside[-1] -= KINK_SIDE if sided[i + 1] else 0.0
+        angles.append(inside)
+        starts.append(first + 2 * np.arange(n))
+        first += 2 * n + 1
+    inside, kinks = np.concatenate(angles), edges[sided]
+    both = machine.tables(np.concatenate([inside, kinks]))     # the kinks themselves too: a singular position?
+    tables = both.part(slice(0, inside.size))
+    tables.phi = np.concatenate(nodes)
+    tables.starts = np.concatenate(starts)
+    tables.kink_nodes = np.zeros(tables.starts.size + 1, bool)
+    tables.kink_nodes[np.concatenate([[0], np.cumsum(counts)])] = sided
+    for kink in kinks[~np.isfinite(both.net_phi[inside.size:])]:    # undefined on the kink: not beside it either
+        tables.dry = np.where(tables.phi == kink, np.nan, tables.dry)
+    return tables
 
 
 REST_NODES = 32          # Chebyshev nodes of the table of J, J′, M(φ), S(φ) over the start from rest
@@ -158,44 +194,49 @@ class Run:
     stall_phi: float | None = None
 
 
-def integrate(machine: Machine, tables, T0: float, steps: int, t0: float = 0.0, compiled: bool | None = None) -> Run:
-    """Integrate over the nodes of ``tables`` (2·steps + 1 nodes, step and half-step) from T₀.
+def integrate(machine: Machine, tables: Tables, T0: float, steps: int, t0: float = 0.0,
+              compiled: bool | None = None, first: int = 0) -> Run:
+    """Integrate over the ``steps`` steps of ``tables`` (Tables.step_nodes: a step over nodes s, s + 1, s + 2)
+    from T₀ at step node ``first`` (0: the first node; a start from rest only there).
 
     compiled: the numba loop of compiled.py (default, ``COMPILED``) or the plain Python loop below, the
     reference the compiled one is tested against (tests/test_motion_compiled.py)."""
     phi = tables.phi
-    h = float(phi[2] - phi[0])
+    index = tables.step_nodes
+    starts = np.ascontiguousarray(index[:-1], dtype=np.int64)
     T_nodes, t_nodes = np.empty(steps + 1), np.empty(steps + 1)
-    T_nodes[0], t_nodes[0] = T0, t0
-    stall, first, count, S = None, 0, 1, 1.0
-    if T0 == 0.0:
+    T_nodes[first], t_nodes[first] = T0, t0
+    stall, count, S, start = None, first + 1, 1.0, first
+    if T0 == 0.0 and first == 0:
         first = min(REST_STEPS, steps)
-        T_rest, t_rest = leave_rest(machine, phi[0:2 * first + 1:2], t0, compiled)
+        T_rest, t_rest = leave_rest(machine, phi[index[:first + 1]], t0, compiled)
         count = len(T_rest) + 1
         T_nodes[1:count], t_nodes[1:count] = T_rest, t_rest
         if len(T_rest) < first:            # came to rest again before the first few steps
-            stall, first = float(phi[2 * len(T_rest)]), steps
+            stall, first = float(phi[index[len(T_rest)]]), steps
     if first < steps:
         loop = _steps_compiled if (COMPILED if compiled is None else compiled) else _steps_python
-        count, S, stall_node = loop(machine, tables, h, T_nodes, t_nodes, first, steps)
+        count, S, stall_node = loop(machine, tables, starts, T_nodes, t_nodes, first, steps)
         stall = float(phi[stall_node]) if stall_node >= 0 else None
-    T_arr = T_nodes[:count]
-    J_nodes = tables.J[0:2 * count - 1:2]
-    return Run(phi=phi[0:2 * count - 1:2], T=T_arr, omega=np.sqrt(2 * T_arr / J_nodes), t=t_nodes[:count].copy(),
-               sensitivity=S, stall_phi=stall)
+    T_arr = T_nodes[start:count]
+    J_nodes = tables.J[index[start:count]]
+    return Run(phi=phi[index[start:count]], T=T_arr, omega=np.sqrt(2 * T_arr / J_nodes),
+               t=t_nodes[start:count].copy(), sensitivity=S, stall_phi=stall)
 
 
-def _steps_compiled(machine: Machine, tables, h: float, T_nodes, t_nodes, first: int, steps: int):
+def _steps_compiled(machine: Machine, tables: Tables, starts, T_nodes, t_nodes, first: int, steps: int):
     speed, kind, params = motor_kernel.speed_parameters(machine)
-    return motor_kernel.rk4_steps(np.ascontiguousarray(tables.J, dtype=np.float64),
-                              np.ascontiguousarray(tables.net_phi, dtype=np.float64),
-                              np.ascontiguousarray(tables.sliding, dtype=np.float64),
-                              h, speed, kind, params, T_nodes, t_nodes, first, steps)
+    return motor_kernel.rk4_steps(np.ascontiguousarray(tables.phi, dtype=np.float64),
+                                  np.ascontiguousarray(tables.J, dtype=np.float64),
+                                  np.ascontiguousarray(tables.net_phi, dtype=np.float64),
+                                  np.ascontiguousarray(tables.sliding, dtype=np.float64),
+                                  starts, speed, kind, params, T_nodes, t_nodes, first, steps)
 
 
-def _steps_python(machine: Machine, tables, h: float, T_nodes, t_nodes, first: int, steps: int):
-    """The reference loop: steps first … steps−1 from node ``first``; fills the following nodes and returns
-    (nodes filled, S = dT(end)/dT₀, stall node index or −1)."""
+def _steps_python(machine: Machine, tables: Tables, starts, T_nodes, t_nodes, first: int, steps: int):
+    """The reference loop: steps first … steps−1 from node ``first``, step k over the nodes starts[k] + 0, 1, 2;
+    fills the following nodes and returns (nodes filled, S = dT(end)/dT₀, stall node index or −1)."""
+    phi = tables.phi.tolist()
     J = tables.J.tolist()
     base = tables.net_phi.tolist()
     sliding = tables.sliding.tolist()
@@ -212,7 +253,8 @@ def _steps_python(machine: Machine, tables, h: float, T_nodes, t_nodes, first: i
     S, T, t = 1.0, float(T_nodes[first]), float(t_nodes[first])
     stall, count = -1, first + 1
     for k in range(first, steps):
-        j = 2 * k
+        j = int(starts[k])
+        h = phi[j + 2] - phi[j]
         f1, g1 = rate(j, T)
         f2, g2 = rate(j + 1, T + 0.5 * h * f1)
         f3, g3 = rate(j + 1, T + 0.5 * h * f2)

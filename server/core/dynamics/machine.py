@@ -7,17 +7,31 @@ The equation of motion of the one-mass model reduced to the crank (seed 000 (1.1
 Every φ-dependent quantity is tabulated once per parameter change on the integration
 nodes (vectorised over φ); what depends on ω is the motor's speed characteristic and the
 viscous friction β ω S(φ), evaluated in the integration loop.
+
+The φ-dependent moments are smooth except at a few angles, the kinks: an output's reversal (the load's k
+switches and |u₃₁| has a corner), a friction term's own corner, an indicator diagram's change of stroke and
+its inner points, a stroke limiter's jump. A fixed-step Runge–Kutta step across one is only first or
+second order, and the Richardson estimate that assumes fourth order is then optimistic (RK4 across a
+corner of the load gave 12× the estimated error). ``Machine.kinks`` finds them as the zeros of the
+functions the load, the motor and the mechanism name (``switching``), so that the integrator can put
+every one on a node.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..mechanisms import MECHANISMS, Notice
-from .motors import Motor, driving_moment
+from .motors import Motor, driving_moment, indicator_switches
 from .reduction import Inertias, reduced_inertia
 from .resistance import Load, resisting_moment
+
+
+KINK_SCAN = 4096      # samples per turn on which the switching functions are scanned for sign changes
+KINK_MERGE = 1e-12    # rad: kinks closer than this are one (the refinement leaves them ~1e-15 apart)
+KINK_ITERATIONS = 100  # of the refinement at most: Illinois converges superlinearly, ~10 are used
 
 
 @dataclass
@@ -33,11 +47,21 @@ class Tables:
     sliding: np.ndarray        # S(φ): viscous moment is β ω S(φ)
     notices: list[Notice]
     balancing_moment: float = 0.0   # constant crank moment added to balance the cycle work, N·m
+    starts: np.ndarray | None = None    # the node where each step starts (None: 2k, one uniform run of steps)
+    kink_nodes: np.ndarray | None = None  # which step nodes are kinks (None: none)
 
     def part(self, nodes: slice) -> Tables:
-        """The tables on a slice of the nodes."""
+        """The tables on a slice of the nodes (of a uniform run of steps)."""
         return Tables(self.phi[nodes], self.J[nodes], self.dJ[nodes], self.drive_phi[nodes], self.useful[nodes],
                       self.dry[nodes], self.sliding[nodes], self.notices, self.balancing_moment)
+
+    @property
+    def step_nodes(self) -> np.ndarray:
+        """Indices of the step nodes: where each step starts, and the last node. A step runs over the nodes
+        s, s + 1 (half step), s + 2; at a kink the next step starts on a node of its own, at the same angle,
+        with the values from its own side."""
+        starts = np.arange(0, self.phi.size - 1, 2) if self.starts is None else self.starts
+        return np.append(starts, self.phi.size - 1)
 
     @property
     def net_phi(self) -> np.ndarray:
@@ -76,6 +100,52 @@ class Machine:
         sliding = resisting.viscous / self.load.beta if self.load.beta else np.zeros_like(phi)
         return Tables(phi, inertia.J, inertia.dJ, drive, resisting.useful, resisting.dry, sliding,
                       resisting.notices)
+
+    def switching(self, phi: np.ndarray) -> np.ndarray:
+        """The functions whose sign changes are the kinks of the φ-dependent moments, one row each: the
+        load's (resistance.py: u₃₁ and the arguments of its friction terms) and an indicator diagram's."""
+        kinematics = MECHANISMS[self.mechanism].evaluate(self.params, phi, set())
+        rows = resisting_moment(self.mechanism, self.params, self.load, phi, 1.0, kinematics).switches
+        if self.motor.kind == "indicator":
+            rows = rows + indicator_switches(self.params, phi, kinematics)
+        return np.array(rows)
+
+    def kinks(self) -> np.ndarray:
+        """The kinks in [0, Φ), sorted: the mechanism's jumps and every sign change of ``switching`` over the
+        cycle, bracketed on KINK_SCAN samples per turn and refined, all brackets at once, by the Illinois
+        variant of regula falsi (Dahlquist & Björck, Numerical Methods, §6.2.3) until the bracket, or the step
+        between two guesses, is a few doubles wide. A kink within KINK_MERGE of another or of the cycle's ends is that one."""
+        cycle = self.cycle()
+        phi = np.linspace(0.0, cycle, KINK_SCAN * math.ceil(cycle / (2 * np.pi) - 1e-9) + 1)
+        values = self.switching(phi)
+        with np.errstate(invalid="ignore"):
+            rows, cols = np.nonzero((values[:, :-1] * values[:, 1:] < 0) | (values[:, :-1] == 0))
+        low, high = phi[cols], phi[cols + 1]
+        f_low, f_high = values[rows, cols], values[rows, cols + 1]
+        high = np.where(f_low == 0, low, high)
+        index, previous, moved = np.arange(rows.size), np.full(rows.size, np.inf), np.zeros(rows.size)
+        for _ in range(KINK_ITERATIONS):
+            ulps = 4 * np.spacing(np.maximum(np.abs(low), np.abs(high)))
+            open_ = (high - low > ulps) & (f_low != f_high)
+            if not open_.any():
+                break
+            guess = np.where(open_, (low * f_high - high * f_low) / np.where(open_, f_high - f_low, 1.0), low)
+            guess = np.where((guess > low) & (guess < high), guess, 0.5 * (low + high))   # rounding: bisect
+            settled = open_ & (np.abs(guess - previous) <= ulps)      # two guesses a few doubles apart: converged
+            low, high = np.where(settled, guess, low), np.where(settled, guess, high)
+            open_ &= ~settled
+            previous = guess
+            f_guess = self.switching(guess)[rows, index]
+            left = open_ & (np.sign(f_guess) == np.sign(f_low))        # the root lies in [guess, high]
+            right = open_ & ~left
+            f_high = np.where(left & (moved > 0), 0.5 * f_high, f_high)  # Illinois: an end kept twice in a row
+            f_low = np.where(right & (moved < 0), 0.5 * f_low, f_low)    # has its value halved
+            moved = np.where(left, 1.0, np.where(right, -1.0, moved))
+            low, f_low = np.where(left, guess, low), np.where(left, f_guess, f_low)
+            high, f_high = np.where(right, guess, high), np.where(right, f_guess, f_high)
+        found = np.concatenate([0.5 * (low + high), MECHANISMS[self.mechanism].jumps(self.params)])
+        found = np.sort(np.where((found <= KINK_MERGE) | (found >= cycle - KINK_MERGE), 0.0, found))
+        return found[np.append(True, np.diff(found) > KINK_MERGE)] if found.size else found
 
     def speed_moment(self, omega: float, sliding: float) -> tuple[float, float]:
         """ω-dependent moment and its derivative ∂/∂ω: i·M(iω) of the motor minus β ω S(φ)."""

@@ -7,8 +7,11 @@ Two paths, chosen by what the moments depend on (seed 000 §1.1):
 - moments that depend on ω (linear or induction motor, viscous friction): RK4 on
   dT/dφ = M(φ, ω) and the steady cycle found directly by Newton's method on the cycle map
   P(T₀) = T(φ₀ + Φ), P(T*) = T*, with P′ from the variational equation (shooting).
-Accuracy: the step is halved until the Richardson estimate |ω_h − ω_h/2|/15 falls below
-rtol·ω; that estimate is reported with the method, steps and run time.
+Accuracy: every kink of the moments is a node (machine.kinks, integrator.kinked_tables), so RK4 keeps its
+fourth order on every step; the step is halved until the Richardson estimate of the error of ω(φ) and
+t(φ) falls below rtol, with the factor 1/(2^p − 1) of the order p the last three levels show (never less
+than fourth order's 1/15). That estimate is reported with the method, steps and run time; the start-up
+reports the same estimate for the whole run.
 """
 from __future__ import annotations
 
@@ -20,14 +23,16 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..mechanisms import Notice
-from .integrator import RestBudget, Run, integrate
-from .machine import Machine
+from .integrator import REST_STEPS, RestBudget, Run, integrate, kinked_tables
+from .machine import Machine, Tables
 
 STEPS_START = 32           # RK4 steps per 2π at the coarsest level
 STEPS_MAX = 1 << 15        # per 2π: bounds the work of one request
 NEWTON_MAX = 30
 SUBSTEPS = 64              # sub-steps per step where extreme_speed integrates again around an extreme
 MAX_CYCLES = 200
+STARTUP_PER_2PI = 256      # RK4 steps per 2π of the start-up, halved until its estimate meets rtol …
+STARTUP_MAX_PER_2PI = 4096  # … down to this
 
 
 class NoMotion(Exception):
@@ -51,7 +56,7 @@ class Numerics:
     cycles: int = 0
     iterations: int = 0
     runtime_ms: float = 0.0
-    error_estimate: float | None = 0.0
+    error_estimate: float | None = None   # None: nothing computed, or nothing to estimate it from
     energy_residual: float = 0.0
     message: str = ""
 
@@ -70,7 +75,7 @@ class Steady:
     omega_mean: float          # (ω_max + ω_min)/2, seed 004 (L3)
     omega_time_mean: float     # cycle angle / cycle time
     delta: float               # (ω_max − ω_min)/ω_mean
-    efficiency: float          # |A_useful| / A_driving over the cycle, seed 002 (3.38)
+    efficiency: float | None   # A_useful/(A_useful + A_losses) over the cycle, seed 002 (3.38); see efficiency()
     works: dict[str, float]
 
 
@@ -92,7 +97,7 @@ def blocked(tables) -> list[Notice]:
 
 
 def node_tables(machine: Machine, steps: int, balance: bool = False):
-    """φ-dependent tables on the step and half-step nodes of one cycle.
+    """φ-dependent tables on the uniform step and half-step nodes of one cycle (the flywheel's grid).
 
     balance: add the constant crank moment that makes the cycle work of the φ-dependent
     moments zero on these very nodes (the driven machine of a piston engine, M_c = A_д/Φ).
@@ -104,14 +109,55 @@ def node_tables(machine: Machine, steps: int, balance: bool = False):
     return tables
 
 
+def cycle_tables(machine: Machine, kinks: np.ndarray, per_2pi: int, balance: bool = False) -> Tables:
+    """φ-dependent tables of one cycle with every kink on a node: between consecutive kinks (and the cycle's
+    ends) an even number of uniform steps, about per_2pi per 2π. The counts of a level are those of
+    STEPS_START times per_2pi/STEPS_START, so each level's nodes are every other node of the next (Richardson).
+
+    balance: add the constant crank moment that makes the cycle work of the φ-dependent moments zero with
+    the quadrature RK4 applies to them on these nodes (the driven machine of a piston engine, M_c = A_д/Φ)."""
+    cycle = machine.cycle()
+    edges = np.concatenate([[0.0], kinks[kinks > 0], [cycle]])
+    base = steps_per_cycle(machine, STEPS_START)
+    counts = 2 * np.maximum(1, np.ceil(np.diff(edges) * base / (2 * cycle) - 1e-9)).astype(int)
+    closed = bool(kinks.size) and kinks[0] == 0.0
+    sided = np.concatenate([[closed], np.ones(edges.size - 2, bool), [closed]])
+    tables = kinked_tables(machine, edges, counts * max(1, per_2pi // STEPS_START), sided)
+    if balance:
+        tables.balancing_moment = float(step_integral(tables, tables.net_phi)[-1]) / cycle
+        tables.useful = tables.useful + tables.balancing_moment
+    return tables
+
+
+def step_integral(tables: Tables, values: np.ndarray) -> np.ndarray:
+    """∫ values dφ from the first node to each step node, by Simpson's rule on each step's three nodes: the
+    quadrature RK4 applies to a right-hand side of φ alone (seed 000 (1.9))."""
+    start = tables.step_nodes[:-1]
+    h = tables.phi[start + 2] - tables.phi[start]
+    return np.concatenate([[0.0], np.cumsum(h / 6 * (values[start] + 4 * values[start + 1] + values[start + 2]))])
+
+
+def pair_simpson(values: np.ndarray, phi: np.ndarray) -> float:
+    """∫ values dφ over step nodes phi by Simpson's rule on consecutive pairs of steps (three-point rule for
+    unequal steps; a trapezoid for an odd last step). cycle_tables' segments have even counts, so no pair
+    straddles a kink."""
+    n = values.size - 1
+    i = np.arange(0, n - n % 2, 2)
+    h0, h1 = phi[i + 1] - phi[i], phi[i + 2] - phi[i + 1]
+    f0, f1, f2 = values[i], values[i + 1], values[i + 2]
+    total = float(np.sum((h0 + h1) / 6 * ((2 - h1 / h0) * f0 + (h0 + h1) ** 2 / (h0 * h1) * f1 + (2 - h0 / h1) * f2)))
+    return total + (0.5 * float(phi[-1] - phi[-2]) * float(values[-2] + values[-1]) if n % 2 else 0.0)
+
+
 def steps_per_cycle(machine: Machine, per_2pi: int) -> int:
     return int(per_2pi * round(machine.cycle() / (2 * np.pi)))
 
 
-def mean_speed_balance(machine: Machine, tables) -> float | None:
+def mean_speed_balance(machine: Machine, tables: Tables) -> float | None:
     """ω̄ where the cycle-mean moment vanishes: a start for Newton, None when the motor cannot carry the load."""
-    base = float(np.mean(tables.net_phi[:-1]))
-    sliding = float(np.mean(tables.sliding[:-1]))
+    cycle = float(tables.phi[-1] - tables.phi[0])
+    base = float(step_integral(tables, tables.net_phi)[-1]) / cycle
+    sliding = float(step_integral(tables, tables.sliding)[-1]) / cycle
     def mean_moment(w):                   # w: a speed or an array of speeds
         return base + machine.speed_moment(w, sliding)[0]
     top = machine.motor.omega_sync / machine.inertias.gear_ratio if machine.motor.omega_sync else None
@@ -126,16 +172,49 @@ def mean_speed_balance(machine: Machine, tables) -> float | None:
     return None
 
 
-def cycle_figures(machine: Machine, tables, run: Run, fine: dict | None = None) -> Steady:
+def efficiency(machine: Machine, works: dict[str, float]) -> float | None:
+    """η = A_useful/A_driving over the steady cycle (seed 002 (3.38)), with A_driving = A_useful + A_losses:
+    over a periodic cycle the kinetic energy returns to its value, so the driving work is the useful work
+    plus the work of friction (the quadrature's difference from the driving work integrated directly is
+    the reported energy residual). Without friction (f = 0, β = 0) the losses are zero and η = 1 exactly,
+    by construction; with friction the losses are ≥ 0 and η ≤ 1. None where η has no meaning: a useful
+    work below zero (a balancing moment that drives) or losses below zero (the textbook's printed formulas,
+    with which friction helps on the return stroke)."""
+    load = machine.load
+    if load.f == 0 and load.beta == 0 and load.convention == "consistent":
+        return 1.0
+    losses = works["dry_friction"] + works["viscous_friction"]
+    if works["useful"] < 0 or losses < 0:
+        return None
+    return works["useful"] / (works["useful"] + losses) if works["useful"] + losses > 0 else 1.0
+
+
+def no_efficiency(steady: Steady) -> list[Notice]:
+    """Why η is not given, in words (none when it is)."""
+    if steady.efficiency is not None:
+        return []
+    useful, losses = steady.works["useful"], steady.works["dry_friction"] + steady.works["viscous_friction"]
+    return [Notice("efficiency_undefined", f"η is not given: over the cycle the useful work is {useful:.4g} J and the "
+                   f"work of friction {losses:.4g} J; with one of them below zero (the textbook's printed formulas let "
+                   "friction help the crank on the return stroke; a balancing moment can drive) their ratio is no "
+                   "efficiency.", {"useful": useful, "losses": losses})]
+
+
+def energy_residual(works: dict[str, float]) -> float:
+    """|A_driving − A_useful − A_losses| over the sum of their magnitudes (≤ 1; 0 when nothing does work)."""
+    turnover = abs(works["driving"]) + abs(works["useful"]) + abs(works["dry_friction"]) + abs(works["viscous_friction"])
+    return abs(works["net"]) / turnover if turnover > 0 else 0.0
+
+
+def cycle_figures(machine: Machine, tables: Tables, run: Run, fine: dict | None = None) -> Steady:
     """δ, mean speeds, ε(φ) and the cycle works of the steady solution (``fine``: see extreme_speed)."""
-    nodes = slice(0, None, 2)
+    nodes = tables.step_nodes
     J, dJ = tables.J[nodes], tables.dJ[nodes]
     omega = run.omega
     moment = tables.net_phi[nodes] + machine.speed_moment(omega, tables.sliding[nodes])[0]
     epsilon = (moment - 0.5 * dJ * omega**2) / J
-    h = float(run.phi[1] - run.phi[0])
     def work(values):
-        return float(simpson(values, h))
+        return pair_simpson(values, run.phi)
     drive = tables.drive_phi[nodes] + (machine.speed_moment(omega, np.zeros_like(omega))[0]
                                        if machine.motor.speed_dependent else 0.0)
     viscous = machine.load.beta * omega * tables.sliding[nodes]
@@ -144,55 +223,39 @@ def cycle_figures(machine: Machine, tables, run: Run, fine: dict | None = None) 
     works["net"] = works["driving"] - works["useful"] - works["dry_friction"] - works["viscous_friction"]
     k_max, k_min = int(np.argmax(omega)), int(np.argmin(omega))
     fine = {} if fine is None else fine
-    sub_step_tables(machine, tables, run, (k_max, k_min), fine)
     w_max = extreme_speed(machine, tables, run, k_max, +1, fine=fine)
     w_min = extreme_speed(machine, tables, run, k_min, -1, fine=fine)
     mean = 0.5 * (w_max + w_min)
     return Steady(run.phi, omega, run.t - run.t[0], epsilon, mean, float((run.phi[-1] - run.phi[0]) / (run.t[-1] - run.t[0])),
-                  (w_max - w_min) / mean, abs(works["useful"]) / works["driving"] if works["driving"] > 0 else 0.0,
-                  works)
+                  (w_max - w_min) / mean, efficiency(machine, works), works)
 
 
-def sub_step_tables(machine: Machine, tables, run: Run, nodes, fine: dict, substeps: int = SUBSTEPS) -> None:
-    """Put into ``fine`` the sub-step tables extreme_speed needs around each node k of ``nodes`` that it
-    lacks, from one evaluation of the machine on all their angles (element for element the same values)."""
-    last = run.phi.size - 1
-    wanted = dict.fromkeys((max(k - 1, 0), min(k + 1, last)) for k in nodes)
-    missing = [(a, b) for a, b in wanted if a != b and (a, b, substeps) not in fine]
-    if not missing:
-        return
-    grids = [np.linspace(run.phi[a], run.phi[b], 2 * substeps * (b - a) + 1) for a, b in missing]
-    joint = machine.tables(np.concatenate(grids))
-    start = 0
-    for (a, b), grid in zip(missing, grids):
-        sub = joint.part(slice(start, start + grid.size))
-        start += grid.size
-        sub.useful = sub.useful + tables.balancing_moment
-        sub.balancing_moment = tables.balancing_moment
-        fine[a, b, substeps] = sub
-
-
-def extreme_speed(machine: Machine, tables, run: Run, k: int, sign: int, substeps: int = SUBSTEPS,
+def extreme_speed(machine: Machine, tables: Tables, run: Run, k: int, sign: int, substeps: int = SUBSTEPS,
                   fine: dict | None = None) -> float:
     """ω_max (sign +1) or ω_min (−1) between the step nodes around node k: the two steps are integrated
     again with ``substeps`` sub-steps each, and a parabola through the best fine node and its neighbours
-    gives the extreme (error ~ (h/substeps)³ instead of the node spacing's h²).
+    gives the extreme (error ~ (h/substeps)³ instead of the node spacing's h²). A kink on node k stays a
+    node of the sub-steps, and an extreme on it (ω with a corner) is that node's value, no parabola.
 
-    fine: the tables of the sub-steps already evaluated for these ``tables``, by node pair (a, b); the
-    Newton iterations of _level and cycle_figures come back to the same steps with another T₀."""
+    fine: the sub-step tables already evaluated for these ``tables``, by node pair (a, b); the Newton
+    iterations of _level and cycle_figures come back to the same steps with another T₀."""
     last = run.phi.size - 1
     a, b = max(k - 1, 0), min(k + 1, last)
     if a == b:
         return float(run.omega[k])
+    kinked = tables.kink_nodes if tables.kink_nodes is not None else np.zeros(last + 1, bool)
     fine = {} if fine is None else fine
     if (a, b, substeps) not in fine:
-        sub = machine.tables(np.linspace(run.phi[a], run.phi[b], 2 * substeps * (b - a) + 1))
+        pieces = [a, k, b] if kinked[k] and a < k < b else [a, b]
+        edges = run.phi[pieces]
+        sub = kinked_tables(machine, edges, substeps * np.diff(pieces), kinked[pieces])
         sub.useful = sub.useful + tables.balancing_moment
         sub.balancing_moment = tables.balancing_moment
         fine[a, b, substeps] = sub
-    values = integrate(machine, fine[a, b, substeps], float(run.T[a]), substeps * (b - a)).omega
+    sub = fine[a, b, substeps]
+    values = integrate(machine, sub, float(run.T[a]), substeps * (b - a)).omega
     j = int(np.argmax(sign * values))
-    if 0 < j < values.size - 1:
+    if 0 < j < values.size - 1 and not (kinked[k] and j == substeps * (k - a)):
         left, mid, right = values[j - 1], values[j], values[j + 1]
         curvature = left - 2 * mid + right
         if curvature != 0:
@@ -214,19 +277,37 @@ def cumulative_simpson(values: np.ndarray, h: float) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum(pieces)])
 
 
+def richardson(differences: list[float]) -> float:
+    """The error of the finer of the last two levels from the largest differences between successive levels,
+    d_n = max|y_h − y_2h|: d_n/(2^p − 1) with 2^p = d_{n−1}/d_n the order the levels show, taken between
+    2 (first order) and 16 (RK4's fourth: never a smaller estimate than d_n/15)."""
+    ratio = differences[-2] / differences[-1] if len(differences) > 1 and differences[-1] > 0 else 16.0
+    return differences[-1] / (min(max(ratio, 2.0), 16.0) - 1.0)
+
+
+def level_difference(fine: Run, coarse: Run) -> float:
+    """max over the coarse nodes of |ω_h − ω_2h|/ω_max and |t_h − t_2h|/t_end (t from the run's start)."""
+    omega = np.max(np.abs(fine.omega[::2] - coarse.omega)) / fine.omega.max()
+    span = fine.t[-1] - fine.t[0]
+    t = np.max(np.abs((fine.t[::2] - fine.t[0]) - (coarse.t - coarse.t[0]))) / span if span > 0 else 0.0
+    return float(max(omega, t))
+
+
 def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None = None,
                  balance: bool = False, deadline: float = math.inf) -> Motion:
-    """The periodic solution T(φ₀ + Φ) = T(φ₀), refined until the Richardson estimate meets rtol."""
+    """The periodic solution T(φ₀ + Φ) = T(φ₀), refined until the Richardson estimate meets rtol: the
+    estimate (``richardson``) of three levels at least, so that the order they show is known."""
     started = time.perf_counter()
     method = ("Newton shooting on the cycle map of dT/dφ = M(φ, ω), RK4 in φ" if machine.speed_dependent
               else "energy integral (1.9)–(1.10) by Simpson's rule, mean speed given")
     numerics = Numerics(method=method, rtol=rtol,
                         code="newton_shooting" if machine.speed_dependent else "energy_integral")
     motion = Motion(numerics=numerics)
-    per_2pi, previous, T0 = STEPS_START, None, None
+    kinks = machine.kinks()
+    per_2pi, previous, T0, differences = STEPS_START, None, None, []
     while per_2pi <= STEPS_MAX:
-        steps = steps_per_cycle(machine, per_2pi)
-        tables = node_tables(machine, steps, balance)
+        tables = cycle_tables(machine, kinks, per_2pi, balance)
+        steps = tables.starts.size
         if not np.isfinite(tables.net_phi).all():
             motion.notices += blocked(tables)
             numerics.message = motion.notices[0].text
@@ -243,29 +324,33 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
             break
         numerics.steps = steps
         if previous is not None:
-            numerics.error_estimate = float(np.max(np.abs(run.omega[::2] - previous.omega)) / 15 / run.omega.max())
-            if numerics.error_estimate <= rtol:
+            differences.append(level_difference(run, previous))
+            numerics.error_estimate = richardson(differences)
+            if len(differences) > 1 and numerics.error_estimate <= rtol:
                 motion.steady = cycle_figures(machine, tables, run, fine)
                 motion.steady.works["balancing_moment"] = tables.balancing_moment
                 motion.transient = None
-                numerics.energy_residual = abs(motion.steady.works["net"]) / max(motion.steady.works["driving"], 1e-300)
+                numerics.energy_residual = energy_residual(motion.steady.works)
+                motion.notices += no_efficiency(motion.steady)
                 break
         previous = run
         per_2pi *= 2
         if time.perf_counter() > deadline:
-            motion.steady = cycle_figures(machine, tables, run, fine)
-            if numerics.error_estimate == 0.0:
-                numerics.error_estimate = None     # one level only: nothing to compare with
+            motion.steady = cycle_figures(machine, tables, run, fine)   # one level only: no estimate (None)
+            numerics.energy_residual = energy_residual(motion.steady.works)
+            motion.notices += no_efficiency(motion.steady)
             numerics.message = (f"stopped at the time budget before reaching rtol = {rtol:g}; the result is the "
                                 f"last refinement, with its error estimate")
             break
     else:
         numerics.message = f"the tolerance rtol = {rtol:g} was not reached within {STEPS_MAX} steps per revolution"
+    if motion.steady is None:
+        numerics.error_estimate = None              # no result, nothing estimated
     numerics.runtime_ms = 1e3 * (time.perf_counter() - started)
     return motion
 
 
-def _shoot(machine: Machine, tables, steps: int, T0: float | None, numerics: Numerics):
+def _shoot(machine: Machine, tables: Tables, steps: int, T0: float | None, numerics: Numerics):
     """Newton on g(T₀) = T(Φ) − T₀ with g′ = S − 1 from the variational equation."""
     if T0 is None:
         omega = mean_speed_balance(machine, tables)
@@ -280,18 +365,19 @@ def _shoot(machine: Machine, tables, steps: int, T0: float | None, numerics: Num
             raise NoMotion("stall_in_cycle", f"Stall at φ = {np.degrees(run.stall_phi):.1f}°: the kinetic energy runs "
                                              "out within the cycle; there is no steady motion.",
                            phi=float(np.degrees(run.stall_phi)))
-        step = (run.T[-1] - T0) / (run.sensitivity - 1.0)
-        T0 = max(T0 - step, 0.25 * T0)
+        slope = run.sensitivity - 1.0
+        step = (run.T[-1] - T0) / slope if slope != 0.0 else math.copysign(math.inf, T0 - run.T[-1])
+        T0 = min(max(T0 - step, 0.25 * T0), 4.0 * T0)      # a step by a factor 4 at most either way
         if abs(step) <= 1e-13 * T0:
             return integrate(machine, tables, T0, steps), T0
     raise NoMotion("newton_failed", "Newton's method did not converge on the cycle map.")
 
 
-def _level(machine: Machine, tables, steps: int, omega_mean: float | None, fine: dict | None = None):
+def _level(machine: Machine, tables: Tables, steps: int, omega_mean: float | None, fine: dict | None = None):
     """φ-only moments: the energy level T₀ at φ₀ for which (ω_max + ω_min)/2 equals the given mean speed."""
-    work = cumulative_simpson(tables.net_phi, float(tables.phi[2] - tables.phi[0]))   # A(φ) on the step nodes
+    work = step_integral(tables, tables.net_phi)       # A(φ) on the step nodes
     cycle_work = work[-1]
-    driving = simpson(tables.drive_phi, float(tables.phi[1] - tables.phi[0]))
+    driving = step_integral(tables, tables.drive_phi)[-1]
     if abs(cycle_work) > 1e-9 * max(abs(driving), 1.0):
         trend = "speeds up" if cycle_work > 0 else "slows down"
         raise NoMotion(f"no_steady_cycle_{trend.split()[0]}", f"No steady cycle: the work over a cycle is "
@@ -299,22 +385,21 @@ def _level(machine: Machine, tables, steps: int, omega_mean: float | None, fine:
     if omega_mean is None:
         raise NoMotion("needs_mean_speed", "The moments depend on φ alone: every energy level is periodic; give the "
                                            "mean speed to choose one.")
-    J = tables.J[::2]
+    nodes = tables.step_nodes
+    J = tables.J[nodes]
     def mean_of(T0):
         omega = np.sqrt(2 * (T0 + work) / J)
         return 0.5 * (omega.max() + omega.min()) - omega_mean
     lowest = float(np.max(-work))                    # T₀ must keep T = T₀ + A > 0 everywhere
     high = lowest + 0.5 * J.max() * (2 * omega_mean) ** 2 + 1.0
     if mean_of(lowest + 1e-12 * high) > 0:           # even as ω_min → 0 the mean exceeds ω_m: no periodic motion
-        stall = float(np.degrees(tables.phi[2 * int(np.argmin(work))]))
+        stall = float(np.degrees(tables.phi[nodes[int(np.argmin(work))]]))
         raise NoMotion("stall_in_cycle", f"Stall at φ = {stall:.1f}°: the kinetic energy runs out within the cycle; "
                                          f"there is no steady motion at ω_m = {omega_mean:g} rad/s.", phi=stall)
     T0 = brentq(mean_of, lowest + 1e-12 * high, high, xtol=1e-14 * high)
     for _ in range(4):      # the same condition on the refined extremes: Newton with dω/dT₀ = 1/(Jω)
         run = integrate(machine, tables, T0, steps)
         k_max, k_min = int(np.argmax(run.omega)), int(np.argmin(run.omega))
-        if fine is not None:
-            sub_step_tables(machine, tables, run, (k_max, k_min), fine)
         w_max = extreme_speed(machine, tables, run, k_max, +1, fine=fine)
         w_min = extreme_speed(machine, tables, run, k_min, -1, fine=fine)
         slope = 0.5 * (1 / (J[k_max] * w_max) + 1 / (J[k_min] * w_min))
@@ -327,12 +412,14 @@ def _level(machine: Machine, tables, steps: int, omega_mean: float | None, fine:
 
 def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycles: int = 60,
             balance: bool = False, deadline: float = math.inf) -> Motion:
-    """From ω₀ at φ = 0 until the cycle-start energy settles (phase portrait spiralling onto the cycle)."""
+    """From ω₀ at φ = 0 until the cycle-start energy settles to rtol (phase portrait spiralling onto the cycle);
+    the error estimate covers the whole run (``startup_error``), and the step is halved until it meets rtol
+    (rtol = 0: never settles, one run of max_cycles at STARTUP_PER_2PI)."""
     started = time.perf_counter()
     numerics = Numerics(method="RK4 in φ on dT/dφ = M(φ, ω) from the given start", rtol=rtol, code="startup_rk4")
     motion = Motion(numerics=numerics)
-    steps = steps_per_cycle(machine, 256)
-    tables = node_tables(machine, steps, balance)
+    kinks = machine.kinks()
+    tables = cycle_tables(machine, kinks, STARTUP_PER_2PI, balance)
     if not np.isfinite(tables.net_phi).all():
         motion.notices += blocked(tables)
         numerics.message = motion.notices[0].text
@@ -344,49 +431,107 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
         numerics.message = notice.text
         motion.notices.append(notice)
         return motion
-    pieces, t0, cycle = [], 0.0, machine.cycle()
-    for n in range(min(max_cycles, MAX_CYCLES)):
+    per_2pi, done = STARTUP_PER_2PI, None
+    while True:                    # halve the step until the estimate meets rtol (rtol = 0: one fixed run)
         try:
-            run = integrate(machine, tables, T0, steps, t0)
-        except RestBudget:                   # only the first cycle starts from rest: nothing to show yet
-            notice = Notice("elastic_partial", "The start from rest stopped at the work bound: the motor's "
-                                               "characteristic is too steep to follow in time; no start-up is shown.")
-            numerics.message = notice.text
-            motion.notices.append(notice)
-            return motion
-        run.phi = run.phi + n * cycle
-        pieces.append(run)
-        numerics.cycles = n + 1
-        if run.stall_phi is not None:
-            where = float(np.degrees(run.stall_phi + n * cycle))
-            notice = Notice("stall_startup", f"Stall at φ = {where:.1f}°: the machine stops; the load exceeds what "
-                                             "the motor gives.", {"phi": where})
-            numerics.message = notice.text
-            motion.notices.append(notice)
+            pieces, settled = _cycles(machine, tables, T0, max_cycles, rtol, deadline)
+        except RestBudget:
+            if done is None:       # only the first cycle starts from rest: nothing to show yet
+                notice = Notice("elastic_partial", "The start from rest stopped at the work bound: the motor's "
+                                                   "characteristic is too steep to follow in time; no start-up is shown.")
+                numerics.message = notice.text
+                motion.notices.append(notice)
+                return motion
             break
-        settled = abs(run.T[-1] - T0) <= rtol * run.T[-1]
-        T0, t0 = run.T[-1], run.t[-1]
-        if settled:
-            numerics.message = f"settled after {n + 1} cycles"
-            numerics.message_code, numerics.message_context = "settled", {"cycles": n + 1}
+        done = pieces, settled, startup_error(machine, kinks, pieces, balance, per_2pi), per_2pi
+        estimate = done[2]
+        if (rtol <= 0 or estimate is None or estimate <= rtol or 2 * per_2pi > STARTUP_MAX_PER_2PI
+                or time.perf_counter() > deadline):
             break
-        if time.perf_counter() > deadline:
-            numerics.message = f"stopped at the time budget after {n + 1} cycles, not yet periodic"
-            break
+        per_2pi *= 2
+        tables = cycle_tables(machine, kinks, per_2pi, balance)
+    pieces, settled, estimate, per_2pi = done
+    numerics.cycles = len(pieces)
+    if pieces[-1].stall_phi is not None:
+        where = float(np.degrees(pieces[-1].stall_phi))
+        notice = Notice("stall_startup_from", f"Stall at φ = {where:.1f}° on the start-up from ω₀ = {omega0:g} rad/s: "
+                        "started this way, the machine comes to rest because the load takes more work than the motor "
+                        "gives. This concerns the start-up only: a steady cycle, if one is shown, is the motion of the "
+                        "machine once it runs.", {"phi": where, "omega0": float(omega0)})
+        numerics.message, numerics.message_code, numerics.message_context = notice.text, notice.code, notice.context
+        motion.notices.append(notice)
+    elif settled:
+        numerics.message = f"settled after {len(pieces)} cycles"
+        numerics.message_code, numerics.message_context = "settled", {"cycles": len(pieces)}
+    elif len(pieces) < min(max_cycles, MAX_CYCLES):
+        numerics.message = f"stopped at the time budget after {len(pieces)} cycles, not yet periodic"
     else:
-        numerics.message = f"not yet periodic after {numerics.cycles} cycles"
+        numerics.message = f"not yet periodic after {len(pieces)} cycles"
     motion.transient = Run(np.concatenate([p.phi for p in pieces]), np.concatenate([p.T for p in pieces]),
                            np.concatenate([p.omega for p in pieces]), np.concatenate([p.t for p in pieces]),
                            pieces[-1].sensitivity, pieces[-1].stall_phi)
-    numerics.steps = steps * numerics.cycles
-    numerics.error_estimate = _last_cycle_error(machine, pieces[-1], steps, balance)
+    numerics.steps = sum(p.phi.size - 1 for p in pieces)
+    numerics.error_estimate = estimate
+    if rtol > 0 and estimate is not None and estimate > rtol:
+        numerics.message += (f"; the error estimate {estimate:.2g} is above rtol = {rtol:g} at {per_2pi} steps per "
+                             "2π (the finest level, or the time budget)")
     numerics.runtime_ms = 1e3 * (time.perf_counter() - started)
     return motion
 
 
-def _last_cycle_error(machine: Machine, last: Run, steps: int, balance: bool) -> float | None:
-    """Richardson estimate on the last cycle: rerun it with half the steps, |ω_h − ω_2h|/15 relative."""
-    if last.stall_phi is not None or last.T[0] == 0.0:
+def _cycles(machine: Machine, tables: Tables, T0: float, max_cycles: int, rtol: float | None,
+            deadline: float = math.inf, first: int = 0, t0: float = 0.0) -> tuple[list[Run], bool]:
+    """Cycle after cycle from T₀, t₀ at step node ``first`` of the first cycle until a stall, the cycle-start
+    energy settling to rtol (None: run all max_cycles), max_cycles or the deadline; the runs with φ and t
+    continued, and whether it settled."""
+    pieces, cycle, steps = [], machine.cycle(), tables.starts.size
+    for n in range(min(max_cycles, MAX_CYCLES)):
+        run = integrate(machine, tables, T0, steps, t0, first=first if n == 0 else 0)
+        run.phi = run.phi + n * cycle
+        if run.stall_phi is not None:
+            run.stall_phi += n * cycle
+        pieces.append(run)
+        if run.stall_phi is not None:
+            break
+        settled = rtol is not None and abs(run.T[-1] - run.T[0]) <= rtol * run.T[-1]
+        T0, t0 = run.T[-1], run.t[-1]
+        if settled:
+            return pieces, True
+        if time.perf_counter() > deadline:
+            break
+    return pieces, False
+
+
+def startup_error(machine: Machine, kinks: np.ndarray, pieces: list[Run], balance: bool, per_2pi: int) -> float | None:
+    """Richardson estimate of the whole start-up: the same run over as many cycles with half and a quarter of
+    the steps, and ``richardson`` of the largest differences at the shared nodes (ω relative to its largest
+    value, t to the run's duration). A start from rest is shared: the coarser runs start where its DOP853
+    steps end (integrator.leave_rest, at rtol 1e-11), so the estimate covers every RK4 step. None when there
+    is no RK4 step, or the run stalls: towards the stop ω ∝ √(φ_s − φ) is not smooth in φ and no estimate of
+    a fixed order holds there (the stall's angle is the answer then)."""
+    first = REST_STEPS if pieces[0].T[0] == 0.0 else 0
+    if pieces[-1].stall_phi is not None or (pieces[0].T.size <= first + 1 and len(pieces) == 1):
         return None
-    coarse = integrate(machine, node_tables(machine, steps // 2, balance), float(last.T[0]), steps // 2)
-    return float(np.max(np.abs(coarse.omega - last.omega[::2])) / 15 / last.omega.max())
+    levels = [(pieces, 0)]
+    for factor in (2, 4):
+        try:
+            tables = cycle_tables(machine, kinks, per_2pi // factor, balance)
+            levels.append((_cycles(machine, tables, float(pieces[0].T[first]), len(pieces), None,
+                                   first=first // factor, t0=float(pieces[0].t[first]))[0], first // factor))
+        except RestBudget:
+            return None
+    omega_max = max(float(p.omega.max()) for p in pieces)
+    duration = pieces[-1].t[-1] - pieces[0].t[0]
+    differences = []
+    for (coarse, c_first), (fine, f_first) in ((levels[2], levels[1]), (levels[1], levels[0])):
+        reach = coarse[-1].phi[-1] + 2 * np.max(np.diff(coarse[-1].phi), initial=0.0)
+        if len(coarse) < len(fine) or reach < fine[-1].phi[-1]:
+            return None
+        omega, t = 0.0, 0.0
+        for n, (c, f) in enumerate(zip(coarse, fine)):
+            offset = 2 * c_first - f_first if n == 0 else 0
+            k = min(c.phi.size, f.phi[offset::2].size)
+            omega = max(omega, float(np.max(np.abs(f.omega[offset::2][:k] - c.omega[:k]))))
+            t = max(t, float(np.max(np.abs(f.t[offset::2][:k] - c.t[:k]))))
+        differences.append(max(omega / omega_max, t / duration if duration > 0 else 0.0))
+    return richardson(differences)

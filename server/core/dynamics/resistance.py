@@ -16,6 +16,10 @@ Slotted link (§3.3): R₁₂ᵗ = M₃/l_BC, F_T = f R₁₂ᵗ, so
     textbook (3.44)–(3.49): k M₃ [1 + λ(cos φ ± f sin φ)]/(1 + λ² + 2λ cos φ), negative on the idle stroke
 Four-bar: the rocker load M₃ reduced by u₃₁ (seed 003 (1)), no friction model in the sources.
 Viscous friction (3.15)–(3.17), (3.33), (3.50*): M_T = β ω Σ u², u the sliding-velocity analogs.
+
+M_c is smooth in φ except where the argument of a |·| or of a stroke condition changes sign: the output's
+reversal u₃₁ = 0 (k switches, |u₃₁| has a corner) and the friction terms' own arguments. Each builder names
+those arguments (``ResistingMoment.switches``); the integrator puts their zeros on its nodes (machine.py).
 """
 from __future__ import annotations
 
@@ -58,6 +62,7 @@ class ResistingMoment:
     viscous: np.ndarray
     notices: list[Notice] = field(default_factory=list)
     self_locking: np.ndarray | None = None
+    switches: list[np.ndarray] = field(default_factory=list)   # M_c has a corner or a jump where one changes sign
 
     @property
     def total(self) -> np.ndarray:
@@ -84,6 +89,7 @@ def resisting_moment(mechanism: str, params: dict[str, float], load: Load, phi: 
     sliding = MECHANISMS[mechanism].sliding_squares(params, kinematics)     # finite at removable singularities
     result.viscous = load.beta * np.asarray(omega) * sliding
     result.useful = result.useful + load.crank_moment
+    result.switches = [u31] + result.switches           # the stroke factor k and |u₃₁|
     return result
 
 
@@ -92,14 +98,14 @@ def _sine(p, load, phi, values, k):
     if load.convention == "textbook":
         useful = k * P * np.abs(values["u31"])
         total = k * P * p["l1"] * (1 + f**2) * (np.abs(np.sin(phi)) + f * np.abs(np.cos(phi)))
-        return ResistingMoment(useful, total - useful, 0 * phi)
+        return ResistingMoment(useful, total - useful, 0 * phi, switches=[np.sin(phi), np.cos(phi)])
     if f >= 1:
         return _locked(phi, np.ones_like(phi, bool), Notice(
             "sine_self_locking", f"Self-locking: f = {f:g} ≥ 1, the successive approximations "
             "R₂₃ = P_c(1 + f² + f⁴ + …) diverge at every angle.", {"f": f}))
     useful = k * P * np.abs(values["u31"])
     total = k * P * (np.abs(values["u31"]) + f * np.abs(values["u21"])) / (1 - f**2)
-    return ResistingMoment(useful, total - useful, 0 * phi)
+    return ResistingMoment(useful, total - useful, 0 * phi, switches=[values["u21"]])
 
 
 def _slider_crank(p, load, phi, values, k):
@@ -117,7 +123,7 @@ def _slider_crank(p, load, phi, values, k):
         if p["e"] != 0:
             notices.append(Notice("approx_offset", "The approximations are derived for the central crank-slider "
                                   "(e = 0); with an offset they ignore e."))
-        return ResistingMoment(useful, total - useful, 0 * phi, notices)
+        return ResistingMoment(useful, total - useful, 0 * phi, notices, switches=[np.sin(phi)])
     tan_psi = np.abs(np.tan(values["s2"]))
     locked = f * tan_psi >= 1
     if locked.any():
@@ -130,7 +136,7 @@ def _slider_crank(p, load, phi, values, k):
             {"f": f, "ranges": ranges})],
             locked)
     total = useful / (1 - f * tan_psi)
-    return ResistingMoment(useful, total - useful, 0 * phi)
+    return ResistingMoment(useful, total - useful, 0 * phi, switches=[np.tan(values["s2"])])
 
 
 def _slotted_link(p, load, phi, values, k):
@@ -144,11 +150,11 @@ def _slotted_link(p, load, phi, values, k):
         total = k * M3 * (1 + lam * (np.cos(phi) + sign * f * np.sin(phi))) / d2
         return ResistingMoment(useful, total - useful, 0 * phi, [Notice(
             "textbook_idle_stroke", "Textbook formulas (3.44)–(3.49): on the idle stroke of the oscillating lever "
-            "the printed moment is negative, i.e. the idle load would drive the crank.")])
+            "the printed moment is negative, i.e. the idle load would drive the crank.")], switches=[np.sin(phi)])
     on_pivot = d2 < 1e-24                      # λ = 1, φ = π: the block on the lever pivot
     with np.errstate(divide="ignore", invalid="ignore"):
         dry = np.where(on_pivot, np.nan, k * M3 * f * lam * np.abs(np.sin(phi)) / d2)
-    result = ResistingMoment(useful, dry, 0 * phi)
+    result = ResistingMoment(useful, dry, 0 * phi, switches=[np.sin(phi)])
     if f > 0 and on_pivot.any():
         result.notices.append(Notice("slotted_jamming_friction", "λ = 1: at φ = 180° the dry-friction moment "
                                      "M_T = ±0.5 M₃ f tan(φ/2) is unbounded, the mechanism jams for any load "

@@ -1,0 +1,86 @@
+"""The steady cycle's efficiency η = A_useful/A_driving (seed 002 (3.38)) within its meaning (issue 14, defect 3).
+
+Over a periodic cycle the kinetic energy returns to its value, so A_driving = A_useful + A_friction: without
+friction η is 1 by construction, exactly (no quadrature can make it 1.0000005); with friction whose work is
+≥ 0 (the consistent convention: friction always resists) 0 ≤ η ≤ 1. The driving work integrated directly
+agrees with that balance to the reported energy residual; where η has no meaning (the textbook's printed
+formulas let friction help on the return stroke) it is null, with a sentence why.
+"""
+import json
+
+import pytest
+from fastapi.testclient import TestClient
+from test_error_estimates import random_body
+from test_stability import RIG
+
+from server.api import endpoints
+from server.api.app import app
+from server.api.schemas_dynamics import MotionRequest
+from server.core.dynamics.motion import steady_cycle
+
+client = TestClient(app)
+
+
+def motion(body):
+    response = client.post("/api/v1/motion?lang=en", json=body)
+    assert response.status_code == 200, response.text
+    return json.loads(response.text)
+
+
+def check(efficiency, works, residual, frictionless, warnings):
+    """η within [0, 1], exactly 1 without friction, and the direct driving work within the residual."""
+    if frictionless:
+        assert efficiency == 1.0
+        return
+    if efficiency is None:
+        assert works["dry_friction"] + works["viscous_friction"] < 0 or works["useful"] < 0
+        assert any("η is not given" in w for w in warnings)
+        return
+    assert 0.0 <= efficiency <= 1.0
+    turnover = abs(works["driving"]) + abs(works["useful"]) + abs(works["dry_friction"]) + abs(works["viscous_friction"])
+    assert abs(works["useful"] - efficiency * works["driving"]) <= residual * turnover + 1e-12 * turnover
+
+
+@pytest.mark.parametrize("seed", range(0, 64, 3))
+@pytest.mark.parametrize("friction", [True, False])
+def test_efficiency_on_random_machines(seed, friction):
+    body = random_body(seed)
+    if not friction:
+        body["load"] |= {"f": 0.0, "beta": 0.0, "convention": "consistent"}
+    machine = endpoints.machine(MotionRequest(**body))
+    result = steady_cycle(machine, body["rtol"], body.get("omega_mean"), body.get("balance", False))
+    if result.steady is None:
+        assert result.notices
+        return
+    frictionless = body["load"]["f"] == 0 and body["load"]["beta"] == 0 and body["load"]["convention"] == "consistent"
+    check(result.steady.efficiency, result.steady.works, result.numerics.energy_residual, frictionless,
+          [n.text for n in result.notices])
+    assert 0.0 <= result.numerics.energy_residual <= 1.0
+
+
+@pytest.mark.parametrize("masses", [1e-6, 1.0, 1e3])
+@pytest.mark.parametrize("speed", [0.05, 300.0])
+@pytest.mark.parametrize("f", [0.0, 0.1])
+def test_efficiency_over_the_stability_grid(masses, speed, f):
+    """tests/test_stability.py's machines over nine decades of masses and slow and fast cranks."""
+    body = RIG | {"inertias": {"J1": 0.5 * masses, "m2": 5 * masses, "J_S2": 0.05 * masses, "m3": 10 * masses,
+                               "J_rotor": 0.01, "gear_ratio": 5},
+                  "load": RIG["load"] | {"f": f},
+                  "motor": {"kind": "linear", "M0": 60 * speed / 40, "b": 0.3}, "outputs": ["steady"]}
+    data = motion(body)
+    if "omega" not in data:
+        assert data["warnings"]
+        return
+    check(data["efficiency"], data["works"], data["numerics"]["energy_residual"], f == 0.0, data["warnings"])
+    assert 0.0 <= data["numerics"]["energy_residual"] <= 1.0
+
+
+def test_the_textbook_formulas_that_let_friction_help_leave_eta_unset_in_words():
+    """The slotted link's printed (3.44)–(3.49) are negative on the idle stroke: the 'friction' work over the
+    cycle is below zero and A_useful/A_driving > 1 would be no efficiency."""
+    body = {"mechanism": "slotted_link", "params": {"l0": 0.2, "l1": 0.1}, "inertias": {"J1": 0.5, "J3": 0.1},
+            "load": {"force": 20, "return_factor": 1.0, "f": 0.0, "convention": "textbook"},
+            "motor": {"kind": "linear", "M0": 60, "b": 0.3}, "outputs": ["steady"]}
+    data = motion(body)
+    assert data["works"]["dry_friction"] < 0 and data["efficiency"] is None
+    assert any("η is not given" in w for w in data["warnings"])
