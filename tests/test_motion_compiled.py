@@ -168,12 +168,12 @@ def test_steady_cycle_and_start_up_agree_between_the_paths(monkeypatch, seed):
 
 def test_the_compiled_mean_of_the_extremes_is_the_numpy_one_exactly():
     """flywheel.periodic_speed's equation (ω_max + ω_min)/2 = ω_m, compiled without arrays, against
-    _extreme on the numpy array: the same divisions, square roots and parabola in the same order, and the
+    numerics.parabola_extremum on the numpy array: the same divisions, square roots and parabola in the same order, and the
     first of tied samples taken as numpy's argmax does (the kernel compares ω² and resolves ties of ω after),
     so equal to the last bit, also where a zero inertia gives inf or a negative energy NaN (numpy's argmax
     takes the first NaN)."""
     from server.core.dynamics.compiled import mean_of_extremes
-    from server.core.dynamics.flywheel import _extreme
+    from server.core.numerics import parabola_extremum as _extreme
     rng = np.random.default_rng(7)
     phi = np.linspace(0, 2 * np.pi, 2049)
     for trial in range(400):

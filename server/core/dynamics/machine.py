@@ -19,7 +19,9 @@ every one on a node.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import threading
+from collections import OrderedDict
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -32,6 +34,9 @@ from .resistance import Load, resisting_moment
 KINK_SCAN = 4096      # samples per turn on which the switching functions are scanned for sign changes
 KINK_MERGE = 1e-12    # rad: kinks closer than this are one (the refinement leaves them ~1e-15 apart)
 KINK_ITERATIONS = 100  # of the refinement at most: Illinois converges superlinearly, ~10 are used
+KINKS_KEPT = 512       # machines' kinks kept per process (a slider's family shares them: see Machine.kinks)
+_kinks_found: OrderedDict = OrderedDict()
+_kinks_lock = threading.Lock()
 
 
 @dataclass
@@ -76,6 +81,9 @@ class Machine:
     inertias: Inertias
     load: Load
     motor: Motor
+    # what one answer asks of the machine more than once (its kinks, a level's tables), kept for the machine's
+    # life: the steady cycle, the start-up and their error estimates share levels
+    memo: dict = field(default_factory=dict, compare=False, repr=False)
 
     @property
     def speed_dependent(self) -> bool:
@@ -111,6 +119,25 @@ class Machine:
         return np.array(rows)
 
     def kinks(self) -> np.ndarray:
+        """The kinks in [0, Φ), sorted (``find_kinks``; read-only). They depend on the mechanism, the load and
+        whether an indicator diagram drives it, not on the masses or the motor's speeds: machines that differ
+        only there (a slider's family over J, ω or a motor's torque) share them, the last KINKS_KEPT kept."""
+        key = (self.mechanism, tuple(sorted(self.params.items())), self.load, self.motor.kind == "indicator",
+               self.cycle())
+        with _kinks_lock:
+            found = _kinks_found.get(key)
+            if found is not None:
+                _kinks_found.move_to_end(key)
+                return found
+        found = self.find_kinks()
+        found.flags.writeable = False
+        with _kinks_lock:
+            _kinks_found[key] = found
+            while len(_kinks_found) > KINKS_KEPT:
+                _kinks_found.popitem(last=False)
+        return found
+
+    def find_kinks(self) -> np.ndarray:
         """The kinks in [0, Φ), sorted: the mechanism's jumps and every sign change of ``switching`` over the
         cycle, bracketed on KINK_SCAN samples per turn and refined, all brackets at once, by the Illinois
         variant of regula falsi (Dahlquist & Björck, Numerical Methods, §6.2.3) until the bracket, or the step

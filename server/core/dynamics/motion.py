@@ -113,9 +113,18 @@ def cycle_tables(machine: Machine, kinks: np.ndarray, per_2pi: int, balance: boo
     """φ-dependent tables of one cycle with every kink on a node: between consecutive kinks (and the cycle's
     ends) an even number of uniform steps, about per_2pi per 2π. The counts of a level are those of
     STEPS_START times per_2pi/STEPS_START, so each level's nodes are every other node of the next (Richardson).
+    Made once per machine and level (the steady cycle, the start-up and their estimates share levels); no
+    caller changes a Tables once made.
 
     balance: add the constant crank moment that makes the cycle work of the φ-dependent moments zero with
     the quadrature RK4 applies to them on these nodes (the driven machine of a piston engine, M_c = A_д/Φ)."""
+    key = ("cycle_tables", kinks.tobytes(), per_2pi, balance)
+    if key not in machine.memo:
+        machine.memo[key] = _cycle_tables(machine, kinks, per_2pi, balance)
+    return machine.memo[key]
+
+
+def _cycle_tables(machine: Machine, kinks: np.ndarray, per_2pi: int, balance: bool) -> Tables:
     cycle = machine.cycle()
     edges = np.concatenate([[0.0], kinks[kinks > 0], [cycle]])
     base = steps_per_cycle(machine, STEPS_START)
