@@ -37,7 +37,9 @@ def equilibrium_residuals(analysis: ForceAnalysis, k: int = -1) -> dict:
 
 
 def forces_report(analysis: ForceAnalysis, pairs) -> dict:
-    """Everything the force scene draws: reactions, applied loads, friction, iteration, efficiency."""
+    """Everything the force scene draws: reactions, applied loads, friction, efficiency (all from the solved
+    equilibrium), and the textbook's approximations: their changes, the series' ratio q at each angle and the
+    guide's f₃₄|tan ψ| (self-locking where it reaches 1)."""
     final = analysis.final
     norm = lambda v: np.linalg.norm(v, axis=1)
     angle = lambda v: np.degrees(np.arctan2(v[:, 1], v[:, 0]))
@@ -54,8 +56,10 @@ def forces_report(analysis: ForceAnalysis, pairs) -> dict:
         "friction": {k: final.friction[k] for k in ("M_A", "M_B", "M_O", "F34")},
         "friction_circles": {"O": pairs.f14 * pairs.r14, "A": pairs.f12 * pairs.r12, "B": pairs.f23 * pairs.r23},
         "iteration": {"changes": [a.change for a in analysis.approximations], "ratio": analysis.ratio,
-                      "approximations": len(analysis.approximations)},
+                      "approximations": len(analysis.approximations), "ratios": analysis.ratios,
+                      "guide_ratio": analysis.guide_ratio},
         "converged": analysis.converged,
+        "numerics": analysis.numerics,
         **efficiency(analysis),
     }
 
