@@ -9,18 +9,22 @@ The textbook's successive approximations are the fixed-point iteration z ← G(z
 the spectral radius q of J = ∂G/∂z; for the guide alone J = −sgn(V_B) f₃₄ sgn(N) tan ψ and q = f₃₄|tan ψ|,
 the ratio of the series in Eremyants' sine and crank-slider iterations (seed 000 (3.24)).
 
-Self-locking is decided from the physics, per angle:
-  * the guide: the rod's line lies within the friction angle of the guide's normal, f₃₄|tan ψ| ≥ 1
-    (ψ the connecting rod's angle to the guide); then the equilibrium is not determined by the loads (no
-    solution, or a second one in which the slider is wedged) and no driving moment moves the slider;
-  * the friction circles together with the guide: the friction feeds back on the reactions with q ≥ 1 at the
-    equilibrium, the same statement for the coupled pairs.
+Self-locking is decided from the physics, per angle, by the limit in which the reactions grow without bound
+(the loads then negligible beside them): the rod is a two-force member whose line of force is tangent to the
+friction circles of A and B as their friction moments require, sin(α − θ) = −ρ_eff/l₂ with
+ρ_eff = sgn(ω₂ − ω₁) ρ_A + sgn ω₂ ρ_B, and it must drive the slider along its velocity against the guide's
+friction, |R_x| = f₃₄|R_y|.  The slider locks where that line lies within the friction angle of the guide's
+normal: f₃₄|tan ψ'| ≥ 1, ψ' the line's angle to the guide (ψ' = ψ, the rod's angle, without friction circles:
+the classical f₃₄|tan ψ| ≥ 1), or where the line cannot push along the velocity at all (ψ' beyond 90°,
+|ρ_eff| ≥ l₂).  There a finite equilibrium does not exist or is not determined by the loads; no driving
+moment moves the slider.  The ratio q decides nothing: it says how slowly the textbook's series converges.
 Elsewhere z − G(z) = 0 is solved by Newton's method with the generalised Jacobian (|N| and ‖R‖ are
 piecewise smooth; where the friction direction switches the branch's one-sided derivative).  Each step
 takes the Newton point or the textbook's own step, whichever leaves the smaller change of the reactions
 for the next approximation, so the solve never does worse than the textbook.  The error of the reactions
-is estimated by the next Newton correction A(I − J)⁻¹(G(z) − z), relative to |R|; an angle has converged
-when it is at most ε_R.
+left after a step, relative to |R|, is estimated by the change that step made: a Newton correction bounds
+what is left after it (superlinear convergence), a textbook step leaves at most q/(1 − q) of its change;
+an angle has converged when that estimate is at most ε_R.
 """
 from __future__ import annotations
 
@@ -36,8 +40,8 @@ class Equilibrium:
     """Per angle: the friction z = (F₃₄, M₂), its ratio q, the guide's f₃₄|tan ψ|, the decisions and the error."""
 
     z: np.ndarray                 # (2, n)
-    ratio: np.ndarray             # q, spectral radius of ∂G/∂z at z
-    guide_ratio: np.ndarray       # f₃₄|tan ψ|
+    ratio: np.ndarray             # q, spectral radius of ∂G/∂z at z: the textbook series' ratio
+    guide_ratio: np.ndarray       # f₃₄|tan ψ'| (∞ where the line cannot push along the velocity)
     locked: np.ndarray
     converged: np.ndarray
     error: np.ndarray             # relative error estimate of the reactions
@@ -59,6 +63,20 @@ def dyad(points: dict, applied: dict, omega1_ccw: float) -> Dyad:
     AB = points["B"] - points["A"]
     return Dyad(AB[:, 1] / AB[:, 0], 1.0 / AB[:, 0], np.sign(applied["slider_velocity"]),
                 np.sign(applied["omega2"] - omega1_ccw), np.sign(applied["omega2"]))
+
+
+def locking_ratio(pairs, d: Dyad) -> np.ndarray:
+    """f₃₄|tan ψ'| of the rod's line of force tangent to the friction circles (module docstring), ∞ where it
+    cannot push the slider along its velocity; 0 at the dead centres (V_B = 0: no guide friction).
+    With τ = tan δ, sin δ = ρ_eff/l₂ and τ_s = −sgn(V_B) τ: tan ψ' = (tan ψ + τ_s)/(1 − tan ψ τ_s), and the line
+    pushes along the velocity while 1 − tan ψ τ_s > 0."""
+    rho = d.joint_a * pairs.f12 * pairs.r12 + d.joint_b * pairs.f23 * pairs.r23
+    sine = rho * np.abs(d.inverse_length) * np.sqrt(1 / (1 + d.tan_psi**2))        # ρ_eff/l₂
+    with np.errstate(invalid="ignore", divide="ignore"):
+        tau = -d.slider * sine / np.sqrt(1 - sine**2)
+        pushes = (np.abs(sine) < 1) & (1 - d.tan_psi * tau > 0)
+        ratio = np.where(pushes, pairs.f34 * np.abs(d.tan_psi + tau) / (1 - d.tan_psi * tau), np.inf)
+    return np.where(d.slider == 0, 0.0, ratio)
 
 
 def feedback(pairs, d: Dyad, R12: np.ndarray, R23: np.ndarray, N: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -108,8 +126,8 @@ def solve(points: dict, applied: dict, pairs, omega1_ccw: float, tolerance: floa
     """z with z = G(z) at every angle where the mechanism does not lock (module docstring)."""
     d = dyad(points, applied, omega1_ccw)
     n = d.tan_psi.size
-    guide_ratio = pairs.f34 * np.abs(d.tan_psi)
-    locked_guide = guide_ratio >= 1
+    guide_ratio = locking_ratio(pairs, d)
+    locked = guide_ratio >= 1
     z = np.zeros((2, n))
 
     def evaluate(z):
@@ -119,28 +137,29 @@ def solve(points: dict, applied: dict, pairs, omega1_ccw: float, tolerance: floa
         return G, J, scale
 
     G, J, scale = evaluate(z)
-    error = np.zeros(n)
-    active = ~locked_guide
+    error = np.full(n, np.inf)
     iterations = 0
-    with np.errstate(over="ignore", invalid="ignore"):
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         while True:
-            step = newton_step(J, G - z)
-            error = reaction_change(d, step) / np.where(scale > 0, scale, 1.0)
-            error = np.where(np.isfinite(error), error, np.inf)
-            active &= ~(error <= tolerance) & np.isfinite(z).all(0)
+            active = ~locked & ~(error <= tolerance) & np.isfinite(z).all(0)
             if not active.any() or iterations >= NEWTON_CAP:
                 break
             iterations += 1
-            candidates = [z + np.where(np.isfinite(step), step, 0.0), G]       # Newton's point, the textbook's
-            changes = []
-            for candidate in candidates:
-                G_c, _, _ = evaluate(candidate)
-                changes.append(reaction_change(d, G_c - candidate))
-            newton_better = np.isfinite(step).all(0) & (changes[0] <= np.where(np.isfinite(changes[1]), changes[1], np.inf))
-            chosen = np.where(newton_better, candidates[0], candidates[1])
+            step = newton_step(J, G - z)
+            usable = np.isfinite(step).all(0)
+            candidates = [z + np.where(usable, step, 0.0), G]          # Newton's point, the textbook's step
+            left = [reaction_change(d, evaluate(c)[0] - c) for c in candidates]
+            newton = usable & (left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf))
+            chosen = np.where(newton, candidates[0], candidates[1])
+            moved = reaction_change(d, chosen - z)
+            q = spectral_radius(J)
             z = np.where(active, chosen, z)
             G, J, scale = evaluate(z)
+            moved /= np.where(scale > 0, scale, 1.0)
+            # a Newton correction bounds the error left after it (superlinear convergence); a textbook step
+            # leaves at most q/(1 − q) of its own size
+            estimate = np.where(newton, moved, np.where(q < 1, moved * q / (1 - q), np.inf))
+            error = np.where(active, np.where(np.isfinite(estimate), estimate, np.inf), error)
     ratio = spectral_radius(J)
-    locked = locked_guide | (ratio >= 1)
     converged = ~locked & (error <= tolerance)
     return Equilibrium(z, ratio, guide_ratio, locked, converged, error, iterations)
