@@ -288,3 +288,25 @@ def check_random_machine(m):
     if pairs.f34 > 0:
         for i in np.flatnonzero(moving & (np.abs(analysis.guide_ratio - 1) > 1e-6)):
             assert locked[i] == wedged(params, loads, pairs, g, i), np.degrees(phi[i])
+
+
+# --- efficiency (3.38) ----------------------------------------------------------------------------------------
+
+def test_efficiency_is_useful_over_useful_plus_friction_work_and_balances_the_driving_work():
+    """η = A_u/(A_u + A_fr) (3.38): against the closed form of the issue's case (same trapezoid rule on the same
+    grid, so 1e-12 is rounding); exactly 1 without friction; and with masses at constant speed the balancing
+    moment's work equals A_u + A_fr: the power balance holds at every angle, and the inertia loads' power, odd
+    about φ = π in the central mechanism, sums to zero on the symmetric grid (1e-9: rounding of the sums)."""
+    from server.core.kinetostatics.report import efficiency
+    params = MECHANISMS["slider_crank"].check({"l1": 0.1, "l2": 0.13})
+    phi = np.linspace(0, 2 * np.pi, 721)
+    result = efficiency(analyse(params, Loads(force=1000.0, gravity=False, omega=10.0), Pairs(f34=0.8), phi))
+    expected, g = closed_form(params, 1000.0, 0.8, phi)
+    useful = np.trapezoid(1000.0 * np.abs(g["dxB"]), phi)
+    lost = np.trapezoid(0.8 * expected["N"] * np.abs(g["dxB"]), phi)
+    assert result["efficiency"] == pytest.approx(useful / (useful + lost), rel=1e-12)
+    machine = Loads(m2=3.0, J_S2=0.05, m3=2.0, omega=30.0, force=1000.0, return_factor=0.3)
+    assert efficiency(analyse(params, machine, Pairs(), phi))["efficiency"] == 1.0
+    rough = efficiency(analyse(params, machine, Pairs(f14=0.05, f12=0.08, f23=0.08, f34=0.3), phi))
+    assert 0 < rough["efficiency"] < 1
+    assert rough["work_driving"] == pytest.approx(rough["work_useful"] + rough["work_friction"], rel=1e-9)
