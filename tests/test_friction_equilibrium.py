@@ -310,3 +310,20 @@ def test_efficiency_is_useful_over_useful_plus_friction_work_and_balances_the_dr
     rough = efficiency(analyse(params, machine, Pairs(f14=0.05, f12=0.08, f23=0.08, f34=0.3), phi))
     assert 0 < rough["efficiency"] < 1
     assert rough["work_driving"] == pytest.approx(rough["work_useful"] + rough["work_friction"], rel=1e-9)
+
+
+def test_a_series_ratio_above_one_where_nothing_locks_is_said_as_such_and_solved():
+    """Journals of 1 m with f = 2 on a 0.1 m crank (extreme, allowed by the API): at some angles the textbook's
+    series has q ≥ 1 (it cannot converge) while the slider cannot be wedged; there the equilibrium still exists,
+    fsolve finds the same to ε_R, and the numerics say the series diverges, not that the mechanism locks."""
+    params = MECHANISMS["slider_crank"].check({"l1": 0.1, "l2": 0.1001})
+    loads = Loads(m2=1e5, m3=1e5, J_S2=1e4, omega=1e4, epsilon=1e6, force=1e7)
+    pairs = Pairs(f14=2, f12=2, f23=2, f34=2, r14=1, r12=1, r23=1)
+    phi = np.linspace(0, 2 * np.pi, 73)
+    analysis, ref, g, check = check_against_reference(params, loads, pairs, phi)
+    free = np.isfinite(analysis.balancing_moment)
+    assert (analysis.ratios[free] >= 1).any() and check[free & (analysis.ratios >= 1)].any()
+    assert analysis.numerics["message_code"] == "approximations_diverge"
+    moving = np.abs(g["dxB"]) > 1e-7 * params["l1"]
+    for i in np.flatnonzero(moving & (np.abs(analysis.guide_ratio - 1) > 1e-6)):
+        assert free[i] != wedged(params, loads, pairs, g, i)

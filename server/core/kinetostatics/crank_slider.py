@@ -206,7 +206,7 @@ def textbook_approximations(points: dict, applied: dict, pairs: Pairs, omega1_cc
                             shown: int, locked: np.ndarray) -> list[Approximation]:
     """Approximation 1 without friction, then friction from the previous reactions (3.3), until the largest
     relative change of R₁₂ over the angles that do not lock is below ε_R (design step 17(d)) or ``shown``
-    approximations stand in the table."""
+    approximations stand in the table (or the table has run away where the series' ratio q ≥ 1)."""
     n = points["A"].shape[0]
     friction = {key: np.zeros(n) for key in ("M2", "M1", "F34", "M_A", "M_B", "M_O")}
     rough = any((pairs.f12, pairs.f23, pairs.f34, pairs.f14))
@@ -220,7 +220,7 @@ def textbook_approximations(points: dict, applied: dict, pairs: Pairs, omega1_cc
                 scale = np.maximum(np.linalg.norm(R12[free], axis=1), 1e-300)
                 change = float(np.max(np.linalg.norm(R12[free] - previous[free], axis=1) / scale, initial=0.0))
             table.append(Approximation(R12, R23, N, friction, change))
-            if change is not None and change < tolerance:
+            if change is not None and (change < tolerance or not change < 1e12):    # done, or visibly run away
                 break
             previous = R12
             friction = friction_loads(pairs, applied, R12, R23, N, R12, omega1_ccw)
@@ -239,6 +239,11 @@ def numerics(result: ForceAnalysis, solved, tolerance: float, rough: bool, secon
     if complete:
         code, context = "approximations_complete", {"shown": shown}
         message = f"the table shows all {shown} successive approximations down to ε_R"
+    elif ratio >= 1:
+        code, context = "approximations_diverge", {"shown": shown, "ratio": ratio}
+        message = (f"the textbook's series has the ratio {ratio:.3g} ≥ 1 at some angles and does not converge "
+                   f"there, though the mechanism does not lock; the table shows {shown} approximations; the "
+                   f"reactions come from Newton's solve")
     else:
         code, context = "approximations_truncated", {"shown": shown, "needed": needed, "ratio": ratio}
         message = (f"the table shows the first {shown} successive approximations; at the ratio {ratio:.3g} the "

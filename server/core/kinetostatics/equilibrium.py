@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 NEWTON_CAP = 100          # work bound only: an angle still above ε_R after it is reported unconverged, in words
+CONTINUATION = 32         # steps of the friction switched on from zero where the direct solve went astray
 
 
 @dataclass
@@ -123,43 +124,64 @@ def reaction_change(d: Dyad, dz: np.ndarray) -> np.ndarray:
 
 
 def solve(points: dict, applied: dict, pairs, omega1_ccw: float, tolerance: float, solve_dyad) -> Equilibrium:
-    """z with z = G(z) at every angle where the mechanism does not lock (module docstring)."""
+    """z with z = G(z) at every angle where the mechanism does not lock (module docstring).
+
+    Where the solve lands on an equilibrium with det(I − J) ≤ 0, it is not the one the mechanism reaches as its
+    friction grows from zero (that branch keeps det > 0; a root with det < 0 implies others beside it): the
+    friction is then switched on in CONTINUATION steps, each solved from the last.  If the branch folds on the
+    way (det(I − J) reaches 0) or no equilibrium continues it, the reactions it needs run away: self-locking."""
     d = dyad(points, applied, omega1_ccw)
     n = d.tan_psi.size
     guide_ratio = locking_ratio(pairs, d)
     locked = guide_ratio >= 1
-    z = np.zeros((2, n))
 
-    def evaluate(z):
+    def evaluate(z, share):
         R12, R23, N = solve_dyad(points, applied, {"F34": z[0], "M2": z[1]})
         G, J = feedback(pairs, d, R12, R23, N)
         scale = np.maximum(np.maximum(np.linalg.norm(R12, axis=1), np.linalg.norm(R23, axis=1)), np.abs(N))
-        return G, J, scale
+        return share * G, share * J, scale
 
-    G, J, scale = evaluate(z)
-    error = np.full(n, np.inf)
-    iterations = 0
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        while True:
-            active = ~locked & ~(error <= tolerance) & np.isfinite(z).all(0)
-            if not active.any() or iterations >= NEWTON_CAP:
-                break
-            iterations += 1
-            step = newton_step(J, G - z)
-            usable = np.isfinite(step).all(0)
-            candidates = [z + np.where(usable, step, 0.0), G]          # Newton's point, the textbook's step
-            left = [reaction_change(d, evaluate(c)[0] - c) for c in candidates]
-            newton = usable & (left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf))
-            chosen = np.where(newton, candidates[0], candidates[1])
-            moved = reaction_change(d, chosen - z)
-            q = spectral_radius(J)
-            z = np.where(active, chosen, z)
-            G, J, scale = evaluate(z)
-            moved /= np.where(scale > 0, scale, 1.0)
-            # a Newton correction bounds the error left after it (superlinear convergence); a textbook step
-            # leaves at most q/(1 − q) of its own size
-            estimate = np.where(newton, moved, np.where(q < 1, moved * q / (1 - q), np.inf))
-            error = np.where(active, np.where(np.isfinite(estimate), estimate, np.inf), error)
-    ratio = spectral_radius(J)
+    def iterate(z, share, todo):
+        G, J, scale = evaluate(z, share)
+        error = np.full(n, np.inf)
+        steps = 0
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            while True:
+                active = todo & ~(error <= tolerance) & np.isfinite(z).all(0)
+                if not active.any() or steps >= NEWTON_CAP:
+                    break
+                steps += 1
+                step = newton_step(J, G - z)
+                usable = np.isfinite(step).all(0)
+                candidates = [z + np.where(usable, step, 0.0), G]          # Newton's point, the textbook's step
+                left = [reaction_change(d, evaluate(c, share)[0] - c) for c in candidates]
+                newton = usable & (left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf))
+                chosen = np.where(newton, candidates[0], candidates[1])
+                moved = reaction_change(d, chosen - z)
+                q = spectral_radius(J)
+                z = np.where(active, chosen, z)
+                G, J, scale = evaluate(z, share)
+                moved /= np.where(scale > 0, scale, 1.0)
+                # a Newton correction bounds the error left after it (superlinear convergence); a textbook step
+                # leaves at most q/(1 − q) of its own size
+                estimate = np.where(newton, moved, np.where(q < 1, moved * q / (1 - q), np.inf))
+                error = np.where(active, np.where(np.isfinite(estimate), estimate, np.inf), error)
+        determinant = (1 - J[0, 0]) * (1 - J[1, 1]) - J[0, 1] * J[1, 0]
+        return z, error, determinant, spectral_radius(J), steps
+
+    full = np.ones(n)
+    z, error, determinant, ratio, iterations = iterate(np.zeros((2, n)), full, ~locked)
+    astray = ~locked & ~(determinant > 0)
+    if astray.any():
+        followed, lost = np.zeros((2, n)), np.zeros(n, bool)
+        for share in np.linspace(0, 1, CONTINUATION + 1)[1:]:
+            followed, followed_error, followed_det, followed_ratio, steps = iterate(followed, share * full,
+                                                                                   astray & ~lost)
+            iterations += steps
+            lost |= astray & ~((followed_error <= tolerance) & (followed_det > 0))
+        kept = astray & ~lost
+        z, error, ratio = np.where(kept, followed, z), np.where(kept, followed_error, error), \
+            np.where(kept, followed_ratio, ratio)
+        locked = locked | lost
     converged = ~locked & (error <= tolerance)
     return Equilibrium(z, ratio, guide_ratio, locked, converged, error, iterations)
