@@ -15,8 +15,8 @@ friction circles of A and B as their friction moments require, sin(α − θ) = 
 ρ_eff = sgn(ω₂ − ω₁) ρ_A + sgn ω₂ ρ_B, and it must drive the slider along its velocity against the guide's
 friction, |R_x| = f₃₄|R_y|.  The slider locks where that line lies within the friction angle of the guide's
 normal: f₃₄|tan ψ'| ≥ 1, ψ' the line's angle to the guide (ψ' = ψ, the rod's angle, without friction circles:
-the classical f₃₄|tan ψ| ≥ 1), or where the line cannot push along the velocity at all (ψ' beyond 90°,
-|ρ_eff| ≥ l₂).  There a finite equilibrium does not exist or is not determined by the loads; no driving
+the classical f₃₄|tan ψ| ≥ 1), or where the joints' friction turns a line of force past the guide's normal
+(|ψ| + δ ≥ 90°, |ρ_eff| ≥ l₂).  There a finite equilibrium does not exist or is not determined by the loads; no driving
 moment moves the slider.  The ratio q decides nothing: it says how slowly the textbook's series converges.
 Elsewhere z − G(z) = 0 is solved by Newton's method with the generalised Jacobian (|N| and ‖R‖ are
 piecewise smooth; where the friction direction switches the branch's one-sided derivative).  Each step
@@ -67,15 +67,17 @@ def dyad(points: dict, applied: dict, omega1_ccw: float) -> Dyad:
 
 
 def locking_ratio(pairs, d: Dyad) -> np.ndarray:
-    """f₃₄|tan ψ'| of the rod's line of force tangent to the friction circles (module docstring), ∞ where it
-    cannot push the slider along its velocity; 0 at the dead centres (V_B = 0: no guide friction).
-    With τ = tan δ, sin δ = ρ_eff/l₂ and τ_s = −sgn(V_B) τ: tan ψ' = (tan ψ + τ_s)/(1 − tan ψ τ_s), and the line
-    pushes along the velocity while 1 − tan ψ τ_s > 0."""
+    """f₃₄|tan ψ'| of the rod's line of force tangent to the friction circles (module docstring); 0 at the dead
+    centres (V_B = 0: no guide friction).  The rod's equation has two lines, at θ − δ and θ + π + δ
+    (sin δ = ρ_eff/l₂); while |θ| + |δ| < 90° (|tan ψ tan δ| < 1) exactly one of them drives the slider along
+    its velocity, tan ψ' = (tan ψ + τ_s)/(1 − tan ψ τ_s) with τ_s = −sgn(V_B) tan δ.  Where the joints' friction
+    turns a line past the guide's normal (|θ| + |δ| ≥ 90°, or |ρ_eff| ≥ l₂) the friction circles alone
+    wedge the rod: ∞."""
     rho = d.joint_a * pairs.f12 * pairs.r12 + d.joint_b * pairs.f23 * pairs.r23
     sine = rho * np.abs(d.inverse_length) * np.sqrt(1 / (1 + d.tan_psi**2))        # ρ_eff/l₂
     with np.errstate(invalid="ignore", divide="ignore"):
         tau = -d.slider * sine / np.sqrt(1 - sine**2)
-        pushes = (np.abs(sine) < 1) & (1 - d.tan_psi * tau > 0)
+        pushes = (np.abs(sine) < 1) & (np.abs(d.tan_psi * tau) < 1)
         ratio = np.where(pushes, pairs.f34 * np.abs(d.tan_psi + tau) / (1 - d.tan_psi * tau), np.inf)
     return np.where(d.slider == 0, 0.0, ratio)
 
