@@ -11,8 +11,9 @@ rotation in the revolute pairs A (f₁₂, r₁₂), B (f₂₃, r₂₃) and O 
 radius ρ = f·r.  The textbook computes it from the previous approximation's reactions (approximation 1
 without friction) until the relative change falls below ε_R (design step 17(d)); near the friction angle
 that series converges slowly (ratio f₃₄|tan ψ| → 1).  The answer is therefore the equilibrium solved
-directly to ε_R (equilibrium.py: Newton's method, self-locking from f₃₄|tan ψ| ≥ 1 and the friction's
-feedback ratio); the textbook's approximations are kept as the table the page shows.  Angles and moments are counter-clockwise internally; the crank turns clockwise in
+directly to ε_R (equilibrium.py: Newton's method; self-locking where the rod's line of force, tangent to the
+friction circles, lies within the guide's friction angle, f₃₄|tan ψ'| ≥ 1, or where the equilibrium followed
+from zero friction folds); the textbook's approximations are kept as the table the page shows.  Angles and moments are counter-clockwise internally; the crank turns clockwise in
 the drawing (seed 000's convention), so the balancing moment is reported along ω₁.
 """
 from __future__ import annotations
@@ -178,7 +179,7 @@ def analyse(params: dict, loads: Loads, pairs: Pairs, phi: np.ndarray, tolerance
     result.ratios = np.where(locked, np.nan, solved.ratio)
     result.guide_ratio = solved.guide_ratio
     rough = any((pairs.f12, pairs.f23, pairs.f34, pairs.f14))
-    result.ratio = float(np.max(solved.ratio[~locked])) if rough and (~locked).any() else (0.0 if rough else None)
+    result.ratio = float(np.max(solved.ratio[~locked])) if rough and (~locked).any() else None
     if locked.any():
         ranges = angle_ranges(phi, locked)
         result.notices.append(Notice(
