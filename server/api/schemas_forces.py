@@ -53,7 +53,7 @@ class ForcesRequest(BaseModel):
     loads: ForceLoadsInput = Field(default_factory=ForceLoadsInput)
     pairs: PairsInput = Field(default_factory=PairsInput)
     n: int = Field(361, ge=13, le=1441, description="points over one closed cycle")
-    tolerance: float = Field(1e-9, ge=1e-14, le=1e-2, description="ε_R: relative change that ends the iteration")
+    tolerance: float = Field(1e-9, ge=1e-14, le=1e-2, description="ε_R: relative error of the reactions the friction equilibrium is solved to (and the change that ends the textbook's table)")
 
 
 class WearRequest(ForcesRequest):

@@ -6,6 +6,11 @@ R₀₃ = F_T2, F_T3 = f R₀₃ (yoke in its guide), R₂₃ = P_c + F_T3, so
 Crank-slider, group 2–3 (Fig. 3.3): (R₀₃)₀ = P_c tan ψ; F_T = f R₀₃;
 R₀₃ = (P_c + F_T) tan ψ, so (F_T)_k = P_c Σ_{i=1}^{k} (f tan ψ)^i (3.24) → P_c f tan ψ/(1 − f tan ψ);
 the ratio is f|tan ψ|.  A ratio ≥ 1 means the series diverges: self-locking.
+
+The ratio test decides, not the number of steps: the series converges exactly when its ratio is below 1,
+and its limit is the closed form above.  The steps are the table the page shows; they run until the
+relative change is below ``tolerance`` or ``max_steps`` rows stand (a display bound: with ratio q the
+series needs about log(tolerance)/log(q) terms, ``needed``).
 """
 from __future__ import annotations
 
@@ -24,13 +29,15 @@ class IterationLog:
 
     ratio: float
     steps: list[dict] = field(default_factory=list)
-    converged: bool = False
+    converged: bool = False          # the series converges: ratio < 1
     limit: dict = field(default_factory=dict)
+    needed: int | None = None        # terms the series needs for the tolerance (None when it diverges)
+    truncated: bool = False          # the table stops before the tolerance is reached
 
 
 def friction_iteration(mechanism: str, params: dict[str, float], phi: float, force: float, f: float,
-                       tolerance: float = 1e-6, max_steps: int = 30) -> IterationLog:
-    """Run the approximations at crank angle φ (rad) until the relative change is below ``tolerance``."""
+                       tolerance: float = 1e-6, max_steps: int = 200) -> IterationLog:
+    """The approximations at crank angle φ (rad), their ratio, and the limit in closed form where it exists."""
     if mechanism == "sine":
         ratio = f**2
         log = IterationLog(ratio)
@@ -70,5 +77,8 @@ def friction_iteration(mechanism: str, params: dict[str, float], phi: float, for
         raise ValueError(f"the textbook iterates friction forces only for the sine mechanism and the crank-slider, "
                          f"not for {mechanism}")
     last = log.steps[-1]["change"]
-    log.converged = ratio < 1 and last is not None and last < tolerance
+    log.converged = bool(ratio < 1)
+    if log.converged:
+        log.needed = 1 if ratio == 0 else max(1, int(np.ceil(np.log(tolerance) / np.log(ratio))))
+    log.truncated = log.converged and not (last is not None and last < tolerance)
     return log

@@ -6,25 +6,31 @@ the guide's normal reaction N on the slider; five equilibrium equations (rod: Σ
 slider: ΣF) solved as one linear system per crank angle, vectorised over φ.  Then the crank:
 R₄₁ = R₁₂ − G₁ and the balancing moment from ΣM_O = 0.
 
-Friction (3.3) enters as known loads computed from the previous approximation's reactions:
-a force f₃₄|N| against the slider's velocity, and moments f|R|r against the relative rotation
-in the revolute pairs A (f₁₂, r₁₂), B (f₂₃, r₂₃) and O (f₁₄, r₁₄) — the friction circles of
-radius ρ = f·r.  Approximation 1 has no friction; the iteration stops when the largest
-relative change of the reactions falls below ε_R (design step 17(d)); a growing change means
-self-locking.  Angles and moments are counter-clockwise internally; the crank turns clockwise in
+Friction (3.3): a force f₃₄|N| against the slider's velocity, and moments f|R|r against the relative
+rotation in the revolute pairs A (f₁₂, r₁₂), B (f₂₃, r₂₃) and O (f₁₄, r₁₄) — the friction circles of
+radius ρ = f·r.  The textbook computes it from the previous approximation's reactions (approximation 1
+without friction) until the relative change falls below ε_R (design step 17(d)); near the friction angle
+that series converges slowly (ratio f₃₄|tan ψ| → 1).  The answer is therefore the equilibrium solved
+directly to ε_R (equilibrium.py: Newton's method; self-locking where the rod's line of force, tangent to the
+friction circles, lies within the guide's friction angle, f₃₄|tan ψ'| ≥ 1, or where the equilibrium followed
+from zero friction folds); the textbook's approximations are kept as the table the page shows.  Angles and moments are counter-clockwise internally; the crank turns clockwise in
 the drawing (seed 000's convention), so the balancing moment is reported along ω₁.
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..dynamics.motion import Numerics
 from ..dynamics.motors import gas_force
 from ..mechanisms import MECHANISMS, Notice
 from ..mechanisms.base import angle_ranges, ranges_text
+from . import equilibrium
 
 G = 9.81
+SHOWN_APPROXIMATIONS = 60    # rows of the textbook's table at most; the answer is the direct solve
 
 
 @dataclass(frozen=True)
@@ -71,16 +77,20 @@ class ForceAnalysis:
     phi: np.ndarray
     points: dict                 # O, A, B, S2 positions (n, 2)
     applied: dict                # gravity, inertia forces and moments, piston force
-    approximations: list[Approximation] = field(default_factory=list)
+    approximations: list[Approximation] = field(default_factory=list)   # the textbook's table (shown)
+    solution: Approximation | None = None          # the equilibrium solved to ε_R: the answer
     balancing_moment: np.ndarray | None = None    # along ω₁, N·m
     R41: np.ndarray | None = None
     converged: np.ndarray | None = None
-    ratio: float | None = None                     # geometric rate of the iteration
+    ratios: np.ndarray | None = None               # the series' ratio q at each angle (NaN where it locks)
+    guide_ratio: np.ndarray | None = None          # f₃₄|tan ψ| at each angle
+    ratio: float | None = None                     # the largest q where it does not lock
+    numerics: dict | None = None
     notices: list[Notice] = field(default_factory=list)
 
     @property
     def final(self) -> Approximation:
-        return self.approximations[-1]
+        return self.solution
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -148,63 +158,100 @@ def friction_loads(pairs: Pairs, applied: dict, R12, R23, N, R41, omega1_ccw: fl
 
 
 def analyse(params: dict, loads: Loads, pairs: Pairs, phi: np.ndarray, tolerance: float = 1e-9,
-            max_iterations: int = 60) -> ForceAnalysis:
-    """Successive approximations of seed 002 §3.1 over all angles at once."""
+            shown: int = SHOWN_APPROXIMATIONS) -> ForceAnalysis:
+    """The friction equilibrium at every angle, solved to ε_R (equilibrium.solve), and the textbook's successive
+    approximations of seed 002 §3.1 beside it: the first ``shown`` of them, or fewer if they reach ε_R."""
+    clock = time.perf_counter()
     points, applied = motion(params, loads, phi)
     result = ForceAnalysis(phi, points, applied)
     omega1_ccw = -loads.omega                             # the crank turns clockwise
-    G1 = np.zeros((phi.size, 2))                          # a balanced crank: its weight acts at O
-    none = {"M2": np.zeros(phi.size), "M1": np.zeros(phi.size), "F34": np.zeros(phi.size),
-            "M_A": np.zeros(phi.size), "M_B": np.zeros(phi.size), "M_O": np.zeros(phi.size)}
-    friction = none
-    previous = None
-    changes = []
-    for _ in range(max_iterations):
-        R12, R23, N = solve_dyad(points, applied, friction)
-        R41 = R12 - G1
-        scale = np.maximum(np.linalg.norm(R12, axis=1), 1e-300)
-        change = None if previous is None else np.max(np.linalg.norm(R12 - previous, axis=1) / scale)
-        result.approximations.append(Approximation(R12, R23, N, friction, change))
-        if change is not None:
-            changes.append(change)
-            if change < tolerance or not np.isfinite(change) or change > 1e12:
-                break
-        if not any((pairs.f12, pairs.f23, pairs.f34, pairs.f14)):
-            break
-        previous = R12
-        friction = friction_loads(pairs, applied, R12, R23, N, R41, omega1_ccw)
-    per_angle = _per_angle_convergence(result, tolerance)
-    result.converged = per_angle
-    if len(changes) >= 3:
-        tail = [c for c in changes if c > 0]
-        if len(tail) >= 3:
-            result.ratio = float(np.exp(np.mean(np.diff(np.log(tail[-4:])))))
-    final = result.final
-    R41 = final.R12 - G1
-    result.R41 = R41
+    solved = equilibrium.solve(points, applied, pairs, omega1_ccw, tolerance, solve_dyad)
+    locked = solved.locked
+    result.approximations = textbook_approximations(points, applied, pairs, omega1_ccw, tolerance, shown, locked)
+    R12, R23, N = solve_dyad(points, applied, {"F34": solved.z[0], "M2": solved.z[1]})
+    friction = friction_loads(pairs, applied, R12, R23, N, R12, omega1_ccw)   # R₄₁ = R₁₂ (balanced crank)
+    R12, R23, N = solve_dyad(points, applied, friction)                        # in equilibrium with that friction
+    result.solution = Approximation(R12, R23, N, friction, None)
+    result.R41 = R12.copy()
     # crank: A×(−R₁₂) + M_b + M_in1 + M_fr on crank = 0 (CCW); report along ω₁ (clockwise)
-    ccw = -(cross(points["A"], -final.R12) + applied["M_in1"] + final.friction["M1"])
-    result.balancing_moment = -ccw
-    if not per_angle.all():
-        ranges = angle_ranges(phi, ~per_angle)
+    result.balancing_moment = -cross(points["A"], R12) + applied["M_in1"] + friction["M1"]
+    result.converged = solved.converged
+    result.ratios = np.where(locked, np.nan, solved.ratio)
+    result.guide_ratio = solved.guide_ratio
+    rough = any((pairs.f12, pairs.f23, pairs.f34, pairs.f14))
+    result.ratio = float(np.max(solved.ratio[~locked])) if rough and (~locked).any() else None
+    if locked.any():
+        ranges = angle_ranges(phi, locked)
         result.notices.append(Notice(
             "kinetostatics_self_locking", f"Self-locking: the successive approximations diverge for φ in "
             f"{ranges_text(ranges)}: friction grows faster than the reactions it comes from.", {"ranges": ranges}))
-        for approximation in result.approximations:       # no reaction, no friction where the series diverges
-            for name in ("R12", "R23"):
-                getattr(approximation, name)[~per_angle] = np.nan
-            approximation.N[~per_angle] = np.nan
-            for value in approximation.friction.values():
-                value[~per_angle] = np.nan
-        result.balancing_moment[~per_angle] = np.nan
-        result.R41[~per_angle] = np.nan
+        for approximation in (*result.approximations, result.solution):   # no reaction, no friction where it locks
+            for value in (approximation.R12, approximation.R23, approximation.N, *approximation.friction.values()):
+                value[locked] = np.nan
+        result.balancing_moment[locked] = np.nan
+        result.R41[locked] = np.nan
+    unconverged = ~locked & ~solved.converged
+    if unconverged.any():
+        ranges = angle_ranges(phi, unconverged)
+        reached = float(np.max(solved.error[unconverged]))
+        result.notices.append(Notice(
+            "kinetostatics_not_converged", f"The equilibrium with friction reached a relative error of "
+            f"{reached:.2g}, not ε_R = {tolerance:.2g}, for φ in {ranges_text(ranges)}: rounding or the work bound "
+            f"stopped it; the values there carry that error.",
+            {"reached": reached, "tolerance": float(tolerance), "ranges": ranges}))
+    result.numerics = numerics(result, solved, tolerance, rough, time.perf_counter() - clock)
     return result
 
 
-def _per_angle_convergence(result: ForceAnalysis, tolerance: float) -> np.ndarray:
-    """True where the last two approximations agree to the tolerance (or where there is no friction)."""
-    if len(result.approximations) < 2:
-        return np.ones(result.phi.size, bool)
-    last, before = result.approximations[-1].R12, result.approximations[-2].R12
-    change = np.linalg.norm(last - before, axis=1) / np.maximum(np.linalg.norm(last, axis=1), 1e-300)
-    return np.isfinite(change) & (change < max(tolerance, 1e-6) * 10)
+def textbook_approximations(points: dict, applied: dict, pairs: Pairs, omega1_ccw: float, tolerance: float,
+                            shown: int, locked: np.ndarray) -> list[Approximation]:
+    """Approximation 1 without friction, then friction from the previous reactions (3.3), until the largest
+    relative change of R₁₂ over the angles that do not lock is below ε_R (design step 17(d)) or ``shown``
+    approximations stand in the table (or the table has run away where the series' ratio q ≥ 1)."""
+    n = points["A"].shape[0]
+    friction = {key: np.zeros(n) for key in ("M2", "M1", "F34", "M_A", "M_B", "M_O")}
+    rough = any((pairs.f12, pairs.f23, pairs.f34, pairs.f14))
+    free = ~locked
+    table, previous = [], None
+    with np.errstate(over="ignore", invalid="ignore"):
+        while len(table) < (shown if rough else 1):
+            R12, R23, N = solve_dyad(points, applied, friction)
+            change = None
+            if previous is not None:
+                scale = np.maximum(np.linalg.norm(R12[free], axis=1), 1e-300)
+                change = float(np.max(np.linalg.norm(R12[free] - previous[free], axis=1) / scale, initial=0.0))
+            table.append(Approximation(R12, R23, N, friction, change))
+            if change is not None and (change < tolerance or not change < 1e12):    # done, or visibly run away
+                break
+            previous = R12
+            friction = friction_loads(pairs, applied, R12, R23, N, R12, omega1_ccw)
+    return table
+
+
+def numerics(result: ForceAnalysis, solved, tolerance: float, rough: bool, seconds: float) -> dict:
+    """How the reactions were found: the direct solve, its error, and how much of the textbook's series is shown."""
+    free = ~solved.locked
+    error = float(np.max(solved.error[free], initial=0.0))
+    shown = len(result.approximations)
+    ratio = result.ratio or 0.0
+    last = result.approximations[-1].change
+    complete = not rough or (last is not None and last < tolerance)
+    needed = shown if complete else int(np.ceil(np.log(tolerance) / np.log(ratio))) + 1 if 0 < ratio < 1 else None
+    if complete:
+        code, context = "approximations_complete", {"shown": shown}
+        message = f"the table shows all {shown} successive approximations down to ε_R"
+    elif ratio >= 1:
+        code, context = "approximations_diverge", {"shown": shown, "ratio": ratio}
+        message = (f"the textbook's series has the ratio {ratio:.3g} ≥ 1 at some angles and does not converge "
+                   f"there, though the mechanism does not lock; the table shows {shown} approximations; the "
+                   f"reactions come from Newton's solve")
+    else:
+        code, context = "approximations_truncated", {"shown": shown, "needed": needed, "ratio": ratio}
+        message = (f"the table shows the first {shown} successive approximations; at the ratio {ratio:.3g} the "
+                   f"series needs about {needed} to reach ε_R; the reactions come from Newton's solve")
+    return Numerics(
+        method="Newton's method on the friction equilibrium (the friction of (3.3) as unknowns), safeguarded by "
+               "the textbook's step; the textbook's successive approximations shown beside it",
+        rtol=float(tolerance), code="kinetostatics_newton", message_code=code, message_context=context,
+        iterations=solved.iterations, runtime_ms=1e3 * seconds, error_estimate=error if rough else 0.0,
+        message=message).as_dict()

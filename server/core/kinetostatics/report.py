@@ -8,20 +8,24 @@ from .crank_slider import ForceAnalysis, cross
 
 
 def efficiency(analysis: ForceAnalysis) -> dict:
-    """η = |A_useful|/A_driving over the cycle (seed 002 (3.38)), the crank driven at the given speed.
+    """η = |A_useful|/(|A_useful| + |A_friction|) over the cycle, the second form of seed 002 (3.38).
 
-    A_useful is the work against the piston force, A_driving the work of the balancing moment;
-    inertia and gravity do no net work over a cycle at constant speed, so A_driving − A_useful is
-    what the friction in the pairs consumes.
+    A_useful is the work against the piston force, A_friction what the pairs dissipate, each power divided by
+    ω₁: f₃₄|N||V_qB| in the guide, M_A|1 − u₂₁| and M_B|u₂₁| in the joints A and B, M_O in the main bearing
+    (the relative angular velocities over ω₁).  Both are non-negative, so 0 ≤ η ≤ 1, and η = 1 exactly
+    without friction.  A_driving, the work of the balancing moment, is reported beside them; it equals their
+    sum when inertia and gravity do no net work over the cycle (constant speed).
     """
-    phi = analysis.phi
-    useful = -analysis.applied["F_3p"][:, 0] * analysis.applied["u31"]       # power against the piston force / ω₁
+    phi, applied, friction = analysis.phi, analysis.applied, analysis.final.friction
+    useful = -applied["F_3p"][:, 0] * applied["u31"]                     # power against the piston force / ω₁
+    lost = (np.abs(friction["F34"] * applied["u31"]) + friction["M_A"] * np.abs(1 - applied["u21"])
+            + friction["M_B"] * np.abs(applied["u21"]) + friction["M_O"])
     driving = analysis.balancing_moment
-    if not np.isfinite(driving).all():
-        return {"efficiency": None, "work_useful": None, "work_driving": None}
-    a_useful, a_driving = float(np.trapezoid(useful, phi)), float(np.trapezoid(driving, phi))
-    return {"efficiency": abs(a_useful) / a_driving if a_driving > 0 else None,
-            "work_useful": a_useful, "work_driving": a_driving}
+    if not (np.isfinite(driving).all() and np.isfinite(lost).all()):
+        return {"efficiency": None, "work_useful": None, "work_driving": None, "work_friction": None}
+    a_useful, a_lost = abs(float(np.trapezoid(useful, phi))), float(np.trapezoid(lost, phi))
+    return {"efficiency": 1.0 if a_lost == 0 else a_useful / (a_useful + a_lost),
+            "work_useful": a_useful, "work_driving": float(np.trapezoid(driving, phi)), "work_friction": a_lost}
 
 
 def equilibrium_residuals(analysis: ForceAnalysis, k: int = -1) -> dict:
@@ -37,7 +41,9 @@ def equilibrium_residuals(analysis: ForceAnalysis, k: int = -1) -> dict:
 
 
 def forces_report(analysis: ForceAnalysis, pairs) -> dict:
-    """Everything the force scene draws: reactions, applied loads, friction, iteration, efficiency."""
+    """Everything the force scene draws: reactions, applied loads, friction, efficiency (all from the solved
+    equilibrium), and the textbook's approximations: their changes, the series' ratio q at each angle and the
+    guide's f₃₄|tan ψ| (self-locking where it reaches 1)."""
     final = analysis.final
     norm = lambda v: np.linalg.norm(v, axis=1)
     angle = lambda v: np.degrees(np.arctan2(v[:, 1], v[:, 0]))
@@ -54,8 +60,10 @@ def forces_report(analysis: ForceAnalysis, pairs) -> dict:
         "friction": {k: final.friction[k] for k in ("M_A", "M_B", "M_O", "F34")},
         "friction_circles": {"O": pairs.f14 * pairs.r14, "A": pairs.f12 * pairs.r12, "B": pairs.f23 * pairs.r23},
         "iteration": {"changes": [a.change for a in analysis.approximations], "ratio": analysis.ratio,
-                      "approximations": len(analysis.approximations)},
+                      "approximations": len(analysis.approximations), "ratios": analysis.ratios,
+                      "guide_ratio": analysis.guide_ratio},
         "converged": analysis.converged,
+        "numerics": analysis.numerics,
         **efficiency(analysis),
     }
 
