@@ -3,7 +3,9 @@
 For every scene (its first variant with sliders, and that variant's first slider) on a fresh page at 1400 × 900, from the page's own
 performance marks (web/static/js: controls_view, family_preview, *_scene):
   first visit     navigation start → the first exact answer drawn (exact-drawn)
-  family          the grab (pointer down: family-requested) → the family arrived (family-arrived)
+  family          the grab (pointer down: family-requested) → the coarse family arrived (family-coarse-arrived:
+                  "stage": "coarse", the 9 start members) and → the full one (family-full-arrived), which the
+                  page asks for when the coarse one has arrived; a server without stages answers only the full one
   input → drawn   each `input` event of the drag once the family is there (slider-input) → the preview
                   drawn (plots-drawn: Plotly.react's promise for every plot in view, the drawing updated)
   release → exact pointer up → the exact answer drawn (exact-drawn)
@@ -46,7 +48,7 @@ ANSWER_WAIT_S = 60
 
 # The page's marks and the bench's own (pointer up), as startTime in ms from navigation start.
 MARKS_JS = """() => Object.fromEntries(["slider-input", "plots-drawn", "family-requested", "family-arrived",
-  "exact-requested", "exact-drawn", "bench-release"].map((n) => [n, performance.getEntriesByName(n).map((e) => e.startTime)]))"""
+  "family-coarse-arrived", "family-full-arrived", "exact-requested", "exact-drawn", "bench-release"].map((n) => [n, performance.getEntriesByName(n).map((e) => e.startTime)]))"""
 RELEASE_MARK_JS = "document.addEventListener('pointerup', () => performance.mark('bench-release'), true);"
 
 
@@ -141,7 +143,7 @@ def measure_scene(browser, url: str, scene: dict) -> dict:
         page.on("pageerror", lambda error: problems.append(str(error)))
         held_routes = []
         if held:
-            page.route("**/api/v1/family?*", held_routes.append)
+            page.route("**/api/v1/family?*", lambda route: held_routes.append(route))
         page.goto(address)
         page.wait_for_function("() => performance.getEntriesByName('exact-drawn').length > 0",
                                timeout=ANSWER_WAIT_S * 1000)
@@ -163,7 +165,9 @@ def measure_scene(browser, url: str, scene: dict) -> dict:
             continue
         row["problems"] = problems
         requested, arrived = marks["family-requested"], marks["family-arrived"]
-        row["family_ms"] = arrived[0] - requested[0] if requested and arrived else None
+        for stage in ("coarse", "full"):
+            stage_arrived = marks[f"family-{stage}-arrived"]
+            row[f"{stage}_ms"] = stage_arrived[0] - requested[0] if requested and stage_arrived else None
         covered = [t for t in inputs if arrived and t >= arrived[0]]
         row["inputs"] = len(covered)
         row["input_ms"] = [after(marks["plots-drawn"], t) - t for t in covered if after(marks["plots-drawn"], t)]
@@ -179,15 +183,15 @@ def summary(values: list[float]) -> str:
 
 def table(rows: list[dict]) -> str:
     lines = [
-        "| scene | endpoint | slider | plots in view | first visit, ms | family after grab, ms "
-        "| input → preview drawn p50 / p95 / max, ms (inputs) | release → exact drawn, ms "
+        "| scene | endpoint | slider | plots in view | first visit, ms | coarse family after grab, ms "
+        "| full family after grab, ms | input → preview drawn p50 / p95 / max, ms (inputs) | release → exact drawn, ms "
         "| without family: input → next answer drawn p50 / p95 / max, ms | without family: release → exact drawn, ms |",
-        "|---|---|---|---:|---:|---:|---|---:|---|---:|"]
+        "|---|---|---|---:|---:|---:|---:|---|---:|---|---:|"]
     for r in rows:
-        family = f"{r['family_ms']:.0f}" if r["family_ms"] is not None else "no family"
+        coarse, full = (f"{r[k]:.0f}" if r[k] is not None else "—" for k in ("coarse_ms", "full_ms"))
         drawn = f"{summary(r['input_ms'])} ({len(r['input_ms'])}/{r['inputs']})"
         lines.append(f"| {r['scene']} | {r['endpoint']} | {r['slider']} | {r['graphs_in_view']} | {r['first_visit_ms']:.0f} "
-                     f"| {family} | {drawn} | {r['release_ms']:.0f} | {summary(r['old_input_ms'])} | {r['old_release_ms']:.0f} |")
+                     f"| {coarse} | {full} | {drawn} | {r['release_ms']:.0f} | {summary(r['old_input_ms'])} | {r['old_release_ms']:.0f} |")
     return "\n".join(lines)
 
 
@@ -234,7 +238,8 @@ def main() -> None:
         f"{MOVE_PAUSE_S * 1000:.0f} ms apart over {DRAG_FRACTION:.0%} of the slider's track.",
         "",
         "Times from the page's performance marks. *first visit*: navigation start → the first exact answer drawn "
-        "(a fresh browser context). *family after grab*: pointer down → the family arrived. *input → preview drawn*: "
+        "(a fresh browser context). *coarse / full family after grab*: pointer down → the coarse family arrived "
+        "(\"stage\": \"coarse\"; — where the server has no stages), → the full one. *input → preview drawn*: "
         "a slider `input` event once the family is there → every plot in view redrawn from the family "
         "(Plotly.react's promise) and the drawing updated; inputs counted are those that had a preview drawn. "
         "*release → exact drawn*: pointer up → the exact answer drawn in every plot in view. The last two columns are "

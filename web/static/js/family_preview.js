@@ -30,6 +30,7 @@ import { familyKey, interpolate, memberInterval } from "./family_model.js";
 
 const KEPT = 4;     // families kept on the page: the latest asked (a family may hold several MB)
 const STAGES = ["coarse", "full"];
+const NOT_REFUSED = new Set(["network", "server"]);    // failures that say nothing of whether stages are taken
 
 export class FamilyPreview extends Emitter {
   #families = new Map();     // familyKey → the family, or null while it is on its way
@@ -101,7 +102,7 @@ export class FamilyPreview extends Emitter {
     this.client.submit(`${stage} ${key}`, asked, (answer) => {
       if (!this.#families.has(key)) return;                         // dropped meanwhile
       const coarse = answer.ok && answer.data.numerics?.stage === "coarse";
-      if (stage === "coarse" && !answer.ok && answer.error.code !== "network") this.#staged = false;
+      if (stage === "coarse" && !answer.ok && !NOT_REFUSED.has(answer.error.code)) this.#staged = false;   // a 422
       if (stage === "coarse" && !(answer.ok && !coarse)) this.#send(key, body, "full");
       if (!answer.ok) {            // no family: dragging stays as without one, the next grab asks again
         if (stage === "full" && !this.#families.get(key)) this.#families.delete(key);
