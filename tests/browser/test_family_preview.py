@@ -313,12 +313,16 @@ def test_the_preview_is_drawn_from_the_coarse_family_then_from_the_full_one(fami
     assert held.held                                                  # on its way
 
     shown = drawn(page)
+    numbers = page.inner_text(".flywheel-numbers") if scene == "flywheel" else None
     start = fraction(page, f"#slider-{slider}")
     step = 0.06 if start < 0.5 else -0.06
     drag_through(page, x, y, [start + step, start + 2 * step])
     assert drawn(page) != shown
     assert marks(page, "preview-coarse") > 0 and marks(page, "preview-full") == 0
     assert preview_shown(page)
+    if numbers:                                  # the disk's numbers stay those of the exact answer, dimmed
+        assert page.inner_text(".flywheel-numbers") == numbers
+        assert page.eval_on_selector(".flywheel-numbers", "e => Number(getComputedStyle(e).opacity)") < 1
 
     shown = drawn(page)
     held.release()

@@ -132,7 +132,7 @@ export class DynamicsView {
     for (const panel of this.panels) {
       if (panel.figure.hidden || panel.loading) continue;
       if (panel.graph) panel.stale ||= holdsPanel(panel, data);
-      else if (panel.view?.drawAt && panel.view.holds?.(data)) drawn.push(panel.view.preview?.(data) ?? panel.view.show(data));
+      else if (panel.view?.drawAt && panel.view.holds?.(data)) drawn.push(panel.view.preview ? panel.view.preview(data) : panel.view.show(data));
     }
     return Promise.all([...drawn, this.scheduler.drawNow()]);
   }

@@ -45,6 +45,7 @@ function withFlywheel(base, radius) {
         hub.setAttribute("r", HUB * r);
         for (const [name, value] of [["x1", cx - r], ["y1", y], ["x2", cx + r], ["y2", y]]) line.setAttribute(name, value);
         label.setAttribute("y", y - 4);
+        for (const mark of [line, label]) mark.setAttribute("visibility", r > 0 ? "visible" : "hidden");
       };
       this.resize(radius);
       base.frame?.(layer, scale, params, table);
@@ -105,7 +106,7 @@ export class FlywheelDrawingView {
   /** A preview's disk (an answer interpolated from a slider's family) redrawn in place; the numbers stay. */
   preview(data) {
     const diameter = pathValue(data, this.spec.disk)?.diameter;
-    if (!this.drawing?.resize || !(diameter > 0)) return;
+    if (!this.drawing?.resize || !(diameter >= 0)) return;     // no disk drawn: the preview leaves the drawing
     this.drawing.resize(diameter / 2);
     this.linkage.drawAt(this.phi);
   }
