@@ -3,7 +3,9 @@
 For every scene (its first variant with sliders, and that variant's first slider) on a fresh page at 1400 × 900, from the page's own
 performance marks (web/static/js: controls_view, family_preview, *_scene):
   first visit     navigation start → the first exact answer drawn (exact-drawn)
-  family          the grab (pointer down: family-requested) → the family arrived (family-arrived)
+  family          the grab (pointer down: family-requested) → the coarse family arrived (family-coarse-arrived:
+                  "stage": "coarse", the 9 start members) and → the full one (family-full-arrived), which the
+                  page asks for when the coarse one has arrived; a server without stages answers only the full one
   input → drawn   each `input` event of the drag once the family is there (slider-input) → the preview
                   drawn (plots-drawn: Plotly.react's promise for every plot in view, the drawing updated)
   release → exact pointer up → the exact answer drawn (exact-drawn)
@@ -15,7 +17,11 @@ MOVE_PAUSE_S apart, and released. The app runs under uvicorn on a free loopback 
 tests start it); Chromium is Debian's /usr/bin/chromium, headless. A run prints a Markdown table and
 writes it to bench/results/browser.md.
 
-    python bench/browser.py [--scenes transfer_functions,flywheel] [--out bench/results/browser.md]
+With --stages, each scene's family (the body the page sent on the grab) is then asked for over HTTP in three
+ways, each on a fresh family: coarse, then full once the coarse has arrived (the page's way); both at once; the
+full one alone (the page before stages).
+
+    python bench/browser.py [--scenes transfer_functions,flywheel] [--stages] [--out bench/results/browser.md]
 """
 from __future__ import annotations
 
@@ -29,6 +35,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import httpx
@@ -46,7 +53,7 @@ ANSWER_WAIT_S = 60
 
 # The page's marks and the bench's own (pointer up), as startTime in ms from navigation start.
 MARKS_JS = """() => Object.fromEntries(["slider-input", "plots-drawn", "family-requested", "family-arrived",
-  "exact-requested", "exact-drawn", "bench-release"].map((n) => [n, performance.getEntriesByName(n).map((e) => e.startTime)]))"""
+  "family-coarse-arrived", "family-full-arrived", "exact-requested", "exact-drawn", "bench-release"].map((n) => [n, performance.getEntriesByName(n).map((e) => e.startTime)]))"""
 RELEASE_MARK_JS = "document.addEventListener('pointerup', () => performance.mark('bench-release'), true);"
 
 
@@ -122,6 +129,12 @@ def drag(page, slider_id: str, direction: int, hold_family: bool) -> dict:
     else:
         page.wait_for_function("n => performance.getEntriesByName('exact-drawn').length > n", arg=drawn,
                                timeout=ANSWER_WAIT_S * 1000)
+    if family:                       # the full family may come after the drag: its arrival is measured still
+        try:
+            page.wait_for_function("() => performance.getEntriesByName('family-full-arrived').length > 0",
+                                   timeout=FAMILY_WAIT_S * 1000)
+        except Exception:            # noqa: BLE001 - it never came: the table says so
+            pass
     marks = page.evaluate(MARKS_JS)
     marks["family_in_time"] = family
     return marks
@@ -140,8 +153,11 @@ def measure_scene(browser, url: str, scene: dict) -> dict:
         problems = []
         page.on("pageerror", lambda error: problems.append(str(error)))
         held_routes = []
+        if not held:
+            page.on("request", lambda r: "/api/v1/family?" in r.url and "family_body" not in row
+                    and row.__setitem__("family_body", json.loads(r.post_data)))
         if held:
-            page.route("**/api/v1/family?*", held_routes.append)
+            page.route("**/api/v1/family?*", lambda route: held_routes.append(route))
         page.goto(address)
         page.wait_for_function("() => performance.getEntriesByName('exact-drawn').length > 0",
                                timeout=ANSWER_WAIT_S * 1000)
@@ -163,12 +179,66 @@ def measure_scene(browser, url: str, scene: dict) -> dict:
             continue
         row["problems"] = problems
         requested, arrived = marks["family-requested"], marks["family-arrived"]
-        row["family_ms"] = arrived[0] - requested[0] if requested and arrived else None
+        for stage in ("coarse", "full"):
+            stage_arrived = marks[f"family-{stage}-arrived"]
+            row[f"{stage}_ms"] = stage_arrived[0] - requested[0] if requested and stage_arrived else None
         covered = [t for t in inputs if arrived and t >= arrived[0]]
         row["inputs"] = len(covered)
         row["input_ms"] = [after(marks["plots-drawn"], t) - t for t in covered if after(marks["plots-drawn"], t)]
         row["release_ms"] = after(marks["exact-drawn"], release) - release
     return row
+
+
+def nudged(body: dict, k: int) -> dict:
+    """The family body with its first fixed (not varied) non-zero float × (1 + 1e-7·k): a family that neither
+    the response cache nor the server's memo of members holds, the same work as the scene's own."""
+    body = json.loads(json.dumps(body))
+    varied = {item["path"] for item in body["vary"]}
+
+    def nudge(node: dict, prefix: str) -> bool:
+        for key, value in node.items():
+            if isinstance(value, float) and value and f"{prefix}{key}" not in varied:
+                node[key] = value * (1 + 1e-7 * k)
+                return True
+            if isinstance(value, dict) and nudge(value, f"{prefix}{key}."):
+                return True
+        return False
+
+    nudge(body["request"], "")
+    return body
+
+
+def stage_orders(url: str, row: dict, k: int) -> dict:
+    """Family arrival in ms after the grab for three ways of asking (each on a fresh family): coarse, then full
+    when the coarse has arrived (the page's way); both at once; the full one alone (the page before stages)."""
+    coarse = row["family_body"]
+    address = f"{url}/api/v1/family?lang=en"
+
+    def ask(body: dict, started: float) -> float:
+        reply = httpx.post(address, json=body, timeout=FAMILY_WAIT_S)
+        reply.raise_for_status()
+        return (time.perf_counter() - started) * 1000
+
+    full = lambda body: {key: value for key, value in body.items() if key != "stage"}
+    body = nudged(coarse, 3 * k)
+    started = time.perf_counter()
+    sequential = (ask(body, started), ask(full(body), started))
+    body = nudged(coarse, 3 * k + 1)
+    started = time.perf_counter()
+    with ThreadPoolExecutor(2) as pool:
+        together = tuple(f.result() for f in [pool.submit(ask, body, started), pool.submit(ask, full(body), started)])
+    alone = ask(full(nudged(coarse, 3 * k + 2)), time.perf_counter())
+    return {"sequential": sequential, "together": together, "alone": alone}
+
+
+def stage_table(rows: list[dict]) -> str:
+    lines = ["| scene | coarse, then full: coarse / full, ms | both at once: coarse / full, ms | full alone, ms |",
+             "|---|---:|---:|---:|"]
+    for r in rows:
+        if "stages" in r:
+            (c1, f1), (c2, f2), alone = r["stages"]["sequential"], r["stages"]["together"], r["stages"]["alone"]
+            lines.append(f"| {r['scene']} | {c1:.0f} / {f1:.0f} | {c2:.0f} / {f2:.0f} | {alone:.0f} |")
+    return "\n".join(lines)
 
 
 def summary(values: list[float]) -> str:
@@ -179,15 +249,15 @@ def summary(values: list[float]) -> str:
 
 def table(rows: list[dict]) -> str:
     lines = [
-        "| scene | endpoint | slider | plots in view | first visit, ms | family after grab, ms "
-        "| input → preview drawn p50 / p95 / max, ms (inputs) | release → exact drawn, ms "
+        "| scene | endpoint | slider | plots in view | first visit, ms | coarse family after grab, ms "
+        "| full family after grab, ms | input → preview drawn p50 / p95 / max, ms (inputs) | release → exact drawn, ms "
         "| without family: input → next answer drawn p50 / p95 / max, ms | without family: release → exact drawn, ms |",
-        "|---|---|---|---:|---:|---:|---|---:|---|---:|"]
+        "|---|---|---|---:|---:|---:|---:|---|---:|---|---:|"]
     for r in rows:
-        family = f"{r['family_ms']:.0f}" if r["family_ms"] is not None else "no family"
+        coarse, full = (f"{r[k]:.0f}" if r[k] is not None else "—" for k in ("coarse_ms", "full_ms"))
         drawn = f"{summary(r['input_ms'])} ({len(r['input_ms'])}/{r['inputs']})"
         lines.append(f"| {r['scene']} | {r['endpoint']} | {r['slider']} | {r['graphs_in_view']} | {r['first_visit_ms']:.0f} "
-                     f"| {family} | {drawn} | {r['release_ms']:.0f} | {summary(r['old_input_ms'])} | {r['old_release_ms']:.0f} |")
+                     f"| {coarse} | {full} | {drawn} | {r['release_ms']:.0f} | {summary(r['old_input_ms'])} | {r['old_release_ms']:.0f} |")
     return "\n".join(lines)
 
 
@@ -202,6 +272,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--scenes", help="comma-separated scene file names (content/scenes/<name>.json); all by default")
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "results" / "browser.md")
+    parser.add_argument("--stages", action="store_true", help="also time the ways of asking for the two stages")
     args = parser.parse_args()
     chosen = scenes()
     if args.scenes:
@@ -220,6 +291,10 @@ def main() -> None:
                     rows.append(measure_scene(browser, url, scene))
                     print(table(rows[-1:]).splitlines()[-1], flush=True)
                 browser.close()
+            for k, row in enumerate(rows):
+                if args.stages and row.get("family_body", {}).get("stage") == "coarse":
+                    row["stages"] = stage_orders(url, row, k)
+                    print(stage_table([row]).splitlines()[-1], flush=True)
         finally:
             server.terminate()
             server.wait(timeout=10)
@@ -234,7 +309,8 @@ def main() -> None:
         f"{MOVE_PAUSE_S * 1000:.0f} ms apart over {DRAG_FRACTION:.0%} of the slider's track.",
         "",
         "Times from the page's performance marks. *first visit*: navigation start → the first exact answer drawn "
-        "(a fresh browser context). *family after grab*: pointer down → the family arrived. *input → preview drawn*: "
+        "(a fresh browser context). *coarse / full family after grab*: pointer down → the coarse family arrived "
+        "(\"stage\": \"coarse\"; — where the server has no stages), → the full one. *input → preview drawn*: "
         "a slider `input` event once the family is there → every plot in view redrawn from the family "
         "(Plotly.react's promise) and the drawing updated; inputs counted are those that had a preview drawn. "
         "*release → exact drawn*: pointer up → the exact answer drawn in every plot in view. The last two columns are "
@@ -243,6 +319,8 @@ def main() -> None:
         "",
         table(rows),
         "",
+        *(["Asking for the two stages (--stages; over HTTP, no browser, each on a family nobody asked before): "
+           "times after the first request was sent.", "", stage_table(rows), ""] if args.stages else []),
         *(["Page errors: " + "; ".join(problems), ""] if problems else []),
     ])
     args.out.parent.mkdir(parents=True, exist_ok=True)

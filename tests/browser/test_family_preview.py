@@ -1,12 +1,14 @@
-"""Dragging is a lookup (issue 13): grabbing a slider asks once for its family (POST /api/v1/family), the
-drag is drawn from it as a marked preview without a request, and the exact answer replaces the preview
-when the slider rests. On the transfer-functions scene (crank-slider, λ) and on the equation-of-motion
-scene (λ, a slider with a scale: params.l2 = λ·params.l1).
+"""Dragging is a lookup (issue 13): grabbing a slider asks for its family (POST /api/v1/family), first the
+coarse one ("stage": "coarse", the 9 start members) and, once it has arrived, the full one; the drag is drawn
+from the best family there as a marked preview without a request, and the exact answer replaces the preview
+when the slider rests. On the transfer-functions scene (crank-slider, λ), the equation-of-motion scene (λ, a
+slider with a scale: params.l2 = λ·params.l1) and the flywheel scene ([δ], a logarithmic slider).
 
-When the app has no /api/v1/family yet (it is built beside this page), the tests answer it with a double
-(FamilyDouble): the contract's answer assembled from the app's own answers of the scene's endpoint at
-evenly spaced members, so the page is still checked against the app's exact answers. With the real
-endpoint present the double is not installed.
+When the app has no /api/v1/family yet, or one that does not take "stage" (the two are built beside this
+page), the tests answer it with a double (FamilyDouble): the contract's answer assembled from the app's own
+answers of the scene's endpoint at evenly spaced members (9 for the coarse stage, 17 for the full one), so the
+page is still checked against the app's exact answers. With the real endpoint present the double is not
+installed.
 """
 from __future__ import annotations
 
@@ -23,7 +25,7 @@ from conftest import interface_texts, screenshot
 pytestmark = pytest.mark.browser
 
 GRAPH = "document.querySelector(`#panel-${id} .graph`)"
-MEMBERS = 9                    # the double's family: the contract's starting members, evenly spaced
+MEMBERS = {"coarse": 9, "full": 17}     # the double's families: the contract's 9 start members, then more
 
 
 def set_path(body: dict, path: str, value) -> None:
@@ -44,8 +46,10 @@ class FamilyDouble:
         family = json.loads(route.request.post_data)
         lang = parse_qs(urlparse(route.request.url).query).get("lang", ["ru"])[0]
         low, high = family["min"], family["max"]
-        values = [low * (high / low) ** (k / (MEMBERS - 1)) if family["log"] else low + (high - low) * k / (MEMBERS - 1)
-                  for k in range(MEMBERS)]
+        stage = family.get("stage", "full")
+        count = MEMBERS[stage]
+        values = [low * (high / low) ** (k / (count - 1)) if family["log"] else low + (high - low) * k / (count - 1)
+                  for k in range(count)]
         answers, errors = [], []
         for value in values:
             body = copy.deepcopy(family["request"])
@@ -58,8 +62,34 @@ class FamilyDouble:
             errors.append({"code": detail.get("ctx", {}).get("code"), "message": detail["msg"]} if refused else None)
         route.fulfill(status=200, content_type="application/json", body=json.dumps({
             "values": values, "answers": answers, "errors": errors, "interpolation_error": None, "tolerance": 0.005,
-            "numerics": {"method": "test double: the app's answers at evenly spaced members", "points": MEMBERS,
-                         "checked": 0, "runtime_ms": 0, "message": ""}}))
+            "numerics": {"method": "test double: the app's answers at evenly spaced members", "points": count,
+                         "checked": 0, "runtime_ms": 0, "message": "", "stage": stage}}))
+
+
+def takes_stages(app_url: str) -> bool:
+    """Whether the app's /api/v1/family exists and takes "stage" (its refusal of an empty body names no stage)."""
+    reply = httpx.post(f"{app_url}/api/v1/family", json={"stage": "coarse"})
+    return reply.status_code != 404 and not any(d["loc"][-1] == "stage" for d in reply.json()["detail"])
+
+
+class HeldFull:
+    """Holds the page's full-family requests (those without "stage": "coarse") until release(), so that a test
+    sees the preview drawn from the coarse family first. Registered after the double, so it is asked first."""
+
+    def __init__(self, page):
+        self.held = []
+        page.route("**/api/v1/family?*", self._hold)
+
+    def _hold(self, route) -> None:
+        if json.loads(route.request.post_data).get("stage") == "coarse":
+            route.fallback()
+        else:
+            self.held.append(route)
+
+    def release(self) -> None:
+        for route in self.held:
+            route.fallback()
+        self.held = []
 
 
 @pytest.fixture
@@ -67,7 +97,7 @@ def family_page(browser_page, app_url):
     """The browser page, with the family double when the app has no /api/v1/family, and a log of the
     computing requests it sends: page.sent = [(endpoint, body)]."""
     page = browser_page
-    if httpx.post(f"{app_url}/api/v1/family", json={}).status_code == 404:
+    if not takes_stages(app_url):
         FamilyDouble(page, app_url)
     page.sent = []
     page.on("request", lambda r: "/api/v1/" in r.url and r.method == "POST" and page.sent.append(
@@ -142,7 +172,8 @@ def test_transfer_functions_drag_is_drawn_from_the_family_and_ends_on_the_exact_
     page.wait_for_load_state("networkidle")
     before = len(page.sent)
     x, y = grab(page, "#slider-lambda")
-    family, = sent(page, "family", before)
+    family = sent(page, "family", before)[0]
+    assert family["stage"] == "coarse"
     assert family["endpoint"] == "kinematics" and family["log"] is False
     assert (family["min"], family["max"]) == (1.05, 8)
     assert family["vary"] == [{"path": "params.l2", "factor": family["request"]["params"]["l1"]}]
@@ -175,7 +206,7 @@ def test_transfer_functions_drag_is_drawn_from_the_family_and_ends_on_the_exact_
     assert not page.is_visible(".preview-note")
     assert plotted(page, "u31") == answer["outputs"]["u31"]
     assert plotted(page, "position") == answer["outputs"]["s"]
-    assert len(sent(page, "family", before)) == 1
+    assert [body.get("stage") for body in sent(page, "family", before)] == ["coarse", None]   # then the full one
     assert page.problems == []
 
 
@@ -206,7 +237,7 @@ def test_keyboard_focus_asks_for_the_family_and_each_key_press_ends_exact(family
     before = len(page.sent)
     page.focus("#slider-lambda")
     page.wait_for_function("() => performance.getEntriesByName('family-arrived').length > 0", timeout=60_000)
-    assert len(sent(page, "family", before)) == 1
+    assert sent(page, "family", before)[0]["stage"] == "coarse"
     with page.expect_response(lambda r: "/api/v1/kinematics?" in r.url) as response:
         page.keyboard.press("ArrowRight")                          # λ 3.00 → 3.01
     answer = response.value.json()
@@ -224,7 +255,7 @@ def test_equation_of_motion_lambda_drag_is_drawn_from_the_family(family_page):
     page.wait_for_load_state("networkidle")
     before = len(page.sent)
     x, y = grab(page, "#slider-lambda")
-    family, = sent(page, "family", before)
+    family = sent(page, "family", before)[0]
     assert family["endpoint"] == "motion"
     assert family["vary"] == [{"path": "params.l2", "factor": family["request"]["params"]["l1"]}]
 
@@ -235,20 +266,118 @@ def test_equation_of_motion_lambda_drag_is_drawn_from_the_family(family_page):
     assert preview_shown(page)
     assert page.inner_text("#panel-figures") == figures           # numbers stay those of the exact answer
     assert page.eval_on_selector("#panel-figures", "e => Number(getComputedStyle(e).opacity)") < 1
+    # t(φ) lies below the fold: drawn from the exact answer in an idle moment, so the whole page shows it
+    page.wait_for_function("() => document.querySelector('#panel-time .graph path.js-line')?.getAttribute('d')?.length > 100")
+    assert page.is_visible("#panel-time") and plotted(page, "time")
     screenshot(page, "family_preview_equation_of_motion_ru")
+    time_curve = curves(page, "time")
+    page.locator("#panel-time").scroll_into_view_if_needed()       # scrolled into view: the preview drawn there
+    page.wait_for_function("d => document.querySelector('#panel-time .graph path.js-line').getAttribute('d') !== d",
+                           arg=time_curve[0])
 
     answer = release_and_wait_for_exact(page, "motion")
     exact, = sent(page, "motion", before)
     assert exact["params"]["l2"] == pytest.approx(float(page.input_value("#slider-lambda")) * exact["params"]["l1"])
     page.wait_for_function("() => !document.querySelector('.scene-layout.preview')")
-    assert plotted(page, "omega_phi") == answer["omega"]
+    # ω(φ), scrolled out of view above, gets the exact answer in an idle moment
+    page.wait_for_function("y => { const shown = document.querySelector('#panel-omega_phi .graph').data[0].y;"
+                           " return shown.length === y.length && shown.every((v, i) => v === y[i]); }", arg=answer["omega"])
     assert page.inner_text("#panel-figures") != figures
     assert page.problems == []
 
 
+def wittenbauer_paths(page) -> list[str]:
+    return page.eval_on_selector_all("#panel-wittenbauer .scatterlayer path.js-line", "ps => ps.map((p) => p.getAttribute('d'))")
+
+
+@pytest.mark.parametrize("scene, variant, slider, ready, drawn", [
+    ("transfer-functions", "slider_crank", "lambda", "#panel-u31 .graph path.js-line", lambda page: curves(page, "u31")),
+    ("flywheel", "rig", "delta", "#panel-wittenbauer .graph path.js-line",
+     lambda page: [page.get_attribute(".flywheel-disk", "r"), *wittenbauer_paths(page)])])
+def test_the_preview_is_drawn_from_the_coarse_family_then_from_the_full_one(family_page, scene, variant, slider, ready, drawn):
+    """The coarse family is asked first; the full one only once the coarse one has arrived (the server reuses
+    its members); the drag is drawn from the coarse one until the full one arrives, which redraws the preview
+    and draws the rest of the drag. The flywheel's own views (its drawing's disk, Wittenbauer's diagram) follow."""
+    page = family_page
+    held = HeldFull(page)
+    page.goto(f"/scenes/{scene}?lang=ru&variant={variant}")
+    page.wait_for_selector(ready, state="attached")
+    page.wait_for_load_state("networkidle")
+    before = len(page.sent)
+    x, y = grab(page, f"#slider-{slider}")
+    page.wait_for_function("() => performance.getEntriesByName('family-coarse-arrived').length === 1")
+    page.wait_for_function("() => performance.getEntriesByName('family-full-arrived').length === 0")
+    coarse, full = sent(page, "family", before)
+    assert coarse["stage"] == "coarse" and "stage" not in full       # the full family: the server's default
+    assert {**coarse, "stage": None} == {**full, "stage": None}
+    assert held.held                                                  # on its way
+
+    shown = drawn(page)
+    numbers = page.inner_text(".flywheel-numbers") if scene == "flywheel" else None
+    start = fraction(page, f"#slider-{slider}")
+    step = 0.06 if start < 0.5 else -0.06
+    drag_through(page, x, y, [start + step, start + 2 * step])
+    assert drawn(page) != shown
+    assert marks(page, "preview-coarse") > 0 and marks(page, "preview-full") == 0
+    assert preview_shown(page)
+    if numbers:                                  # the disk's numbers stay those of the exact answer, dimmed
+        assert page.inner_text(".flywheel-numbers") == numbers
+        assert page.eval_on_selector(".flywheel-numbers", "e => Number(getComputedStyle(e).opacity)") < 1
+
+    shown = drawn(page)
+    held.release()
+    page.wait_for_function("() => performance.getEntriesByName('preview-full').length > 0")   # redrawn, not moved
+    page.wait_for_function("() => performance.getEntriesByName('family-full-arrived').length === 1")
+    coarse_frames = marks(page, "preview-coarse")
+    drag_through(page, x, y, [start + 3 * step])
+    assert drawn(page) != shown
+    assert marks(page, "preview-coarse") == coarse_frames and preview_shown(page)
+    screenshot(page, f"family_preview_{scene}_full_family_ru")
+    release_and_wait_for_exact(page, scene_endpoint(scene))
+    assert len(sent(page, "family", before)) == 2
+    assert page.problems == []
+
+
+def scene_endpoint(scene: str) -> str:
+    return "kinematics" if scene == "transfer-functions" else scene.replace("-", "_")
+
+
+def test_a_server_without_stages_gets_one_full_family(family_page):
+    """A server that refuses "stage" (422, an older one) is asked for the full family without it, and the
+    drag is drawn from that family; the next grab asks for the full family at once."""
+    page = family_page
+
+    def refuse_stage(route):
+        if "stage" in json.loads(route.request.post_data):
+            route.fulfill(status=422, content_type="application/json", body=json.dumps({"detail": [
+                {"type": "extra_forbidden", "loc": ["body", "stage"], "msg": "Extra inputs are not permitted"}]}))
+        else:
+            route.fallback()
+
+    page.route("**/api/v1/family?*", refuse_stage)
+    page.goto("/scenes/transfer-functions?lang=en&variant=slider_crank")
+    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="u31")
+    page.wait_for_load_state("networkidle")
+    before = len(page.sent)
+    x, y = grab(page, "#slider-lambda")
+    assert [body.get("stage") for body in sent(page, "family", before)] == ["coarse", None]
+    shown = curves(page, "u31")
+    drag_through(page, x, y, [0.35, 0.4])
+    assert curves(page, "u31") != shown and marks(page, "preview-full") > 0 and marks(page, "preview-coarse") == 0
+    release_and_wait_for_exact(page, "kinematics")
+
+    again = len(page.sent)
+    page.focus("#slider-offset")                                      # another slider, another family
+    page.wait_for_function("() => performance.getEntriesByName('family-arrived').length > 1", timeout=60_000)
+    assert [body.get("stage") for body in sent(page, "family", again)] == [None]
+    # the browser reports the refused request itself as a console error; nothing else may appear
+    assert [p for p in page.problems if "422" not in p] == []
+
+
 @pytest.mark.parametrize("scene, variant, slider, panel, ready", [
     ("transfer-functions", "slider_crank", "lambda", "u31", "#linkage svg .moving line"),
-    ("equation-of-motion", "linear", "lambda", "omega_phi", "#panel-portrait:not([hidden])")])
+    ("equation-of-motion", "linear", "lambda", "omega_phi", "#panel-portrait:not([hidden])"),
+    ("flywheel", "rig", "delta", "wittenbauer", "#panel-wittenbauer .graph path.js-line")])
 def test_preview_on_a_phone(family_page, scene, variant, slider, panel, ready):
     """On a phone the plots are below the controls: the slider and the mark are in view during the drag, and
     a plot scrolled into view while the slider is held shows the preview."""
@@ -334,4 +463,33 @@ def test_curves_moved_in_place_lie_where_plotly_draws_them(family_page):
             assert ours[0] == pytest.approx(plotly[0], abs=0.1) and ours[-1] == pytest.approx(plotly[-1], abs=0.1), panel
             ours_set = {(round(x), round(y)) for x, y in ours}
             assert all((round(x), round(y)) in ours_set for x, y in plotly[:: max(1, len(plotly) // 50)]), panel
+    assert page.problems == []
+
+
+def test_markers_and_labels_moved_in_place_lie_where_plotly_draws_them(family_page):
+    """On Wittenbauer's diagram (curve, tangents reaching past the axes, the touch points' markers, the segment ab
+    with its markers and labels a, b) family_plot.js places every marker and label where Plotly placed it, given
+    the figure Plotly has just drawn, to a tenth of a pixel; the lines as in the test above."""
+    page = family_page
+    page.goto("/scenes/flywheel?lang=en&variant=rig")
+    page.wait_for_function("() => document.querySelector('#panel-wittenbauer .graph')?._fullData?.length > 0")
+    result = page.evaluate("""async () => {
+        const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
+        const { moveCurves } = await import(new URL("family_plot.js", src));
+        const graph = document.querySelector("#panel-wittenbauer .graph");
+        const placed = () => ({
+          markers: [...graph.querySelectorAll(".scatterlayer .points path.point")].map((p) => p.getAttribute("transform")),
+          texts: [...graph.querySelectorAll(".scatterlayer .text text")].map((t) => [t.getAttribute("x"), t.getAttribute("y")]),
+          lines: [...graph.querySelectorAll(".scatterlayer path.js-line")].length });
+        const plotly = placed();
+        return { plotly, moved: moveCurves(graph, graph.data), ours: placed() };
+    }""")
+    assert result["moved"]
+    plotly, ours = result["plotly"], result["ours"]
+    assert len(plotly["markers"]) >= 4 and len(plotly["texts"]) >= 2 and ours["lines"] == plotly["lines"] >= 3
+    numbers = lambda transform: [float(v) for v in transform.replace("translate(", "").rstrip(")").split(",")]
+    for mine, theirs in zip(ours["markers"], plotly["markers"], strict=True):
+        assert numbers(mine) == pytest.approx(numbers(theirs), abs=0.1)
+    for mine, theirs in zip(ours["texts"], plotly["texts"], strict=True):
+        assert [float(v) for v in mine] == pytest.approx([float(v) for v in theirs], abs=0.1)
     assert page.problems == []

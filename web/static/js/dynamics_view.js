@@ -128,12 +128,13 @@ export class DynamicsView {
   preview(data) {
     if (!this.data) return Promise.resolve();
     this.plotted = data;
+    const drawn = [];
     for (const panel of this.panels) {
       if (panel.figure.hidden || panel.loading) continue;
       if (panel.graph) panel.stale ||= holdsPanel(panel, data);
-      else if (panel.view?.drawAt && panel.view.holds?.(data)) panel.view.show(data);
+      else if (panel.view?.drawAt && panel.view.holds?.(data)) drawn.push(panel.view.preview ? panel.view.preview(data) : panel.view.show(data));
     }
-    return this.scheduler.drawNow();
+    return Promise.all([...drawn, this.scheduler.drawNow()]);
   }
 
   /** Resolves once every graph in view shows what it was last given. */

@@ -1,11 +1,12 @@
 /**
- * A preview frame's fast path for a Plotly graph: the line curves (scatter, scatterpolar) of a figure of
- * the same shape as the one drawn are moved in place — each line's SVG path is recomputed through the axes Plotly laid out — with
+ * A preview frame's fast path for a Plotly graph: the curves (scatter, scatterpolar: lines, markers, text) of
+ * a figure of the same shape as the one drawn are moved in place — each line's SVG path, marker and label is
+ * placed anew through the axes Plotly laid out — with
  * no Plotly.react (whose full replot, axes and annotations included, takes several frames for a scene's
  * plots). Only what a preview needs: the axes, titles, special-position marks and hover data stay those
  * of the last drawing until the next Plotly.react (the exact answer). Where that would mislead or cannot
- * be done — a curve leaving the drawn axes' range, a trace that is not a plain line, a different number
- * of traces or of gaps — it answers false and the caller draws with Plotly.react.
+ * be done — a curve leaving the drawn axes' range, a trace of another kind or mode, a different number
+ * of traces, gaps or points — it answers false and the caller draws with Plotly.react.
  */
 
 const within = (value, range) => value >= Math.min(...range) && value <= Math.max(...range);
@@ -13,16 +14,17 @@ const linear = (...axes) => axes.every((axis) => axis?.range && axis.type === "l
 
 /**
  * How a laid-out trace maps its points to pixels: (u, v) → [x, y], or null when a point leaves the drawn
- * axes; null for a trace this fast path does not draw. A cartesian trace's (x, y) go through its axes
+ * axes (unless clipped: a straight line that Plotly clips to the plot area, in a preview as in the exact
+ * drawing); null for a trace this fast path does not draw. A cartesian trace's (x, y) go through its axes
  * ("y2" → layout.yaxis2); a polar trace's (θ in degrees, r) through the polar subplot's angular and radial
  * axes to the plane and then its x and y axes, as Plotly's scatterpolar draws them.
  */
-function pixels(graph, trace) {
+function pixels(graph, trace, clipped) {
   const layout = graph._fullLayout;
   if (trace.type === "scatter") {
     const [xa, ya] = [layout[`xaxis${trace.xaxis.slice(1)}`], layout[`yaxis${trace.yaxis.slice(1)}`]];
     if (!linear(xa, ya)) return null;
-    return (x, y) => (within(x, xa.range) && within(y, ya.range) ? [xa.c2p(x), ya.c2p(y)] : null);
+    return (x, y) => (clipped || (within(x, xa.range) && within(y, ya.range)) ? [xa.c2p(x), ya.c2p(y)] : null);
   }
   const polar = trace.type === "scatterpolar" ? layout[trace.subplot]?._subplot : null;
   const [xa, ya] = [trace._xA, trace._yA];
@@ -54,24 +56,56 @@ function segments(us, vs, toPixels) {
   return pieces;
 }
 
-/** Redraw graph's line curves for the figure's data in place; false if it must be drawn by Plotly.react. */
+/** The points of (us, vs) in pixels, or null if one is missing or leaves the range. */
+function points(us, vs, toPixels) {
+  const placed = vs.map((v, i) => (v === null || us[i] === null ? null : toPixels(us[i], v)));
+  return placed.every(Boolean) ? placed : null;
+}
+
+const MODES = new Set(["lines", "markers", "lines+markers", "markers+text", "lines+markers+text"]);
+
+/**
+ * The moves that draw trace (as Plotly laid it out, in its group) with next's data: [element, attribute,
+ * value] for its line pieces, its markers (transform) and its text (x, y); null if that cannot be done.
+ */
+function moves(graph, group, trace, next) {
+  if (!next || next.type !== trace.type || next.mode !== trace.mode || !MODES.has(trace.mode)) return null;
+  const [us, vs] = trace.type === "scatter" ? [next.x, next.y] : [next.theta, next.r];
+  const straight = trace.type === "scatter" && trace.mode === "lines" && us.length === 2;    // a tangent, a level
+  const toPixels = pixels(graph, trace, straight);
+  if (!toPixels) return null;
+  const out = [];
+  if (trace.mode.includes("lines")) {
+    const paths = group.querySelectorAll("path.js-line");
+    const pieces = segments(us, vs, toPixels);
+    if (!pieces || pieces.length !== paths.length) return null;
+    paths.forEach((path, i) => out.push([path, "d", pieces[i]]));
+  }
+  if (trace.mode.includes("markers") || trace.mode.includes("text")) {
+    const placed = points(us, vs, toPixels);
+    const markers = trace.mode.includes("markers") ? group.querySelectorAll(".points path.point") : [];
+    const texts = trace.mode.includes("text") ? group.querySelectorAll(".text text") : [];
+    if (!placed || (markers.length && markers.length !== placed.length) || (texts.length && texts.length !== placed.length)) return null;
+    markers.forEach((marker, i) => out.push([marker, "transform", `translate(${placed[i][0]},${placed[i][1]})`]));
+    texts.forEach((text, i) => out.push([text, "x", placed[i][0]], [text, "y", placed[i][1]]));
+  }
+  return out;
+}
+
+/** Redraw graph's curves for the figure's data in place; false if it must be drawn by Plotly.react. */
 export function moveCurves(graph, data) {
   const drawn = graph._fullData;
   if (!drawn || drawn.length !== data.length || !graph._fullLayout) return false;
   const updates = [];
-  for (const group of graph.querySelectorAll(".scatterlayer .trace")) {
+  const groups = graph.querySelectorAll(".scatterlayer .trace");
+  if (groups.length !== data.length) return false;
+  for (const group of groups) {
     const trace = group.__data__?.[0]?.trace;
-    const next = data[trace?.index];
-    if (!next || next.type !== trace.type || next.mode !== "lines" || trace.mode !== "lines") return false;
-    const toPixels = pixels(graph, trace);
-    if (!toPixels) return false;
-    const paths = group.querySelectorAll("path.js-line");
-    const pieces = trace.type === "scatter" ? segments(next.x, next.y, toPixels) : segments(next.theta, next.r, toPixels);
-    if (!pieces || pieces.length !== paths.length) return false;
-    updates.push([paths, pieces]);
+    const traceMoves = trace && moves(graph, group, trace, data[trace.index]);
+    if (!traceMoves) return false;
+    updates.push(...traceMoves);
   }
-  if (updates.length !== data.length) return false;
-  for (const [paths, pieces] of updates) paths.forEach((path, i) => path.setAttribute("d", pieces[i]));
+  for (const [node, attribute, value] of updates) node.setAttribute(attribute, value);
   return true;
 }
 

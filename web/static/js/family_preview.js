@@ -5,6 +5,13 @@
  * given an answer interpolated from the family (family_model.js), at most once per animation frame and
  * without a request; the page asks for the exact answer when the slider comes to rest.
  *
+ * Two stages: the page first asks for the coarse family ("stage": "coarse", the 9 start members, answered
+ * at once) and, when it has arrived, for the full one (the server reuses the coarse members, so asking
+ * one after the other costs it no more than the full family alone; asked together, both would compute the
+ * start members). The preview is drawn from the best family there is: the full one replaces the coarse one
+ * when it arrives (and redraws a preview on the screen). A server that refuses "stage" (an older one, 422)
+ * gets one request without it, the full family, for the rest of the page's life.
+ *
  * The model is the scene's SceneSettings (a SceneModel or a DynamicsModel): request() is the body sent
  * now, familyVary(slider) the paths the slider sets with their factors, grabbed the slider held.
  *
@@ -12,7 +19,9 @@
  *   "preview"  {ok: true, data, preview: true}: draw this interpolated answer (plots, drawings, cursors);
  *              numbers in tables and readouts stay those of the last exact answer
  *
- * Performance marks (bench/browser.py): family-requested, family-arrived.
+ * Performance marks (bench/browser.py): family-requested (the grab), family-arrived (the first family the
+ * preview can draw from), family-coarse-arrived, family-full-arrived; preview-coarse or preview-full for each
+ * preview frame, by the family it is drawn from.
  */
 import { ApiClient } from "./api.js";
 import { element } from "./dom.js";
@@ -20,11 +29,14 @@ import { Emitter } from "./emitter.js";
 import { familyKey, interpolate, memberInterval } from "./family_model.js";
 
 const KEPT = 4;     // families kept on the page: the latest asked (a family may hold several MB)
+const STAGES = ["coarse", "full"];
+const NOT_REFUSED = new Set(["network", "server"]);    // failures that say nothing of whether stages are taken
 
 export class FamilyPreview extends Emitter {
   #families = new Map();     // familyKey → the family, or null while it is on its way
   #due = null;               // the family and value of the next frame's preview
   #frameRequested = false;
+  #staged = true;            // the server takes "stage" (until it refuses it)
 
   /** showing: a preview is on the screen (or due) and no exact answer has replaced it yet. */
   showing = false;
@@ -78,17 +90,29 @@ export class FamilyPreview extends Emitter {
     this.#families.set(key, null);
     for (const old of [...this.#families.keys()].slice(0, -KEPT)) {
       this.#families.delete(old);
-      this.client.forget(old);
+      for (const stage of STAGES) this.client.forget(`${stage} ${old}`);
     }
     performance.mark("family-requested");
-    this.client.submit(key, body, (answer) => {
-      if (!this.#families.has(key)) return;
+    this.#send(key, body, this.#staged ? "coarse" : "full");
+  }
+
+  /** Ask for one stage of the family under key (body without "stage"); a coarse one asks next for the full one. */
+  #send(key, body, stage) {
+    const asked = stage === "coarse" ? { ...body, stage } : body;      // "full" is the server's default
+    this.client.submit(`${stage} ${key}`, asked, (answer) => {
+      if (!this.#families.has(key)) return;                         // dropped meanwhile
+      const coarse = answer.ok && answer.data.numerics?.stage === "coarse";
+      if (stage === "coarse" && !answer.ok && !NOT_REFUSED.has(answer.error.code)) this.#staged = false;   // a 422
+      if (stage === "coarse" && !(answer.ok && !coarse)) this.#send(key, body, "full");
       if (!answer.ok) {            // no family: dragging stays as without one, the next grab asks again
-        this.#families.delete(key);
+        if (stage === "full" && !this.#families.get(key)) this.#families.delete(key);
         return;
       }
-      performance.mark("family-arrived");
-      this.#families.set(key, { ...answer.data, log: body.log });
+      if (coarse && this.#families.get(key)) return;                 // the full family came first
+      if (!this.#families.get(key)) performance.mark("family-arrived");
+      performance.mark(coarse ? "family-coarse-arrived" : "family-full-arrived");
+      this.#families.set(key, { ...answer.data, log: body.log, coarse });
+      if (this.showing) this.preview();                            // the better family redraws the preview
     });
   }
 
@@ -96,6 +120,7 @@ export class FamilyPreview extends Emitter {
     this.#frameRequested = false;
     if (!this.showing || !this.#due) return;
     const { family, value } = this.#due;
+    performance.mark(family.coarse ? "preview-coarse" : "preview-full");
     this.emit("preview", { ok: true, data: interpolate(family, value), preview: true });
   };
 }

@@ -18,9 +18,13 @@ const SPOKES = 4;
 const HUB = 0.08;             // × disk radius
 const DIMENSION_GAP = 16;     // drawing units from the disk's rim to its dimension line
 
-/** The drawing of mechanism with a disk of radius (m) on its crank axis: the disk under the frame, spokes on top. */
+/**
+ * The drawing of mechanism with a disk of radius (m) on its crank axis: the disk under the frame, spokes on top.
+ * Once drawn, resize(radius) redraws the disk in place on the same scale (a preview's disk).
+ */
 function withFlywheel(base, radius) {
   const [pivot, crankPin] = base.crank;
+  let r = 0;                  // the disk's radius in drawing units
   return {
     ...base,
     extent: (params, table) => {
@@ -29,19 +33,26 @@ function withFlywheel(base, radius) {
     },
     frame(layer, scale, params, table) {
       const [cx, cy] = scale.point(table.outputs.joints[pivot][0]);
-      const r = radius * scale.k;
-      svgElement("circle", { class: "flywheel-disk", cx, cy, r }, layer);
-      svgElement("circle", { class: "flywheel-hub", cx, cy, r: HUB * r }, layer);
-      const y = cy + r + DIMENSION_GAP;
-      svgElement("line", { class: "dimension", x1: cx - r, y1: y, x2: cx + r, y2: y,
-        "marker-start": "url(#arrow)", "marker-end": "url(#arrow)" }, layer);
-      svgElement("text", { class: "dimension-label", x: cx, y: y - 4 }, layer).textContent = "D";
+      const disk = svgElement("circle", { class: "flywheel-disk", cx, cy }, layer);
+      const hub = svgElement("circle", { class: "flywheel-hub", cx, cy }, layer);
+      const line = svgElement("line", { class: "dimension", "marker-start": "url(#arrow)", "marker-end": "url(#arrow)" }, layer);
+      const label = svgElement("text", { class: "dimension-label", x: cx }, layer);
+      label.textContent = "D";
+      this.resize = (metres) => {
+        r = metres * scale.k;
+        const y = cy + r + DIMENSION_GAP;
+        disk.setAttribute("r", r);
+        hub.setAttribute("r", HUB * r);
+        for (const [name, value] of [["x1", cx - r], ["y1", y], ["x2", cx + r], ["y2", y]]) line.setAttribute(name, value);
+        label.setAttribute("y", y - 4);
+        for (const mark of [line, label]) mark.setAttribute("visibility", r > 0 ? "visible" : "hidden");
+      };
+      this.resize(radius);
       base.frame?.(layer, scale, params, table);
     },
     parts(layer, scale, params) {
       const spokes = Array.from({ length: SPOKES }, () => svgElement("line", { class: "flywheel-spoke" }, layer));
       const baseParts = base.parts?.(layer, scale, params);
-      const r = radius * scale.k;
       return (points) => {
         const [cx, cy] = points[pivot];
         const turn = Math.atan2(points[crankPin][1] - cy, points[crankPin][0] - cx);
@@ -92,6 +103,14 @@ export class FlywheelDrawingView {
     if (this.joints) this.#draw();
   }
 
+  /** A preview's disk (an answer interpolated from a slider's family) redrawn in place; the numbers stay. */
+  preview(data) {
+    const diameter = pathValue(data, this.spec.disk)?.diameter;
+    if (!this.drawing?.resize || !(diameter >= 0)) return;     // no disk drawn: the preview leaves the drawing
+    this.drawing.resize(diameter / 2);
+    this.linkage.drawAt(this.phi);
+  }
+
   drawAt(phi) {
     this.phi = phi;
     this.linkage.drawAt(phi);
@@ -101,7 +120,8 @@ export class FlywheelDrawingView {
     const { t, lang } = this;
     const needed = this.inertia > 0 && this.disk.diameter > 0;
     const base = this.joints.ok ? DRAWINGS[this.joints.data.mechanism] : null;
-    this.linkage.show(this.joints, this.phi, needed && base ? withFlywheel(base, this.disk.diameter / 2) : base);
+    this.drawing = needed && base ? withFlywheel(base, this.disk.diameter / 2) : base;
+    this.linkage.show(this.joints, this.phi, this.drawing);
     const number = (value, unit) => `${formatQuantity(value, lang, 4)} ${unitText(unit, t)}`;
     this.numbers.classList.toggle("no-flywheel", !needed);
     this.numbers.textContent = needed ? [`D = ${number(this.disk.diameter, "m")}`,

@@ -1,18 +1,26 @@
 /**
- * Redraws the plot panels that are out of date, and only those in (or near) the window; a panel scrolled
- * into view later is drawn then. An exact answer is drawn one panel per animation frame, so a new answer
- * never blocks the page for long; a preview (an answer interpolated from a family while a slider is
- * dragged) is drawn in one go, every stale panel in view within the same frame (drawNow).
+ * Redraws the plot panels that are out of date, those in (or near) the window first. An exact answer is
+ * drawn one panel per animation frame, so a new answer never blocks the page for long, and then the panels
+ * out of view, one per idle period, so that the whole page holds the answer (a page printed or captured
+ * whole shows every plot). A preview (an answer interpolated from a family while a slider is dragged) is
+ * drawn in one go, every stale panel in view within the same frame (drawNow); panels out of view wait
+ * until they are scrolled into view or the next exact answer, so that nothing slows the drag.
  *
  * A panel is any object {figure, stale} whose figure is its element on the page; the scheduler keeps
  * panel.visible up to date and calls draw(panel) with panel.stale already cleared; draw returns a promise
  * that settles when the panel is drawn (Plotly.react's).
  */
+const IDLE_MS = 50;     // where the browser has no requestIdleCallback: a panel out of view every 50 ms
+/** Out of date, out of view, and not a figure the answer left out (hidden). */
+const hiddenStale = (panel) => panel.stale && !panel.visible && !panel.figure.hidden;
+
 export class PanelScheduler {
   #panels = [];
   #frameRequested = false;
   #waiting = [];       // resolvers of drawn(): told when no panel in view is stale
   #lastDraw = null;
+  #previewing = false;
+  #idleRequested = false;
 
   constructor(draw) {
     this.draw = draw;
@@ -21,7 +29,7 @@ export class PanelScheduler {
         const panel = this.#panels.find((p) => p.figure === entry.target);
         if (panel) panel.visible = entry.isIntersecting;
       }
-      this.refresh();
+      this.#drawSoon();
     }, { rootMargin: "100px" });
   }
 
@@ -35,8 +43,13 @@ export class PanelScheduler {
     }
   }
 
-  /** Draw the stale panels that are in view, one per animation frame from the next on. */
+  /** An exact answer: draw the stale panels in view, one per animation frame from the next on, then the rest. */
   refresh() {
+    this.#previewing = false;
+    this.#drawSoon();
+  }
+
+  #drawSoon() {
     if (this.#frameRequested) return;
     this.#frameRequested = true;
     requestAnimationFrame(this.#drawNext);
@@ -44,6 +57,7 @@ export class PanelScheduler {
 
   /** Draw every stale panel in view now; resolves when they are all drawn. */
   drawNow() {
+    this.#previewing = true;
     const due = this.#panels.filter((p) => p.stale && p.visible);
     for (const panel of due) panel.stale = false;
     return Promise.all(due.map((panel) => this.draw(panel)));
@@ -53,7 +67,7 @@ export class PanelScheduler {
   drawn() {
     return new Promise((resolve) => {
       this.#waiting.push(resolve);
-      this.refresh();
+      this.#drawSoon();
     });
   }
 
@@ -63,10 +77,26 @@ export class PanelScheduler {
     if (!panel) {
       const waiting = this.#waiting.splice(0);
       Promise.resolve(this.#lastDraw).catch(() => {}).then(() => waiting.forEach((resolve) => resolve()));
+      this.#drawHiddenSoon();
       return;
     }
     panel.stale = false;
     this.#lastDraw = this.draw(panel);
-    this.refresh();
+    this.#drawSoon();
+  };
+
+  #drawHiddenSoon() {
+    if (this.#idleRequested || this.#previewing || !this.#panels.some(hiddenStale)) return;
+    this.#idleRequested = true;
+    (window.requestIdleCallback ?? ((then) => setTimeout(then, IDLE_MS)))(this.#drawHidden);
+  }
+
+  /** One stale panel out of view, drawn in an idle period (after an exact answer, not during a preview). */
+  #drawHidden = () => {
+    this.#idleRequested = false;
+    const panel = this.#previewing ? null : this.#panels.find(hiddenStale);
+    if (!panel) return;
+    panel.stale = false;
+    Promise.resolve(this.draw(panel)).catch(() => {}).then(() => this.#drawHiddenSoon());
   };
 }

@@ -9,6 +9,7 @@ import { pathValue } from "./dotted_paths.js";
 import { element } from "./dom.js";
 import { degrees, formatNumber, formatQuantity, unitText } from "./notation.js";
 import { sampleAt } from "./phi_samples.js";
+import { moveCurves } from "./family_plot.js";
 import { energyMass, originInView, wittenbauerFigure } from "./wittenbauer_figure.js";
 
 const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
@@ -36,6 +37,7 @@ export class WittenbauerView {
   show(data) {
     this.data = data;
     this.diagram = energyMass(this.spec, data);
+    this.drawn = this.diagram;
     const figure = wittenbauerFigure(this.spec, data, { t: this.t, lang: this.lang });
     this.caption.textContent = this.#caption(data);
     Plotly.react(this.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => {
@@ -47,15 +49,31 @@ export class WittenbauerView {
     });
   }
 
-  /** Put the point at the curve's place for crank angle phi (rad). */
+  /**
+   * Draw a preview's diagram (an answer interpolated from a slider's family): curve, tangents and points
+   * moved in place where they fit the drawn axes, else laid out again; the caption and the readout keep the
+   * numbers of the last answer shown.
+   */
+  preview(data) {
+    this.drawn = energyMass(this.spec, data);
+    const figure = wittenbauerFigure(this.spec, data, { t: this.t, lang: this.lang });
+    if (moveCurves(this.graph, figure.data)) {
+      this.drawAt(this.phi);
+      return Promise.resolve();
+    }
+    return Plotly.react(this.graph, figure.data, figure.layout, PLOTLY_CONFIG);    // afterplot places the point
+  }
+
+  /** Put the point at the drawn curve's place for crank angle phi (rad); the readout from the answer shown. */
   drawAt(phi) {
     this.phi = phi;
     if (!this.maps || !this.data) return;
-    const x = sampleAt(this.data.phi, this.diagram.x, phi);
-    const y = sampleAt(this.data.phi, this.diagram.y, phi);
-    this.point.hidden = x === null || y === null;
+    const at = (diagram) => [sampleAt(this.data.phi, diagram.x, phi), sampleAt(this.data.phi, diagram.y, phi)];
+    const [px, py] = at(this.drawn);
+    const [x, y] = at(this.diagram);
+    this.point.hidden = [x, y, px, py].includes(null);
     if (this.point.hidden) return;
-    this.point.style.transform = `translate(${this.maps.x(x)}px, ${this.maps.y(y)}px)`;
+    this.point.style.transform = `translate(${this.maps.x(px)}px, ${this.maps.y(py)}px)`;
     const energy = unitText("J", this.t);
     this.readout.textContent = `φ = ${formatNumber(degrees(phi), this.lang, 1)}°: I_II = `
       + `${formatQuantity(x, this.lang, 3)} ${unitText("kg·m²", this.t)}, A_Σ = ${formatQuantity(y, this.lang, 3)} ${energy}`;
