@@ -32,7 +32,7 @@ instead of taking every member. Where the cap or a jump leaves an interval above
 numerics.message says between which values and for which quantity.
 
 Checked leaves are floats and arrays of floats outside UNCHECKED (how it was computed, the texts, the
-iteration's record of its convergence, the forces' directions in degrees) whose shape is the same at the
+iterations' records of their convergence, the forces' directions in degrees) whose shape is the same at the
 members compared; whole numbers (step counters), strings and booleans are not plotted quantities. An object
 in an array (a special position) is the same quantity in two members only when its texts agree (its kind):
 otherwise the nearer member's object is drawn and nothing is compared.
@@ -72,10 +72,14 @@ ROUNDOFF = 1e-12                # below this fraction of its siblings' size a qu
 SAME_KIND = 1e-4                # ... or, inside one object, invisible beside its siblings (see spans)
 # Not checked against the bound: how it was computed, the texts, and the reactions' directions in degrees (they
 # wrap at ±180°, where no interpolation is right; the page draws the forces from their components).
-# The friction iteration's "iteration" (the changes of its successive approximations, 1e-1 … 1e-8) is the
-# record of how it converged, shown in a table from the exact answer, not a curve.
-UNCHECKED = frozenset({"numerics", "study", "warnings", "directions", "iteration"})
-SAFETY = 2                      # an interval is halved while its estimated error exceeds TOLERANCE / SAFETY
+# The successive approximations of an iteration (the forces' "iteration": changes 1e-1 … 1e-8; the textbook's
+# "friction_iteration" at one crank angle: its steps and their limit) are a record of how it converged, read
+# as a table and a sentence from the exact answer (readings_view.js), not curves a preview draws.
+UNCHECKED = frozenset({"numerics", "study", "warnings", "directions", "iteration", "friction_iteration"})
+# An interval is halved while its estimated error exceeds TOLERANCE / SAFETY. The estimate is exact for a
+# parabola; for a corner (slopes s and s + Δs meeting inside the interval, at d from an end) the smaller of
+# the ends' h²|f''|/8 is Δs·min(d, h − d)/8 against the true Δs·d(h − d)/h: at most 4× too small (d = h/2).
+SAFETY = 4
 COARSE_TO_FINE = (0, 8, 4, 2, 6, 1, 3, 5, 7)    # the order of the first 9 members
 STAGES = ("coarse", "full")
 
