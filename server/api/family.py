@@ -20,7 +20,7 @@ A refused member's answer is null, so the values between it and its neighbours i
 Refinement. The error of linear interpolation over an interval of width h (in the slider's coordinate) is
 h²·|f''|/8 for a smooth f; |f''| at a member is its second divided difference with its two neighbours,
     f''_k ≈ 2·[(f_k+1 − f_k)/h_+ − (f_k − f_k−1)/h_−] / (h_+ + h_−),
-element by element (nulls aside), and an interval's estimate takes, element by element, the smaller of its two
+largest over each quantity's elements (nulls aside), and an interval's estimate takes the smaller of its two
 ends' (an interval beside a jump is not halved for its neighbour's jump; a member at the range's end has no
 second difference, its interval takes its other end's). Every computed value is a member: a round computes the
 midpoints of every interval whose estimate, relative to the quantity's span (see ``widths``), exceeds
@@ -217,11 +217,16 @@ def _arrays(answer):
     if isinstance(answer, (list, tuple, np.ndarray)):
         array = answer.astype(float) if isinstance(answer, np.ndarray) else _numeric_array(answer)
         if array is None:
-            return [_arrays(x) for x in answer]
+            return list(answer) if _flat(answer) else [_arrays(x) for x in answer]
         return np.where(np.isfinite(array), array, np.nan)
     if isinstance(answer, (float, np.floating)):
         return float(answer)
     return answer
+
+
+def _flat(items) -> bool:
+    """Whether a list holds no number to round nor anything nested: flags, counters, texts (sent as they are)."""
+    return not any(isinstance(x, (dict, list, tuple, np.ndarray, float, np.floating)) for x in items)
 
 
 def _float_arrays(tree, found: list) -> None:
@@ -229,7 +234,7 @@ def _float_arrays(tree, found: list) -> None:
     if isinstance(tree, dict):
         for value in tree.values():
             _float_arrays(value, found)
-    elif isinstance(tree, list):
+    elif isinstance(tree, list) and not _flat(tree):
         for value in tree:
             _float_arrays(value, found)
     elif isinstance(tree, np.ndarray):
@@ -241,7 +246,7 @@ def _sent(tree, arrays):
     if isinstance(tree, dict):
         return {key: _sent(value, arrays) for key, value in tree.items()}
     if isinstance(tree, list):
-        return [_sent(value, arrays) for value in tree]
+        return tree if _flat(tree) else [_sent(value, arrays) for value in tree]
     if isinstance(tree, np.ndarray):
         return next(arrays)
     if isinstance(tree, float):
@@ -250,6 +255,7 @@ def _sent(tree, arrays):
 
 
 NUMBERS = frozenset({float, int, type(None)})
+EXACT_POWERS = 10.0 ** np.arange(23)          # 10^0 … 10^22, each exact in binary floating point
 
 
 def _numeric_array(items: list) -> np.ndarray | None:
@@ -278,17 +284,24 @@ def rounded(x: float) -> float | None:
 
 def rounded_array(x: np.ndarray) -> np.ndarray:
     """Each element to SIGNIFICANT digits, non-finite → NaN (null). Scaling by an exact power of ten
-    (multiply by 10^k, 0 ≤ k ≤ 22; divide by 10^−k, −22 ≤ k < 0) keeps the shortest decimal form of each
-    result; the few elements further from 1 (below 1e-18 or above 1e26) are formatted one by one."""
+    (multiply by 10^k, 0 ≤ k ≤ 22; divide by 10^−k, −22 ≤ k < 0; 10^|k| from a table) keeps the shortest
+    decimal form of each result; the few elements further from 1 (below 1e-18 or above 1e26) are formatted
+    one by one."""
     x = np.where(np.isfinite(x), x, np.nan)
-    magnitude = np.abs(x)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        exponent = np.floor(np.log10(np.where(magnitude > 0, magnitude, 1.0)))
-    k = SIGNIFICANT - 1 - exponent
-    scale = 10.0 ** np.clip(np.abs(k), 0, 22)
-    with np.errstate(over="ignore", invalid="ignore"):
-        result = np.where(k >= 0, np.round(x * scale) / scale, np.round(x / scale) * scale)
-    far = np.abs(k) > 22
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        exponent = np.log10(np.abs(x))
+        np.floor(exponent, out=exponent)
+        np.subtract(SIGNIFICANT - 1, exponent, out=exponent)
+        exponent[~np.isfinite(exponent)] = 0.0          # 0 and NaN: scaled by 1
+        k = exponent.astype(np.int64)
+        far = np.abs(k) > 22
+        np.clip(k, -22, 22, out=k)
+        up, down = EXACT_POWERS[np.maximum(k, 0)], EXACT_POWERS[np.maximum(-k, 0)]
+        result = x * up
+        result /= down
+        np.round(result, out=result)
+        result /= up
+        result *= down
     if far.any():
         result[far] = [float(f"{value:.{SIGNIFICANT}g}") for value in x[far]]
     return result
@@ -303,9 +316,12 @@ def checked_leaves(tree, path: tuple = ()):
         for key, value in tree.items():
             if key not in UNCHECKED:
                 yield from checked_leaves(value, (*path, key))
-    elif isinstance(tree, list):
+    elif isinstance(tree, list):                        # of objects, tables, or flags and counters (skipped)
         for index, value in enumerate(tree):
-            yield from checked_leaves(value, (*path, (index, texts(value)) if isinstance(value, dict) else index))
+            if isinstance(value, dict):
+                yield from checked_leaves(value, (*path, (index, texts(value))))
+            elif isinstance(value, (list, np.ndarray, float)):
+                yield from checked_leaves(value, (*path, index))
     elif isinstance(tree, np.ndarray) or isinstance(tree, float):
         yield path, tree
 
@@ -380,9 +396,9 @@ def _leaf(tree, path: tuple):
     return tree
 
 
-def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> dict[tuple, np.ndarray]:
-    """|f''| at the centre member, element by element, of each leaf whose shape the three members share:
-    the second divided difference 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋) (NaN where a null enters)."""
+def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> dict[tuple, float]:
+    """The largest |f''| at the centre member over the elements of each leaf whose shape the three members
+    share: the second divided difference 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋) (nulls aside)."""
     h_minus = coordinate(centre.value, log) - coordinate(left.value, log)
     h_plus = coordinate(right.value, log) - coordinate(centre.value, log)
     found = {}
@@ -391,7 +407,8 @@ def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> d
             f_minus, f_plus = left.leaves.get(path), right.leaves.get(path)
             if f_minus is None or f_plus is None or f_minus.shape != f0.shape or f_plus.shape != f0.shape:
                 continue
-            found[path] = np.abs((f_plus - f0) / h_plus - (f0 - f_minus) / h_minus) * (2 / (h_plus + h_minus))
+            bend = np.abs((f_plus - f0) / h_plus - (f0 - f_minus) / h_minus) * (2 / (h_plus + h_minus))
+            found[path] = float(np.fmax.reduce(bend, axis=None, initial=0.0))
     return found
 
 
@@ -458,7 +475,7 @@ class Family:
         """The width of interval k (members k and k + 1) in the slider's coordinate."""
         return coordinate(self.members[k + 1].value, self.log) - coordinate(self.members[k].value, self.log)
 
-    def curvature(self, k: int) -> dict[tuple, np.ndarray] | None:
+    def curvature(self, k: int) -> dict[tuple, float] | None:
         """|f''| at member k (None at the range's ends and beside a refused member), kept until a neighbour
         changes."""
         if k == 0 or k == len(self.members) - 1 or any(self.members[j].answer is None for j in (k - 1, k, k + 1)):
@@ -472,8 +489,7 @@ class Family:
 
     def estimate(self, k: int, span: dict[tuple, float]) -> tuple[float, tuple]:
         """Interval k's estimated interpolation error relative to the span, and the leaf where it is largest:
-        h²/8 times, element by element, the smaller |f''| of its two ends (the one end that has it at the
-        range's ends); 1 (100 %) between an answered and a refused member (the limit is to be found), 0
+        h²/8 times the smaller of its two ends' largest |f''| (the one end that has it at the range's ends); 1 (100 %) between an answered and a refused member (the limit is to be found), 0
         between two refused; infinite when neither end has a second difference (no neighbour to take it with)."""
         a, b = self.members[k], self.members[k + 1]
         if a.answer is None or b.answer is None:
@@ -506,8 +522,7 @@ class Family:
                 bends = [c[path] for c in ends if path in c]
                 if other is None or other.shape != leaf.shape or not bends:
                     continue        # another grid at each end: the nearer member's curve, not interpolated
-                bend = np.fmin(*bends) if len(bends) == 2 else bends[0]
-                found[path] = float(np.fmax.reduce(bend, axis=None, initial=0.0)) * scale
+                found[path] = min(bends) * scale
         self._errors[around] = found
         return found
 
