@@ -226,7 +226,7 @@ def _arrays(answer):
 
 def _flat(items) -> bool:
     """Whether a list holds no number to round nor anything nested: flags, counters, texts (sent as they are)."""
-    return not any(isinstance(x, (dict, list, tuple, np.ndarray, float, np.floating)) for x in items)
+    return set(map(type, items)) <= PLAIN
 
 
 def _float_arrays(tree, found: list) -> None:
@@ -255,6 +255,7 @@ def _sent(tree, arrays):
 
 
 NUMBERS = frozenset({float, int, type(None)})
+PLAIN = frozenset({bool, int, str, type(None)})
 EXACT_POWERS = 10.0 ** np.arange(23)          # 10^0 … 10^22, each exact in binary floating point
 
 
