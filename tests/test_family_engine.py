@@ -92,7 +92,7 @@ def test_a_refined_family_of_a_smooth_curve_is_within_the_bound_at_random_values
 def test_every_computed_value_is_a_member_and_a_jump_costs_one_member_per_halving():
     """A step at x = 0.3 on [0, 1] beside a straight line: the start members and then one midpoint per
     halving of the interval holding the step, down to FINEST_FRACTION (10 halvings of 1/8); the intervals
-    beside it are not halved for their neighbour's jump. The message names the jump."""
+    beside it are not halved for their neighbour's jump. The message names the jump and its size."""
     calls = []
     answer, _ = family.build(synthetic(lambda x: (x > 0.3) + 0.1 * x, calls), 0.0, 1.0, False)
     assert answer["values"] == sorted(set(calls)) and answer["numerics"]["checked"] == len(calls)
@@ -101,6 +101,9 @@ def test_every_computed_value_is_a_member_and_a_jump_costs_one_member_per_halvin
     k = np.searchsorted(values, 0.3)
     assert values[k] - values[k - 1] <= FINEST * 1.01
     assert "faster than a slider can resolve" in answer["numerics"]["message"]
+    # the error given there is the change across that interval, the step 1 over the span 1.1 (not the J/8
+    # that second differences read for a step)
+    assert answer["interpolation_error"] == pytest.approx(1 / 1.1, rel=1e-3)
 
 
 def test_the_coarse_stage_is_the_nine_start_members_with_an_estimate():

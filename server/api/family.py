@@ -29,7 +29,9 @@ interval between an answered and a refused value is halved too (the limit is fou
 than FINEST_FRACTION of the range is halved: no slider resolves it, and an answer that jumps (an efficiency
 that is 0 at zero load and 0.97 just above) or bends at a corner too steep to resolve is named in the message
 instead of taking every member. Where the cap or a jump leaves an interval above the tolerance,
-numerics.message says between which values and for which quantity.
+numerics.message says between which values and for which quantity; for an interval too narrow to halve the
+error given is the change across it, |f(b) − f(a)| / span, if larger than the estimate (a bound wherever f is
+monotone inside; second differences read a step of height J as J/8).
 
 Checked leaves are floats and arrays of floats outside UNCHECKED (how it was computed, the texts, the
 iterations' records of their convergence, the forces' directions in degrees) whose shape is the same at the
@@ -527,6 +529,22 @@ class Family:
         self._errors[around] = found
         return found
 
+    def change(self, k: int, span: dict[tuple, float]) -> tuple[float, tuple]:
+        """The largest |f(b) − f(a)| / span over interval k's leaves, and where: for an interval too narrow to
+        halve, a bound of the interpolation error wherever f is monotone inside it (f and the chord both lie
+        between f(a) and f(b)), which a jump's second differences understate (a step of height J reads J/8)."""
+        worst, where = 0.0, ()
+        a, b = self.members[k].leaves, self.members[k + 1].leaves
+        with np.errstate(invalid="ignore"):
+            for path, leaf in a.items():
+                other = b.get(path)
+                if other is None or other.shape != leaf.shape or not span.get(path):
+                    continue
+                error = float(np.fmax.reduce(np.abs(other - leaf), axis=None, initial=0.0)) / span[path]
+                if error > worst:
+                    worst, where = error, path
+        return worst, where
+
     def halvable(self, k: int) -> bool:
         return self.width(k) > self.finest * (1 + 1e-9)
 
@@ -565,6 +583,9 @@ def _answer(family: Family, lang: str, cut: bool, started: float, stage: str) ->
     estimates = {k: family.estimate(k, span) for k in range(len(members) - 1)}
     answered = {k: found for k, found in estimates.items()
                 if members[k].answer is not None and members[k + 1].answer is not None and math.isfinite(found[0])}
+    for k, found in answered.items():
+        if stage == "full" and not family.halvable(k) and found[0] > TOLERANCE:    # a jump: say how large
+            answered[k] = max(found, family.change(k, span))
     error = max((score for score, _ in answered.values()), default=None)
     texts = interface_texts(lang)
     number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
