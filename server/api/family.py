@@ -11,21 +11,38 @@ w = (v − v_k)/(v_k+1 − v_k) (in log(v) when ``log``) and, leaf by leaf,
     number in both                         → (1 − w)·a + w·b,
     arrays of equal length in both         → element by element, by this rule,
     objects in both                        → key by key (the keys of the nearer member), by this rule,
+                                             but objects in arrays whose texts differ → the nearer member's,
     null in either                         → null,
     anything else (strings, booleans, arrays of different lengths, a key in one member only)
                                            → the nearer member's leaf (a when w < 1/2, else b).
 A refused member's answer is null, so the values between it and its neighbours interpolate to null.
 
-Refinement. Each interval's midpoint is computed exactly and compared with the interpolation there; the
-interval is halved (the midpoint becomes a member) while the largest |interpolation − exact| / span of a
-checked leaf exceeds TOLERANCE (spans: see ``spans``), worst intervals first, at most MAX_MEMBERS members.
-Checked leaves are floats and arrays of floats outside ``numerics``, ``study`` and ``warnings`` (whole numbers
-such as step counters, strings and booleans are not plotted quantities) whose shape is the same at both ends
-and at the midpoint. An interval between an answered and a refused value is halved too (the limit is found),
-and so is one whose midpoint is refused. No interval narrower than FINEST_FRACTION of the range is halved:
-no slider resolves it, and an answer that jumps (an efficiency that is 0 at zero load and 0.97 just above)
-or bends at a corner too steep to resolve is named in the message instead of taking every member. Where the cap or a jump leaves an interval above the
-tolerance, numerics.message says between which values and for which quantity.
+Refinement. The error of linear interpolation over an interval of width h (in the slider's coordinate) is
+h²·|f''|/8 for a smooth f; |f''| at a member is its second divided difference with its two neighbours,
+    f''_k ≈ 2·[(f_k+1 − f_k)/h_+ − (f_k − f_k−1)/h_−] / (h_+ + h_−),
+largest over each quantity's elements (nulls aside), and an interval's estimate takes the smaller of its two
+ends' (an interval beside a jump is not halved for its neighbour's jump; a member at the range's end has no
+second difference, its interval takes its other end's). Every computed value is a member: a round computes the
+midpoints of every interval whose estimate, relative to the quantity's span (see ``widths``), exceeds
+TOLERANCE / SAFETY, as one batch, until none does or the family has MAX_MEMBERS members (worst first). An
+interval between an answered and a refused value is halved too (the limit is found). No interval narrower
+than FINEST_FRACTION of the range is halved: no slider resolves it, and an answer that jumps (an efficiency
+that is 0 at zero load and 0.97 just above) or bends at a corner too steep to resolve is named in the message
+instead of taking every member. Where the cap or a jump leaves an interval above the tolerance,
+numerics.message says between which values and for which quantity; for an interval too narrow to halve the
+error given is the change across it, |f(b) − f(a)| / span, if larger than the estimate (a bound wherever f is
+monotone inside; second differences read a step of height J as J/8).
+
+Checked leaves are floats and arrays of floats outside UNCHECKED (how it was computed, the texts, the
+iterations' records of their convergence, the forces' directions in degrees) whose shape is the same at the
+members compared; whole numbers (step counters), strings and booleans are not plotted quantities. An object
+in an array (a special position) is the same quantity in two members only when its texts agree (its kind):
+otherwise the nearer member's object is drawn and nothing is compared.
+
+Stages. ``coarse`` answers the 9 start members at once, unrefined, with the estimate above as its
+interpolation error; ``full`` (the default) refines. The members are the same values in both, so a full
+family asked right after the coarse one reuses the coarse members (the heavy process's memo,
+server/api/family_batch.py).
 
 The comparison uses the members as sent: every float rounded to SIGNIFICANT digits (NaN and ±inf → null), so
 the reported interpolation error includes the rounding the page sees.
@@ -57,8 +74,16 @@ ROUNDOFF = 1e-12                # below this fraction of its siblings' size a qu
 SAME_KIND = 1e-4                # ... or, inside one object, invisible beside its siblings (see spans)
 # Not checked against the bound: how it was computed, the texts, and the reactions' directions in degrees (they
 # wrap at ±180°, where no interpolation is right; the page draws the forces from their components).
-UNCHECKED = frozenset({"numerics", "study", "warnings", "directions"})
+# The successive approximations of an iteration (the forces' "iteration": changes 1e-1 … 1e-8; the textbook's
+# "friction_iteration" at one crank angle: its steps and their limit) are a record of how it converged, read
+# as a table and a sentence from the exact answer (readings_view.js), not curves a preview draws.
+UNCHECKED = frozenset({"numerics", "study", "warnings", "directions", "iteration", "friction_iteration"})
+# An interval is halved while its estimated error exceeds TOLERANCE / SAFETY. The estimate is exact for a
+# parabola; for a corner (slopes s and s + Δs meeting inside the interval, at d from an end) the smaller of
+# the ends' h²|f''|/8 is Δs·min(d, h − d)/8 against the true Δs·d(h − d)/h: at most 4× too small (d = h/2).
+SAFETY = 4
 COARSE_TO_FINE = (0, 8, 4, 2, 6, 1, 3, 5, 7)    # the order of the first 9 members
+STAGES = ("coarse", "full")
 
 
 @dataclass(frozen=True)
@@ -89,7 +114,7 @@ def shared(body):
         varied = member_body(body["request"], [Vary(item["path"], 0.0) for item in body["vary"]], 0.0)
     except (KeyError, TypeError, AttributeError, IndexError):
         return body
-    return body | {"request": varied}
+    return body | {"request": varied, "stage": body.get("stage", "full")}
 
 
 def path_exists(request: dict, path: str) -> bool:
@@ -137,6 +162,11 @@ def _is_number(x) -> bool:
     return isinstance(x, (int, float)) and not isinstance(x, bool)
 
 
+def texts(item) -> tuple:
+    """The strings of an object (its identity: a special position's kind); () for anything else."""
+    return tuple((k, v) for k, v in item.items() if isinstance(v, str)) if isinstance(item, dict) else ()
+
+
 def interpolate(a, b, w: float):
     """The contract's rule between two members' leaves a (weight 1 − w) and b (weight w); see the module."""
     if a is None or b is None:
@@ -146,7 +176,7 @@ def interpolate(a, b, w: float):
     if _is_number(a) and _is_number(b):
         return (1 - w) * a + w * b
     if isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
-        return [interpolate(x, y, w) for x, y in zip(a, b)]
+        return [interpolate(x, y, w) if texts(x) == texts(y) else (x if w < 0.5 else y) for x, y in zip(a, b)]
     if isinstance(a, dict) and isinstance(b, dict):
         near, far = (a, b) if w < 0.5 else (b, a)
         return {key: (interpolate(a[key], b[key], w) if key in far else value) for key, value in near.items()}
@@ -168,23 +198,67 @@ def interpolate_family(values: list[float], answers: list, value: float, log: bo
 
 def as_tree(answer, sent: bool = True):
     """A member's answer with every array of numbers (and nulls) as a float ndarray, null → NaN, and (when
-    ``sent``) each float rounded to SIGNIFICANT digits as sent. Arrays of whole numbers alone stay lists
-    (interpolated element by element all the same)."""
+    ``sent``) each float rounded to SIGNIFICANT digits as sent (all arrays in one vectorised pass). Arrays of
+    whole numbers alone stay lists (interpolated element by element all the same)."""
+    tree = _arrays(answer)
+    if not sent:
+        return tree
+    found: list[np.ndarray] = []
+    _float_arrays(tree, found)
+    flat = rounded_array(np.concatenate([a.ravel() for a in found])) if found else np.empty(0)
+    parts = np.split(flat, np.cumsum([a.size for a in found])[:-1]) if found else []
+    return _sent(tree, iter(part.reshape(a.shape) for part, a in zip(parts, found)))
+
+
+def _arrays(answer):
+    """The answer with its arrays of numbers as float ndarrays (non-finite → NaN), floats as floats."""
     if isinstance(answer, dict):
-        return {key: as_tree(value, sent) for key, value in answer.items()}
+        return {key: _arrays(value) for key, value in answer.items()}
     if isinstance(answer, np.ndarray) and answer.dtype.kind != "f":
         return answer.tolist()
     if isinstance(answer, (list, tuple, np.ndarray)):
         array = answer.astype(float) if isinstance(answer, np.ndarray) else _numeric_array(answer)
         if array is None:
-            return [as_tree(x, sent) for x in answer]
-        return rounded_array(array) if sent else np.where(np.isfinite(array), array, np.nan)
+            return list(answer) if _flat(answer) else [_arrays(x) for x in answer]
+        return np.where(np.isfinite(array), array, np.nan)
     if isinstance(answer, (float, np.floating)):
-        return rounded(float(answer)) if sent else float(answer)
+        return float(answer)
     return answer
 
 
+def _flat(items) -> bool:
+    """Whether a list holds no number to round nor anything nested: flags, counters, texts (sent as they are)."""
+    return set(map(type, items)) <= PLAIN
+
+
+def _float_arrays(tree, found: list) -> None:
+    """The tree's float arrays in walk order."""
+    if isinstance(tree, dict):
+        for value in tree.values():
+            _float_arrays(value, found)
+    elif isinstance(tree, list) and not _flat(tree):
+        for value in tree:
+            _float_arrays(value, found)
+    elif isinstance(tree, np.ndarray):
+        found.append(tree)
+
+
+def _sent(tree, arrays):
+    """The tree with each float array taken from ``arrays`` (rounded, in walk order), each float rounded."""
+    if isinstance(tree, dict):
+        return {key: _sent(value, arrays) for key, value in tree.items()}
+    if isinstance(tree, list):
+        return tree if _flat(tree) else [_sent(value, arrays) for value in tree]
+    if isinstance(tree, np.ndarray):
+        return next(arrays)
+    if isinstance(tree, float):
+        return rounded(tree)
+    return tree
+
+
 NUMBERS = frozenset({float, int, type(None)})
+PLAIN = frozenset({bool, int, str, type(None)})
+EXACT_POWERS = 10.0 ** np.arange(23)          # 10^0 … 10^22, each exact in binary floating point
 
 
 def _numeric_array(items: list) -> np.ndarray | None:
@@ -213,47 +287,79 @@ def rounded(x: float) -> float | None:
 
 def rounded_array(x: np.ndarray) -> np.ndarray:
     """Each element to SIGNIFICANT digits, non-finite → NaN (null). Scaling by an exact power of ten
-    (multiply by 10^k, 0 ≤ k ≤ 22; divide by 10^−k, −22 ≤ k < 0) keeps the shortest decimal form of each
-    result; the few elements further from 1 (below 1e-18 or above 1e26) are formatted one by one."""
+    (multiply by 10^k, 0 ≤ k ≤ 22; divide by 10^−k, −22 ≤ k < 0; 10^|k| from a table) keeps the shortest
+    decimal form of each result; the few elements further from 1 (below 1e-18 or above 1e26) are formatted
+    one by one."""
     x = np.where(np.isfinite(x), x, np.nan)
-    magnitude = np.abs(x)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        exponent = np.floor(np.log10(np.where(magnitude > 0, magnitude, 1.0)))
-    k = SIGNIFICANT - 1 - exponent
-    scale = 10.0 ** np.clip(np.abs(k), 0, 22)
-    with np.errstate(over="ignore", invalid="ignore"):
-        result = np.where(k >= 0, np.round(x * scale) / scale, np.round(x / scale) * scale)
-    far = np.abs(k) > 22
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        exponent = np.log10(np.abs(x))
+        np.floor(exponent, out=exponent)
+        np.subtract(SIGNIFICANT - 1, exponent, out=exponent)
+        exponent[~np.isfinite(exponent)] = 0.0          # 0 and NaN: scaled by 1
+        k = exponent.astype(np.int64)
+        far = np.abs(k) > 22
+        np.clip(k, -22, 22, out=k)
+        up, down = EXACT_POWERS[np.maximum(k, 0)], EXACT_POWERS[np.maximum(-k, 0)]
+        result = x * up
+        result /= down
+        np.round(result, out=result)
+        result /= up
+        result *= down
     if far.any():
         result[far] = [float(f"{value:.{SIGNIFICANT}g}") for value in x[far]]
     return result
 
 
-# ---- spans and the error of interpolation -----------------------------------------------------------------
+# ---- checked leaves, spans and the estimated error of interpolation ----------------------------------------
 
 def checked_leaves(tree, path: tuple = ()):
-    """(path, float or float array) of each plotted quantity: floats outside numerics, study and warnings."""
+    """(path, float or float array) of each plotted quantity: floats outside UNCHECKED. An object in an array
+    is named by its index and its texts, (index, texts): another kind at that index is another quantity."""
     if isinstance(tree, dict):
         for key, value in tree.items():
             if key not in UNCHECKED:
                 yield from checked_leaves(value, (*path, key))
-    elif isinstance(tree, list):
+    elif isinstance(tree, list):                        # of objects, tables, or flags and counters (skipped)
         for index, value in enumerate(tree):
-            yield from checked_leaves(value, (*path, index))
+            if isinstance(value, dict):
+                yield from checked_leaves(value, (*path, (index, texts(value))))
+            elif isinstance(value, (list, np.ndarray, float)):
+                yield from checked_leaves(value, (*path, index))
     elif isinstance(tree, np.ndarray) or isinstance(tree, float):
         yield path, tree
 
 
+def flatten(tree) -> dict[tuple, np.ndarray]:
+    """Each checked leaf of a member's tree as a float array (a number as a 0-d array), by path: the
+    family's arithmetic works on these, once per member."""
+    return {path: np.asarray(leaf, float) for path, leaf in checked_leaves(tree)}
+
+
+def quantity(path: tuple) -> str:
+    """The dotted name of a leaf's path, as the message gives it (an object in an array by its index)."""
+    return ".".join(str(part[0] if isinstance(part, tuple) else part) for part in path)
+
+
+def extend(extent: dict[tuple, list[float]], leaves: dict[tuple, np.ndarray]) -> dict[tuple, list[float]]:
+    """Merge [min, max] of every element of each leaf (nulls aside) into ``extent``."""
+    for path, leaf in leaves.items():
+        if leaf.ndim == 0:
+            if not math.isfinite(leaf):
+                continue
+            low = high = float(leaf)
+        else:
+            finite = leaf[np.isfinite(leaf)]
+            if not finite.size:
+                continue
+            low, high = float(finite.min()), float(finite.max())
+        known = extent.setdefault(path, [low, high])
+        known[0], known[1] = min(known[0], low), max(known[1], high)
+    return extent
+
+
 def ranges(answer, into: dict[tuple, list[float]] | None = None) -> dict[tuple, list[float]]:
     """[min, max] of every element of each checked leaf of the answer (nulls aside), merged into ``into``."""
-    into = {} if into is None else into
-    for path, leaf in checked_leaves(answer):
-        finite = leaf[np.isfinite(leaf)] if isinstance(leaf, np.ndarray) else np.asarray([leaf])
-        if finite.size:
-            low, high = float(finite.min()), float(finite.max())
-            known = into.setdefault(path, [low, high])
-            known[0], known[1] = min(known[0], low), max(known[1], high)
-    return into
+    return extend({} if into is None else into, flatten(answer))
 
 
 def widths(extent: dict[tuple, list[float]]) -> dict[tuple, float]:
@@ -282,6 +388,10 @@ def spans(answers: list) -> dict[tuple, float]:
 
 def _leaf(tree, path: tuple):
     for key in path:
+        if isinstance(key, tuple):                      # an object in an array: the same kind, or nothing
+            key, kind = key
+            if not isinstance(tree, list) or key >= len(tree) or texts(tree[key]) != kind:
+                return None
         try:
             tree = tree[key]
         except (KeyError, IndexError, TypeError):
@@ -289,36 +399,23 @@ def _leaf(tree, path: tuple):
     return tree
 
 
-def differences(approx, exact, ends: tuple = ()) -> dict[tuple, float]:
-    """max |approx − exact| of each checked leaf of exact. Nulls on either side are not compared, nor a leaf
-    whose shape differs between the interval's ends (``ends``) or from exact: the page draws the nearer
-    member's curve there (a steady cycle refined to more steps, a start-up that settles a cycle sooner), a
-    curve on its own grid, not an interpolation."""
+def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> dict[tuple, float]:
+    """The largest |f''| at the centre member over the elements of each leaf whose shape the three members
+    share: the second divided difference 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋) (nulls aside)."""
+    h_minus = coordinate(centre.value, log) - coordinate(left.value, log)
+    h_plus = coordinate(right.value, log) - coordinate(centre.value, log)
     found = {}
-    for path, leaf in checked_leaves(exact):
-        guess = _leaf(approx, path)
-        if guess is None or not isinstance(guess, (float, np.ndarray)) or any(
-                np.shape(x) != np.shape(leaf) for x in (guess, *(_leaf(end, path) for end in ends))):
-            continue
-        with np.errstate(invalid="ignore"):
-            difference = np.abs(np.asarray(guess, float) - np.asarray(leaf, float))
-        found[path] = float(np.max(difference, initial=0.0, where=np.isfinite(difference)))
+    with np.errstate(invalid="ignore", over="ignore"):
+        for path, f0 in centre.leaves.items():
+            f_minus, f_plus = left.leaves.get(path), right.leaves.get(path)
+            if f_minus is None or f_plus is None or f_minus.shape != f0.shape or f_plus.shape != f0.shape:
+                continue
+            bend = np.abs((f_plus - f0) / h_plus - (f0 - f_minus) / h_minus) * (2 / (h_plus + h_minus))
+            found[path] = float(np.fmax.reduce(bend, axis=None, initial=0.0))
     return found
 
 
-def deviation(found: dict[tuple, float], span: dict[tuple, float]) -> tuple[float, tuple]:
-    """The largest difference / span over the leaves, and that leaf's path; a difference where the span is
-    zero (out of nothing) counts 100 %."""
-    worst, where = 0.0, ()
-    for path, difference in found.items():
-        width = span.get(path, 0.0)
-        error = 0.0 if not difference else difference / width if width > 0 else 1.0
-        if error > worst:
-            worst, where = error, path
-    return worst, where
-
-
-# ---- members that are refused or partial ------------------------------------------------------------------
+# ---- members ----------------------------------------------------------------------------------------------
 
 def refusal(error: Exception) -> dict:
     """{code, message} of a member refused as HTTP would refuse it (the 422's detail)."""
@@ -329,150 +426,200 @@ def refusal(error: Exception) -> dict:
     return {"code": first["type"], "message": f"{where}: {first['msg']}" if where else first["msg"]}
 
 
-# ---- the family -------------------------------------------------------------------------------------------
-
 @dataclass
-class _Check:
-    """An interval's midpoint, computed exactly, and how far the interpolation is from it."""
+class Member:
+    """One value of the family: its answer as sent (a tree of rounded arrays; None where refused), the
+    refusal, whether a bound cut it short, and its checked leaves flattened."""
 
     value: float
     answer: dict | None
     error: dict | None
     partial: bool
-    differences: dict | None = None     # per checked leaf, against the interpolation (the ends do not change)
-    deviation: float = 0.0
-    where: tuple = ()
+    leaves: dict[tuple, np.ndarray] = field(default_factory=dict)
 
+    @classmethod
+    def of(cls, value: float, outcome: Answer | Exception) -> "Member":
+        """The member from the endpoint's Answer, or from its refusal (ValidationError, GeometryError)."""
+        if isinstance(outcome, Exception):
+            return cls(value, None, refusal(outcome), False)
+        tree = as_tree(outcome.payload)
+        return cls(value, tree, None, outcome.partial, flatten(tree))
+
+    def size(self) -> int:
+        """Bytes the member holds, roughly (its arrays and a little per leaf): the memo's measure."""
+        return sum(leaf.nbytes + 100 for leaf in self.leaves.values()) + 1000
+
+
+MemberBatch = Callable[[list[float], float], list[Member]]
+
+
+# ---- the family -------------------------------------------------------------------------------------------
 
 @dataclass
 class Family:
-    """The members computed so far, ascending, and the checked midpoints of the intervals between them."""
+    """The members computed so far, ascending in value, and the spans of their leaves."""
 
     log: bool
-    values: list[float] = field(default_factory=list)
-    answers: list = field(default_factory=list)
-    errors: list = field(default_factory=list)
-    partial: list[bool] = field(default_factory=list)
-    checks: dict[tuple[float, float], _Check] = field(default_factory=dict)
-    checked: int = 0                    # midpoints computed, those that became members included
-    extent: dict[tuple, list[float]] = field(default_factory=dict)     # ranges of the members' leaves
+    finest: float
+    members: list[Member] = field(default_factory=list)
+    extent: dict[tuple, list[float]] = field(default_factory=dict)
+    _curvatures: dict[float, tuple] = field(default_factory=dict)   # value → (neighbours' values, curvature)
+    _errors: dict[tuple, dict] = field(default_factory=dict)  # the 4 members' values → absolute error by leaf
 
-    def add(self, value: float, answer, error, partial: bool) -> None:
-        if answer is not None:
-            ranges(answer, self.extent)
-        k = bisect_right(self.values, value)
-        for column, item in ((self.values, value), (self.answers, answer), (self.errors, error),
-                             (self.partial, partial)):
-            column.insert(k, item)
+    def add(self, member: Member) -> None:
+        extend(self.extent, member.leaves)
+        self.members.insert(bisect_right([m.value for m in self.members], member.value), member)
 
-    def intervals(self) -> list[tuple[float, float]]:
-        return list(zip(self.values[:-1], self.values[1:]))
+    @property
+    def values(self) -> list[float]:
+        return [m.value for m in self.members]
 
-    def width(self, interval: tuple[float, float]) -> float:
-        return coordinate(interval[1], self.log) - coordinate(interval[0], self.log)
+    def width(self, k: int) -> float:
+        """The width of interval k (members k and k + 1) in the slider's coordinate."""
+        return coordinate(self.members[k + 1].value, self.log) - coordinate(self.members[k].value, self.log)
 
-    def score(self, interval: tuple[float, float], span: dict) -> float:
-        """How much an interval asks to be halved: its relative interpolation error; 1 (100 %) for an
-        answered–refused interval (the limit between them is to be found); infinite for a refused midpoint."""
-        check = self.checks[interval]
-        k = self.values.index(interval[0])
-        ends = (self.answers[k], self.answers[k + 1])
-        if ends[0] is None and ends[1] is None:
-            return 0.0
-        if ends[0] is None or ends[1] is None:
-            return 1.0
-        if check.answer is None:
-            return math.inf
-        if check.differences is None:
-            approx = interpolate_family(self.values, self.answers, check.value, self.log)
-            check.differences = differences(approx, check.answer, ends)
-        check.deviation, check.where = deviation(check.differences, span)
-        return check.deviation
+    def curvature(self, k: int) -> dict[tuple, float] | None:
+        """|f''| at member k (None at the range's ends and beside a refused member), kept until a neighbour
+        changes."""
+        if k == 0 or k == len(self.members) - 1 or any(self.members[j].answer is None for j in (k - 1, k, k + 1)):
+            return None
+        left, centre, right = self.members[k - 1:k + 2]
+        kept = self._curvatures.get(centre.value)
+        if kept is None or kept[0] != (left.value, right.value):
+            kept = ((left.value, right.value), curvature(left, centre, right, self.log))
+            self._curvatures[centre.value] = kept
+        return kept[1]
+
+    def estimate(self, k: int, span: dict[tuple, float]) -> tuple[float, tuple]:
+        """Interval k's estimated interpolation error relative to the span, and the leaf where it is largest:
+        h²/8 times the smaller of its two ends' largest |f''| (the one end that has it at the range's ends); 1 (100 %) between an answered and a refused member (the limit is to be found), 0
+        between two refused; infinite when neither end has a second difference (no neighbour to take it with)."""
+        a, b = self.members[k], self.members[k + 1]
+        if a.answer is None or b.answer is None:
+            return (0.0 if a.answer is None and b.answer is None else 1.0), ()
+        found = self.errors(k)
+        if found is None:
+            return math.inf, ()
+        worst, where = 0.0, ()
+        for path, largest in found.items():
+            width = span.get(path, 0.0)
+            error = 0.0 if not largest else largest / width if width > 0 else 1.0
+            if error > worst:
+                worst, where = error, path
+        return worst, where
+
+    def errors(self, k: int) -> dict[tuple, float] | None:
+        """Interval k's estimated largest |interpolation − exact| by leaf (absolute), kept until a member
+        that enters it changes; None when neither end has a second difference."""
+        around = tuple(self.members[j].value if 0 <= j < len(self.members) else None for j in range(k - 1, k + 3))
+        if around in self._errors:
+            return self._errors[around]
+        a, b = self.members[k], self.members[k + 1]
+        ends = [c for c in (self.curvature(k), self.curvature(k + 1)) if c is not None]
+        found = None
+        if ends:
+            scale = self.width(k) ** 2 / 8
+            found = {}
+            for path, leaf in a.leaves.items():
+                other = b.leaves.get(path)
+                bends = [c[path] for c in ends if path in c]
+                if other is None or other.shape != leaf.shape or not bends:
+                    continue        # another grid at each end: the nearer member's curve, not interpolated
+                found[path] = min(bends) * scale
+        self._errors[around] = found
+        return found
+
+    def change(self, k: int, span: dict[tuple, float]) -> tuple[float, tuple]:
+        """The largest |f(b) − f(a)| / span over interval k's leaves, and where: for an interval too narrow to
+        halve, a bound of the interpolation error wherever f is monotone inside it (f and the chord both lie
+        between f(a) and f(b)), which a jump's second differences understate (a step of height J reads J/8)."""
+        worst, where = 0.0, ()
+        a, b = self.members[k].leaves, self.members[k + 1].leaves
+        with np.errstate(invalid="ignore"):
+            for path, leaf in a.items():
+                other = b.get(path)
+                if other is None or other.shape != leaf.shape or not span.get(path):
+                    continue
+                error = float(np.fmax.reduce(np.abs(other - leaf), axis=None, initial=0.0)) / span[path]
+                if error > worst:
+                    worst, where = error, path
+        return worst, where
+
+    def halvable(self, k: int) -> bool:
+        return self.width(k) > self.finest * (1 + 1e-9)
 
 
-def build(member: Callable[[float], Answer], low: float, high: float, log: bool, lang: str = "en") -> tuple[dict, bool]:
-    """The family's answer (see the module) and whether it is partial: member(value) is the endpoint's
-    answer at value; it raises pydantic's ValidationError or GeometryError where the endpoint refuses it."""
+def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = "en",
+          stage: str = "full") -> tuple[dict, bool]:
+    """The family's answer (see the module) and whether it is partial. members(values, deadline) gives the
+    members at values, in order, stopping early (a shorter list) once the deadline has passed."""
     started = time.perf_counter()
     deadline = started + TIME_BUDGET_S
-    family = Family(log)
-    finest = (coordinate(high, log) - coordinate(low, log)) * FINEST_FRACTION
-    cut = False
-
-    def computed(value: float) -> tuple:
-        try:
-            answer = member(value)
-        except (ValidationError, GeometryError) as error:
-            return None, refusal(error), False
-        return as_tree(answer.payload), None, answer.partial
-
+    family = Family(log, (coordinate(high, log) - coordinate(low, log)) * FINEST_FRACTION)
     first = spaced(low, high, START_MEMBERS, log)
-    for index in COARSE_TO_FINE:
-        if len(family.values) >= 2 and time.perf_counter() > deadline:       # min and max always
-            cut = True
-            break
-        family.add(first[index], *computed(first[index]))
-    while not cut:
-        for interval in family.intervals():
-            if interval in family.checks:
-                continue
-            if time.perf_counter() > deadline:
-                cut = True
-                break
-            value = midpoint(*interval, log)
-            family.checks[interval] = _Check(value, *computed(value))
-            family.checked += 1
+    order = [first[index] for index in COARSE_TO_FINE]
+    for member in members(order[:2], math.inf) + members(order[2:], deadline):   # min and max always
+        family.add(member)
+    cut = len(family.members) < START_MEMBERS
+    while stage == "full" and not cut:
         span = widths(family.extent)
-        scores = sorted(((family.score(i, span), i) for i in family.intervals()
-                         if i in family.checks and family.width(i) > finest * (1 + 1e-9)),
-                        key=lambda item: item[0], reverse=True)
-        halve = [i for score, i in scores if score > TOLERANCE][:MAX_MEMBERS - len(family.values)]
+        scores = sorted(((family.estimate(k, span)[0], k) for k in range(len(family.members) - 1)
+                         if family.halvable(k)), reverse=True)
+        halve = [k for score, k in scores if score > TOLERANCE / SAFETY][:MAX_MEMBERS - len(family.members)]
         if not halve:
             break
-        for interval in halve:
-            check = family.checks.pop(interval)
-            family.add(check.value, check.answer, check.error, check.partial)
-    return _answer(family, lang, cut, started, finest)
+        values = [midpoint(family.members[k].value, family.members[k + 1].value, log) for k in halve]
+        computed = members(values, deadline)
+        for member in computed:
+            family.add(member)
+        cut = len(computed) < len(values)
+    return _answer(family, lang, cut, started, stage)
 
 
-def _answer(family: Family, lang: str, cut: bool, started: float, finest: float) -> tuple[dict, bool]:
+def _answer(family: Family, lang: str, cut: bool, started: float, stage: str) -> tuple[dict, bool]:
     """The answer of the contract, and whether it is partial (cut at the time budget, or a member is)."""
     span = widths(family.extent)
-    scores = {i: family.score(i, span) for i in family.intervals() if i in family.checks}
-    answered = {i: score for i, score in scores.items() if family.answers[family.values.index(i[0])] is not None
-                and family.answers[family.values.index(i[1])] is not None}       # both ends answered
-    error = max((score for i, score in answered.items() if family.checks[i].answer is not None), default=None)
+    members = family.members
+    estimates = {k: family.estimate(k, span) for k in range(len(members) - 1)}
+    answered = {k: found for k, found in estimates.items()
+                if members[k].answer is not None and members[k + 1].answer is not None and math.isfinite(found[0])}
+    for k, found in answered.items():
+        if stage == "full" and not family.halvable(k) and found[0] > TOLERANCE:    # a jump: say how large
+            answered[k] = max(found, family.change(k, span))
+    error = max((score for score, _ in answered.values()), default=None)
     texts = interface_texts(lang)
     number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
     sentences = []
     if cut:
-        sentences.append(texts["family_time_budget"].format(seconds=number(TIME_BUDGET_S), points=len(family.values)))
-    worst: dict[str, tuple[float, tuple]] = {}          # the worst interval left above the tolerance, by why
-    for interval, score in answered.items():
-        if score > TOLERANCE:
-            why = ("family_refused_inside" if family.checks[interval].answer is None else
-                   "family_unresolved" if family.width(interval) <= finest * (1 + 1e-9) else
-                   None if cut else "family_cap_unmet")    # cut short: the budget, said above
-            if why and score > worst.get(why, (0.0,))[0]:
-                worst[why] = (score, interval)
-    for why, (score, (a, b)) in worst.items():
-        where = family.checks[(a, b)].where
+        sentences.append(texts["family_time_budget"].format(seconds=number(TIME_BUDGET_S), points=len(members)))
+    worst: dict[str, tuple[float, int, tuple]] = {}          # the worst interval left above the tolerance, by why
+    if stage == "full":
+        for k, (score, where) in answered.items():
+            if score > TOLERANCE:
+                why = ("family_unresolved" if not family.halvable(k) else
+                       None if cut else "family_cap_unmet")    # cut short: the budget, said above
+                if why and score > worst.get(why, (0.0,))[0]:
+                    worst[why] = (score, k, where)
+        for k in range(1, len(members) - 1):
+            if members[k].answer is None and members[k - 1].answer is not None and members[k + 1].answer is not None:
+                worst.setdefault("family_refused_inside", (math.inf, k - 1, ()))
+    for why, (score, k, where) in worst.items():
+        a, b = members[k].value, members[k + 2 if why == "family_refused_inside" else k + 1].value
         sentences.append(texts[why].format(
             low=number(rounded(a)), high=number(rounded(b)), cap=MAX_MEMBERS, tolerance=number(100 * TOLERANCE),
-            error=number(rounded(100 * score)) if math.isfinite(score) else score,
-            quantity=".".join(str(part) for part in where)))
-    partial = [v for v, p in zip(family.values, family.partial) if p]
+            error=number(rounded(100 * score)) if math.isfinite(score) else score, quantity=quantity(where)))
+    partial = [m.value for m in members if m.partial]
     if partial:
         shown = ", ".join(f"{number(rounded(v)):g}" for v in partial[:8]) + (", …" if len(partial) > 8 else "")
         sentences.append(texts["family_partial_members"].format(count=len(partial), values=shown))
-    method = texts["family_method_log" if family.log else "family_method_linear"].format(
-        start=START_MEMBERS, tolerance=number(100 * TOLERANCE), cap=MAX_MEMBERS)
+    method = texts[f"family_method_{stage}_{'log' if family.log else 'linear'}"].format(
+        start=START_MEMBERS, tolerance=number(100 * TOLERANCE), safety=SAFETY, cap=MAX_MEMBERS)
     return {
-        "values": [rounded(v) for v in family.values],
-        "answers": family.answers,
-        "errors": family.errors,
+        "values": [rounded(m.value) for m in members],
+        "answers": [m.answer for m in members],
+        "errors": [m.error for m in members],
         "interpolation_error": rounded(error) if error is not None else None,
         "tolerance": TOLERANCE,
-        "numerics": {"method": method, "points": len(family.values), "checked": family.checked,
+        "numerics": {"method": method, "stage": stage, "points": len(members), "checked": len(members),
                      "runtime_ms": rounded(1e3 * (time.perf_counter() - started)), "message": " ".join(sentences)},
-    }, cut or bool(partial) or any(check.partial for check in family.checks.values())
+    }, cut or bool(partial)

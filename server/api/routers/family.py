@@ -9,7 +9,8 @@ from fastapi.responses import Response
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator
 
 from .. import family, heavy
-from ..endpoints import ENDPOINTS, compute_answer
+from ..endpoints import ENDPOINTS
+from ..family_batch import member_batch
 from ..schemas import Language
 from ..serialise import Answer, respond
 from .query import LANG
@@ -34,6 +35,8 @@ class FamilyRequest(BaseModel):
     log: bool = Field(False, description="members spaced (and interpolated) in log(value); needs min > 0")
     min: float = Field(allow_inf_nan=False, description="the slider's lowest value, in its shown units")
     max: float = Field(allow_inf_nan=False, description="the slider's highest value, in its shown units")
+    stage: Literal[family.STAGES] = Field("full", description='"coarse": the 9 start members at once, unrefined '
+                                          '(asked first, on the grab); "full": refined to the tolerance')
 
     @field_validator("vary")
     @classmethod
@@ -65,8 +68,10 @@ class FamilyRequest(BaseModel):
 
 class FamilyNumerics(BaseModel):
     method: str
+    stage: Literal[family.STAGES] = Field(description="the request's stage: coarse (unrefined) or full")
     points: int = Field(description="members in the family")
-    checked: int = Field(description="midpoints computed exactly to check the interpolation")
+    checked: int = Field(description="values computed exactly (each one a member)")
+    computed: int = Field(description="of those, computed for this family (the rest from the process's memo)")
     runtime_ms: float
     message: str = Field(description="in words: the cap or the time budget that stopped the family, partial members")
 
@@ -75,8 +80,8 @@ class FamilyResponse(BaseModel):
     values: list[float] = Field(description="the members' slider values, ascending, min and max included")
     answers: list[dict | None] = Field(description="the endpoint's answer at each value; null where refused")
     errors: list[dict | None] = Field(description="{code, message} of a refused value, else null")
-    interpolation_error: float | None = Field(description="largest |interpolation − exact| / span at the checked "
-                                                          "midpoints")
+    interpolation_error: float | None = Field(description="largest estimated |interpolation − exact| / span "
+                                                          "over the intervals (h²·|f''|/8, f'' from neighbours)")
     tolerance: float = Field(description="the target: 0.5 % of each plotted quantity's span over the family")
     numerics: FamilyNumerics
 
@@ -94,8 +99,8 @@ async def family_route(request: FamilyRequest, lang: Language = LANG) -> Respons
 def family_answer(body: dict, lang: str) -> tuple[dict, bool]:
     """The family's answer and whether it is partial (run in the heavy process)."""
     vary = [family.Vary(item["path"], item["factor"]) for item in body["vary"]]
-
-    def member(value: float) -> Answer:
-        return compute_answer(body["endpoint"], family.member_body(body["request"], vary, value), lang)
-
-    return family.build(member, body["min"], body["max"], body["log"], lang)
+    counts = {"computed": 0}
+    members = member_batch(body["endpoint"], body["request"], vary, lang, counts)
+    answer, partial = family.build(members, body["min"], body["max"], body["log"], lang, body["stage"])
+    answer["numerics"]["computed"] = counts["computed"]
+    return answer, partial

@@ -1,0 +1,210 @@
+"""The family engine (server/api/family.py, server/api/family_batch.py): the error estimate h²·|f''|/8 from
+neighbouring members against functions whose interpolation error is known in closed form, the bound against
+the endpoints' own exact answers at random values on several scenes (a dynamics one among them), the coarse
+stage, the memo of members, and the response cache keeping the stages apart.
+
+Families here run in this process with the time budgets lifted, so that nothing depends on the machine's speed.
+"""
+from __future__ import annotations
+
+import math
+import random
+
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+
+from server.api import family, family_batch, heavy
+from server.api.app import app
+from server.api.endpoints import compute_answer
+from server.api.serialise import Answer
+from server.core.dynamics import report
+
+from test_family import API, SENT, TOLERANCE, family_body, post_family
+
+FINEST = family.FINEST_FRACTION
+
+
+@pytest.fixture(scope="module")
+def client():
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(heavy, "HEAVY_PROCESSES", 0)
+        patch.setattr(family, "TIME_BUDGET_S", 1e9)
+        patch.setattr(report, "TIME_BUDGET_S", 1e9)
+        yield TestClient(app)
+
+
+def synthetic(f, calls: list | None = None):
+    """members(values, deadline) of a made-up endpoint answering {"y": f(value)} (a float array)."""
+    def members(values, deadline):
+        if calls is not None:
+            calls.extend(values)
+        return [family.Member.of(v, Answer({"y": np.atleast_1d(np.asarray(f(v), float))})) for v in values]
+    return members
+
+
+def test_the_estimate_of_a_parabola_is_its_exact_interpolation_error():
+    """For f = x² the second divided difference is exactly 2 on any spacing, and linear interpolation over
+    [a, b] is off by (b − a)²/4 at the midpoint, i.e. h²·|f''|/8: the estimate is exact (to round-off and the
+    5 digits sent, hence rel=1e-4). The family halves until every interval's estimate is below TOLERANCE /
+    SAFETY of the span (1 on [0, 1])."""
+    answer, partial = family.build(synthetic(lambda x: x * x), 0.0, 1.0, False)
+    values = np.asarray(answer["values"])
+    assert not partial and answer["numerics"]["stage"] == "full"
+    widths = np.diff(values)
+    assert np.allclose(widths, widths[0])                         # f'' is the same everywhere: even spacing
+    assert answer["interpolation_error"] == pytest.approx(widths[0] ** 2 / 4, rel=1e-4)
+    assert answer["interpolation_error"] <= TOLERANCE / family.SAFETY
+    assert (2 * widths[0]) ** 2 / 4 > TOLERANCE / family.SAFETY     # ... and not one halving more than needed
+
+
+def test_a_corner_in_the_middle_of_an_interval_is_within_the_bound():
+    """f = |x − x0| with x0 in the middle of a start interval, the worst case of the estimate (4× too small):
+    at 200 random x the interpolation is within TOLERANCE × span of the closed form, or the corner is left
+    in an interval narrower than a slider resolves."""
+    x0 = 1 / 16
+    answer, _ = family.build(synthetic(lambda x: abs(x - x0)), 0.0, 1.0, False)
+    values = answer["values"]
+    members = [family.as_tree(a, sent=False) for a in answer["answers"]]
+    span = 1 - x0
+    rng = np.random.default_rng(4)
+    for x in rng.uniform(0, 1, 200):
+        k = np.searchsorted(values, x) - 1
+        if values[k + 1] - values[k] <= FINEST * 1.01:
+            continue
+        preview = family.interpolate_family(values, members, x, False)["y"]
+        assert abs(preview[0] - abs(x - x0)) <= TOLERANCE * span + SENT
+
+
+def test_a_refined_family_of_a_smooth_curve_is_within_the_bound_at_random_values():
+    """f(x, φ) = sin(3x + φ) on 50 angles, x in [0, 4]: at 400 random x the interpolated family differs from
+    the closed form by at most TOLERANCE × span (span 2) plus the 5 digits sent (SENT). The estimate uses
+    the smaller |f''| of an interval's two ends; the safety factor covers that |f''| changes within it."""
+    phi = np.linspace(0, 2 * np.pi, 50)
+    answer, _ = family.build(synthetic(lambda x: np.sin(3 * x + phi)), 0.0, 4.0, False)
+    members = [family.as_tree(a, sent=False) for a in answer["answers"]]
+    rng = np.random.default_rng(13)
+    for x in rng.uniform(0, 4, 400):
+        preview = family.interpolate_family(answer["values"], members, x, False)["y"]
+        assert np.max(np.abs(preview - np.sin(3 * x + phi))) <= TOLERANCE * 2 + SENT
+
+
+def test_every_computed_value_is_a_member_and_a_jump_costs_one_member_per_halving():
+    """A step at x = 0.3 on [0, 1] beside a straight line: the start members and then one midpoint per
+    halving of the interval holding the step, down to FINEST_FRACTION (10 halvings of 1/8); the intervals
+    beside it are not halved for their neighbour's jump. The message names the jump and its size."""
+    calls = []
+    answer, _ = family.build(synthetic(lambda x: (x > 0.3) + 0.1 * x, calls), 0.0, 1.0, False)
+    assert answer["values"] == sorted(set(calls)) and answer["numerics"]["checked"] == len(calls)
+    assert len(calls) <= family.START_MEMBERS + 7 + 2
+    values = np.asarray(answer["values"])
+    k = np.searchsorted(values, 0.3)
+    assert values[k] - values[k - 1] <= FINEST * 1.01
+    assert "faster than a slider can resolve" in answer["numerics"]["message"]
+    # the error given there is the change across that interval, the step 1 over the span 1.1 (not the J/8
+    # that second differences read for a step)
+    assert answer["interpolation_error"] == pytest.approx(1 / 1.1, rel=1e-3)
+
+
+def test_the_coarse_stage_is_the_nine_start_members_with_an_estimate():
+    calls = []
+    answer, partial = family.build(synthetic(lambda x: x ** 3, calls), 1.0, 3.0, False, stage="coarse")
+    assert not partial and len(calls) == family.START_MEMBERS
+    assert answer["values"] == family.spaced(1.0, 3.0, family.START_MEMBERS, False)
+    assert answer["numerics"]["stage"] == "coarse" and answer["numerics"]["message"] == ""
+    assert "coarse" in answer["numerics"]["method"]
+    # x³ on spacing 0.25: |f''| = 6x, the estimate of the last interval from its left end (x = 2.75)
+    assert answer["interpolation_error"] == pytest.approx(0.25 ** 2 / 8 * 6 * 2.75 / 26, rel=1e-3)
+
+
+def test_objects_in_an_array_are_one_quantity_only_while_their_texts_agree():
+    a = {"special": [{"kind": "dead_centre", "phi": 0.0}, {"kind": "extreme", "phi": 1.0}]}
+    b = {"special": [{"kind": "extreme", "phi": 0.5}, {"kind": "extreme", "phi": 3.0}]}
+    mixed = family.interpolate(a, b, 0.25)
+    assert mixed["special"][0] == {"kind": "dead_centre", "phi": 0.0}         # another kind: the nearer one
+    assert mixed["special"][1]["phi"] == pytest.approx(1.5)                   # the same kind: interpolated
+    paths_a, paths_b = set(family.flatten(a)), set(family.flatten(b))
+    assert len(paths_a & paths_b) == 1                                        # only the second is compared
+    assert family.quantity(next(iter(paths_a & paths_b))) == "special.1.phi"
+
+
+def test_the_memo_is_bounded_in_members_and_in_bytes():
+    member = family.Member.of(1.0, Answer({"y": np.zeros(1000)}))
+    memo = family_batch.MemberMemo(entries=3, size=10 * member.size())
+    for k in range(5):
+        memo.put(("e", str(k)), member)
+    assert list(memo.store) == [("e", "2"), ("e", "3"), ("e", "4")]
+    assert memo.get(("e", "2")) is member and list(memo.store)[-1] == ("e", "2")
+    small = family_batch.MemberMemo(entries=100, size=int(2.5 * member.size()))
+    for k in range(5):
+        small.put(("e", str(k)), member)
+    assert len(small.store) == 2 and small.held <= small.size
+    partial = family.Member.of(1.0, Answer({"y": np.zeros(3)}, partial=True))
+    small.put(("p",), partial)
+    assert ("p",) not in small.store                          # cut short by a bound: computed again next time
+
+
+def test_the_full_family_after_the_coarse_one_reuses_its_members_and_answers_the_same(client):
+    family_batch.MEMO.store.clear()
+    family_batch.MEMO.held = 0
+    body = family_body("reduced-inertia", "slider_crank", "lambda")
+    _, coarse = post_family(client, body | {"stage": "coarse"})
+    response, full = post_family(client, body | {"stage": "full"})
+    assert coarse["numerics"]["stage"] == "coarse" and full["numerics"]["stage"] == "full"
+    assert response.headers["x-cache"] == "miss"              # the response cache keeps the stages apart
+    assert coarse["numerics"]["computed"] == 9
+    assert full["numerics"]["computed"] == full["numerics"]["points"] - 9
+    for value, member in zip(coarse["values"], coarse["answers"]):
+        assert full["answers"][full["values"].index(value)] == member
+    again, same = post_family(client, body)                   # no stage: "full", the same cached answer
+    assert again.headers["x-cache"] == "hit" and same == full
+
+
+@pytest.mark.parametrize("scene, variant, slider", [
+    ("reduced-inertia", "slider_crank", "lambda"),
+    ("forces-friction", "central", "load"),
+    ("angular-acceleration", "crank_slider", "lam"),
+    ("wear", "engine", "rpm"),
+    ("equation-of-motion", "constant", "beta"),
+])
+def test_interpolation_is_within_the_bound_of_the_exact_endpoint_at_random_values(client, scene, variant, slider):
+    """At 8 seeded random values in intervals wider than a slider resolves, every checked leaf of the
+    interpolated family is within TOLERANCE × its span of the endpoint's exact answer, plus SENT × |value|
+    (the 5 digits the contract sends). No other slack: the engine halves at TOLERANCE / SAFETY, and the
+    factor 4 covers that its h²·|f''|/8 is an estimate, 4× too small at worst for a corner (family.SAFETY)."""
+    body = family_body(scene, variant, slider)
+    _, answer = post_family(client, body)
+    values, log = answer["values"], body["log"]
+    members = [None if a is None else family.as_tree(a, sent=False) for a in answer["answers"]]
+    width = family.spans(members)
+    finest = (family.coordinate(values[-1], log) - family.coordinate(values[0], log)) * FINEST
+    vary = [family.Vary(v["path"], v["factor"]) for v in body["vary"]]
+    rng = random.Random(14)
+    for k in rng.sample(range(len(values) - 1), min(8, len(values) - 1)):
+        a, b = family.coordinate(values[k], log), family.coordinate(values[k + 1], log)
+        if b - a <= finest * 1.01 or members[k] is None or members[k + 1] is None:
+            continue
+        value = family.from_coordinate(a + rng.uniform(0.1, 0.9) * (b - a), log)
+        exact = family.as_tree(compute_answer(body["endpoint"], family.member_body(body["request"], vary, value)).payload,
+                               sent=False)
+        preview = family.interpolate_family(values, members, value, log)
+        for path, leaf in family.checked_leaves(exact):
+            guess = family._leaf(preview, path)
+            shapes = {np.shape(x) for x in (guess, leaf, family._leaf(members[k], path), family._leaf(members[k + 1], path))}
+            if guess is None or len(shapes) > 1:
+                continue
+            bound = TOLERANCE * width[path] + SENT * np.abs(leaf)
+            off = np.abs(np.asarray(guess, float) - leaf)
+            assert np.all(~(off > bound)), (scene, slider, value, family.quantity(path), float(np.nanmax(off / width[path])))
+
+
+def test_a_stage_that_is_not_coarse_or_full_is_refused(client):
+    body = family_body("reduced-inertia", "slider_crank", "lambda") | {"stage": "medium"}
+    response = client.post(f"{API}/family", json=body)
+    assert response.status_code == 422 and response.json()["detail"][0]["loc"] == ["body", "stage"]
+
+
+def test_the_shared_key_does_not_tell_a_missing_stage_from_full():
+    body = family_body("reduced-inertia", "slider_crank", "lambda")
+    assert family.shared(body) == family.shared(body | {"stage": "full"}) != family.shared(body | {"stage": "coarse"})
+    assert math.isfinite(body["min"])
