@@ -407,9 +407,9 @@ def test_interpolation_rule_of_the_page(family_page):
     page.goto("/scenes/transfer-functions?lang=en")
     family = {"values": [1, 2, 4], "log": False, "answers": [
         {"x": 1.0, "y": [0, 10, None], "s": "one", "n": [1, 2], "warnings": ["a"], "numerics": {"steps": 10},
-         "joints": {"A": [[0, 0], [1, 1]]}, "special": [{"kind": "dead", "phi": 0.0}]},
+         "joints": {"A": [[0, 0], [1, 1]]}, "special": [{"kind": "dead", "phi": 0.0}, {"kind": "max", "phi": 2.0}]},
         {"x": 3.0, "y": [2, 20, 5], "s": "two", "n": [1, 2, 3], "warnings": ["b"], "numerics": {"steps": 20},
-         "joints": {"A": [[2, 2], [3, 5]]}, "special": [{"kind": "dead", "phi": 1.0}]},
+         "joints": {"A": [[2, 2], [3, 5]]}, "special": [{"kind": "dead", "phi": 1.0}, {"kind": "min", "phi": 3.0}]},
         None]}
     result = page.evaluate("""async ([family, log]) => {
         const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
@@ -423,7 +423,13 @@ def test_interpolation_rule_of_the_page(family_page):
     assert quarter["s"] == "one" and quarter["n"] == [1, 2]        # nearer member's leaf
     assert quarter["warnings"] == ["a"] and quarter["numerics"] == {"steps": 10}
     assert quarter["joints"] == {"A": [[0.5, 0.5], [1.5, 2]]}
-    assert quarter["special"] == [{"kind": "dead", "phi": 0.25}]
+    # objects of one kind are one quantity; another kind at the same index is the nearer member's object
+    assert quarter["special"] == [{"kind": "dead", "phi": 0.25}, {"kind": "max", "phi": 2.0}]
+    assert result["near"]["special"][1] == {"kind": "min", "phi": 3.0}
+    from server.api.family import interpolate_family                  # the server checks with the same rule
+    for value, key in ((1.25, "quarter"), (1.75, "near")):
+        assert interpolate_family(family["values"][:2], family["answers"][:2], value, False)["special"] == \
+            result[key]["special"]
     near = result["near"]                                          # w = 0.75
     assert near["x"] == 2.5 and near["s"] == "two" and near["n"] == [1, 2, 3] and near["warnings"] == ["b"]
     assert result["member"] == family["answers"][1]

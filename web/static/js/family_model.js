@@ -6,7 +6,9 @@
  * (positions in log v for a logarithmic slider) with weight w = (v − v_k)/(v_{k+1} − v_k),
  *   a number in both                  → (1 − w)·a + w·b
  *   null in either                    → null
- *   arrays of equal length            → element by element (numbers, [x, y] joints, lists of objects)
+ *   arrays of equal length            → element by element (numbers, [x, y] joints, lists of objects; two
+ *                                        objects whose texts differ, e.g. a special position's kind, are not
+ *                                        the same quantity: the nearer member's object)
  *   objects                           → key by key (the nearer member's keys)
  *   anything else (strings, booleans, arrays of different length) and everything under
  *   "warnings", "numerics" and "study" → the nearer member's leaf.
@@ -19,6 +21,12 @@ import { setPath } from "./dotted_paths.js";
 
 const NEAREST_ONLY = new Set(["warnings", "numerics", "study"]);
 
+/** The strings of an object, as one text (its identity: a special position's kind); "" for anything else. */
+function texts(item) {
+  if (item === null || typeof item !== "object" || Array.isArray(item)) return "";
+  return JSON.stringify(Object.entries(item).filter(([, value]) => typeof value === "string"));
+}
+
 /** Mix of two members' leaves a and b at weight w (0 → a, 1 → b). */
 export function blend(a, b, w) {
   if (typeof a === "number" && typeof b === "number") return (1 - w) * a + w * b;
@@ -28,7 +36,8 @@ export function blend(a, b, w) {
     const mixed = new Array(a.length);
     for (let i = 0; i < a.length; i++) {
       const [x, y] = [a[i], b[i]];
-      mixed[i] = typeof x === "number" && typeof y === "number" ? (1 - w) * x + w * y : blend(x, y, w);
+      mixed[i] = typeof x === "number" && typeof y === "number" ? (1 - w) * x + w * y
+        : texts(x) === texts(y) ? blend(x, y, w) : (w < 0.5 ? x : y);
     }
     return mixed;
   }
