@@ -66,7 +66,7 @@ def test_self_locking_is_told_in_words_and_the_drawing_has_no_reactions_there(br
     efficiency = FORCES["panels"]["figures"]["items"][0]["label"]["ru"]
     assert figure_value(page, efficiency) == "—"
     page.locator("#panel-free_body").scroll_into_view_if_needed()
-    scrub(page, 90)                                   # inside the first range where the approximations diverge
+    scrub(page, 90)                                   # inside the first range where the slider locks
     page.wait_for_selector(".self-locking-note", state="visible")
     assert page.inner_text(".self-locking-note") == t["self_locking_at_angle"]
     assert page.locator(f"{ARROWS} .reaction:visible").count() == 0

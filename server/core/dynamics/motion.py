@@ -23,6 +23,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..mechanisms import Notice
+from ..numerics import Numerics, cumulative_simpson, simpson
 from .integrator import REST_STEPS, RestBudget, Run, integrate, kinked_tables
 from .machine import Machine, Tables
 
@@ -41,27 +42,6 @@ class NoMotion(Exception):
     def __init__(self, code: str, text: str, **context):
         super().__init__(text)
         self.notice = Notice(code, text, context)
-
-
-@dataclass
-class Numerics:
-    """How the answer was computed, like scipy's OdeResult: method, tolerance, work, error."""
-
-    method: str
-    rtol: float
-    code: str = ""                  # names the method for the interface's translations
-    message_code: str = ""          # names a routine message (with message_context) for the same
-    message_context: dict = field(default_factory=dict)
-    steps: int = 0
-    cycles: int = 0
-    iterations: int = 0
-    runtime_ms: float = 0.0
-    error_estimate: float | None = None   # None: nothing computed, or nothing to estimate it from
-    energy_residual: float = 0.0
-    message: str = ""
-
-    def as_dict(self) -> dict:
-        return dict(self.__dict__)
 
 
 @dataclass
@@ -272,20 +252,6 @@ def extreme_speed(machine: Machine, tables: Tables, run: Run, k: int, sign: int,
     return float(values[j])
 
 
-def simpson(values: np.ndarray, h: float) -> float:
-    """Composite Simpson over step nodes spaced h (an even number of intervals; trapezoid for the odd tail)."""
-    n = values.size - 1
-    even = n - n % 2
-    total = h / 3 * (values[0] + values[even] + 4 * values[1:even:2].sum() + 2 * values[2:even:2].sum())
-    return total + (0.5 * h * (values[even] + values[-1]) if n % 2 else 0.0)
-
-
-def cumulative_simpson(values: np.ndarray, h: float) -> np.ndarray:
-    """∫ from the first node to each step node; values on step and half-step nodes, step h."""
-    pieces = h / 6 * (values[:-2:2] + 4 * values[1::2] + values[2::2])
-    return np.concatenate([[0.0], np.cumsum(pieces)])
-
-
 def richardson(differences: list[float]) -> float:
     """The error of the finer of the last two levels from the largest differences between successive levels,
     d_n = max|y_h − y_2h|: d_n/(2^p − 1) with 2^p = d_{n−1}/d_n the order the levels show, taken between
@@ -368,7 +334,7 @@ def _shoot(machine: Machine, tables: Tables, steps: int, T0: float | None, numer
                                          "can give at any speed; the machine stops.")
         T0 = 0.5 * tables.J[0] * omega**2
     for _ in range(NEWTON_MAX):
-        numerics.iterations += 1
+        numerics.iterations = (numerics.iterations or 0) + 1
         run = integrate(machine, tables, T0, steps)
         if run.stall_phi is not None:
             raise NoMotion("stall_in_cycle", f"Stall at φ = {np.degrees(run.stall_phi):.1f}°: the kinetic energy runs "

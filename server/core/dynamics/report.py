@@ -76,7 +76,7 @@ def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, ome
     if "steady" in outputs:
         steady = steady_cycle(machine, rtol, omega_mean, balance, deadline)
         notices += steady.notices
-        result["numerics"] = declared(steady.numerics)
+        result["numerics"] = steady.numerics.as_dict()
         if steady.steady is not None:
             s = steady.steady
             result |= {"phi": s.phi, "omega": s.omega, "t": s.t, "epsilon": s.epsilon, "omega_mean": s.omega_mean,
@@ -86,7 +86,7 @@ def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, ome
         start = startup(machine, omega0, max(rtol, 1e-9), max_cycles, balance, deadline)
         notices += start.notices
         run = start.transient
-        result["startup"] = {"numerics": declared(start.numerics)}
+        result["startup"] = {"numerics": start.numerics.as_dict()}
         if run is not None:
             keep = slice(None, None, max(1, run.phi.size // 4000))   # at most ~4000 points to draw
             result["startup"] |= {"phi": run.phi[keep], "omega": run.omega[keep], "t": run.t[keep]}
@@ -106,12 +106,6 @@ def _mean_numerics(total: np.ndarray, error: float, started: float) -> dict:
     scale = mean_over_cycle(np.abs(total))
     numerics.error_estimate = error / scale if scale > 0 else 0.0
     return numerics.as_dict()
-
-
-def declared(numerics) -> dict:
-    """A motion result's numerics in the one declared form (server/core/numerics.py): its fields checked
-    against the declaration, non-finite numbers said in words."""
-    return Numerics(**numerics.as_dict()).as_dict()
 
 
 def _flywheel_error(machine: Machine, omega_mean: float, delta: float, balance: bool, steps: int, inertia: float) -> float | None:

@@ -19,6 +19,7 @@ from ..dynamics.motors import Motor
 from ..dynamics.reduction import Inertias, reduced_inertia
 from ..dynamics.resistance import Load, resisting_moment
 from ..mechanisms import MECHANISMS, GeometryError, Notice
+from ..numerics import Numerics
 from . import dop853
 from .compiled import MOTOR_KINDS, pack, pack_rigid, ready
 from .models import Drive, MechanismSide, ThreeMass, TwoMass
@@ -187,20 +188,19 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
         twist_check = total_twist(machine, rerun.y)
         common = min(twist_now.size, twist_check.size)
         estimate = float(np.max(np.abs(twist_now[:common] - twist_check[:common]), initial=0.0)) / scale
-    numerics = {
-        "method": chosen, "code": "elastic_" + ("implicit" if chosen in ("Radau", "BDF", "LSODA") else "explicit"),
-        "why_context": {"ratio": ratio, "decay": decay, "slow": slow, "fastest": fastest, "threshold": STIFF_RATIO},
-        "why": (f"stiffness ratio {ratio:.3g}: the fastest decay rate {decay:.4g} 1/s against the "
+    numerics = Numerics(
+        method=chosen, code="elastic_" + ("implicit" if chosen in ("Radau", "BDF", "LSODA") else "explicit"),
+        why_context={"ratio": ratio, "decay": decay, "slow": slow, "fastest": fastest, "threshold": STIFF_RATIO},
+        why=(f"stiffness ratio {ratio:.3g}: the fastest decay rate {decay:.4g} 1/s against the "
                                   f"slow rate {slow:.4g} 1/s (fastest |λ| = {fastest:.4g} 1/s) is "
                                   f"{'above' if ratio > STIFF_RATIO else 'below'} {STIFF_RATIO:g}, so an "
                                   f"{'implicit' if chosen in ('Radau', 'BDF', 'LSODA') else 'explicit'} method"
                                   + (" (chosen by the request)" if method != "auto" else "")),
-        "stiffness_ratio": ratio, "rtol": rtol, "steps": run.numerics["steps"], "rejected": run.numerics["rejected"],
-        "nfev": run.numerics["nfev"], "njev": run.numerics["njev"], "nlu": run.numerics["nlu"],
-        "error_estimate": estimate,
-        "energy_residual": result.pop("energy_residual"), "message": run.numerics["message"],
-        "table_points_per_turn": TABLE_POINTS,
-        "runtime_ms": 1e3 * (time.perf_counter() - started)}
+        stiffness_ratio=ratio, rtol=rtol, steps=run.numerics["steps"], rejected=run.numerics["rejected"],
+        nfev=run.numerics["nfev"], njev=run.numerics["njev"], nlu=run.numerics["nlu"],
+        error_estimate=estimate,
+        energy_residual=result.pop("energy_residual"), message=run.numerics["message"],
+        runtime_ms=1e3 * (time.perf_counter() - started)).as_dict()
     notices = [] if run.complete else [Notice("elastic_partial", run.numerics["message"])]
     largest = scale if twist_now.size else 0.0
     if largest > LARGE_TWIST:

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..dynamics.motion import Numerics
+from ..numerics import Numerics
 from ..dynamics.motors import gas_force
 from ..mechanisms import MECHANISMS, Notice
 from ..mechanisms.base import angle_ranges, ranges_text
@@ -183,8 +183,9 @@ def analyse(params: dict, loads: Loads, pairs: Pairs, phi: np.ndarray, tolerance
     if locked.any():
         ranges = angle_ranges(phi, locked)
         result.notices.append(Notice(
-            "kinetostatics_self_locking", f"Self-locking: the successive approximations diverge for φ in "
-            f"{ranges_text(ranges)}: friction grows faster than the reactions it comes from.", {"ranges": ranges}))
+            "kinetostatics_self_locking", f"Self-locking for φ in {ranges_text(ranges)}: the connecting rod's line "
+            "of force lies within the guide's friction angle (f₃₄·|tan ψ′| ≥ 1), so no force on the slider moves it "
+            "there.", {"ranges": ranges}))
         for approximation in (*result.approximations, result.solution):   # no reaction, no friction where it locks
             for value in (approximation.R12, approximation.R23, approximation.N, *approximation.friction.values()):
                 value[locked] = np.nan

@@ -33,6 +33,7 @@ const NUMERICS_ROWS = [
   ["nlu", "numerics_nlu", (v, lang) => formatNumber(v, lang, 0)],
   ["cycles", "numerics_cycles", (v, lang) => formatNumber(v, lang, 0)],
   ["iterations", "numerics_iterations", (v, lang) => formatNumber(v, lang, 0)],
+  ["converged", "numerics_converged", (v, lang, t) => t[v ? "numerics_yes" : "numerics_no"]],
   ["runtime_ms", "numerics_runtime", (v, lang, t) => `${formatQuantity(v, lang, 3)} ${unitText("ms", t)}`],
   ["error_estimate", "numerics_error", (v, lang) => formatQuantity(v, lang, 2)],
   ["energy_residual", "numerics_energy", (v, lang) => formatQuantity(v, lang, 2)],
