@@ -84,3 +84,33 @@ def test_the_textbook_formulas_that_let_friction_help_leave_eta_unset_in_words()
     data = motion(body)
     assert data["works"]["dry_friction"] < 0 and data["efficiency"] is None
     assert any("η is not given" in w for w in data["warnings"])
+
+
+def test_the_constant_torque_default_says_its_stall_concerns_the_start_up_beside_its_steady_cycle():
+    """Issue 14, defect 7. The scene's constant-torque machine has a steady cycle and stalls only when started
+    from rest; the answer says which. Bound, independent of the integrator: viscous friction only takes energy,
+    so from rest T(φ) ≤ W(φ) = ∫₀^φ (i·M₀ − M_c,φ) dφ (the φ-dependent moments, by the trapezoid rule on a
+    fine grid), and the start-up must stop no later than W's first zero (0.5° of grid and refinement)."""
+    import numpy as np
+
+    from server.api.endpoints import compute
+    from server.core.dynamics.resistance import Load, resisting_moment
+    from server.lessons.requests import scene_request
+    from server.lessons.scenes import scenes
+    scene = scenes()["equation-of-motion"]
+    body = scene_request(scene, next(v for v in scene.variants if v.id == "constant"), None)
+    answer = compute("motion", body, "en")
+    assert len(answer["omega"]) > 10 and np.isfinite(answer["omega_mean"])          # the steady cycle is shown
+    numerics = answer["startup"]["numerics"]
+    assert numerics["message_code"] == "stall_startup_from"
+    assert any("concerns the start-up only" in w for w in answer["warnings"])
+    assert not any(w.startswith("Stall") and "start-up" not in w for w in answer["warnings"])
+    phi = np.linspace(0.0, 2 * np.pi, 20001)
+    load = Load(**{**body["load"], "beta": 0.0})
+    from server.core.mechanisms import MECHANISMS
+    params = {**MECHANISMS["slider_crank"].defaults(), **body["params"]}
+    moment = resisting_moment("slider_crank", params, load, phi).total
+    net = body["inertias"]["gear_ratio"] * body["motor"]["M0"] - moment
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (net[1:] + net[:-1]) * np.diff(phi))])
+    first_zero = np.degrees(phi[np.argmax(work[1:] < 0) + 1])
+    assert (work[1:] < 0).any() and numerics["message_context"]["phi"] <= first_zero + 0.5
