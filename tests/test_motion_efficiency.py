@@ -114,3 +114,19 @@ def test_the_constant_torque_default_says_its_stall_concerns_the_start_up_beside
     work = np.concatenate([[0.0], np.cumsum(0.5 * (net[1:] + net[:-1]) * np.diff(phi))])
     first_zero = np.degrees(phi[np.argmax(work[1:] < 0) + 1])
     assert (work[1:] < 0).any() and numerics["message_context"]["phi"] <= first_zero + 0.5
+
+
+def test_every_ending_of_a_start_up_is_said_in_the_readers_language():
+    """A start-up cut at max_cycles before it settles ends "not yet periodic": a routine message with its own
+    key (and its estimate's sentence when above rtol), so ru and uk pages never show the English text."""
+    from server.api.endpoints import compute
+    from server.lessons.requests import scene_request
+    from server.lessons.scenes import interface_texts, scenes
+    scene = scenes()["equation-of-motion"]
+    body = {**scene_request(scene, next(v for v in scene.variants if v.id == "linear"), None), "max_cycles": 1}
+    english = compute("motion", body, "en")["startup"]["numerics"]
+    assert english["message_code"].startswith("startup_not_periodic")
+    for lang in ("ru", "uk"):
+        local = compute("motion", body, lang)["startup"]["numerics"]
+        template = interface_texts(lang)["num_message_" + english["message_code"]]
+        assert local["message"] != english["message"] and local["message"].startswith(template.split("{")[0])

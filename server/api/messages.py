@@ -37,12 +37,13 @@ def localise_numerics(numerics: dict, lang: str) -> dict:
     template = texts.get(f"num_{numerics.get('code')}")
     if template:
         local["method"] = template.format(method=numerics.get("method", ""))
+    number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
     message = texts.get(f"num_message_{numerics.get('message_code')}")
     if message:
-        local["message"] = message.format(**numerics.get("message_context", {}))
+        local["message"] = message.format(**{k: number(v) if isinstance(v, float) else v
+                                             for k, v in numerics.get("message_context", {}).items()})
     why = interface_texts(lang).get(f"why_{numerics.get('code')}")      # English too: readable numbers
     if why and "why_context" in numerics:
-        number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
         local["why"] = why.format(**{k: number(v) for k, v in numerics["why_context"].items()})
     return local
 

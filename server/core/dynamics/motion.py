@@ -440,8 +440,10 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
         numerics.message_code, numerics.message_context = "settled", {"cycles": len(pieces)}
     elif len(pieces) < min(max_cycles, MAX_CYCLES):
         numerics.message = f"stopped at the time budget after {len(pieces)} cycles, not yet periodic"
+        numerics.message_code, numerics.message_context = "startup_time_budget", {"cycles": len(pieces)}
     else:
         numerics.message = f"not yet periodic after {len(pieces)} cycles"
+        numerics.message_code, numerics.message_context = "startup_not_periodic", {"cycles": len(pieces)}
     motion.transient = Run(np.concatenate([p.phi for p in pieces]), np.concatenate([p.T for p in pieces]),
                            np.concatenate([p.omega for p in pieces]), np.concatenate([p.t for p in pieces]),
                            pieces[-1].sensitivity, pieces[-1].stall_phi)
@@ -450,6 +452,9 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
     if rtol > 0 and estimate is not None and estimate > rtol:
         numerics.message += (f"; the error estimate {estimate:.2g} is above rtol = {rtol:g} at {per_2pi} steps per "
                              "2π (the finest level, or the time budget)")
+        numerics.message_code += "_above_rtol"          # the same ending, and the estimate said with it
+        numerics.message_context = {**numerics.message_context, "estimate": estimate, "rtol": rtol,
+                                    "per_2pi": per_2pi}
     numerics.runtime_ms = 1e3 * (time.perf_counter() - started)
     return motion
 
