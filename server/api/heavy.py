@@ -5,7 +5,8 @@ An elastic time integration or a live work–precision study holds the interpret
 other student's 5-ms kinematics request behind it for the lock. In a separate process it uses the
 other CPU and the worker stays free. Two lanes (LANES), each ``MDL_HEAVY_PROCESSES`` processes per worker
 (default 1; 0 runs them in the worker itself, in one thread of their own): the answers a student waits for,
-and the slider families at a lower priority still, so that a family never delays an answer. A child that dies is replaced and the computation is
+and the slider families at a lower priority still, so that a family never delays an answer (a family's coarse
+stage, the 9-member preview a student waits for, runs in the answers' lane). A child that dies is replaced and the computation is
 tried once more.
 
 A route awaits ``submit``: the wait holds no thread, so heavy requests never take the tokens of the thread

@@ -92,8 +92,11 @@ class FamilyResponse(BaseModel):
                               "description": "the family; header X-Partial: 1 when cut short by a work bound"},
                         422: {"description": "invalid input: the field and the reason"}})
 async def family_route(request: FamilyRequest, lang: Language = LANG) -> Response:
-    # the family rounds its floats to family.SIGNIFICANT digits itself: sent as they are
-    return respond(Answer(*await heavy.submit(family_answer, request.model_dump(), lang, lane="families")), "full")
+    # the family rounds its floats to family.SIGNIFICANT digits itself: sent as they are. The coarse stage is
+    # the preview a student is waiting for while dragging (9 members): it runs in the answers' lane, ahead of
+    # the full families queued in theirs (which then compute those 9 again: their memo is in another process)
+    lane = "answers" if request.stage == "coarse" else "families"
+    return respond(Answer(*await heavy.submit(family_answer, request.model_dump(), lang, lane=lane)), "full")
 
 
 def family_answer(body: dict, lang: str) -> tuple[dict, bool]:
