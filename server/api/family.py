@@ -60,7 +60,7 @@ import numpy as np
 from pydantic import ValidationError
 
 from ..core.mechanisms import GeometryError
-from .serialise import Answer
+from .serialise import Answer, significant
 from .messages import CommaFloat, DECIMAL_COMMA, ReadableFloat
 from ..lessons.scenes import interface_texts
 
@@ -258,7 +258,6 @@ def _sent(tree, arrays):
 
 NUMBERS = frozenset({float, int, type(None)})
 PLAIN = frozenset({bool, int, str, type(None)})
-EXACT_POWERS = 10.0 ** np.arange(23)          # 10^0 … 10^22, each exact in binary floating point
 
 
 def _numeric_array(items: list) -> np.ndarray | None:
@@ -286,25 +285,14 @@ def rounded(x: float) -> float | None:
 
 
 def rounded_array(x: np.ndarray) -> np.ndarray:
-    """Each element to SIGNIFICANT digits, non-finite → NaN (null). Scaling by an exact power of ten
-    (multiply by 10^k, 0 ≤ k ≤ 22; divide by 10^−k, −22 ≤ k < 0; 10^|k| from a table) keeps the shortest
-    decimal form of each result; the few elements further from 1 (below 1e-18 or above 1e26) are formatted
-    one by one."""
+    """Each element to SIGNIFICANT digits (serialise.significant: exact powers of ten keep the shortest decimal
+    form), non-finite → NaN (null); the few elements where 10^|k| is no longer exact (below 1e-17 or from
+    1e26 on) are formatted one by one."""
     x = np.where(np.isfinite(x), x, np.nan)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        exponent = np.log10(np.abs(x))
-        np.floor(exponent, out=exponent)
-        np.subtract(SIGNIFICANT - 1, exponent, out=exponent)
-        exponent[~np.isfinite(exponent)] = 0.0          # 0 and NaN: scaled by 1
-        k = exponent.astype(np.int64)
-        far = np.abs(k) > 22
-        np.clip(k, -22, 22, out=k)
-        up, down = EXACT_POWERS[np.maximum(k, 0)], EXACT_POWERS[np.maximum(-k, 0)]
-        result = x * up
-        result /= down
-        np.round(result, out=result)
-        result /= up
-        result *= down
+    result = significant(x, SIGNIFICANT)
+    with np.errstate(invalid="ignore"):
+        magnitude = np.abs(x)
+        far = (magnitude > 0) & ((magnitude < 1e-17) | (magnitude >= 1e26))
     if far.any():
         result[far] = [float(f"{value:.{SIGNIFICANT}g}") for value in x[far]]
     return result

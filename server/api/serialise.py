@@ -39,7 +39,7 @@ class Answer:
     partial: bool = False
 
 
-def _significant(x: np.ndarray, digits: int) -> np.ndarray:
+def significant(x: np.ndarray, digits: int) -> np.ndarray:
     """x rounded to `digits` significant digits, element-wise; 0, ±inf and NaN unchanged.
 
     x·10ᵏ is rounded to an integer and scaled back, k = digits − 1 − ⌊log₁₀|x|⌋, with 10^|k| from a table:
@@ -99,7 +99,7 @@ def _rounded(payload, digits: int):
     _float_arrays(payload, found)
     if not found:
         return _rebuilt(payload, digits, iter(()))
-    flat = _significant(np.concatenate([a.ravel() for a in found]).astype(float, copy=False), digits)
+    flat = significant(np.concatenate([a.ravel() for a in found]).astype(float, copy=False), digits)
     parts = np.split(flat, np.cumsum([a.size for a in found])[:-1])
     return _rebuilt(payload, digits, (part.reshape(a.shape) for part, a in zip(parts, found)))
 
