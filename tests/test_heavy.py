@@ -82,6 +82,24 @@ def test_a_computation_waiting_at_shutdown_starts_no_new_process():
     assert heavy.run(os.getpid) != os.getpid()
 
 
+def test_a_server_started_again_at_once_after_shutdown_gets_a_new_forkserver():
+    """shutdown() ends the forkserver and forgets it (waits for it, drops its address), so the next start in
+    the same process (the tests start app after app) begins a new one at once, instead of asking the dying
+    one for a process (EOFError from multiprocessing when the old one is still on its way out)."""
+    import multiprocessing.forkserver
+    heavy.run(os.getpid)
+    server = multiprocessing.forkserver._forkserver
+    old = server._forkserver_pid
+    assert old is not None
+    heavy.shutdown()
+    assert server._forkserver_pid is None and server._forkserver_address is None
+    for _ in range(3):                                # start, stop, start again without a pause
+        heavy.start()
+        assert heavy.run(os.getpid) != os.getpid()
+        heavy.shutdown()
+    assert heavy.run(os.getpid) != os.getpid() and server._forkserver_pid not in (None, old)
+
+
 def test_submit_answers_brings_refusals_back_and_replaces_a_dead_child():
     async def scenario():
         pid = await heavy.submit(os.getpid)

@@ -98,6 +98,11 @@ def shutdown() -> None:
             os.kill(pid, signal.SIGTERM)
         except ProcessLookupError:
             pass
+        # wait for it and forget its address: a server started again in this process (the tests start many)
+        # then starts a new forkserver instead of asking the dying one for a process (EOFError)
+        forget = getattr(server, "_stop", None)
+        if forget is not None:
+            forget()
 
 
 def run(function: Callable[..., T], *args, lane: str = "answers") -> T:
