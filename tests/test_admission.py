@@ -245,12 +245,18 @@ class FakeTime:
         self.now += seconds
 
 
+async def one_place_held():
+    """A middleware with one place per client on a fake clock, and that place held by a computation."""
+    app, time = HeldApp(), FakeTime()
+    middleware = AdmissionMiddleware(app, per_client=1, per_address=10, clock=time.clock, sleep=time.sleep)
+    held = Exchange(middleware)
+    await settle()
+    return app, time, middleware, held
+
+
 def test_a_client_that_asks_again_before_its_retry_after_waits_it_out_and_then_is_admitted_if_a_place_is_free():
     async def scenario():
-        app, time = HeldApp(), FakeTime()
-        middleware = AdmissionMiddleware(app, per_client=1, per_address=10, clock=time.clock, sleep=time.sleep)
-        held = Exchange(middleware)
-        await settle()
+        app, time, middleware, held = await one_place_held()
         first = Exchange(middleware)                            # refused at once, told to wait 1 s
         await settle()
         assert first.status == 429 and time.asked == []
@@ -269,10 +275,7 @@ def test_a_client_that_asks_again_before_its_retry_after_waits_it_out_and_then_i
 
 def test_a_client_that_waited_its_retry_after_is_answered_at_once_and_a_still_full_one_is_refused_after_the_wait():
     async def scenario():
-        app, time = HeldApp(), FakeTime()
-        middleware = AdmissionMiddleware(app, per_client=1, per_address=10, clock=time.clock, sleep=time.sleep)
-        held = Exchange(middleware)
-        await settle()
+        app, time, middleware, held = await one_place_held()
         assert Exchange(middleware).task is not None
         await settle()
         time.now += 1.0                                         # honoured Retry-After: 1

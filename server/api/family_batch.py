@@ -2,8 +2,9 @@
 
 ``member_batch`` gives family.build its members(values, deadline): each value's body (the request with the
 varied paths set), its answer from the memo when the same endpoint, body and language were computed before in
-this process (the coarse stage's members, asked again by the full family right after; a neighbouring family
-sharing a member), else from endpoints.compute_answer, one body after another until the deadline has passed.
+this process (a neighbouring family sharing a member; the coarse stage's members, asked again by the full
+family, where both stages run in one process: with heavy processes the coarse stage runs in the lane of
+answers, routers/family.py), else from endpoints.compute_answer, one body after another until the deadline has passed.
 The kinematics core evaluates one parameter set per call (its special positions, harmonics and warnings are
 per mechanism), so a batch is a loop over bodies, not one call over a (φ, value) grid.
 

@@ -6,9 +6,9 @@
  * without a request; the page asks for the exact answer when the slider comes to rest.
  *
  * Two stages: the page first asks for the coarse family ("stage": "coarse", the 9 start members, answered
- * at once) and, when it has arrived, for the full one (the server reuses the coarse members, so asking
- * one after the other costs it no more than the full family alone; asked together, both would compute the
- * start members). The preview is drawn from the best family there is: the full one replaces the coarse one
+ * at once, in the server's lane of answers) and, when it has arrived, for the full one (queued behind other
+ * students' full families; asked together, the full family would take the CPU the coarse one needs first).
+ * The preview is drawn from the best family there is: the full one replaces the coarse one
  * when it arrives (and redraws a preview on the screen). A server that refuses "stage" (an older one, 422)
  * gets one request without it, the full family, for the rest of the page's life.
  *
