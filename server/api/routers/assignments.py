@@ -10,7 +10,7 @@ from __future__ import annotations
 import os
 import time
 
-from fastapi import APIRouter, Path, Query, Request, Response
+from fastapi import APIRouter, Depends, Path, Query, Request, Response
 from fastapi.responses import JSONResponse
 
 from ...classroom.identity import personal_path
@@ -33,6 +33,7 @@ LANG = Query("en", description="language of the question labels: ru, uk or en")
 ID = Path(max_length=40, description="the assignment's id (from the students' link)")
 TOKEN = Path(max_length=60, description="the instructor's results token")
 STUDENT = Path(max_length=16, description="the student's handle (`id` in the results)")
+SECRET = Depends(sent_secret)
 SUBMISSIONS_PER_MINUTE = int(os.environ.get("MDL_SUBMISSIONS_PER_MINUTE", "300"))   # per client address
 NO_SECRET = {401: {"description": "no personal secret (`no_secret`)"},
              403: {"description": "a secret of nobody (`unknown_secret`), or a name not the student's"}}
@@ -50,9 +51,8 @@ def name_refused(refused: NameRefused) -> JSONResponse:
     return _refuse(assignments.NAME_STATUS[refused.code], ["body", "name"], refused.reason, refused.code, **refused.about)
 
 
-def the_student(request: Request, record) -> StudentRecord | JSONResponse:
+def the_student(secret: str | None, record) -> StudentRecord | JSONResponse:
     """The student whose secret the request carries, or the refusal to send."""
-    secret = sent_secret(request)
     if not secret:
         return _refuse(401, ["header", "authorization"], "no personal secret: open the assignment's link and type "
                                                          "your name, or open your personal link", "no_secret")
@@ -91,13 +91,14 @@ def describe(assignment_id: str = ID, lang: Language = LANG) -> AssignmentInfo:
                         409: {"description": "the name is taken (`name_taken`) or looks like a registered one "
                                              "(`name_confusable`, with `resembles`)"},
                         422: {"description": "no name, too long, or a word in two alphabets"}})
-def register(registration: StudentRegistration, request: Request, response: Response, assignment_id: str = ID):
+def register(registration: StudentRegistration, request: Request, response: Response, assignment_id: str = ID,
+             sent: str | None = SECRET):
     record, resolved = assignments.load(assignment_id)
     if from_another_site(request):
         return _refuse(403, ["header", "origin"], "registration from another site's page", "cross_site")
-    current = assignments.identify(record, sent_secret(request))
     try:
-        student, secret = assignments.register(record, resolved, registration.name, current)
+        student, secret = assignments.register(record, resolved, registration.name,
+                                               assignments.identify(record, sent))
     except NameRefused as refused:
         return name_refused(refused)
     if secret is None:
@@ -112,9 +113,9 @@ def register(registration: StudentRegistration, request: Request, response: Resp
 @router.get("/{assignment_id}/me", response_model=StudentVariant,
             summary="The student's own variant and the state of their questions (answers only once closed)",
             responses={**NO_SECRET, 404: {"description": "no such assignment"}})
-def student_variant(request: Request, assignment_id: str = ID, lang: Language = LANG):
+def student_variant(assignment_id: str = ID, lang: Language = LANG, secret: str | None = SECRET):
     record, resolved = assignments.load(assignment_id)
-    student = the_student(request, record)
+    student = the_student(secret, record)
     if isinstance(student, JSONResponse):
         return student
     return StudentVariant(assignment=assignments.info(record, resolved, lang), student=student.name,
@@ -129,13 +130,13 @@ def student_variant(request: Request, assignment_id: str = ID, lang: Language = 
                         409: {"description": "no attempt left, or already answered right"},
                         422: {"description": "the field and the reason"},
                         429: {"description": "too many submissions from this address"}})
-def submit(submission: SubmissionRequest, request: Request, assignment_id: str = ID):
+def submit(submission: SubmissionRequest, request: Request, assignment_id: str = ID, secret: str | None = SECRET):
     record, resolved = assignments.load(assignment_id)
     if submission.question not in {p.id for p in resolved.spec.questions}:
         return _refuse(422, ["body", "question"], "not a question of this assignment", "unknown_question")
     if not assignments.is_open(resolved):
         return _refuse(403, ["body"], "the deadline has passed", "deadline_passed")
-    student = the_student(request, record)
+    student = the_student(secret, record)
     if isinstance(student, JSONResponse):
         return student
     if submission.student is not None and normalise(submission.student) != student.key:
