@@ -107,6 +107,7 @@ def registered_page(request: Request, assignment_id: str, lang: str | None, name
         return RedirectResponse(f"/assignments/{record.id}?lang={context['lang']}", status_code=303)
     link = str(request.base_url).rstrip("/") + personal_path(record.id, secret) + f"?lang={context['lang']}"
     response = start_page(request, context, about, 201, registered=student.name, personal_link=link)
+    response.headers["Cache-Control"] = "no-store"       # the secret: kept by no cache
     hand_over(response, request, record.id, secret)
     return response
 
