@@ -13,7 +13,6 @@ import time
 from fastapi import APIRouter, Depends, Path, Query, Request, Response
 from fastapi.responses import JSONResponse
 
-from ...classroom.identity import personal_path
 from ...classroom.names import NameRefused, normalise
 from ...classroom.spec import AssignmentSpec
 from ...classroom.store import AttemptRefused, StudentRecord
@@ -105,9 +104,9 @@ def register(registration: StudentRegistration, request: Request, response: Resp
         response.status_code = 200
     else:
         hand_over(response, request, record.id, secret)
-    base = str(request.base_url).rstrip("/")
     return Registration(student=student.name, variant=student.variant + 1, secret=secret,
-                        personal_url=None if secret is None else base + personal_path(record.id, secret))
+                        personal_url=None if secret is None else assignments.personal_url(
+                            str(request.base_url).rstrip("/"), record, resolved, secret))
 
 
 @router.get("/{assignment_id}/me", response_model=StudentVariant,
@@ -221,7 +220,7 @@ def lock_roster(lock: RosterLock, assignment_id: str = ID, token: str = TOKEN) -
              responses={200: {"content": {"text/csv": {}}}, 404: {"description": "no such assignment or wrong token"}})
 def personal_links(request: Request, assignment_id: str = ID, token: str = TOKEN,
                    only_new: bool = Query(False, description="only students without a link (keeps the others)")):
-    record, _ = assignments.load(assignment_id)
+    record, resolved = assignments.load(assignment_id)
     assignments.check_token(record, token)
     base = str(request.base_url).rstrip("/")
     rows = []
@@ -229,7 +228,7 @@ def personal_links(request: Request, assignment_id: str = ID, token: str = TOKEN
         if only_new and student.secret_hash is not None:
             continue
         secret = assignments.new_link(record, student)
-        rows.append([student.name, student.variant + 1, base + personal_path(record.id, secret)])
+        rows.append([student.name, student.variant + 1, assignments.personal_url(base, record, resolved, secret)])
     return csv_attachment(["student", "variant", "personal_link"], rows, f"links-{record.id}.csv")
 
 
@@ -237,12 +236,12 @@ def personal_links(request: Request, assignment_id: str = ID, token: str = TOKEN
              summary="A new personal link for one student (the old one and its cookies stop working)",
              responses={404: {"description": "no such assignment or student, or wrong token"}})
 def new_link(request: Request, assignment_id: str = ID, token: str = TOKEN, student_id: str = STUDENT):
-    record, _ = assignments.load(assignment_id)
+    record, resolved = assignments.load(assignment_id)
     assignments.check_token(record, token)
     student = assignments.find_student(record, student_id)
     secret = assignments.new_link(record, student)
-    return PersonalLink(student=student.name,
-                        personal_url=str(request.base_url).rstrip("/") + personal_path(record.id, secret))
+    return PersonalLink(student=student.name, personal_url=assignments.personal_url(
+        str(request.base_url).rstrip("/"), record, resolved, secret))
 
 
 @router.delete("/{assignment_id}/results/{token}/students/{student_id}", status_code=204,
