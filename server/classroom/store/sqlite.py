@@ -80,6 +80,9 @@ class SQLiteStore:
     def schema_version(self) -> int:
         return self._connection().execute("SELECT MAX(version) FROM schema_version").fetchone()[0]
 
+    def applied_versions(self) -> list[int]:
+        return [row[0] for row in self._connection().execute("SELECT version FROM schema_version ORDER BY 1")]
+
     def check(self) -> None:
         """StoreUnavailable unless the file takes a write now (a write transaction, rolled back)."""
         try:
