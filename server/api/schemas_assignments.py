@@ -19,6 +19,9 @@ class QuestionInfo(BaseModel):
     label: str
     unit: str
     tolerance: float = Field(description="relative")
+    kind: str = Field("readout", description="readout, at_angle (submit the angle too), combination, prediction")
+    angle: dict | None = Field(None, description="at_angle: the angles offered, degrees {min, max, step}")
+    locks: list[str] = Field(default_factory=list, description="prediction: the panels that open once it is closed")
 
 
 class AssignmentInfo(BaseModel):
@@ -56,6 +59,8 @@ class SubmissionRequest(BaseModel):
     student: str = Field(min_length=1, max_length=MAX_NAME, description="name or number, as typed")
     question: str = Field(max_length=40)
     answer: float = Field(allow_inf_nan=False)
+    angle: float | None = Field(None, allow_inf_nan=False, description="at_angle questions: the crank angle φ "
+                                                                       "the student chose, degrees")
 
 
 class SubmissionOutcome(BaseModel):

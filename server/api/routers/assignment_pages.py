@@ -7,7 +7,9 @@ from fastapi.responses import HTMLResponse
 
 from ...classroom.variants import SpecError
 from .. import assignments
-from ..answers import student_scene
+from ..answers import student_scene, unlocked_predictions
+from ..assignment_store import store
+from ...classroom.visibility import public_views
 from ...lessons.scenes import scenes
 from .pages import scene_context, templates, _context
 
@@ -34,7 +36,8 @@ def builder(request: Request, scene_id: str, lang: str | None = None, variant: s
                 pass
     questions = [q for q in scene.questions if not q.variants or chosen.id in q.variants]
     return templates.TemplateResponse(request, "assignment_builder.html", _context(request, lang) | {
-        "scene": scene, "variant": chosen, "variants": offered, "values": values, "questions": questions})
+        "scene": scene, "variant": chosen, "variants": offered, "values": values, "questions": questions,
+        "shown": {q.id: public_views(scene, chosen, q) for q in questions}})
 
 
 @router.get("/assignments/{assignment_id}", response_class=HTMLResponse)
@@ -50,7 +53,8 @@ def student_page(request: Request, assignment_id: str, lang: str | None = None, 
         enrolled = assignments.enrol(record, resolved, name)
     except SpecError:
         return templates.TemplateResponse(request, "assignment_start.html", context | {"assignment": about})
-    shown = student_scene(resolved, enrolled.parameters)
+    shown = student_scene(resolved, enrolled.parameters,
+                          unlocked_predictions(resolved, store().submissions(record.id, enrolled.key)))
     page = {"id": record.id, "student": enrolled.name, "variant": enrolled.variant + 1,
             "variants": resolved.count, "values": enrolled.parameters, "info": about.model_dump()}
     return templates.TemplateResponse(request, "scene.html", scene_context(request, context, shown) | {

@@ -13,7 +13,7 @@ from ...classroom.spec import AssignmentSpec
 from ...classroom.storage import AttemptRefused
 from ...classroom.variants import MAX_NAME, SpecError
 from .. import assignments
-from ..answers import correct_answer, is_right, tolerance
+from ..answers import check
 from ..assignment_store import store
 from ..schemas import Language
 from ..schemas_assignments import (AssignmentCreated, AssignmentInfo, Results, StudentVariant, SubmissionOutcome,
@@ -86,8 +86,7 @@ def submit(submission: SubmissionRequest, request: Request, assignment_id: str =
         response.headers["Retry-After"] = "60"
         return response
     student = assignments.enrol(record, resolved, submission.student)
-    correct = correct_answer(resolved, student.parameters, submission.question)
-    right = is_right(submission.answer, correct, tolerance(resolved, submission.question))
+    correct, right = check(resolved, student.parameters, submission.question, submission.answer, submission.angle)
     try:
         saved = store().submit(record.id, student.key, submission.question, submission.answer, right,
                                resolved.spec.attempts, now, client, correct)
