@@ -82,8 +82,9 @@ def parse(text: str, names: set[str]) -> tuple:
             return factor(depth + 1)
         if (kind, value) == ("operator", "("):
             tree = expression(depth + 1)
-            if take() != ("operator", ")"):
+            if peek() != ("operator", ")"):
                 raise ExpressionError("a parenthesis is not closed")
+            take()
             return tree
         if kind == "number":
             return ("number", float(value))
