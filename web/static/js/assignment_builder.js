@@ -138,12 +138,18 @@ for (const row of form.querySelectorAll(".slider-rule")) {
   syncRow(row);                  // a box ticked before this module ran (or kept by the browser on reload)
 }
 
-/** A number field says at once, on leaving it, whether its text is a number. */
+/** A number field says on leaving it if its text is refused, and the message goes as soon as the text is
+ * mended while typing (not on leaving: the line shrinking under a click could move the button away). */
 for (const input of form.querySelectorAll("input.decimal")) {
   input.addEventListener("change", () => {
     const { message } = judge(input);
     mark(input, message);
-    errorLine.textContent = message ? problemText([{ input, message }]) : "";
+    if (message) errorLine.textContent = problemText([{ input, message }]);
+  });
+  input.addEventListener("input", () => {
+    if (judge(input).message) return;
+    mark(input, null);
+    if (!form.querySelector('[aria-invalid="true"]')) errorLine.textContent = "";
   });
 }
 
