@@ -95,7 +95,8 @@ function questionItem(state) {
   const correct = element("p", { className: "correct-value", id: `correct-${state.id}` });
   const angleInput = angleField(state);
   const form = element("form", { className: "answer-form", noValidate: true },
-    ...(angleInput ? [angleInput, element("span", { className: "unit", textContent: "°" })] : []), input,
+    ...(angleInput ? [element("span", { textContent: "φ =" }), angleInput,
+      element("span", { className: "unit", textContent: "°" })] : []), input,
     element("span", { className: "unit", textContent: state.unit }), button);
   const item = element("li", { className: "question", id: `question-${state.id}` },
     element("p", { className: "question-label", textContent: state.label }),
