@@ -287,3 +287,21 @@ def test_the_api_refuses_a_number_written_with_a_comma_naming_the_field(client, 
                                              "sliders": {"lambda": {"value": text}}})
     assert refused.status_code == 422
     assert refused.json()["detail"][0]["loc"] == ["body", "sliders", "lambda", "value"]
+
+
+# --- nothing of the answer reaches the student's page ----------------------------------------------------
+
+NUMBER = re.compile(r"-?\d+(?:[.,]\d+)?(?:[eE][-+]?\d+)?")
+
+
+@pytest.mark.parametrize("question, angle", [("u31_at_angle", 40), ("du31_ratio", None),
+                                             ("u31_max_prediction", None)])
+def test_the_new_kinds_send_no_answer_to_the_page_before_it_is_closed(client, question, angle):
+    """The page and the student's state are searched for the value the server checks against (learnt by
+    spending the last attempt): rel 1e-4 would catch any rounding of it."""
+    created = create(client, [{"id": question}], attempts=1)
+    page = client.get(f"/assignments/{created['id']}", params={"student": "Koval", "lang": "en"}).text
+    state = client.get(f"{API}/{created['id']}/students/Koval").text
+    seen = np.array([float(m.replace(",", ".")) for m in NUMBER.findall(page + state)])
+    correct = submit(client, created, "Koval", question, 1e9, angle).json()["correct_value"]
+    assert not np.any(np.isclose(seen, correct, rtol=1e-4, atol=0)), (question, correct)
