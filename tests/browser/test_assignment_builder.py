@@ -202,3 +202,22 @@ def test_a_prediction_opens_its_plot_once_answered(ru_page):
     page.locator("#question-u31_max_prediction").scroll_into_view_if_needed()
     screenshot(page, "assignment_student_ru")
     assert not page.problems
+
+
+PARSED = [("2,5", "ru", 2.5), ("2,5", "uk", 2.5), ("2.5", "ru", 2.5), ("2,5", "en", 2.5), ("1 234,5", "ru", 1234.5),
+          ("−0,5", "uk", -0.5), ("1,234", "ru", 1.234), ("1e-3", "en", 0.001),
+          ("1,234", "en", "ambiguous"), ("1,234.5", "ru", "ambiguous"), ("1.234,5", "uk", "ambiguous"),
+          ("2,5,1", "ru", "ambiguous"), ("1.2.3", "en", "ambiguous"), ("0x10", "en", "invalid"),
+          ("Infinity", "en", "invalid"), ("2,5 м", "ru", "invalid"), ("  ", "ru", "empty")]
+
+
+def test_the_page_parser_reads_each_language_as_documented(ru_page):
+    """decimal_input.js as the browser runs it (the module the builder and the answer fields import)."""
+    open_builder(ru_page)
+    module = re.search(r'src="([^"]*/js/)assignment_builder\.js"', ru_page.content()).group(1) + "decimal_input.js"
+    results = ru_page.evaluate("""async ([url, cases]) => {
+        const { parseDecimal } = await import(url);
+        return cases.map(([text, lang]) => parseDecimal(text, lang));
+    }""", [module, [[text, lang] for text, lang, _ in PARSED]])
+    for (text, lang, expected), got in zip(PARSED, results):
+        assert got == ({"error": expected} if isinstance(expected, str) else {"value": expected}), (text, lang, got)
