@@ -322,3 +322,15 @@ def test_a_combination_on_a_dynamics_scene_is_the_swing_of_the_steady_speed(clie
     reference = fine.max() - fine.min()
     outcome = submit(client, created.json(), "Any", "omega_swing", reference).json()
     assert outcome["right"] and outcome["correct_value"] == pytest.approx(reference, rel=1e-4)
+
+
+@pytest.mark.parametrize("scene_id", [s.id for s in scenes().values() if s.questions])
+def test_every_builder_page_has_a_notice_for_each_of_its_questions(client, scene_id):
+    scene = scenes()[scene_id]
+    for variant in scene.variants:
+        asked = {q.id for q in scene.questions if not q.variants or variant.id in q.variants}
+        if not asked:
+            continue
+        for lang in ("ru", "uk", "en"):
+            page = client.get(f"/scenes/{scene_id}/assign", params={"lang": lang, "variant": variant.id}).text
+            assert set(re.findall(r'class="leak-notice[^"]*" id="leak-([^"]+)"', page)) == asked, (variant.id, lang)
