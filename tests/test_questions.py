@@ -334,3 +334,26 @@ def test_every_builder_page_has_a_notice_for_each_of_its_questions(client, scene
         for lang in ("ru", "uk", "en"):
             page = client.get(f"/scenes/{scene_id}/assign", params={"lang": lang, "variant": variant.id}).text
             assert set(re.findall(r'class="leak-notice[^"]*" id="leak-([^"]+)"', page)) == asked, (variant.id, lang)
+
+
+def test_what_a_per_variant_cache_keeps_gives_the_same_answers_after_a_json_round_trip(client):
+    """variant_answer / answer_from are the interface of the store's per-variant answers (JSON): an at_angle
+    question keeps its value at every angle offered, and reading the student's angle from it after JSON is
+    the exact u₃₁ there."""
+    from server.api.answers import answer_from, variant_answer
+    from server.api.assignments import load
+    created = create(client, [{"id": "u31_at_angle", "angle": {"min": 20, "max": 160, "step": 0.5}},
+                              {"id": "du31_ratio"}])
+    _, resolved = load(created["id"])
+    values = resolved.values(3)
+    kept = json.loads(json.dumps({q.id: variant_answer(resolved, values, q.id) for q in resolved.spec.questions}))
+    assert len(kept["u31_at_angle"]) == 281
+    lam = values["lambda"]
+    for angle in (20, 37.5, 160):
+        assert answer_from(resolved, "u31_at_angle", kept["u31_at_angle"], angle) == pytest.approx(
+            u31(np.radians(angle), L1, lam * L1), rel=1e-9)
+    with pytest.raises(ValueError, match="steps of 0.5"):
+        answer_from(resolved, "u31_at_angle", kept["u31_at_angle"], 37.2)
+    f = lambda p: du31(p, L1, lam * L1)
+    assert answer_from(resolved, "du31_ratio", kept["du31_ratio"]) == pytest.approx(
+        extremum(f, True) / extremum(f, False), rel=1e-7)

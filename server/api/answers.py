@@ -67,18 +67,20 @@ def expression_text(plan: Plan, question_id: str) -> str:
     return pick.expression if pick is not None and pick.expression is not None else own
 
 
-def correct_answer(plan: Plan, values: dict, question_id: str, angle: float | None = None) -> float:
-    """The exact answer for the variant's values; an at_angle question needs the student's `angle` (degrees)
-    on its grid (SpecError on the field ``angle`` otherwise)."""
+def _grid_angles(grid: AngleGrid) -> tuple[float, ...]:
+    count = round((grid.max - grid.min) / grid.step)
+    return tuple(round(grid.min + k * grid.step, 9) for k in range(count + 1))
+
+
+def variant_answer(plan: Plan, values: dict, question_id: str) -> float | dict[str, float]:
+    """What one variant's answer is, as a per-variant cache may keep it (JSON): the number, or for an at_angle
+    question the value at every angle offered, keyed by repr(angle in degrees). SpecError when it has none."""
     asked, key = question(plan.scene, question_id), tuple(sorted(values.items()))
     at = (plan.scene.id, plan.variant.id, key)
     if asked.kind == "at_angle":
-        grid = angle_grid(plan, question_id)
-        if angle is None:
-            raise SpecError("angle", "this question needs the crank angle φ you chose, in degrees")
-        if not grid.holds(angle):
-            raise SpecError("angle", f"choose φ from {grid.min:g}° to {grid.max:g}° in steps of {grid.step:g}°")
-        return _finite(_readout(*at, asked.readout_list()[0], (round(angle, 9),))[0], question_id)
+        angles = _grid_angles(angle_grid(plan, question_id))
+        found = _readout(*at, asked.readout_list()[0], angles)
+        return {repr(a): _finite(value, f"{question_id} at φ = {a:g}°") for a, value in zip(angles, found)}
     if asked.kind == "combination":
         readouts = {name: _finite(_readout(*at, readout), question_id) for name, readout in asked.readouts.items()}
         try:
@@ -88,17 +90,27 @@ def correct_answer(plan: Plan, values: dict, question_id: str, angle: float | No
     return _finite(_readout(*at, asked.readout_list()[0]), question_id)
 
 
+def answer_from(plan: Plan, question_id: str, kept: float | dict[str, float], angle: float | None = None) -> float:
+    """The correct value from what variant_answer gave: for an at_angle question the value at the student's
+    `angle` (degrees), which must be on the question's grid (SpecError on the field ``angle`` otherwise)."""
+    if not isinstance(kept, dict):
+        return float(kept)
+    grid = angle_grid(plan, question_id)
+    if angle is None:
+        raise SpecError("angle", "this question needs the crank angle φ you chose, in degrees")
+    if not grid.holds(angle):
+        raise SpecError("angle", f"choose φ from {grid.min:g}° to {grid.max:g}° in steps of {grid.step:g}°")
+    return float(kept[repr(round(grid.min + round((angle - grid.min) / grid.step) * grid.step, 9))])
+
+
+def correct_answer(plan: Plan, values: dict, question_id: str, angle: float | None = None) -> float:
+    """The exact answer for the variant's values (an at_angle question: at the student's `angle`)."""
+    return answer_from(plan, question_id, variant_answer(plan, values, question_id), angle)
+
+
 def check_answerable(plan: Plan, values: dict, question_id: str) -> None:
     """SpecError unless the question has an answer for these values (an at_angle one at every angle offered)."""
-    asked = question(plan.scene, question_id)
-    if asked.kind != "at_angle":
-        correct_answer(plan, values, question_id)
-        return
-    grid = angle_grid(plan, question_id)
-    angles = tuple(round(a, 9) for a in np.arange(grid.min, grid.max + grid.step / 2, grid.step))
-    found = _readout(plan.scene.id, plan.variant.id, tuple(sorted(values.items())), asked.readout_list()[0], angles)
-    for a, value in zip(angles, found):
-        _finite(value, f"{question_id} at φ = {a:g}°")
+    variant_answer(plan, values, question_id)
 
 
 def check(plan: Plan, values: dict, question_id: str, answer: float, angle: float | None = None
