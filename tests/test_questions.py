@@ -38,15 +38,26 @@ def create(client, questions, **more) -> dict:
     return response.json()
 
 
-def lam_of(client, created, name) -> float:
+# How a test acts as a student: the only lines that know how a student is identified (by the name here).
+
+def state_of(client, created, name) -> dict:
+    """The student's variant and the state of their questions, as their page reads it."""
     response = client.get(f"{API}/{created['id']}/students/{name}", params={"lang": "en"})
     assert response.status_code == 200, response.text
-    return response.json()["values"]["lambda"]
+    return response.json()
 
 
 def submit(client, created, name, question, answer, angle=None):
     body = {"student": name, "question": question, "answer": answer} | ({} if angle is None else {"angle": angle})
     return client.post(f"{API}/{created['id']}/submissions", json=body)
+
+
+def student_page(client, created, name) -> str:
+    return client.get(f"/assignments/{created['id']}", params={"student": name, "lang": "en"}).text
+
+
+def lam_of(client, created, name) -> float:
+    return state_of(client, created, name)["values"]["lambda"]
 
 
 def u31(phi, l1, l2):
@@ -77,7 +88,7 @@ def extremum(f, largest):
 
 
 def student_scene(client, created, name) -> dict:
-    page = client.get(f"/assignments/{created['id']}", params={"student": name, "lang": "en"}).text
+    page = student_page(client, created, name)
     return json.loads(re.search(r'id="scene-data">(.*?)</script>', page, re.S).group(1).replace("<\\/", "</"))
 
 
@@ -141,7 +152,7 @@ def test_a_missing_or_off_grid_angle_is_refused_naming_the_angle_and_costs_no_at
 
 def test_the_instructor_may_narrow_the_angles(client):
     created = create(client, [{"id": "u31_at_angle", "angle": {"min": 100, "max": 160, "step": 20}}])
-    state = client.get(f"{API}/{created['id']}/students/Ivanov").json()["questions"][0]
+    state = state_of(client, created, "Ivanov")["questions"][0]
     assert state["kind"] == "at_angle" and state["angle"] == {"min": 100, "max": 160, "step": 20}
     assert submit(client, created, "Ivanov", "u31_at_angle", 0.05, 30).status_code == 422
     assert submit(client, created, "Ivanov", "u31_at_angle", 0.05, 140).status_code == 200
@@ -212,7 +223,7 @@ def panels_showing(scene: dict, output: str) -> set[str]:
 
 def test_a_prediction_keeps_its_plots_locked_until_it_is_closed(client):
     created = create(client, [{"id": "u31_max_prediction"}], attempts=2)
-    state = client.get(f"{API}/{created['id']}/students/Ivanov").json()["questions"][0]
+    state = state_of(client, created, "Ivanov")["questions"][0]
     assert state["kind"] == "prediction" and set(state["locks"]) == {"u31", "approximations", "harmonics"}
     before = student_scene(client, created, "Ivanov")
     assert "u31" not in before["outputs"] and not panels_showing(before, "u31")
@@ -300,8 +311,8 @@ def test_the_new_kinds_send_no_answer_to_the_page_before_it_is_closed(client, qu
     """The page and the student's state are searched for the value the server checks against (learnt by
     spending the last attempt): rel 1e-4 would catch any rounding of it."""
     created = create(client, [{"id": question}], attempts=1)
-    page = client.get(f"/assignments/{created['id']}", params={"student": "Koval", "lang": "en"}).text
-    state = client.get(f"{API}/{created['id']}/students/Koval").text
+    page = student_page(client, created, "Koval")
+    state = json.dumps(state_of(client, created, "Koval"))
     seen = np.array([float(m.replace(",", ".")) for m in NUMBER.findall(page + state)])
     correct = submit(client, created, "Koval", question, 1e9, angle).json()["correct_value"]
     assert not np.any(np.isclose(seen, correct, rtol=1e-4, atol=0)), (question, correct)
