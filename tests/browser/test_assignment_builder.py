@@ -221,3 +221,17 @@ def test_the_page_parser_reads_each_language_as_documented(ru_page):
     }""", [module, [[text, lang] for text, lang, _ in PARSED]])
     for (text, lang, expected), got in zip(PARSED, results):
         assert got == ({"error": expected} if isinstance(expected, str) else {"value": expected}), (text, lang, got)
+
+
+def test_the_builder_says_when_another_question_keeps_a_predictions_plots_closed(ru_page):
+    open_builder(ru_page)
+    conflict = ru_page.locator("#conflict-u31_max_prediction")
+    ru_page.check('input[name="question"][value="u31_max_prediction"]')          # u31_max is picked by default
+    assert conflict.is_visible() and "Наибольшее значение передаточной функции u₃₁" in conflict.inner_text()
+    ru_page.uncheck('input[name="question"][value="u31_max"]')
+    assert conflict.is_hidden()
+    ru_page.check('input[name="question"][value="u31_at_angle"]')               # it hides u₃₁ too
+    assert conflict.is_visible()
+    ru_page.uncheck('input[name="question"][value="u31_at_angle"]')
+    ru_page.check('input[name="question"][value="du31_min"]')                   # hides u₃₁ as well (its plots)
+    assert conflict.is_visible()

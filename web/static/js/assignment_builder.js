@@ -138,6 +138,24 @@ for (const row of form.querySelectorAll(".slider-rule")) {
   syncRow(row);                  // a box ticked before this module ran (or kept by the browser on reload)
 }
 
+/** A prediction's plots open once it is closed, unless another picked question hides the same plots: say so. */
+function syncPredictionNotes() {
+  const picks = [...form.querySelectorAll(".question-pick")];
+  const picked = (pick) => pick.querySelector('input[name="question"]').checked;
+  const label = (pick) => pick.querySelector("label").textContent.trim();
+  for (const prediction of picks.filter((pick) => pick.dataset.kind === "prediction")) {
+    const hides = new Set(JSON.parse(prediction.dataset.hides));
+    const blocking = picks.filter((pick) => pick !== prediction && pick.dataset.kind !== "prediction" && picked(pick)
+      && JSON.parse(pick.dataset.hides).some((name) => hides.has(name)));
+    const note = prediction.querySelector(".prediction-conflict");
+    note.hidden = !(picked(prediction) && blocking.length);
+    note.textContent = t.questions_prediction_conflict.replace("{questions}", blocking.map(label).join("; "));
+  }
+}
+
+for (const box of form.querySelectorAll('input[name="question"]')) box.addEventListener("change", syncPredictionNotes);
+syncPredictionNotes();
+
 /** A number field says on leaving it if its text is refused, and the message goes as soon as the text is
  * mended while typing (not on leaving: the line shrinking under a click could move the button away). */
 for (const input of form.querySelectorAll("input.decimal")) {
