@@ -366,7 +366,8 @@ def test_every_question_has_an_answer_and_its_page_hides_it(client, scene_id, qu
     request = scene_request(shown_scene, shown_scene.variants[0])
     assert not set(asked.hides) & set(request["outputs"])
     _, resolved = load(created["id"])
-    assert np.isfinite(correct_answer(resolved, resolved.values(0), question_id))
+    angle = asked.angle.min if asked.kind == "at_angle" else None       # a question at the student's angle
+    assert np.isfinite(correct_answer(resolved, resolved.values(0), question_id, angle))
 
 
 def test_the_classroom_and_the_lessons_do_not_import_the_http_layer():

@@ -7,10 +7,12 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..classroom.expression import ExpressionError, evaluate, parse
 from ..classroom.variants import Plan, SpecError
+from ..classroom.visibility import shows_any
 from ..core.numerics import parabola_extremum
 from .endpoints import compute
-from ..lessons.scenes import Question, Scene, Slider, Toggle, scenes
+from ..lessons.scenes import AngleGrid, Question, Readout, Scene, Slider, Toggle, scenes
 from ..lessons.requests import path_value, scene_request
 
 ANSWER_POINTS_PER_TURN = 3600    # kinematics answers: 0.1° grid, extremum refined by a parabola (error ~h³)
@@ -32,22 +34,90 @@ def _extremum(values: list, largest: bool) -> float:
 
 
 @lru_cache(maxsize=4096)
-def _answer(scene_id: str, variant_id: str, values: tuple, question_id: str) -> float:
+def _readout(scene_id: str, variant_id: str, values: tuple, readout: Readout, angles: tuple | None = None):
+    """One readout for the variant's values: a number, or (``angles`` in degrees given) its values there."""
     scene = scenes()[scene_id]
     variant = next(v for v in scene.variants if v.id == variant_id)
-    asked = question(scene, question_id)
     points = ANSWER_POINTS_PER_TURN if scene.kind == "kinematics" else None
-    body = scene_request(scene, variant, dict(values), outputs=list(asked.outputs),
+    body = scene_request(scene, variant, dict(values), outputs=list(readout.outputs),
                          **({"points_per_turn": points} if points else {}))
-    found = path_value(compute(scene.endpoint, body), asked.path)
-    value = found if asked.reduce == "value" else _extremum(found, asked.reduce == "max")
+    if angles is not None:                  # the kinematics endpoint evaluates at exactly these angles
+        body.pop("n")
+        body["phi"] = [math.radians(a) for a in angles]
+        return path_value(compute(scene.endpoint, body), readout.path)
+    found = path_value(compute(scene.endpoint, body), readout.path)
+    return found if readout.reduce == "value" else _extremum(found, readout.reduce == "max")
+
+
+def _finite(value, question_id: str) -> float:
     if not isinstance(value, (int, float)) or not math.isfinite(value):
         raise SpecError("questions", f"'{question_id}' has no value for these parameters")
     return float(value)
 
 
-def correct_answer(plan: Plan, values: dict, question_id: str) -> float:
-    return _answer(plan.scene.id, plan.variant.id, tuple(sorted(values.items())), question_id)
+def angle_grid(plan: Plan, question_id: str) -> AngleGrid | None:
+    """The angles a student may choose for an at_angle question: the instructor's, else the question's."""
+    pick = next((q for q in plan.spec.questions if q.id == question_id), None)
+    return pick.angle if pick is not None and pick.angle is not None else question(plan.scene, question_id).angle
+
+
+def expression_text(plan: Plan, question_id: str) -> str:
+    pick = next((q for q in plan.spec.questions if q.id == question_id), None)
+    own = question(plan.scene, question_id).expression
+    return pick.expression if pick is not None and pick.expression is not None else own
+
+
+def _grid_angles(grid: AngleGrid) -> tuple[float, ...]:
+    count = round((grid.max - grid.min) / grid.step)
+    return tuple(round(grid.min + k * grid.step, 9) for k in range(count + 1))
+
+
+def variant_answer(plan: Plan, values: dict, question_id: str) -> float | dict[str, float]:
+    """What one variant's answer is, as a per-variant cache may keep it (JSON): the number, or for an at_angle
+    question the value at every angle offered, keyed by repr(angle in degrees). SpecError when it has none."""
+    asked, key = question(plan.scene, question_id), tuple(sorted(values.items()))
+    at = (plan.scene.id, plan.variant.id, key)
+    if asked.kind == "at_angle":
+        angles = _grid_angles(angle_grid(plan, question_id))
+        found = _readout(*at, asked.readout_list()[0], angles)
+        return {repr(a): _finite(value, f"{question_id} at φ = {a:g}°") for a, value in zip(angles, found)}
+    if asked.kind == "combination":
+        readouts = {name: _finite(_readout(*at, readout), question_id) for name, readout in asked.readouts.items()}
+        try:
+            return evaluate(parse(expression_text(plan, question_id), set(readouts)), readouts)
+        except ExpressionError as error:
+            raise SpecError("questions", f"'{question_id}' has no value for these parameters: {error}") from None
+    return _finite(_readout(*at, asked.readout_list()[0]), question_id)
+
+
+def answer_from(plan: Plan, question_id: str, kept: float | dict[str, float], angle: float | None = None) -> float:
+    """The correct value from what variant_answer gave: for an at_angle question the value at the student's
+    `angle` (degrees), which must be on the question's grid (SpecError on the field ``angle`` otherwise)."""
+    if not isinstance(kept, dict):
+        return float(kept)
+    grid = angle_grid(plan, question_id)
+    if angle is None:
+        raise SpecError("angle", "this question needs the crank angle φ you chose, in degrees")
+    if not grid.holds(angle):
+        raise SpecError("angle", f"choose φ from {grid.min:g}° to {grid.max:g}° in steps of {grid.step:g}°")
+    return float(kept[repr(round(grid.min + round((angle - grid.min) / grid.step) * grid.step, 9))])
+
+
+def correct_answer(plan: Plan, values: dict, question_id: str, angle: float | None = None) -> float:
+    """The exact answer for the variant's values (an at_angle question: at the student's `angle`)."""
+    return answer_from(plan, question_id, variant_answer(plan, values, question_id), angle)
+
+
+def check_answerable(plan: Plan, values: dict, question_id: str) -> None:
+    """SpecError unless the question has an answer for these values (an at_angle one at every angle offered)."""
+    variant_answer(plan, values, question_id)
+
+
+def check(plan: Plan, values: dict, question_id: str, answer: float, angle: float | None = None
+          ) -> tuple[float, bool]:
+    """The correct value the answer is checked against, and whether it is right."""
+    correct = correct_answer(plan, values, question_id, angle)
+    return correct, is_right(answer, correct, tolerance(plan, question_id))
 
 
 def tolerance(plan: Plan, question_id: str) -> float:
@@ -60,15 +130,47 @@ def is_right(answer: float, correct: float, relative: float) -> bool:
     return abs(answer - correct) <= relative * abs(correct)
 
 
-def hidden_outputs(plan: Plan) -> set[str]:
-    return {name for pick in plan.spec.questions for name in question(plan.scene, pick.id).hides}
+def hidden_outputs(plan: Plan, unlocked: frozenset[str] = frozenset()) -> set[str]:
+    """Outputs the student's page must not ask for: those of every question, except a prediction's once it
+    is closed (``unlocked``)."""
+    return {name for pick in plan.spec.questions if pick.id not in unlocked
+            for name in question(plan.scene, pick.id).hides}
 
 
-def student_scene(plan: Plan, values: dict) -> Scene:
+def locked_panels(plan: Plan, question_id: str) -> list[str]:
+    """The variant's panels a prediction keeps locked on the student's page until it is closed."""
+    asked = question(plan.scene, question_id)
+    if asked.kind != "prediction":
+        return []
+    return [p for p in plan.variant.panels if shows_any(plan.scene.panels.get(p, {}), set(asked.hides))]
+
+
+def question_kind(plan: Plan, question_id: str) -> dict:
+    """What the student's page needs to ask a question: its kind, the angles offered, the panels it locks."""
+    grid = angle_grid(plan, question_id)
+    return {"kind": question(plan.scene, question_id).kind,
+            "angle": None if grid is None else grid.model_dump(),
+            "locks": locked_panels(plan, question_id)}
+
+
+def unlocked_predictions(plan: Plan, submissions: list) -> frozenset[str]:
+    """Predictions a student has closed (right, or no attempt left): their panels open on the student's page.
+    `submissions` are the student's own (the store's records with ``question`` and ``correct``)."""
+    closed = set()
+    for pick in plan.spec.questions:
+        if question(plan.scene, pick.id).kind != "prediction":
+            continue
+        mine = [s for s in submissions if s.question == pick.id]
+        if any(s.correct for s in mine) or len(mine) >= plan.spec.attempts:
+            closed.add(pick.id)
+    return frozenset(closed)
+
+
+def student_scene(plan: Plan, values: dict, unlocked: frozenset[str] = frozenset()) -> Scene:
     """The scene as the student sees it: only the assignment's variant, its sliders at the student's values
     (locked, or movable within the instructor's range), its toggles fixed, no presets or questions, and
-    without every output and panel that would show an answer."""
-    scene, variant, hidden = plan.scene, plan.variant, hidden_outputs(plan)
+    without every output and panel that would show an answer (a prediction's open once it is `unlocked`)."""
+    scene, variant, hidden = plan.scene, plan.variant, hidden_outputs(plan, unlocked)
     limits = plan.limits()
 
     def slider(s: Slider) -> Slider:
@@ -83,11 +185,7 @@ def student_scene(plan: Plan, values: dict) -> Scene:
         return t.model_copy(update={"options": [t.options[i]], "option_labels": [t.option_labels[i]],
                                     "default": t.options[i]})
 
-    def shows_answer(panel_id: str) -> bool:
-        panel = scene.panels.get(panel_id, {})
-        return bool(hidden & set(panel.get("outputs", []) + panel.get("needs", [])))
-
-    panels = [p for p in variant.panels if not shows_answer(p)]
+    panels = [p for p in variant.panels if not shows_any(scene.panels.get(p, {}), hidden)]
     student_variant = variant.model_copy(update={
         "sliders": [slider(s) for s in variant.sliders], "toggles": [toggle(t) for t in variant.toggles],
         "panels": panels, "overlay": None, "overlay_values": []})

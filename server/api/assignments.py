@@ -16,7 +16,7 @@ from ..classroom.spec import AssignmentSpec
 from ..classroom.store import AssignmentRecord, StudentRecord
 from ..classroom.variants import Plan, SpecError, plan
 from ..core.mechanisms import GeometryError
-from .answers import correct_answer, question, tolerance
+from .answers import check_answerable, question, question_kind, tolerance
 from .assignment_store import store
 from ..lessons.scenes import interface_texts, scenes
 from .schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow, RosterOutcome
@@ -42,7 +42,7 @@ def create(spec: AssignmentSpec) -> tuple[AssignmentRecord, Plan, str]:
         values = resolved.values(number)
         for pick in spec.questions:
             try:
-                correct_answer(resolved, values, pick.id)
+                check_answerable(resolved, values, pick.id)
             except (SpecError, GeometryError) as error:
                 shown = ", ".join(f"{k} = {v}" for k, v in values.items())
                 reason = error.reason if hasattr(error, "reason") else str(error)
@@ -81,7 +81,8 @@ def info(record: AssignmentRecord, resolved: Plan, lang: str) -> AssignmentInfo:
         id=record.id, title=spec.title or resolved.scene.title[lang], scene=spec.scene,
         scene_title=resolved.scene.title[lang], variant=spec.variant,
         questions=[QuestionInfo(id=p.id, label=question(resolved.scene, p.id).label[lang],
-                                unit=unit_text(question(resolved.scene, p.id).unit, lang), tolerance=tolerance(resolved, p.id))
+                                unit=unit_text(question(resolved.scene, p.id).unit, lang), tolerance=tolerance(resolved, p.id),
+                                **question_kind(resolved, p.id))
                    for p in spec.questions],
         attempts=spec.attempts, deadline=None if spec.deadline is None else spec.deadline.isoformat(),
         open=is_open(resolved), variants=resolved.count)
@@ -199,7 +200,7 @@ def question_states(record: AssignmentRecord, resolved: Plan, student: StudentRe
         states.append(QuestionState(
             **about.model_dump(), attempts_used=len(mine), attempts_left=left, right=right,
             answers=[s.answer for s in mine],
-            correct_value=correct_answer(resolved, student.parameters, about.id)
+            correct_value=mine[-1].correct_value
             if resolved.spec.reveal_answers and (right or left == 0) else None))
     return states
 

@@ -19,6 +19,9 @@ class QuestionInfo(BaseModel):
     label: str
     unit: str
     tolerance: float = Field(description="relative")
+    kind: str = Field("readout", description="readout, at_angle (submit the angle too), combination, prediction")
+    angle: dict | None = Field(None, description="at_angle: the angles offered, degrees {min, max, step}")
+    locks: list[str] = Field(default_factory=list, description="prediction: the panels that open once it is closed")
 
 
 class AssignmentInfo(BaseModel):
@@ -73,6 +76,8 @@ class SubmissionRequest(BaseModel):
                                             "a name that is not theirs is refused (403)")
     question: str = Field(max_length=40)
     answer: float = Field(allow_inf_nan=False)
+    angle: float | None = Field(None, allow_inf_nan=False, description="at_angle questions: the crank angle φ "
+                                                                       "the student chose, degrees")
 
 
 class SubmissionOutcome(BaseModel):

@@ -6,6 +6,8 @@ from datetime import datetime, timezone
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
+from ..lessons.scenes import AngleGrid
+
 MAX_QUESTIONS = 10
 MAX_ATTEMPTS = 10
 
@@ -39,6 +41,13 @@ class QuestionPick(BaseModel):
     model_config = ConfigDict(extra="forbid")
     id: str = Field(max_length=40)
     tolerance: float | None = Field(None, gt=0, lt=1, description="relative tolerance (default: the question's)")
+    angle: AngleGrid | None = Field(None, description="a question at a chosen angle: the angles (degrees) the "
+                                                      "student may choose, within the question's own range "
+                                                      "(default: the question's)")
+    expression: str | None = Field(None, max_length=200, description="a combination question: the quantity as "
+                                                                     "an expression over the question's named "
+                                                                     "readouts with + − × ÷ and parentheses "
+                                                                     "(default: the question's)")
 
 
 class AssignmentSpec(BaseModel):

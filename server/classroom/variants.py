@@ -13,9 +13,10 @@ import math
 import numpy as np
 from dataclasses import dataclass, field
 
-from ..lessons.scenes import Scene, Variant
+from ..lessons.scenes import Question, Scene, Variant
 from ..lessons.requests import slider_values
-from .spec import AssignmentSpec
+from .expression import ExpressionError, parse
+from .spec import AssignmentSpec, QuestionPick
 
 MAX_CHOICES = 10_000      # values of one varied slider
 
@@ -58,8 +59,6 @@ class Plan:
         rules = self.spec.sliders
         return {s.id: (rules[s.id].free.min, rules[s.id].free.max) if s.id in rules and rules[s.id].free else None
                 for s in self.variant.sliders}
-
-
 
 
 def plan(spec: AssignmentSpec, scenes: dict[str, Scene]) -> Plan:
@@ -110,4 +109,22 @@ def plan(spec: AssignmentSpec, scenes: dict[str, Scene]) -> Plan:
         if pick.id not in asked:
             raise SpecError(f"questions.{i}.id", f"not a question of variant '{variant.id}' "
                                                  f"(one of {sorted(asked) or 'none'})")
+        _check_pick(asked[pick.id], pick, f"questions.{i}")
     return result
+
+
+def _check_pick(question: Question, pick: QuestionPick, where: str) -> None:
+    """An instructor's angle grid lies within the question's; an expression reads only its readouts."""
+    if pick.angle is not None:
+        own = question.angle
+        if own is None:
+            raise SpecError(f"{where}.angle", f"'{question.id}' does not ask for an angle of the student's choice")
+        if pick.angle.min < own.min - 1e-9 or pick.angle.max > own.max + 1e-9:
+            raise SpecError(f"{where}.angle", f"the angles must lie within {own.min:g}° … {own.max:g}°")
+    if pick.expression is not None:
+        if question.kind != "combination":
+            raise SpecError(f"{where}.expression", f"'{question.id}' is not computed from readouts")
+        try:
+            parse(pick.expression, set(question.readouts))
+        except ExpressionError as error:
+            raise SpecError(f"{where}.expression", str(error)) from None

@@ -7,7 +7,9 @@ from pathlib import Path
 
 from typing import Literal
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from ..classroom.expression import parse
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 CONTENT_DIR = REPO_ROOT / "content"
@@ -65,21 +67,78 @@ class Variant(BaseModel):
     request: dict = Field(default_factory=dict, description="dynamics scenes: the request body before the sliders")
 
 
+class AngleGrid(BaseModel):
+    """The crank angles a student may choose, in degrees: min, min + step, …, max."""
+
+    model_config = ConfigDict(extra="forbid")
+    min: float = Field(ge=0, le=360, allow_inf_nan=False)
+    max: float = Field(ge=0, le=360, allow_inf_nan=False)
+    step: float = Field(ge=0.1, le=180, allow_inf_nan=False)
+
+    @model_validator(mode="after")
+    def on_grid(self):
+        if self.min >= self.max:
+            raise ValueError("min must be below max")
+        if abs((self.max - self.min) / self.step - round((self.max - self.min) / self.step)) > 1e-9:
+            raise ValueError("max − min must be a whole number of steps")
+        return self
+
+    def holds(self, angle: float) -> bool:
+        k = (angle - self.min) / self.step
+        return self.min - 1e-9 <= angle <= self.max + 1e-9 and abs(k - round(k)) <= 1e-9
+
+
+class Readout(BaseModel):
+    """One number read from an endpoint's answer: ``path`` in it, reduced over φ by ``reduce``."""
+
+    model_config = ConfigDict(frozen=True)
+    outputs: tuple[str, ...]
+    path: str
+    reduce: Literal["value", "max", "min"] = "value"
+
+
 class Question(BaseModel):
     """A question an assignment can ask about a scene: a number the server computes from the student's
     variant. ``path`` names it in the endpoint's answer ("flywheel_inertia", "outputs.u31"), ``reduce``
     turns an array over φ into one number; ``hides`` are the outputs the student's page must not ask for
-    (they would show the answer), and with them every panel that shows one."""
+    (they would show the answer), and with them every panel that shows one.
+
+    Kinds: ``readout`` (that number); ``at_angle`` (the array at a crank angle the student chooses on the
+    ``angle`` grid and states with the answer; kinematics scenes); ``combination`` (``expression`` over the
+    named ``readouts``, server/classroom/expression.py); ``prediction`` (the readout, predicted before the
+    panels showing its ``hides`` open on the student's page: they open once the question is closed)."""
 
     id: str
     label: Text
+    kind: Literal["readout", "at_angle", "combination", "prediction"] = "readout"
     unit: str = Field("", description="key of the unit in content/i18n (units_<unit>): m, kg_m2, N_m, rad_s")
-    outputs: list[str] = Field(description="outputs to request when computing the answer")
-    path: str
+    outputs: list[str] = Field(default_factory=list, description="outputs to request when computing the answer")
+    path: str = ""
     reduce: Literal["value", "max", "min"] = "value"
+    angle: AngleGrid | None = Field(None, description="at_angle: the angles the student may choose, degrees")
+    readouts: dict[str, Readout] = Field(default_factory=dict, description="combination: the named readouts")
+    expression: str = Field("", description="combination: e.g. du_max / du_min")
     tolerance: float = Field(0.02, gt=0, lt=1, description="relative, by default")
     variants: list[str] = Field(default_factory=list, description="the variants it applies to (empty: all)")
     hides: list[str]
+
+    @model_validator(mode="after")
+    def complete(self):
+        if self.kind == "combination":
+            if not self.readouts:
+                raise ValueError(f"question {self.id}: a combination needs readouts")
+            parse(self.expression, set(self.readouts))
+        elif not (self.outputs and self.path):
+            raise ValueError(f"question {self.id}: outputs and path are needed")
+        if (self.kind == "at_angle") != (self.angle is not None):
+            raise ValueError(f"question {self.id}: an angle grid goes with kind at_angle, and only with it")
+        return self
+
+    def readout_list(self) -> list[Readout]:
+        """Every readout the answer is computed from."""
+        if self.kind == "combination":
+            return list(self.readouts.values())
+        return [Readout(outputs=self.outputs, path=self.path, reduce=self.reduce)]
 
 
 class Scene(BaseModel):
@@ -97,6 +156,14 @@ class Scene(BaseModel):
     variants: list[Variant]
     presets: list[dict] = Field(default_factory=list, description="named ranges of a slider, e.g. [δ] by machine type")
     questions: list[Question] = Field(default_factory=list, description="what an assignment can ask")
+
+    @model_validator(mode="after")
+    def answerable(self):
+        """A question at a chosen angle needs the kinematics endpoint, which takes the angles themselves."""
+        for q in self.questions:
+            if q.kind == "at_angle" and self.kind != "kinematics":
+                raise ValueError(f"question {q.id}: kind at_angle needs a kinematics scene")
+        return self
 
 
 def _check_languages(texts: dict, where: str) -> None:

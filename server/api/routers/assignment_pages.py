@@ -12,8 +12,10 @@ from starlette.concurrency import run_in_threadpool
 from ...classroom.identity import personal_path
 from ...classroom.names import NameRefused
 from .. import assignments
-from ..answers import student_scene
+from ..answers import student_scene, unlocked_predictions
+from ..assignment_store import store
 from ..student_secret import forget, from_another_site, hand_over, sent_secret
+from ...classroom.visibility import public_views
 from ...lessons.scenes import scenes
 from .pages import scene_context, templates, _context
 
@@ -43,7 +45,8 @@ def builder(request: Request, scene_id: str, lang: str | None = None, variant: s
                 pass
     questions = [q for q in scene.questions if not q.variants or chosen.id in q.variants]
     return templates.TemplateResponse(request, "assignment_builder.html", _context(request, lang) | {
-        "scene": scene, "variant": chosen, "variants": offered, "values": values, "questions": questions})
+        "scene": scene, "variant": chosen, "variants": offered, "values": values, "questions": questions,
+        "shown": {q.id: public_views(scene, chosen, q) for q in questions}})
 
 
 def start_page(request: Request, context: dict, about, status: int = 200, **state) -> HTMLResponse:
@@ -73,7 +76,8 @@ def student_page(request: Request, assignment_id: str, lang: str | None = None,
         if secret:
             forget(response, request, record.id)
         return response
-    shown = student_scene(resolved, student.parameters)
+    shown = student_scene(resolved, student.parameters,
+                          unlocked_predictions(resolved, store().submissions(record.id, student.key)))
     page = {"id": record.id, "student": student.name, "variant": student.variant + 1,
             "variants": resolved.count, "values": student.parameters, "info": about.model_dump()}
     return templates.TemplateResponse(request, "scene.html", scene_context(request, context, shown) | {

@@ -18,7 +18,7 @@ from ...classroom.spec import AssignmentSpec
 from ...classroom.store import AttemptRefused, StudentRecord
 from ...classroom.variants import SpecError
 from .. import assignments
-from ..answers import correct_answer, is_right, tolerance
+from ..answers import check
 from ..assignment_store import store
 from ..csv_export import csv_attachment
 from ..schemas import Language
@@ -147,8 +147,7 @@ def submit(submission: SubmissionRequest, request: Request, assignment_id: str =
         response = _refuse(429, ["body"], "too many submissions from this address; wait a minute", "rate_limited")
         response.headers["Retry-After"] = "60"
         return response
-    correct = correct_answer(resolved, student.parameters, submission.question)
-    right = is_right(submission.answer, correct, tolerance(resolved, submission.question))
+    correct, right = check(resolved, student.parameters, submission.question, submission.answer, submission.angle)
     try:
         saved = store().submit(record.id, student.key, submission.question, submission.answer, right,
                                resolved.spec.attempts, now, client, correct)
