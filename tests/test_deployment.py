@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import itertools
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -33,7 +34,8 @@ import pytest
 
 from server.api.assignment_store import DATABASE_FILE
 from server.classroom.storage import SQLiteStore
-from nginx import free_port, nginx_proxy
+from nginx import SITE, free_port, nginx_proxy
+from server.__main__ import uvicorn_options
 
 REPO = Path(__file__).resolve().parents[1]
 API = "/api/v1"
@@ -170,6 +172,11 @@ def test_an_assignment_made_through_nginx_links_back_to_nginx(deployment):
         assert httpx.get(f"{server.url}{API}/assignments/{created['id']}").status_code == 200
     page = httpx.get(created["student_url"])
     assert page.status_code == 200 and "text/html" in page.headers["content-type"]
+    assets = re.findall(r'(?:src|href)="(/(?:static|vendor)/[^"]+)"', page.text)
+    assert assets
+    for server in deployment.servers:              # the versioned URLs of one server's page, from every server
+        for asset in assets:
+            assert httpx.get(f"{server.url}{asset}").status_code == 200, (server.url, asset)
 
 
 class Burst:
@@ -316,3 +323,31 @@ def test_by_default_no_proxy_is_trusted(tmp_path):
         assert submissions_until_refused(crowd, spoof="each answer from a new address") == 4
     finally:
         server.stop()
+
+
+def test_the_default_options_trust_no_proxy(monkeypatch):
+    monkeypatch.delenv("MDL_FORWARDED_ALLOW_IPS", raising=False)
+    assert uvicorn_options([])["proxy_headers"] is False
+    named = uvicorn_options(["--forwarded-allow-ips", "10.0.0.5"])
+    assert named["proxy_headers"] is True and named["forwarded_allow_ips"] == "10.0.0.5"
+    monkeypatch.setenv("MDL_FORWARDED_ALLOW_IPS", "127.0.0.1")
+    assert uvicorn_options([])["forwarded_allow_ips"] == "127.0.0.1"
+
+
+# --- the shipped files say the same as the README and the app -----------------------------------------------
+
+def test_the_readme_shows_the_shipped_nginx_site():
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    assert re.search(r"```nginx\n(.+?)```", readme, re.S).group(1) == SITE.read_text(encoding="utf-8")
+
+
+def test_the_settings_file_names_only_what_the_app_or_the_unit_reads():
+    unit = (REPO / "deploy" / "systemd" / "mdl@.service").read_text(encoding="utf-8")
+    start = re.search(r"^ExecStart=(.+)$", unit, re.M).group(1)
+    assert start.startswith("/usr/bin/python3 -m server ") and "--port %i" in start
+    code = "\n".join(p.read_text(encoding="utf-8") for p in (REPO / "server").rglob("*.py"))
+    example = (REPO / "deploy" / "mdl.env.example").read_text(encoding="utf-8")
+    names = re.findall(r"^([A-Z_]+)=", example, re.M)
+    assert "MDL_DATABASE_URL" in names and "MDL_FORWARDED_ALLOW_IPS" in names
+    for name in names:
+        assert f'"{name}"' in code or "${" + name + "}" in start, f"{name} is read by neither the app nor the unit"
