@@ -165,6 +165,20 @@ def make_assignment(base: str) -> dict:
     return response.json()
 
 
+def test_nginx_passes_the_apps_compression_and_caching_through(deployment):
+    """gzip off in nginx: the app's own gzip arrives as the app made it; its Cache-Control is untouched."""
+    body = {"mechanism": "slider_crank", "n": 361, "outputs": ["s", "u31", "du31"]}
+    direct = httpx.post(f"{deployment.servers[0].url}{API}/kinematics", json=body, headers={"Accept-Encoding": "gzip"})
+    proxied = httpx.post(f"{deployment.proxy.url}{API}/kinematics", json=body, headers={"Accept-Encoding": "gzip"})
+    assert proxied.status_code == 200 and proxied.headers["content-encoding"] == "gzip"
+    assert proxied.json() == direct.json()
+    page = httpx.get(f"{deployment.proxy.url}/")
+    assert page.headers["cache-control"] == "no-cache"
+    stylesheet = re.search(r'href="(/static/[^"]+\.css)"', page.text).group(1)
+    assert httpx.get(f"{deployment.proxy.url}{stylesheet}").headers["cache-control"] == \
+        "public, max-age=31536000, immutable"
+
+
 def test_an_assignment_made_through_nginx_links_back_to_nginx(deployment):
     created = make_assignment(deployment.proxy.url)
     assert created["student_url"].startswith(f"{deployment.proxy.url}/assignments/{created['id']}")
@@ -221,9 +235,9 @@ def test_a_class_through_nginx_survives_the_death_of_a_server(deployment):
     created = make_assignment(proxy.url)
     students = [Student(proxy.url, created["id"], f"Student {k:02d}", f"127.0.1.{k + 1}") for k in range(CLASS_SIZE)]
     burst = Burst()
-    with ThreadPoolExecutor(max_workers=2 * CLASS_SIZE) as pool:
-        for student in students:
-            student.register()
+    for student in students:
+        student.register()
+    with ThreadPoolExecutor(max_workers=2 * len(QUESTIONS) * CLASS_SIZE) as pool:
         jobs = [pool.submit(burst.until_refused, student, question)
                 for student in students for question in QUESTIONS for _ in range(2)]
         deadline = time.monotonic() + BURST_SECONDS
