@@ -33,7 +33,7 @@ import httpx
 import pytest
 
 from server.api.assignment_store import DATABASE_FILE
-from server.classroom.storage import SQLiteStore
+from server.classroom.store import SQLiteStore
 from nginx import SITE, free_port, nginx_proxy
 from server.__main__ import uvicorn_options
 
