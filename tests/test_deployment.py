@@ -225,6 +225,8 @@ class Burst:
             elif response.status_code in (502, 504):
                 with self.lock:
                     self.bad_gateway += 1
+            elif response.status_code == 503:      # the variant's answers still being computed: no attempt used
+                time.sleep(min(float(response.headers.get("retry-after", "1")), 5.0))
             else:
                 self.other.append(f"{response.status_code} {response.text[:200]}")
                 return
