@@ -16,22 +16,11 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
-from .migrations import LATEST, VERSION_TABLE, legacy_version, pending
-from .records import (AssignmentRecord, StoreUnavailable, StudentRecord, Submission, no_such_student,
-                      refuse_attempt)
+from .migrations import LATEST, VERSION_TABLE, SchemaTooNew, legacy_version, pending
+from .records import (STUDENT_COLUMNS, SUBMISSION_COLUMNS, AssignmentRecord, StoreUnavailable, StudentRecord,
+                      Submission, no_such_student, refuse_attempt, student_record, submission_record)
 
 BUSY_TIMEOUT_S = 10.0
-STUDENT_COLUMNS = "key, name, variant, parameters, first_seen, attempts, solved, last_at, secret_hash, on_roster"
-SUBMISSION_COLUMNS = "student_key, question, answer, correct, attempt, at, correct_value"
-
-
-def student_record(row) -> StudentRecord:
-    return StudentRecord(row[0], row[1], row[2], json.loads(row[3]), row[4], row[5], row[6], row[7], row[8],
-                         bool(row[9]))
-
-
-def submission_record(row) -> Submission:
-    return Submission(row[0], row[1], row[2], bool(row[3]), row[4], row[5], row[6])
 
 
 class SQLiteStore:
@@ -46,6 +35,8 @@ class SQLiteStore:
             self._migrate()
         except (OSError, sqlite3.Error) as error:
             raise StoreUnavailable(f"cannot open the database {self.path} for writing: {error}") from error
+        except SchemaTooNew as error:
+            raise StoreUnavailable(f"cannot use the database {self.path}: {error}") from error
 
     def _connection(self) -> sqlite3.Connection:
         connection = getattr(self._local, "connection", None)
@@ -88,6 +79,9 @@ class SQLiteStore:
 
     def schema_version(self) -> int:
         return self._connection().execute("SELECT MAX(version) FROM schema_version").fetchone()[0]
+
+    def applied_versions(self) -> list[int]:
+        return [row[0] for row in self._connection().execute("SELECT version FROM schema_version ORDER BY 1")]
 
     def check(self) -> None:
         """StoreUnavailable unless the file takes a write now (a write transaction, rolled back)."""
