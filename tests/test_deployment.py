@@ -26,7 +26,7 @@ import sys
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
-from contextlib import ExitStack
+from contextlib import ExitStack, contextmanager
 from pathlib import Path
 
 import httpx
@@ -34,7 +34,9 @@ import pytest
 
 from server.api.assignment_store import DATABASE_FILE
 from server.classroom.store import SQLiteStore
+from server.classroom.store.postgres import PostgresStore
 from nginx import SITE, free_port, nginx_proxy
+from postgres import fresh_database, postgres_url  # noqa: F401 (postgres_url is a fixture)
 from server.__main__ import uvicorn_options
 
 REPO = Path(__file__).resolve().parents[1]
@@ -124,14 +126,15 @@ class AppServer:
                 self.process.wait(timeout=10)
 
 
-def database_env(tmp_path: Path) -> dict:
-    """The environment that points every app server at the one shared database."""
-    return {"MDL_DATA_DIR": str(tmp_path)}
-
-
-def open_store(env: dict):
-    """The same database, opened by the test itself to read what was stored."""
-    return SQLiteStore(Path(env["MDL_DATA_DIR"]) / DATABASE_FILE)
+def stored_submissions(env: dict, assignment: str) -> list:
+    """Every submission in the deployment's database, read by the test itself."""
+    if env.get("MDL_DATABASE_URL"):
+        store = PostgresStore(env["MDL_DATABASE_URL"], pool_size=1)
+        try:
+            return store.submissions(assignment)
+        finally:
+            store.close()
+    return SQLiteStore(Path(env["MDL_DATA_DIR"]) / DATABASE_FILE).submissions(assignment)
 
 
 class Deployment:
@@ -139,10 +142,10 @@ class Deployment:
         self.servers, self.proxy, self.env = servers, proxy, env
 
 
-@pytest.fixture(scope="module")
-def deployment(tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("deployment")
-    env = os.environ | database_env(tmp) | {
+@contextmanager
+def deployment_on(tmp: Path, database: dict):
+    """Two app servers on the `database` environment behind nginx; stopped afterwards."""
+    env = os.environ | {"MDL_DATA_DIR": str(tmp)} | database | {
         "MDL_SUBMISSIONS_PER_MINUTE": str(PER_MINUTE),
         "MDL_FORWARDED_ALLOW_IPS": "127.0.0.1",      # nginx's address, as deploy/mdl.env.example sets it
         "MDL_HEAVY_PROCESSES": "0"}                   # light scenes only: no process pools beside the servers
@@ -155,6 +158,21 @@ def deployment(tmp_path_factory):
             server.wait_ready()
         proxy = stack.enter_context(nginx_proxy(tmp / "nginx", [s.port for s in servers]))
         yield Deployment(servers, proxy, env)
+
+
+@pytest.fixture(scope="module")
+def deployment(tmp_path_factory, postgres_url):
+    """The university's set-up: one PostgreSQL (a database of its own on the tests' server)."""
+    with deployment_on(tmp_path_factory.mktemp("deployment"), {"MDL_DATABASE_URL": fresh_database(postgres_url)}) \
+            as running:
+        yield running
+
+
+@pytest.fixture(scope="module")
+def sqlite_deployment(tmp_path_factory):
+    """Several servers of one machine on one SQLite file (as the workers of one server share it)."""
+    with deployment_on(tmp_path_factory.mktemp("sqlite-deployment"), {"MDL_DATABASE_URL": ""}) as running:
+        yield running
 
 
 # --- the tests ----------------------------------------------------------------------------------------------
@@ -232,7 +250,9 @@ class Burst:
                 return
 
 
-def test_a_class_through_nginx_survives_the_death_of_a_server(deployment):
+@pytest.mark.parametrize("set_up", ["deployment", "sqlite_deployment"])
+def test_a_class_through_nginx_survives_the_death_of_a_server(request, set_up):
+    deployment = request.getfixturevalue(set_up)
     proxy, (doomed, survivor) = deployment.proxy, deployment.servers
     created = make_assignment(proxy.url)
     students = [Student(proxy.url, created["id"], f"Student {k:02d}", f"127.0.1.{k + 1}") for k in range(CLASS_SIZE)]
@@ -258,7 +278,7 @@ def test_a_class_through_nginx_survives_the_death_of_a_server(deployment):
     print(f"{len(burst.acknowledged)} answers acknowledged ({killed_at} before the kill), "
           f"{burst.bad_gateway} answers cut off by the kill (502), {burst.lost_connection} connections lost")
 
-    stored = open_store(deployment.env).submissions(created["id"])
+    stored = stored_submissions(deployment.env, created["id"])
     attempts = {(s.student_key, s.question, s.answer): s.attempt for s in stored}
     for key, question, value, attempt in burst.acknowledged:
         assert attempts.get((key, question, value)) == attempt, f"acknowledged answer lost: {key} {question} {value}"
