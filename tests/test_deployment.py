@@ -33,6 +33,7 @@ import httpx
 import pytest
 
 from server.api.assignment_store import DATABASE_FILE
+from server.classroom.names import normalise
 from server.classroom.store import SQLiteStore
 from server.classroom.store.postgres import PostgresStore
 from nginx import SITE, free_port, nginx_proxy
@@ -55,31 +56,37 @@ BURST_SECONDS = 300            # guard against a hang only
 # --- the student's side: the only place that knows how a student identifies themself -----------------------
 
 class Student:
-    """One student's browser: a client address of its own (`address`), talking to `base`."""
+    """One student's browser: a client address of its own (`address`), talking to `base` (nginx). Registration
+    is a POST, as the page sends it (with its Origin); the personal secret comes back as a cookie, which the
+    browser then sends with every request through nginx. Asking a server directly, the test sends the same
+    secret as `Authorization: Bearer`, as an API client would."""
 
     def __init__(self, base: str, assignment: str, name: str, address: str = "127.0.0.1"):
-        self.assignment, self.name = assignment, name
+        self.base, self.assignment, self.name, self.secret = base, assignment, name, None
         self.http = httpx.Client(base_url=base, timeout=60, transport=httpx.HTTPTransport(local_address=address))
 
     def register(self) -> dict:
-        response = self.http.get(f"{API}/assignments/{self.assignment}/students/{self.name}")
-        response.raise_for_status()
+        response = self.http.post(f"{API}/assignments/{self.assignment}/students", json={"name": self.name},
+                                  headers={"Origin": self.base})
+        assert response.status_code == 201, response.text
+        assert self.http.cookies, "the secret's cookie did not come through"
+        self.secret = response.json()["secret"]
         return response.json()
 
     def page(self, base: str | None = None) -> dict:
-        """The student's variant and answers so far, from `base` (another server) or their own."""
-        url = f"{base or ''}{API}/assignments/{self.assignment}/students/{self.name}"
-        response = self.http.get(url)
+        """The student's variant and answers so far, through nginx (the cookie) or from the server at `base`."""
+        headers = {"Authorization": f"Bearer {self.secret}"} if base else None
+        response = self.http.get(f"{base or ''}{API}/assignments/{self.assignment}/me", headers=headers)
         response.raise_for_status()
         return response.json()
 
     def submit(self, question: str, answer: float, headers: dict | None = None) -> httpx.Response:
         return self.http.post(f"{API}/assignments/{self.assignment}/submissions", headers=headers,
-                              json={"student": self.name, "question": question, "answer": answer})
+                              json={"question": question, "answer": answer})
 
     @property
     def key(self) -> str:
-        return self.name.lower()
+        return normalise(self.name)
 
     def close(self) -> None:
         self.http.close()
