@@ -95,29 +95,33 @@ class Student:
 # --- the servers --------------------------------------------------------------------------------------------
 
 class AppServer:
-    """`python3 -m server --port P` in a subprocess, started (again) and killed by the test."""
+    """`python3 -m server --port P` in a subprocess, started (again) and killed by the test; its log (uvicorn's
+    access log included) goes to a file in `directory`, never to a pipe that nobody empties."""
 
-    def __init__(self, env: dict):
+    def __init__(self, env: dict, directory: Path):
         self.port, self.env, self.process = free_port(), env, None
         self.url = f"http://127.0.0.1:{self.port}"
+        self.log = directory / f"server-{self.port}.log"
 
     def start(self) -> None:
-        self.process = subprocess.Popen([sys.executable, "-m", "server", "--port", str(self.port)], cwd=REPO,
-                                        env=self.env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        with open(self.log, "ab") as log:
+            self.process = subprocess.Popen([sys.executable, "-m", "server", "--port", str(self.port)], cwd=REPO,
+                                            env=self.env, stdout=log, stderr=subprocess.STDOUT)
 
     def wait_ready(self) -> None:
         deadline = time.monotonic() + START_SECONDS
         while time.monotonic() < deadline:
             if self.process.poll() is not None:
                 raise RuntimeError(f"the app server on port {self.port} exited with {self.process.returncode}:\n"
-                                   + self.process.stderr.read().decode(errors="replace")[-3000:])
+                                   + self.log.read_text(errors="replace")[-3000:])
             try:
                 if httpx.get(f"{self.url}{API}/mechanisms", timeout=2).status_code == 200:
                     return
             except httpx.HTTPError:
                 pass
             time.sleep(0.2)
-        raise RuntimeError(f"the app server on port {self.port} was not ready within {START_SECONDS} s")
+        raise RuntimeError(f"the app server on port {self.port} was not ready within {START_SECONDS} s:\n"
+                           + self.log.read_text(errors="replace")[-3000:])
 
     def kill(self) -> None:
         self.process.send_signal(signal.SIGKILL)
@@ -156,7 +160,7 @@ def deployment_on(tmp: Path, database: dict):
         "MDL_SUBMISSIONS_PER_MINUTE": str(PER_MINUTE),
         "MDL_FORWARDED_ALLOW_IPS": "127.0.0.1",      # nginx's address, as deploy/mdl.env.example sets it
         "MDL_HEAVY_PROCESSES": "0"}                   # light scenes only: no process pools beside the servers
-    servers = [AppServer(env) for _ in range(2)]
+    servers = [AppServer(env, tmp) for _ in range(2)]
     with ExitStack() as stack:
         for server in servers:
             stack.callback(server.stop)
@@ -357,7 +361,7 @@ def test_by_default_no_proxy_is_trusted(tmp_path):
     env = os.environ | {"MDL_DATA_DIR": str(tmp_path), "MDL_SUBMISSIONS_PER_MINUTE": "4",
                         "MDL_HEAVY_PROCESSES": "0"}
     env.pop("MDL_FORWARDED_ALLOW_IPS", None)
-    server = AppServer(env)
+    server = AppServer(env, tmp_path)
     server.start()
     try:
         server.wait_ready()
