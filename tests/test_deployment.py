@@ -70,6 +70,7 @@ class Student:
                                   headers={"Origin": self.base})
         assert response.status_code == 201, response.text
         assert self.http.cookies, "the secret's cookie did not come through"
+        assert response.json()["personal_url"].startswith(f"{self.base}/"), "a personal link past nginx"
         self.secret = response.json()["secret"]
         return response.json()
 
