@@ -1,19 +1,33 @@
-"""Start the server: python -m server [--host H] [--port P] [--workers N] [--forwarded-allow-ips IPS]."""
+"""Start the server: python -m server [--host H] [--port P] [--workers N] [--forwarded-allow-ips IPS].
+
+Proxy headers (X-Forwarded-For, X-Forwarded-Proto) are read only from the reverse proxies named by
+``--forwarded-allow-ips`` or ``MDL_FORWARDED_ALLOW_IPS`` (comma-separated addresses or networks). By default
+none is trusted: any local process could otherwise name itself a new client in X-Forwarded-For and so
+escape the per-address limits (submissions per minute, computations in flight).
+"""
 import argparse
+import os
 
 import uvicorn
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description="Mechanism Dynamics Lab")
+def uvicorn_options(argv: list[str] | None = None) -> dict:
+    """The keyword arguments of uvicorn.run for these command-line arguments and the environment."""
+    parser = argparse.ArgumentParser(prog="python3 -m server", description="Mechanism Dynamics Lab")
     parser.add_argument("--host", default="127.0.0.1")
     parser.add_argument("--port", type=int, default=8000)
     parser.add_argument("--workers", type=int, default=1)
-    parser.add_argument("--forwarded-allow-ips", default="127.0.0.1",
-                        help="reverse proxies whose X-Forwarded-For names the client (default: a proxy on this machine)")
-    args = parser.parse_args()
-    uvicorn.run("server.api.app:app", host=args.host, port=args.port, workers=args.workers,
-                proxy_headers=True, forwarded_allow_ips=args.forwarded_allow_ips)
+    parser.add_argument("--forwarded-allow-ips", default=os.environ.get("MDL_FORWARDED_ALLOW_IPS", ""),
+                        help="the reverse proxies whose X-Forwarded-For names the client, e.g. 127.0.0.1 for an "
+                             "nginx on this machine (default: $MDL_FORWARDED_ALLOW_IPS, else none)")
+    args = parser.parse_args(argv)
+    trusted = args.forwarded_allow_ips.strip()
+    return {"host": args.host, "port": args.port, "workers": args.workers,
+            "proxy_headers": bool(trusted), "forwarded_allow_ips": trusted or None}
+
+
+def main() -> None:
+    uvicorn.run("server.api.app:app", **uvicorn_options())
 
 
 if __name__ == "__main__":

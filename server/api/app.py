@@ -9,7 +9,6 @@ import plotly
 from fastapi import APIRouter, FastAPI
 from fastapi.exceptions import RequestValidationError
 from fastapi.middleware.gzip import GZipMiddleware
-from fastapi.staticfiles import StaticFiles
 
 from ..lessons.scenes import REPO_ROOT
 from ..core.mechanisms import GeometryError
@@ -17,6 +16,7 @@ from ..core.warm_up import warm_up
 from . import assignment_store, heavy
 from .errors import geometry_error, validation_error
 from .admission import AdmissionMiddleware
+from .bench_pages import BenchResults
 from .security import SecurityMiddleware
 from .static_files import content_version, mount_versioned
 from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache, ResponseCacheMiddleware
@@ -75,7 +75,7 @@ def create_app() -> FastAPI:
     static = mount_versioned(app, "/static", STATIC_DIR, content_version(STATIC_DIR), "static")
     plotly_js = mount_versioned(app, "/vendor/plotly", PLOTLY_DIR, plotly.__version__, "plotly")
     pages.templates.env.globals.update(static=static, plotly=plotly_js)   # {{ static }}/js/api.js in templates
-    app.mount("/bench-results", StaticFiles(directory=REPO_ROOT / "bench" / "results"), name="bench")
+    app.mount("/bench-results", BenchResults(directory=REPO_ROOT / "bench" / "results"), name="bench")
     return app
 
 

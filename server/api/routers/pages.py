@@ -2,7 +2,7 @@
 from pathlib import Path
 
 from fastapi import APIRouter, HTTPException, Request
-from fastapi.responses import HTMLResponse
+from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.templating import Jinja2Templates
 
 from ...lessons.scenes import LANGUAGES, REPO_ROOT, interface_texts, language, scenes
@@ -30,6 +30,13 @@ def _context(request: Request, lang: str | None) -> dict:
 @router.get("/", response_class=HTMLResponse)
 def index(request: Request, lang: str | None = None):
     return templates.TemplateResponse(request, "index.html", _context(request, lang) | {"scenes": scenes().values()})
+
+
+@router.get("/favicon.ico")
+def favicon():
+    """The icon a browser asks for on pages without a <link rel="icon"> (the stored figures at /bench-results)."""
+    return FileResponse(Path(REPO_ROOT, "web", "static", "img", "favicon.svg"), media_type="image/svg+xml",
+                        headers={"Cache-Control": "public, max-age=86400"})
 
 
 @router.get("/scenes/{scene_id}", response_class=HTMLResponse)
