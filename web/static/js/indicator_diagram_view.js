@@ -40,7 +40,7 @@ export class IndicatorDiagramView {
     reset.addEventListener("click", () => {
       for (const stroke of STROKES) this.#set(stroke, [...this.initial[stroke]]);
     });
-    const note = spec.note ? [element("p", { className: "note", textContent: spec.note[lang] })] : [];
+    const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] })] : [];
     body.append(this.svg, element("p", { className: "legend" },
       ...STROKES.map((s) => element("span", { className: `key ${s}`, textContent: t[`indicator_${s}`] })), reset),
     this.#table(), ...note);

@@ -26,7 +26,7 @@ export class WorkPrecisionView {
     this.graph = element("div", { className: "graph", hidden: true });
     this.details = element("div", { className: "study-details" });
     this.result = element("div", { className: "study-result" }, this.graph, this.details);
-    const note = spec.note ? [element("p", { className: "note", textContent: spec.note[lang] })] : [];
+    const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] })] : [];
     body.append(element("div", { className: "study-bar" }, this.button, this.state), this.result, ...note);
     this.study.on("running", () => this.#mark());
     this.study.on("result", (answer) => this.#show(answer));
@@ -78,7 +78,7 @@ export class WorkPrecisionView {
         line(t.study_reference, study.reference, "study-reference")];
     if (study.skipped.length) lines.push(line(t.study_skipped, study.skipped.join(", "), "study-skipped"));
     if (warnings.length) lines.push(element("ul", { className: "study-warnings" },
-      ...warnings.map((warning) => element("li", { textContent: warning }))));
+      ...warnings.map((warning) => element("li", { rich: warning }))));
     return lines;
   }
 }
