@@ -55,11 +55,18 @@ def signed(text: str) -> str:
     if power:
         exponent = str(int(power[1])).translate(SUPERSCRIPTS)
         mantissa = text[:power.start()]
-        if float(mantissa) == 0:
+        if float(mantissa.replace(",", ".")) == 0:
             return "0"
         text = f"10{exponent}" if mantissa.lstrip("-") == "1" else f"{mantissa}·10{exponent}"
         text = "-" + text if mantissa.startswith("-") and text.startswith("10") else text
     return MINUS + text[1:] if text.startswith("-") and not ZERO.match(text) else ZERO.sub("", text)
+
+
+def written(value, lang: str):
+    """A number the core formatted already ("4.4e-16") as the page writes it; anything else as it is."""
+    if not isinstance(value, str) or not NUMBER.match(value):
+        return value
+    return signed(value.replace(".", "," if lang in DECIMAL_COMMA else "."))
 
 
 def localise_numerics(numerics: dict, lang: str) -> dict:
@@ -70,11 +77,11 @@ def localise_numerics(numerics: dict, lang: str) -> dict:
     if template:
         local["method"] = template.format(method=numerics.get("method", ""))
     number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
-    message = texts.get(f"num_message_{numerics.get('message_code')}")
+    message = interface_texts(lang).get(f"num_message_{numerics.get('message_code')}")   # English too: numbers
     if message:
-        local["message"] = message.format(**{k: number(v) if isinstance(v, float) else v
+        local["message"] = message.format(**{k: number(v) if isinstance(v, float) else written(v, lang)
                                              for k, v in numerics.get("message_context", {}).items()})
-    elif numerics.get("message") and lang != "en":
+    elif numerics.get("message"):
         local["message"] = from_english(numerics["message"], lang)
     why = interface_texts(lang).get(f"why_{numerics.get('code')}")      # English too: readable numbers
     if why and "why_context" in numerics:
@@ -108,7 +115,7 @@ def skipped_run(text: str, lang: str) -> str:
     found = SKIPPED_RUN.fullmatch(text)
     if not found:
         return text
-    rtol = signed(found["rtol"].replace(".", "," if lang in DECIMAL_COMMA else "."))
+    rtol = written(found["rtol"], lang)
     return f"{study_method(found['method'], lang)[0]}, rtol = {rtol}"
 
 
@@ -157,8 +164,7 @@ def from_english(text: str, lang: str) -> str:
         found = pattern.fullmatch(text)
         if found is None:
             continue
-        decimal = "," if lang in DECIMAL_COMMA else "."
-        parts = {name: signed(value.replace(".", decimal)) if NUMBER.match(value) else from_english(value, lang)
+        parts = {name: written(value, lang) if NUMBER.match(value) else from_english(value, lang)
                  for name, value in found.groupdict().items()}
         return FIELD.sub(lambda field: parts[field[1]], interface_texts(lang)[key])
     return text

@@ -28,14 +28,14 @@ export class EfficiencyChainView {
       element("table", { className: "chain-table" },
         element("thead", {}, element("tr", {},
           element("th", { scope: "col", textContent: "k" }),
-          element("th", { scope: "col", textContent: "η_k" }),
-          element("th", { scope: "col", textContent: `A_P,k, ${unitText("J", t)}` }),
+          element("th", { scope: "col", rich: "η_k" }),
+          element("th", { scope: "col", rich: `A_{P,k}, ${unitText("J", t)}` }),
           element("td"))),
         this.rows),
       add,
       element("dl", { className: "figures-list chain-results" },
-        element("dt", { textContent: t.chain_series }), element("dd", {}, this.series),
-        element("dt", { textContent: t.chain_parallel }), element("dd", {}, this.parallel)),
+        element("dt", { rich: t.chain_series }), element("dd", {}, this.series),
+        element("dt", { rich: t.chain_parallel }), element("dd", {}, this.parallel)),
       this.message);
 
     this.model.on("mechanisms", () => {

@@ -7,7 +7,7 @@
  */
 import { pathValue } from "./dotted_paths.js";
 import { element } from "./dom.js";
-import { formatNumber } from "./notation.js";
+import { formatNumber, richText } from "./notation.js";
 import { setAttributes, svgElement } from "./svg.js";
 
 const WIDTH = 420;
@@ -62,7 +62,7 @@ export class IndicatorDiagramView {
     svgElement("text", { x: (PLOT.left + WIDTH - PLOT.right) / 2, y: HEIGHT - 4, class: "axis-title" }, grid)
       .textContent = this.t.indicator_x;
     svgElement("text", { x: 12, y: (PLOT.top + HEIGHT - PLOT.bottom) / 2, class: "axis-title y",
-      transform: `rotate(-90 12 ${(PLOT.top + HEIGHT - PLOT.bottom) / 2})` }, grid).textContent = "p/p_max";
+      transform: `rotate(-90 12 ${(PLOT.top + HEIGHT - PLOT.bottom) / 2})` }, grid).append(richText("p/p_max", { svg: true }));
   }
 
   /** The polyline and draggable points of one stroke. */

@@ -66,7 +66,7 @@ export class PresetsView {
     this.check.replaceChildren(...lines.map(([design, label]) => {
       const where = verdict(design.delta_achieved, preset);
       return element("li", { className: `preset-${where}`,
-        textContent: `${where === "above" ? "✗" : "✓"} ${this.t[label]}: δ = ${this.#number(design.delta_achieved)} — `
+        rich: `${where === "above" ? "✗" : "✓"} ${this.t[label]}: δ = ${this.#number(design.delta_achieved)} — `
           + this.#phrase(where, preset) });
     }));
   }

@@ -9,6 +9,7 @@
  */
 import { element } from "./dom.js";
 import { refusalMessage } from "./messages.js";
+import { richText } from "./notation.js";
 import { plottedRows, workPrecisionFigure } from "./work_precision_figure.js";
 import { WorkPrecisionStudy } from "./work_precision_study.js";
 
@@ -26,7 +27,8 @@ export class WorkPrecisionView {
     this.graph = element("div", { className: "graph", hidden: true });
     this.details = element("div", { className: "study-details" });
     this.result = element("div", { className: "study-result" }, this.graph, this.details);
-    const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] })] : [];
+    const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] }, " ",
+      element("a", { className: "study-tables", href: `/measurements?lang=${lang}`, textContent: t.study_full_tables }))] : [];
     body.append(element("div", { className: "study-bar" }, this.button, this.state), this.result, ...note);
     this.study.on("running", () => this.#mark());
     this.study.on("result", (answer) => this.#show(answer));
@@ -71,12 +73,12 @@ export class WorkPrecisionView {
   #details(study, warnings) {
     const { t } = this;
     const line = (label, text, className) => element("p", { className },
-      element("span", { className: "study-label", textContent: `${label}: ` }), text);
+      element("span", { className: "study-label", textContent: `${label}: ` }), richText(text));
     const lines = study.reference === null ? [element("p", { className: "study-no-reference", textContent: t.study_no_reference })]
       : [element("p", { className: "study-reading", textContent: t.study_reading }),
         line(t.study_quantity, study.quantity, "study-quantity"),
         line(t.study_reference, study.reference, "study-reference")];
-    if (study.skipped.length) lines.push(line(t.study_skipped, study.skipped.join(", "), "study-skipped"));
+    if (study.skipped.length) lines.push(line(t.study_skipped, study.skipped.join("; "), "study-skipped"));
     if (warnings.length) lines.push(element("ul", { className: "study-warnings" },
       ...warnings.map((warning) => element("li", { rich: warning }))));
     return lines;
