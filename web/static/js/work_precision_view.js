@@ -4,8 +4,9 @@
  * request body of the current values (the body the scene's own request sends), never a slider move, as
  * it takes seconds of server time. The chart then shows error against run time per method, and below it
  * the quantity compared, the reference, the runs that did not finish within the time budget and the
- * panel's note. Once a value changes, the chart is greyed and said to belong to the earlier values until
- * the study runs again; a refused study says why.
+ * panel's note with a link to the full tables (the measurements page, /measurements). Once a value
+ * changes, the chart is greyed and said to belong to the earlier values until the study runs again; a
+ * refused study says why.
  */
 import { element } from "./dom.js";
 import { refusalMessage } from "./messages.js";
@@ -27,8 +28,9 @@ export class WorkPrecisionView {
     this.graph = element("div", { className: "graph", hidden: true });
     this.details = element("div", { className: "study-details" });
     this.result = element("div", { className: "study-result" }, this.graph, this.details);
-    const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] }, " ",
-      element("a", { className: "study-tables", href: `/measurements?lang=${lang}`, textContent: t.study_full_tables }))] : [];
+    const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] }),
+      element("p", { className: "note study-tables" },
+        element("a", { href: `/measurements?lang=${lang}`, textContent: t.study_full_tables }))] : [];
     body.append(element("div", { className: "study-bar" }, this.button, this.state), this.result, ...note);
     this.study.on("running", () => this.#mark());
     this.study.on("result", (answer) => this.#show(answer));
