@@ -122,7 +122,7 @@ def skipped_run(text: str, lang: str) -> str:
 def localise_study(study: dict, lang: str) -> dict:
     """The work–precision study in the reader's language: reference, quantity, each row's method (with
     ``ours`` true for the app's own method) and the runs left out."""
-    texts = interface_texts(lang) if lang != "en" else {}
+    texts = interface_texts(lang)              # English too: "rtol = 10⁻¹¹", not the core's "1e-11"
     local = dict(study)
     for field in ("reference", "quantity"):
         text = texts.get(f"study_{field}_{study.get(field + '_code')}")

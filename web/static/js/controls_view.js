@@ -7,7 +7,9 @@
  * slider's family (family_preview.js) or, before that arrives, kept cheap by the coalescing client.
  */
 import { element } from "./dom.js";
-import { formatNumber, formatQuantity, labelledValue, paramSymbol, richText, setRichText, unitText } from "./notation.js";
+import {
+  formatNumber, formatQuantity, labelledValue, paramSymbol, plainText, richText, setRichText, unitText,
+} from "./notation.js";
 import { LOG_DIGITS, sliderScale } from "./slider_scale.js";
 
 const POWER_FROM = 1e6;     // a slider value from here on reads "4,4·10⁶", not "4400000"
@@ -49,7 +51,7 @@ export class ControlsView {
     const { model, t, lang } = this;
     const variant = model.variant;
     const picker = element("select", { id: "variant" }, ...model.scene.variants.map((v) =>
-      element("option", { value: v.id, textContent: v.label[lang], selected: v === variant })));
+      element("option", { value: v.id, textContent: plainText(v.label[lang]), selected: v === variant })));
     picker.addEventListener("change", () => model.selectVariant(picker.value));
     this.readouts = new Map();
     this.overlayBox = null;

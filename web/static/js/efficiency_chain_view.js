@@ -8,7 +8,7 @@ import { ApiClient } from "./api.js";
 import { element } from "./dom.js";
 import { EfficiencyChain } from "./efficiency_chain.js";
 import { refusalMessage } from "./messages.js";
-import { formatQuantity, unitText } from "./notation.js";
+import { formatQuantity, plainText, unitText } from "./notation.js";
 
 const STEPS = { efficiency: 0.01, work: 10 };
 
@@ -63,7 +63,7 @@ export class EfficiencyChainView {
     const field = (key, max) => {
       const input = element("input", {
         type: "number", min: 0, step: STEPS[key], value: mechanism[key], className: `chain-${key}`,
-        "aria-label": `${key === "efficiency" ? "η" : "A_P"}${index + 1}`, "data-key": key, "data-index": index,
+        "aria-label": plainText(key === "efficiency" ? `η_{${index + 1}}` : `A_{P,${index + 1}}`), "data-key": key, "data-index": index,
         ...(max === undefined ? {} : { max }) });
       input.addEventListener("input", () => this.model.set(index, key, input.value === "" ? NaN : Number(input.value)));
       return element("td", {}, input);

@@ -7,7 +7,7 @@
  */
 import { pathValue } from "./dotted_paths.js";
 import { element } from "./dom.js";
-import { formatNumber, richText } from "./notation.js";
+import { formatNumber, plainText, richText } from "./notation.js";
 import { setAttributes, svgElement } from "./svg.js";
 
 const WIDTH = 420;
@@ -32,7 +32,7 @@ export class IndicatorDiagramView {
     this.initial = Object.fromEntries(STROKES.map((s) => [s, pathValue(model.variant.request, spec.paths[s])]));
     this.values = Object.fromEntries(STROKES.map((s) => [s, [...pathValue(request, spec.paths[s])]]));
     this.svg = svgElement("svg", { viewBox: `0 0 ${WIDTH} ${HEIGHT}`, class: "indicator-plot", role: "img",
-      "aria-label": t.indicator_plot });
+      "aria-label": plainText(t.indicator_plot) });
     this.#axes();
     this.strokes = Object.fromEntries(STROKES.map((stroke) => [stroke, this.#stroke(stroke)]));
     this.inputs = Object.fromEntries(STROKES.map((s) => [s, []]));

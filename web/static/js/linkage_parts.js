@@ -3,7 +3,7 @@
  * an arrowhead), fixed pivots with a hatched base, guides, bars (links), pins, slider blocks and joint
  * labels. Moving parts return an `update` for animation frames.
  */
-import { setRichText } from "./notation.js";
+import { plainText, setRichText } from "./notation.js";
 import { setAttributes, svgElement } from "./svg.js";
 
 const PIN_RADIUS = 4.5;
@@ -12,7 +12,7 @@ const HATCH_DEPTH = 7;
 /** An empty drawing of width × height drawing units, described by label, with the defs the parts use. */
 export function drawing(width, height, label) {
   const svg = svgElement("svg", {
-    viewBox: `0 0 ${width} ${height}`, class: "linkage-drawing", role: "img", "aria-label": label });
+    viewBox: `0 0 ${width} ${height}`, class: "linkage-drawing", role: "img", "aria-label": plainText(label) });
   const defs = svgElement("defs", {}, svg);
   const hatch = svgElement("pattern", {
     id: "hatch", width: 6, height: 6, patternUnits: "userSpaceOnUse", patternTransform: "rotate(45)" }, defs);

@@ -200,6 +200,18 @@ export function richText(text, { svg = false } = {}) {
   return fragment;
 }
 
+/**
+ * An interface text where only plain text can stand (aria-label, <option>, <title>): the markup dropped,
+ * digits lowered or raised as Unicode glyphs ("u_31" → "u₃₁", "M_с0" → "Mс₀", "R^{1/3}" → "R¹/³").
+ */
+export function plainText(text) {
+  return notationParts(text ?? "").map((part) => (part.shift
+    ? part.text.replace(/\d/g, (digit) => (part.shift === "sub" ? SUBSCRIPT_DIGITS : SUPERSCRIPT_DIGITS)[digit])
+    : part.text)).join("");
+}
+
+const SUPERSCRIPT_DIGITS = "⁰¹²³⁴⁵⁶⁷⁸⁹";
+
 /** node's content replaced by text as rich text (an SVG node gets shifted tspans). */
 export function setRichText(node, text) {
   node.replaceChildren(richText(text, { svg: node.namespaceURI === SVG_NS }));
