@@ -43,9 +43,9 @@ class CommaFloat(ReadableFloat):
 MINUS = "\u2212"
 SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 ZERO = re.compile(r"^-(?=[0.,]*(?:$|[^0-9.,]))")      # "-0", "-0.00", "-0e+00": a zero keeps no sign
-
-
 POWER = re.compile(r"e([-+]?\d+)$")
+NUMBER = re.compile(r"^-?\d+(?:\.\d+)?(?:e[-+]?\d+)?$")      # a number as Python writes it
+FIELD = re.compile(r"\{(\w+)(?:![rsa])?(?::[^{}]*)?\}")     # a placeholder of a template
 
 
 def signed(text: str) -> str:
@@ -150,10 +150,6 @@ def english_sentences() -> list[tuple[re.Pattern, str]]:
                 names.add(name)
         sentences.append((re.compile(pattern), key))
     return sorted(sentences, key=lambda item: -len(item[0].pattern))
-
-
-FIELD = re.compile(r"\{(\w+)(?:![rsa])?(?::[^{}]*)?\}")
-NUMBER = re.compile(r"^-?\d+(?:\.\d+)?(?:e[-+]?\d+)?$")
 
 
 def from_english(text: str, lang: str) -> str:

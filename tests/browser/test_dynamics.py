@@ -118,7 +118,7 @@ def test_sine_mechanism_self_locks_from_f_one(browser_page):
     assert prefix(t["warn_iteration_diverges"]) in warnings(page)
     assert "diverges" in page.get_attribute(".series-summary", "class")
     assert t["series_diverges"] in page.inner_text(".series-summary")
-    consistent = FRICTION["panels"]["figures"]["items"][1]["label"]["en"]
+    consistent = shown(FRICTION["panels"]["figures"]["items"][1]["label"]["en"])
     assert figure_value(page, consistent) == "—"    # the exact sum of the series does not exist
     assert "NaN" not in page.inner_text("body")
     screenshot(page, "dynamics_sine_self_locking")

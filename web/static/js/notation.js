@@ -166,7 +166,8 @@ export function notationParts(text) {
 }
 
 const SVG_NS = "http://www.w3.org/2000/svg";
-const SVG_RISE = { "": 0, sub: -0.3, sup: 0.5 };               // em above the base line
+const SVG_RISE = { "": 0, sub: -0.3, sup: 0.5 };               // em of the text above its base line
+const SVG_SMALLER = 0.75;                                        // a lowered or raised run's font size
 
 function htmlPart(part) {
   if (!part.shift) return document.createTextNode(part.text);
@@ -178,7 +179,8 @@ function htmlPart(part) {
 /**
  * An interface text as DOM nodes: a DocumentFragment of text nodes and <sub>/<sup> elements, or, with
  * { svg: true }, of <tspan>s (for a <text> in a drawing): a lowered or raised run set at 75 %, each run
- * moved by dy from the previous one's line (baseline-shift is not drawn by every browser).
+ * moved by dy from the previous one's line (baseline-shift is not drawn by every browser), the text after
+ * it back on the base line.
  */
 export function richText(text, { svg = false } = {}) {
   const fragment = document.createDocumentFragment();
@@ -190,9 +192,9 @@ export function richText(text, { svg = false } = {}) {
   let rise = 0;
   for (const part of parts) {
     const span = document.createElementNS(SVG_NS, "tspan");
-    const shift = SVG_RISE[part.shift] - rise;
+    const shift = (SVG_RISE[part.shift] - rise) / (part.shift ? SVG_SMALLER : 1);   // in the run's own em
     if (shift) span.setAttribute("dy", `${-shift}em`);
-    if (part.shift) span.setAttribute("font-size", "75%");
+    if (part.shift) span.setAttribute("font-size", `${100 * SVG_SMALLER}%`);
     span.textContent = part.text;
     fragment.append(span);
     rise = SVG_RISE[part.shift];
@@ -206,11 +208,9 @@ export function richText(text, { svg = false } = {}) {
  */
 export function plainText(text) {
   return notationParts(text ?? "").map((part) => (part.shift
-    ? part.text.replace(/\d/g, (digit) => (part.shift === "sub" ? SUBSCRIPT_DIGITS : SUPERSCRIPT_DIGITS)[digit])
+    ? part.text.replace(/\d/g, (digit) => (part.shift === "sub" ? SUBSCRIPT_DIGITS[digit] : SUPERSCRIPTS[digit]))
     : part.text)).join("");
 }
-
-const SUPERSCRIPT_DIGITS = "⁰¹²³⁴⁵⁶⁷⁸⁹";
 
 /** node's content replaced by text as rich text (an SVG node gets shifted tspans). */
 export function setRichText(node, text) {
