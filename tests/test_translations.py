@@ -20,7 +20,7 @@ from fastapi.testclient import TestClient
 
 from server.api.app import app
 from server.api.messages import from_english, localise_study, signed, skipped_run
-from server.api.routers.pages import notation, notation_parts
+from server.api.routers.pages import decimal, notation, notation_parts
 from server.core.elastic.simulate import work_bound_message
 from server.lessons.requests import scene_request
 from server.lessons.scenes import interface_texts, scenes
@@ -136,6 +136,12 @@ def test_study_methods_and_skipped_runs_are_named_in_the_readers_language():
     ("-1e-05", "−10⁻⁵"), ("1.5e-05", "1.5·10⁻⁵"), ("-2.5e+06", "−2.5·10⁶"), ("0e+00", "0")])
 def test_numbers_in_sentences_have_a_true_minus_and_no_signed_zero(text, written):
     assert signed(text) == written
+
+
+@pytest.mark.parametrize("value, lang, written", [
+    (-1.5e-7, "ru", "−1,5·10⁻⁷"), (-0.0, "uk", "0"), (-3.25, "ru", "−3,25"), (2.5, "en", "2.5"), ("—", "ru", "—")])
+def test_the_pages_decimal_filter_writes_numbers_the_readers_way(value, lang, written):
+    assert decimal(value, lang) == written
 
 
 def displayed_strings():

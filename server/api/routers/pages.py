@@ -11,6 +11,7 @@ from markdown_it import MarkdownIt
 from markupsafe import Markup, escape
 
 from ...lessons.scenes import LANGUAGES, REPO_ROOT, interface_texts, language, scenes
+from ..messages import signed
 
 templates = Jinja2Templates(directory=Path(REPO_ROOT, "web", "templates"))
 MEASUREMENTS = Path(REPO_ROOT, "bench", "results", "work_precision.md")
@@ -58,11 +59,12 @@ def notation(text) -> Markup:
 
 
 def decimal(value, lang: str, digits: int = 6) -> str:
-    """A number for a table in the reader's language: 6 significant digits, a decimal comma in ru/uk."""
+    """A number for a table in the reader's language: 6 significant digits, a decimal comma in ru/uk, a true
+    minus sign and a power of ten written out ("−1,5·10⁻⁷", messages.signed)."""
     if not isinstance(value, (int, float)) or isinstance(value, bool):
         return str(value)
     text = f"{value:.{digits}g}"
-    return text if lang == "en" else text.replace(".", ",")
+    return signed(text if lang == "en" else text.replace(".", ","))
 
 
 templates.env.filters["decimal"] = decimal
