@@ -164,14 +164,14 @@ def displayed_strings():
 
 
 STRINGS = list(displayed_strings())
-LATIN_RESISTING = re.compile(r"(?<![A-Za-z])[MPA]_c(?![A-Za-z])")         # M_c, P_c, A_c, M_c0 with a Latin c
+LATIN_IN_RU = re.compile(r"(?<![A-Za-z])[MPA]_c(?![A-Za-z])|_d(?![A-Za-z])")   # M_c, P_c, M_c0; M_d, φ_d
 CYRILLIC_SUBSCRIPT = re.compile(r"_\{?[^}\s]*[а-яёіїєґ]", re.IGNORECASE)
 
 
 def test_one_alphabet_per_symbol_per_language():
-    """ru/uk write the resisting moment, force and work with a Cyrillic с (M_с, P_с, A_с) beside M_д, A_д;
-    en writes every subscript in Latin letters (M_d, M_c, ω_mean)."""
-    latin = [(where, text) for where, lang, text in STRINGS if lang != "en" and LATIN_RESISTING.search(text)]
+    """ru/uk write the resisting moment, force and work with a Cyrillic с (M_с, P_с, A_с) beside the driving
+    M_д, A_д (the motor's φ_д, I_д too); en writes every subscript in Latin letters (M_d, M_c, ω_mean)."""
+    latin = [(where, text) for where, lang, text in STRINGS if lang != "en" and LATIN_IN_RU.search(text)]
     cyrillic = [(where, text) for where, lang, text in STRINGS if lang == "en" and CYRILLIC_SUBSCRIPT.search(text)]
     assert latin == [] and cyrillic == []
     ru = "\n".join(text for _, lang, text in STRINGS if lang == "ru")
