@@ -124,23 +124,27 @@ def test_numbers_have_a_true_minus_a_decimal_comma_and_no_signed_zero(browser_pa
     assert page.problems == []
 
 
-def test_hover_reads_in_the_textbooks_notation_with_comma_and_minus(browser_page):
+@pytest.mark.parametrize("name, panel, curve, symbol", [
+    ("flywheel", "work", 2, "Σ"),                 # A_Σ at its lowest: a negative work, its subscript lowered
+    ("transfer_functions", "u31", 0, "₃₁")])      # u₃₁ at its lowest
+def test_hover_reads_in_the_textbooks_notation_with_comma_and_minus(browser_page, name, panel, curve, symbol):
     page = browser_page
-    open_scene(page, read_scene("flywheel"), "ru")
-    graph = "#panel-work .graph"
+    open_scene(page, read_scene(name), "ru")
+    graph = f"#panel-{panel} .graph"
     page.locator(graph).scroll_into_view_if_needed()
     index = page.evaluate(f"""() => {{
-        const y = document.querySelector("{graph}").data[2].y;
-        return y.indexOf(Math.min(...y)); }}""")          # A_Σ at its lowest: a negative number
-    page.evaluate(f"""i => Plotly.Fx.hover(document.querySelector("{graph}"), [{{curveNumber: 2, pointNumber: i}}])""",
+        const y = document.querySelector("{graph}").data[{curve}].y;
+        return y.indexOf(Math.min(...y)); }}""")
+    page.evaluate(f"""i => Plotly.Fx.hover(document.querySelector("{graph}"), [{{curveNumber: {curve}, pointNumber: i}}])""",
                   index)
     page.wait_for_selector(f"{graph} .hoverlayer .hovertext")
     hover = page.evaluate(f"() => document.querySelector('{graph} .hoverlayer').textContent")
-    assert "A" in hover and "Σ" in hover and "_" not in hover
+    assert symbol in hover and "_" not in hover
     assert re.search(r"−\d+(,\d+)?", hover), hover
     assert "-" not in hover and not POINT_NUMBER.search(hover)
-    assert page.locator(f"{graph} .hoverlayer tspan[style*='baseline-shift'], "
-                        f"{graph} .hoverlayer tspan[dy]").count() > 0       # the subscript Σ is lowered
+    if symbol == "Σ":                                                     # the subscript Σ is lowered
+        assert page.locator(f"{graph} .hoverlayer tspan[style*='baseline-shift'], "
+                            f"{graph} .hoverlayer tspan[dy]").count() > 0
     assert page.problems == []
 
 
