@@ -96,6 +96,19 @@ def test_a_stall_and_a_study_are_told_in_the_readers_language(lang):
 
 
 @pytest.mark.parametrize("lang", LANGUAGES)
+def test_a_machine_that_cannot_move_says_why_in_its_numerics_too(lang):
+    """The numerics' outcome of a motion ended by a warning (a jam on the lever pivot) is that warning's
+    sentence in the reader's language (Numerics.tell), as in the list of warnings."""
+    body = {"mechanism": "slotted_link", "params": {"l0": 0.1, "l1": 0.1}, "inertias": {"J1": 0.5, "J3": 0.1},
+            "load": {"force": 20, "f": 0.2}, "motor": {"kind": "linear", "M0": 60, "b": 0.3},
+            "outputs": ["steady", "startup"]}
+    data = client.post(f"/api/v1/motion?lang={lang}", json=body).json()
+    messages = [data[key]["numerics"]["message"] for key in ("steady", "startup") if key in data] + \
+        [data["numerics"]["message"]] * ("numerics" in data)
+    assert messages and all(message and message in data["warnings"] for message in messages)
+
+
+@pytest.mark.parametrize("lang", LANGUAGES)
 def test_core_outcomes_without_a_code_are_said_again_in_the_readers_language(lang):
     """The sentences the core builds in English (elastic/simulate.py, dynamics/motion.py) match an English
     template, and come back in lang with their numbers written the reader's way."""

@@ -77,10 +77,11 @@ def localise_numerics(numerics: dict, lang: str) -> dict:
     if template:
         local["method"] = template.format(method=numerics.get("method", ""))
     number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
-    message = interface_texts(lang).get(f"num_message_{numerics.get('message_code')}")   # English too: numbers
-    if message:
-        local["message"] = message.format(**{k: number(v) if isinstance(v, float) else written(v, lang)
-                                             for k, v in numerics.get("message_context", {}).items()})
+    code = numerics.get("message_code")
+    # a routine message in every language (English too: numbers written out), or a warning's words
+    message = interface_texts(lang).get(f"num_message_{code}") or texts.get(f"warn_{code}")
+    if code and message:
+        local["message"] = message.format(**filled(numerics.get("message_context", {}), lang))
     elif numerics.get("message"):
         local["message"] = from_english(numerics["message"], lang)
     why = interface_texts(lang).get(f"why_{numerics.get('code')}")      # English too: readable numbers
@@ -173,9 +174,14 @@ def translate(notice: Notice, lang: str) -> str:
     template = interface_texts(lang).get(f"warn_{notice.code}")
     if template is None:
         return notice.text
+    return template.format(**filled(notice.context, lang))
+
+
+def filled(context: dict, lang: str) -> dict:
+    """A template's context as lang writes it: floats and numbers formatted already ("4.4e-16") with its
+    decimal separator and minus sign, angle ranges as "57,0°–133,0°"."""
     decimal = "," if lang in DECIMAL_COMMA else "."
     number = CommaFloat if decimal == "," else ReadableFloat
-    context = {key: number(value) if isinstance(value, float) else
-               ranges_text(value, decimal) if key == "ranges" else value
-               for key, value in notice.context.items()}
-    return template.format(**context)
+    return {key: number(value) if isinstance(value, float) else
+            ranges_text(value, decimal) if key == "ranges" else written(value, lang)
+            for key, value in context.items()}
