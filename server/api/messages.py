@@ -1,7 +1,17 @@
-"""Warnings and errors of the numeric core in the reader's language (content/i18n, keys warn_*/err_*)."""
+"""Warnings, errors and numerics texts of the numeric core in the reader's language (content/i18n, keys
+warn_*/err_*/num_*/study_*), with numbers as the page writes them: a decimal comma in Russian and Ukrainian
+and a true minus sign (U+2212, never "−0") in every language.
+
+A sentence the core says in English without a code (a solver's outcome set as plain text) is read back
+with the English template of the same words (``num_message_*``, ``warn_*`` in content/i18n/en.json, whose
+fields become the parts that vary) and said again with the reader's template: ``from_english``.
+"""
 from __future__ import annotations
 
 import math
+import re
+import string
+from functools import lru_cache
 
 from ..core.mechanisms import Notice
 from ..core.mechanisms.base import ranges_text
@@ -23,11 +33,40 @@ class ReadableFloat(float):
             text = f"{round(value, digits):.0f}" if digits <= 0 else f"{value:.{digits}f}".rstrip("0").rstrip(".")
         else:
             text = format(value, spec)
-        return text.replace(".", self.decimal)
+        return signed(text.replace(".", self.decimal))
 
 
 class CommaFloat(ReadableFloat):
     decimal = ","
+
+
+MINUS = "\u2212"
+SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+ZERO = re.compile(r"^-(?=[0.,]*(?:$|[^0-9.,]))")      # "-0", "-0.00", "-0e+00": a zero keeps no sign
+POWER = re.compile(r"e([-+]?\d+)$")
+NUMBER = re.compile(r"^-?\d+(?:\.\d+)?(?:e[-+]?\d+)?$")      # a number as Python writes it
+FIELD = re.compile(r"\{(\w+)(?:![rsa])?(?::[^{}]*)?\}")     # a placeholder of a template
+
+
+def signed(text: str) -> str:
+    """A formatted number as the page writes it: a true minus sign ("-2.5" → "−2.5"), a zero without one
+    ("-0.0" → "0.0") and a power of ten written out ("1.5e-05" → "1.5·10⁻⁵", "1e+06" → "10⁶")."""
+    power = POWER.search(text)
+    if power:
+        exponent = str(int(power[1])).translate(SUPERSCRIPTS)
+        mantissa = text[:power.start()]
+        if float(mantissa.replace(",", ".")) == 0:
+            return "0"
+        text = f"10{exponent}" if mantissa.lstrip("-") == "1" else f"{mantissa}·10{exponent}"
+        text = "-" + text if mantissa.startswith("-") and text.startswith("10") else text
+    return MINUS + text[1:] if text.startswith("-") and not ZERO.match(text) else ZERO.sub("", text)
+
+
+def written(value, lang: str):
+    """A number the core formatted already ("4.4e-16") as the page writes it; anything else as it is."""
+    if not isinstance(value, str) or not NUMBER.match(value):
+        return value
+    return signed(value.replace(".", "," if lang in DECIMAL_COMMA else "."))
 
 
 def localise_numerics(numerics: dict, lang: str) -> dict:
@@ -38,25 +77,94 @@ def localise_numerics(numerics: dict, lang: str) -> dict:
     if template:
         local["method"] = template.format(method=numerics.get("method", ""))
     number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
-    message = texts.get(f"num_message_{numerics.get('message_code')}")
-    if message:
-        local["message"] = message.format(**{k: number(v) if isinstance(v, float) else v
-                                             for k, v in numerics.get("message_context", {}).items()})
+    code = numerics.get("message_code")
+    # a routine message in every language (English too: numbers written out), or a warning's words
+    message = interface_texts(lang).get(f"num_message_{code}") or texts.get(f"warn_{code}")
+    if code and message:
+        local["message"] = message.format(**filled(numerics.get("message_context", {}), lang))
+    elif numerics.get("message"):
+        local["message"] = from_english(numerics["message"], lang)
     why = interface_texts(lang).get(f"why_{numerics.get('code')}")      # English too: readable numbers
     if why and "why_context" in numerics:
         local["why"] = why.format(**{k: number(v) for k, v in numerics["why_context"].items()})
     return local
 
 
+# The methods of a work–precision study as server/core/work_precision.py labels them, and their interface
+# texts: study_method_<key> with the solver's name in {solver}; "ours" marks the app's own method.
+STUDY_METHODS = [
+    (re.compile(r"ours: Newton shooting"), "newton"),
+    (re.compile(r"solve_ivp (?P<solver>\w+), cycles until periodic"), "cycles"),
+    (re.compile(r"ours: compiled (?P<solver>\w+)"), "compiled"),
+    (re.compile(r"(?P<solver>\w+)"), "scipy"),
+]
+OUR_METHODS = ("newton", "compiled")
+SKIPPED_RUN = re.compile(r"(?P<method>.+) (?P<rtol>\d(?:\.\d+)?e[-+]\d+)")
+
+
+def study_method(label: str, lang: str) -> tuple[str, bool]:
+    """A study's method label in the reader's language, and whether it is the app's own method."""
+    for pattern, key in STUDY_METHODS:
+        found = pattern.fullmatch(label)
+        if found:
+            return interface_texts(lang)[f"study_method_{key}"].format(**found.groupdict()), key in OUR_METHODS
+    return label, label.startswith("ours")
+
+
+def skipped_run(text: str, lang: str) -> str:
+    """"ours: compiled Radau 1e-05" → "наш: Radau (компилированный), rtol = 10⁻⁵"."""
+    found = SKIPPED_RUN.fullmatch(text)
+    if not found:
+        return text
+    rtol = written(found["rtol"], lang)
+    return f"{study_method(found['method'], lang)[0]}, rtol = {rtol}"
+
+
 def localise_study(study: dict, lang: str) -> dict:
-    """The work–precision study's reference and quantity in the reader's language."""
-    texts = interface_texts(lang) if lang != "en" else {}
+    """The work–precision study in the reader's language: reference, quantity, each row's method (with
+    ``ours`` true for the app's own method) and the runs left out."""
+    texts = interface_texts(lang)              # English too: "rtol = 10⁻¹¹", not the core's "1e-11"
     local = dict(study)
     for field in ("reference", "quantity"):
         text = texts.get(f"study_{field}_{study.get(field + '_code')}")
         if text:
             local[field] = text
+    local["rows"] = [row | dict(zip(("method", "ours"), study_method(row["method"], lang)))
+                     for row in study.get("rows", [])]
+    local["skipped"] = [skipped_run(text, lang) for text in study.get("skipped", [])]
     return local
+
+
+@lru_cache(maxsize=None)
+def english_sentences() -> list[tuple[re.Pattern, str]]:
+    """Every English template of a numerics outcome or warning as a pattern whose groups are its fields,
+    with its key; the longest first, so that a template never matches the start of a longer one's text."""
+    sentences = []
+    for key, text in interface_texts("en").items():
+        if not key.startswith(("num_message_", "warn_", "num_reason_")):
+            continue
+        pattern, names = "", set()
+        for literal, name, _, _ in string.Formatter().parse(text):
+            pattern += re.escape(literal)
+            if name is not None:
+                pattern += f"(?P={name})" if name in names else f"(?P<{name}>.+?)"
+                names.add(name)
+        sentences.append((re.compile(pattern), key))
+    return sorted(sentences, key=lambda item: -len(item[0].pattern))
+
+
+def from_english(text: str, lang: str) -> str:
+    """text, an English sentence of the core, in lang: said with lang's template of the same key, the parts
+    that vary copied over (numbers with lang's decimal separator and minus sign, an English reason that has
+    a template of its own translated too); text itself when no template matches."""
+    for pattern, key in english_sentences():
+        found = pattern.fullmatch(text)
+        if found is None:
+            continue
+        parts = {name: written(value, lang) if NUMBER.match(value) else from_english(value, lang)
+                 for name, value in found.groupdict().items()}
+        return FIELD.sub(lambda field: parts[field[1]], interface_texts(lang)[key])
+    return text
 
 
 def translate(notice: Notice, lang: str) -> str:
@@ -66,9 +174,14 @@ def translate(notice: Notice, lang: str) -> str:
     template = interface_texts(lang).get(f"warn_{notice.code}")
     if template is None:
         return notice.text
+    return template.format(**filled(notice.context, lang))
+
+
+def filled(context: dict, lang: str) -> dict:
+    """A template's context as lang writes it: floats and numbers formatted already ("4.4e-16") with its
+    decimal separator and minus sign, angle ranges as "57,0°–133,0°"."""
     decimal = "," if lang in DECIMAL_COMMA else "."
     number = CommaFloat if decimal == "," else ReadableFloat
-    context = {key: number(value) if isinstance(value, float) else
-               ranges_text(value, decimal) if key == "ranges" else value
-               for key, value in notice.context.items()}
-    return template.format(**context)
+    return {key: number(value) if isinstance(value, float) else
+            ranges_text(value, decimal) if key == "ranges" else written(value, lang)
+            for key, value in context.items()}

@@ -58,6 +58,11 @@ class Numerics:
     message_context: dict = field(default_factory=dict)
     why_context: dict = field(default_factory=dict)
 
+    def tell(self, notice) -> None:
+        """End with a warning's words (a mechanisms.Notice): its text, and its code and context, so that
+        the interface says it in the reader's language as it says the warning."""
+        self.message, self.message_code, self.message_context = notice.text, notice.code, notice.context
+
     def as_dict(self) -> dict:
         """Every field, numbers as plain Python numbers; a non-finite number becomes None and is said in
         the message (an answer never carries NaN or infinity)."""

@@ -35,6 +35,19 @@ def interface_texts(lang: str) -> dict[str, str]:
     return json.loads((REPO / "content" / "i18n" / f"{lang}.json").read_text(encoding="utf-8"))
 
 
+def shown(text: str) -> str:
+    """An interface text as the page's innerText reads it: its notation markup gone ("M_с0" → "Mс0"), the
+    subscripts being <sub> elements (web/static/js/notation.js)."""
+    from server.api.routers.pages import notation_parts
+    return "".join(run for run, _ in notation_parts(text))
+
+
+def plot_text(text: str) -> str:
+    """An interface text as the page gives it to Plotly ("M_c0" → "M<sub>c0</sub>"; notation.js plotText)."""
+    from server.api.routers.pages import notation
+    return str(notation(text))
+
+
 def drag_slider(page, selector: str, fraction: float) -> None:
     """Press the mouse on the range input's thumb and drag it to `fraction` of the track."""
     page.locator(selector).scroll_into_view_if_needed()

@@ -7,7 +7,7 @@ from urllib.parse import urlencode
 
 import pytest
 
-from conftest import drag_slider, interface_texts, read_scene, screenshot
+from conftest import drag_slider, interface_texts, plot_text, read_scene, screenshot, shown
 
 pytestmark = pytest.mark.browser
 
@@ -79,8 +79,8 @@ def test_every_dynamics_scene_and_variant_shows_all_its_panels(browser_page):
                 page.select_option("#variant", variant["id"])
             wait_for_panels(page, scene, variant)
             titles = page.locator(".panel:visible h3").all_inner_texts()
-            assert titles == [scene["panels"][p]["title"]["ru"] for p in variant["panels"] if "title" in scene["panels"][p]]
-            assert page.inner_text(".variant-text") == variant["text"]["ru"]
+            assert titles == [shown(scene["panels"][p]["title"]["ru"]) for p in variant["panels"] if "title" in scene["panels"][p]]
+            assert page.inner_text(".variant-text") == shown(variant["text"]["ru"])
             assert page.locator(".refusal, .no-motion").count() == 0
             assert "NaN" not in page.inner_text("body")
             screenshot(page, f"dynamics_{scene['id']}_{variant['id']}")
@@ -90,7 +90,7 @@ def test_every_dynamics_scene_and_variant_shows_all_its_panels(browser_page):
 def test_friction_drag_changes_the_moment_and_its_mean(browser_page):
     page = browser_page
     open_scene(page, FRICTION, "ru", variant="sine")
-    label = FRICTION["panels"]["figures"]["items"][0]["label"]["ru"]
+    label = shown(FRICTION["panels"]["figures"]["items"][0]["label"]["ru"])
     before_plot, before_mean = trace(page, "moment"), figure_value(page, label)
     assert before_mean.startswith("0,748")          # (3.12): 0,748 P_c l₁ at f = 0,15
     drag_slider(page, "#slider-f", 0.5)
@@ -118,7 +118,7 @@ def test_sine_mechanism_self_locks_from_f_one(browser_page):
     assert prefix(t["warn_iteration_diverges"]) in warnings(page)
     assert "diverges" in page.get_attribute(".series-summary", "class")
     assert t["series_diverges"] in page.inner_text(".series-summary")
-    consistent = FRICTION["panels"]["figures"]["items"][1]["label"]["en"]
+    consistent = shown(FRICTION["panels"]["figures"]["items"][1]["label"]["en"])
     assert figure_value(page, consistent) == "—"    # the exact sum of the series does not exist
     assert "NaN" not in page.inner_text("body")
     screenshot(page, "dynamics_sine_self_locking")
@@ -128,7 +128,7 @@ def test_sine_mechanism_self_locks_from_f_one(browser_page):
 def test_printed_and_consistent_formulas_give_different_mean_moments(browser_page):
     page = browser_page
     open_scene(page, FRICTION, "en", variant="slider_crank")
-    mean = FRICTION["panels"]["moment"]["series"][2]["label"]["en"]
+    mean = plot_text(FRICTION["panels"]["moment"]["series"][2]["label"]["en"])
     names = lambda: page.evaluate(f"id => {GRAPH}.data.map(trace => trace.name)", "moment")
     printed = next(name for name in names() if name.startswith(mean))
     assert printed.startswith(f"{mean} = 0.395")     # (3.30) as printed, f = 0.2, λ = 3, k_p = 0.2

@@ -46,11 +46,12 @@ def run_study(page, texts: dict[str, str]) -> tuple[dict, list[dict]]:
 
 def check_chart(page, study: dict, traces: list[dict], texts: dict[str, str]) -> None:
     """A line per method of the answer with a point per run, ours bold; what was skipped said in words."""
-    rows = {}
+    rows, ours = {}, {}
     for row in study["rows"]:
         rows[row["method"]] = rows.get(row["method"], 0) + 1
+        ours[row["method"]] = row["ours"]
     assert {trace["name"]: trace["points"] for trace in traces} == rows
-    assert all(trace["bold"] == trace["name"].startswith("ours") for trace in traces)
+    assert all(trace["bold"] == ours[trace["name"]] for trace in traces)
     assert all(trace["text"][0].startswith("10") for trace in traces)      # the loosest tolerance, 10⁻³
     axes = page.evaluate(f"() => [{GRAPH}._fullLayout.xaxis.type, {GRAPH}._fullLayout.yaxis.type]")
     assert axes == ["log", "log"]
@@ -58,7 +59,7 @@ def check_chart(page, study: dict, traces: list[dict], texts: dict[str, str]) ->
     assert f"{texts['study_quantity']}: {study['quantity']}" in details
     assert f"{texts['study_reference']}: {study['reference']}" in details
     if study["skipped"]:
-        assert f"{texts['study_skipped']}: {', '.join(study['skipped'])}" in details
+        assert f"{texts['study_skipped']}: {'; '.join(study['skipped'])}" in details
     assert page.inner_text("#panel-study .study-state") == ""
     assert page.get_attribute("#panel-study .study-run", "disabled") is None
     assert "NaN" not in page.inner_text("#panel-study")

@@ -1,24 +1,74 @@
-"""HTML pages: the start page listing the scenes, and one page per scene."""
+"""HTML pages: the start page listing the scenes, one page per scene, and the measurements page (the
+work–precision tables of bench/results)."""
+import re
+import unicodedata
 from pathlib import Path
 
 from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.templating import Jinja2Templates
+from markdown_it import MarkdownIt
+from markupsafe import Markup, escape
 
 from ...lessons.scenes import LANGUAGES, REPO_ROOT, interface_texts, language, scenes
+from ..messages import signed
 
 templates = Jinja2Templates(directory=Path(REPO_ROOT, "web", "templates"))
+MEASUREMENTS = Path(REPO_ROOT, "bench", "results", "work_precision.md")
+
+
+def _lowers(char: str) -> bool:
+    """A character of a run after "_" or "^": a letter, a decimal digit or a combining mark (\\p{L}, \\p{Nd},
+    \\p{M} in web/static/js/notation.js)."""
+    category = unicodedata.category(char)
+    return category[0] in "LM" or category == "Nd"
+
+
+def notation_parts(text: str) -> list[tuple[str, str]]:
+    """text split into (run, shift) with shift "", "sub" or "sup": the markup of web/static/js/notation.js
+    ("M_c0", "A_{P,k}", "R^{1/3}", "\\_" a plain underscore), read the same way."""
+    parts, plain, i = [], "", 0
+    while i < len(text):
+        char = text[i]
+        if char == "\\" and text[i + 1:i + 2] in ("_", "^"):
+            plain, i = plain + text[i + 1], i + 2
+            continue
+        if char in "_^" and i > 0:
+            if text[i + 1:i + 2] == "{" and "}" in text[i + 2:] and "{" not in text[i + 2:text.index("}", i + 2)]:
+                end = text.index("}", i + 2)
+                run, after = text[i + 2:end], end + 1
+            else:
+                end = i + 1
+                while end < len(text) and _lowers(text[end]):
+                    end += 1
+                run, after = text[i + 1:end], end
+            if run or after > i + 1:
+                parts += [(plain, "")] if plain else []
+                parts.append((run, "sub" if char == "_" else "sup"))
+                plain, i = "", after
+                continue
+        plain, i = plain + char, i + 1
+    return parts + ([(plain, "")] if plain else [])
+
+
+def notation(text) -> Markup:
+    """Jinja filter: an interface text with its subscripts and superscripts as <sub>/<sup>, everything else
+    escaped (autoescape stays on)."""
+    return Markup("").join(escape(run) if not shift else Markup(f"<{shift}>{escape(run)}</{shift}>")
+                           for run, shift in notation_parts(str(text)))
 
 
 def decimal(value, lang: str, digits: int = 6) -> str:
-    """A number for a table in the reader's language: 6 significant digits, a decimal comma in ru/uk."""
+    """A number for a table in the reader's language: 6 significant digits, a decimal comma in ru/uk, a true
+    minus sign and a power of ten written out ("−1,5·10⁻⁷", messages.signed)."""
     if not isinstance(value, (int, float)) or isinstance(value, bool):
         return str(value)
     text = f"{value:.{digits}g}"
-    return text if lang == "en" else text.replace(".", ",")
+    return signed(text if lang == "en" else text.replace(".", ","))
 
 
 templates.env.filters["decimal"] = decimal
+templates.env.filters["notation"] = notation
 router = APIRouter(include_in_schema=False)
 
 
@@ -52,3 +102,17 @@ def scene_context(request: Request, context: dict, scene) -> dict:
     needs_plotly = any(panel.get("kind") == "plot" for panel in scene.panels.values())
     return context | {"scene": scene, "scene_json": scene.model_dump_json(), "needs_plotly": needs_plotly,
                       "assignment": None}
+
+
+def measurements_html() -> Markup:
+    """bench/results/work_precision.md as HTML (raw HTML in it escaped), its pictures from /bench-results/."""
+    text = MEASUREMENTS.read_text(encoding="utf-8")
+    text = re.sub(r"\]\((?!/|https?:)([^)]+)\)", r"](/bench-results/\1)", text)
+    return Markup(MarkdownIt("commonmark", {"html": False}).enable("table").render(text))
+
+
+@router.get("/measurements", response_class=HTMLResponse)
+def measurements(request: Request, lang: str | None = None):
+    """The full work–precision tables that the scenes' small live studies point to."""
+    return templates.TemplateResponse(request, "measurements.html",
+                                      _context(request, lang) | {"tables": measurements_html()})

@@ -285,7 +285,7 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
         steps = tables.starts.size
         if not np.isfinite(tables.net_phi).all():
             motion.notices += blocked(tables)
-            numerics.message = motion.notices[0].text
+            numerics.tell(motion.notices[0])
             break
         fine = {}                          # sub-step tables of extreme_speed on these nodes
         try:
@@ -295,7 +295,7 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
                 run = _level(machine, tables, steps, omega_mean, fine)
         except NoMotion as stop:
             motion.notices.append(stop.notice)
-            numerics.message = stop.notice.text
+            numerics.tell(stop.notice)
             break
         numerics.steps = steps
         if previous is not None:
@@ -397,13 +397,13 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
     tables = cycle_tables(machine, kinks, STARTUP_PER_2PI, balance)
     if not np.isfinite(tables.net_phi).all():
         motion.notices += blocked(tables)
-        numerics.message = motion.notices[0].text
+        numerics.tell(motion.notices[0])
         return motion
     T0 = 0.5 * tables.J[0] * omega0**2
     if T0 == 0.0 and tables.net_phi[0] + machine.speed_moment(0.0, tables.sliding[0])[0] <= 0.0:
         notice = Notice("cannot_start", "The motor's starting torque does not overcome the resistance at φ = 0: "
                                         "the machine cannot start.")
-        numerics.message = notice.text
+        numerics.tell(notice)
         motion.notices.append(notice)
         return motion
     per_2pi, done = STARTUP_PER_2PI, None
@@ -414,7 +414,7 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
             if done is None:       # only the first cycle starts from rest: nothing to show yet
                 notice = Notice("elastic_partial", "The start from rest stopped at the work bound: the motor's "
                                                    "characteristic is too steep to follow in time; no start-up is shown.")
-                numerics.message = notice.text
+                numerics.tell(notice)
                 motion.notices.append(notice)
                 return motion
             break

@@ -7,7 +7,9 @@
  * slider's family (family_preview.js) or, before that arrives, kept cheap by the coalescing client.
  */
 import { element } from "./dom.js";
-import { formatNumber, formatQuantity, labelledValue, paramSymbol, unitText } from "./notation.js";
+import {
+  formatNumber, formatQuantity, labelledValue, paramSymbol, plainText, richText, setRichText, unitText,
+} from "./notation.js";
 import { LOG_DIGITS, sliderScale } from "./slider_scale.js";
 
 const POWER_FROM = 1e6;     // a slider value from here on reads "4,4·10⁶", not "4400000"
@@ -49,7 +51,7 @@ export class ControlsView {
     const { model, t, lang } = this;
     const variant = model.variant;
     const picker = element("select", { id: "variant" }, ...model.scene.variants.map((v) =>
-      element("option", { value: v.id, textContent: v.label[lang], selected: v === variant })));
+      element("option", { value: v.id, textContent: plainText(v.label[lang]), selected: v === variant })));
     picker.addEventListener("change", () => model.selectVariant(picker.value));
     this.readouts = new Map();
     this.overlayBox = null;
@@ -58,12 +60,12 @@ export class ControlsView {
       ...variant.sliders.map((slider) => this.#slider(slider)),
       ...variant.toggles.map((toggle) => this.#toggle(toggle)),
       ...(variant.overlay_values.length ? [this.#overlay(variant)] : []),
-      element("p", { className: "variant-text", textContent: variant.text[lang] }));
+      element("p", { className: "variant-text", rich: variant.text[lang] }));
     this.showValues();
   }
 
   /**
-   * Slider readouts: "λ = l₂/l₁ = 3,00 · r/l = 0,333", "P_c (нагрузка) = 2000 Н"; a slider with a scale is
+   * Slider readouts: "λ = l₂/l₁ = 3,00 · r/l = 0,333", "P_с (нагрузка) = 2000 Н" (P with subscript с); a slider with a scale is
    * a ratio of lengths and also shows the length it sets, "l₂ = 0,300 м". A thumb that does not stand
    * for the value (the value was set elsewhere, e.g. by a preset) moves to it.
    */
@@ -74,7 +76,7 @@ export class ControlsView {
       if (slider.english) parts.push(reciprocal(slider.english[this.lang], value, this.lang));
       const { main, length, input, scale } = this.readouts.get(slider.id);
       if (scale.value(Number(input.value)) !== value) input.value = scale.position(value);
-      main.textContent = parts.join(" · ");
+      setRichText(main, parts.join(" · "));
       length.textContent = slider.scale ? `${paramSymbol(slider.param)} = `
         + `${formatNumber(this.model.setting(slider), this.lang, 3)} ${unitText("m", this.t)}` : "";
     }
@@ -106,10 +108,10 @@ export class ControlsView {
       const radio = element("input", {
         type: "radio", name, value: option, checked: option === this.model.values[toggle.id] });
       radio.addEventListener("change", () => this.model.setValue(toggle.id, option));
-      return element("label", { className: "option" }, radio, ` ${toggle.option_labels[i][this.lang]}`);
+      return element("label", { className: "option" }, radio, " ", richText(toggle.option_labels[i][this.lang]));
     });
     return element("fieldset", { className: "toggle", id: name },
-      element("legend", { textContent: toggle.label[this.lang] }), ...options);
+      element("legend", { rich: toggle.label[this.lang] }), ...options);
   }
 
   #overlay(variant) {

@@ -6,12 +6,16 @@
  *          gaps where the answer's values there are null (ζ where the compliance is infinite); x_unit ""
  *          plots against another series (a phase portrait of the twist), and the nearest point is read
  *   polar  the phase portrait ω(φ): radius r against angle θ (rad, drawn in degrees), so the start-up
- *          winds round and round onto the closed steady cycle (style "bold")
+ *          winds round and round onto the closed steady cycle (style "bold"); panel.r_title names the
+ *          radius and its unit ("ω, рад/с") on the radial axis and in the hover, theta_symbol the angle
+ *          (φ unless named: β around a joint)
+ * Every text goes to Plotly through plotText (subscripts as <sub>), every hovered number through the axis'
+ * hoverformat, so Plotly writes it with the language's decimal separator and a true minus sign.
  * Series the answer does not hold (no textbook approximation, no steady cycle) are left out; null
  * values (undefined points, e.g. where the mechanism self-locks) are gaps in the curves.
  */
 import { pathValue } from "./dotted_paths.js";
-import { degrees, formatQuantity } from "./notation.js";
+import { degrees, formatQuantity, plotText } from "./notation.js";
 import { baseLayout, GRID, phiAxis, valueAxis } from "./plot_style.js";
 
 const COLORS = ["#1f4e79", "#b5442f", "#e08e0b", "#2e7d4f", "#6a4c93"];
@@ -51,7 +55,7 @@ export function plotFigure(panel, data, texts) {
   const x = inDegrees ? toDegrees(xValues) : xValues;
   const ends = [x[0], x[x.length - 1]];
   const traces = heldSeries(panel, data).map((series) => {
-    const label = series.label[lang];
+    const label = plotText(series.label[lang]);
     const y = pathValue(data, series.y);
     if (series.style === "hline") {
       const name = `${label} = ${formatQuantity(y, lang, 4)}`;
@@ -62,16 +66,16 @@ export function plotFigure(panel, data, texts) {
     return { type: "scatter", mode: "lines", x, y: gaps ? y.map((v, i) => (gaps[i] === null ? null : v)) : y,
       name: label, connectgaps: false, yaxis: series.axis === 2 ? "y2" : "y",
       line: { color: seriesColor(panel, series), width: 2, dash: DASHES[series.style ?? "solid"] },
-      hovertemplate: `${label} = %{y:.4g}<extra></extra>` };
+      hovertemplate: `${label} = %{y}<extra></extra>` };
   });
   const layout = {
     ...baseLayout(texts, 300), showlegend: traces.length > 1,
     xaxis: inDegrees ? phiAxis(xValues[xValues.length - 1], texts) : timeAxis(panel, texts),
-    yaxis: valueAxis(panel.y_title[lang]),
+    yaxis: valueAxis(plotText(panel.y_title[lang])),
   };
   if (panel.x_unit === "") layout.hovermode = "closest";
   if (traces.some((trace) => trace.yaxis === "y2")) {
-    layout.yaxis2 = valueAxis(panel.y2_title[lang], {
+    layout.yaxis2 = valueAxis(plotText(panel.y2_title[lang]), {
       overlaying: "y", side: "right", showgrid: false, zeroline: false, tickmode: "auto" });
     layout.margin = { ...layout.margin, r: 64 };
   }
@@ -79,20 +83,23 @@ export function plotFigure(panel, data, texts) {
 }
 
 function timeAxis(panel, { lang }) {
-  return { title: { text: panel.x_title[lang] }, fixedrange: true, ticks: "outside", gridcolor: GRID,
-    zeroline: false, rangemode: "tozero" };
+  return { title: { text: plotText(panel.x_title[lang]) }, fixedrange: true, ticks: "outside", gridcolor: GRID,
+    zeroline: false, rangemode: "tozero", hoverformat: ".4g" };
 }
 
 /** Plotly figure {data, layout} of a polar panel (the phase portrait) for the answer's data. */
 export function polarFigure(panel, data, texts) {
   const { lang } = texts;
+  const radius = plotText(panel.r_title[lang]);
+  const angle = panel.theta_symbol ?? "φ";
+  const [quantity, unit] = panel.r_title[lang].split(/, (?=[^,]+$)/).map(plotText);
   const traces = heldCurves(panel, data).map((series) => {
-    const label = series.label[lang];
+    const label = plotText(series.label[lang]);
     const bold = series.style === "bold";
     return { type: "scatterpolar", mode: "lines", name: label,
       theta: toDegrees(pathValue(data, series.theta)), r: pathValue(data, series.r), connectgaps: false,
       line: bold ? { color: COLORS[0], width: 3.5 } : { color: STARTUP_COLOR, width: 1.2 },
-      hovertemplate: `${label}: %{r:.4g}, φ = %{theta:.1f}°<extra></extra>` };
+      hovertemplate: `${label}: ${quantity} = %{r} ${unit}, ${angle} = %{theta}°<extra></extra>` };
   });
   return {
     data: traces,
@@ -100,8 +107,10 @@ export function polarFigure(panel, data, texts) {
       ...baseLayout(texts, 440), hovermode: "closest", showlegend: true, margin: { l: 40, r: 40, t: 40, b: 30 },
       polar: {
         bgcolor: "#ffffff",
-        angularaxis: { direction: "counterclockwise", rotation: 0, dtick: 45, ticksuffix: "°", gridcolor: GRID },
-        radialaxis: { rangemode: "tozero", angle: 90, tickangle: 90, gridcolor: GRID, exponentformat: "power" },
+        angularaxis: { direction: "counterclockwise", rotation: 0, dtick: 45, ticksuffix: "°", gridcolor: GRID,
+          hoverformat: ".1f" },
+        radialaxis: { rangemode: "tozero", angle: 90, tickangle: 90, gridcolor: GRID, exponentformat: "power",
+          hoverformat: ".4g", title: { text: radius } },
       },
     },
   };

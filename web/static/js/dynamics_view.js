@@ -111,7 +111,7 @@ export class DynamicsView {
       const noMotion = missing.length > 0;
       this.notices.replaceChildren(element("section", { className: noMotion ? "warnings no-motion" : "warnings" },
         element("h2", { textContent: noMotion ? t.no_motion : t.warnings }),
-        element("ul", {}, ...data.warnings.map((warning) => element("li", { textContent: warning })))));
+        element("ul", {}, ...data.warnings.map((warning) => element("li", { rich: warning })))));
     } else {
       this.notices.replaceChildren();
     }
@@ -177,7 +177,7 @@ export class DynamicsView {
 
   #panel(id, spec) {
     const { lang } = this.texts;
-    const title = spec.title ? [element("h3", { textContent: spec.title[lang] })] : [];
+    const title = spec.title ? [element("h3", { rich: spec.title[lang] })] : [];
     const make = (content, ...more) => element("figure", {
       className: `panel panel-${spec.kind}${isDrawing(spec) ? " panel-drawing" : ""}`, id: `panel-${id}`, hidden: true },
     ...title, content, ...more);

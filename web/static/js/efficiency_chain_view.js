@@ -8,7 +8,7 @@ import { ApiClient } from "./api.js";
 import { element } from "./dom.js";
 import { EfficiencyChain } from "./efficiency_chain.js";
 import { refusalMessage } from "./messages.js";
-import { formatQuantity, unitText } from "./notation.js";
+import { formatQuantity, plainText, unitText } from "./notation.js";
 
 const STEPS = { efficiency: 0.01, work: 10 };
 
@@ -28,14 +28,14 @@ export class EfficiencyChainView {
       element("table", { className: "chain-table" },
         element("thead", {}, element("tr", {},
           element("th", { scope: "col", textContent: "k" }),
-          element("th", { scope: "col", textContent: "η_k" }),
-          element("th", { scope: "col", textContent: `A_P,k, ${unitText("J", t)}` }),
+          element("th", { scope: "col", rich: "η_k" }),
+          element("th", { scope: "col", rich: `A_{P,k}, ${unitText("J", t)}` }),
           element("td"))),
         this.rows),
       add,
       element("dl", { className: "figures-list chain-results" },
-        element("dt", { textContent: t.chain_series }), element("dd", {}, this.series),
-        element("dt", { textContent: t.chain_parallel }), element("dd", {}, this.parallel)),
+        element("dt", { rich: t.chain_series }), element("dd", {}, this.series),
+        element("dt", { rich: t.chain_parallel }), element("dd", {}, this.parallel)),
       this.message);
 
     this.model.on("mechanisms", () => {
@@ -63,7 +63,7 @@ export class EfficiencyChainView {
     const field = (key, max) => {
       const input = element("input", {
         type: "number", min: 0, step: STEPS[key], value: mechanism[key], className: `chain-${key}`,
-        "aria-label": `${key === "efficiency" ? "η" : "A_P"}${index + 1}`, "data-key": key, "data-index": index,
+        "aria-label": plainText(key === "efficiency" ? `η_{${index + 1}}` : `A_{P,${index + 1}}`), "data-key": key, "data-index": index,
         ...(max === undefined ? {} : { max }) });
       input.addEventListener("input", () => this.model.set(index, key, input.value === "" ? NaN : Number(input.value)));
       return element("td", {}, input);

@@ -69,7 +69,7 @@ function functionsFigure(panel, table, overlays, texts) {
   const data = outputs.map((name, i) => ({
     type: "scatter", mode: "lines", x, y: table.outputs[name], yaxis: axisOf(i), connectgaps: false,
     name: legendName(name, texts), line: { color: color(name), width: 2 },
-    hovertemplate: `${symbol(name)} = %{y:.4g}<extra></extra>` }));
+    hovertemplate: `${symbol(name)} = %{y}<extra></extra>` }));
   const tables = [...overlays].filter(([, answer]) => answer.ok).sort(([a], [b]) => a - b);
   tables.forEach(([lambda, answer], k) => {
     const lambdaText = `λ = ${formatNumber(lambda, texts.lang)}`;
@@ -78,7 +78,7 @@ function functionsFigure(panel, table, overlays, texts) {
       yaxis: axisOf(i), connectgaps: false, opacity: 0.75,
       line: { color: color(name), width: 1.5, dash: OVERLAY_DASHES[k % OVERLAY_DASHES.length] },
       name: lambdaText, legendgroup: lambdaText, showlegend: i === 0,
-      hovertemplate: `${symbol(name)} (${lambdaText}) = %{y:.4g}<extra></extra>` }));
+      hovertemplate: `${symbol(name)} (${lambdaText}) = %{y}<extra></extra>` }));
   });
   const layout = {
     ...baseLayout(texts, 260), ...specialMarks(table, texts), showlegend: data.length > 1,
@@ -116,7 +116,7 @@ function approximationsFigure(panel, table, texts) {
       [`${name}_approx`, { color: APPROXIMATION_COLOR, width: 2, dash: "dash" }, texts.t.approximate]]) {
       data.push({ type: "scatter", mode: "lines", x, y: table.outputs[output], yaxis: axis, connectgaps: false,
         name: label, legendgroup: label, showlegend: row === 0, line: style,
-        hovertemplate: `${symbol(name)} ${label} = %{y:.4g}<extra></extra>` });
+        hovertemplate: `${symbol(name)} ${label} = %{y}<extra></extra>` });
     }
   });
   layout.xaxis = { ...phiAxis(table.cycle, texts), anchor: outputs.length > 1 ? `y${outputs.length}` : "y" };
@@ -131,7 +131,7 @@ function harmonicsFigure(table, texts) {
   const top = 1.1 * Math.max(...spectrum.amplitude, AMPLITUDE_FLOOR * peak);
   return {
     data: [{ type: "bar", x: spectrum.k, y: spectrum.amplitude, marker: { color: LINK_COLORS.s },
-      hovertemplate: `A<sub>%{x}</sub> = %{y:.3g} ${unit}<extra></extra>` }],
+      hovertemplate: `A<sub>%{x}</sub> = %{y} ${unit}<extra></extra>` }],
     layout: {
       ...baseLayout(texts, 260), showlegend: false,
       xaxis: { title: { text: t.harmonic_number }, dtick: 1, fixedrange: true, gridcolor: GRID },

@@ -10,7 +10,7 @@ import { pathValue } from "./dotted_paths.js";
 import { element } from "./dom.js";
 import { DRAWINGS } from "./linkage_drawings.js";
 import { LinkageView } from "./linkage_view.js";
-import { formatQuantity, unitText } from "./notation.js";
+import { formatQuantity, setRichText, unitText } from "./notation.js";
 import { svgElement } from "./svg.js";
 
 const JOINT_POINTS = 361;     // a grid step of 1° of crank angle
@@ -124,7 +124,7 @@ export class FlywheelDrawingView {
     this.linkage.show(this.joints, this.phi, this.drawing);
     const number = (value, unit) => `${formatQuantity(value, lang, 4)} ${unitText(unit, t)}`;
     this.numbers.classList.toggle("no-flywheel", !needed);
-    this.numbers.textContent = needed ? [`D = ${number(this.disk.diameter, "m")}`,
-      `b = ${number(this.disk.width, "m")}`, `m = ${number(this.disk.mass, "kg")}`].join(" · ") : t.flywheel_not_needed;
+    setRichText(this.numbers, needed ? [`D = ${number(this.disk.diameter, "m")}`,
+      `b = ${number(this.disk.width, "m")}`, `m = ${number(this.disk.mass, "kg")}`].join(" · ") : t.flywheel_not_needed);
   }
 }

@@ -2,6 +2,7 @@
  * The parts of a force diagram, in drawing units (y down): force arrows with their symbols, moment arcs,
  * and the round numbers scale bars are drawn for. Each part returns an update for animation frames.
  */
+import { setRichText } from "./notation.js";
 import { setAttributes, svgElement } from "./svg.js";
 
 const HEAD = [10, 4];          // arrowhead length and half-width
@@ -21,8 +22,7 @@ export function forceArrow(layer, className, symbol) {
   const group = svgElement("g", { class: `force ${className}` }, layer);
   const shaft = svgElement("line", { class: "force-shaft" }, group);
   const head = svgElement("path", { class: "force-head" }, group);
-  const text = svgElement("text", { class: "force-label" }, group);
-  text.textContent = symbol;
+  const text = setRichText(svgElement("text", { class: "force-label" }, group), symbol);
   return {
     /**
      * The force vector [dx, dy] (drawing units) applied at point [X, Y]: the arrow starts there (it pulls),
@@ -52,8 +52,7 @@ export function momentArc(layer, className, symbol, radius) {
   const group = svgElement("g", { class: `force moment ${className}` }, layer);
   const arc = svgElement("path", { class: "force-shaft" }, group);
   const head = svgElement("path", { class: "force-head" }, group);
-  const text = svgElement("text", { class: "force-label" }, group);
-  text.textContent = symbol;
+  const text = setRichText(svgElement("text", { class: "force-label" }, group), symbol);
   return {
     /** About centre [X, Y], counter-clockwise on the screen if moment > 0; null or 0 hides it. */
     update(centre, moment) {

@@ -18,7 +18,7 @@
 import { element } from "./dom.js";
 import { forceArrow, momentArc, roundDown } from "./force_parts.js";
 import { bar, block, drawing, framePivot, guide, label, pin } from "./linkage_parts.js";
-import { degrees, formatNumber, formatQuantity, unitText } from "./notation.js";
+import { degrees, formatNumber, formatQuantity, setRichText, unitText } from "./notation.js";
 import { gridPosition, sampleAt } from "./phi_samples.js";
 import { setAttributes, svgElement } from "./svg.js";
 
@@ -101,7 +101,7 @@ export class FreeBodyView {
     this.parts(state, map);
     this.arrows(state, map);
     this.locked.hidden = !state.locked;
-    for (const [cell, text] of this.rows) cell.textContent = text(state);
+    for (const [cell, text] of this.rows) setRichText(cell, text(state));
   }
 
   /**
@@ -257,7 +257,7 @@ export class FreeBodyView {
       [t.symbol_balancing_moment, t.fb_balancing_moment, (s) => value(s.balancing, "N·m")],
       ["P₃", t.fb_piston_force, (s) => value(s.P?.[0] ?? null, "N")],
       ["|Φ₂|", t.fb_inertia_rod, (s) => value(size(s.F_in2), "N")],
-      ["M_Φ₂", t.fb_inertia_moment_rod, (s) => value(s.M_in2, "N·m")],
+      ["M_{Φ2}", t.fb_inertia_moment_rod, (s) => value(s.M_in2, "N·m")],
       ["Φ₃", t.fb_inertia_slider, (s) => value(s.F_in3?.[0] ?? null, "N")],
       ["G₂, G₃", t.fb_weights, (s) => [size(s.G2), size(s.G3)].map((g) => value(g, "N")).join("; ")],
     ];
@@ -265,7 +265,7 @@ export class FreeBodyView {
     const cells = rows.map(([symbol, words, text]) => {
       const cell = element("dd");
       this.list.append(element("div", {},
-        element("dt", {}, element("span", { className: "symbol", textContent: symbol }), words && ` ${words}`), cell));
+        element("dt", {}, element("span", { className: "symbol", rich: symbol }), words && ` ${words}`), cell));
       return [cell, text];
     });
     return cells;
@@ -324,5 +324,5 @@ function tangent(force, signedRadius) {
 }
 
 function text(layer, x, content) {
-  svgElement("text", { class: "scale-label", x, y: 0 }, layer).textContent = content;
+  setRichText(svgElement("text", { class: "scale-label", x, y: 0 }, layer), content);
 }

@@ -42,7 +42,7 @@ export class GearTrainView {
     for (const [key, name] of [["phi", "φ"], ["omega", "ω_AB"], ["star", "ε*"], ["star2", "ε**"],
       ["epsilon", "ε_AB = ε* + ε**"], ["OA", "OA"], ["AP", "AP"]]) {
       this.rows[key] = element("dd");
-      list.append(element("dt", { textContent: name }), this.rows[key]);
+      list.append(element("dt", { rich: name }), this.rows[key]);
     }
     this.infinity = element("p", { className: "note instant-centre-note", textContent: t.instant_centre_at_infinity });
     body.append(element("div", { className: "drawing-with-readings" }, this.svg,

@@ -7,7 +7,7 @@
  */
 import { pathValue } from "./dotted_paths.js";
 import { element } from "./dom.js";
-import { formatNumber } from "./notation.js";
+import { formatNumber, plainText, richText } from "./notation.js";
 import { setAttributes, svgElement } from "./svg.js";
 
 const WIDTH = 420;
@@ -32,7 +32,7 @@ export class IndicatorDiagramView {
     this.initial = Object.fromEntries(STROKES.map((s) => [s, pathValue(model.variant.request, spec.paths[s])]));
     this.values = Object.fromEntries(STROKES.map((s) => [s, [...pathValue(request, spec.paths[s])]]));
     this.svg = svgElement("svg", { viewBox: `0 0 ${WIDTH} ${HEIGHT}`, class: "indicator-plot", role: "img",
-      "aria-label": t.indicator_plot });
+      "aria-label": plainText(t.indicator_plot) });
     this.#axes();
     this.strokes = Object.fromEntries(STROKES.map((stroke) => [stroke, this.#stroke(stroke)]));
     this.inputs = Object.fromEntries(STROKES.map((s) => [s, []]));
@@ -40,7 +40,7 @@ export class IndicatorDiagramView {
     reset.addEventListener("click", () => {
       for (const stroke of STROKES) this.#set(stroke, [...this.initial[stroke]]);
     });
-    const note = spec.note ? [element("p", { className: "note", textContent: spec.note[lang] })] : [];
+    const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] })] : [];
     body.append(this.svg, element("p", { className: "legend" },
       ...STROKES.map((s) => element("span", { className: `key ${s}`, textContent: t[`indicator_${s}`] })), reset),
     this.#table(), ...note);
@@ -62,7 +62,7 @@ export class IndicatorDiagramView {
     svgElement("text", { x: (PLOT.left + WIDTH - PLOT.right) / 2, y: HEIGHT - 4, class: "axis-title" }, grid)
       .textContent = this.t.indicator_x;
     svgElement("text", { x: 12, y: (PLOT.top + HEIGHT - PLOT.bottom) / 2, class: "axis-title y",
-      transform: `rotate(-90 12 ${(PLOT.top + HEIGHT - PLOT.bottom) / 2})` }, grid).textContent = "p/p_max";
+      transform: `rotate(-90 12 ${(PLOT.top + HEIGHT - PLOT.bottom) / 2})` }, grid).append(richText("p/p_max", { svg: true }));
   }
 
   /** The polyline and draggable points of one stroke. */

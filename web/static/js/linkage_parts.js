@@ -3,6 +3,7 @@
  * an arrowhead), fixed pivots with a hatched base, guides, bars (links), pins, slider blocks and joint
  * labels. Moving parts return an `update` for animation frames.
  */
+import { plainText, setRichText } from "./notation.js";
 import { setAttributes, svgElement } from "./svg.js";
 
 const PIN_RADIUS = 4.5;
@@ -11,7 +12,7 @@ const HATCH_DEPTH = 7;
 /** An empty drawing of width × height drawing units, described by label, with the defs the parts use. */
 export function drawing(width, height, label) {
   const svg = svgElement("svg", {
-    viewBox: `0 0 ${width} ${height}`, class: "linkage-drawing", role: "img", "aria-label": label });
+    viewBox: `0 0 ${width} ${height}`, class: "linkage-drawing", role: "img", "aria-label": plainText(label) });
   const defs = svgElement("defs", {}, svg);
   const hatch = svgElement("pattern", {
     id: "hatch", width: 6, height: 6, patternUnits: "userSpaceOnUse", patternTransform: "rotate(45)" }, defs);
@@ -57,8 +58,7 @@ export function block(layer, width, height, className = "block") {
 
 /** A joint's letter, placed at an offset [dx, dy] from the joint. */
 export function label(layer, text, [dx, dy]) {
-  const node = svgElement("text", { class: "joint-label" }, layer);
-  node.textContent = text;
+  const node = setRichText(svgElement("text", { class: "joint-label" }, layer), text);
   return { update: ([x, y]) => setAttributes(node, { x: x + dx, y: y + dy }) };
 }
 

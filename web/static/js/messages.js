@@ -10,7 +10,7 @@ export function errorReason(error, t) {
 export function refusalMessage(heading, error, t) {
   return element("div", { className: "refusal", role: "alert" },
     element("strong", { textContent: heading }),
-    element("p", { textContent: errorReason(error, t) }));
+    element("p", { rich: errorReason(error, t) }));
 }
 
 /** A box saying the mechanism cannot be assembled, and why. */

@@ -5,7 +5,7 @@
  * The graph and cursor.element share a positioned frame (.graph-frame).
  */
 import { element } from "./dom.js";
-import { degrees } from "./notation.js";
+import { degrees, setRichText } from "./notation.js";
 
 export class PlotCursor {
   /** readout(phi): the text shown beside the line at crank angle phi (rad); phi: where the line starts. */
@@ -35,7 +35,7 @@ export class PlotCursor {
     const x = left + (degrees(phi) - x0) / (x1 - x0) * width;
     this.element.style.transform = `translateX(${x}px)`;
     this.text.classList.toggle("before", x > left + 0.6 * width);   // keep the values inside the plot
-    this.text.textContent = this.readout(phi);
+    setRichText(this.text, this.readout(phi));
   }
 
   #measure() {

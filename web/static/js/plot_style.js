@@ -27,8 +27,12 @@ export function phiAxis(cycle, { t }) {
   };
 }
 
-/** A value axis titled title ("u₃₁, м"), with extra Plotly axis properties. */
+/**
+ * A value axis titled title ("u₃₁, м"), with extra Plotly axis properties. Hovered values ("%{y}" in a
+ * hovertemplate) are written by the axis, 4 significant digits, so Plotly gives them the language's
+ * decimal separator and a true minus sign like the ticks.
+ */
 export function valueAxis(title, extra = {}) {
   return { title: { text: title }, fixedrange: true, automargin: true, gridcolor: GRID,
-    zerolinecolor: "#aab4c2", exponentformat: "power", ...extra };
+    zerolinecolor: "#aab4c2", exponentformat: "power", hoverformat: ".4g", ...extra };
 }

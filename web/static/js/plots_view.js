@@ -87,9 +87,9 @@ export class PlotsView {
     const cursor = new PlotCursor((phi) => this.#values(spec, phi), this.phi);
     const caption = element("p", { className: "caption" });
     const figure = element("figure", { className: "panel", id: `panel-${id}` },
-      element("h3", { textContent: spec.title[this.texts.lang] }),
+      element("h3", { rich: spec.title[this.texts.lang] }),
       element("div", { className: "graph-frame" }, graph, cursor.element), caption,
-      ...(spec.note ? [element("p", { className: "note", textContent: spec.note[this.texts.lang] })] : []));
+      ...(spec.note ? [element("p", { className: "note", rich: spec.note[this.texts.lang] })] : []));
     return { id, spec, graph, cursor, caption, figure, stale: false,
       hasCursor: !spec.outputs.includes("harmonics") };
   }

@@ -6,7 +6,7 @@
  * the flywheel larger than needed), ✗ above it.
  */
 import { element } from "./dom.js";
-import { formatQuantity } from "./notation.js";
+import { formatQuantity, plainText } from "./notation.js";
 
 /** Designs checked, by their `method` in the answer, and their names in the interface texts. */
 const CHECKED = [["exact", "method_exact"], ["merzalov", "method_merzalov"]];
@@ -44,7 +44,7 @@ export class PresetsView {
     const range = (p) => `${this.#number(p.min)}…${this.#number(p.max)}`;
     const select = element("select", { id: "preset" },
       element("option", { value: "", textContent: t.preset_none }),
-      ...this.presets.map((p, i) => element("option", { value: i, textContent: `${p.label[lang]}: ${range(p)}` })));
+      ...this.presets.map((p, i) => element("option", { value: i, textContent: plainText(`${p.label[lang]}: ${range(p)}`) })));
     select.addEventListener("change", () => {
       this.chosen = select.value === "" ? null : this.presets[Number(select.value)];
       if (this.chosen) this.model.setValue(this.chosen.slider, this.chosen.max);
@@ -66,7 +66,7 @@ export class PresetsView {
     this.check.replaceChildren(...lines.map(([design, label]) => {
       const where = verdict(design.delta_achieved, preset);
       return element("li", { className: `preset-${where}`,
-        textContent: `${where === "above" ? "✗" : "✓"} ${this.t[label]}: δ = ${this.#number(design.delta_achieved)} — `
+        rich: `${where === "above" ? "✗" : "✓"} ${this.t[label]}: δ = ${this.#number(design.delta_achieved)} — `
           + this.#phrase(where, preset) });
     }));
   }

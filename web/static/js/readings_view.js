@@ -8,7 +8,8 @@
  *             steps (and rejected ones), evaluations of the right-hand side and the Jacobian, LU
  *             decompositions, cycles and Newton iterations, run time, error estimate, energy residual,
  *             and the solver's message — error beside time
- * A number the answer leaves null (M_c0 of a self-locking mechanism) reads "—".
+ * A number the answer leaves null (M_c0 of a self-locking mechanism) reads "—". Labels, headings and the
+ * server's sentences are rich text (subscripts as <sub>, notation.js).
  */
 import { pathValue } from "./dotted_paths.js";
 import { element } from "./dom.js";
@@ -79,7 +80,7 @@ export function readings(panel, data, texts) {
 function figuresList(panel, data, texts) {
   const items = panel.items.filter((item) => pathValue(data, item.path) !== undefined);
   return [element("dl", { className: "figures-list" }, ...items.flatMap((item) => [
-    element("dt", { textContent: item.label[texts.lang] }),
+    element("dt", { rich: item.label[texts.lang] }),
     element("dd", { textContent: quantity(pathValue(data, item.path), item, texts) })]))];
 }
 
@@ -88,9 +89,9 @@ function rowsTable(panel, data, texts) {
   const columns = panel.columns.filter((column) => rows.some((row) => column.key in row));
   const table = element("table", { className: "rows" },
     element("thead", {}, element("tr", {}, ...columns.map((column) =>
-      element("th", { scope: "col", textContent: column.label[texts.lang] })))),
+      element("th", { scope: "col", rich: column.label[texts.lang] })))),
     element("tbody", {}, ...rows.map((row) => element("tr", {}, ...columns.map((column) =>
-      element("td", { textContent: cell(row[column.key], texts.lang, column, texts.t) }))))));
+      element("td", { rich: cell(row[column.key], texts.lang, column, texts.t) }))))));
   const series = pathValue(data, panel.path.split(".").slice(0, -1).join("."));
   const summary = series && "converged" in series ? [seriesSummary(series, columns, texts)] : [];
   return [...summary, element("div", { className: "table-frame" }, table)];
@@ -116,17 +117,17 @@ function seriesSummary(series, columns, { t, lang }) {
     parts.push(`${ratio} ≥ 1`, t.series_diverges);
   }
   return element("p", { className: `series-summary ${series.converged ? "converges" : "diverges"}`,
-    textContent: parts.join(" · ") });
+    rich: parts.join(" · ") });
 }
 
 function numericsTable(panel, data, { t, lang }) {
   const runs = panel.paths.filter((path) => pathValue(data, path)).map((path) => [path, pathValue(data, path)]);
   const rows = NUMERICS_ROWS.filter(([key]) => runs.some(([, numerics]) => !absent(numerics[key])));
   const head = runs.length > 1 ? [element("thead", {}, element("tr", {}, element("td"),
-    ...runs.map(([path]) => element("th", { scope: "col", textContent: t[COMPUTATIONS[path]] }))))] : [];
+    ...runs.map(([path]) => element("th", { scope: "col", rich: t[COMPUTATIONS[path]] }))))] : [];
   return [element("table", { className: "numerics" }, ...head,
     element("tbody", {}, ...rows.map(([key, label, text]) => element("tr", { className: `numerics-${key}` },
-      element("th", { scope: "row", textContent: t[label] }),
+      element("th", { scope: "row", rich: t[label] }),
       ...runs.map(([, numerics]) => element("td", {
-        textContent: absent(numerics[key]) ? MISSING : text(numerics[key], lang, t) }))))))];
+        rich: absent(numerics[key]) ? MISSING : text(numerics[key], lang, t) }))))))];
 }

@@ -52,7 +52,7 @@ export class StatusView {
     if (ratio) rows.push([capitalized(this.t.stroke_ratio), formatNumber(ratio.value, this.lang)]);
     if (!rows.length) return null;
     return element("dl", { className: "info" },
-      ...rows.flatMap(([label, value]) => [element("dt", { textContent: label }), element("dd", { textContent: value })]));
+      ...rows.flatMap(([label, value]) => [element("dt", { rich: label }), element("dd", { rich: value })]));
   }
 
   /** "dead centre: 0,0°, 180,0°" — one line per kind. */
@@ -69,6 +69,6 @@ export class StatusView {
   #list(className, heading, lines) {
     return element("section", { className },
       element("h2", { textContent: heading }),
-      element("ul", {}, ...lines.map((line) => element("li", { textContent: line }))));
+      element("ul", {}, ...lines.map((line) => element("li", { rich: line }))));
   }
 }

@@ -7,7 +7,7 @@
  * the left: the axes then keep the curve and the segment ab in view and an arrow points towards O′.
  */
 import { pathValue } from "./dotted_paths.js";
-import { formatQuantity, unitText } from "./notation.js";
+import { formatQuantity, plotText, unitText } from "./notation.js";
 import { sampleAt } from "./phi_samples.js";
 import { baseLayout, GRID, valueAxis } from "./plot_style.js";
 
@@ -56,34 +56,34 @@ export function wittenbauerFigure(panel, data, texts) {
     type: "scatter", mode: "lines", name, x: [lineFrom, xEnd], y: [b + slope * lineFrom, b + slope * xEnd],
     line: { color: TANGENT_COLORS[key], width: 1.5, dash: "dash" }, hoverinfo: "skip" });
   const traces = [
-    { type: "scatter", mode: "lines", name: t.wittenbauer_curve, x, y, line: { color: CURVE_COLOR, width: 2.5 },
-      hovertemplate: `I_II = %{x:.4g}, A_Σ = %{y:.4g}<extra></extra>` },
-    tangent(up, slopeUp, "up", t.wittenbauer_tangent_up),
-    tangent(low, slopeLow, "low", t.wittenbauer_tangent_low),
+    { type: "scatter", mode: "lines", name: plotText(t.wittenbauer_curve), x, y, line: { color: CURVE_COLOR, width: 2.5 },
+      hovertemplate: `${plotText("I_II")} = %{x}, ${plotText("A_Σ")} = %{y}<extra></extra>` },
+    tangent(up, slopeUp, "up", plotText(t.wittenbauer_tangent_up)),
+    tangent(low, slopeLow, "low", plotText(t.wittenbauer_tangent_low)),
     { type: "scatter", mode: "markers", x: [touch.up[0], touch.low[0]], y: [touch.up[1], touch.low[1]],
       marker: { color: [TANGENT_COLORS.up, TANGENT_COLORS.low], size: 8, symbol: "circle-open", line: { width: 2 } },
       showlegend: false, hoverinfo: "skip" },
     { type: "scatter", mode: "lines+markers+text", name: `ab = ${number(up - low)} ${energy}`, x: [0, 0], y: [up, low],
       text: ["a", "b"], textposition: ["top right", "bottom right"], textfont: { size: 14, color: SEGMENT_COLOR },
       line: { color: SEGMENT_COLOR, width: 5 }, marker: { color: SEGMENT_COLOR, size: 8 },
-      hovertemplate: `%{text}: %{y:.4g} ${energy}<extra></extra>` },
+      hovertemplate: `%{text}: %{y} ${energy}<extra></extra>` },
   ];
   if (withOrigin) {
     traces.push({ type: "scatter", mode: "markers+text", x: [ox], y: [oy], text: ["O′"], textposition: "top left",
       marker: { color: "#1d2733", size: 8 }, showlegend: false,
-      hovertemplate: `O′: I = %{x:.4g}, ΔT = %{y:.4g}<extra></extra>` });
+      hovertemplate: `O′: I = %{x}, ΔT = %{y}<extra></extra>` });
   }
   return {
     data: traces,
     layout: {
       ...baseLayout(texts, 380), hovermode: "closest", showlegend: true,
-      xaxis: { title: { text: panel.x_title[lang] }, range: [xStart, xEnd], fixedrange: true, ticks: "outside",
-        gridcolor: GRID, zerolinecolor: "#7d8998", zerolinewidth: 1.5, exponentformat: "power" },
-      yaxis: valueAxis(panel.y_title[lang], { range: [yLow - yMargin, yHigh + yMargin] }),
+      xaxis: { title: { text: plotText(panel.x_title[lang]) }, range: [xStart, xEnd], fixedrange: true, ticks: "outside",
+        gridcolor: GRID, zerolinecolor: "#7d8998", zerolinewidth: 1.5, exponentformat: "power", hoverformat: ".4g" },
+      yaxis: valueAxis(plotText(panel.y_title[lang]), { range: [yLow - yMargin, yHigh + yMargin] }),
       annotations: withOrigin ? [] : [{
         xref: "paper", yref: "paper", x: 0, y: 0, ax: 70, ay: -45, showarrow: true, arrowhead: 2, arrowsize: 1.2,
         arrowwidth: 1.5, arrowcolor: "#1d2733", xanchor: "left", yanchor: "bottom", align: "left",
-        text: `O′ (${t.wittenbauer_off_plot})`, font: { size: 11 }, bgcolor: "rgba(255,255,255,0.85)" }],
+        text: `O′ (${plotText(t.wittenbauer_off_plot)})`, font: { size: 11 }, bgcolor: "rgba(255,255,255,0.85)" }],
     },
   };
 }

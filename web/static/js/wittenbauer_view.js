@@ -7,7 +7,7 @@
  */
 import { pathValue } from "./dotted_paths.js";
 import { element } from "./dom.js";
-import { degrees, formatNumber, formatQuantity, unitText } from "./notation.js";
+import { degrees, formatNumber, formatQuantity, setRichText, unitText } from "./notation.js";
 import { sampleAt } from "./phi_samples.js";
 import { moveCurves } from "./family_plot.js";
 import { energyMass, originInView, wittenbauerFigure } from "./wittenbauer_figure.js";
@@ -39,7 +39,7 @@ export class WittenbauerView {
     this.diagram = energyMass(this.spec, data);
     this.drawn = this.diagram;
     const figure = wittenbauerFigure(this.spec, data, { t: this.t, lang: this.lang });
-    this.caption.textContent = this.#caption(data);
+    setRichText(this.caption, this.#caption(data));
     Plotly.react(this.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => {
       if (!this.listening) {
         this.listening = true;
@@ -75,8 +75,8 @@ export class WittenbauerView {
     if (this.point.hidden) return;
     this.point.style.transform = `translate(${this.maps.x(px)}px, ${this.maps.y(py)}px)`;
     const energy = unitText("J", this.t);
-    this.readout.textContent = `φ = ${formatNumber(degrees(phi), this.lang, 1)}°: I_II = `
-      + `${formatQuantity(x, this.lang, 3)} ${unitText("kg·m²", this.t)}, A_Σ = ${formatQuantity(y, this.lang, 3)} ${energy}`;
+    setRichText(this.readout, `φ = ${formatNumber(degrees(phi), this.lang, 1)}°: I_II = `
+      + `${formatQuantity(x, this.lang, 3)} ${unitText("kg·m²", this.t)}, A_Σ = ${formatQuantity(y, this.lang, 3)} ${energy}`);
   }
 
   /** Pixel maps of both axes inside the graph frame, from Plotly's laid-out axes. */
@@ -86,7 +86,7 @@ export class WittenbauerView {
     this.drawAt(this.phi);
   }
 
-  /** "Касательные пересекаются в O′ (…) · ab = 1145 Дж · I_I = ab/(ω²ср[δ]) = 41,26 кг·м²". */
+  /** "Касательные пересекаются в O′ (…) · ab = 1145 Дж · I_I = ab/(ω_ср²[δ]) = 41,26 кг·м²" (markup, notation.js). */
   #caption(data) {
     const { t, lang } = this;
     const { origin_inertia: ox, origin_energy: oy, b_up: up, b_low: low } = this.diagram.diagram;
@@ -96,7 +96,7 @@ export class WittenbauerView {
       + `A_Σ = ${formatQuantity(oy, lang, 4)} ${energy}${originInView(this.diagram) ? "" : ` (${t.wittenbauer_off_plot})`}`,
     `ab = ${formatQuantity(up - low, lang, 4)} ${energy}`];
     const wittenbauer = (data.methods ?? []).find((m) => m.method === "wittenbauer");
-    if (wittenbauer) parts.push(`I_I = ab/(ω²ср·[δ]) = ${formatQuantity(wittenbauer.inertia, lang, 4)} ${inertia}`);
+    if (wittenbauer) parts.push(`I_I = ab/(${t.symbol_mean_speed}²·[δ]) = ${formatQuantity(wittenbauer.inertia, lang, 4)} ${inertia}`);
     return parts.join(" · ");
   }
 }

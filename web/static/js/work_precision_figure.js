@@ -3,10 +3,10 @@
  * and relative error along y, both logarithmic, so lower left is better: less error in less time. Each
  * method is one line with markers through its tolerances, from the loosest to the tightest, every marker
  * labelled with its rtol (markers of one method that fall on one spot, e.g. a method that meets a loose
- * tolerance with the accuracy of a tight one, share one label); the app's own method (its name starts
- * with "ours") is drawn bold.
+ * tolerance with the accuracy of a tight one, share one label); the app's own method (a row with `ours`,
+ * server/api/messages.py) is drawn bold. The method names come translated from the server.
  */
-import { formatQuantity, toleranceText, unitText } from "./notation.js";
+import { formatQuantity, plotText, toleranceText, unitText } from "./notation.js";
 import { baseLayout, valueAxis } from "./plot_style.js";
 
 const OURS_COLOR = "#b5442f";
@@ -15,8 +15,6 @@ const HEIGHT = 440;
 const SAME_SPOT = { x: 0.08, y: 0.25 };      // decades apart in run time and in error below which markers overlap
 const LABELLED_DECADES = 2;      // run times spanning fewer decades get ticks at 2 and 5 of each decade too
 
-/** True for the method the app itself uses ("ours: Newton shooting"). */
-export const isOurs = (method) => method.startsWith("ours");
 
 /** The rows a log–log chart can place: a positive run time and a positive error (null: not finite). */
 export function plottedRows(rows) {
@@ -60,16 +58,17 @@ export function workPrecisionFigure(rows, { t, lang }) {
   const plotted = plottedRows(rows);
   let others = 0;
   const data = [...byMethod(plotted)].map(([method, points]) => {
-    const ours = isOurs(method);
+    const ours = points[0].ours;
+    const name = plotText(method);
     const color = ours ? OURS_COLOR : COLORS[others++ % COLORS.length];
     return {
-      type: "scatter", mode: "lines+markers+text", name: ours ? `<b>${method}</b>` : method,
+      type: "scatter", mode: "lines+markers+text", name: ours ? `<b>${name}</b>` : name,
       x: points.map((row) => row.runtime_ms), y: points.map((row) => row.error),
       text: toleranceLabels(points, lang), textposition: "top right", textfont: { size: 10, color }, cliponaxis: false,
       line: { color, width: ours ? 4 : 1.6 }, marker: { color, size: ours ? 10 : 7 },
       customdata: points.map((row) => [toleranceText(row.rtol, lang), formatQuantity(row.runtime_ms, lang, 3),
         formatQuantity(row.error, lang, 2)]),
-      hovertemplate: `${method}<br>rtol = %{customdata[0]}<br>${t.study_runtime} = %{customdata[1]} ${ms}`
+      hovertemplate: `${name}<br>rtol = %{customdata[0]}<br>${t.study_runtime} = %{customdata[1]} ${ms}`
         + `<br>${t.study_error} = %{customdata[2]}<extra></extra>`,
     };
   });

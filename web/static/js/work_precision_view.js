@@ -4,11 +4,13 @@
  * request body of the current values (the body the scene's own request sends), never a slider move, as
  * it takes seconds of server time. The chart then shows error against run time per method, and below it
  * the quantity compared, the reference, the runs that did not finish within the time budget and the
- * panel's note. Once a value changes, the chart is greyed and said to belong to the earlier values until
- * the study runs again; a refused study says why.
+ * panel's note with a link to the full tables (the measurements page, /measurements). Once a value
+ * changes, the chart is greyed and said to belong to the earlier values until the study runs again; a
+ * refused study says why.
  */
 import { element } from "./dom.js";
 import { refusalMessage } from "./messages.js";
+import { richText } from "./notation.js";
 import { plottedRows, workPrecisionFigure } from "./work_precision_figure.js";
 import { WorkPrecisionStudy } from "./work_precision_study.js";
 
@@ -26,7 +28,9 @@ export class WorkPrecisionView {
     this.graph = element("div", { className: "graph", hidden: true });
     this.details = element("div", { className: "study-details" });
     this.result = element("div", { className: "study-result" }, this.graph, this.details);
-    const note = spec.note ? [element("p", { className: "note", textContent: spec.note[lang] })] : [];
+    const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] }),
+      element("p", { className: "note study-tables" },
+        element("a", { href: `/measurements?lang=${lang}`, textContent: t.study_full_tables }))] : [];
     body.append(element("div", { className: "study-bar" }, this.button, this.state), this.result, ...note);
     this.study.on("running", () => this.#mark());
     this.study.on("result", (answer) => this.#show(answer));
@@ -71,14 +75,14 @@ export class WorkPrecisionView {
   #details(study, warnings) {
     const { t } = this;
     const line = (label, text, className) => element("p", { className },
-      element("span", { className: "study-label", textContent: `${label}: ` }), text);
+      element("span", { className: "study-label", textContent: `${label}: ` }), richText(text));
     const lines = study.reference === null ? [element("p", { className: "study-no-reference", textContent: t.study_no_reference })]
       : [element("p", { className: "study-reading", textContent: t.study_reading }),
         line(t.study_quantity, study.quantity, "study-quantity"),
         line(t.study_reference, study.reference, "study-reference")];
-    if (study.skipped.length) lines.push(line(t.study_skipped, study.skipped.join(", "), "study-skipped"));
+    if (study.skipped.length) lines.push(line(t.study_skipped, study.skipped.join("; "), "study-skipped"));
     if (warnings.length) lines.push(element("ul", { className: "study-warnings" },
-      ...warnings.map((warning) => element("li", { textContent: warning }))));
+      ...warnings.map((warning) => element("li", { rich: warning }))));
     return lines;
   }
 }

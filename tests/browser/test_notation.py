@@ -1,0 +1,174 @@
+"""Say it right (issue 16, points 7 and 8) in a real browser, on every scene:
+- a page in ru or uk shows no English sentence of the app's own strings (content/i18n/en.json, the server's
+  templates), its default computation and, where there is one, its live study included;
+- the labels show real subscripts (<sub>, or shifted <tspan>s in drawings), no "_" anywhere on screen;
+- numbers carry a true minus sign (U+2212) and a decimal comma, in the page and in Plotly's tick labels and
+  hover, and never read "−0";
+- the page's notation.js reads the markup exactly as the server's Jinja filter does.
+Screenshots of two scenes in ru at desktop and phone width go to test-artifacts/.
+"""
+from __future__ import annotations
+
+import re
+import sys
+
+import pytest
+
+from conftest import ARTIFACTS, REPO, read_scene, screenshot
+
+sys.path.insert(0, str(REPO / "tests"))
+from test_translations import STRINGS, english_in  # noqa: E402  (the same collection as the API test)
+
+from server.api.routers.pages import notation_parts  # noqa: E402
+
+pytestmark = pytest.mark.browser
+
+SCENE_FILES = sorted(path.stem for path in (REPO / "content" / "scenes").glob("*.json"))
+SCENES = [read_scene(name) for name in SCENE_FILES]
+STUDY_TIMEOUT = 90_000
+HYPHEN_NUMBER = re.compile(r"(?:^|[\s(=:;/\[])-\d")        # "-2,7": a hyphen where a minus belongs
+SIGNED_ZERO = re.compile(r"(?<![\w,.])[−-]0(?:[,.]0+)?(?![\d,.])")
+POINT_NUMBER = re.compile(r"\d\.\d")
+DECIMAL_POINT = re.compile(r"(?<![(§\d.])\d+\.\d")        # not an equation "(1.9)" or a section "§3.2"
+
+# every text on screen: the page's words (with what <sub> holds) and the text of every SVG (drawings, plots)
+SCREEN_TEXT = """() => document.body.innerText + "\\n" +
+  [...document.querySelectorAll("svg text")].map((node) => node.textContent).join("\\n")"""
+TICKS = """() => [...document.querySelectorAll(
+  ".main-svg g.xtick text, .main-svg g.ytick text, .main-svg g.x2tick text, .main-svg g.y2tick text, " +
+  ".main-svg g.radialaxistick text, .main-svg g.angularaxistick text")].map((node) => node.textContent)"""
+NUMBER_CELLS = """() => [...document.querySelectorAll("dd, td, output, .readout, .caption")]
+  .map((node) => node.innerText)"""
+
+
+def settle(page) -> None:
+    """Wait until the page has asked for and drawn everything it asks for on its own."""
+    page.wait_for_load_state("networkidle")
+    page.wait_for_timeout(300)
+    page.wait_for_load_state("networkidle")
+
+
+def run_studies(page) -> None:
+    """Click every live study's button and wait for its answer to be drawn."""
+    buttons = page.locator(".study-run")
+    for i in range(buttons.count()):
+        buttons.nth(i).scroll_into_view_if_needed()
+        buttons.nth(i).click()
+    if buttons.count():
+        page.wait_for_function("() => [...document.querySelectorAll('.study-run')].every((b) => !b.disabled)",
+                               timeout=STUDY_TIMEOUT)
+        settle(page)
+
+
+def open_scene(page, scene: dict, lang: str, variant: str | None = None) -> None:
+    query = f"lang={lang}" + (f"&variant={variant}" if variant else "")
+    page.goto(f"/scenes/{scene['id']}?{query}")
+    settle(page)
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_no_english_sentence_of_the_app_on_any_scene(browser_page, lang):
+    page = browser_page
+    shown = {}
+    for scene in SCENES:
+        open_scene(page, scene, lang)
+        run_studies(page)
+        leaks = english_in(page.evaluate(SCREEN_TEXT), lang)
+        if leaks:
+            shown[scene["id"]] = leaks
+    assert shown == {}
+    assert page.problems == []
+
+
+def test_labels_have_subscripts_and_no_underscore_on_any_scene_and_variant(browser_page):
+    page = browser_page
+    underscores, subscripts = {}, {}
+    for scene in SCENES:
+        for variant in scene["variants"]:
+            open_scene(page, scene, "ru", variant["id"])
+            text = page.evaluate(SCREEN_TEXT)
+            found = sorted(set(re.findall(r"\S*_\S*", text)))
+            if found:
+                underscores[f"{scene['id']}/{variant['id']}"] = found
+            subscripts[scene["id"]] = subscripts.get(scene["id"], 0) + page.locator("sub").count()
+    assert underscores == {}
+    # every scene whose Russian texts write a subscript shows it as <sub>; transfer functions use ₁₂₃ glyphs only
+    with_markup = {scene["id"] for name, scene in zip(SCENE_FILES, SCENES)
+                   if any(where.startswith(f"{name}.") and lang == "ru" and "_" in text for where, lang, text in STRINGS)}
+    assert len(with_markup) >= 8 and {scene_id for scene_id in with_markup if not subscripts[scene_id]} == set()
+    assert page.problems == []
+
+
+def test_numbers_have_a_true_minus_a_decimal_comma_and_no_signed_zero(browser_page):
+    page = browser_page
+    problems = {}
+    checked_ticks = 0
+    for scene in SCENES:
+        for variant in scene["variants"]:
+            open_scene(page, scene, "ru", variant["id"])
+            ticks = page.evaluate(TICKS)
+            checked_ticks += len(ticks)
+            cells = page.evaluate(NUMBER_CELLS)
+            text = page.evaluate(SCREEN_TEXT)
+            found = ([f"tick {tick!r}" for tick in ticks if "-" in tick or POINT_NUMBER.search(tick)]
+                     + [f"cell {cell!r}" for cell in cells if DECIMAL_POINT.search(cell)]
+                     + [f"hyphen {m.group(0)!r}" for m in HYPHEN_NUMBER.finditer(text)]
+                     + [f"zero {m.group(0)!r}" for m in SIGNED_ZERO.finditer(text)])
+            if found:
+                problems[f"{scene['id']}/{variant['id']}"] = found[:6]
+    assert problems == {}
+    assert checked_ticks > 100
+    # negative ticks exist and are written with U+2212 (the flywheel's work A_Σ dips below zero)
+    open_scene(page, read_scene("flywheel"), "ru")
+    assert any(tick.startswith("−") for tick in page.evaluate(TICKS))
+    assert page.problems == []
+
+
+@pytest.mark.parametrize("name, panel, curve, symbol", [
+    ("flywheel", "work", 2, "Σ"),                 # A_Σ at its lowest: a negative work, its subscript lowered
+    ("transfer_functions", "u31", 0, "₃₁")])      # u₃₁ at its lowest
+def test_hover_reads_in_the_textbooks_notation_with_comma_and_minus(browser_page, name, panel, curve, symbol):
+    page = browser_page
+    open_scene(page, read_scene(name), "ru")
+    graph = f"#panel-{panel} .graph"
+    page.locator(graph).scroll_into_view_if_needed()
+    index = page.evaluate(f"""() => {{
+        const y = document.querySelector("{graph}").data[{curve}].y;
+        return y.indexOf(Math.min(...y)); }}""")
+    page.evaluate(f"""i => Plotly.Fx.hover(document.querySelector("{graph}"), [{{curveNumber: {curve}, pointNumber: i}}])""",
+                  index)
+    page.wait_for_selector(f"{graph} .hoverlayer .hovertext")
+    hover = page.evaluate(f"() => document.querySelector('{graph} .hoverlayer').textContent")
+    assert symbol in hover and "_" not in hover
+    assert re.search(r"−\d+(,\d+)?", hover), hover
+    assert "-" not in hover and not POINT_NUMBER.search(hover)
+    if symbol == "Σ":                                                     # the subscript Σ is lowered
+        assert page.locator(f"{graph} .hoverlayer tspan[style*='baseline-shift'], "
+                            f"{graph} .hoverlayer tspan[dy]").count() > 0
+    assert page.problems == []
+
+
+def test_the_page_reads_the_markup_as_the_server_does(browser_page):
+    page = browser_page
+    open_scene(page, read_scene("flywheel"), "ru")
+    texts = sorted({text for _, _, text in STRINGS} | {"x_", "_y", "solve\\_ivp", "a_{}b", "ω_ср²", "R^{1/3})"})
+    parts = page.evaluate("""async (texts) => {
+        const src = document.querySelector('script[type="module"]').src.replace(/[^/]+$/, "notation.js");
+        const { notationParts } = await import(src);
+        return texts.map((text) => notationParts(text).map((part) => [part.text, part.shift]));
+    }""", texts)
+    python = [[list(part) for part in notation_parts(text)] for text in texts]
+    assert [t for t, js, py in zip(texts, parts, python) if js != py] == []
+
+
+@pytest.mark.parametrize("name", ["flywheel", "forces_friction"])
+@pytest.mark.parametrize("width", [1400, 390])
+def test_screenshots_in_russian(chromium, app_url, name, width):
+    """For a person to look at: the notation at desktop and phone width."""
+    ARTIFACTS.mkdir(exist_ok=True)
+    context = chromium.new_context(base_url=app_url, viewport={"width": width, "height": 900})
+    page = context.new_page()
+    open_scene(page, read_scene(name), "ru")
+    assert page.locator("sub").count() > 0
+    screenshot(page, f"notation_{name}_ru_{width}")
+    context.close()
