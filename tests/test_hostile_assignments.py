@@ -1,0 +1,137 @@
+"""Issue 15, point 3: the answers of an assignment are computed in the heavy processes under a budget, kept per
+variant in the store, and one address makes assignments at a bounded rate.
+
+Reproductions: making an assignment computed 8 variants' answers in the request's own thread (19 s on an elastic
+scene), and every first submission of a new name computed its variant again in the request (1–3 s), once per
+worker process (an in-process lru_cache). Here the store is a small in-memory implementation of the three
+methods of interface v2 that this module uses, so the tests read what was kept and count what was computed.
+"""
+from __future__ import annotations
+
+import pytest
+from fastapi import HTTPException
+
+from server.api import answers, assignment_answers, heavy
+from server.classroom.spec import AssignmentSpec
+from server.classroom.variants import SpecError, plan
+from server.lessons.scenes import scenes
+
+CRANK = {"scene": "transfer-functions", "variant": "slider_crank",
+         "sliders": {"lambda": {"vary": {"min": 2.5, "max": 5.0}}},
+         "questions": [{"id": "u31_max"}, {"id": "du31_min", "tolerance": 0.005}], "reveal_answers": True}
+
+
+class MemoryStore:
+    """variant_answers / put_variant_answers / recent_assignments_by_client of interface v2, in memory."""
+
+    def __init__(self):
+        self.answers: dict = {}
+        self.created: list[tuple[str, float]] = []
+
+    def variant_answers(self, assignment_id, variant):
+        return self.answers.get((assignment_id, variant))
+
+    def put_variant_answers(self, assignment_id, variant, found):
+        self.answers[(assignment_id, variant)] = dict(found)
+
+    def recent_assignments_by_client(self, client, since):
+        return sum(1 for who, at in self.created if who == client and at >= since)
+
+
+@pytest.fixture
+def memory(monkeypatch) -> MemoryStore:
+    kept = MemoryStore()
+    monkeypatch.setattr(assignment_answers, "store", lambda: kept)
+    return kept
+
+
+@pytest.fixture
+def computed(monkeypatch) -> list:
+    """Every correct answer computed, in this process (heavy.run runs the function here, as MDL_HEAVY_PROCESSES=0
+    does), and which function heavy.run was given."""
+    calls: list = []
+    real = answers._answer.__wrapped__
+
+    def counted(*args):
+        calls.append(args)
+        return real(*args)
+    monkeypatch.setattr(answers, "_answer", counted)
+    monkeypatch.setattr(heavy, "run", lambda function, *args, lane="answers": calls.append(function.__name__)
+                        or function(*args))
+    return calls
+
+
+def crank_plan(**changes):
+    return plan(AssignmentSpec.model_validate(CRANK | changes), scenes())
+
+
+def test_making_an_assignment_computes_its_checked_variants_in_the_heavy_process(memory, computed):
+    resolved = crank_plan()
+    found = assignment_answers.check_new(resolved)
+    assert computed[0] == "answers_of_variants"                  # handed to the heavy process, not run inline
+    assert sorted(found) == assignment_answers.checked_numbers(resolved.count)
+    assert all(set(a) == {"u31_max", "du31_min"} and all(isinstance(v, float) for v in a.values())
+               for a in found.values())
+    assignment_answers.keep("A1", found)
+    assert memory.variant_answers("A1", 0) == found[0]
+
+
+def test_a_question_without_an_answer_for_a_checked_variant_refuses_the_assignment(memory, monkeypatch, computed):
+    def no_answer(resolved, values, question_id):
+        raise SpecError("questions", f"'{question_id}' has no value for these parameters")
+    monkeypatch.setattr(assignment_answers, "correct_answer", no_answer)
+    with pytest.raises(SpecError, match="question 'u31_max' has no answer for the variant"):
+        assignment_answers.check_new(crank_plan())
+
+
+def test_a_variant_is_computed_once_then_read_from_the_store_by_every_student(memory, computed):
+    resolved = crank_plan()
+    first = assignment_answers.correct_value("A1", resolved, 3, "u31_max")
+    computations = len([c for c in computed if isinstance(c, tuple)])
+    assert computations == 2                                     # the variant's two questions, once
+    again = [assignment_answers.correct_value("A1", resolved, 3, q) for q in ("u31_max", "du31_min")]
+    assert again[0] == first and len([c for c in computed if isinstance(c, tuple)]) == computations
+    assert memory.variant_answers("A1", 3) == {"u31_max": first, "du31_min": again[1]}
+
+
+def test_the_stored_answer_is_the_answer_computed_directly(memory, computed):
+    resolved = crank_plan()
+    stored = assignment_answers.correct_value("A1", resolved, 5, "du31_min")
+    assert stored == answers.correct_answer(resolved, resolved.values(5), "du31_min")
+
+
+def test_a_variant_whose_budget_runs_out_answers_503_and_keeps_nothing(memory, computed, monkeypatch):
+    monkeypatch.setattr(assignment_answers, "VARIANT_BUDGET_S", -1.0)     # already spent when it starts
+    with pytest.raises(HTTPException) as refused:
+        assignment_answers.correct_value("A1", crank_plan(), 2, "u31_max")
+    assert refused.value.status_code == 503 and int(refused.value.headers["Retry-After"]) > 0
+    assert memory.answers == {} and not [c for c in computed if isinstance(c, tuple)]
+
+
+def test_a_budget_cut_inside_a_variant_leaves_the_whole_variant_out(monkeypatch):
+    ticks = iter([0.0, 0.0, 10.0])          # the deadline (5 s), the first question, past it at the second
+    monkeypatch.setattr(assignment_answers.time, "perf_counter", lambda: next(ticks))
+    found = assignment_answers.answers_of_variants(crank_plan(), [0, 1], 5.0)
+    assert found == {}
+
+
+def test_an_answer_the_variant_has_not_is_a_422_in_words(memory):
+    resolved = crank_plan()
+    memory.put_variant_answers("A1", 0, {"u31_max": "undefined at a singular position", "du31_min": 1.0})
+    with pytest.raises(SpecError, match="singular position"):
+        assignment_answers.correct_value("A1", resolved, 0, "u31_max")
+
+
+def test_one_address_makes_a_bounded_number_of_assignments_an_hour(memory, monkeypatch):
+    monkeypatch.setattr(assignment_answers, "ASSIGNMENTS_PER_HOUR", 3)
+    now = 100_000.0
+    memory.created = [("10.0.0.1", now - 3000), ("10.0.0.1", now - 1200), ("10.0.0.2", now - 10)]
+    assignment_answers.limit_creation("10.0.0.1", now)          # two in the hour: a third is allowed
+    memory.created.append(("10.0.0.1", now - 5))
+    with pytest.raises(HTTPException) as refused:
+        assignment_answers.limit_creation("10.0.0.1", now)
+    assert refused.value.status_code == 429
+    wait = int(refused.value.headers["Retry-After"])
+    assert 600 <= wait <= 600 + assignment_answers.RETRY_STEP_S   # the oldest (now − 3000 s) leaves after 600 s
+    assignment_answers.limit_creation("10.0.0.2", now)          # another address is not affected
+    assignment_answers.limit_creation("10.0.0.1", now + wait)     # and after Retry-After, a place is free
