@@ -10,7 +10,6 @@ import csv
 import io
 import json
 import re
-import sqlite3
 import subprocess
 import sys
 import threading
@@ -26,7 +25,7 @@ from server.api.answers import correct_answer
 from server.api.app import app
 from server.api.assignments import load
 from server.api.routers import assignments as assignments_router
-from server.classroom.storage import SCHEMA, SQLiteStore
+from server.classroom.store import SQLiteStore
 from server.lessons.requests import scene_request
 from server.lessons.scenes import Scene, scenes
 from server.classroom.variants import student_key
@@ -233,25 +232,6 @@ def test_a_restart_loses_nothing(client, tmp_path):
     assert [(s.student_key, s.answer, s.attempt) for s in reopened.submissions(created["id"])] == [("melnyk", 3.0, 1)]
 
 
-def test_a_file_from_before_the_correct_values_gets_their_column(tmp_path):
-    """A database made before submissions kept the value they were checked against opens, keeps its rows
-    (their correct value unknown) and stores the value from then on."""
-    path = tmp_path / "old.sqlite3"
-    old = sqlite3.connect(path)
-    old.executescript(SCHEMA.replace("    correct_value REAL,\n", ""))
-    old.execute("INSERT INTO assignments VALUES ('a1', 'h', 0, '{}')")
-    old.execute("INSERT INTO students (assignment_id, key, name, variant, parameters, first_seen) "
-                "VALUES ('a1', 'ivan', 'Ivan', 0, '{}', 0)")
-    old.execute("INSERT INTO submissions (assignment_id, student_key, question, answer, correct, attempt, at, client) "
-                "VALUES ('a1', 'ivan', 'q', 1.5, 0, 1, 0, 'c')")
-    old.commit()
-    old.close()
-    store = SQLiteStore(path)
-    store.submit("a1", "ivan", "q", 2.5, True, 3, 1.0, "c", 2.51)
-    assert [(s.answer, s.correct_value) for s in store.submissions("a1")] == [(1.5, None), (2.5, 2.51)]
-    assert SQLiteStore(path).submissions("a1")[1].correct_value == 2.51          # a second opening changes nothing
-
-
 def test_the_deadline_closes_submissions(client):
     past = (datetime.now(timezone.utc) - timedelta(minutes=1)).isoformat()
     created = create(client, FLYWHEEL | {"deadline": past})
@@ -369,7 +349,7 @@ def test_every_question_has_an_answer_and_its_page_hides_it(client, scene_id, qu
 def test_the_classroom_and_the_lessons_do_not_import_the_http_layer():
     """server/classroom and server/lessons build on the lesson model alone: importing them loads no module of
     server/api (a fresh interpreter, so nothing else has imported it)."""
-    code = ("import sys, server.classroom.spec, server.classroom.storage, server.classroom.variants, "
+    code = ("import sys, server.classroom.spec, server.classroom.store, server.classroom.variants, "
             "server.lessons.requests, server.lessons.scenes; "
             "print(sorted(m for m in sys.modules if m.startswith('server.api')))")
     loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout

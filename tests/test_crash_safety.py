@@ -130,7 +130,7 @@ def test_kill_during_a_burst_of_submissions(tmp_path, kill_after):
 CRASH_BETWEEN_WRITES = """
 import os, sys, time
 from pathlib import Path
-from server.classroom.storage import AssignmentRecord, SQLiteStore, StudentRecord
+from server.classroom.store import AssignmentRecord, SQLiteStore, StudentRecord
 
 store = SQLiteStore(Path(sys.argv[1]))
 store.create(AssignmentRecord("a1", "hash", time.time(), {}))

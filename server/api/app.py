@@ -14,7 +14,7 @@ from fastapi.staticfiles import StaticFiles
 from ..lessons.scenes import REPO_ROOT
 from ..core.mechanisms import GeometryError
 from ..core.warm_up import warm_up
-from . import heavy
+from . import assignment_store, heavy
 from .errors import geometry_error, server_error, validation_error
 from .admission import AdmissionMiddleware
 from .security import SecurityMiddleware
@@ -32,6 +32,7 @@ STATIC_DIR = REPO_ROOT / "web" / "static"
 
 @asynccontextmanager
 async def lifespan(app: FastAPI):
+    assignment_store.check()           # a database it cannot write stops the server here, with the reason
     heavy.start()                      # the heavy processes warm their kernels meanwhile
     started = time.perf_counter()      # the compiled kernels, in this worker, before its first request
     parts = warm_up()

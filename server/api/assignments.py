@@ -10,7 +10,7 @@ from datetime import datetime, timezone
 from fastapi import HTTPException
 
 from ..classroom.spec import AssignmentSpec
-from ..classroom.storage import AssignmentRecord, StudentRecord
+from ..classroom.store import AssignmentRecord, StudentRecord
 from ..classroom.variants import MAX_NAME, Plan, SpecError, plan, student_key
 from ..core.mechanisms import GeometryError
 from .answers import correct_answer, question, tolerance
@@ -89,7 +89,8 @@ def enrol(record: AssignmentRecord, resolved: Plan, name: str) -> StudentRecord:
     if not key:
         raise SpecError("student", "type a name or a number")
     number = resolved.number_for(record.id, key)
-    return store().register(record.id, StudentRecord(key, name, number, resolved.values(number), time.time()))
+    stored, _ = store().register(record.id, StudentRecord(key, name, number, resolved.values(number), time.time()))
+    return stored
 
 
 def question_states(record: AssignmentRecord, resolved: Plan, student: StudentRecord,

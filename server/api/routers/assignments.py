@@ -10,7 +10,7 @@ from fastapi import APIRouter, Path, Query, Request, Response
 from fastapi.responses import JSONResponse
 
 from ...classroom.spec import AssignmentSpec
-from ...classroom.storage import AttemptRefused
+from ...classroom.store import AttemptRefused
 from ...classroom.variants import MAX_NAME, SpecError
 from .. import assignments
 from ..answers import correct_answer, is_right, tolerance

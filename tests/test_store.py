@@ -1,0 +1,266 @@
+"""The assignment store: one suite run against every backend (SQLite in a temporary file; PostgreSQL on a real
+server that tests/postgres.py starts, a fresh database per test).
+
+Each backend is checked against the interface's promises (server/classroom/store/records.py), not against
+the other backend: records come back as stored, a second registration changes nothing, a deleted student
+takes their submissions along, the attempt limit holds when separate store instances (separate
+connections, as separate servers have) submit for one student at once, and the schema migrates forward
+from main's file and applies each numbered migration exactly once.
+"""
+from __future__ import annotations
+
+import sqlite3
+import threading
+
+import pytest
+
+from server.classroom.store import (AssignmentRecord, AttemptRefused, SQLiteStore, StoreUnavailable, StudentRecord,
+                                    Submission)
+from server.classroom.store.migrations import LATEST, MIGRATIONS
+
+BACKENDS = ["sqlite"]
+
+# main's schema before versioning (server/classroom/storage.py at d0a7cb5), verbatim
+MAIN_SCHEMA = """
+CREATE TABLE IF NOT EXISTS assignments (
+    id TEXT PRIMARY KEY,
+    token_hash TEXT NOT NULL,
+    created_at REAL NOT NULL,
+    spec TEXT NOT NULL
+);
+CREATE TABLE IF NOT EXISTS students (
+    assignment_id TEXT NOT NULL REFERENCES assignments(id),
+    key TEXT NOT NULL,
+    name TEXT NOT NULL,
+    variant INTEGER NOT NULL,
+    parameters TEXT NOT NULL,
+    first_seen REAL NOT NULL,
+    attempts INTEGER NOT NULL DEFAULT 0,
+    solved INTEGER NOT NULL DEFAULT 0,
+    last_at REAL,
+    PRIMARY KEY (assignment_id, key)
+);
+CREATE TABLE IF NOT EXISTS submissions (
+    id INTEGER PRIMARY KEY,
+    assignment_id TEXT NOT NULL,
+    student_key TEXT NOT NULL,
+    question TEXT NOT NULL,
+    answer REAL NOT NULL,
+    correct INTEGER NOT NULL CHECK (correct IN (0, 1)),
+    correct_value REAL,
+    attempt INTEGER NOT NULL CHECK (attempt >= 1),
+    at REAL NOT NULL,
+    client TEXT NOT NULL,
+    UNIQUE (assignment_id, student_key, question, attempt),
+    FOREIGN KEY (assignment_id, student_key) REFERENCES students(assignment_id, key)
+);
+CREATE INDEX IF NOT EXISTS submissions_by_client ON submissions (client, at);
+"""
+
+
+@pytest.fixture(params=BACKENDS)
+def open_store(request, tmp_path):
+    """A function opening a new store instance (its own connections) on one fresh database."""
+    path = tmp_path / "classroom.sqlite3"
+    yield lambda: SQLiteStore(path)
+
+
+@pytest.fixture()
+def store(open_store):
+    store = open_store()
+    store.create(AssignmentRecord("a1", "hash", 100.0, {"title": "Lab 5", "sliders": {"b": 1, "a": 2}},
+                                  client="10.0.0.1"))
+    return store
+
+
+def ivan(**fields) -> StudentRecord:
+    return StudentRecord("ivan", "Ivan", 3, {"delta": 0.025, "omega_mean": 50.0}, 101.0, **fields)
+
+
+def test_an_assignment_comes_back_as_stored(store, open_store):
+    assert store.assignment("a1") == AssignmentRecord("a1", "hash", 100.0, {"title": "Lab 5", "sliders": {"b": 1, "a": 2}},
+                                                      roster_locked=False, client="10.0.0.1")
+    assert list(open_store().assignment("a1").spec["sliders"]) == ["b", "a"]      # key order kept
+    assert store.assignment("nope") is None
+    with pytest.raises(Exception):
+        store.create(AssignmentRecord("a1", "other", 0.0, {}))                      # ids are unique
+    assert store.assignment("a1").token_hash == "hash"
+
+
+def test_the_roster_lock(store):
+    store.set_roster_locked("a1", True)
+    assert store.assignment("a1").roster_locked is True
+    store.set_roster_locked("a1", False)
+    assert store.assignment("a1").roster_locked is False
+
+
+def test_a_second_registration_changes_nothing(store):
+    first, created = store.register("a1", ivan(secret_hash="s1", on_roster=True))
+    assert created and first == ivan(secret_hash="s1", on_roster=True)
+    again, created = store.register("a1", StudentRecord("ivan", "IVAN", 7, {"delta": 0.04}, 200.0, secret_hash="s2"))
+    assert not created and again == first
+    assert store.students("a1") == [first]
+
+
+def test_students_come_in_the_order_they_came(store):
+    store.register("a1", StudentRecord("zoya", "Zoya", 0, {}, 50.0))
+    store.register("a1", ivan())
+    store.register("a1", StudentRecord("anna", "Anna", 1, {}, 101.0))
+    assert [s.key for s in store.students("a1")] == ["zoya", "anna", "ivan"]
+    assert store.students("nope") == []
+
+
+def test_a_student_is_found_by_their_secret_and_the_secret_can_be_reset(store):
+    store.create(AssignmentRecord("a2", "hash", 100.0, {}))
+    store.register("a1", ivan(secret_hash="old"))
+    assert store.student_by_secret("a1", "old").key == "ivan"
+    assert store.student_by_secret("a2", "old") is None                    # a secret opens one assignment only
+    assert store.set_secret("a1", "ivan", "new") is True
+    assert store.student_by_secret("a1", "old") is None
+    assert store.student_by_secret("a1", "new") == ivan(secret_hash="new")
+    assert store.set_secret("a1", "nobody", "x") is False
+    assert store.set_secret("a1", "ivan", None) is True and store.student("a1", "ivan").secret_hash is None
+
+
+def test_deleting_a_student_takes_their_submissions(store):
+    store.register("a1", ivan())
+    store.register("a1", StudentRecord("anna", "Anna", 1, {}, 102.0))
+    store.submit("a1", "ivan", "q", 1.0, False, 3, 110.0, "c")
+    store.submit("a1", "anna", "q", 2.0, True, 3, 111.0, "c")
+    assert store.delete_student("a1", "ivan") is True
+    assert store.student("a1", "ivan") is None
+    assert [s.student_key for s in store.submissions("a1")] == ["anna"]
+    assert store.delete_student("a1", "ivan") is False
+    with pytest.raises(AttemptRefused) as refused:
+        store.submit("a1", "ivan", "q", 1.0, False, 3, 112.0, "c")
+    assert refused.value.code == "no_such_student" and store.submissions("a1", "ivan") == []
+    again, created = store.register("a1", ivan())
+    assert created and again.attempts == 0                                 # a fresh start
+
+
+def test_submissions_count_attempts_and_close_a_question(store):
+    store.register("a1", ivan())
+    first = store.submit("a1", "ivan", "q", 1.5, False, 2, 110.0, "c", 2.5)
+    assert first == Submission("ivan", "q", 1.5, False, 1, 110.0, 2.5)
+    assert store.submit("a1", "ivan", "q", 1.6, False, 2, 111.0, "c", 2.5).attempt == 2
+    with pytest.raises(AttemptRefused) as refused:
+        store.submit("a1", "ivan", "q", 2.5, True, 2, 112.0, "c", 2.5)
+    assert refused.value.code == "no_attempts_left"
+    assert store.submit("a1", "ivan", "r", 7.0, True, 2, 113.0, "c", 7.0).correct
+    with pytest.raises(AttemptRefused) as refused:
+        store.submit("a1", "ivan", "r", 7.0, True, 2, 114.0, "c", 7.0)
+    assert refused.value.code == "already_right"
+    assert [(s.question, s.attempt, s.correct) for s in store.submissions("a1", "ivan")] == [
+        ("q", 1, False), ("q", 2, False), ("r", 1, True)]
+    totals = store.student("a1", "ivan")
+    assert (totals.attempts, totals.solved, totals.last_at) == (3, 1, 113.0)
+
+
+def test_rate_limits_are_counted_in_the_database(store, open_store):
+    store.register("a1", ivan())
+    for at in (100.0, 130.0, 160.0):
+        store.submit("a1", "ivan", "q", 1.0, False, 5, at, "10.0.0.9")
+    other = open_store()                                                   # another server sees the same counts
+    assert [other.recent_by_client("10.0.0.9", since) for since in (0.0, 130.0, 161.0)] == [3, 2, 0]
+    assert other.recent_by_client("10.0.0.1", 0.0) == 0
+    store.create(AssignmentRecord("a2", "hash", 140.0, {}, client="10.0.0.1"))
+    store.create(AssignmentRecord("a3", "hash", 150.0, {}, client="10.0.0.2"))
+    assert [other.recent_assignments_by_client("10.0.0.1", since) for since in (0.0, 120.0, 141.0)] == [2, 1, 0]
+
+
+def test_variant_answers_are_a_cache_shared_by_every_server(store, open_store):
+    assert store.variant_answers("a1", 0) is None
+    answers = {"flywheel_inertia": 0.1 + 0.2, "delta": 1e-300, "u31_max": "no answer: the mechanism does not turn"}
+    store.put_variant_answers("a1", 0, answers)
+    assert open_store().variant_answers("a1", 0) == answers                  # floats exact, texts kept
+    assert store.variant_answers("a1", 1) is None
+    store.put_variant_answers("a1", 0, {"flywheel_inertia": 2.0})
+    assert store.variant_answers("a1", 0) == {"flywheel_inertia": 2.0}
+
+
+def test_the_attempt_limit_holds_across_store_instances(store, open_store):
+    """Twelve submitters, each with a store instance of its own (as twelve servers would have), submit a wrong
+    answer for one student at once: exactly `attempts` land, numbered 1..attempts, and the totals agree."""
+    store.register("a1", ivan())
+    instances = [open_store() for _ in range(12)]
+    start = threading.Barrier(len(instances))
+    outcomes = []
+
+    def one(instance):
+        start.wait()
+        try:
+            outcomes.append(instance.submit("a1", "ivan", "q", 1.0, False, 3, 120.0, "c").attempt)
+        except AttemptRefused as refused:
+            outcomes.append(refused.code)
+
+    threads = [threading.Thread(target=one, args=(instance,)) for instance in instances]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join(timeout=120)
+    assert sorted(outcomes, key=str) == [1, 2, 3] + ["no_attempts_left"] * 9
+    assert [s.attempt for s in store.submissions("a1")] == [1, 2, 3]
+    assert store.student("a1", "ivan").attempts == 3
+
+
+def test_migrations_apply_once_and_opening_again_changes_nothing(open_store):
+    """Every numbered migration is applied exactly once, whether stores open one after another or four at once."""
+    stores = []
+    threads = [threading.Thread(target=lambda: stores.append(open_store())) for _ in range(4)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join(timeout=120)
+    assert len(stores) == 4
+    again = open_store()
+    assert again.schema_version() == LATEST == len(MIGRATIONS)
+    assert applied_versions(again) == list(range(1, LATEST + 1))
+
+
+def applied_versions(store) -> list[int]:
+    if isinstance(store, SQLiteStore):
+        return [row[0] for row in sqlite3.connect(store.path).execute("SELECT version FROM schema_version ORDER BY 1")]
+    return store.applied_versions()
+
+
+# --- SQLite: files made before the schema was versioned ---------------------------------------------------
+
+def main_file(path, schema: str) -> None:
+    """A database as main made it: one assignment, one student, one submission."""
+    old = sqlite3.connect(path)
+    old.executescript(schema)
+    old.execute("INSERT INTO assignments VALUES ('a1', 'h', 0, '{\"title\": \"Lab 5\"}')")
+    old.execute("INSERT INTO students (assignment_id, key, name, variant, parameters, first_seen, attempts) "
+                "VALUES ('a1', 'ivan', 'Ivan', 0, '{}', 0, 1)")
+    old.execute("INSERT INTO submissions (assignment_id, student_key, question, answer, correct, attempt, at, client) "
+                "VALUES ('a1', 'ivan', 'q', 1.5, 0, 1, 0, 'c')")
+    old.commit()
+    old.close()
+
+
+@pytest.mark.parametrize("schema", [MAIN_SCHEMA, MAIN_SCHEMA.replace("    correct_value REAL,\n", "")],
+                         ids=["main", "before correct values"])
+def test_a_file_made_by_main_migrates_forward(tmp_path, schema):
+    """main's file (and the one before submissions kept their correct value) opens, keeps its rows and gains
+    every later field; a second opening applies nothing again."""
+    path = tmp_path / "old.sqlite3"
+    main_file(path, schema)
+    store = SQLiteStore(path)
+    assert store.assignment("a1") == AssignmentRecord("a1", "h", 0, {"title": "Lab 5"}, False, "")
+    assert store.student("a1", "ivan") == StudentRecord("ivan", "Ivan", 0, {}, 0, 1, 0, None, None, False)
+    store.submit("a1", "ivan", "q", 2.5, True, 3, 1.0, "c", 2.51)
+    assert [(s.answer, s.attempt, s.correct_value) for s in store.submissions("a1")] == [(1.5, 1, None),
+                                                                                        (2.5, 2, 2.51)]
+    assert store.set_secret("a1", "ivan", "s") and store.student_by_secret("a1", "s").key == "ivan"
+    store.put_variant_answers("a1", 0, {"q": 2.51})
+    reopened = SQLiteStore(path)
+    assert reopened.schema_version() == LATEST and applied_versions(reopened) == list(range(1, LATEST + 1))
+    assert reopened.submissions("a1")[1].correct_value == 2.51 and reopened.variant_answers("a1", 0) == {"q": 2.51}
+    assert sqlite3.connect(path).execute("PRAGMA integrity_check").fetchone()[0] == "ok"
+
+
+def test_a_file_where_the_data_directory_should_be_is_refused_with_its_path(tmp_path):
+    blocker = tmp_path / "data"
+    blocker.write_text("not a directory")
+    with pytest.raises(StoreUnavailable, match=str(blocker / "classroom.sqlite3")):
+        SQLiteStore(blocker / "classroom.sqlite3")
