@@ -13,7 +13,7 @@ from fastapi import HTTPException
 
 from server.api import answers, assignment_answers, heavy
 from server.classroom.spec import AssignmentSpec
-from server.classroom.variants import SpecError, plan
+from server.classroom.variants import SpecError, plan, student_key
 from server.lessons.scenes import scenes
 
 CRANK = {"scene": "transfer-functions", "variant": "slider_crank",
@@ -135,3 +135,73 @@ def test_one_address_makes_a_bounded_number_of_assignments_an_hour(memory, monke
     assert 600 <= wait <= 600 + assignment_answers.RETRY_STEP_S   # the oldest (now − 3000 s) leaves after 600 s
     assignment_answers.limit_creation("10.0.0.2", now)          # another address is not affected
     assignment_answers.limit_creation("10.0.0.1", now + wait)     # and after Retry-After, a place is free
+
+
+# --- over HTTP, on the real store (SQLite in a tmp directory) ---------------------------------------------------
+
+from fastapi.testclient import TestClient                      # noqa: E402
+
+from server.api import assignment_store                        # noqa: E402
+from server.api.app import create_app                           # noqa: E402
+from server.api.security import SECURITY_HEADERS               # noqa: E402
+
+API = "/api/v1/assignments"
+
+
+@pytest.fixture
+def client(tmp_path, monkeypatch) -> TestClient:
+    monkeypatch.setenv("MDL_DATA_DIR", str(tmp_path))
+    monkeypatch.setattr(heavy, "HEAVY_PROCESSES", 0)
+    assignment_store.store.cache_clear()
+    yield TestClient(create_app())
+    assignment_store.store.cache_clear()
+
+
+def test_the_assignment_rate_is_limited_per_address_with_retry_after(client, monkeypatch):
+    monkeypatch.setattr(assignment_answers, "ASSIGNMENTS_PER_HOUR", 2)
+    made = [client.post(API, json=CRANK) for _ in range(3)]
+    assert [r.status_code for r in made] == [201, 201, 429]
+    refused = made[2]
+    assert 3540 <= int(refused.headers["retry-after"]) <= 3600 + assignment_answers.RETRY_STEP_S
+    assert refused.json()["detail"][0]["type"] == "rate_limited"
+    assert all(refused.headers[name] == value for name, value in SECURITY_HEADERS.items())
+    record = assignment_store.store().assignment(made[0].json()["id"])
+    assert record.client == "testclient"                         # the address is kept with the assignment
+
+
+def test_a_new_assignment_keeps_its_checked_answers_and_a_new_variant_is_computed_once(client, monkeypatch):
+    created = client.post(API, json=CRANK).json()
+    store = assignment_store.store()
+    resolved = crank_plan()
+    kept = [n for n in range(resolved.count) if store.variant_answers(created["id"], n) is not None]
+    assert kept == assignment_answers.checked_numbers(resolved.count)
+    runs = []
+    real_run = heavy.run
+    monkeypatch.setattr(heavy, "run", lambda function, *args, **kw: runs.append(args[1]) or real_run(function, *args))
+    names = [f"student {k}" for k in range(40)]
+    fresh = next(name for name in names if resolved.number_for(created["id"], student_key(name)) not in kept)
+    number = resolved.number_for(created["id"], student_key(fresh))
+    answer = client.post(f"{API}/{created['id']}/submissions", json={"student": fresh, "question": "u31_max",
+                                                                        "answer": 0.1})
+    assert answer.status_code == 200 and runs == [[number]]
+    assert store.variant_answers(created["id"], number) is not None
+    again = client.post(f"{API}/{created['id']}/submissions", json={"student": fresh, "question": "du31_min",
+                                                                       "answer": 0.1})
+    assert again.status_code == 200 and runs == [[number]]       # read from the store, not computed again
+
+
+def test_a_variant_out_of_budget_answers_503_and_spends_no_attempt(client, monkeypatch):
+    created = client.post(API, json=CRANK | {"sliders": {"lambda": {"vary": {"min": 2.5, "max": 5.0}, "step": 0.001}}})
+    created = created.json()
+    resolved = plan(AssignmentSpec.model_validate(CRANK | {"sliders": {"lambda": {"vary": {"min": 2.5, "max": 5.0},
+                                                                                    "step": 0.001}}}), scenes())
+    kept = set(assignment_answers.checked_numbers(resolved.count))
+    name = next(f"s{k}" for k in range(100) if resolved.number_for(created["id"], student_key(f"s{k}")) not in kept)
+    monkeypatch.setattr(assignment_answers, "VARIANT_BUDGET_S", -1.0)
+    late = client.post(f"{API}/{created['id']}/submissions", json={"student": name, "question": "u31_max",
+                                                                      "answer": 0.1})
+    assert late.status_code == 503 and int(late.headers["retry-after"]) > 0
+    assert late.json()["detail"][0]["type"] == "answers_not_ready"
+    monkeypatch.setattr(assignment_answers, "VARIANT_BUDGET_S", 15.0)
+    state = client.get(f"{API}/{created['id']}/students/{name}").json()
+    assert state["questions"][0]["attempts_used"] == 0

@@ -12,14 +12,11 @@ from fastapi import HTTPException
 from ..classroom.spec import AssignmentSpec
 from ..classroom.store import AssignmentRecord, StudentRecord
 from ..classroom.variants import MAX_NAME, Plan, SpecError, plan, student_key
-from ..core.mechanisms import GeometryError
-from .answers import correct_answer, question, tolerance
+from . import assignment_answers
+from .answers import question, tolerance
 from .assignment_store import store
 from ..lessons.scenes import interface_texts, scenes
 from .schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow
-
-CHECKED_VARIANTS = 8        # variants whose answers are computed when the assignment is made
-
 
 def token_hash(token: str) -> str:
     return hashlib.sha256(token.encode()).hexdigest()
@@ -29,22 +26,16 @@ def iso(at: float | None) -> str | None:
     return None if at is None else datetime.fromtimestamp(at, timezone.utc).isoformat(timespec="seconds")
 
 
-def create(spec: AssignmentSpec) -> tuple[AssignmentRecord, Plan, str]:
-    """Check the spec, make sure every question has an answer across the variants, store it."""
+def create(spec: AssignmentSpec, client: str = "") -> tuple[AssignmentRecord, Plan, str]:
+    """Check the spec, make sure every question has an answer across the checked variants (computed in a heavy
+    process, assignment_answers), store it with the answers found."""
     resolved = plan(spec, scenes())
-    numbers = sorted({round(k * (resolved.count - 1) / (CHECKED_VARIANTS - 1)) for k in range(CHECKED_VARIANTS)})
-    for number in numbers:
-        values = resolved.values(number)
-        for pick in spec.questions:
-            try:
-                correct_answer(resolved, values, pick.id)
-            except (SpecError, GeometryError) as error:
-                shown = ", ".join(f"{k} = {v}" for k, v in values.items())
-                reason = error.reason if hasattr(error, "reason") else str(error)
-                raise SpecError("sliders", f"question '{pick.id}' has no answer for the variant {shown}: {reason}")
+    found = assignment_answers.check_new(resolved)
     token = secrets.token_urlsafe(18)
-    record = AssignmentRecord(secrets.token_urlsafe(8), token_hash(token), time.time(), spec.model_dump(mode="json"))
+    record = AssignmentRecord(secrets.token_urlsafe(8), token_hash(token), time.time(), spec.model_dump(mode="json"),
+                              client=client)
     store().create(record)
+    assignment_answers.keep(record.id, found)
     return record, resolved, token
 
 
@@ -104,7 +95,7 @@ def question_states(record: AssignmentRecord, resolved: Plan, student: StudentRe
         states.append(QuestionState(
             **about.model_dump(), attempts_used=len(mine), attempts_left=left, right=right,
             answers=[s.answer for s in mine],
-            correct_value=correct_answer(resolved, student.parameters, about.id)
+            correct_value=assignment_answers.correct_value(record.id, resolved, student.variant, about.id)
             if resolved.spec.reveal_answers and (right or left == 0) else None))
     return states
 

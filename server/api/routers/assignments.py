@@ -12,8 +12,8 @@ from fastapi.responses import JSONResponse
 from ...classroom.spec import AssignmentSpec
 from ...classroom.store import AttemptRefused
 from ...classroom.variants import MAX_NAME, SpecError
-from .. import assignments
-from ..answers import correct_answer, is_right, tolerance
+from .. import assignment_answers, assignments
+from ..answers import is_right, tolerance
 from ..assignment_store import store
 from ..schemas import Language
 from ..schemas_assignments import (AssignmentCreated, AssignmentInfo, Results, StudentVariant, SubmissionOutcome,
@@ -39,9 +39,12 @@ def spec_error(request: Request, error: SpecError) -> JSONResponse:
 
 
 @router.post("", status_code=201, response_model=AssignmentCreated, summary="Make an assignment from a scene",
-             responses={422: {"description": "the field and the reason"}})
+             responses={422: {"description": "the field and the reason"},
+                        429: {"description": "too many assignments from this address in the last hour"}})
 def create(spec: AssignmentSpec, request: Request) -> AssignmentCreated:
-    record, resolved, token = assignments.create(spec)
+    client = request.client.host if request.client else "unknown"
+    assignment_answers.limit_creation(client)                    # 429 past MDL_ASSIGNMENTS_PER_HOUR
+    record, resolved, token = assignments.create(spec, client)
     base = str(request.base_url).rstrip("/")
     return AssignmentCreated(id=record.id, student_url=f"{base}/assignments/{record.id}?lang={spec.lang}",
                              results_url=f"{base}/assignments/{record.id}/results/{token}?lang={spec.lang}",
@@ -86,7 +89,7 @@ def submit(submission: SubmissionRequest, request: Request, assignment_id: str =
         response.headers["Retry-After"] = "60"
         return response
     student = assignments.enrol(record, resolved, submission.student)
-    correct = correct_answer(resolved, student.parameters, submission.question)
+    correct = assignment_answers.correct_value(record.id, resolved, student.variant, submission.question)
     right = is_right(submission.answer, correct, tolerance(resolved, submission.question))
     try:
         saved = store().submit(record.id, student.key, submission.question, submission.answer, right,
