@@ -43,6 +43,7 @@ from dataclasses import dataclass
 from urllib.parse import parse_qsl, urlencode
 
 import orjson
+import pydantic_core
 from pydantic import BaseModel
 
 from . import family
@@ -71,12 +72,12 @@ KEY_FORMS = {"family": family.shared}
 
 def canonical_json(data) -> bytes:
     """`data` (a validated model's dump) as one JSON text: keys sorted, no spaces, every float in its shortest
-    round-trip form; orjson writes a non-finite float as null, so a text with null is written again by the
-    standard library, which spells NaN and Infinity (exact: NaN, None and inf stay three keys)."""
-    text = orjson.dumps(data, option=orjson.OPT_SORT_KEYS | orjson.OPT_NON_STR_KEYS)
-    if b"null" in text:
-        text = json.dumps(data, sort_keys=True, allow_nan=True, separators=(",", ":")).encode()
-    return text
+    round-trip form. orjson writes a non-finite float as null, so data that holds one (pydantic_core spells
+    them NaN and Infinity) is written by the standard library instead, which keeps NaN, None and ±inf apart."""
+    probe = pydantic_core.to_json(data, inf_nan_mode="constants")
+    if b"NaN" in probe or b"Infinity" in probe:
+        return json.dumps(data, sort_keys=True, allow_nan=True, separators=(",", ":")).encode()
+    return orjson.dumps(data, option=orjson.OPT_SORT_KEYS | orjson.OPT_NON_STR_KEYS)
 
 
 def validated_body(raw: bytes, model: type[BaseModel], form=None) -> bytes | None:
