@@ -1,11 +1,16 @@
 #!/usr/bin/env bash
-# Install what the tests need (Python packages; Debian's chromium when it is missing), then run the whole suite.
+# Install what the tests need (Python packages; Debian's chromium and postgresql when missing), then run the whole suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore -e ".[test]"
 if ! command -v /usr/bin/chromium >/dev/null 2>&1; then
     if [ "$(id -u)" -eq 0 ]; then apt-get update -qq && apt-get install -y -qq chromium >/dev/null
     else sudo apt-get update -qq && sudo apt-get install -y -qq chromium >/dev/null; fi
+fi
+if ! command -v initdb >/dev/null 2>&1 && ! ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1; then
+    # a real PostgreSQL for the store tests (tests/postgres.py starts its own server in a temporary directory)
+    if [ "$(id -u)" -eq 0 ]; then apt-get update -qq && apt-get install -y -qq postgresql >/dev/null
+    else sudo apt-get update -qq && sudo apt-get install -y -qq postgresql >/dev/null; fi
 fi
 mkdir -p test-artifacts
 python3 -m server.core.warm_up     # compile the numba kernels once into their disk cache (tens of seconds when new)

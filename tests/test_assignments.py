@@ -1,4 +1,6 @@
 """Assignments: the instructor's spec, per-student variants, answers computed on the server, submissions.
+Students register by name and then identify themselves with their personal secret (here as
+`Authorization: Bearer`; tests/test_identity.py covers the cookie, the personal link and the refusals).
 
 The answers are checked against closed forms written here (the crank-slider's u₃₁ and u′₃₁ from the exact
 geometry) and against the computing endpoints over HTTP for the same variant; the storage against a
@@ -28,7 +30,7 @@ from server.api.routers import assignments as assignments_router
 from server.classroom.store import SQLiteStore
 from server.lessons.requests import scene_request
 from server.lessons.scenes import Scene, scenes
-from server.classroom.variants import student_key
+from server.classroom.names import normalise
 
 API = "/api/v1/assignments"
 FLYWHEEL = {"scene": "flywheel", "variant": "rig", "title": "Lab 5",
@@ -53,15 +55,34 @@ def create(client, spec) -> dict:
     return response.json()
 
 
+def as_student(client, created, name) -> dict:
+    """The headers of the student's requests (registered on first use; the secrets kept in `created`)."""
+    secrets = created.setdefault("secrets", {})
+    if name not in secrets:
+        response = client.post(f"{API}/{created['id']}/students", json={"name": name})
+        assert response.status_code == 201, response.text
+        secrets[name] = response.json()["secret"]
+    return {"Authorization": f"Bearer {secrets[name]}"}
+
+
 def variant_of(client, created, name, lang="en") -> dict:
-    response = client.get(f"{API}/{created['id']}/students/{name}", params={"lang": lang})
+    response = client.get(f"{API}/{created['id']}/me", params={"lang": lang}, headers=as_student(client, created, name))
     assert response.status_code == 200, response.text
     return response.json()
 
 
 def submit(client, created, name, question, answer):
-    return client.post(f"{API}/{created['id']}/submissions",
-                       json={"student": name, "question": question, "answer": answer})
+    return client.post(f"{API}/{created['id']}/submissions", json={"question": question, "answer": answer},
+                       headers=as_student(client, created, name))
+
+
+def student_page(client, created, name, lang="en") -> str:
+    """The student's page as their browser gets it: the cookie set by registering."""
+    client.cookies.clear()
+    client.get(f"/assignments/{created['id']}/me/{as_student(client, created, name)['Authorization'][7:]}")
+    response = client.get(f"/assignments/{created['id']}", params={"lang": lang})
+    assert response.status_code == 200 and 'id="assignment-data"' in response.text
+    return response.text
 
 
 def crank_slider_u31(phi, l1, l2):
@@ -127,9 +148,9 @@ def test_flywheel_answer_is_what_the_flywheel_endpoint_computes_for_the_variant(
 def test_the_variant_follows_from_the_name_alone(client):
     created = create(client, FLYWHEEL)
     first = variant_of(client, created, "Иванов  Иван")
-    again = variant_of(client, created, " иванов иван ")
-    assert (first["variant"], first["values"]) == (again["variant"], again["values"])
-    assert student_key("ＩＶＡＮ") == student_key("ivan")              # NFKC, case-folded
+    _, resolved = load(created["id"])
+    assert first["variant"] == resolved.number_for(created["id"], normalise(" иванов иван ")) + 1
+    assert first["values"] == resolved.values(first["variant"] - 1)
     other = create(client, FLYWHEEL)                                 # another assignment: independent draw
     numbers = {variant_of(client, other, f"student {k}")["variant"] for k in range(40)}
     assert len(numbers) > 18                                         # 40 draws from 41 values: ≈ 26 distinct expected
@@ -157,7 +178,7 @@ def numbers_in(text: str) -> np.ndarray:
 @pytest.mark.parametrize("spec", [FLYWHEEL, CRANK], ids=["flywheel", "crank"])
 def test_no_answer_reaches_the_student_before_submission(client, spec):
     created = create(client, spec)
-    page = client.get(f"/assignments/{created['id']}", params={"student": "Bondarenko", "lang": "en"}).text
+    page = student_page(client, created, "Bondarenko")
     variant = variant_of(client, created, "Bondarenko")
     scene = json.loads(re.search(r'id="scene-data">(.*?)</script>', page, re.S).group(1).replace("<\\/", "</"))
     hidden = {"flywheel"} if spec is FLYWHEEL else {"u31", "du31"}
@@ -296,13 +317,15 @@ def test_a_variant_without_an_answer_is_refused_when_the_assignment_is_made(clie
 def test_bad_submissions_are_refused(client):
     created = create(client, FLYWHEEL)
     url = f"{API}/{created['id']}/submissions"
-    assert client.post(url, json={"student": "x", "question": "nope", "answer": 1}).status_code == 422
-    assert client.post(url, content='{"student": "x", "question": "flywheel_inertia", "answer": NaN}',
-                       headers={"content-type": "application/json"}).status_code == 422
-    assert client.post(url, json={"student": "x" * 81, "question": "flywheel_inertia", "answer": 1}).status_code == 422
-    assert client.post(url, json={"student": "   ", "question": "flywheel_inertia", "answer": 1}).status_code == 422
+    mine = as_student(client, created, "x")
+    assert client.post(url, json={"question": "nope", "answer": 1}, headers=mine).status_code == 422
+    assert client.post(url, content='{"question": "flywheel_inertia", "answer": NaN}',
+                       headers=mine | {"content-type": "application/json"}).status_code == 422
+    assert client.post(url, json={"student": "x" * 81, "question": "flywheel_inertia", "answer": 1},
+                       headers=mine).status_code == 422
+    assert client.post(url, json={"question": "flywheel_inertia", "answer": 1, "extra": 1}, headers=mine).status_code == 422
     assert client.post(f"{API}/unknown/submissions",
-                       json={"student": "x", "question": "flywheel_inertia", "answer": 1}).status_code == 404
+                       json={"question": "flywheel_inertia", "answer": 1}, headers=mine).status_code == 404
 
 
 def test_assignment_pages_render(client):
@@ -337,7 +360,7 @@ def test_every_question_has_an_answer_and_its_page_hides_it(client, scene_id, qu
     asked = next(q for q in scene.questions if q.id == question_id)
     variant = next(v for v in scene.variants if not asked.variants or v.id in asked.variants)
     created = create(client, {"scene": scene_id, "variant": variant.id, "questions": [{"id": question_id}]})
-    page = client.get(f"/assignments/{created['id']}", params={"student": "Default", "lang": "en"}).text
+    page = student_page(client, created, "Default")
     shown = json.loads(re.search(r'id="scene-data">(.*?)</script>', page, re.S).group(1).replace("<\\/", "</"))
     shown_scene = Scene.model_validate(shown)
     request = scene_request(shown_scene, shown_scene.variants[0])
@@ -350,6 +373,7 @@ def test_the_classroom_and_the_lessons_do_not_import_the_http_layer():
     """server/classroom and server/lessons build on the lesson model alone: importing them loads no module of
     server/api (a fresh interpreter, so nothing else has imported it)."""
     code = ("import sys, server.classroom.spec, server.classroom.store, server.classroom.variants, "
+            "server.classroom.names, server.classroom.identity, "
             "server.lessons.requests, server.lessons.scenes; "
             "print(sorted(m for m in sys.modules if m.startswith('server.api')))")
     loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout

@@ -53,8 +53,9 @@ def start_server(data_dir: Path, port: int) -> subprocess.Popen:
     raise RuntimeError("the server did not start")
 
 
-def burst(base: str, assignment: str, acknowledged: list, stop: threading.Event, seed: int) -> None:
-    """Submit wrong answers for the students in turn until the server dies; keep what it acknowledged."""
+def burst(base: str, assignment: str, secrets: dict, acknowledged: list, stop: threading.Event, seed: int) -> None:
+    """Submit wrong answers for the students in turn (each with their personal secret) until the server dies;
+    keep what it acknowledged."""
     with httpx.Client(timeout=5) as client:
         k = seed
         while not stop.is_set():
@@ -63,7 +64,8 @@ def burst(base: str, assignment: str, acknowledged: list, stop: threading.Event,
             k += 8
             try:
                 response = client.post(f"{base}/api/v1/assignments/{assignment}/submissions",
-                                       json={"student": name, "question": question, "answer": answer})
+                                       json={"question": question, "answer": answer},
+                                       headers={"Authorization": f"Bearer {secrets[name]}"})
             except httpx.HTTPError:
                 return                                   # the server is gone
             if response.status_code == 200:
@@ -97,10 +99,10 @@ def test_kill_during_a_burst_of_submissions(tmp_path, kill_after):
     server = start_server(tmp_path, port)
     try:
         created = httpx.post(f"{base}/api/v1/assignments", json=SPEC, timeout=30).json()
-        for name in STUDENTS:                           # answers computed once per variant before the burst
-            httpx.get(f"{base}/api/v1/assignments/{created['id']}/students/{name}", timeout=30)
+        secrets = {name: httpx.post(f"{base}/api/v1/assignments/{created['id']}/students", json={"name": name},
+                                    timeout=30).json()["secret"] for name in STUDENTS}      # registered first
         acknowledged, stop = [], threading.Event()
-        clients = [threading.Thread(target=burst, args=(base, created["id"], acknowledged, stop, seed))
+        clients = [threading.Thread(target=burst, args=(base, created["id"], secrets, acknowledged, stop, seed))
                    for seed in range(8)]
         for client in clients:
             client.start()

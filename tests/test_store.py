@@ -10,15 +10,22 @@ from main's file and applies each numbered migration exactly once.
 from __future__ import annotations
 
 import sqlite3
+import subprocess
+import sys
 import threading
+from pathlib import Path
 
 import pytest
 
 from server.classroom.store import (AssignmentRecord, AttemptRefused, SQLiteStore, StoreUnavailable, StudentRecord,
                                     Submission)
 from server.classroom.store.migrations import LATEST, MIGRATIONS
+from server.classroom.store.postgres import PostgresStore
 
-BACKENDS = ["sqlite"]
+from postgres import fresh_database, postgres_url  # noqa: F401 (the session's PostgreSQL server)
+
+BACKENDS = ["sqlite", "postgresql"]
+REPO = Path(__file__).resolve().parents[1]
 
 # main's schema before versioning (server/classroom/storage.py at d0a7cb5), verbatim
 MAIN_SCHEMA = """
@@ -58,11 +65,32 @@ CREATE INDEX IF NOT EXISTS submissions_by_client ON submissions (client, at);
 """
 
 
+def open_at(location: str):
+    """A new store instance on the database at ``location`` (a PostgreSQL URL or a SQLite file's path)."""
+    return PostgresStore(location, pool_size=2) if location.startswith("postgresql://") else SQLiteStore(location)
+
+
 @pytest.fixture(params=BACKENDS)
-def open_store(request, tmp_path):
-    """A function opening a new store instance (its own connections) on one fresh database."""
-    path = tmp_path / "classroom.sqlite3"
-    yield lambda: SQLiteStore(path)
+def database(request, tmp_path) -> str:
+    """One fresh database: a SQLite file's path, or a new database on the session's PostgreSQL."""
+    if request.param == "sqlite":
+        return str(tmp_path / "classroom.sqlite3")
+    return fresh_database(request.getfixturevalue("postgres_url"))
+
+
+@pytest.fixture()
+def open_store(database):
+    """A function opening a new store instance (its own connections) on the test's database."""
+    opened = []
+
+    def open_one():
+        opened.append(open_at(database))
+        return opened[-1]
+
+    yield open_one
+    for store in opened:
+        if isinstance(store, PostgresStore):
+            store.close()
 
 
 @pytest.fixture()
@@ -192,6 +220,8 @@ def test_the_attempt_limit_holds_across_store_instances(store, open_store):
             outcomes.append(instance.submit("a1", "ivan", "q", 1.0, False, 3, 120.0, "c").attempt)
         except AttemptRefused as refused:
             outcomes.append(refused.code)
+        except Exception as error:                      # a unique-constraint clash, a deadlock: shown, not lost
+            outcomes.append(repr(error))
 
     threads = [threading.Thread(target=one, args=(instance,)) for instance in instances]
     for thread in threads:
@@ -201,6 +231,45 @@ def test_the_attempt_limit_holds_across_store_instances(store, open_store):
     assert sorted(outcomes, key=str) == [1, 2, 3] + ["no_attempts_left"] * 9
     assert [s.attempt for s in store.submissions("a1")] == [1, 2, 3]
     assert store.student("a1", "ivan").attempts == 3
+
+
+SUBMITTER = """
+import sys
+from server.classroom.store import AttemptRefused, SQLiteStore
+location = sys.argv[1]
+if location.startswith("postgresql://"):
+    from server.classroom.store.postgres import PostgresStore
+    store = PostgresStore(location, pool_size=1)
+else:
+    store = SQLiteStore(location)
+print("ready", flush=True)
+sys.stdin.readline()                                   # all start together
+try:
+    print(store.submit("a1", "ivan", "q", 1.0, False, 3, 120.0, "c").attempt)
+except AttemptRefused as refused:
+    print(refused.code)
+"""
+
+
+def test_the_attempt_limit_holds_across_processes(store, database):
+    """Eight processes (eight servers), each with its own store, submit for one student at the same moment:
+    exactly `attempts` are accepted."""
+    store.register("a1", ivan())
+    children = [subprocess.Popen([sys.executable, "-c", SUBMITTER, database], cwd=REPO, stdin=subprocess.PIPE,
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for _ in range(8)]
+    try:
+        for child in children:
+            assert child.stdout.readline().strip() == "ready", child.stderr.read()
+        for child in children:
+            child.stdin.write("go\n")
+            child.stdin.flush()
+        outcomes = [child.communicate(timeout=120) for child in children]
+    finally:
+        for child in children:
+            child.kill()
+    assert sorted((out.strip() for out, _ in outcomes), key=str) == ["1", "2", "3"] + ["no_attempts_left"] * 5, \
+        [err for _, err in outcomes]
+    assert [s.attempt for s in store.submissions("a1")] == [1, 2, 3]
 
 
 def test_migrations_apply_once_and_opening_again_changes_nothing(open_store):

@@ -18,6 +18,9 @@ from fastapi.testclient import TestClient
 from server.api import assignment_store
 from server.api.app import app
 from server.classroom.store import AssignmentRecord, SQLiteStore, StoreUnavailable
+from server.classroom.store.postgres import PostgresStore
+
+from postgres import free_port, fresh_database, postgres_url  # noqa: F401 (the session's PostgreSQL server)
 
 REPO = Path(__file__).resolve().parents[1]
 FLYWHEEL = {"scene": "flywheel", "variant": "rig", "sliders": {"delta": {"value": 0.02}, "omega_mean": {"value": 50}},
@@ -116,3 +119,61 @@ def test_the_server_refuses_to_start_and_says_why(data_dir):
 def test_a_writable_database_starts(data_dir):
     with TestClient(app) as client:
         assert client.post("/api/v1/assignments", json=FLYWHEEL).status_code == 201
+
+
+# --- PostgreSQL (MDL_DATABASE_URL) ------------------------------------------------------------------------
+
+@pytest.fixture()
+def database_url(monkeypatch):
+    """Point the app at a URL (set by the test) and forget the store before and after."""
+    def use(url: str) -> str:
+        monkeypatch.setenv("MDL_DATABASE_URL", url)
+        assignment_store.store.cache_clear()
+        return url
+    yield use
+    assignment_store.store.cache_clear()
+
+
+def test_an_unreachable_postgresql_stops_the_start_without_showing_the_password(database_url):
+    port = free_port()                                  # nothing listens there
+    database_url(f"postgresql://mdl:hunter2@127.0.0.1:{port}/classroom")
+    with pytest.raises(StoreUnavailable, match=f"cannot use the database PostgreSQL mdl@127.0.0.1:{port}/classroom: "
+                                               f".*(refused|failed)") as refused:
+        with TestClient(app):
+            pass
+    assert "hunter2" not in str(refused.value)
+
+
+def test_a_database_url_of_another_kind_stops_the_start(database_url):
+    database_url("mysql://root@localhost/mdl")
+    with pytest.raises(StoreUnavailable, match="MDL_DATABASE_URL must start with postgresql://"):
+        with TestClient(app):
+            pass
+
+
+def test_a_read_only_postgresql_stops_the_start(database_url, postgres_url):
+    import psycopg
+
+    url = database_url(fresh_database(postgres_url))
+    PostgresStore(url).close()                           # migrated while it could write
+    with psycopg.connect(postgres_url, autocommit=True) as admin:
+        admin.execute(f'ALTER DATABASE "{url.rsplit("/", 1)[1]}" SET default_transaction_read_only = on')
+    with pytest.raises(StoreUnavailable, match="cannot write the database PostgreSQL .*read-only transaction"):
+        with TestClient(app):
+            pass
+
+
+def test_the_api_runs_on_postgresql(database_url, postgres_url):
+    """MDL_DATABASE_URL switches the whole API: an assignment made, answered and read back from the database."""
+    import psycopg
+
+    url = database_url(fresh_database(postgres_url))
+    with TestClient(app) as client:
+        created = client.post("/api/v1/assignments", json=FLYWHEEL).json()
+        outcome = client.post(f"/api/v1/assignments/{created['id']}/submissions",
+                              json={"student": "Ivan Petrov", "question": "flywheel_inertia", "answer": 1.0})
+        assert outcome.status_code == 200 and outcome.json()["attempt"] == 1
+    with psycopg.connect(url) as connection:
+        assert connection.execute("SELECT student_key, answer, attempt FROM submissions").fetchall() == [
+            ("ivan petrov", 1.0, 1)]
+    assignment_store.store().close()

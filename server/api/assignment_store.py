@@ -1,7 +1,8 @@
-"""The assignment store the API uses: SQLite under $MDL_DATA_DIR (default ./data in the repository).
+"""The assignment store the API uses: PostgreSQL when ``MDL_DATABASE_URL=postgresql://…`` is set (several
+servers behind one database), else SQLite under $MDL_DATA_DIR (default ./data in the repository).
 
-``check()`` runs at start-up (the app's lifespan): a database the server cannot write stops it there with
-a message naming the file and the reason, instead of a 500 on the first submission.
+``check()`` runs at start-up (the app's lifespan): a database the server cannot reach or write stops it
+there with a message naming the database and the reason, instead of a 500 on the first submission.
 """
 import logging
 import os
@@ -12,11 +13,20 @@ from ..classroom.store import AssignmentStore, SQLiteStore, StoreUnavailable
 from ..lessons.scenes import REPO_ROOT
 
 DATABASE_FILE = "classroom.sqlite3"
+POSTGRES_SCHEMES = ("postgresql://", "postgres://")
 
 
 @lru_cache(maxsize=1)
 def store() -> AssignmentStore:
-    return SQLiteStore(Path(os.environ.get("MDL_DATA_DIR") or REPO_ROOT / "data") / DATABASE_FILE)
+    url = os.environ.get("MDL_DATABASE_URL", "").strip()
+    if not url:
+        return SQLiteStore(Path(os.environ.get("MDL_DATA_DIR") or REPO_ROOT / "data") / DATABASE_FILE)
+    if not url.startswith(POSTGRES_SCHEMES):
+        raise StoreUnavailable(f"MDL_DATABASE_URL must start with postgresql:// (it starts with "
+                               f"{url.split(':', 1)[0][:20]!r}); unset it for SQLite under MDL_DATA_DIR")
+    from ..classroom.store.postgres import PostgresStore       # psycopg is needed only here
+
+    return PostgresStore(url)
 
 
 def check() -> None:

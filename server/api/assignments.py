@@ -1,5 +1,6 @@
-"""Assignments as the API and the pages use them: loading, enrolling a student, the state of a student's
-questions and the results table. Thin glue between the store, the variants and the answers."""
+"""Assignments as the API and the pages use them: loading, registering a student (a name and a personal
+secret), the state of a student's questions, the results table and the instructor's roster. Thin glue
+between the store, the names, the variants and the answers."""
 from __future__ import annotations
 
 import hashlib
@@ -9,14 +10,20 @@ from datetime import datetime, timezone
 
 from fastapi import HTTPException
 
+from ..classroom import identity
+from ..classroom.names import NameRefused, check_new, normalise, roster_names
 from ..classroom.spec import AssignmentSpec
 from ..classroom.store import AssignmentRecord, StudentRecord
-from ..classroom.variants import MAX_NAME, Plan, SpecError, plan, student_key
+from ..classroom.variants import Plan, plan
 from . import assignment_answers
 from .answers import question, tolerance
 from .assignment_store import store
 from ..lessons.scenes import interface_texts, scenes
-from .schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow
+from .schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow, RosterOutcome
+
+NAME_STATUS = {"name_empty": 422, "name_too_long": 422, "name_mixed_scripts": 422,    # HTTP status of a refused name
+               "name_confusable": 409, "name_taken": 409, "roster_locked": 403}
+
 
 def token_hash(token: str) -> str:
     return hashlib.sha256(token.encode()).hexdigest()
@@ -73,15 +80,100 @@ def info(record: AssignmentRecord, resolved: Plan, lang: str) -> AssignmentInfo:
         open=is_open(resolved), variants=resolved.count)
 
 
-def enrol(record: AssignmentRecord, resolved: Plan, name: str) -> StudentRecord:
-    """The student (registered on first sight) with their variant."""
-    name = " ".join(name.split())[:MAX_NAME]
-    key = student_key(name)
-    if not key:
-        raise SpecError("student", "type a name or a number")
+def student_id(assignment_id: str, key: str) -> str:
+    """The handle of a student in the instructor's API (no name in a URL): 16 hex digits of SHA-256."""
+    return hashlib.sha256(f"{assignment_id}\n{key}".encode()).hexdigest()[:16]
+
+
+def new_student(record: AssignmentRecord, resolved: Plan, name: str, secret_hash: str | None,
+                on_roster: bool = False) -> StudentRecord:
+    """The record of a student not yet stored: the key, the variant that follows from it, the values."""
+    key = normalise(name)
     number = resolved.number_for(record.id, key)
-    stored, _ = store().register(record.id, StudentRecord(key, name, number, resolved.values(number), time.time()))
-    return stored
+    return StudentRecord(key, name, number, resolved.values(number), time.time(), secret_hash=secret_hash,
+                         on_roster=on_roster)
+
+
+def identify(record: AssignmentRecord, secret: str | None) -> StudentRecord | None:
+    """The student whose personal secret this is, or None."""
+    if not secret or not identity.well_formed(secret):
+        return None
+    return store().student_by_secret(record.id, identity.secret_hash(secret))
+
+
+def register(record: AssignmentRecord, resolved: Plan, name: str,
+             current: StudentRecord | None) -> tuple[StudentRecord, str | None]:
+    """Register a name: the student and their new secret (None when the request already is this student).
+
+    A new name must pass ``names.check_new`` (one alphabet per word, not a look-alike of a registered name) and,
+    once the instructor has locked registration, be on the roster. A registered name that has no secret yet
+    (put on the roster by the instructor, or registered before secrets existed) is claimed by its first
+    registration; one that has a secret belongs to whoever holds it: NameRefused("name_taken")."""
+    key = normalise(name)
+    if current is not None and current.key == key:
+        return current, None
+    existing = store().students(record.id)
+    same = next((s for s in existing if s.key == key), None)
+    if same is None:
+        shown = check_new(name, [s.name for s in existing])
+        if record.roster_locked:
+            raise NameRefused("roster_locked", "registration is open only to the names on the instructor's roster; "
+                                               "check how your name is written there, or ask the instructor")
+        secret = identity.new_secret()
+        stored, created = store().register(record.id, new_student(record, resolved, shown,
+                                                                  identity.secret_hash(secret)))
+        if created:
+            return stored, secret
+        same = stored                                    # registered by someone else a moment ago
+    if same.secret_hash is None:
+        secret = identity.new_secret()
+        store().set_secret(record.id, same.key, identity.secret_hash(secret))
+        claimed = store().student(record.id, same.key)
+        if claimed is not None and claimed.secret_hash == identity.secret_hash(secret):
+            return claimed, secret
+    raise NameRefused("name_taken", f"the name '{same.name}' is already registered; if it is yours, open your "
+                                    f"personal link, or ask the instructor for a new one", name=same.name)
+
+
+def find_student(record: AssignmentRecord, handle: str) -> StudentRecord:
+    """The student with this handle (``student_id``); 404 if there is none."""
+    found = next((s for s in store().students(record.id) if student_id(record.id, s.key) == handle), None)
+    if found is None:
+        raise HTTPException(404, "no such student")
+    return found
+
+
+def new_link(record: AssignmentRecord, student: StudentRecord) -> str:
+    """A new personal secret for the student (the old link and cookies stop working); the secret."""
+    secret = identity.new_secret()
+    if not store().set_secret(record.id, student.key, identity.secret_hash(secret)):
+        raise HTTPException(404, "no such student")
+    return secret
+
+
+def add_roster(record: AssignmentRecord, resolved: Plan, text: str) -> RosterOutcome:
+    """Put the roster's names on the assignment (each with their variant, no secret yet): the names added,
+    those already registered, and the lines refused with the reason (no name, a name in two alphabets, a
+    look-alike of another name)."""
+    roster = roster_names(text)
+    existing = store().students(record.id)
+    known = {s.key: s.name for s in existing}
+    shown_names = [s.name for s in existing]
+    outcome = RosterOutcome(refused=[{"line": line, "reason": reason} for line, reason in roster.refused])
+    for name in roster.names:
+        if normalise(name) in known:
+            outcome.already.append(known[normalise(name)])
+            continue
+        try:
+            shown = check_new(name, shown_names)
+        except NameRefused as refused:
+            outcome.refused.append({"line": name, "reason": refused.reason})
+            continue
+        stored, created = store().register(record.id, new_student(record, resolved, shown, None, on_roster=True))
+        (outcome.added if created else outcome.already).append(stored.name)
+        known[stored.key] = stored.name
+        shown_names.append(stored.name)
+    return outcome
 
 
 def question_states(record: AssignmentRecord, resolved: Plan, student: StudentRecord,
@@ -111,7 +203,9 @@ def result_rows(record: AssignmentRecord, resolved: Plan) -> list[ResultRow]:
             per_question[pick.id] = {"attempts": len(answers), "right": any(s.correct for s in answers),
                                      "answer": answers[-1].answer if answers else None,
                                      "correct": answers[-1].correct_value if answers else None}
-        rows.append(ResultRow(student=student.name, variant=student.variant + 1, values=student.parameters,
+        rows.append(ResultRow(id=student_id(record.id, student.key), student=student.name,
+                              on_roster=student.on_roster, has_link=student.secret_hash is not None,
+                              variant=student.variant + 1, values=student.parameters,
                               first_seen=iso(student.first_seen), last_submission=iso(student.last_at),
                               attempts=student.attempts, score=student.solved, questions=per_question))
     return rows

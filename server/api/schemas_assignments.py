@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from ..classroom.variants import MAX_NAME
+from ..classroom.names import MAX_NAME
 
 
 class AssignmentCreated(BaseModel):
@@ -51,9 +51,26 @@ class StudentVariant(BaseModel):
     questions: list[QuestionState]
 
 
+class StudentRegistration(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    name: str = Field(min_length=1, max_length=MAX_NAME, description="name or number, as the student types it")
+
+
+class Registration(BaseModel):
+    student: str = Field(description="the name as registered (cleaned: spaces collapsed, invisible characters "
+                                     "removed)")
+    variant: int = Field(description="the student's variant number, 1 … variants")
+    secret: str | None = Field(description="the personal secret (null when the request already carried it): send "
+                                           "it as `Authorization: Bearer <secret>`, or keep the cookie")
+    personal_url: str | None = Field(description="the personal link: opening it on any device sets the cookie "
+                                                 "(shown once: keep it)")
+
+
 class SubmissionRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    student: str = Field(min_length=1, max_length=MAX_NAME, description="name or number, as typed")
+    student: str | None = Field(None, min_length=1, max_length=MAX_NAME,
+                                description="optional: the student's name; the secret identifies the student, and "
+                                            "a name that is not theirs is refused (403)")
     question: str = Field(max_length=40)
     answer: float = Field(allow_inf_nan=False)
 
@@ -69,7 +86,10 @@ class SubmissionOutcome(BaseModel):
 
 
 class ResultRow(BaseModel):
+    id: str = Field(description="the student's handle for the instructor's actions (new link, delete)")
     student: str
+    on_roster: bool = Field(description="put on the assignment by the instructor's roster")
+    has_link: bool = Field(description="the student has a personal secret (registered, or a link was made)")
     variant: int
     values: dict[str, float | str]
     first_seen: str
@@ -83,3 +103,28 @@ class ResultRow(BaseModel):
 class Results(BaseModel):
     assignment: AssignmentInfo
     students: list[ResultRow]
+
+
+class RosterUpload(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    names: str = Field(max_length=200_000, description="one name per line, or a table (tab, semicolon, or comma "
+                                                       "with a header) whose column name / student / ФИО / ПІБ "
+                                                       "holds the names")
+    lock: bool | None = Field(None, description="also lock (true) or open (false) registration to the roster")
+
+
+class RosterOutcome(BaseModel):
+    added: list[str] = Field(default_factory=list, description="names put on the assignment now")
+    already: list[str] = Field(default_factory=list, description="names that were registered before")
+    refused: list[dict[str, str]] = Field(default_factory=list, description="lines not taken: line and reason")
+    roster_locked: bool = False
+
+
+class RosterLock(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    locked: bool = Field(description="true: only names already registered (the roster among them) may register")
+
+
+class PersonalLink(BaseModel):
+    student: str
+    personal_url: str = Field(description="the student's new personal link; the old one no longer works")

@@ -1,7 +1,9 @@
 """The whole assignment flow in the browser: an instructor makes an assignment with per-student variants
-from the flywheel scene; two students with different names get different variants, one answers right and
-one wrong and each sees the matching feedback; the results page lists both and its CSV agrees. Every
-response the student's page receives before submitting is searched for the correct answer.
+from the flywheel scene; two students register by name (each sees their personal link once), get different
+variants, one answers right and one wrong and each sees the matching feedback; the results page lists both and
+its CSV agrees. Every response the student's page receives before submitting is searched for the correct answer.
+A student's personal link opened in another browser (another device) continues their attempts; the instructor
+uploads a roster, locks registration, makes a new link and deletes a row on the results page.
 """
 from __future__ import annotations
 
@@ -17,7 +19,8 @@ import pytest
 from server.lessons.scenes import scenes
 from server.lessons.requests import scene_request
 from server.classroom.spec import AssignmentSpec
-from server.classroom.variants import plan, student_key
+from server.classroom.names import normalise
+from server.classroom.variants import plan
 
 from conftest import drag_slider, screenshot
 
@@ -63,19 +66,36 @@ def correct_inertia(app_url: str, values: dict) -> float:
     return httpx.post(f"{app_url}/api/v1/flywheel?precision=full", json=body, timeout=30).json()["flywheel_inertia"]
 
 
-def open_as_student(context, student_url: str, name: str):
-    """The student's page after typing the name; every response body it received is kept in page.bodies."""
+def watched_page(context):
+    """A new page whose console errors are kept in page.problems and every response in page.bodies."""
     page = context.new_page()
     page.problems, page.bodies = [], []
     page.on("console", lambda message: message.type == "error" and page.problems.append(message.text))
     page.on("pageerror", lambda error: page.problems.append(str(error)))
     page.on("response", lambda response: page.bodies.append(response))
-    page.goto(student_url.replace("lang=ru", "lang=en"))
+    return page
+
+
+def open_as_student(context, student_url: str, name: str, lang: str = "en"):
+    """The student's page after typing the name and going on from the personal link (kept in page.link);
+    every response body it received is kept in page.bodies."""
+    page = watched_page(context)
+    page.goto(re.sub(r"lang=\w+", f"lang={lang}", student_url))
     page.fill("#student", name)
     page.click("button[type=submit]")
+    page.wait_for_selector("#personal-link")
+    page.link = page.locator("#personal-link").input_value()
+    page.click("#continue")
     page.wait_for_selector("#questions .question")
     page.wait_for_timeout(500)
     return page
+
+
+def own_variant(app_url: str, assignment_id: str, personal_link: str) -> dict:
+    """The student's variant as the API gives it to the holder of their secret (the test, not the page)."""
+    secret = re.search(r"/me/([\w-]+)", personal_link).group(1)
+    return httpx.get(f"{app_url}/api/v1/assignments/{assignment_id}/me",
+                     headers={"Authorization": f"Bearer {secret}"}).json()
 
 
 def received_text(page) -> str:
@@ -94,8 +114,8 @@ def two_names_with_different_variants(assignment_id: str, spec: AssignmentSpec) 
     first = "Olena Kovalenko"
     for k in range(100):
         second = f"Taras Shevchenko {k}"
-        if resolved.number_for(assignment_id, student_key(second)) != resolved.number_for(assignment_id,
-                                                                                           student_key(first)):
+        if resolved.number_for(assignment_id, normalise(second)) != resolved.number_for(assignment_id,
+                                                                                         normalise(first)):
             return first, second
     raise AssertionError("no second name with another variant")
 
@@ -117,11 +137,11 @@ def test_assignment_from_making_to_results(chromium, app_url, browser_page):
         "questions": [{"id": "flywheel_inertia"}], "attempts": 2})
     right_name, wrong_name = two_names_with_different_variants(assignment_id, spec)
 
-    context = chromium.new_context(base_url=app_url, viewport={"width": 1400, "height": 900})
     students = {}
     for name in (right_name, wrong_name):
+        context = chromium.new_context(base_url=app_url, viewport={"width": 1400, "height": 900})   # a browser each
         page = open_as_student(context, student_url, name)
-        variant = httpx.get(f"{app_url}/api/v1/assignments/{assignment_id}/students/{name}").json()
+        variant = own_variant(app_url, assignment_id, page.link)
         assert variant["values"]["omega_mean"] == omega
         correct = correct_inertia(app_url, variant["values"])
         seen = numbers_in(received_text(page))
@@ -167,7 +187,28 @@ def test_assignment_from_making_to_results(chromium, app_url, browser_page):
         assert float(row["flywheel_inertia correct"]) == pytest.approx(students[name][2], rel=1e-9)
         assert f"{variant['variant']}" in table[name]
     assert instructor.problems == []
-    context.close()
+
+    page, _, correct = students[wrong_name]
+    page.reload()                                                  # the cookie: straight back to the scene
+    page.wait_for_selector("#questions .question")
+    assert "attempts left: 1" in page.locator("#feedback-flywheel_inertia").inner_text()
+    other_device = chromium.new_context(base_url=app_url, viewport={"width": 1400, "height": 900}, locale="ru-RU")
+    phone = watched_page(other_device)
+    phone.goto(page.link.replace("lang=en", "lang=ru"))            # the personal link, on another device
+    phone.wait_for_selector("#questions .question")
+    assert wrong_name in phone.locator(".assignment-who").inner_text()
+    assert "1" in phone.locator("#feedback-flywheel_inertia").inner_text()          # the same attempts
+    phone.fill("#answer-flywheel_inertia", f"{correct:.6g}".replace(".", ","))
+    phone.click("#question-flywheel_inertia button")              # the feedback shows ✗ already: wait for ✓
+    phone.locator("#feedback-flywheel_inertia").filter(has_text="✓").wait_for()
+    screenshot(phone, "assignment_student_other_device_ru")
+    assert phone.problems == []
+    instructor.reload()
+    row = instructor.locator("#results tbody tr", has_text=wrong_name)
+    assert "✓" in row.inner_text() and "1 / 1" in row.inner_text()
+    for page, _, _ in students.values():
+        page.context.close()
+    other_device.close()
 
 
 def test_kinematics_assignment_page_never_asks_for_the_answer(chromium, app_url):
@@ -179,12 +220,12 @@ def test_kinematics_assignment_page_never_asks_for_the_answer(chromium, app_url)
     context = chromium.new_context(base_url=app_url, viewport={"width": 1400, "height": 900})
     page = open_as_student(context, created["student_url"], "Ivan Franko")
     page.wait_for_selector("#plots figure")
+    variant = own_variant(app_url, created["id"], page.link)
     requests = [r.request.post_data_json for r in page.bodies if r.url.split("?")[0].endswith("/api/v1/kinematics")]
     assert requests and all(not {"u31", "du31"} & set(body["outputs"]) for body in requests)
     assert page.locator("#slider-lambda").is_enabled()                        # free within 2 … 6
     drag_slider(page, "#slider-lambda", 0.9)
     page.wait_for_timeout(600)
-    variant = httpx.get(f"{app_url}/api/v1/assignments/{created['id']}/students/Ivan Franko").json()
     last = [r for r in page.bodies if r.url.split("?")[0].endswith("/api/v1/kinematics")][-1]
     assert last.request.post_data_json["params"]["l2"] != pytest.approx(variant["values"]["lambda"] * 0.1)
     assert "u31" not in last.json()["outputs"]
@@ -194,3 +235,61 @@ def test_kinematics_assignment_page_never_asks_for_the_answer(chromium, app_url)
     assert page.problems == []
     screenshot(page, "assignment_student_kinematics")
     context.close()
+
+
+def test_roster_lock_new_link_and_delete_on_the_results_page(chromium, app_url, browser_page):
+    """In Russian: the instructor pastes a roster (one look-alike line is refused, naming why), locks
+    registration; a name not on it is refused, a roster name registers and sees its personal link once; the
+    instructor downloads the links, makes one student a new link and deletes another's row."""
+    created = httpx.post(f"{app_url}/api/v1/assignments", json={
+        "scene": "flywheel", "variant": "rig", "lang": "ru", "questions": [{"id": "flywheel_inertia"}],
+        "sliders": {"delta": {"vary": {"min": 0.01, "max": 0.05}, "step": 0.001}}}).json()
+    instructor = browser_page
+    instructor.on("dialog", lambda dialog: dialog.accept())
+    instructor.goto(created["results_url"])
+    instructor.fill("#roster-names", "ФИО;Группа\nИванов Иван;КМ-21/1\nПетренко Олена;КМ-21/1\nIvanоv Petr;КМ-21/2\n")
+    instructor.click("#roster-add")
+    instructor.locator("#results tbody tr").nth(1).wait_for()
+    outcome = instructor.locator("#roster-outcome").inner_text()
+    assert "Добавлены (2)" in outcome and "Не приняты (1)" in outcome and "Ivanоv Petr" in outcome
+    assert instructor.locator("#results tbody tr").count() == 2
+    instructor.click("#roster-lock")
+    instructor.locator("#registration-state", has_text="только имена из списка").wait_for()
+
+    student = chromium.new_context(base_url=app_url, viewport={"width": 1400, "height": 900}, locale="ru-RU")
+    page = watched_page(student)
+    page.goto(created["student_url"])
+    page.fill("#student", "Сидоров Петр")
+    page.click("button[type=submit]")
+    assert "Регистрация открыта только для имён из списка" in page.locator("#name-error").inner_text()
+    assert page.problems == ["Failed to load resource: the server responded with a status of 403 (Forbidden)"]
+    page.problems.clear()                                      # the refusal's status, as Chromium logs it
+    page.fill("#student", "иванов  иван")
+    page.click("button[type=submit]")
+    page.wait_for_selector("#personal-link")
+    assert "Иванов Иван" in page.locator("#registered-heading").inner_text()
+    screenshot(page, "assignment_personal_link_ru")
+    page.click("#copy-link")
+    page.click("#continue")
+    page.wait_for_selector("#questions .question")
+    assert page.problems == []
+
+    instructor.reload()
+    with instructor.expect_download() as download:
+        instructor.click("#links-new")                         # Petrenko has no link yet; Ivanov keeps his
+    links = list(csv.DictReader(io.StringIO(open(download.value.path(), encoding="utf-8-sig").read())))
+    assert [row["student"] for row in links] == ["Петренко Олена"]
+    ivanov = instructor.locator("#results tbody tr", has_text="Иванов Иван")
+    ivanov.locator("button.new-link").click()
+    new_link = ivanov.locator(".shown-link").input_value()
+    assert "/me/" in new_link
+    page.reload()                                              # the old secret in the cookie no longer works
+    assert "больше не действует" in page.locator("#name-error").inner_text()
+    page.goto(new_link)
+    page.wait_for_selector("#questions .question")
+    instructor.locator("#results tbody tr", has_text="Петренко Олена").locator("button.delete-student").click()
+    instructor.locator("#results tbody tr", has_text="Петренко Олена").wait_for(state="detached")
+    assert instructor.locator("#results tbody tr").count() == 1
+    screenshot(instructor, "assignment_results_roster_ru")
+    assert instructor.problems == []
+    student.close()

@@ -1,15 +1,24 @@
-"""Assignment pages: the instructor's form (from any scene with questions), the student's page (the
-scene with their variant and the questions), and the instructor's private results page."""
+"""Assignment pages: the instructor's form (from any scene with questions), the student's page (who are you?
+then the personal link, shown once, then the scene with their variant and the questions), the personal link
+that lets a student in on any device, and the instructor's private results page."""
 from __future__ import annotations
 
-from fastapi import APIRouter, HTTPException, Request
-from fastapi.responses import HTMLResponse
+from urllib.parse import parse_qs
 
-from ...classroom.variants import SpecError
+from fastapi import APIRouter, HTTPException, Request
+from fastapi.responses import HTMLResponse, RedirectResponse
+from starlette.concurrency import run_in_threadpool
+
+from ...classroom.identity import personal_path
+from ...classroom.names import NameRefused
 from .. import assignments
 from ..answers import student_scene
+from ..student_secret import forget, from_another_site, hand_over, sent_secret
 from ...lessons.scenes import scenes
 from .pages import scene_context, templates, _context
+
+NAME_FIELD = "student"
+MAX_FORM_BYTES = 4096
 
 router = APIRouter(include_in_schema=False)
 
@@ -37,24 +46,90 @@ def builder(request: Request, scene_id: str, lang: str | None = None, variant: s
         "scene": scene, "variant": chosen, "variants": offered, "values": values, "questions": questions})
 
 
+def start_page(request: Request, context: dict, about, status: int = 200, **state) -> HTMLResponse:
+    """Who are you? (with the reason a try was refused, or the personal link once registered)."""
+    return templates.TemplateResponse(request, "assignment_start.html", context | {"assignment": about} | state,
+                                      status_code=status)
+
+
+def refusal_text(t: dict, refused: NameRefused) -> str:
+    """A refused name in the reader's language: content/i18n's assignment_error_<code> with its details."""
+    about = dict(refused.about)
+    if "script" in about:
+        about["script"] = t.get(f"assignment_script_{about['script'].lower()}", about["script"])
+    return t.get(f"assignment_error_{refused.code}", refused.reason).format(**about)
+
+
 @router.get("/assignments/{assignment_id}", response_class=HTMLResponse)
-def student_page(request: Request, assignment_id: str, lang: str | None = None, student: str | None = None):
-    """Without a name: who are you? With one: the scene at the student's variant, and the questions."""
+def student_page(request: Request, assignment_id: str, lang: str | None = None):
+    """The student's variant when the request carries their secret (the cookie); else who are you?"""
     record, resolved = assignments.load(assignment_id)
     context = _context(request, lang)
     about = assignments.info(record, resolved, context["lang"])
-    name = " ".join((student or "").split())
-    if not name:
-        return templates.TemplateResponse(request, "assignment_start.html", context | {"assignment": about})
-    try:
-        enrolled = assignments.enrol(record, resolved, name)
-    except SpecError:
-        return templates.TemplateResponse(request, "assignment_start.html", context | {"assignment": about})
-    shown = student_scene(resolved, enrolled.parameters)
-    page = {"id": record.id, "student": enrolled.name, "variant": enrolled.variant + 1,
-            "variants": resolved.count, "values": enrolled.parameters, "info": about.model_dump()}
+    secret = sent_secret(request)
+    student = assignments.identify(record, secret)
+    if student is None:
+        response = start_page(request, context, about, error=context["t"]["assignment_link_invalid"] if secret else None)
+        if secret:
+            forget(response, request, record.id)
+        return response
+    shown = student_scene(resolved, student.parameters)
+    page = {"id": record.id, "student": student.name, "variant": student.variant + 1,
+            "variants": resolved.count, "values": student.parameters, "info": about.model_dump()}
     return templates.TemplateResponse(request, "scene.html", scene_context(request, context, shown) | {
         "assignment": page})
+
+
+@router.post("/assignments/{assignment_id}", response_class=HTMLResponse)
+async def register(request: Request, assignment_id: str, lang: str | None = None):
+    """The name form: register, set the cookie, and show the personal link once."""
+    body = await request.body()
+    form = parse_qs(body[:MAX_FORM_BYTES].decode("utf-8", "replace"))
+    name = (form.get(NAME_FIELD) or [""])[0]
+    return await run_in_threadpool(registered_page, request, assignment_id, lang, name)
+
+
+def registered_page(request: Request, assignment_id: str, lang: str | None, name: str) -> HTMLResponse:
+    record, resolved = assignments.load(assignment_id)
+    context = _context(request, lang)
+    t = context["t"]
+    about = assignments.info(record, resolved, context["lang"])
+    if from_another_site(request, form=True):
+        return start_page(request, context, about, 403, error=t["assignment_error_cross_site"], name=name)
+    try:
+        student, secret = assignments.register(record, resolved, name,
+                                               assignments.identify(record, sent_secret(request)))
+    except NameRefused as refused:
+        return start_page(request, context, about, assignments.NAME_STATUS[refused.code],
+                          error=refusal_text(t, refused), name=name)
+    if secret is None:                                   # already this student on this browser
+        return RedirectResponse(f"/assignments/{record.id}?lang={context['lang']}", status_code=303)
+    link = str(request.base_url).rstrip("/") + personal_path(record.id, secret) + f"?lang={context['lang']}"
+    response = start_page(request, context, about, 201, registered=student.name, personal_link=link)
+    hand_over(response, request, record.id, secret)
+    return response
+
+
+@router.get("/assignments/{assignment_id}/me/{secret}", response_class=HTMLResponse)
+def personal_link(request: Request, assignment_id: str, secret: str, lang: str | None = None):
+    """The personal link: on any device, set the cookie and go to the student's variant."""
+    record, resolved = assignments.load(assignment_id)
+    context = _context(request, lang)
+    if assignments.identify(record, secret) is None:
+        about = assignments.info(record, resolved, context["lang"])
+        return start_page(request, context, about, 404, error=context["t"]["assignment_link_invalid"])
+    response = RedirectResponse(f"/assignments/{record.id}?lang={context['lang']}", status_code=303)
+    hand_over(response, request, record.id, secret)
+    return response
+
+
+@router.post("/assignments/{assignment_id}/leave")
+def leave(request: Request, assignment_id: str, lang: str | None = None):
+    """Not me: forget the secret on this browser (the personal link keeps working)."""
+    record, _ = assignments.load(assignment_id)
+    response = RedirectResponse(f"/assignments/{record.id}?lang={_context(request, lang)['lang']}", status_code=303)
+    forget(response, request, record.id)
+    return response
 
 
 @router.get("/assignments/{assignment_id}/results/{token}", response_class=HTMLResponse)
@@ -65,4 +140,4 @@ def results_page(request: Request, assignment_id: str, token: str, lang: str | N
     return templates.TemplateResponse(request, "assignment_results.html", context | {
         "assignment": assignments.info(record, resolved, context["lang"]), "token": token,
         "sliders": resolved.variant.sliders, "toggles": resolved.variant.toggles,
-        "rows": assignments.result_rows(record, resolved)})
+        "rows": assignments.result_rows(record, resolved), "roster_locked": record.roster_locked})

@@ -6,6 +6,7 @@ it has committed, so whatever a caller acknowledges survives a crash. Both backe
 """
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -90,3 +91,17 @@ def refuse_attempt(used: int, solved: bool, attempts_allowed: int) -> None:
 def no_such_student() -> AttemptRefused:
     """A submission for a student who is not (or no longer) registered: nothing is recorded."""
     return AttemptRefused("no such student (deleted by the instructor?)", "no_such_student")
+
+
+# The columns both backends select, in the order the records take them.
+STUDENT_COLUMNS = "key, name, variant, parameters, first_seen, attempts, solved, last_at, secret_hash, on_roster"
+SUBMISSION_COLUMNS = "student_key, question, answer, correct, attempt, at, correct_value"
+
+
+def student_record(row) -> StudentRecord:
+    return StudentRecord(row[0], row[1], row[2], json.loads(row[3]), row[4], row[5], row[6], row[7], row[8],
+                         bool(row[9]))
+
+
+def submission_record(row) -> Submission:
+    return Submission(row[0], row[1], row[2], bool(row[3]), row[4], row[5], row[6])

@@ -17,21 +17,10 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from .migrations import LATEST, VERSION_TABLE, legacy_version, pending
-from .records import (AssignmentRecord, StoreUnavailable, StudentRecord, Submission, no_such_student,
-                      refuse_attempt)
+from .records import (STUDENT_COLUMNS, SUBMISSION_COLUMNS, AssignmentRecord, StoreUnavailable, StudentRecord,
+                      Submission, no_such_student, refuse_attempt, student_record, submission_record)
 
 BUSY_TIMEOUT_S = 10.0
-STUDENT_COLUMNS = "key, name, variant, parameters, first_seen, attempts, solved, last_at, secret_hash, on_roster"
-SUBMISSION_COLUMNS = "student_key, question, answer, correct, attempt, at, correct_value"
-
-
-def student_record(row) -> StudentRecord:
-    return StudentRecord(row[0], row[1], row[2], json.loads(row[3]), row[4], row[5], row[6], row[7], row[8],
-                         bool(row[9]))
-
-
-def submission_record(row) -> Submission:
-    return Submission(row[0], row[1], row[2], bool(row[3]), row[4], row[5], row[6])
 
 
 class SQLiteStore:

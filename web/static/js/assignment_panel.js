@@ -97,7 +97,7 @@ function questionItem(state) {
 
 async function start() {
   showValues();
-  const response = await fetch(`${base}/students/${encodeURIComponent(assignment.student)}?lang=${lang}`);
+  const response = await fetch(`${base}/me?lang=${lang}`);
   if (!response.ok) {
     byId("questions").replaceChildren(element("li", { textContent: `${t.assignment_failed} (HTTP ${response.status})` }));
     return;

@@ -1,0 +1,202 @@
+"""AssignmentStore on PostgreSQL (psycopg 3, a connection pool): several app servers behind one database.
+
+Every method is one transaction on a connection of the pool, committed when its ``with`` block ends and
+before the method returns, so a submission is acknowledged only after it has committed. A submission first
+locks its student's row (``SELECT … FOR UPDATE``): submissions for one student, from any server, take turns,
+and each counts the attempts the ones before it committed (READ COMMITTED takes a fresh snapshot per
+statement), so the attempt limit holds; the UNIQUE (student, question, attempt) constraint backs it. The rate
+limits are counts of rows, so every server sees the same ones. Migrations run under an advisory lock, so
+servers starting together apply each one once.
+"""
+from __future__ import annotations
+
+import json
+import os
+import time
+
+import psycopg
+from psycopg.conninfo import conninfo_to_dict
+from psycopg_pool import ConnectionPool, PoolTimeout
+
+from .migrations import LATEST, VERSION_TABLE, pending
+from .records import (STUDENT_COLUMNS, SUBMISSION_COLUMNS, AssignmentRecord, StoreUnavailable, StudentRecord,
+                      Submission, no_such_student, refuse_attempt, student_record, submission_record)
+
+POOL_SIZE = int(os.environ.get("MDL_DATABASE_POOL", "8"))      # connections per worker process
+CONNECT_TIMEOUT_S = 10
+MIGRATION_LOCK = 0x6D646C                                      # pg_advisory_xact_lock key ("mdl")
+
+
+def where(url: str) -> str:
+    """The server and database a URL names, without its password (for messages)."""
+    try:
+        parts = conninfo_to_dict(url)
+    except psycopg.ProgrammingError:
+        return "PostgreSQL (an unreadable MDL_DATABASE_URL)"
+    return (f"PostgreSQL {parts.get('user', '')}@{parts.get('host', '')}:{parts.get('port', 5432)}"
+            f"/{parts.get('dbname', '')}")
+
+
+class PostgresStore:
+    """AssignmentStore on the PostgreSQL at ``url``. StoreUnavailable (naming the server and the reason) when it
+    cannot be reached or migrated."""
+
+    def __init__(self, url: str, pool_size: int = POOL_SIZE):
+        self.url, self.where = url, where(url)
+        try:
+            with psycopg.connect(url, connect_timeout=CONNECT_TIMEOUT_S) as connection:
+                self._migrate(connection)
+        except psycopg.Error as error:
+            raise StoreUnavailable(f"cannot use the database {self.where}: {error}".strip()) from error
+        self._pool = ConnectionPool(url, min_size=1, max_size=pool_size, name="mdl", open=True,
+                                    kwargs={"connect_timeout": CONNECT_TIMEOUT_S})
+
+    def close(self) -> None:
+        self._pool.close()
+
+    @staticmethod
+    def _migrate(connection: psycopg.Connection) -> None:
+        """Apply the pending migrations in one transaction, holding the advisory lock."""
+        with connection.transaction():
+            connection.execute("SELECT pg_advisory_xact_lock(%s)", (MIGRATION_LOCK,))
+            if connection.execute("SELECT to_regclass('schema_version')").fetchone()[0] is None:
+                connection.execute(VERSION_TABLE["postgres"])     # (skipped when there: a read-only server opens)
+            current = connection.execute("SELECT COALESCE(MAX(version), 0) FROM schema_version").fetchone()[0]
+            for migration in pending(current):
+                for statement in migration.statements("postgres"):
+                    connection.execute(statement)
+                connection.execute("INSERT INTO schema_version VALUES (%s, %s, %s)",
+                                   (migration.number, migration.what, time.time()))
+
+    def schema_version(self) -> int:
+        return self._one("SELECT MAX(version) FROM schema_version")[0]
+
+    def applied_versions(self) -> list[int]:
+        with self._pool.connection() as connection:
+            return [row[0] for row in connection.execute("SELECT version FROM schema_version ORDER BY 1")]
+
+    def check(self) -> None:
+        """StoreUnavailable unless the database takes a write now (a read-only server or transaction refuses)."""
+        try:
+            with self._pool.connection(timeout=CONNECT_TIMEOUT_S) as connection:
+                connection.execute("UPDATE schema_version SET what = what WHERE version = %s", (LATEST,))
+        except (psycopg.Error, PoolTimeout) as error:
+            raise StoreUnavailable(f"cannot write the database {self.where}: {error}") from error
+
+    def _one(self, query: str, args: tuple = ()):
+        with self._pool.connection() as connection:
+            return connection.execute(query, args).fetchone()
+
+    def create(self, record: AssignmentRecord) -> None:
+        with self._pool.connection() as connection:
+            connection.execute(
+                "INSERT INTO assignments (id, token_hash, created_at, spec, roster_locked, client) "
+                "VALUES (%s, %s, %s, %s, %s, %s)", (record.id, record.token_hash, record.created_at,
+                                                    json.dumps(record.spec), record.roster_locked, record.client))
+
+    def assignment(self, assignment_id: str) -> AssignmentRecord | None:
+        row = self._one("SELECT id, token_hash, created_at, spec, roster_locked, client FROM assignments "
+                        "WHERE id = %s", (assignment_id,))
+        return None if row is None else AssignmentRecord(row[0], row[1], row[2], json.loads(row[3]), row[4], row[5])
+
+    def set_roster_locked(self, assignment_id: str, locked: bool) -> None:
+        with self._pool.connection() as connection:
+            connection.execute("UPDATE assignments SET roster_locked = %s WHERE id = %s", (locked, assignment_id))
+
+    def recent_assignments_by_client(self, client: str, since: float) -> int:
+        return self._one("SELECT COUNT(*) FROM assignments WHERE client = %s AND created_at >= %s",
+                         (client, since))[0]
+
+    def register(self, assignment_id: str, student: StudentRecord) -> tuple[StudentRecord, bool]:
+        """The student as stored, and whether this call created them: a second registration under the same
+        key (even at the same moment, from another server) changes nothing."""
+        with self._pool.connection() as connection:
+            row = connection.execute(
+                "INSERT INTO students (assignment_id, key, name, variant, parameters, first_seen, secret_hash, "
+                "on_roster) VALUES (%s, %s, %s, %s, %s, %s, %s, %s) ON CONFLICT (assignment_id, key) DO NOTHING "
+                f"RETURNING {STUDENT_COLUMNS}",
+                (assignment_id, student.key, student.name, student.variant, json.dumps(student.parameters),
+                 student.first_seen, student.secret_hash, student.on_roster)).fetchone()
+            created = row is not None
+            if not created:
+                row = connection.execute(f"SELECT {STUDENT_COLUMNS} FROM students WHERE assignment_id = %s "
+                                         "AND key = %s", (assignment_id, student.key)).fetchone()
+        return student_record(row), created
+
+    def _students(self, condition: str, args: tuple) -> list[StudentRecord]:
+        with self._pool.connection() as connection:
+            rows = connection.execute(f"SELECT {STUDENT_COLUMNS} FROM students {condition}", args).fetchall()
+        return [student_record(row) for row in rows]
+
+    def student(self, assignment_id: str, key: str) -> StudentRecord | None:
+        rows = self._students("WHERE assignment_id = %s AND key = %s", (assignment_id, key))
+        return rows[0] if rows else None
+
+    def student_by_secret(self, assignment_id: str, secret_hash: str) -> StudentRecord | None:
+        rows = self._students("WHERE assignment_id = %s AND secret_hash = %s", (assignment_id, secret_hash))
+        return rows[0] if rows else None
+
+    def students(self, assignment_id: str) -> list[StudentRecord]:
+        return self._students("WHERE assignment_id = %s ORDER BY first_seen, key", (assignment_id,))
+
+    def set_secret(self, assignment_id: str, key: str, secret_hash: str | None) -> bool:
+        with self._pool.connection() as connection:
+            return connection.execute("UPDATE students SET secret_hash = %s WHERE assignment_id = %s AND key = %s",
+                                      (secret_hash, assignment_id, key)).rowcount == 1
+
+    def delete_student(self, assignment_id: str, key: str) -> bool:
+        """The student and every submission of theirs, in one transaction; the student's row is locked first,
+        as a submission locks it, so a submission in flight lands before the deletion or not at all."""
+        with self._pool.connection() as connection:
+            if connection.execute("SELECT 1 FROM students WHERE assignment_id = %s AND key = %s FOR UPDATE",
+                                  (assignment_id, key)).fetchone() is None:
+                return False
+            connection.execute("DELETE FROM submissions WHERE assignment_id = %s AND student_key = %s",
+                               (assignment_id, key))
+            connection.execute("DELETE FROM students WHERE assignment_id = %s AND key = %s", (assignment_id, key))
+        return True
+
+    def submit(self, assignment_id: str, key: str, question: str, answer: float, correct: bool,
+               attempts_allowed: int, at: float, client: str, correct_value: float | None = None) -> Submission:
+        """Record one attempt and the student's totals in one transaction, holding the student's row;
+        AttemptRefused if none is left or the student is not registered."""
+        with self._pool.connection() as connection:
+            if connection.execute("SELECT 1 FROM students WHERE assignment_id = %s AND key = %s FOR UPDATE",
+                                  (assignment_id, key)).fetchone() is None:
+                raise no_such_student()
+            used, solved = connection.execute(
+                "SELECT COUNT(*), COALESCE(BOOL_OR(correct), FALSE) FROM submissions "
+                "WHERE assignment_id = %s AND student_key = %s AND question = %s",
+                (assignment_id, key, question)).fetchone()
+            refuse_attempt(used, solved, attempts_allowed)
+            connection.execute(
+                "INSERT INTO submissions (assignment_id, student_key, question, answer, correct, correct_value, "
+                "attempt, at, client) VALUES (%s, %s, %s, %s, %s, %s, %s, %s, %s)",
+                (assignment_id, key, question, answer, correct, correct_value, used + 1, at, client))
+            connection.execute(
+                "UPDATE students SET attempts = attempts + 1, solved = solved + %s, last_at = %s "
+                "WHERE assignment_id = %s AND key = %s", (int(correct), at, assignment_id, key))
+        return Submission(key, question, answer, correct, used + 1, at, correct_value)
+
+    def submissions(self, assignment_id: str, key: str | None = None) -> list[Submission]:
+        query = (f"SELECT {SUBMISSION_COLUMNS} FROM submissions WHERE assignment_id = %s"
+                 + (" AND student_key = %s" if key is not None else "") + " ORDER BY id")
+        with self._pool.connection() as connection:
+            rows = connection.execute(query, (assignment_id,) if key is None else (assignment_id, key)).fetchall()
+        return [submission_record(row) for row in rows]
+
+    def recent_by_client(self, client: str, since: float) -> int:
+        return self._one("SELECT COUNT(*) FROM submissions WHERE client = %s AND at >= %s", (client, since))[0]
+
+    def variant_answers(self, assignment_id: str, variant: int) -> dict | None:
+        row = self._one("SELECT answers FROM variant_answers WHERE assignment_id = %s AND variant = %s",
+                        (assignment_id, variant))
+        return None if row is None else json.loads(row[0])
+
+    def put_variant_answers(self, assignment_id: str, variant: int, answers: dict) -> None:
+        """Store (or replace) a variant's answers: question id → correct value or the error text."""
+        with self._pool.connection() as connection:
+            connection.execute(
+                "INSERT INTO variant_answers (assignment_id, variant, answers) VALUES (%s, %s, %s) "
+                "ON CONFLICT (assignment_id, variant) DO UPDATE SET answers = excluded.answers",
+                (assignment_id, variant, json.dumps(answers)))

