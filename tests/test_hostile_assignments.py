@@ -13,7 +13,7 @@ from fastapi import HTTPException
 
 from server.api import answers, assignment_answers, heavy
 from server.classroom.spec import AssignmentSpec
-from server.classroom.variants import SpecError, plan, student_key
+from server.classroom.variants import SpecError, plan
 from server.lessons.scenes import scenes
 
 CRANK = {"scene": "transfer-functions", "variant": "slider_crank",
@@ -169,6 +169,22 @@ def test_the_assignment_rate_is_limited_per_address_with_retry_after(client, mon
     assert record.client == "testclient"                         # the address is kept with the assignment
 
 
+def register(client, assignment_id: str, name: str) -> tuple[int, dict]:
+    """Register by POST (identity's flow): the variant number (from 0) and the headers of the student's requests."""
+    response = client.post(f"{API}/{assignment_id}/students", json={"name": name})
+    assert response.status_code == 201, response.text
+    return response.json()["variant"] - 1, {"Authorization": f"Bearer {response.json()['secret']}"}
+
+
+def a_student_of_a_fresh_variant(client, assignment_id: str, kept) -> tuple[int, dict]:
+    """A newly registered student whose variant was not computed when the assignment was made."""
+    for k in range(200):
+        number, headers = register(client, assignment_id, f"student {k}")
+        if number not in kept:
+            return number, headers
+    raise AssertionError("every student fell on a checked variant")
+
+
 def test_a_new_assignment_keeps_its_checked_answers_and_a_new_variant_is_computed_once(client, monkeypatch):
     created = client.post(API, json=CRANK).json()
     store = assignment_store.store()
@@ -178,30 +194,26 @@ def test_a_new_assignment_keeps_its_checked_answers_and_a_new_variant_is_compute
     runs = []
     real_run = heavy.run
     monkeypatch.setattr(heavy, "run", lambda function, *args, **kw: runs.append(args[1]) or real_run(function, *args))
-    names = [f"student {k}" for k in range(40)]
-    fresh = next(name for name in names if resolved.number_for(created["id"], student_key(name)) not in kept)
-    number = resolved.number_for(created["id"], student_key(fresh))
-    answer = client.post(f"{API}/{created['id']}/submissions", json={"student": fresh, "question": "u31_max",
-                                                                        "answer": 0.1})
+    number, headers = a_student_of_a_fresh_variant(client, created["id"], kept)
+    answer = client.post(f"{API}/{created['id']}/submissions", json={"question": "u31_max", "answer": 0.1},
+                         headers=headers)
     assert answer.status_code == 200 and runs == [[number]]
     assert store.variant_answers(created["id"], number) is not None
-    again = client.post(f"{API}/{created['id']}/submissions", json={"student": fresh, "question": "du31_min",
-                                                                       "answer": 0.1})
+    again = client.post(f"{API}/{created['id']}/submissions", json={"question": "du31_min", "answer": 0.1},
+                        headers=headers)
     assert again.status_code == 200 and runs == [[number]]       # read from the store, not computed again
 
 
 def test_a_variant_out_of_budget_answers_503_and_spends_no_attempt(client, monkeypatch):
-    created = client.post(API, json=CRANK | {"sliders": {"lambda": {"vary": {"min": 2.5, "max": 5.0}, "step": 0.001}}})
-    created = created.json()
-    resolved = plan(AssignmentSpec.model_validate(CRANK | {"sliders": {"lambda": {"vary": {"min": 2.5, "max": 5.0},
-                                                                                    "step": 0.001}}}), scenes())
-    kept = set(assignment_answers.checked_numbers(resolved.count))
-    name = next(f"s{k}" for k in range(100) if resolved.number_for(created["id"], student_key(f"s{k}")) not in kept)
+    fine = CRANK | {"sliders": {"lambda": {"vary": {"min": 2.5, "max": 5.0}, "step": 0.001}}}
+    created = client.post(API, json=fine).json()
+    kept = set(assignment_answers.checked_numbers(plan(AssignmentSpec.model_validate(fine), scenes()).count))
+    _, headers = a_student_of_a_fresh_variant(client, created["id"], kept)
     monkeypatch.setattr(assignment_answers, "VARIANT_BUDGET_S", -1.0)
-    late = client.post(f"{API}/{created['id']}/submissions", json={"student": name, "question": "u31_max",
-                                                                      "answer": 0.1})
+    late = client.post(f"{API}/{created['id']}/submissions", json={"question": "u31_max", "answer": 0.1},
+                       headers=headers)
     assert late.status_code == 503 and int(late.headers["retry-after"]) > 0
     assert late.json()["detail"][0]["type"] == "answers_not_ready"
     monkeypatch.setattr(assignment_answers, "VARIANT_BUDGET_S", 15.0)
-    state = client.get(f"{API}/{created['id']}/students/{name}").json()
+    state = client.get(f"{API}/{created['id']}/me", headers=headers).json()
     assert state["questions"][0]["attempts_used"] == 0
