@@ -58,6 +58,7 @@ GZIP_LEVEL = 3                      # cheap CPU, ~5× smaller for curves (the ap
 ENTRY_OVERHEAD_BYTES = 200          # key, bookkeeping and object headers of one entry, roughly
 CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSON) after this as it stops
 
+
 def _request_models() -> dict[str, type[BaseModel]]:
     """The request model of each cached endpoint (the family's lives with its route)."""
     from .routers.family import FamilyRequest
