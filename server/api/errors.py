@@ -82,7 +82,7 @@ async def geometry_error(request: Request, error: GeometryError) -> Response:
     else:
         loc = ["body", "params", error.field]
     return unprocessable({"detail": [{"loc": loc, "msg": error.reason, "type": "geometry_error",
-                                      "ctx": {"code": error.code, **plain(error.context)}}]})
+                                      "ctx": {"code": error.code, **error.context}}]})
 
 
 async def validation_error(request: Request, error: RequestValidationError) -> Response:
