@@ -217,3 +217,21 @@ def test_a_variant_out_of_budget_answers_503_and_spends_no_attempt(client, monke
     monkeypatch.setattr(assignment_answers, "VARIANT_BUDGET_S", 15.0)
     state = client.get(f"{API}/{created['id']}/me", headers=headers).json()
     assert state["questions"][0]["attempts_used"] == 0
+
+
+def test_answers_wait_in_a_bounded_number_of_threads_and_refuse_at_once_past_it(memory, computed):
+    """With every place taken (other requests waiting for the heavy process), a variant not kept yet is refused
+    at once with 503 and Retry-After instead of holding another thread; a kept one is read as ever."""
+    resolved = crank_plan()
+    kept = assignment_answers.correct_value("A1", resolved, 1, "u31_max")
+    places = [assignment_answers._computing.acquire(blocking=False) for _ in range(assignment_answers.ANSWER_COMPUTATIONS)]
+    try:
+        assert all(places)
+        with pytest.raises(HTTPException) as busy:
+            assignment_answers.correct_value("A1", resolved, 2, "u31_max")
+        assert busy.value.status_code == 503 and busy.value.headers["Retry-After"] == "2"
+        assert assignment_answers.correct_value("A1", resolved, 1, "u31_max") == kept
+    finally:
+        for _ in places:
+            assignment_answers._computing.release()
+    assert assignment_answers.correct_value("A1", resolved, 2, "u31_max") > 0

@@ -12,6 +12,10 @@ class, not once per student, per worker, per restart.
 - A submission (or a page revealing a closed question) reads the variant's answers from the store, and computes
   them first, within VARIANT_BUDGET_S, only for a variant nobody has used yet. Answers the budget did not finish
   are not kept: the student gets 503 with Retry-After and may submit again (their attempt is not spent).
+- The routes that need answers run in the worker's thread pool, which also serves the light computing routes: a
+  thread waiting for the heavy process is a thread they lack. So at most ANSWER_COMPUTATIONS such waits run at
+  once per worker (MDL_ANSWER_COMPUTATIONS, default 4 of the pool's 40 threads); past that the request is answered
+  at once with 503 and Retry-After: 2 instead of queueing in a thread (answers already kept need no wait).
 - One address makes at most ASSIGNMENTS_PER_HOUR assignments an hour (MDL_ASSIGNMENTS_PER_HOUR, counted in the
   store so that every worker and server sees the same count); past it, 429 with Retry-After: the seconds until
   the oldest of its assignments in the window leaves it.
@@ -19,7 +23,9 @@ class, not once per student, per worker, per restart.
 from __future__ import annotations
 
 import os
+import threading
 import time
+from contextlib import contextmanager
 
 from fastapi import HTTPException
 
@@ -33,8 +39,25 @@ CHECKED_VARIANTS = 8            # variants whose answers are computed when the a
 CREATE_BUDGET_S = 15.0          # of one heavy process, for those variants' answers
 VARIANT_BUDGET_S = 15.0         # for one variant's answers on its first use
 ASSIGNMENTS_PER_HOUR = int(os.environ.get("MDL_ASSIGNMENTS_PER_HOUR", "20"))     # per client address
+ANSWER_COMPUTATIONS = int(os.environ.get("MDL_ANSWER_COMPUTATIONS", "4"))       # threads waiting for answers
 WINDOW_S = 3600.0
 RETRY_STEP_S = 60.0             # Retry-After is found to this resolution
+_computing = threading.BoundedSemaphore(ANSWER_COMPUTATIONS)
+
+
+@contextmanager
+def computing_place():
+    """One of the worker's ANSWER_COMPUTATIONS places to wait for the heavy process; 503 at once when none is
+    free."""
+    if not _computing.acquire(blocking=False):
+        raise HTTPException(503, detail=[{"loc": [], "type": "answers_busy",
+                                          "msg": "the server is computing other variants' answers; try again in a "
+                                                 "moment (no attempt was counted)"}],
+                            headers={"Retry-After": "2"})
+    try:
+        yield
+    finally:
+        _computing.release()
 
 
 def answers_of_variants(resolved: Plan, numbers: list[int], budget_s: float) -> dict[int, dict]:
@@ -63,7 +86,8 @@ def checked_numbers(count: int) -> list[int]:
 def check_new(resolved: Plan) -> dict[int, dict]:
     """The answers of the checked variants (those the budget reached); SpecError naming the first question that
     has no answer for one of them."""
-    found = heavy.run(answers_of_variants, resolved, checked_numbers(resolved.count), CREATE_BUDGET_S)
+    with computing_place():
+        found = heavy.run(answers_of_variants, resolved, checked_numbers(resolved.count), CREATE_BUDGET_S)
     for number, answers in sorted(found.items()):
         for question_id, value in answers.items():
             if isinstance(value, str):
@@ -84,7 +108,8 @@ def variant_answers(assignment_id: str, resolved: Plan, number: int) -> dict:
     answers = store().variant_answers(assignment_id, number)
     if answers is not None and all(p.id in answers for p in resolved.spec.questions):
         return answers
-    answers = heavy.run(answers_of_variants, resolved, [number], VARIANT_BUDGET_S).get(number)
+    with computing_place():
+        answers = heavy.run(answers_of_variants, resolved, [number], VARIANT_BUDGET_S).get(number)
     if answers is None:
         raise HTTPException(503, detail=[{"loc": [], "type": "answers_not_ready",
                                           "msg": "the correct answers of this variant took longer than the time "
