@@ -25,6 +25,7 @@ import subprocess
 import tempfile
 import time
 from pathlib import Path
+from typing import Callable
 
 import pytest
 
@@ -67,7 +68,7 @@ def _run_as(owner, command: list[str], cwd: Path, **kwargs):
     return subprocess.Popen(command, cwd=cwd, env={"PATH": os.environ.get("PATH", ""), "LC_ALL": "C"}, **kwargs)
 
 
-def start_postgres(tmpdir: Path | None = None) -> tuple[str, callable]:
+def start_postgres(tmpdir: Path | None = None) -> tuple[str, Callable[[], None]]:
     """Start a fresh cluster; return its URL (database ``postgres``, user ``mdl``) and a function stopping
     the server and removing its directory. ``tmpdir``: where to put the cluster (as root: ignored, see above)."""
     bin_dir = postgres_bin()

@@ -14,10 +14,11 @@ import re
 
 import pytest
 from fastapi.testclient import TestClient
+from hypothesis import given, strategies as st
 
 from server.api import assignment_store
 from server.api.app import app
-from server.api.csv_export import safe_cell
+from server.api.csv_export import FORMULA_STARTS, safe_cell
 from server.classroom.identity import secret_hash
 from server.classroom.names import clean
 
@@ -147,7 +148,7 @@ def test_look_alike_names_are_refused_naming_the_registered_one(client, created)
 def test_registering_again_with_ones_own_secret_changes_nothing(client, created):
     browser = fresh(client)
     first = register(browser, created, "Olena")
-    assert first.status_code == 201 and first.json()["personal_url"].endswith(first.json()["secret"])
+    assert first.status_code == 201 and first.json()["personal_url"].endswith(f"/me/{first.json()['secret']}?lang=ru")
     again = register(browser, created, "OLENA")                     # the cookie says who this is
     assert again.status_code == 200 and again.json()["secret"] is None
     assert browser.get(f"{API}/{created['id']}/me").json()["student"] == "Olena"
@@ -313,6 +314,18 @@ def test_every_formula_payload_is_written_as_text(payload):
     spreadsheet strips the leading whitespace. The prefix goes on the raw text, before anything strips it."""
     assert safe_cell(payload) == "'" + payload
     assert safe_cell(-1.5) == "-1.5" and safe_cell(-2) == -2 and safe_cell("Ivan") == "Ivan" and safe_cell(None) == ""
+
+
+@given(st.text(max_size=20), st.floats(allow_nan=False, allow_infinity=False))
+def test_a_text_cell_never_starts_a_formula_and_a_number_reads_back_exactly(text, number):
+    """Any text is written as itself or behind one apostrophe, never starting with = + - @ TAB CR, and reads
+    back so through a CSV reader; a float reads back equal (repr: every digit)."""
+    shown = safe_cell(text)
+    assert shown in (text, "'" + text) and not shown.startswith(FORMULA_STARTS)
+    out = io.StringIO(newline="")
+    csv.writer(out).writerow([shown, safe_cell(number)])
+    cell, figure = next(csv.reader(io.StringIO(out.getvalue(), newline="")))
+    assert cell == shown and float(figure) == number
 
 
 def test_the_results_csv_neutralises_names_and_keeps_negative_numbers(client, created):

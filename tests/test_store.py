@@ -15,6 +15,7 @@ import sys
 import threading
 from pathlib import Path
 
+import psycopg
 import pytest
 
 from server.classroom.store import (AssignmentRecord, AttemptRefused, SQLiteStore, StoreUnavailable, StudentRecord,
@@ -110,7 +111,7 @@ def test_an_assignment_comes_back_as_stored(store, open_store):
                                                       roster_locked=False, client="10.0.0.1")
     assert list(open_store().assignment("a1").spec["sliders"]) == ["b", "a"]      # key order kept
     assert store.assignment("nope") is None
-    with pytest.raises(Exception):
+    with pytest.raises((sqlite3.IntegrityError, psycopg.IntegrityError)):
         store.create(AssignmentRecord("a1", "other", 0.0, {}))                      # ids are unique
     assert store.assignment("a1").token_hash == "hash"
 
@@ -166,7 +167,7 @@ def test_deleting_a_student_takes_their_submissions(store):
     assert created and again.attempts == 0                                 # a fresh start
 
 
-def test_submissions_count_attempts_and_close_a_question(store):
+def test_submissions_count_attempts_and_close_a_question(store, open_store):
     store.register("a1", ivan())
     first = store.submit("a1", "ivan", "q", 1.5, False, 2, 110.0, "c", 2.5)
     assert first == Submission("ivan", "q", 1.5, False, 1, 110.0, 2.5)
@@ -180,7 +181,7 @@ def test_submissions_count_attempts_and_close_a_question(store):
     assert refused.value.code == "already_right"
     assert [(s.question, s.attempt, s.correct) for s in store.submissions("a1", "ivan")] == [
         ("q", 1, False), ("q", 2, False), ("r", 1, True)]
-    totals = store.student("a1", "ivan")
+    totals = open_store().student("a1", "ivan")                 # committed before submit returned
     assert (totals.attempts, totals.solved, totals.last_at) == (3, 1, 113.0)
 
 
@@ -272,6 +273,42 @@ def test_the_attempt_limit_holds_across_processes(store, database):
     assert [s.attempt for s in store.submissions("a1")] == [1, 2, 3]
 
 
+DIES_BETWEEN_THE_WRITES = """
+import os, sys
+import psycopg
+from server.classroom.store.postgres import PostgresStore
+
+store = PostgresStore(sys.argv[1], pool_size=1)
+execute = psycopg.Connection.execute
+
+
+def dies_before_the_totals(connection, query, *args, **kwargs):
+    if str(query).startswith("UPDATE students"):
+        os._exit(3)                                   # the attempt row is written, the totals are not
+    return execute(connection, query, *args, **kwargs)
+
+
+psycopg.Connection.execute = dies_before_the_totals
+store.submit("a1", "ivan", "q", 2.0, False, 3, 121.0, "c")
+"""
+
+
+def test_a_death_between_the_two_writes_leaves_neither_on_postgresql(postgres_url):
+    """A server process dying inside a submission on PostgreSQL (SQLite: tests/test_crash_safety.py) leaves
+    neither the attempt row nor the totals: the transaction was never committed."""
+    database = fresh_database(postgres_url)
+    store = PostgresStore(database, pool_size=1)
+    store.create(AssignmentRecord("a1", "hash", 100.0, {}))
+    store.register("a1", ivan())
+    store.submit("a1", "ivan", "q", 1.0, False, 3, 120.0, "c")
+    child = subprocess.run([sys.executable, "-c", DIES_BETWEEN_THE_WRITES, database], cwd=REPO, timeout=120)
+    assert child.returncode == 3
+    assert [(s.answer, s.attempt) for s in store.submissions("a1")] == [(1.0, 1)]
+    assert store.student("a1", "ivan").attempts == 1
+    assert store.submit("a1", "ivan", "q", 3.0, False, 3, 122.0, "c").attempt == 2       # the row lock is free
+    store.close()
+
+
 def test_migrations_apply_once_and_opening_again_changes_nothing(open_store):
     """Every numbered migration is applied exactly once, whether stores open one after another or four at once."""
     stores = []
@@ -283,13 +320,21 @@ def test_migrations_apply_once_and_opening_again_changes_nothing(open_store):
     assert len(stores) == 4
     again = open_store()
     assert again.schema_version() == LATEST == len(MIGRATIONS)
-    assert applied_versions(again) == list(range(1, LATEST + 1))
+    assert again.applied_versions() == list(range(1, LATEST + 1))
 
 
-def applied_versions(store) -> list[int]:
-    if isinstance(store, SQLiteStore):
-        return [row[0] for row in sqlite3.connect(store.path).execute("SELECT version FROM schema_version ORDER BY 1")]
-    return store.applied_versions()
+def test_a_database_from_a_newer_server_is_refused(open_store, database):
+    """A server that does not know the schema's latest migration must not write to it: it refuses to start."""
+    open_store()
+    if database.startswith("postgresql://"):
+        with psycopg.connect(database, autocommit=True) as connection:
+            connection.execute("INSERT INTO schema_version VALUES (%s, 'from the future', 0)", (LATEST + 1,))
+    else:
+        with sqlite3.connect(database) as connection:
+            connection.execute("INSERT INTO schema_version VALUES (?, 'from the future', 0)", (LATEST + 1,))
+    with pytest.raises(StoreUnavailable, match=f"schema is at version {LATEST + 1}, newer than this server's "
+                                               f"{LATEST}: update this server"):
+        open_store()
 
 
 # --- SQLite: files made before the schema was versioned ---------------------------------------------------
@@ -323,13 +368,7 @@ def test_a_file_made_by_main_migrates_forward(tmp_path, schema):
     assert store.set_secret("a1", "ivan", "s") and store.student_by_secret("a1", "s").key == "ivan"
     store.put_variant_answers("a1", 0, {"q": 2.51})
     reopened = SQLiteStore(path)
-    assert reopened.schema_version() == LATEST and applied_versions(reopened) == list(range(1, LATEST + 1))
+    assert reopened.schema_version() == LATEST and reopened.applied_versions() == list(range(1, LATEST + 1))
     assert reopened.submissions("a1")[1].correct_value == 2.51 and reopened.variant_answers("a1", 0) == {"q": 2.51}
     assert sqlite3.connect(path).execute("PRAGMA integrity_check").fetchone()[0] == "ok"
 
-
-def test_a_file_where_the_data_directory_should_be_is_refused_with_its_path(tmp_path):
-    blocker = tmp_path / "data"
-    blocker.write_text("not a directory")
-    with pytest.raises(StoreUnavailable, match=str(blocker / "classroom.sqlite3")):
-        SQLiteStore(blocker / "classroom.sqlite3")

@@ -170,8 +170,9 @@ def test_the_api_runs_on_postgresql(database_url, postgres_url):
     url = database_url(fresh_database(postgres_url))
     with TestClient(app) as client:
         created = client.post("/api/v1/assignments", json=FLYWHEEL).json()
+        client.post(f"/api/v1/assignments/{created['id']}/students", json={"name": "Ivan Petrov"})  # the cookie
         outcome = client.post(f"/api/v1/assignments/{created['id']}/submissions",
-                              json={"student": "Ivan Petrov", "question": "flywheel_inertia", "answer": 1.0})
+                              json={"question": "flywheel_inertia", "answer": 1.0})
         assert outcome.status_code == 200 and outcome.json()["attempt"] == 1
     with psycopg.connect(url) as connection:
         assert connection.execute("SELECT student_key, answer, attempt FROM submissions").fetchall() == [

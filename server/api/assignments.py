@@ -135,6 +135,11 @@ def register(record: AssignmentRecord, resolved: Plan, name: str,
                                     f"personal link, or ask the instructor for a new one", name=same.name)
 
 
+def personal_url(base: str, record: AssignmentRecord, resolved: Plan, secret: str) -> str:
+    """The student's personal link, in the assignment's language."""
+    return f"{base}{identity.personal_path(record.id, secret)}?lang={resolved.spec.lang}"
+
+
 def find_student(record: AssignmentRecord, handle: str) -> StudentRecord:
     """The student with this handle (``student_id``); 404 if there is none."""
     found = next((s for s in store().students(record.id) if student_id(record.id, s.key) == handle), None)

@@ -17,7 +17,8 @@ from __future__ import annotations
 
 from urllib.parse import urlsplit
 
-from fastapi import Request, Response
+from fastapi import Depends, Request, Response
+from fastapi.security import APIKeyCookie, HTTPAuthorizationCredentials, HTTPBearer
 
 from .admission import COOKIE as CLIENT_COOKIE
 
@@ -31,12 +32,17 @@ def cookie_paths(assignment_id: str) -> dict[str, str]:
     return {f"/assignments/{assignment_id}": "lax", f"{API_PREFIX}/assignments/{assignment_id}": "strict"}
 
 
-def sent_secret(request: Request) -> str | None:
-    """The secret a request carries: ``Authorization: Bearer …`` first, else the cookie."""
-    scheme, _, value = request.headers.get("authorization", "").partition(" ")
-    if scheme.lower() == "bearer" and value.strip():
-        return value.strip()
-    return request.cookies.get(COOKIE)
+BEARER = HTTPBearer(auto_error=False, scheme_name="student_secret",
+                    description="the student's personal secret, as registration returned it")
+BROWSER = APIKeyCookie(name=COOKIE, auto_error=False, scheme_name="student_cookie",
+                       description="the student's personal secret, as registration or the personal link set it")
+
+
+def sent_secret(bearer: HTTPAuthorizationCredentials | None = Depends(BEARER),
+                cookie: str | None = Depends(BROWSER)) -> str | None:
+    """The secret a request carries (a dependency; both ways are in the OpenAPI document): ``Authorization:
+    Bearer …`` first, else the cookie."""
+    return bearer.credentials if bearer is not None else cookie
 
 
 def hand_over(response: Response, request: Request, assignment_id: str, secret: str) -> None:

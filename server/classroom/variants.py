@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import hashlib
 import math
-import unicodedata
 
 import numpy as np
 from dataclasses import dataclass, field
@@ -18,7 +17,6 @@ from ..lessons.scenes import Scene, Variant
 from ..lessons.requests import slider_values
 from .spec import AssignmentSpec
 
-MAX_NAME = 80
 MAX_CHOICES = 10_000      # values of one varied slider
 
 
@@ -28,11 +26,6 @@ class SpecError(ValueError):
     def __init__(self, field: str, reason: str):
         super().__init__(f"{field}: {reason}")
         self.field, self.reason = field, reason
-
-
-def student_key(name: str) -> str:
-    """The name as it identifies a student: Unicode NFKC, case-folded, inner spaces collapsed."""
-    return " ".join(unicodedata.normalize("NFKC", name).casefold().split())
 
 
 @dataclass

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from urllib.parse import parse_qs
 
-from fastapi import APIRouter, HTTPException, Request
+from fastapi import APIRouter, Depends, HTTPException, Request
 from fastapi.responses import HTMLResponse, RedirectResponse
 from starlette.concurrency import run_in_threadpool
 
@@ -61,12 +61,12 @@ def refusal_text(t: dict, refused: NameRefused) -> str:
 
 
 @router.get("/assignments/{assignment_id}", response_class=HTMLResponse)
-def student_page(request: Request, assignment_id: str, lang: str | None = None):
+def student_page(request: Request, assignment_id: str, lang: str | None = None,
+                 secret: str | None = Depends(sent_secret)):
     """The student's variant when the request carries their secret (the cookie); else who are you?"""
     record, resolved = assignments.load(assignment_id)
     context = _context(request, lang)
     about = assignments.info(record, resolved, context["lang"])
-    secret = sent_secret(request)
     student = assignments.identify(record, secret)
     if student is None:
         response = start_page(request, context, about, error=context["t"]["assignment_link_invalid"] if secret else None)
@@ -81,15 +81,17 @@ def student_page(request: Request, assignment_id: str, lang: str | None = None):
 
 
 @router.post("/assignments/{assignment_id}", response_class=HTMLResponse)
-async def register(request: Request, assignment_id: str, lang: str | None = None):
+async def register(request: Request, assignment_id: str, lang: str | None = None,
+                   sent: str | None = Depends(sent_secret)):
     """The name form: register, set the cookie, and show the personal link once."""
     body = await request.body()
     form = parse_qs(body[:MAX_FORM_BYTES].decode("utf-8", "replace"))
     name = (form.get(NAME_FIELD) or [""])[0]
-    return await run_in_threadpool(registered_page, request, assignment_id, lang, name)
+    return await run_in_threadpool(registered_page, request, assignment_id, lang, name, sent)
 
 
-def registered_page(request: Request, assignment_id: str, lang: str | None, name: str) -> HTMLResponse:
+def registered_page(request: Request, assignment_id: str, lang: str | None, name: str,
+                    sent: str | None) -> HTMLResponse:
     record, resolved = assignments.load(assignment_id)
     context = _context(request, lang)
     t = context["t"]
@@ -97,8 +99,7 @@ def registered_page(request: Request, assignment_id: str, lang: str | None, name
     if from_another_site(request, form=True):
         return start_page(request, context, about, 403, error=t["assignment_error_cross_site"], name=name)
     try:
-        student, secret = assignments.register(record, resolved, name,
-                                               assignments.identify(record, sent_secret(request)))
+        student, secret = assignments.register(record, resolved, name, assignments.identify(record, sent))
     except NameRefused as refused:
         return start_page(request, context, about, assignments.NAME_STATUS[refused.code],
                           error=refusal_text(t, refused), name=name)
@@ -106,6 +107,7 @@ def registered_page(request: Request, assignment_id: str, lang: str | None, name
         return RedirectResponse(f"/assignments/{record.id}?lang={context['lang']}", status_code=303)
     link = str(request.base_url).rstrip("/") + personal_path(record.id, secret) + f"?lang={context['lang']}"
     response = start_page(request, context, about, 201, registered=student.name, personal_link=link)
+    response.headers["Cache-Control"] = "no-store"       # the secret: kept by no cache
     hand_over(response, request, record.id, secret)
     return response
 

@@ -10,10 +10,9 @@ from __future__ import annotations
 import os
 import time
 
-from fastapi import APIRouter, Path, Query, Request, Response
+from fastapi import APIRouter, Depends, Path, Query, Request, Response
 from fastapi.responses import JSONResponse
 
-from ...classroom.identity import personal_path
 from ...classroom.names import NameRefused, normalise
 from ...classroom.spec import AssignmentSpec
 from ...classroom.store import AttemptRefused, StudentRecord
@@ -33,6 +32,7 @@ LANG = Query("en", description="language of the question labels: ru, uk or en")
 ID = Path(max_length=40, description="the assignment's id (from the students' link)")
 TOKEN = Path(max_length=60, description="the instructor's results token")
 STUDENT = Path(max_length=16, description="the student's handle (`id` in the results)")
+SECRET = Depends(sent_secret)
 SUBMISSIONS_PER_MINUTE = int(os.environ.get("MDL_SUBMISSIONS_PER_MINUTE", "300"))   # per client address
 NO_SECRET = {401: {"description": "no personal secret (`no_secret`)"},
              403: {"description": "a secret of nobody (`unknown_secret`), or a name not the student's"}}
@@ -50,9 +50,8 @@ def name_refused(refused: NameRefused) -> JSONResponse:
     return _refuse(assignments.NAME_STATUS[refused.code], ["body", "name"], refused.reason, refused.code, **refused.about)
 
 
-def the_student(request: Request, record) -> StudentRecord | JSONResponse:
+def the_student(secret: str | None, record) -> StudentRecord | JSONResponse:
     """The student whose secret the request carries, or the refusal to send."""
-    secret = sent_secret(request)
     if not secret:
         return _refuse(401, ["header", "authorization"], "no personal secret: open the assignment's link and type "
                                                          "your name, or open your personal link", "no_secret")
@@ -94,30 +93,31 @@ def describe(assignment_id: str = ID, lang: Language = LANG) -> AssignmentInfo:
                         409: {"description": "the name is taken (`name_taken`) or looks like a registered one "
                                              "(`name_confusable`, with `resembles`)"},
                         422: {"description": "no name, too long, or a word in two alphabets"}})
-def register(registration: StudentRegistration, request: Request, response: Response, assignment_id: str = ID):
+def register(registration: StudentRegistration, request: Request, response: Response, assignment_id: str = ID,
+             sent: str | None = SECRET):
     record, resolved = assignments.load(assignment_id)
     if from_another_site(request):
         return _refuse(403, ["header", "origin"], "registration from another site's page", "cross_site")
-    current = assignments.identify(record, sent_secret(request))
     try:
-        student, secret = assignments.register(record, resolved, registration.name, current)
+        student, secret = assignments.register(record, resolved, registration.name,
+                                               assignments.identify(record, sent))
     except NameRefused as refused:
         return name_refused(refused)
     if secret is None:
         response.status_code = 200
     else:
         hand_over(response, request, record.id, secret)
-    base = str(request.base_url).rstrip("/")
     return Registration(student=student.name, variant=student.variant + 1, secret=secret,
-                        personal_url=None if secret is None else base + personal_path(record.id, secret))
+                        personal_url=None if secret is None else assignments.personal_url(
+                            str(request.base_url).rstrip("/"), record, resolved, secret))
 
 
 @router.get("/{assignment_id}/me", response_model=StudentVariant,
             summary="The student's own variant and the state of their questions (answers only once closed)",
             responses={**NO_SECRET, 404: {"description": "no such assignment"}})
-def student_variant(request: Request, assignment_id: str = ID, lang: Language = LANG):
+def student_variant(assignment_id: str = ID, lang: Language = LANG, secret: str | None = SECRET):
     record, resolved = assignments.load(assignment_id)
-    student = the_student(request, record)
+    student = the_student(secret, record)
     if isinstance(student, JSONResponse):
         return student
     return StudentVariant(assignment=assignments.info(record, resolved, lang), student=student.name,
@@ -132,13 +132,13 @@ def student_variant(request: Request, assignment_id: str = ID, lang: Language = 
                         409: {"description": "no attempt left, or already answered right"},
                         422: {"description": "the field and the reason"},
                         429: {"description": "too many submissions from this address"}})
-def submit(submission: SubmissionRequest, request: Request, assignment_id: str = ID):
+def submit(submission: SubmissionRequest, request: Request, assignment_id: str = ID, secret: str | None = SECRET):
     record, resolved = assignments.load(assignment_id)
     if submission.question not in {p.id for p in resolved.spec.questions}:
         return _refuse(422, ["body", "question"], "not a question of this assignment", "unknown_question")
     if not assignments.is_open(resolved):
         return _refuse(403, ["body"], "the deadline has passed", "deadline_passed")
-    student = the_student(request, record)
+    student = the_student(secret, record)
     if isinstance(student, JSONResponse):
         return student
     if submission.student is not None and normalise(submission.student) != student.key:
@@ -223,7 +223,7 @@ def lock_roster(lock: RosterLock, assignment_id: str = ID, token: str = TOKEN) -
              responses={200: {"content": {"text/csv": {}}}, 404: {"description": "no such assignment or wrong token"}})
 def personal_links(request: Request, assignment_id: str = ID, token: str = TOKEN,
                    only_new: bool = Query(False, description="only students without a link (keeps the others)")):
-    record, _ = assignments.load(assignment_id)
+    record, resolved = assignments.load(assignment_id)
     assignments.check_token(record, token)
     base = str(request.base_url).rstrip("/")
     rows = []
@@ -231,7 +231,7 @@ def personal_links(request: Request, assignment_id: str = ID, token: str = TOKEN
         if only_new and student.secret_hash is not None:
             continue
         secret = assignments.new_link(record, student)
-        rows.append([student.name, student.variant + 1, base + personal_path(record.id, secret)])
+        rows.append([student.name, student.variant + 1, assignments.personal_url(base, record, resolved, secret)])
     return csv_attachment(["student", "variant", "personal_link"], rows, f"links-{record.id}.csv")
 
 
@@ -239,12 +239,12 @@ def personal_links(request: Request, assignment_id: str = ID, token: str = TOKEN
              summary="A new personal link for one student (the old one and its cookies stop working)",
              responses={404: {"description": "no such assignment or student, or wrong token"}})
 def new_link(request: Request, assignment_id: str = ID, token: str = TOKEN, student_id: str = STUDENT):
-    record, _ = assignments.load(assignment_id)
+    record, resolved = assignments.load(assignment_id)
     assignments.check_token(record, token)
     student = assignments.find_student(record, student_id)
     secret = assignments.new_link(record, student)
-    return PersonalLink(student=student.name,
-                        personal_url=str(request.base_url).rstrip("/") + personal_path(record.id, secret))
+    return PersonalLink(student=student.name, personal_url=assignments.personal_url(
+        str(request.base_url).rstrip("/"), record, resolved, secret))
 
 
 @router.delete("/{assignment_id}/results/{token}/students/{student_id}", status_code=204,

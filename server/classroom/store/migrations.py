@@ -125,8 +125,16 @@ VERSION_TABLE = {
 }
 
 
+class SchemaTooNew(Exception):
+    """The database was migrated by a newer server than this one."""
+
+
 def pending(current: int) -> list[Migration]:
-    """The migrations a database at version ``current`` still needs, in order."""
+    """The migrations a database at version ``current`` still needs, in order; SchemaTooNew when it is past
+    the last one this code knows (a server older than the others must not write a schema it does not know)."""
+    if current > LATEST:
+        raise SchemaTooNew(f"the database's schema is at version {current}, newer than this server's {LATEST}: "
+                           f"update this server")
     return [migration for migration in MIGRATIONS if migration.number > current]
 
 

@@ -18,7 +18,7 @@ import psycopg
 from psycopg.conninfo import conninfo_to_dict
 from psycopg_pool import ConnectionPool, PoolTimeout
 
-from .migrations import LATEST, VERSION_TABLE, pending
+from .migrations import LATEST, VERSION_TABLE, SchemaTooNew, pending
 from .records import (STUDENT_COLUMNS, SUBMISSION_COLUMNS, AssignmentRecord, StoreUnavailable, StudentRecord,
                       Submission, no_such_student, refuse_attempt, student_record, submission_record)
 
@@ -46,10 +46,11 @@ class PostgresStore:
         try:
             with psycopg.connect(url, connect_timeout=CONNECT_TIMEOUT_S) as connection:
                 self._migrate(connection)
-        except psycopg.Error as error:
+        except (psycopg.Error, SchemaTooNew) as error:
             raise StoreUnavailable(f"cannot use the database {self.where}: {error}".strip()) from error
         self._pool = ConnectionPool(url, min_size=1, max_size=pool_size, name="mdl", open=True,
-                                    kwargs={"connect_timeout": CONNECT_TIMEOUT_S})
+                                    check=ConnectionPool.check_connection,     # a connection the server dropped
+                                    kwargs={"connect_timeout": CONNECT_TIMEOUT_S})  # is replaced, not used
 
     def close(self) -> None:
         self._pool.close()

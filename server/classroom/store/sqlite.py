@@ -16,7 +16,7 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
-from .migrations import LATEST, VERSION_TABLE, legacy_version, pending
+from .migrations import LATEST, VERSION_TABLE, SchemaTooNew, legacy_version, pending
 from .records import (STUDENT_COLUMNS, SUBMISSION_COLUMNS, AssignmentRecord, StoreUnavailable, StudentRecord,
                       Submission, no_such_student, refuse_attempt, student_record, submission_record)
 
@@ -35,6 +35,8 @@ class SQLiteStore:
             self._migrate()
         except (OSError, sqlite3.Error) as error:
             raise StoreUnavailable(f"cannot open the database {self.path} for writing: {error}") from error
+        except SchemaTooNew as error:
+            raise StoreUnavailable(f"cannot use the database {self.path}: {error}") from error
 
     def _connection(self) -> sqlite3.Connection:
         connection = getattr(self._local, "connection", None)
@@ -77,6 +79,9 @@ class SQLiteStore:
 
     def schema_version(self) -> int:
         return self._connection().execute("SELECT MAX(version) FROM schema_version").fetchone()[0]
+
+    def applied_versions(self) -> list[int]:
+        return [row[0] for row in self._connection().execute("SELECT version FROM schema_version ORDER BY 1")]
 
     def check(self) -> None:
         """StoreUnavailable unless the file takes a write now (a write transaction, rolled back)."""
