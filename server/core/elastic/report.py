@@ -206,7 +206,7 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
         if not rerun.complete:
             checked = float(rerun.t[-1]) if rerun.t.size else 0.0
             check_notices.append(Notice("elastic_check_partial", f"The check run at ten times tighter tolerance "
-                                        f"stopped at the time budget at t = {checked:.4g} s: the error estimate "
+                                        f"stopped at its work bound at t = {checked:.4g} s: the error estimate "
                                         "covers the run up to there only.", {"t": checked}))
     numerics = Numerics(
         method=chosen, code="elastic_" + ("implicit" if chosen in ("Radau", "BDF", "LSODA") else "explicit"),
