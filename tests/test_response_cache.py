@@ -16,8 +16,10 @@ from fastapi.testclient import TestClient
 
 from server.api import endpoints, heavy
 from server.api.app import create_app
+from pydantic import BaseModel, ConfigDict
+
 from server.api.response_cache import (CACHED_ENDPOINTS, CachedAnswer, ResponseCache, ResponseCacheMiddleware,
-                                       canonical_body)
+                                       _request_models, canonical_json, validated_body)
 from server.core.dynamics import report
 from server.lessons.requests import scene_request
 from server.lessons.scenes import scenes
@@ -94,19 +96,35 @@ def test_a_stored_answer_is_compressed_once_and_reads_back_as_its_body():
     assert answer.body_for(True) is answer.gzipped and answer.body_for(False) is body
 
 
-def test_a_slider_value_reached_by_arithmetic_hits_the_entry_of_the_value_typed():
+class Question(BaseModel):
+    """Any JSON object: the middleware's tests below are about which paths and answers it keeps."""
+    model_config = ConfigDict(extra="allow")
+
+
+ANY_BODY = {name: Question for name in CACHED_ENDPOINTS}
+
+
+def test_the_key_is_the_validated_request_in_canonical_json_exactly():
     assert 0.1 * 3 != 0.3
-    assert canonical_body(b'{"l2": 0.30000000000000004}') == canonical_body(b'{"l2": 0.3}')
-    assert canonical_body(b'{"b": 1, "a": [2.5, {"d": 0.1, "c": "x"}]}') == \
-        canonical_body(b'{ "a": [2.5, {"c": "x", "d": 0.1}], "b": 1 }')
-    assert canonical_body(b"{not json") is None
+    assert canonical_json({"l2": 0.1 * 3}) != canonical_json({"l2": 0.3})          # two questions (issue 15, 7)
+    assert canonical_json({"b": 1, "a": [2.5, {"d": 0.1, "c": "x"}]}) == \
+        canonical_json({"a": [2.5, {"c": "x", "d": 0.1}], "b": 1})
+    assert len({canonical_json({"x": v}) for v in (float("nan"), None, float("inf"), -float("inf"))}) == 4
+    assert validated_body(b"{not json", Question) is None
+    assert validated_body(b'{"mechanism": "sine", "n": 0}', _request_models()["kinematics"]) is None
 
 
-def test_point_one_times_three_and_point_three_are_one_entry(client):
+def test_every_cached_endpoint_has_its_request_model():
+    assert set(_request_models()) == set(CACHED_ENDPOINTS)
+
+
+def test_point_one_times_three_and_point_three_are_two_entries_each_echoing_its_value(client):
     computed = kinematics(client, {**SLIDER_CRANK, "params": {"l1": 0.1, "l2": 0.1 * 3, "e": 0.0}})
     typed = kinematics(client, {**SLIDER_CRANK, "params": {"l2": 0.3, "e": 0.0, "l1": 0.1}})
-    assert (computed.headers["x-cache"], typed.headers["x-cache"]) == ("miss", "hit")
-    assert typed.content == computed.content
+    assert (computed.headers["x-cache"], typed.headers["x-cache"]) == ("miss", "miss")
+    assert (computed.json()["params"]["l2"], typed.json()["params"]["l2"]) == (0.1 * 3, 0.3)
+    reordered = kinematics(client, {**SLIDER_CRANK, "params": {"e": 0.0, "l1": 0.1, "l2": 0.3}})
+    assert reordered.headers["x-cache"] == "hit" and reordered.content == typed.content
 
 
 def test_different_parameters_language_or_endpoint_miss(client):
@@ -199,7 +217,7 @@ class CountingApp:
 ])
 def test_only_the_computing_endpoints_are_cached(path, cached):
     inner = CountingApp()
-    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache()))
+    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache(), models=ANY_BODY))
     answers = [client.post(path, json={"same": "question"}) for _ in range(3)]
     assert inner.calls == (1 if cached else 3)
     assert [a.headers.get("x-cache") for a in answers] == (["miss", "hit", "hit"] if cached else [None] * 3)
@@ -208,7 +226,7 @@ def test_only_the_computing_endpoints_are_cached(path, cached):
 
 def test_get_requests_are_never_cached():
     inner = CountingApp()
-    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache()))
+    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache(), models=ANY_BODY))
     for _ in range(2):
         client.get(f"{API}/kinematics")
     assert inner.calls == 2
@@ -228,7 +246,7 @@ class PartialApp(CountingApp):
 
 def test_an_answer_that_says_it_is_partial_is_computed_every_time():
     inner = PartialApp()
-    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache()))
+    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache(), models=ANY_BODY))
     answers = [client.post(f"{API}/elastic", json={}) for _ in range(2)]
     assert inner.calls == 2 and [a.headers["x-cache"] for a in answers] == ["miss", "miss"]
     assert all(a.headers["x-partial"] == "1" for a in answers)
@@ -239,7 +257,7 @@ def test_a_complete_answer_is_stored_whatever_the_clock_says(monkeypatch):
     hours = iter(range(0, 10**9, 3600))
     monkeypatch.setattr(time, "perf_counter", lambda: float(next(hours)))
     inner = CountingApp()
-    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache()))
+    client = TestClient(ResponseCacheMiddleware(inner, ResponseCache(), models=ANY_BODY))
     answers = [client.post(f"{API}/elastic", json={}) for _ in range(2)]
     assert inner.calls == 1 and [a.headers["x-cache"] for a in answers] == ["miss", "hit"]
 

@@ -6,16 +6,32 @@ import math
 from functools import lru_cache
 
 import numpy as np
+import orjson
 
 from ..classroom.expression import ExpressionError, evaluate, parse
 from ..classroom.variants import Plan, SpecError
 from ..classroom.visibility import shows_any
 from ..core.numerics import parabola_extremum
-from .endpoints import compute
+from .endpoints import compute_answer
+from .serialise import serialise
 from ..lessons.scenes import AngleGrid, Question, Readout, Scene, Slider, Toggle, scenes
 from ..lessons.requests import path_value, scene_request
 
 ANSWER_POINTS_PER_TURN = 3600    # kinematics answers: 0.1° grid, extremum refined by a parabola (error ~h³)
+
+
+class AnswerCutShort(Exception):
+    """The endpoint's answer was cut short by a work or time bound: not an answer to grade against (computing
+    it again, at a quieter moment, may finish it)."""
+
+
+def compute(endpoint: str, body: dict) -> dict:
+    """The endpoint's whole answer as a client parses it (full precision, null for non-finite numbers);
+    AnswerCutShort when a bound cut it short."""
+    answer = compute_answer(endpoint, body, "en")
+    if answer.partial:
+        raise AnswerCutShort(f"the {endpoint} answer was cut short by its work bound")
+    return orjson.loads(serialise(answer.payload, digits=None))
 
 
 def question(scene: Scene, question_id: str) -> Question:

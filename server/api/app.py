@@ -14,7 +14,7 @@ from ..lessons.scenes import REPO_ROOT
 from ..core.mechanisms import GeometryError
 from ..core.warm_up import warm_up
 from . import assignment_store, heavy
-from .errors import geometry_error, validation_error
+from .errors import geometry_error, server_error, validation_error
 from .admission import AdmissionMiddleware
 from .bench_pages import BenchResults
 from .security import SecurityMiddleware
@@ -45,8 +45,16 @@ async def lifespan(app: FastAPI):
         logging.getLogger("uvicorn.error").info("%s %s", CACHE_AT_EXIT, json.dumps(cache.stats()))
 
 
+class LabApp(FastAPI):
+    """The FastAPI app with SecurityMiddleware outside everything, Starlette's ServerErrorMiddleware included:
+    every answer, a 500 too, carries the security headers, and bodies are checked before any layer reads them."""
+
+    def build_middleware_stack(self):
+        return SecurityMiddleware(super().build_middleware_stack())
+
+
 def create_app() -> FastAPI:
-    app = FastAPI(title="Mechanism Dynamics Lab API", version="1.0.0",
+    app = LabApp(title="Mechanism Dynamics Lab API", version="1.0.0",
                   description="Kinematics and dynamics of planar linkages for the theory of machines and "
                               "mechanisms. SI units throughout; angles in radians.\n\n"
                               "**Precision.** The computing endpoints send every float rounded to 7 significant "
@@ -67,11 +75,12 @@ def create_app() -> FastAPI:
     app.add_exception_handler(RequestValidationError, validation_error)  # never echo NaN back
     app.add_exception_handler(GeometryError, geometry_error)
     app.add_exception_handler(SpecError, assignments.spec_error)
+    app.add_exception_handler(Exception, server_error)      # 500 as JSON (ServerErrorMiddleware answers it)
     app.state.response_cache = ResponseCache.from_env()  # MDL_CACHE_BYTES, default 64 MB, 0 = off
     app.add_middleware(ResponseCacheMiddleware, cache=app.state.response_cache, prefix=API_PREFIX)  # inside gzip
     app.add_middleware(GZipMiddleware, minimum_size=GZIP_MINIMUM_SIZE, compresslevel=GZIP_LEVEL)
     app.add_middleware(AdmissionMiddleware)  # per-client computations in flight (429), the mdl_client cookie
-    app.add_middleware(SecurityMiddleware)  # outermost: headers on every response, bodies ≤ 1 MiB
+    # SecurityMiddleware (headers on every response, bodies ≤ 1 MiB and checked) wraps all of these: LabApp
     static = mount_versioned(app, "/static", STATIC_DIR, content_version(STATIC_DIR), "static")
     plotly_js = mount_versioned(app, "/vendor/plotly", PLOTLY_DIR, plotly.__version__, "plotly")
     pages.templates.env.globals.update(static=static, plotly=plotly_js)   # {{ static }}/js/api.js in templates

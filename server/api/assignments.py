@@ -14,14 +14,13 @@ from ..classroom import identity
 from ..classroom.names import NameRefused, check_new, normalise, roster_names
 from ..classroom.spec import AssignmentSpec
 from ..classroom.store import AssignmentRecord, StudentRecord
-from ..classroom.variants import Plan, SpecError, plan
-from ..core.mechanisms import GeometryError
-from .answers import check_answerable, question, question_kind, tolerance
+from ..classroom.variants import Plan, plan
+from . import assignment_answers
+from .answers import question, question_kind, tolerance
 from .assignment_store import store
 from ..lessons.scenes import interface_texts, scenes
 from .schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow, RosterOutcome
 
-CHECKED_VARIANTS = 8        # variants whose answers are computed when the assignment is made
 NAME_STATUS = {"name_empty": 422, "name_too_long": 422, "name_mixed_scripts": 422,    # HTTP status of a refused name
                "name_confusable": 409, "name_taken": 409, "roster_locked": 403}
 
@@ -34,22 +33,16 @@ def iso(at: float | None) -> str | None:
     return None if at is None else datetime.fromtimestamp(at, timezone.utc).isoformat(timespec="seconds")
 
 
-def create(spec: AssignmentSpec) -> tuple[AssignmentRecord, Plan, str]:
-    """Check the spec, make sure every question has an answer across the variants, store it."""
+def create(spec: AssignmentSpec, client: str = "") -> tuple[AssignmentRecord, Plan, str]:
+    """Check the spec, make sure every question has an answer across the checked variants (computed in a heavy
+    process, assignment_answers), store it with the answers found."""
     resolved = plan(spec, scenes())
-    numbers = sorted({round(k * (resolved.count - 1) / (CHECKED_VARIANTS - 1)) for k in range(CHECKED_VARIANTS)})
-    for number in numbers:
-        values = resolved.values(number)
-        for pick in spec.questions:
-            try:
-                check_answerable(resolved, values, pick.id)
-            except (SpecError, GeometryError) as error:
-                shown = ", ".join(f"{k} = {v}" for k, v in values.items())
-                reason = error.reason if hasattr(error, "reason") else str(error)
-                raise SpecError("sliders", f"question '{pick.id}' has no answer for the variant {shown}: {reason}")
+    found = assignment_answers.check_new(resolved)
     token = secrets.token_urlsafe(18)
-    record = AssignmentRecord(secrets.token_urlsafe(8), token_hash(token), time.time(), spec.model_dump(mode="json"))
+    record = AssignmentRecord(secrets.token_urlsafe(8), token_hash(token), time.time(), spec.model_dump(mode="json"),
+                              client=client)
     store().create(record)
+    assignment_answers.keep(record.id, found)
     return record, resolved, token
 
 

@@ -21,7 +21,7 @@ from ..core.dynamics.motors import Motor
 from ..core.dynamics.reduction import Inertias
 from ..core.dynamics.resistance import Load
 from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, bearing_notice, mechanism_side,
-                                   modal, rigid, simulate)
+                                   modal, request_deadline, rigid, simulate)
 from ..core.elastic.stiffness import Compliances
 from ..core.kinematics import compute_kinematics
 from ..core.kinetostatics.crank_slider import Loads, Pairs, analyse
@@ -146,7 +146,8 @@ def motion_work_precision(request: MotionRequest, lang: str) -> Answer:
     if not built.speed_dependent:
         raise GeometryError("motor.kind", "the study compares steady-cycle solvers: give a motor or "
                                           "friction that depends on speed", "study_needs_speed")
-    return answer({"study": work_precision.motion_study(built)}, [], lang)
+    study = work_precision.motion_study(built)
+    return answer({"study": study}, work_precision.study_notices(study), lang)
 
 
 def elastic_machine(request: ElasticRequest) -> ElasticMachine:
@@ -166,10 +167,11 @@ def elastic(request: ElasticRequest, lang: str) -> Answer:
     refused where the elastic machine is (no inertia on the mechanism side, an undefined load)."""
     built = elastic_machine(request)
     result, notices = {}, []
+    deadline = request_deadline()                  # one for every stage of this request
     wants_rigid = "rigid" in request.outputs
     if "histories" in request.outputs:
         result, notices = simulate(built, request.t_end, request.n, request.rtol, request.method,
-                                   with_rigid=wants_rigid)
+                                   with_rigid=wants_rigid, deadline=deadline)
     elif wants_rigid:
         mechanism_side(built)                      # refuses the elastic machine as its other outputs would
         result["rigid"] = rigid(built, np.linspace(0.0, request.t_end, request.n))
@@ -177,7 +179,7 @@ def elastic(request: ElasticRequest, lang: str) -> Answer:
         result["modal"] = modal(built)
     if "bearings" in request.outputs:
         result["bearings"] = bearing_iteration(built, Bearing(**request.bearing.model_dump()), request.t_end,
-                                               request.n, request.rtol)
+                                               request.n, request.rtol, deadline=deadline)
         notices = [*notices, *bearing_notice(result["bearings"])]
     return answer(result, notices, lang)
 
@@ -185,7 +187,7 @@ def elastic(request: ElasticRequest, lang: str) -> Answer:
 def elastic_work_precision(request: ElasticRequest, lang: str) -> Answer:
     """The live study of the elastic solvers over at most 0.5 s (run in the heavy process)."""
     study = work_precision.elastic_study(elastic_machine(request), min(request.t_end, 0.5))
-    return answer({"study": study}, [], lang)
+    return answer({"study": study}, work_precision.study_notices(study), lang)
 
 
 def _force_analysis(request: ForcesRequest, omega: float | None = None):

@@ -1,6 +1,13 @@
-"""HTTP 422 in FastAPI's own error format for errors the numeric core reports."""
+"""Error answers: HTTP 422 in FastAPI's own error format for errors the numeric core or validation reports, and a
+JSON 500 for anything the app did not expect (the security headers are added around it by security.py).
+
+Whatever a request held is echoed back safely: the echo of a validation error is rebuilt without recursion
+(``plain``), with bytes and strings made valid UTF-8, integers beyond 64 bits as floats, and objects as their
+text, so that no body, however deep or odd, can make the error answer itself fail.
+"""
+import logging
+
 from fastapi import Request
-from fastapi.encoders import jsonable_encoder
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import Response
 
@@ -8,11 +15,63 @@ from ..core.mechanisms import GeometryError
 from .serialise import serialise
 
 REQUEST_FIELDS = ("outputs", "phi", "n", "motor", "inertias", "load", "compliances", "loads", "pairs")
+SERVER_ERROR = "internal error: the server could not answer this request (it has been logged)"
 
 
-def _unprocessable(content: dict) -> Response:
+def unprocessable(content: dict) -> Response:
     """422 with every number as given (non-finite ones as null)."""
     return Response(serialise(content, digits=None), status_code=422, media_type="application/json")
+
+
+def body_error(kind: str, msg: str, **ctx) -> dict:
+    """One error about the request body as a whole, in FastAPI's format (loc ["body"])."""
+    return {"loc": ["body"], "msg": msg, "type": kind, **({"ctx": ctx} if ctx else {})}
+
+
+def _text(value: str) -> str:
+    """The string as valid UTF-8: a lone surrogate (JSON's "\\ud800") becomes U+FFFD."""
+    try:
+        value.encode("utf-8")
+        return value
+    except UnicodeEncodeError:
+        return value.encode("utf-16", "surrogatepass").decode("utf-16", "replace")
+
+
+def _leaf(value):
+    if value is None or isinstance(value, (bool, float)):
+        return value
+    if isinstance(value, int):                      # orjson writes 64-bit integers only
+        if -2**63 <= value < 2**64:
+            return value
+        return float(value) if abs(value) < 2**1024 else None
+    if isinstance(value, str):
+        return _text(value)
+    if isinstance(value, (bytes, bytearray)):
+        return bytes(value).decode("utf-8", "replace")
+    return _text(str(value))
+
+
+def plain(value):
+    """`value` as JSON data (dicts with text keys, lists, text, numbers, null), built with an explicit stack
+    rather than recursion, so that its depth is bounded by memory, not by Python's recursion limit."""
+    root: list = [None]
+    stack = [(value, root, 0)]
+    while stack:
+        item, holder, key = stack.pop()
+        if isinstance(item, dict):
+            copy: dict = {}
+            holder[key] = copy
+            for name, member in item.items():
+                name = _leaf(name) if isinstance(name, str) else _text(str(name))
+                copy[name] = None
+                stack.append((member, copy, name))
+        elif isinstance(item, (list, tuple)):
+            copy_list: list = [None] * len(item)
+            holder[key] = copy_list
+            stack.extend((member, copy_list, index) for index, member in enumerate(item))
+        else:
+            holder[key] = _leaf(item)
+    return root[0]
 
 
 async def geometry_error(request: Request, error: GeometryError) -> Response:
@@ -22,14 +81,23 @@ async def geometry_error(request: Request, error: GeometryError) -> Response:
         loc = ["body", *error.field.split(".")]
     else:
         loc = ["body", "params", error.field]
-    return _unprocessable({"detail": [{"loc": loc, "msg": error.reason, "type": "geometry_error",
-                                       "ctx": {"code": error.code, **error.context}}]})
+    return unprocessable({"detail": [{"loc": loc, "msg": error.reason, "type": "geometry_error",
+                                      "ctx": {"code": error.code, **error.context}}]})
 
 
 async def validation_error(request: Request, error: RequestValidationError) -> Response:
-    """FastAPI's own 422 body, with NaN/Infinity echoed from the request (``"input"``) sent as null.
+    """FastAPI's own 422 body, its echo of the request (``"input"``) made safe by ``plain``.
 
-    The default handler echoes the offending input; a body such as ``{"phi": [NaN]}`` (accepted by
-    Python's JSON parser) would otherwise make the error response itself fail to serialise (HTTP 500).
+    The default handler echoes the offending input with jsonable_encoder: a body such as ``{"phi": [NaN]}``
+    (accepted by Python's JSON parser), a non-UTF-8 body sent as text/plain, or a lone surrogate would otherwise
+    make the error response itself fail to serialise (HTTP 500).
     """
-    return _unprocessable({"detail": jsonable_encoder(error.errors())})
+    return unprocessable({"detail": plain(error.errors())})
+
+
+async def server_error(request: Request, error: Exception) -> Response:
+    """HTTP 500 as JSON in FastAPI's error format (Starlette's own is plain text); the traceback goes to the log
+    (Starlette's ServerErrorMiddleware re-raises after answering)."""
+    logging.getLogger("uvicorn.error").error("500 for %s %s: %r", request.method, request.url.path, error)
+    content = {"detail": [{"loc": [], "msg": SERVER_ERROR, "type": "server_error"}]}
+    return Response(serialise(content, digits=None), status_code=500, media_type="application/json")

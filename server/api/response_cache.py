@@ -9,11 +9,16 @@ that accepts gzip (every browser) gets the compressed bytes, compressed once whe
 and never again on a hit; any other client gets the plain body. The GZip middleware leaves an answer that
 already names its Content-Encoding alone.
 
-The key is the path, the query (``lang``, ``precision``) and the JSON body canonicalised: parsed, every float rounded to
-10 significant digits (0.1·3 and 0.3 are one question; the answers of two bodies that differ only past the
-10th digit differ by about 1e-10 relatively), keys sorted, hashed with SHA-256. A body that is not JSON
-(by its content type or by parsing) bypasses the cache, and so does every other path: the live
-work-precision studies (their answer is a timing measurement), the assignments, pages and files.
+The cache looks a question up only once it has validated, and keys it on the validated request: the body is
+parsed as FastAPI parses it (JSON only with a JSON Content-Type), validated with the endpoint's own model
+(ENDPOINTS, the family's FamilyRequest), and the key is the SHA-256 of the path, the query (each parameter's last
+value, the one the route reads) and the validated model as canonical JSON (keys sorted, every number exact).
+A body that is not JSON or does not validate is passed on uncached (counted as bypassed): the route answers its
+422 as it would without a cache, so the cache can never make a refused question answer 200. Numbers are not
+rounded for the key: two values a hair apart may sit on either side of a bound that only the core checks (the rod
+no longer than the crank), and an answer echoes the values asked. On a miss the route validates the body again
+(tens of microseconds, against the milliseconds of computing it saves on a hit). The live work-precision studies
+(their answer is a timing measurement), the assignments, pages and files are not cached.
 Only complete 200 answers are stored; 422s and other errors are computed every time, and so is an answer
 that says it is partial (header X-Partial: 1, serialise.PARTIAL_HEADER): a time or work bound cut its
 computation short, and computing it again may get further. Whether an answer is stored depends on the
@@ -30,7 +35,7 @@ from __future__ import annotations
 
 import hashlib
 import gzip
-import math
+import json
 import os
 import threading
 from collections import OrderedDict
@@ -38,6 +43,8 @@ from dataclasses import dataclass
 from urllib.parse import parse_qsl, urlencode
 
 import orjson
+import pydantic_core
+from pydantic import BaseModel
 
 from . import family
 from .endpoints import ENDPOINTS
@@ -45,43 +52,49 @@ from .serialise import PARTIAL_HEADER
 
 DEFAULT_MAX_BYTES = 64 * 1024 * 1024
 ENV_MAX_BYTES = "MDL_CACHE_BYTES"
-SIGNIFICANT_DIGITS = 10
 PARTIAL = PARTIAL_HEADER.lower().encode()
 GZIP_MINIMUM_SIZE = 1000           # smaller bodies gain nothing from compression (the app's GZip middleware too)
 GZIP_LEVEL = 3                      # cheap CPU, ~5× smaller for curves (the app's GZip middleware too)
 ENTRY_OVERHEAD_BYTES = 200          # key, bookkeeping and object headers of one entry, roughly
 CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSON) after this as it stops
 
-# The computing endpoints and the slider families, whose answer is a function of (path, query, body) alone.
+
+def _request_models() -> dict[str, type[BaseModel]]:
+    """The request model of each cached endpoint (the family's lives with its route)."""
+    from .routers.family import FamilyRequest
+    return {**{name: model for name, (model, _) in ENDPOINTS.items()}, "family": FamilyRequest}
+
+
+# The computing endpoints and the slider families, whose answer is a function of (path, query, validated body).
 CACHED_ENDPOINTS = (*ENDPOINTS, "family")
-# What an answer depends on, where it is less than the whole body: a family not on its slider's current value.
+# What an answer depends on, where it is less than the whole request: a family not on its slider's current value.
 KEY_FORMS = {"family": family.shared}
 
 
-def canonical_body(raw: bytes, form=None) -> bytes | None:
-    """The body as one canonical JSON text (floats to 10 significant digits, keys sorted, no spaces), None if
-    it is not JSON (orjson: strict, so NaN and Infinity are not JSON either); `form` first maps the parsed body
-    to what the answer depends on (KEY_FORMS)."""
+def canonical_json(data) -> bytes:
+    """`data` (a validated model's dump) as one JSON text: keys sorted, no spaces, every float in its shortest
+    round-trip form. orjson writes a non-finite float as null, so data that holds one (pydantic_core spells
+    them NaN and Infinity) is written by the standard library instead, which keeps NaN, None and ±inf apart."""
+    probe = pydantic_core.to_json(data, inf_nan_mode="constants")
+    if b"NaN" in probe or b"Infinity" in probe:
+        return json.dumps(data, sort_keys=True, allow_nan=True, separators=(",", ":")).encode()
+    return orjson.dumps(data, option=orjson.OPT_SORT_KEYS | orjson.OPT_NON_STR_KEYS)
+
+
+def validated_body(raw: bytes, model: type[BaseModel], form=None) -> bytes | None:
+    """The canonical JSON of the body validated by `model` (then mapped by `form`, KEY_FORMS), or None when it
+    is not JSON or does not validate (whatever the reason: the route then answers exactly as without a cache)."""
     try:
-        parsed = orjson.loads(raw)
-        return orjson.dumps(_rounded(form(parsed) if form else parsed), option=orjson.OPT_SORT_KEYS)
-    except (orjson.JSONDecodeError, RecursionError):
+        data = model.model_validate(json.loads(raw)).model_dump()
+        return canonical_json(form(data) if form else data)
+    except Exception:                  # noqa: BLE001 — ValueError, ValidationError, or a validator's own failure
         return None
 
 
-def _rounded(value):
-    if isinstance(value, float):
-        return float(f"{value:.{SIGNIFICANT_DIGITS}g}") if math.isfinite(value) else value
-    if isinstance(value, dict):
-        return {key: _rounded(item) for key, item in value.items()}
-    if isinstance(value, list):
-        return [_rounded(item) for item in value]
-    return value
-
-
 def cache_key(path: str, query: str, canonical: bytes) -> bytes:
-    """SHA-256 of the path, the query's pairs sorted and the canonical body: 32 bytes per entry."""
-    pairs = urlencode(sorted(parse_qsl(query, keep_blank_values=True)))
+    """SHA-256 of the path, the query's parameters (the last value of each, as the route reads them, sorted by
+    name) and the canonical validated body: 32 bytes per entry."""
+    pairs = urlencode(sorted(dict(parse_qsl(query, keep_blank_values=True)).items()))
     return hashlib.sha256(f"{path}\n{pairs}\n".encode() + canonical).digest()
 
 
@@ -191,23 +204,24 @@ def _header(headers, name: bytes) -> bytes:
 
 
 def _is_json(content_type: bytes) -> bool:
-    """FastAPI reads a body as JSON when it names no type or a JSON type; anything else gets a 422."""
+    """FastAPI (strict content type) reads a body as JSON when it names a JSON type; a body without a type is text
+    to it (a 422 for these routes)."""
     media = content_type.split(b";")[0].strip().lower()
-    return not media or media == b"application/json" or (media.startswith(b"application/") and media.endswith(b"+json"))
+    return media == b"application/json" or (media.startswith(b"application/") and media.endswith(b"+json"))
 
 
 class ResponseCacheMiddleware:
     """Answers repeated POSTs to the computing endpoints from a ResponseCache (see the module's docstring)."""
 
     def __init__(self, app, cache: ResponseCache, prefix: str = "/api/v1",
-                 endpoints: tuple[str, ...] = CACHED_ENDPOINTS):
+                 models: dict[str, type[BaseModel]] | None = None):
         self.app = app
         self.cache = cache
-        self.paths = frozenset(f"{prefix}/{name}" for name in endpoints)
+        self.models = {f"{prefix}/{name}": model for name, model in (models or _request_models()).items()}
         self.forms = {f"{prefix}/{name}": form for name, form in KEY_FORMS.items()}
 
     async def __call__(self, scope, receive, send):
-        if (scope["type"] != "http" or scope["method"] != "POST" or scope["path"] not in self.paths
+        if (scope["type"] != "http" or scope["method"] != "POST" or scope["path"] not in self.models
                 or not self.cache.enabled):
             await self.app(scope, receive, send)
             return
@@ -229,12 +243,14 @@ class ResponseCacheMiddleware:
                 return {"type": "http.request", "body": raw, "more_body": False}
             return await receive()
 
-        canonical = canonical_body(raw, self.forms.get(scope["path"])) if _is_json(_header(scope["headers"], b"content-type")) else None
+        path = scope["path"]
+        canonical = (validated_body(raw, self.models[path], self.forms.get(path))
+                     if _is_json(_header(scope["headers"], b"content-type")) else None)
         if canonical is None:
             self.cache.count_bypass()
             await self.app(scope, replay, send)
             return
-        key = cache_key(scope["path"], scope.get("query_string", b"").decode("latin-1"), canonical)
+        key = cache_key(path, scope.get("query_string", b"").decode("latin-1"), canonical)
         gzip_accepted = b"gzip" in _header(scope["headers"], b"accept-encoding")
         cached = self.cache.get(key)
         if cached is not None:

@@ -1,8 +1,10 @@
 """A small live work–precision study for the current machine (issue 8's in-app Numerics page).
 
 Each entry is (method, tolerance, relative error, run time in ms) against a reference computed at a
-tighter tolerance by a different route; the whole study stops at its time budget and says what it
-skipped.  bench/work_precision.py runs the full study offline.
+tighter tolerance by a different route.  One deadline per study (BUDGET_S from its start), the reference
+included: the reference may take REFERENCE_SHARE of it, the runs the rest; a run the deadline reaches is skipped,
+and the study says in words that the time budget stopped it (study_notices: the API marks the answer partial).
+bench/work_precision.py runs the full study offline.
 """
 from __future__ import annotations
 
@@ -18,8 +20,18 @@ from .dynamics.motion import steady_cycle
 from .elastic.report import ElasticMachine, absolute_tolerances, build, no_load_speed
 from .elastic.compiled import ready
 from .elastic.simulate import STIFF_RATIO, WorkBound, bounded, integrate, stiffness_ratio
+from .mechanisms import Notice
 
 BUDGET_S = 6.0
+REFERENCE_SHARE = 0.5      # of the budget, at most, for the reference run(s)
+
+
+def study_notices(study: dict) -> list[Notice]:
+    """The study's words when its deadline stopped it: which runs it skipped."""
+    if not study.get("out_of_time"):
+        return []
+    return [Notice("study_time_budget", f"The study stopped at its time budget of {BUDGET_S:g} s: "
+                   f"{len(study['skipped'])} runs skipped.", {"budget": BUDGET_S, "skipped": len(study["skipped"])})]
 
 
 @dataclass
@@ -64,17 +76,29 @@ def cycles_until_periodic(machine: Machine, method: str, rtol: float, omega_star
     return None
 
 
-def motion_study(machine: Machine) -> dict:
-    deadline = time.perf_counter() + BUDGET_S
-    reference = steady_cycle(machine, 1e-11).steady
-    if reference is None:
-        return {"rows": [], "skipped": [], "reference": None}
+def _whole(motion) -> bool:
+    """Whether a steady cycle was found in full, not stopped by the time budget (its numerics say so)."""
+    return motion.steady is not None and "time budget" not in (motion.numerics.message or "")
+
+
+def motion_study(machine: Machine, deadline: float | None = None) -> dict:
+    """Ours at four tolerances and solve_ivp's cycles until periodic, all by one deadline (BUDGET_S from now
+    when None); the reference, ours at 1e-11, by REFERENCE_SHARE of it."""
+    started = time.perf_counter()
+    deadline = started + BUDGET_S if deadline is None else deadline
+    tight = steady_cycle(machine, 1e-11, deadline=started + REFERENCE_SHARE * (deadline - started))
+    if not _whole(tight):
+        return {"rows": [], "skipped": [], "reference": None, "out_of_time": tight.steady is not None}
+    reference = tight.steady
     rows, skipped = [], []
     for rtol in (1e-3, 1e-5, 1e-7, 1e-9):
         start = time.perf_counter()
-        result = steady_cycle(machine, rtol).steady
+        motion = steady_cycle(machine, rtol, deadline=deadline)
+        if not _whole(motion):
+            skipped.append(f"ours {rtol:.0e}")
+            continue
         rows.append({"method": "ours: Newton shooting", "rtol": rtol, "runtime_ms": 1e3 * (time.perf_counter() - start),
-                     "error": abs(result.omega[0] / reference.omega[0] - 1)})
+                     "error": abs(motion.steady.omega[0] / reference.omega[0] - 1)})
     for method in ("DOP853", "LSODA", "Radau"):
         for rtol in (1e-3, 1e-5):
             start = time.perf_counter()
@@ -86,25 +110,29 @@ def motion_study(machine: Machine) -> dict:
             rows.append({"method": f"solve_ivp {method}, cycles until periodic", "rtol": rtol,
                          "runtime_ms": 1e3 * (time.perf_counter() - start), "error": abs(omega / reference.omega[0] - 1)})
     return {"rows": rows, "skipped": skipped, "reference": "ours at rtol 1e-11", "quantity": "ω(φ = 0) on the steady cycle",
-            "reference_code": "ours_tight", "quantity_code": "cycle_speed"}
+            "reference_code": "ours_tight", "quantity_code": "cycle_speed",
+            "out_of_time": bool(skipped) and time.perf_counter() > deadline}
 
 
-def elastic_study(machine: ElasticMachine, t_end: float) -> dict:
+def elastic_study(machine: ElasticMachine, t_end: float, deadline: float | None = None) -> dict:
     """Every method at loose tolerances first, then tighter ones, so each gets its cheap points in the budget;
     the server's own pick (by the measured stiffness) runs as the server runs it, compiled, and is labelled ours;
-    the others are scipy's solve_ivp (the reference path); the reference is compiled DOP853 (Radau) at 1e-10."""
+    the others are scipy's solve_ivp (the reference path); the reference is compiled DOP853 (Radau) at 1e-10,
+    within REFERENCE_SHARE of the study's one deadline (BUDGET_S from the start when None)."""
     model, y0 = build(machine)
     samples = np.linspace(0.0, t_end, 201)
     ratio = stiffness_ratio(model, y0, max(2 * np.pi / t_end, machine.speed, no_load_speed(machine)))[0]
     picked = "Radau" if ratio > STIFF_RATIO else "DOP853"
     ready()                                            # compiled before the clock starts
     started = time.perf_counter()
-    reference = integrate(model, y0, t_end, 1e-10, "DOP853", samples, started + BUDGET_S,
+    deadline = started + BUDGET_S if deadline is None else deadline
+    reference_deadline = started + REFERENCE_SHARE * (deadline - started)
+    reference = integrate(model, y0, t_end, 1e-10, "DOP853", samples, reference_deadline,
                           absolute_tolerances(machine, model, 1e-10))
     if not reference.complete:
-        reference = integrate(model, y0, t_end, 1e-10, "Radau", samples, started + 2 * BUDGET_S,
+        reference = integrate(model, y0, t_end, 1e-10, "Radau", samples, reference_deadline,
                               absolute_tolerances(machine, model, 1e-10))
-    deadline = time.perf_counter() + BUDGET_S          # the budget counts from the reference on
+    out_of_time = not reference.complete and time.perf_counter() > reference_deadline
     if not reference.complete:                         # no reference to measure errors against: every run skipped
         deadline = -math.inf
     twist = reference.y[2]
@@ -126,4 +154,5 @@ def elastic_study(machine: ElasticMachine, t_end: float) -> dict:
             rows.append({"method": label, "rtol": rtol, "runtime_ms": 1e3 * (time.perf_counter() - start),
                          "error": float(np.max(np.abs(run.y[2] - twist))) / scale})
     return {"rows": rows, "skipped": skipped, "reference": "rtol 1e-10", "quantity": "the twist over the run",
-            "reference_code": "tight", "quantity_code": "twist"}
+            "reference_code": "tight", "quantity_code": "twist",
+            "out_of_time": out_of_time or (bool(skipped) and time.perf_counter() > deadline > -math.inf)}

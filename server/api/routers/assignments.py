@@ -17,8 +17,8 @@ from ...classroom.names import NameRefused, normalise
 from ...classroom.spec import AssignmentSpec
 from ...classroom.store import AttemptRefused, StudentRecord
 from ...classroom.variants import SpecError
-from .. import assignments
-from ..answers import check
+from .. import assignment_answers, assignments
+from ..answers import is_right, tolerance
 from ..assignment_store import store
 from ..csv_export import csv_attachment
 from ..schemas import Language
@@ -65,9 +65,12 @@ def the_student(secret: str | None, record) -> StudentRecord | JSONResponse:
 
 
 @router.post("", status_code=201, response_model=AssignmentCreated, summary="Make an assignment from a scene",
-             responses={422: {"description": "the field and the reason"}})
+             responses={422: {"description": "the field and the reason"},
+                        429: {"description": "too many assignments from this address in the last hour"}})
 def create(spec: AssignmentSpec, request: Request) -> AssignmentCreated:
-    record, resolved, token = assignments.create(spec)
+    client = request.client.host if request.client else "unknown"
+    assignment_answers.limit_creation(client)                    # 429 past MDL_ASSIGNMENTS_PER_HOUR
+    record, resolved, token = assignments.create(spec, client)
     base = str(request.base_url).rstrip("/")
     return AssignmentCreated(id=record.id, student_url=f"{base}/assignments/{record.id}?lang={spec.lang}",
                              results_url=f"{base}/assignments/{record.id}/results/{token}?lang={spec.lang}",
@@ -147,7 +150,9 @@ def submit(submission: SubmissionRequest, request: Request, assignment_id: str =
         response = _refuse(429, ["body"], "too many submissions from this address; wait a minute", "rate_limited")
         response.headers["Retry-After"] = "60"
         return response
-    correct, right = check(resolved, student.parameters, submission.question, submission.answer, submission.angle)
+    correct = assignment_answers.correct_value(record.id, resolved, student.variant, submission.question,
+                                               submission.angle)
+    right = is_right(submission.answer, correct, tolerance(resolved, submission.question))
     try:
         saved = store().submit(record.id, student.key, submission.question, submission.answer, right,
                                resolved.spec.attempts, now, client, correct)

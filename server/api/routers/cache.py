@@ -19,7 +19,7 @@ class CacheStats(BaseModel):
     hits: int = Field(description="requests answered from the cache")
     misses: int = Field(description="cacheable requests that were computed")
     hit_rate: float | None = Field(description="hits / (hits + misses); null before the first cacheable request")
-    bypassed: int = Field(description="requests to a cached endpoint whose body is not JSON, passed on uncached")
+    bypassed: int = Field(description="requests to a cached endpoint whose body is not JSON or does not validate, passed on uncached (the route answers its 422)")
     evictions: int = Field(description="answers dropped, least recently used first, to stay within max_bytes")
     pid: int = Field(description="the server process answering: each worker keeps its own cache")
     endpoints: list[str] = Field(description="the endpoints whose 200 answers are cached (POST /api/v1/<name>)")

@@ -5,6 +5,11 @@ vectorised) and kept in the process by what it depends on: J(φ) and c(φ) as cu
 with their exact derivatives, the load M_c(φ) with central-difference slopes (it has kinks at the
 dead centres, where the table rounds them over one node spacing).  The rigid machine compared
 with runs on the same tables (rigid_start_up).
+
+One deadline per request (request_deadline: REQUEST_BUDGET_S from its start): the run gets TIME_BUDGET_S of it,
+its check run at rtol/10 half as much again, and the bearing iteration's rounds whatever is left; every stage
+stops at the request's deadline and says so in words (the numerics message, a warning), so that the API marks the
+answer partial (X-Partial) instead of running each stage on a budget of its own.
 """
 from __future__ import annotations
 
@@ -34,6 +39,13 @@ SENSITIVE = 1e-2         # relative error estimate above which the scene says so
 MODELS = ("two_mass", "kinematic_drive", "three_mass", "elastic_linkage", "elastic_four_bar")
 LINKAGE_STIFFNESS = ("three_mass", "elastic_linkage", "elastic_four_bar")
 CHECK_CHUNKS = 23 - 16 + CHUNKS     # the check run restarts its steps at other times than the run (see simulate())
+REQUEST_BUDGET_S = 1.5 * TIME_BUDGET_S  # one elastic request, every stage: the run 4 s, its check 2 s (README)
+
+
+def request_deadline() -> float:
+    """The deadline of a request that starts now (time.perf_counter() + REQUEST_BUDGET_S): every stage of the
+    request is given this one instant, so their times add up to the request's budget, not to theirs."""
+    return time.perf_counter() + REQUEST_BUDGET_S
 
 
 @dataclass(frozen=True)
@@ -164,13 +176,16 @@ def build(machine: ElasticMachine):
 
 def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, method: str = "auto",
              budget_s: float = TIME_BUDGET_S, max_evaluations: int = MAX_EVALUATIONS, with_rigid: bool = True,
-             engine: str = "compiled", check: bool = True) -> tuple[dict, list]:
+             engine: str = "compiled", check: bool = True, deadline: float = math.inf) -> tuple[dict, list]:
     """Time histories, the energy balance and the numerics; the rigid machine's start-up for comparison
     only with_rigid. engine: "compiled" or "scipy" (the reference path, see simulate.integrate). Without the
-    check run (check=False, for a caller that reads no error estimate) the error estimate is None."""
+    check run (check=False, for a caller that reads no error estimate) the error estimate is None.
+    The run stops at budget_s, the check run at 1.5·budget_s, both at the request's `deadline` if sooner; a check
+    run cut short leaves an error estimate of the part it covers, and says so."""
     ready()
     started = time.perf_counter()
-    deadline = started + budget_s
+    check_deadline = min(started + 1.5 * budget_s, deadline)
+    deadline = min(started + budget_s, deadline)
     model, y0 = build(machine)
     slow = max(2 * np.pi / t_end, machine.speed, no_load_speed(machine))
     ratio, decay, fastest = stiffness_ratio(model, y0, slow)
@@ -181,13 +196,18 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
     result = histories(machine, model, run)
     twist_now = result["twist"]
     scale = max(float(np.max(np.abs(twist_now))) if twist_now.size else 0.0, 1e-300)
-    estimate = None
+    estimate, check_notices = None, []
     if check:
         rerun = integrate(model, y0, run.t[-1] if run.t.size else t_end, rtol / 10, chosen,
-                          run.t, deadline + budget_s / 2, atol / 10, 2 * max_evaluations, engine, CHECK_CHUNKS)
+                          run.t, check_deadline, atol / 10, 2 * max_evaluations, engine, CHECK_CHUNKS)
         twist_check = total_twist(machine, rerun.y)
         common = min(twist_now.size, twist_check.size)
         estimate = float(np.max(np.abs(twist_now[:common] - twist_check[:common]), initial=0.0)) / scale
+        if not rerun.complete:
+            checked = float(rerun.t[-1]) if rerun.t.size else 0.0
+            check_notices.append(Notice("elastic_check_partial", f"The check run at ten times tighter tolerance "
+                                        f"stopped at its work bound at t = {checked:.4g} s: the error estimate "
+                                        "covers the run up to there only.", {"t": checked}))
     numerics = Numerics(
         method=chosen, code="elastic_" + ("implicit" if chosen in ("Radau", "BDF", "LSODA") else "explicit"),
         why_context={"ratio": ratio, "decay": decay, "slow": slow, "fastest": fastest, "threshold": STIFF_RATIO},
@@ -199,9 +219,10 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
         stiffness_ratio=ratio, rtol=rtol, steps=run.numerics["steps"], rejected=run.numerics["rejected"],
         nfev=run.numerics["nfev"], njev=run.numerics["njev"], nlu=run.numerics["nlu"],
         error_estimate=estimate,
-        energy_residual=result.pop("energy_residual"), message=run.numerics["message"],
+        energy_residual=result.pop("energy_residual"),
+        message="; ".join(text for text in (run.numerics["message"], *(n.text for n in check_notices)) if text),
         runtime_ms=1e3 * (time.perf_counter() - started)).as_dict()
-    notices = [] if run.complete else [Notice("elastic_partial", run.numerics["message"])]
+    notices = ([] if run.complete else [Notice("elastic_partial", run.numerics["message"])]) + check_notices
     largest = scale if twist_now.size else 0.0
     if largest > LARGE_TWIST:
         near_dead = " (near the dead positions c → 0)" if machine.model in LINKAGE_STIFFNESS else ""
@@ -353,21 +374,25 @@ def rod_force(machine: ElasticMachine, phi: np.ndarray, twist: np.ndarray) -> np
 
 
 def bearing_iteration(machine: ElasticMachine, bearing: Bearing, t_end: float, samples: int, rtol: float,
-                      tolerance: float = 1e-3, max_rounds: int = 12,
-                      budget_s: float = 2 * TIME_BUDGET_S) -> dict:
+                      tolerance: float = 1e-3, max_rounds: int = 12, deadline: float | None = None) -> dict:
     """Successive approximations of seed 000 §1.4: rigid bearings → R_m → c_n (1.44) → e = e₁ + (e₂ + 2/c_n)λ₁₂²
     (1.43) → R_m again: the fixed point R = g(R). Each round is one run (no check run: only R_m is read).
     Convergence is decided from the iteration's own contraction q = |R_{k+1} − R_k|/|R_k − R_{k−1}|: for q < 1
     the fixed point lies within q/(1 − q)·|R_{k+1} − R_k| of R_{k+1} (Banach), and the rounds stop when that
     bound and the last change are within ``tolerance``·R. q ≥ 1 in two successive rounds: the approximations
     do not contract, and the answer says so in words (message, with message_code and message_context for the
-    other languages, as bearing_notice reads them); so it does when the rounds or the time run out first."""
+    other languages, as bearing_notice reads them); so it does when the rounds run out first, and when the
+    request's `deadline` (request_deadline() when None) comes first, which a round cut short by it (its rod force
+    from part of the run) does not count towards."""
     rounds, current, changes = [], machine, []
-    deadline = time.perf_counter() + budget_s
+    deadline = request_deadline() if deadline is None else deadline
     outcome = {"rounds": rounds, "converged": False, "message": "", "message_code": "", "message_context": {}}
-    while len(rounds) < max_rounds and time.perf_counter() < deadline:
-        result, _ = simulate(current, t_end, samples, rtol, budget_s=max(deadline - time.perf_counter(), 0.0),
-                             with_rigid=False, check=False)
+    while len(rounds) < max_rounds:
+        if time.perf_counter() >= deadline:
+            return outcome | _out_of_time(rounds)
+        result, _ = simulate(current, t_end, samples, rtol, with_rigid=False, check=False, deadline=deadline)
+        if result["numerics"]["message"] and time.perf_counter() >= deadline:
+            return outcome | _out_of_time(rounds)   # this round's run was cut by the deadline: not a round
         if not result["t"].size:                    # stopped at the work bound before any sample: no rod force
             break
         load = float(np.max(np.abs(rod_force(current, result["phi"], result["twist"]))))
@@ -400,6 +425,13 @@ def bearing_iteration(machine: ElasticMachine, bearing: Bearing, t_end: float, s
                       "message": f"The successive approximations of the bearing stiffness stopped after {len(rounds)} "
                                  f"rounds (the rounds or the time allowed ran out), the last change of R_m "
                                  f"{100 * change:.2g} %: not converged."}
+
+
+def _out_of_time(rounds: list) -> dict:
+    """The bearing iteration's words when the request's deadline stopped it (the API marks the answer partial)."""
+    return {"message_code": "bearings_time_budget", "message_context": {"rounds": len(rounds)},
+            "message": f"The successive approximations of the bearing stiffness stopped at the request's time budget "
+                       f"after {len(rounds)} complete rounds: not converged."}
 
 
 def bearing_notice(outcome: dict) -> list[Notice]:

@@ -1,0 +1,121 @@
+"""Issue 15's acceptance: schemathesis over the whole API (every operation of /api/v1/openapi.json, valid and
+invalid requests), with a real assignment, its instructor token, a registered student's personal secret
+(Authorization: Bearer) and another student's handle supplied in most cases, so that the requests reach past the
+401s and 404s: no answer may be a 5xx, and every answer carries the security headers. (The instructor operations
+may reset or delete the second student, never the first: their secret stays valid throughout.)
+
+The suite runs MDL_SCHEMATHESIS_CASES cases (default 500: part of the default suite); the acceptance run is 5,000:
+
+    MDL_SCHEMATHESIS_CASES=5000 python3 -m pytest -q tests/test_schemathesis_api.py
+
+The cases are spread over the operations (a parameterless GET has one case however many are asked, so the
+others get more); the last test checks that at least that many were sent. Seeded (MDL_FUZZ_SEED) for
+reproducibility; the data go to a pytest tmp directory.
+"""
+from __future__ import annotations
+
+import faulthandler
+import math
+import os
+import sys
+from collections import Counter, defaultdict
+
+import pytest
+import schemathesis
+from fastapi.testclient import TestClient
+from hypothesis import HealthCheck, settings
+from schemathesis.config import SchemathesisConfig
+
+from server.api import assignment_store
+from server.api.app import create_app
+from server.api.security import SECURITY_HEADERS
+
+CASES = int(os.environ.get("MDL_SCHEMATHESIS_CASES", "500"))
+SEED = int(os.environ.get("MDL_FUZZ_SEED", "20269"))
+OPENAPI = create_app().openapi()
+OPERATIONS = sum(len(methods) for methods in OPENAPI["paths"].values())
+SINGLE = sum(1 for path, methods in OPENAPI["paths"].items() for m, op in methods.items()
+             if not op.get("parameters") and "requestBody" not in op)          # one distinct case each
+PER_OPERATION = math.ceil(1.15 * (CASES - SINGLE) / (OPERATIONS - SINGLE))
+CONFIG = SchemathesisConfig.from_dict({"seed": SEED, "generation": {"mode": "all", "max-examples": PER_OPERATION}})
+schema = schemathesis.openapi.from_dict(OPENAPI, config=CONFIG)
+QUIET = [HealthCheck.too_slow, HealthCheck.filter_too_much, HealthCheck.data_too_large,
+         HealthCheck.function_scoped_fixture]
+ASSIGNMENT = {"scene": "transfer-functions", "variant": "slider_crank", "title": "fuzz",
+              "sliders": {"lambda": {"vary": {"min": 2.5, "max": 5.0}}},
+              "questions": [{"id": "u31_max"}, {"id": "du31_min"}], "attempts": 3, "reveal_answers": True}
+STUDENT, OTHER = "Fuzz Student", "Other Student"
+sent = {"cases": 0, "supplied": 0}
+answered: dict[str, Counter] = defaultdict(Counter)           # operation → status codes seen
+
+
+@pytest.fixture(scope="module")
+def world(tmp_path_factory):
+    """The app on its own data directory, an assignment, its results token, a student's secret and another
+    student's handle (as the results list it)."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("MDL_DATA_DIR", str(tmp_path_factory.mktemp("mdl-schemathesis")))
+        assignment_store.store.cache_clear()
+        app = create_app()
+        client = TestClient(app)
+        created = client.post("/api/v1/assignments", json=ASSIGNMENT)
+        assert created.status_code == 201, created.text
+        made = created.json()
+        students = f"/api/v1/assignments/{made['id']}/students"
+        registered = [client.post(students, json={"name": name}) for name in (STUDENT, OTHER)]
+        assert [r.status_code for r in registered] == [201, 201], [r.text for r in registered]
+        rows = client.get(f"/api/v1/assignments/{made['id']}/results/{made['results_token']}").json()["students"]
+        yield {"app": app, "assignment_id": made["id"], "token": made["results_token"],
+               "secret": registered[0].json()["secret"],
+               "student_id": next(row["id"] for row in rows if row["student"] == OTHER)}
+        assignment_store.store.cache_clear()
+
+
+@pytest.fixture(autouse=True)
+def watchdog():
+    faulthandler.dump_traceback_later(1800, exit=True, file=sys.__stderr__)
+    yield
+    faulthandler.cancel_dump_traceback_later()
+
+
+def supply(case, world) -> None:
+    """Three cases in four get the real assignment, token, student handle and the student's secret (the rest keep
+    what was generated)."""
+    if sent["cases"] % 4 == 3 or not case.path_parameters:
+        return
+    for name in ("assignment_id", "token", "student_id"):
+        if name in case.path_parameters:
+            case.path_parameters[name] = world[name]
+            sent["supplied"] += 1
+    if "scene_id" in case.path_parameters:
+        case.path_parameters["scene_id"] = "transfer-functions"
+    if case.path.endswith("/submissions") and isinstance(case.body, dict) and sent["cases"] % 2:
+        case.body = {**case.body, "question": "u31_max"}         # a question of the assignment, the answer as drawn
+        if "student" in case.body:
+            case.body["student"] = STUDENT
+    case.headers = {**(case.headers or {}), "Authorization": f"Bearer {world['secret']}"}
+
+
+@schema.parametrize()
+@settings(max_examples=PER_OPERATION, deadline=None, database=None, suppress_health_check=QUIET)
+def test_no_answer_is_a_server_error_and_every_answer_carries_the_security_headers(case, world):
+    supply(case, world)
+    sent["cases"] += 1
+    response = case.call(app=world["app"], base_url="http://testserver")
+    answered[f"{case.method} {case.path}"][response.status_code] += 1
+    where = f"{case.method} {case.formatted_path} → {response.status_code}"
+    assert response.status_code < 500, where
+    missing = [name for name, value in SECURITY_HEADERS.items() if response.headers.get(name) != [value]]
+    assert not missing, f"{where}: missing {missing}"
+
+
+def test_enough_cases_were_sent():
+    """Runs after the operations above (file order): the acceptance counts cases, not operations."""
+    assert sent["cases"] >= CASES, sent
+    assert sent["supplied"] > 0
+    print(f"\n{sent['cases']} cases, 0 × 5xx; status codes per operation:")
+    for operation, codes in sorted(answered.items()):
+        print(f"  {operation}: {dict(sorted(codes.items()))}")
+    me = answered["GET /api/v1/assignments/{assignment_id}/me"]
+    results = answered["GET /api/v1/assignments/{assignment_id}/results/{token}"]
+    assert me[200] > 0 and results[200] > 0            # the secret and the token were supplied and accepted
