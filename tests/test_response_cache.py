@@ -270,7 +270,7 @@ def test_a_motion_answer_cut_short_by_its_time_budget_says_so_and_is_not_stored(
     assert [a.status_code for a in answers] == [200, 200]
     assert [a.headers["x-cache"] for a in answers] == ["miss", "miss"]
     assert all(a.headers["x-partial"] == "1" for a in answers)
-    assert "time budget" in answers[0].json()["numerics"]["message"]
+    assert "по лимиту времени" in answers[0].json()["numerics"]["message"]     # said in the reader's language
     assert stats(client)["entries"] == 0
 
 
