@@ -44,6 +44,17 @@ interpolation error; ``full`` (the default) refines. The members are the same va
 family asked right after the coarse one reuses the coarse members (the heavy process's memo,
 server/api/family_batch.py).
 
+Fields. A request may name the leaves a preview draws (``fields``: dotted paths into the answer, e.g.
+"modal.stiffness", "t", "points"): each member's answer is then pruned to those subtrees (a path keeps the
+whole object or array it names) before anything else is done with it, so only they are rounded, checked,
+refined for and sent; numbers shown in tables and readouts always come from an exact answer, never from a
+family. A path a member does not hold is left out of that member silently: an answer's shape depends on the
+values (a stalled machine has no steady cycle) and on its ``outputs``, so a path is not wrong for being
+absent at some values. Without ``fields`` every member is the endpoint's whole answer, as before.
+With ``fields``, an array that is the same in every answered member (a time grid, a crank-angle grid, the
+forces that a friction coefficient does not change) is sent once, in ``shared``, and left out of the
+members: a member's answer is ``shared`` merged with its own (object by object).
+
 The comparison uses the members as sent: every float rounded to SIGNIFICANT digits (NaN and ±inf → null), so
 the reported interpolation error includes the rounding the page sees.
 """
@@ -51,6 +62,7 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 import time
 from bisect import bisect_right
 from dataclasses import dataclass, field
@@ -82,6 +94,8 @@ UNCHECKED = frozenset({"numerics", "study", "warnings", "directions", "iteration
 # parabola; for a corner (slopes s and s + Δs meeting inside the interval, at d from an end) the smaller of
 # the ends' h²|f''|/8 is Δs·min(d, h − d)/8 against the true Δs·d(h − d)/h: at most 4× too small (d = h/2).
 SAFETY = 4
+MAX_FIELDS = 64                 # dotted paths a family request may name (a scene's previews draw ~5–25)
+FIELD = re.compile(r"[A-Za-z0-9_]{1,60}(\.[A-Za-z0-9_]{1,60}){0,7}")     # a dotted path of an answer's keys
 COARSE_TO_FINE = (0, 8, 4, 2, 6, 1, 3, 5, 7)    # the order of the first 9 members
 STAGES = ("coarse", "full")
 
@@ -125,6 +139,95 @@ def path_exists(request: dict, path: str) -> bool:
             return False
         holder = holder[key]
     return isinstance(holder, (int, float)) and not isinstance(holder, bool)
+
+
+# ---- fields: the leaves a preview draws ------------------------------------------------------------------
+
+Fields = dict      # a trie of dotted paths: key → True (the whole subtree) or a trie of its keys
+
+
+def field_trie(fields: list[str]) -> Fields:
+    """The dotted paths as a trie; a path under another one named whole adds nothing ("modal", "modal.phi")."""
+    trie: Fields = {}
+    for path in fields:
+        *keys, last = path.split(".")
+        node = trie
+        for key in keys:
+            node = node.setdefault(key, {})
+            if node is True:
+                break
+        else:
+            node[last] = True
+    return trie
+
+
+def pruned(answer: dict, trie: Fields) -> dict:
+    """The answer's subtrees the trie names (each kept whole, not copied); what it does not hold is left out,
+    and so is an object of which nothing named is held."""
+    kept = {}
+    for key, below in trie.items():
+        if key not in answer:
+            continue
+        if below is True:
+            kept[key] = answer[key]
+        elif isinstance(answer[key], dict):
+            inner = pruned(answer[key], below)
+            if inner:
+                kept[key] = inner
+    return kept
+
+
+def shared_arrays(answers: list) -> tuple[dict, list]:
+    """(shared, answers without them): the float arrays under objects that are equal in every answered member
+    (NaN equal to NaN), sent once; a member's answer is shared merged with its own (``merged``)."""
+    present = [a for a in answers if a is not None]
+    common = _common(present) if len(present) > 1 else {}
+    if not common:
+        return {}, answers
+    return common, [None if a is None else _without(a, common) for a in answers]
+
+
+def _common(trees: list[dict]) -> dict:
+    found = {}
+    first, others = trees[0], trees[1:]
+    for key, value in first.items():
+        if key in UNCHECKED:
+            continue
+        rest = [tree.get(key) for tree in others]
+        if isinstance(value, dict) and all(isinstance(other, dict) for other in rest):
+            inner = _common([value, *rest])
+            if inner:
+                found[key] = inner
+        elif isinstance(value, np.ndarray) and value.size > 1 and all(
+                isinstance(other, np.ndarray) and other.shape == value.shape
+                and np.array_equal(other, value, equal_nan=True) for other in rest):
+            found[key] = value
+    return found
+
+
+def _without(tree: dict, common: dict) -> dict:
+    """The tree without the common leaves (a new object where one is removed below; objects left empty go)."""
+    kept = {}
+    for key, value in tree.items():
+        below = common.get(key)
+        if below is None:
+            kept[key] = value
+        elif isinstance(below, dict):
+            inner = _without(value, below)
+            if inner:
+                kept[key] = inner
+    return kept
+
+
+def merged(shared: dict, own: dict | None) -> dict | None:
+    """A member's whole answer from the family's shared arrays and its own leaves (the page does the same)."""
+    if own is None:
+        return None
+    whole = dict(own)
+    for key, value in shared.items():
+        below = own.get(key)
+        whole[key] = merged(value, below if isinstance(below, dict) else {}) if isinstance(value, dict) else value
+    return whole
 
 
 # ---- spacing ---------------------------------------------------------------------------------------------
@@ -426,11 +529,12 @@ class Member:
     leaves: dict[tuple, np.ndarray] = field(default_factory=dict)
 
     @classmethod
-    def of(cls, value: float, outcome: Answer | Exception) -> "Member":
-        """The member from the endpoint's Answer, or from its refusal (ValidationError, GeometryError)."""
+    def of(cls, value: float, outcome: Answer | Exception, fields: Fields | None = None) -> "Member":
+        """The member from the endpoint's Answer (pruned to ``fields`` first, if given), or from its refusal
+        (ValidationError, GeometryError)."""
         if isinstance(outcome, Exception):
             return cls(value, None, refusal(outcome), False)
-        tree = as_tree(outcome.payload)
+        tree = as_tree(outcome.payload if fields is None else pruned(outcome.payload, fields))
         return cls(value, tree, None, outcome.partial, flatten(tree))
 
     def size(self) -> int:
@@ -538,9 +642,10 @@ class Family:
 
 
 def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = "en",
-          stage: str = "full") -> tuple[dict, bool]:
+          stage: str = "full", share: bool = False) -> tuple[dict, bool]:
     """The family's answer (see the module) and whether it is partial. members(values, deadline) gives the
-    members at values, in order, stopping early (a shorter list) once the deadline has passed."""
+    members at values, in order, stopping early (a shorter list) once the deadline has passed. ``share``:
+    arrays equal in every member are sent once, in "shared" (a request that names its fields)."""
     started = time.perf_counter()
     deadline = started + TIME_BUDGET_S
     family = Family(log, (coordinate(high, log) - coordinate(low, log)) * FINEST_FRACTION)
@@ -561,10 +666,11 @@ def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = 
         for member in computed:
             family.add(member)
         cut = len(computed) < len(values)
-    return _answer(family, lang, cut, started, stage)
+    return _answer(family, lang, cut, started, stage, share)
 
 
-def _answer(family: Family, lang: str, cut: bool, started: float, stage: str) -> tuple[dict, bool]:
+def _answer(family: Family, lang: str, cut: bool, started: float, stage: str,
+            share: bool = False) -> tuple[dict, bool]:
     """The answer of the contract, and whether it is partial (cut at the time budget, or a member is)."""
     span = widths(family.extent)
     members = family.members
@@ -602,9 +708,11 @@ def _answer(family: Family, lang: str, cut: bool, started: float, stage: str) ->
         sentences.append(texts["family_partial_members"].format(count=len(partial), values=shown))
     method = texts[f"family_method_{stage}_{'log' if family.log else 'linear'}"].format(
         start=START_MEMBERS, tolerance=number(100 * TOLERANCE), safety=SAFETY, cap=MAX_MEMBERS)
+    common, answers = shared_arrays([m.answer for m in members]) if share else ({}, [m.answer for m in members])
     return {
         "values": [rounded(m.value) for m in members],
-        "answers": [m.answer for m in members],
+        **({"shared": common} if share else {}),
+        "answers": answers,
         "errors": [m.error for m in members],
         "interpolation_error": rounded(error) if error is not None else None,
         "tolerance": TOLERANCE,

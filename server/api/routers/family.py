@@ -37,6 +37,22 @@ class FamilyRequest(BaseModel):
     max: float = Field(allow_inf_nan=False, description="the slider's highest value, in its shown units")
     stage: Literal[family.STAGES] = Field("full", description='"coarse": the 9 start members at once, unrefined '
                                           '(asked first, on the grab); "full": refined to the tolerance')
+    fields: list[str] | None = Field(
+        None, min_length=1, max_length=family.MAX_FIELDS,
+        description="dotted paths of the answer's leaves a preview draws (e.g. \"t\", \"modal.stiffness\"): each "
+                    "member is pruned to those subtrees, the interpolation error covers them alone, and arrays equal "
+                    "in every member are sent once in `shared`. A path a member does not hold is left out of it "
+                    "(an answer's shape depends on the values and on `outputs`). Absent: the whole answers, no "
+                    "`shared`")
+
+    @field_validator("fields")
+    @classmethod
+    def dotted_paths(cls, fields: list[str] | None) -> list[str] | None:
+        for index, path in enumerate(fields or []):
+            if not family.FIELD.fullmatch(path):
+                raise ValueError(f"fields[{index}]: {path[:80]!r} is not a dotted path of an answer's keys "
+                                 "(letters, digits and _, joined by dots, at most 8 deep)")
+        return fields
 
     @field_validator("vary")
     @classmethod
@@ -78,7 +94,11 @@ class FamilyNumerics(BaseModel):
 
 class FamilyResponse(BaseModel):
     values: list[float] = Field(description="the members' slider values, ascending, min and max included")
-    answers: list[dict | None] = Field(description="the endpoint's answer at each value; null where refused")
+    shared: dict | None = Field(None, description="only when `fields` was given: the arrays equal in every "
+                                "answered member, sent once; each member's answer is `shared` merged with its own, "
+                                "object by object")
+    answers: list[dict | None] = Field(description="the endpoint's answer at each value (pruned to `fields` and "
+                                       "without the `shared` arrays, when `fields` was given); null where refused")
     errors: list[dict | None] = Field(description="{code, message} of a refused value, else null")
     interpolation_error: float | None = Field(description="largest estimated |interpolation − exact| / span "
                                                           "over the intervals (h²·|f''|/8, f'' from neighbours)")
@@ -103,7 +123,9 @@ def family_answer(body: dict, lang: str) -> tuple[dict, bool]:
     """The family's answer and whether it is partial (run in the heavy process)."""
     vary = [family.Vary(item["path"], item["factor"]) for item in body["vary"]]
     counts = {"computed": 0}
-    members = member_batch(body["endpoint"], body["request"], vary, lang, counts)
-    answer, partial = family.build(members, body["min"], body["max"], body["log"], lang, body["stage"])
+    fields = body.get("fields")
+    members = member_batch(body["endpoint"], body["request"], vary, lang, counts, fields)
+    answer, partial = family.build(members, body["min"], body["max"], body["log"], lang, body.get("stage", "full"),
+                                   share=fields is not None)
     answer["numerics"]["computed"] = counts["computed"]
     return answer, partial

@@ -12,7 +12,8 @@
  *   objects                           → key by key (the nearer member's keys)
  *   anything else (strings, booleans, arrays of different length) and everything under
  *   "warnings", "numerics" and "study" → the nearer member's leaf.
- * A value equal to a member's gives that member's answer as it is.
+ * A value equal to a member's gives that member's answer as it is; an array the two members share (the same
+ * object: a family's "shared" arrays, withShared) is passed through as it is.
  *
  * Families are kept by the request with the slider's paths removed (familyKey): the same other values
  * give the same family, whichever value the slider had when it was asked for.
@@ -29,6 +30,7 @@ function texts(item) {
 
 /** Mix of two members' leaves a and b at weight w (0 → a, 1 → b). */
 export function blend(a, b, w) {
+  if (a === b) return a;
   if (typeof a === "number" && typeof b === "number") return (1 - w) * a + w * b;
   if (a === null || b === null) return null;
   if (Array.isArray(a)) {
@@ -79,9 +81,30 @@ export function interpolate(family, value) {
   return blend(answers[at.k], answers[at.k + 1], at.w);
 }
 
-/** Key of the family of the slider that sets these paths: the request body with them removed. */
-export function familyKey(body, paths) {
+/** Key of the family of the slider that sets these paths (and of the fields asked): the request body with them removed. */
+export function familyKey(body, paths, fields = []) {
   const rest = structuredClone(body);
   for (const path of paths) setPath(rest, path, undefined);
-  return JSON.stringify([paths, rest]);
+  return JSON.stringify([paths, rest, fields]);
+}
+
+/** shared merged into own, object by object (a new object wherever something is added; arrays by reference). */
+function merged(shared, own) {
+  const whole = { ...own };
+  for (const [key, value] of Object.entries(shared)) {
+    const below = own[key];
+    whole[key] = value !== null && typeof value === "object" && !Array.isArray(value)
+      ? merged(value, below !== null && typeof below === "object" && !Array.isArray(below) ? below : {}) : value;
+  }
+  return whole;
+}
+
+/**
+ * A family as sent (POST /api/v1/family) with each member's answer whole: the "shared" arrays (sent once,
+ * when the request named its fields) merged into every answered member. A family without them is returned as it is.
+ */
+export function withShared(family) {
+  const { shared, ...rest } = family;
+  if (!shared || !Object.keys(shared).length) return rest;
+  return { ...rest, answers: family.answers.map((own) => (own ? merged(shared, own) : own)) };
 }
