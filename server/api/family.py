@@ -51,9 +51,17 @@ refined for and sent; numbers shown in tables and readouts always come from an e
 family. A path a member does not hold is left out of that member silently: an answer's shape depends on the
 values (a stalled machine has no steady cycle) and on its ``outputs``, so a path is not wrong for being
 absent at some values. Without ``fields`` every member is the endpoint's whole answer, as before.
-With ``fields``, an array that is the same in every answered member (a time grid, a crank-angle grid, the
-forces that a friction coefficient does not change) is sent once, in ``shared``, and left out of the
-members: a member's answer is ``shared`` merged with its own (object by object).
+
+Packed (``packed``: true, what the page asks for). An array that is the same in every answered member (a time
+grid, a crank-angle grid, the forces a friction coefficient does not change) is sent once, in ``shared``, and
+left out of the members: a member's answer is ``shared`` merged with its own, object by object. Every float
+array under objects whose quantity has a span (see ``widths``) is sent as {"exp10": e, "deltas": [...]}: the
+integers k_i = round(x_i / 10^e) as differences along the first axis (d_0 = k_0, d_i = k_i − k_j with j the
+last non-null row before i, column by column), null where x_i is null; x_i = 10^e · (d_0 + … + d_i) over the
+non-null d of its column. The quantum 10^e is the largest power of ten ≤ PACK_QUANTUM × the leaf's span over
+the family (but ≥ 10^−12 of its largest magnitude), so packing moves a value by at most
+PACK_QUANTUM/2 = 0.005 % of its span, added to the interpolation error reported. A smooth curve's steps
+are a few digits each, where its decimals took eight or nine, and they compress better.
 
 The comparison uses the members as sent: every float rounded to SIGNIFICANT digits (NaN and ±inf → null), so
 the reported interpolation error includes the rounding the page sees.
@@ -94,6 +102,7 @@ UNCHECKED = frozenset({"numerics", "study", "warnings", "directions", "iteration
 # parabola; for a corner (slopes s and s + Δs meeting inside the interval, at d from an end) the smaller of
 # the ends' h²|f''|/8 is Δs·min(d, h − d)/8 against the true Δs·d(h − d)/h: at most 4× too small (d = h/2).
 SAFETY = 4
+PACK_QUANTUM = 1e-4            # a packed array's quantum, at most this fraction of its span (see Packed)
 MAX_FIELDS = 64                 # dotted paths a family request may name (a scene's previews draw ~5–25)
 FIELD = re.compile(r"[A-Za-z0-9_]{1,60}(\.[A-Za-z0-9_]{1,60}){0,7}")     # a dotted path of an answer's keys
 COARSE_TO_FINE = (0, 8, 4, 2, 6, 1, 3, 5, 7)    # the order of the first 9 members
@@ -228,6 +237,90 @@ def merged(shared: dict, own: dict | None) -> dict | None:
         below = own.get(key)
         whole[key] = merged(value, below if isinstance(below, dict) else {}) if isinstance(value, dict) else value
     return whole
+
+
+def packed(trees: list, quanta: dict[tuple, int]) -> list:
+    """The trees (None: refused) with each float array that has a quantum (path → exponent e) as
+    {"exp10": e, "deltas": [...]} (see Packed); the arrays of one path and shape are packed together."""
+    groups: dict[tuple, list] = {}
+    for index, tree in enumerate(trees):
+        for path, leaf in _dict_arrays(tree):
+            if path in quanta and leaf.ndim and leaf.size > 1:
+                groups.setdefault((path, leaf.shape), []).append((index, leaf))
+    replaced: dict[tuple, dict] = {}
+    for (path, _), found in groups.items():
+        exponent = quanta[path]
+        for (index, _), steps in zip(found, deltas(np.stack([leaf for _, leaf in found]), exponent)):
+            replaced[index, path] = {"exp10": exponent, "deltas": steps}
+    return [None if tree is None else _replaced(tree, index, replaced) for index, tree in enumerate(trees)]
+
+
+def _dict_arrays(tree, path: tuple = ()):
+    """(path, array) of the arrays reached through objects alone."""
+    if isinstance(tree, dict):
+        for key, value in tree.items():
+            yield from _dict_arrays(value, (*path, key))
+    elif isinstance(tree, np.ndarray):
+        yield path, tree
+
+
+def _replaced(tree, index: int, replaced: dict, path: tuple = ()):
+    if isinstance(tree, dict):
+        return {key: _replaced(value, index, replaced, (*path, key)) for key, value in tree.items()}
+    return replaced.get((index, path), tree)
+
+
+def deltas(x: np.ndarray, exponent: int) -> list:
+    """For each x[m] of the stack: round(x[m] / 10^exponent) as differences along its first axis from the
+    last non-null row of each column (an int array, or nested lists with None where x[m] is NaN)."""
+    scaled = x / 10.0 ** exponent if exponent >= 0 else x * 10.0 ** -exponent     # 10^|e| exact to e = 22
+    count, rows = x.shape[:2]
+    k = np.round(scaled).reshape(count, rows, -1)
+    valid = np.isfinite(k)
+    last = np.where(valid, np.arange(rows)[None, :, None], -1)
+    np.maximum.accumulate(last, axis=1, out=last)                 # the last non-null row at or before i
+    before = np.concatenate([np.full((count, 1, k.shape[2]), -1), last[:, :-1]], axis=1)   # ... before i
+    known = np.take_along_axis(np.where(valid, k, 0.0), np.maximum(before, 0), axis=1)
+    steps = np.where(valid, k - np.where(before >= 0, known, 0.0), 0.0).astype(np.int64)
+    whole = valid.reshape(count, -1).all(axis=1)
+    found = []
+    for m in range(count):
+        if whole[m]:
+            found.append(steps[m].reshape(x.shape[1:]))
+        else:
+            listed = steps[m].astype(object)
+            listed[~valid[m]] = None
+            found.append(listed.reshape(x.shape[1:]).tolist())
+    return found
+
+
+def quanta(span: dict[tuple, float], extent: dict[tuple, list[float]]) -> dict[tuple, int]:
+    """The exponent of each leaf's quantum: 10^e ≤ PACK_QUANTUM × span, and ≥ 10^−12 of its largest magnitude
+    (the integers stay exact in a double)."""
+    found = {}
+    for leaf, width in span.items():
+        if width > 0 and math.isfinite(width) and all(isinstance(key, str) for key in leaf):
+            exponent = math.floor(math.log10(width * PACK_QUANTUM))
+            largest = max(abs(extent[leaf][0]), abs(extent[leaf][1]))
+            found[leaf] = max(exponent, math.floor(math.log10(largest)) - 12) if largest > 0 else exponent
+    return found
+
+
+def unpacked(tree):
+    """A packed tree's arrays as float arrays again (NaN where null): what the page decodes."""
+    if isinstance(tree, dict):
+        if tree.keys() == {"exp10", "deltas"}:
+            return _summed(tree["deltas"], tree["exp10"])
+        return {key: unpacked(value) for key, value in tree.items()}
+    return tree
+
+
+def _summed(steps, exponent: int) -> np.ndarray:
+    d = np.array(steps, dtype=float)                     # None → NaN
+    flat = d.reshape(len(d), -1)
+    total = np.cumsum(np.nan_to_num(flat), axis=0)
+    values = total / 10.0 ** -exponent if exponent < 0 else total * 10.0 ** exponent
+    return np.where(np.isnan(flat), np.nan, values).reshape(d.shape)
 
 
 # ---- spacing ---------------------------------------------------------------------------------------------
@@ -642,10 +735,10 @@ class Family:
 
 
 def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = "en",
-          stage: str = "full", share: bool = False) -> tuple[dict, bool]:
+          stage: str = "full", pack: bool = False) -> tuple[dict, bool]:
     """The family's answer (see the module) and whether it is partial. members(values, deadline) gives the
-    members at values, in order, stopping early (a shorter list) once the deadline has passed. ``share``:
-    arrays equal in every member are sent once, in "shared" (a request that names its fields)."""
+    members at values, in order, stopping early (a shorter list) once the deadline has passed. ``pack``:
+    sent packed (see the module: shared arrays once, arrays as integer steps)."""
     started = time.perf_counter()
     deadline = started + TIME_BUDGET_S
     family = Family(log, (coordinate(high, log) - coordinate(low, log)) * FINEST_FRACTION)
@@ -666,11 +759,11 @@ def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = 
         for member in computed:
             family.add(member)
         cut = len(computed) < len(values)
-    return _answer(family, lang, cut, started, stage, share)
+    return _answer(family, lang, cut, started, stage, pack)
 
 
 def _answer(family: Family, lang: str, cut: bool, started: float, stage: str,
-            share: bool = False) -> tuple[dict, bool]:
+            pack: bool = False) -> tuple[dict, bool]:
     """The answer of the contract, and whether it is partial (cut at the time budget, or a member is)."""
     span = widths(family.extent)
     members = family.members
@@ -681,6 +774,8 @@ def _answer(family: Family, lang: str, cut: bool, started: float, stage: str,
         if stage == "full" and not family.halvable(k) and found[0] > TOLERANCE:    # a jump: say how large
             answered[k] = max(found, family.change(k, span))
     error = max((score for score, _ in answered.values()), default=None)
+    if pack and error is not None:
+        error += PACK_QUANTUM / 2                             # packing moves a value by at most this / span
     texts = interface_texts(lang)
     number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
     sentences = []
@@ -708,10 +803,14 @@ def _answer(family: Family, lang: str, cut: bool, started: float, stage: str,
         sentences.append(texts["family_partial_members"].format(count=len(partial), values=shown))
     method = texts[f"family_method_{stage}_{'log' if family.log else 'linear'}"].format(
         start=START_MEMBERS, tolerance=number(100 * TOLERANCE), safety=SAFETY, cap=MAX_MEMBERS)
-    common, answers = shared_arrays([m.answer for m in members]) if share else ({}, [m.answer for m in members])
+    answers = [m.answer for m in members]
+    if pack:
+        common, answers = shared_arrays(answers)
+        exponents = quanta(span, family.extent)
+        common, *answers = packed([common, *answers], exponents)
     return {
         "values": [rounded(m.value) for m in members],
-        **({"shared": common} if share else {}),
+        **({"shared": common} if pack else {}),
         "answers": answers,
         "errors": [m.error for m in members],
         "interpolation_error": rounded(error) if error is not None else None,

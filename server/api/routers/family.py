@@ -40,10 +40,13 @@ class FamilyRequest(BaseModel):
     fields: list[str] | None = Field(
         None, min_length=1, max_length=family.MAX_FIELDS,
         description="dotted paths of the answer's leaves a preview draws (e.g. \"t\", \"modal.stiffness\"): each "
-                    "member is pruned to those subtrees, the interpolation error covers them alone, and arrays equal "
-                    "in every member are sent once in `shared`. A path a member does not hold is left out of it "
-                    "(an answer's shape depends on the values and on `outputs`). Absent: the whole answers, no "
-                    "`shared`")
+                    "member is pruned to those subtrees and the interpolation error covers them alone. A path a "
+                    "member does not hold is left out of it (an answer's shape depends on the values and on "
+                    "`outputs`). Absent: the whole answers")
+    packed: bool = Field(False, description="send the family packed: arrays equal in every member once, in "
+                         "`shared`; every float array of a quantity with a span as {exp10: e, deltas: [...]}, the "
+                         "integers round(x/10^e) as steps along the first axis (null where x is null), 10^e ≤ "
+                         "1e-4 of the quantity's span (server/api/family.py, Packed)")
 
     @field_validator("fields")
     @classmethod
@@ -94,14 +97,15 @@ class FamilyNumerics(BaseModel):
 
 class FamilyResponse(BaseModel):
     values: list[float] = Field(description="the members' slider values, ascending, min and max included")
-    shared: dict | None = Field(None, description="only when `fields` was given: the arrays equal in every "
+    shared: dict | None = Field(None, description="only when `packed`: the arrays equal in every "
                                 "answered member, sent once; each member's answer is `shared` merged with its own, "
                                 "object by object")
-    answers: list[dict | None] = Field(description="the endpoint's answer at each value (pruned to `fields` and "
-                                       "without the `shared` arrays, when `fields` was given); null where refused")
+    answers: list[dict | None] = Field(description="the endpoint's answer at each value (pruned to `fields` when "
+                                       "given; packed, without the `shared` arrays, when `packed`); null where refused")
     errors: list[dict | None] = Field(description="{code, message} of a refused value, else null")
     interpolation_error: float | None = Field(description="largest estimated |interpolation − exact| / span "
-                                                          "over the intervals (h²·|f''|/8, f'' from neighbours)")
+                                                          "over the intervals (h²·|f''|/8, f'' from neighbours; "
+                                                          "packed: plus 5e-5, what packing may move a value)")
     tolerance: float = Field(description="the target: 0.5 % of each plotted quantity's span over the family")
     numerics: FamilyNumerics
 
@@ -126,6 +130,6 @@ def family_answer(body: dict, lang: str) -> tuple[dict, bool]:
     fields = body.get("fields")
     members = member_batch(body["endpoint"], body["request"], vary, lang, counts, fields)
     answer, partial = family.build(members, body["min"], body["max"], body["log"], lang, body.get("stage", "full"),
-                                   share=fields is not None)
+                                   pack=body.get("packed", False))
     answer["numerics"]["computed"] = counts["computed"]
     return answer, partial

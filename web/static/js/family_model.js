@@ -88,23 +88,45 @@ export function familyKey(body, paths, fields = []) {
   return JSON.stringify([paths, rest, fields]);
 }
 
+/** A packed array's values: x = 10^exp10 · (running sum of the non-null steps of its column), null where null. */
+function unpackedArray({ exp10, deltas }) {
+  const scale = exp10 < 0 ? (k) => k / 10 ** -exp10 : (k) => k * 10 ** exp10;     // 10^|e| exact: a decimal's double
+  const step = (sum, d) => (Array.isArray(d) ? d.map((x, i) => step(sum?.[i], x)) : d === null ? sum : (sum ?? 0) + d);
+  const value = (sum, d) => (Array.isArray(d) ? d.map((x, i) => value(sum[i], x)) : d === null ? null : scale(sum));
+  let sum;
+  return deltas.map((d) => {
+    sum = step(sum, d);
+    return value(sum, d);
+  });
+}
+
+const isObject = (x) => x !== null && typeof x === "object" && !Array.isArray(x);
+const isPacked = (x) => isObject(x) && Array.isArray(x.deltas) && typeof x.exp10 === "number" && Object.keys(x).length === 2;
+
+/** A tree with its packed arrays as arrays of numbers (and nulls). */
+function unpacked(tree) {
+  if (isPacked(tree)) return unpackedArray(tree);
+  if (!isObject(tree)) return tree;
+  return Object.fromEntries(Object.entries(tree).map(([key, value]) => [key, unpacked(value)]));
+}
+
 /** shared merged into own, object by object (a new object wherever something is added; arrays by reference). */
 function merged(shared, own) {
   const whole = { ...own };
   for (const [key, value] of Object.entries(shared)) {
-    const below = own[key];
-    whole[key] = value !== null && typeof value === "object" && !Array.isArray(value)
-      ? merged(value, below !== null && typeof below === "object" && !Array.isArray(below) ? below : {}) : value;
+    whole[key] = isObject(value) ? merged(value, isObject(own[key]) ? own[key] : {}) : value;
   }
   return whole;
 }
 
 /**
- * A family as sent (POST /api/v1/family) with each member's answer whole: the "shared" arrays (sent once,
- * when the request named its fields) merged into every answered member. A family without them is returned as it is.
+ * A family as sent (POST /api/v1/family) with each member's answer whole: a packed family's arrays unpacked
+ * and its "shared" arrays merged into every answered member (the same array objects in each: the rule
+ * passes them through). A family sent unpacked is returned as it is.
  */
-export function withShared(family) {
+export function received(family) {
   const { shared, ...rest } = family;
-  if (!shared || !Object.keys(shared).length) return rest;
-  return { ...rest, answers: family.answers.map((own) => (own ? merged(shared, own) : own)) };
+  if (!shared) return rest;
+  const common = unpacked(shared);
+  return { ...rest, answers: family.answers.map((own) => (own ? merged(common, unpacked(own)) : own)) };
 }

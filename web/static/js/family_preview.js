@@ -13,8 +13,9 @@
  * gets one request without it, the full family, for the rest of the page's life.
  *
  * The request names the answer's leaves the variant's panels draw in a preview ("fields", family_fields.js):
- * the server sends only those, and the arrays equal in every member once, in "shared", which is merged
- * into each member on arrival (by reference: the preview's interpolation passes equal arrays through).
+ * the server sends only those, packed ("packed": true: the arrays equal in every member once, in "shared",
+ * every array as integer steps in a quantum of at most 0.01 % of its span), unpacked and merged on arrival
+ * (family_model.js received).
  *
  * The model is the scene's SceneSettings (a SceneModel or a DynamicsModel): request() is the body sent
  * now, familyVary(slider) the paths the slider sets with their factors, grabbed the slider held, scene and
@@ -32,7 +33,7 @@ import { ApiClient } from "./api.js";
 import { element } from "./dom.js";
 import { Emitter } from "./emitter.js";
 import { previewFields } from "./family_fields.js";
-import { familyKey, interpolate, memberInterval, withShared } from "./family_model.js";
+import { familyKey, interpolate, memberInterval, received } from "./family_model.js";
 
 const KEPT = 4;     // families kept on the page: the latest asked (a family may hold several MB)
 const STAGES = ["coarse", "full"];
@@ -87,7 +88,7 @@ export class FamilyPreview extends Emitter {
     const vary = this.model.familyVary(slider);
     const fields = previewFields(this.model.scene, this.model.variant);
     const body = { endpoint: this.endpoint, request, vary, min: slider.min, max: slider.max, log: slider.log,
-      ...(fields.length ? { fields } : {}) };
+      ...(fields.length ? { fields } : {}), packed: true };
     return { body, key: familyKey(request, vary.map((v) => v.path), fields) };
   }
 
@@ -119,7 +120,7 @@ export class FamilyPreview extends Emitter {
       if (coarse && this.#families.get(key)) return;                 // the full family came first
       if (!this.#families.get(key)) performance.mark("family-arrived");
       performance.mark(coarse ? "family-coarse-arrived" : "family-full-arrived");
-      this.#families.set(key, { ...withShared(answer.data), log: body.log, coarse });
+      this.#families.set(key, { ...received(answer.data), log: body.log, coarse });
       if (this.showing) this.preview();                            // the better family redraws the preview
     });
   }
