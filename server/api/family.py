@@ -74,6 +74,7 @@ import re
 import time
 from bisect import bisect_right
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Callable
 
 import numpy as np
@@ -277,6 +278,9 @@ def deltas(x: np.ndarray, exponent: int) -> list:
     count, rows = x.shape[:2]
     k = np.round(scaled).reshape(count, rows, -1)
     valid = np.isfinite(k)
+    if valid.all():                                                 # no null: plain differences
+        steps = np.diff(k, axis=1, prepend=0.0).astype(np.int64)
+        return [steps[m].reshape(x.shape[1:]) for m in range(count)]
     last = np.where(valid, np.arange(rows)[None, :, None], -1)
     np.maximum.accumulate(last, axis=1, out=last)                 # the last non-null row at or before i
     before = np.concatenate([np.full((count, 1, k.shape[2]), -1), last[:, :-1]], axis=1)   # ... before i
@@ -541,6 +545,20 @@ def extend(extent: dict[tuple, list[float]], leaves: dict[tuple, np.ndarray]) ->
     return extent
 
 
+def extend_member(extent: dict[tuple, list[float]], member: "Member") -> dict[tuple, list[float]]:
+    """extend by a member's leaves, every leaf at once when it has them flat."""
+    flat = member.flat
+    if flat is None:
+        return extend(extent, member.leaves)
+    lows, highs = np.fmin.reduceat(flat.vector, flat.starts).tolist(), np.fmax.reduceat(flat.vector, flat.starts).tolist()
+    for path, low, high in zip(flat.paths, lows, highs):
+        if low != low:                                  # NaN: no element of the leaf is a number
+            continue
+        known = extent.setdefault(path, [low, high])
+        known[0], known[1] = min(known[0], low), max(known[1], high)
+    return extent
+
+
 def ranges(answer, into: dict[tuple, list[float]] | None = None) -> dict[tuple, list[float]]:
     """[min, max] of every element of each checked leaf of the answer (nulls aside), merged into ``into``."""
     return extend({} if into is None else into, flatten(answer))
@@ -588,6 +606,11 @@ def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> d
     share: the second divided difference 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋) (nulls aside)."""
     h_minus = coordinate(centre.value, log) - coordinate(left.value, log)
     h_plus = coordinate(right.value, log) - coordinate(centre.value, log)
+    if same_layout(left, centre, right):                # every leaf at once
+        f_minus, f0, f_plus = left.flat.vector, centre.flat.vector, right.flat.vector
+        with np.errstate(invalid="ignore", over="ignore"):
+            bend = np.abs((f_plus - f0) / h_plus - (f0 - f_minus) / h_minus) * (2 / (h_plus + h_minus))
+        return dict(zip(centre.flat.paths, centre.flat.largest(bend)))
     found = {}
     with np.errstate(invalid="ignore", over="ignore"):
         for path, f0 in centre.leaves.items():
@@ -610,6 +633,36 @@ def refusal(error: Exception) -> dict:
     return {"code": first["type"], "message": f"{where}: {first['msg']}" if where else first["msg"]}
 
 
+@dataclass(frozen=True)
+class Flat:
+    """A member's checked leaves as one vector, for the arithmetic of the whole member at once: the leaves'
+    paths and shapes (its layout: members of the same layout are compared element for element), where each
+    leaf starts in the vector, and the vector."""
+
+    layout: tuple
+    paths: tuple
+    starts: np.ndarray
+    vector: np.ndarray
+
+    @classmethod
+    def of(cls, leaves: dict[tuple, np.ndarray]) -> "Flat | None":
+        """None for no leaves or an empty one (no element to reduce)."""
+        if not leaves or any(leaf.size == 0 for leaf in leaves.values()):
+            return None
+        sizes = [leaf.size for leaf in leaves.values()]
+        return cls(tuple((path, leaf.shape) for path, leaf in leaves.items()), tuple(leaves),
+                   np.cumsum([0, *sizes[:-1]]), np.concatenate([leaf.ravel() for leaf in leaves.values()]))
+
+    def largest(self, values: np.ndarray) -> list[float]:
+        """The largest of each leaf's elements of values (≥ 0), nulls aside; 0 where a leaf has none."""
+        return np.fmax(np.fmax.reduceat(values, self.starts), 0.0).tolist()
+
+
+def same_layout(*members: "Member") -> bool:
+    flats = [member.flat for member in members]
+    return all(flat is not None for flat in flats) and all(flat.layout == flats[0].layout for flat in flats[1:])
+
+
 @dataclass
 class Member:
     """One value of the family: its answer as sent (a tree of rounded arrays; None where refused), the
@@ -630,9 +683,14 @@ class Member:
         tree = as_tree(outcome.payload if fields is None else pruned(outcome.payload, fields))
         return cls(value, tree, None, outcome.partial, flatten(tree))
 
+    @cached_property
+    def flat(self) -> Flat | None:
+        return Flat.of(self.leaves)
+
     def size(self) -> int:
-        """Bytes the member holds, roughly (its arrays and a little per leaf): the memo's measure."""
-        return sum(leaf.nbytes + 100 for leaf in self.leaves.values()) + 1000
+        """Bytes the member holds, roughly (its arrays, twice: as leaves and flat, and a little per leaf): the
+        memo's measure."""
+        return sum(2 * leaf.nbytes + 100 for leaf in self.leaves.values()) + 1000
 
 
 MemberBatch = Callable[[list[float], float], list[Member]]
@@ -652,7 +710,7 @@ class Family:
     _errors: dict[tuple, dict] = field(default_factory=dict)  # the 4 members' values → absolute error by leaf
 
     def add(self, member: Member) -> None:
-        extend(self.extent, member.leaves)
+        extend_member(self.extent, member)
         self.members.insert(bisect_right([m.value for m in self.members], member.value), member)
 
     @property
@@ -719,6 +777,12 @@ class Family:
         halve, a bound of the interpolation error wherever f is monotone inside it (f and the chord both lie
         between f(a) and f(b)), which a jump's second differences understate (a step of height J reads J/8)."""
         worst, where = 0.0, ()
+        if same_layout(self.members[k], self.members[k + 1]):
+            a, b = self.members[k].flat, self.members[k + 1].flat
+            for path, largest in zip(a.paths, a.largest(np.abs(b.vector - a.vector))):
+                if span.get(path) and largest / span[path] > worst:
+                    worst, where = largest / span[path], path
+            return worst, where
         a, b = self.members[k].leaves, self.members[k + 1].leaves
         with np.errstate(invalid="ignore"):
             for path, leaf in a.items():
