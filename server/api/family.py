@@ -55,10 +55,12 @@ absent at some values. Without ``fields`` every member is the endpoint's whole a
 Packed (``packed``: true, what the page asks for). An array that is the same in every answered member (a time
 grid, a crank-angle grid, the forces a friction coefficient does not change) is sent once, in ``shared``, and
 left out of the members: a member's answer is ``shared`` merged with its own, object by object. Every float
-array under objects whose quantity has a span (see ``widths``) is sent as {"exp10": e, "deltas": [...]}: the
-integers k_i = round(x_i / 10^e) as differences along the first axis (d_0 = k_0, d_i = k_i − k_j with j the
-last non-null row before i, column by column), null where x_i is null; x_i = 10^e · (d_0 + … + d_i) over the
-non-null d of its column. The quantum 10^e is the largest power of ten ≤ PACK_QUANTUM × the leaf's span over
+array under objects whose quantity has a span (see ``widths``) is sent as {"exp10": e, "order": n,
+"deltas": [...]}, the integers k_i = round(x_i / 10^e) as differences along the first axis, column by column:
+order 1, d_0 = k_0 and d_i = k_i − k_j with j the last non-null row before i, null where x_i is null
+(x_i = 10^e · the sum of the non-null d of its column up to i); order 2 (an array without null, 3 rows or
+more), e_0 = d_0, e_1 = d_1, e_i = d_i − d_(i−1): a smooth curve's second differences are a digit or two.
+The quantum 10^e is the largest power of ten ≤ PACK_QUANTUM × the leaf's span over
 the family (but ≥ 10^−12 of its largest magnitude), so packing moves a value by at most
 PACK_QUANTUM/2 = 0.005 % of its span, added to the interpolation error reported. A smooth curve's steps
 are a few digits each, where its decimals took eight or nine, and they compress better.
@@ -252,7 +254,7 @@ def packed(trees: list, quanta: dict[tuple, int]) -> list:
     for (path, _), found in groups.items():
         exponent = quanta[path]
         for (index, _), steps in zip(found, deltas(np.stack([leaf for _, leaf in found]), exponent)):
-            replaced[index, path] = {"exp10": exponent, "deltas": steps}
+            replaced[index, path] = {"exp10": exponent, "order": steps[0], "deltas": steps[1]}
     return [None if tree is None else _replaced(tree, index, replaced) for index, tree in enumerate(trees)]
 
 
@@ -271,30 +273,30 @@ def _replaced(tree, index: int, replaced: dict, path: tuple = ()):
     return replaced.get((index, path), tree)
 
 
-def deltas(x: np.ndarray, exponent: int) -> list:
-    """For each x[m] of the stack: round(x[m] / 10^exponent) as differences along its first axis from the
-    last non-null row of each column (an int array, or nested lists with None where x[m] is NaN)."""
+def deltas(x: np.ndarray, exponent: int) -> list[tuple[int, object]]:
+    """For each x[m] of the stack: (order, steps) of the integers k = round(x[m] / 10^exponent) along its
+    first axis (see Packed): order 2 where x[m] has no null and 3 rows or more (an int array), else order 1
+    from the last non-null row of each column (an int array, or nested lists with None where x[m] is NaN)."""
     scaled = x / 10.0 ** exponent if exponent >= 0 else x * 10.0 ** -exponent     # 10^|e| exact to e = 22
     count, rows = x.shape[:2]
     k = np.round(scaled).reshape(count, rows, -1)
     valid = np.isfinite(k)
-    if valid.all():                                                 # no null: plain differences
-        steps = np.diff(k, axis=1, prepend=0.0).astype(np.int64)
-        return [steps[m].reshape(x.shape[1:]) for m in range(count)]
     last = np.where(valid, np.arange(rows)[None, :, None], -1)
     np.maximum.accumulate(last, axis=1, out=last)                 # the last non-null row at or before i
     before = np.concatenate([np.full((count, 1, k.shape[2]), -1), last[:, :-1]], axis=1)   # ... before i
     known = np.take_along_axis(np.where(valid, k, 0.0), np.maximum(before, 0), axis=1)
     steps = np.where(valid, k - np.where(before >= 0, known, 0.0), 0.0).astype(np.int64)
     whole = valid.reshape(count, -1).all(axis=1)
+    second = steps.copy()
+    second[:, 2:] -= steps[:, 1:-1]                                # e_i = d_i − d_(i−1) from i = 2 on
     found = []
     for m in range(count):
         if whole[m]:
-            found.append(steps[m].reshape(x.shape[1:]))
+            found.append((2, second[m].reshape(x.shape[1:])) if rows > 2 else (1, steps[m].reshape(x.shape[1:])))
         else:
             listed = steps[m].astype(object)
             listed[~valid[m]] = None
-            found.append(listed.reshape(x.shape[1:]).tolist())
+            found.append((1, listed.reshape(x.shape[1:]).tolist()))
     return found
 
 
@@ -313,15 +315,17 @@ def quanta(span: dict[tuple, float], extent: dict[tuple, list[float]]) -> dict[t
 def unpacked(tree):
     """A packed tree's arrays as float arrays again (NaN where null): what the page decodes."""
     if isinstance(tree, dict):
-        if tree.keys() == {"exp10", "deltas"}:
-            return _summed(tree["deltas"], tree["exp10"])
+        if tree.keys() == {"exp10", "order", "deltas"}:
+            return _summed(tree["deltas"], tree["exp10"], tree["order"])
         return {key: unpacked(value) for key, value in tree.items()}
     return tree
 
 
-def _summed(steps, exponent: int) -> np.ndarray:
+def _summed(steps, exponent: int, order: int) -> np.ndarray:
     d = np.array(steps, dtype=float)                     # None → NaN
     flat = d.reshape(len(d), -1)
+    if order == 2:                                       # d_i = d_(i−1) + e_i from i = 2 on: the first differences
+        flat = np.concatenate([flat[:1], np.cumsum(flat[1:], axis=0)])
     total = np.cumsum(np.nan_to_num(flat), axis=0)
     values = total / 10.0 ** -exponent if exponent < 0 else total * 10.0 ** exponent
     return np.where(np.isnan(flat), np.nan, values).reshape(d.shape)

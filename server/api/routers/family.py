@@ -44,9 +44,9 @@ class FamilyRequest(BaseModel):
                     "member does not hold is left out of it (an answer's shape depends on the values and on "
                     "`outputs`). Absent: the whole answers")
     packed: bool = Field(False, description="send the family packed: arrays equal in every member once, in "
-                         "`shared`; every float array of a quantity with a span as {exp10: e, deltas: [...]}, the "
-                         "integers round(x/10^e) as steps along the first axis (null where x is null), 10^e ≤ "
-                         "1e-4 of the quantity's span (server/api/family.py, Packed)")
+                         "`shared`; every float array of a quantity with a span as {exp10: e, order: n, deltas: [...]}, "
+                         "the integers round(x/10^e) as differences of order n along the first axis (order 1 keeps "
+                         "null where x is null), 10^e ≤ 1e-4 of the quantity's span (server/api/family.py, Packed)")
 
     @field_validator("fields")
     @classmethod

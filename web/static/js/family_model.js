@@ -88,20 +88,28 @@ export function familyKey(body, paths, fields = []) {
   return JSON.stringify([paths, rest, fields]);
 }
 
-/** A packed array's values: x = 10^exp10 · (running sum of the non-null steps of its column), null where null. */
-function unpackedArray({ exp10, deltas }) {
+/**
+ * A packed array's values (server/api/family.py, Packed): the integers k as differences of its order along the
+ * first axis, column by column; x = 10^exp10 · k, null where the step is null (order 1 only).
+ */
+function unpackedArray({ exp10, order, deltas }) {
   const scale = exp10 < 0 ? (k) => k / 10 ** -exp10 : (k) => k * 10 ** exp10;     // 10^|e| exact: a decimal's double
   const step = (sum, d) => (Array.isArray(d) ? d.map((x, i) => step(sum?.[i], x)) : d === null ? sum : (sum ?? 0) + d);
   const value = (sum, d) => (Array.isArray(d) ? d.map((x, i) => value(sum[i], x)) : d === null ? null : scale(sum));
+  let steps = deltas;
+  if (order === 2) {         // first differences: d_0 = e_0, d_1 = e_1, d_i = d_(i−1) + e_i
+    let sum;
+    steps = deltas.map((e, i) => (i === 0 ? e : (sum = step(sum, e))));
+  }
   let sum;
-  return deltas.map((d) => {
+  return steps.map((d) => {
     sum = step(sum, d);
     return value(sum, d);
   });
 }
 
 const isObject = (x) => x !== null && typeof x === "object" && !Array.isArray(x);
-const isPacked = (x) => isObject(x) && Array.isArray(x.deltas) && typeof x.exp10 === "number" && Object.keys(x).length === 2;
+const isPacked = (x) => isObject(x) && Array.isArray(x.deltas) && typeof x.exp10 === "number" && Object.keys(x).length === 3;
 
 /** A tree with its packed arrays as arrays of numbers (and nulls). */
 function unpacked(tree) {
