@@ -75,7 +75,6 @@ import re
 import time
 from bisect import bisect_right
 from dataclasses import dataclass, field
-from functools import cached_property
 from typing import Callable
 
 import numpy as np
@@ -605,7 +604,7 @@ def _leaf(tree, path: tuple):
     return tree
 
 
-def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> dict[tuple, float]:
+def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> LeafValues:
     """The largest |f''| at the centre member over the elements of each leaf whose shape the three members
     share: the second divided difference 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋) (nulls aside)."""
     h_minus = coordinate(centre.value, log) - coordinate(left.value, log)
@@ -614,8 +613,8 @@ def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> d
         f_minus, f0, f_plus = left.flat.vector, centre.flat.vector, right.flat.vector
         with np.errstate(invalid="ignore", over="ignore"):
             bend = np.abs((f_plus - f0) / h_plus - (f0 - f_minus) / h_minus) * (2 / (h_plus + h_minus))
-        return dict(zip(centre.flat.paths, centre.flat.largest(bend)))
-    found = {}
+        return LeafValues.of(centre.flat, centre.flat.largest(bend))
+    found = LeafValues()
     with np.errstate(invalid="ignore", over="ignore"):
         for path, f0 in centre.leaves.items():
             f_minus, f_plus = left.leaves.get(path), right.leaves.get(path)
@@ -657,9 +656,23 @@ class Flat:
         return cls(tuple((path, leaf.shape) for path, leaf in leaves.items()), tuple(leaves),
                    np.cumsum([0, *sizes[:-1]]), np.concatenate([leaf.ravel() for leaf in leaves.values()]))
 
-    def largest(self, values: np.ndarray) -> list[float]:
+    def largest(self, values: np.ndarray) -> np.ndarray:
         """The largest of each leaf's elements of values (≥ 0), nulls aside; 0 where a leaf has none."""
-        return np.fmax(np.fmax.reduceat(values, self.starts), 0.0).tolist()
+        return np.fmax(np.fmax.reduceat(values, self.starts), 0.0)
+
+
+class LeafValues(dict):
+    """A number per leaf of a member (path → value), and, when computed over the member's Flat at once, the
+    same numbers as an array in its layout's order (``array``, ``layout``; else None)."""
+
+    array: np.ndarray | None = None
+    layout: tuple | None = None
+
+    @classmethod
+    def of(cls, flat: Flat, values: np.ndarray) -> "LeafValues":
+        found = cls(zip(flat.paths, values.tolist()))
+        found.array, found.layout = values, flat.layout
+        return found
 
 
 def same_layout(*members: "Member") -> bool:
@@ -677,6 +690,7 @@ class Member:
     error: dict | None
     partial: bool
     leaves: dict[tuple, np.ndarray] = field(default_factory=dict)
+    flat: Flat | None = None                            # the leaves as one vector (made from them if not given)
 
     @classmethod
     def of(cls, value: float, outcome: Answer | Exception, fields: Fields | None = None) -> "Member":
@@ -687,9 +701,9 @@ class Member:
         tree = as_tree(outcome.payload if fields is None else pruned(outcome.payload, fields))
         return cls(value, tree, None, outcome.partial, flatten(tree))
 
-    @cached_property
-    def flat(self) -> Flat | None:
-        return Flat.of(self.leaves)
+    def __post_init__(self):
+        if self.flat is None and self.leaves:
+            self.flat = Flat.of(self.leaves)
 
     def size(self) -> int:
         """Bytes the member holds, roughly (its arrays, twice: as leaves and flat, and a little per leaf): the
@@ -712,6 +726,7 @@ class Family:
     extent: dict[tuple, list[float]] = field(default_factory=dict)
     _curvatures: dict[float, tuple] = field(default_factory=dict)   # value → (neighbours' values, curvature)
     _errors: dict[tuple, dict] = field(default_factory=dict)  # the 4 members' values → absolute error by leaf
+    _spans: tuple = (None, None)                    # the span dict last asked, and its arrays by layout
 
     def add(self, member: Member) -> None:
         extend_member(self.extent, member)
@@ -725,7 +740,7 @@ class Family:
         """The width of interval k (members k and k + 1) in the slider's coordinate."""
         return coordinate(self.members[k + 1].value, self.log) - coordinate(self.members[k].value, self.log)
 
-    def curvature(self, k: int) -> dict[tuple, float] | None:
+    def curvature(self, k: int) -> LeafValues | None:
         """|f''| at member k (None at the range's ends and beside a refused member), kept until a neighbour
         changes."""
         if k == 0 or k == len(self.members) - 1 or any(self.members[j].answer is None for j in (k - 1, k, k + 1)):
@@ -747,6 +762,12 @@ class Family:
         found = self.errors(k)
         if found is None:
             return math.inf, ()
+        if found.layout is not None:                    # every leaf at once
+            widths_ = self._span_array(span, a.flat)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                error = np.where(found.array == 0, 0.0, np.where(widths_ > 0, found.array / widths_, 1.0))
+            worst = int(np.argmax(error))
+            return (float(error[worst]), a.flat.paths[worst]) if error[worst] > 0 else (0.0, ())
         worst, where = 0.0, ()
         for path, largest in found.items():
             width = span.get(path, 0.0)
@@ -755,7 +776,16 @@ class Family:
                 worst, where = error, path
         return worst, where
 
-    def errors(self, k: int) -> dict[tuple, float] | None:
+    def _span_array(self, span: dict[tuple, float], flat: Flat) -> np.ndarray:
+        """The span of each leaf of the layout, as an array (kept while the same span dict is asked)."""
+        if self._spans[0] is not span:
+            self._spans = (span, {})
+        kept = self._spans[1].get(flat.layout)
+        if kept is None:
+            kept = self._spans[1][flat.layout] = np.array([span.get(path, 0.0) for path in flat.paths])
+        return kept
+
+    def errors(self, k: int) -> LeafValues | None:
         """Interval k's estimated largest |interpolation − exact| by leaf (absolute), kept until a member
         that enters it changes; None when neither end has a second difference."""
         around = tuple(self.members[j].value if 0 <= j < len(self.members) else None for j in range(k - 1, k + 3))
@@ -764,9 +794,12 @@ class Family:
         a, b = self.members[k], self.members[k + 1]
         ends = [c for c in (self.curvature(k), self.curvature(k + 1)) if c is not None]
         found = None
-        if ends:
+        if ends and same_layout(a, b) and all(c.layout is not None and c.layout == a.flat.layout for c in ends):
+            smallest = ends[0].array if len(ends) == 1 else np.minimum(ends[0].array, ends[1].array)
+            found = LeafValues.of(a.flat, smallest * (self.width(k) ** 2 / 8))
+        elif ends:
             scale = self.width(k) ** 2 / 8
-            found = {}
+            found = LeafValues()
             for path, leaf in a.leaves.items():
                 other = b.leaves.get(path)
                 bends = [c[path] for c in ends if path in c]
@@ -783,7 +816,7 @@ class Family:
         worst, where = 0.0, ()
         if same_layout(self.members[k], self.members[k + 1]):
             a, b = self.members[k].flat, self.members[k + 1].flat
-            for path, largest in zip(a.paths, a.largest(np.abs(b.vector - a.vector))):
+            for path, largest in zip(a.paths, a.largest(np.abs(b.vector - a.vector)).tolist()):
                 if span.get(path) and largest / span[path] > worst:
                     worst, where = largest / span[path], path
             return worst, where
