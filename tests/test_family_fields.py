@@ -10,11 +10,13 @@ in this process with the time budgets lifted, so no answer depends on how fast t
 from __future__ import annotations
 
 import numpy as np
+import orjson
 import pytest
 from fastapi.testclient import TestClient
 
 from server.api import family, heavy
 from server.api.app import app
+from server.api.serialise import Answer
 from server.core.dynamics import report
 from test_family import API, SENT, TOLERANCE, exact, family_body, post_family, strict_json
 
@@ -161,3 +163,27 @@ def test_the_memo_keeps_members_of_other_fields_apart(client):
     wide = post_family(client, lean_body("forces-friction", "central", "f", stage="coarse", packed=False))[1]
     assert set(narrow["answers"][0]) == {"phi", "balancing_moment"}
     assert {"points", "reactions", "applied"} <= set(wide["answers"][0])
+
+
+def test_the_whole_member_arithmetic_equals_the_leaf_by_leaf_reference(monkeypatch):
+    """Curvatures, extents, changes and estimates over a member's leaves as one vector (family.Flat) give the
+    same family, byte for byte, as the leaf-by-leaf reference path (same_layout forced false), on a made-up
+    answer with several leaves and shapes, a null inside, a jump, a steep corner and a flat leaf."""
+    def answer(v):
+        x = np.linspace(0.0, 1.0, 50)
+        bend = np.sin(3 * v * x) + (v > 0.61) * 0.3
+        bend[7] = np.nan
+        return {"curve": bend, "pair": np.column_stack([np.cos(v * x), x * abs(v - 0.3) ** 0.5]),
+                "level": np.float64(v ** 3), "flat": np.ones(4), "nested": {"z": np.exp(-v * x[:5])}}
+
+    def members(values, deadline):
+        return [family.Member.of(v, Answer(answer(v))) for v in values]
+
+    def built():
+        result, _ = family.build(members, 0.1, 2.0, False, pack=True)
+        result["numerics"].pop("runtime_ms")
+        return orjson.dumps(result, option=orjson.OPT_SERIALIZE_NUMPY)
+
+    vectorised = built()
+    monkeypatch.setattr(family, "same_layout", lambda *members: False)
+    assert built() == vectorised
