@@ -9,7 +9,9 @@ The kinematics core evaluates one parameter set per call (its special positions,
 per mechanism), so a batch is a loop over bodies, not one call over a (φ, value) grid.
 
 Members are pruned to the request's ``fields`` (family.pruned) as they are made, so the memo keys them by
-the fields too: the same body asked with other fields is another member.
+the fields too: the same body asked with other fields is another member. The endpoint is told which top-level
+keys are read (endpoints.compute_answer ``reads``), so that it skips what no field reads (an elastic member's
+check run at rtol/10, which only estimates the error of numerics no preview draws; the forces' crank check).
 
 The memo is a least-recently-used store per heavy process, bounded both in members (MEMO_MEMBERS) and in the
 bytes their arrays hold (MEMO_BYTES); a member cut short by a bound is not kept (a quieter moment gives it whole).
@@ -63,6 +65,7 @@ def member_batch(endpoint: str, request: dict, vary: list[family.Vary], lang: st
     ``counts`` (if given) gathers "computed" and "reused"."""
     counts = {} if counts is None else counts
     trie = None if fields is None else family.field_trie(fields)
+    reads = None if trie is None else frozenset(trie)      # the endpoint may skip what no field reads
     named = None if fields is None else tuple(sorted(set(fields)))
 
     def members(values: list[float], deadline: float) -> list[family.Member]:
@@ -75,7 +78,7 @@ def member_batch(endpoint: str, request: dict, vary: list[family.Vary], lang: st
                 if time.perf_counter() > deadline:
                     break
                 try:
-                    outcome = compute_answer(endpoint, body, lang)
+                    outcome = compute_answer(endpoint, body, lang, reads)
                 except (ValidationError, GeometryError) as error:
                     outcome = error
                 member = family.Member.of(value, outcome, trie)
