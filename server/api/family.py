@@ -78,7 +78,6 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
-from pydantic import ValidationError
 
 from ..core.mechanisms import GeometryError
 from .serialise import Answer, significant
@@ -243,7 +242,7 @@ def merged(shared: dict, own: dict | None) -> dict | None:
 
 def packed(trees: list, quanta: dict[tuple, int]) -> list:
     """The trees (None: refused) with each float array that has a quantum (path → exponent e) as
-    {"exp10": e, "deltas": [...]} (see Packed); the arrays of one path and shape are packed together."""
+    {"exp10": e, "order": n, "deltas": [...]} (see Packed); the arrays of one path and shape are packed together."""
     groups: dict[tuple, list] = {}
     for index, tree in enumerate(trees):
         for path, leaf in _dict_arrays(tree):
