@@ -64,9 +64,9 @@ def all_preview_fields(tree: Path = ROOT) -> dict[str, list[str]]:
     return json.loads(done.stdout)
 
 
-def page_family_body(scene, variant, slider, tree: Path = ROOT) -> dict:
-    """The family request the page of ``tree`` sends on a grab (without "stage"): fields and packed where that
-    page has them."""
-    body = family_body(scene, variant, slider)
+def page_family_body(scene, variant, slider, tree: Path = ROOT, values: dict | None = None) -> dict:
+    """The family request the page of ``tree`` sends on a grab (without "stage"), the other controls at
+    ``values`` (defaults if absent): fields and packed where that page has them."""
+    body = family_body(scene, variant, slider, values)
     fields = all_preview_fields(tree).get(f"{scene.id}/{variant.id}")
     return body | ({"fields": fields, "packed": True} if fields else {})
