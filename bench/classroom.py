@@ -53,10 +53,11 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from family_request import family_body  # noqa: E402
+from family_request import page_family_body  # noqa: E402
 from trees import OUTLIVE_GRACE_S, ROOT, check_tree, commit_of, lessons, running_server, server_cpu_s  # noqa: E402
 
 sys.path.insert(0, str(ROOT))
+PAGE_TREE = ROOT          # the tree whose page's family request the students send (main sets --tree)
 scenes, scene_request, slider_values, _, _ = lessons()
 
 TICK_S = 0.1                    # a slider move every 100 ms while dragging
@@ -139,7 +140,8 @@ class Student:
         return json.dumps(request, separators=(",", ":")).encode()
 
     def family(self, stage: str = "full") -> bytes:
-        request = family_body(self.scene, self.variant, self.slider, self.values[self.variant.id]) | {"stage": stage}
+        request = page_family_body(self.scene, self.variant, self.slider, PAGE_TREE,      # fields and packed where
+                                   self.values[self.variant.id]) | {"stage": stage}     # that tree's page has them
         return json.dumps(request, separators=(",", ":")).encode()
 
     @property
@@ -614,6 +616,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--output", type=Path, default=ROOT / "bench" / "results" / "classroom.md")
     args = parser.parse_args(argv)
     args.tree = check_tree(args.tree)
+    global PAGE_TREE
+    PAGE_TREE = args.tree.resolve()
     if args.client != "threads" and "new" in args.pattern:
         parser.error("the new page pattern runs on the threads client")
 

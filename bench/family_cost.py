@@ -1,23 +1,32 @@
-"""What one slider family costs, old engine beside new (issue 13, "Dragging is a lookup"; not a test).
+"""What one slider family costs the server and the wire, old page and engine beside new (issue 13, "Dragging is
+a lookup"; not a test).
 
-For every scene, variant and slider (the variant's default values, the page's family request from
-bench/family_request.py), one family is computed in-process by the old tree (default /tmp/mdl-fam-old, a
-``git worktree add --detach`` of commit 9b8d9d3, made here if absent) and by the new one (this repository),
-each in a process of its own, the two taking turns family by family so that both see the same load. Each
-worker counts the exact endpoint computations (endpoints.compute_answer) and times the family. The new worker
-starts each family with an empty memo of members, and also times the page's sequence: the coarse stage (what
-the grab asks first) and then the full family (reusing the coarse members).
+For every scene, variant and slider (the variant's default values), each tree answers the family request its
+own page sends on a grab (bench/family_request.py: the old page sends the endpoint's whole answers; the new one
+names the leaves its panels draw, ``fields`` from web/static/js/family_fields.js run in Node, and asks for the
+family ``packed``). The old tree (default /tmp/mdl-lean-old, a ``git worktree add --detach`` of d0a7cb5, made
+here if absent) and the new one (this repository) each run in a process of their own, the two taking turns
+family by family so that both see the same load.
 
-Columns: members, exact computations, ms (wall clock of the family) and interpolation error (old: measured at
-the midpoints; new: the estimate h²|f''|/8) for old and new; the new coarse stage's ms and the full family's ms
-right after it. Results: printed and written to bench/results/family_cost.md.
+Each worker times what the server does for a family: the family's answer (family_answer, as in the heavy
+process), its JSON (serialise, as the route sends it) and its gzip (level GZIP_LEVEL, as the app's middleware),
+in three situations:
+  cold   the memo of members empty: the page's grab sequence, the coarse stage then the full family (the full
+         one reusing the coarse members), the two summed;
+  warm   the full family again with every member in the memo (a neighbouring student's grab of the same
+         family, or one the response cache no longer holds);
+and reports the full family's members, exact computations, interpolation error, JSON and gzip bytes. Each
+time is the fastest of COLD_RUNS (cold) or WARM_RUNS (warm) runs, the one least disturbed by other work on a
+shared machine.
+Results: printed and written to bench/results/family_cost.md.
 
-    python3 bench/family_cost.py                       # every scene (a few minutes on 2 CPUs)
+    python3 bench/family_cost.py                       # every scene (several minutes on 2 CPUs)
     python3 bench/family_cost.py --scenes wear flywheel
 """
 from __future__ import annotations
 
 import argparse
+import gzip
 import json
 import os
 import platform
@@ -28,9 +37,11 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-OLD_COMMIT = "9b8d9d3"
-DEFAULT_OLD = Path("/tmp/mdl-fam-old")
-ELASTIC = ("elastic-",)
+OLD_COMMIT = "d0a7cb5"
+DEFAULT_OLD = Path("/tmp/mdl-lean-old")
+HEAVY = ("elastic-", "forces-friction", "flywheel", "equation-of-motion")
+GZIP_LEVEL = 3                  # server/api/response_cache.py: the app's GZip middleware's level
+COLD_RUNS, WARM_RUNS = 2, 3     # the fastest of these runs is kept: the least disturbed by other work
 
 
 def worker(tree: str) -> None:
@@ -40,35 +51,45 @@ def worker(tree: str) -> None:
     from server.core.warm_up import warm_up
     warm_up()
     from server.api import endpoints
+    from server.api import family_batch as batch
     from server.api.routers import family as route
-    try:
-        from server.api import family_batch as batch
-    except ImportError:
-        batch = None
+    from server.api.serialise import serialise
     original, count = endpoints.compute_answer, [0]
 
     def counted(*args, **kwargs):
         count[0] += 1
         return original(*args, **kwargs)
 
-    (batch or route).compute_answer = counted
+    batch.compute_answer = counted
+
+    def timed(body: dict) -> dict:
+        count[0] = 0
+        started = time.perf_counter()
+        answer, partial = route.family_answer(json.loads(json.dumps(body)), "en")
+        built = time.perf_counter()
+        text = serialise(answer, None)                  # the route sends the family's own rounding
+        packed = gzip.compress(text, GZIP_LEVEL)
+        done = time.perf_counter()
+        return {"ms": 1e3 * (done - started), "build_ms": 1e3 * (built - started), "members": len(answer["values"]),
+                "computed": count[0], "error": answer["interpolation_error"], "partial": partial,
+                "json": len(text), "gzip": len(packed), "message": answer["numerics"]["message"]}
+
+    def fastest(runs: list[dict]) -> dict:
+        return min(runs, key=lambda run: run["ms"])
+
     print(json.dumps({"ready": True}), flush=True)
     for line in sys.stdin:
         body = json.loads(line)
-        result = {}
-        stages = ("full", "coarse", "after") if batch else ("full",)
-        for stage in stages:
-            if batch and stage != "after":
-                batch.MEMO.store.clear()
-                batch.MEMO.held = 0
-            request = dict(body, stage="full" if stage == "after" else stage) if batch else body
-            count[0] = 0
-            started = time.perf_counter()
-            answer, partial = route.family_answer(json.loads(json.dumps(request)), "en")
-            result[stage] = {"ms": 1e3 * (time.perf_counter() - started), "members": answer["numerics"]["points"],
-                             "computed": count[0], "error": answer["interpolation_error"], "partial": partial,
-                             "message": answer["numerics"]["message"]}
-        print(json.dumps(result), flush=True)
+        colds = []
+        for _ in range(COLD_RUNS):
+            batch.MEMO.store.clear()
+            batch.MEMO.held = 0
+            coarse = timed(body | {"stage": "coarse"})
+            colds.append((coarse, timed(body | {"stage": "full"})))
+        coarse, full = min(colds, key=lambda pair: pair[0]["ms"] + pair[1]["ms"])
+        warm = fastest([timed(body | {"stage": "full"}) for _ in range(WARM_RUNS)])
+        print(json.dumps({"coarse": coarse, "full": full, "warm": warm,
+                          "cold_ms": coarse["ms"] + full["ms"]}), flush=True)
 
 
 def old_tree(path: Path) -> Path:
@@ -90,17 +111,18 @@ def ask(process: subprocess.Popen, body: dict) -> dict:
     return json.loads(process.stdout.readline())
 
 
-def families(only: list[str]):
+def families(only: list[str], old: Path):
+    """(scene, variant, slider, the old page's body, the new page's body) for every slider."""
     sys.path[:0] = [str(ROOT), str(ROOT / "bench")]
-    from family_request import family_body
+    from family_request import page_family_body
     from trees import lessons
-    scenes = lessons()[0]()
-    for scene in scenes.values():
+    for scene in lessons()[0]().values():
         if only and scene.id not in only:
             continue
         for variant in scene.variants:
             for slider in variant.sliders:
-                yield scene.id, variant.id, slider.id, family_body(scene, variant, slider)
+                yield (scene.id, variant.id, slider.id, page_family_body(scene, variant, slider, old),
+                       page_family_body(scene, variant, slider, ROOT))
 
 
 def cell(x) -> str:
@@ -116,61 +138,81 @@ def main() -> None:
     if args.worker:
         worker(args.worker)
         return
-    old, new = start(old_tree(args.old)), start(ROOT)
+    old_path = old_tree(args.old)
+    old, new = start(old_path), start(ROOT)
     rows = []
-    for turn, (scene, variant, slider, body) in enumerate(families(args.scenes)):
+    for turn, (scene, variant, slider, old_body, new_body) in enumerate(families(args.scenes, old_path)):
         pair = {}
-        for name, process in ((("old", old), ("new", new)) if turn % 2 == 0 else (("new", new), ("old", old))):
+        order = (("old", old, old_body), ("new", new, new_body))
+        for name, process, body in (order if turn % 2 == 0 else order[::-1]):
             pair[name] = ask(process, body)
-        o, n = pair["old"]["full"], pair["new"]
+        o, n = pair["old"], pair["new"]
         rows.append((scene, variant, slider, o, n))
-        print(f"{scene:22s} {variant:16s} {slider:14s} old {o['members']:3d}/{o['computed']:3d} {o['ms']:7.0f} ms "
-              f"err {cell(o['error'])} | new {n['full']['members']:3d}/{n['full']['computed']:3d} "
-              f"{n['full']['ms']:7.0f} ms err {cell(n['full']['error'])} | coarse {n['coarse']['ms']:6.0f} ms, "
-              f"full after {n['after']['ms']:6.0f} ms", flush=True)
+        print(f"{scene:22s} {variant:14s} {slider:14s} members {o['full']['members']:2d}→{n['full']['members']:2d} "
+              f"gz {o['full']['gzip'] / 1e3:6.0f}→{n['full']['gzip'] / 1e3:5.0f} kB  cold {o['cold_ms']:6.0f}→"
+              f"{n['cold_ms']:6.0f} ms  warm {o['warm']['ms']:5.0f}→{n['warm']['ms']:4.0f} ms  err "
+              f"{cell(o['full']['error'])}→{cell(n['full']['error'])}", flush=True)
     for process in (old, new):
         process.stdin.close()
         process.wait()
-    write(rows, args)
+    write(rows)
 
 
-def write(rows, args) -> None:
-    lines = [f"# Family cost, old ({OLD_COMMIT}) beside new", "",
-             f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, Python {platform.python_version()}, "
-             f"{os.cpu_count()} CPUs (shared with other work: compare the ratios, not the figures). Each family "
-             "computed once per engine, in-process, the two engines in their own processes taking turns. "
-             "members/computed: members sent / exact endpoint computations. err: the reported interpolation "
-             "error / span (old: measured at the checked midpoints; new: estimated, h²|f''|/8), target 0.005. "
-             "coarse: the new coarse stage (9 members) from an empty memo; after: the full family asked right "
-             "after it (the page's grab sequence).", "",
-             "| scene | variant | slider | old members/computed | old ms | old err | new members/computed | "
-             "new ms | new err | coarse ms | after ms | old/new ms |", "|" + "---|" * 12]
-    for scene, variant, slider, o, n in rows:
-        f = n["full"]
-        lines.append(f"| {scene} | {variant} | {slider} | {o['members']}/{o['computed']} | {o['ms']:.0f} | "
-                     f"{cell(o['error'])} | {f['members']}/{f['computed']} | {f['ms']:.0f} | {cell(f['error'])} | "
-                     f"{n['coarse']['ms']:.0f} | {n['after']['ms']:.0f} | {o['ms'] / f['ms']:.2f} |")
-    lines += ["", "## Summary", "", "| families | computed old → new | ms old → new (sum) | median old/new | "
-              "p95 ms new full | p95 ms new coarse | above 0.005 old → new |", "|---|---|---|---|---|---|---|"]
-    for label, keep in (("light", lambda r: not r[0].startswith(ELASTIC)), ("elastic", lambda r: r[0].startswith(ELASTIC)),
-                        ("all", lambda r: True)):
-        part = [r for r in rows if keep(r)]
+def ratio(a: float, b: float) -> str:
+    return f"{a / b:.1f}×" if b else "—"
+
+
+def write(rows) -> None:
+    lines = [f"# Family cost, old ({OLD_COMMIT}: the old page's request, whole answers) beside new (fields + packed)",
+             "", f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, Python {platform.python_version()}, "
+             f"{os.cpu_count()} CPUs shared with other work (compare the ratios, not the figures). `python3 "
+             "bench/family_cost.py`: each family answered in-process by each tree, the two in processes of their "
+             "own taking turns. Server time = the family's answer + its JSON + gzip (level 3, as the app), the fastest of "
+             f"{COLD_RUNS} runs (cold) or {WARM_RUNS} (warm). cold: "
+             "empty memo, the page's grab sequence (coarse stage, then the full family reusing its members); "
+             "warm: the full family again with every member in the memo. Bytes and error: the full family. err: "
+             "the reported interpolation error / span (target 0.005; new: over the drawn fields, plus 5e-5 for "
+             "packing).", "", "## Per scene (sums over its sliders)", "",
+             "| scene | families | JSON MB old → new | gzip kB old → new | smaller (gzip) | cold ms old → new | "
+             "cheaper (cold) | warm ms old → new | cheaper (warm) | computed old → new |", "|" + "---|" * 10]
+    by_scene: dict[str, list] = {}
+    for row in rows:
+        by_scene.setdefault(row[0], []).append(row)
+    total = lambda part, side, key: sum(r[3 if side == "old" else 4]["full"][key] for r in part)
+    for scene, part in [*by_scene.items(), ("**heavy scenes**", [r for r in rows if r[0].startswith(HEAVY)]),
+                        ("**all**", rows)]:
         if not part:
             continue
-        full = sorted(r[4]["full"]["ms"] for r in part)
-        coarse = sorted(r[4]["coarse"]["ms"] for r in part)
-        p95 = lambda xs: xs[min(len(xs) - 1, int(0.95 * len(xs)))]
-        above = lambda side: sum(1 for r in part if (side(r)["error"] or 0) > 0.005)
-        lines.append(f"| {label} ({len(part)}) | {sum(r[3]['computed'] for r in part)} → "
-                     f"{sum(r[4]['full']['computed'] for r in part)} | {sum(r[3]['ms'] for r in part):.0f} → "
-                     f"{sum(r[4]['full']['ms'] for r in part):.0f} | "
-                     f"{statistics.median(r[3]['ms'] / r[4]['full']['ms'] for r in part):.2f} | {p95(full):.0f} | "
-                     f"{p95(coarse):.0f} | {above(lambda r: r[3])} → {above(lambda r: r[4]['full'])} |")
-    lines += ["", "## Messages of the new families that name what they cannot resolve", ""]
-    lines += [f"- {r[0]} / {r[1]} / {r[2]}: {r[4]['full']['message']}" for r in rows if r[4]["full"]["message"]]
+        cold = [sum(r[k]["cold_ms"] for r in part) for k in (3, 4)]
+        warm = [sum(r[k]["warm"]["ms"] for r in part) for k in (3, 4)]
+        lines.append(f"| {scene} | {len(part)} | {total(part, 'old', 'json') / 1e6:.2f} → "
+                     f"{total(part, 'new', 'json') / 1e6:.2f} | {total(part, 'old', 'gzip') / 1e3:.0f} → "
+                     f"{total(part, 'new', 'gzip') / 1e3:.0f} | "
+                     f"{ratio(total(part, 'old', 'gzip'), total(part, 'new', 'gzip'))} | {cold[0]:.0f} → {cold[1]:.0f} | "
+                     f"{ratio(*cold)} | {warm[0]:.0f} → {warm[1]:.0f} | {ratio(*warm)} | "
+                     f"{total(part, 'old', 'computed')} → {total(part, 'new', 'computed')} |")
+    lines += ["", "## Per family", "",
+              "| scene | variant | slider | members old → new | err old → new | JSON kB old → new | gzip kB old → new "
+              "| cold ms old → new | warm ms old → new | warm build ms old → new |", "|" + "---|" * 10]
+    for scene, variant, slider, o, n in rows:
+        lines.append(f"| {scene} | {variant} | {slider} | {o['full']['members']} → {n['full']['members']} | "
+                     f"{cell(o['full']['error'])} → {cell(n['full']['error'])} | {o['full']['json'] / 1e3:.0f} → "
+                     f"{n['full']['json'] / 1e3:.0f} | {o['full']['gzip'] / 1e3:.0f} → {n['full']['gzip'] / 1e3:.0f} | "
+                     f"{o['cold_ms']:.0f} → {n['cold_ms']:.0f} | {o['warm']['ms']:.0f} → {n['warm']['ms']:.0f} | "
+                     f"{o['warm']['build_ms']:.0f} → {n['warm']['build_ms']:.0f} |")
+    above = [r for r in rows if (r[4]["full"]["error"] or 0) > 0.005]
+    lines += ["", f"Families whose new estimate is above 0.005: {len(above)} of {len(rows)} (old: "
+              f"{sum(1 for r in rows if (r[3]['full']['error'] or 0) > 0.005)}); their messages:", ""]
+    lines += [f"- {r[0]} / {r[1]} / {r[2]}: {r[4]['full']['message']}" for r in above if r[4]["full"]["message"]]
+    p95 = lambda xs: sorted(xs)[min(len(xs) - 1, int(0.95 * len(xs)))]
+    lines += ["", "p95 over families, new: cold " f"{p95([r[4]['cold_ms'] for r in rows]):.0f} ms, warm "
+              f"{p95([r[4]['warm']['ms'] for r in rows]):.0f} ms, gzip {p95([r[4]['full']['gzip'] for r in rows]) / 1e3:.0f} kB"
+              f"; old: cold {p95([r[3]['cold_ms'] for r in rows]):.0f} ms, warm {p95([r[3]['warm']['ms'] for r in rows]):.0f} ms, "
+              f"gzip {p95([r[3]['full']['gzip'] for r in rows]) / 1e3:.0f} kB. Median old/new warm: "
+              f"{statistics.median(r[3]['warm']['ms'] / r[4]['warm']['ms'] for r in rows):.1f}×."]
     out = ROOT / "bench" / "results" / "family_cost.md"
     out.write_text("\n".join(lines) + "\n")
-    print("\n".join(lines[-(len(rows) + 20):]))
+    print("\n".join(lines))
 
 
 if __name__ == "__main__":

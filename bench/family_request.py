@@ -6,10 +6,29 @@ with the factor ``params[slider.scale]`` (1 without a scale). Dynamics scenes pu
 slider.scale)`` at ``slider.param`` and every ``slider.also`` path: each of them with that factor
 (server/lessons/requests.py, formerly server/api/scene_requests.py). The range is the slider's, in shown
 units: ``min``, ``max`` and ``log``.
+
+The page also names the leaves its panels draw in a preview (``fields``, web/static/js/family_fields.js) and
+asks for the family packed; ``preview_fields`` runs that module in Node on the scenes as the page gets them
+(Scene.model_dump_json()), so a benchmark sends what the page sends.
 """
 from __future__ import annotations
 
-from trees import lessons
+import json
+import shutil
+import subprocess
+from functools import cache
+from pathlib import Path
+
+from trees import ROOT, lessons
+
+FIELDS_SCRIPT = """
+const scenes = JSON.parse(require("fs").readFileSync(0, "utf8"));
+import(process.argv[1]).then(({ previewFields }) => {
+  const out = {};
+  for (const scene of scenes) for (const variant of scene.variants) out[`${scene.id}/${variant.id}`] = previewFields(scene, variant);
+  process.stdout.write(JSON.stringify(out));
+});
+"""
 
 
 def vary(scene, variant, slider, request: dict) -> list[dict]:
@@ -28,3 +47,26 @@ def family_body(scene, variant, slider, values: dict | None = None) -> dict:
     request = scene_request(scene, variant, values)
     return {"endpoint": scene.endpoint, "request": request, "vary": vary(scene, variant, slider, request),
             "min": slider.min, "max": slider.max, "log": slider.log}
+
+
+@cache
+def all_preview_fields(tree: Path = ROOT) -> dict[str, list[str]]:
+    """"scene/variant" → the fields the page of that tree sends (web/static/js/family_fields.js, run in Node)."""
+    module = tree / "web" / "static" / "js" / "family_fields.js"
+    if not module.exists():
+        return {}
+    node = shutil.which("node") or shutil.which("nodejs")
+    if node is None:
+        raise SystemExit("Node.js is needed to run the page's family_fields.js (apt-get install nodejs)")
+    scenes = [json.loads(scene.model_dump_json()) for scene in lessons()[0]().values()]
+    done = subprocess.run([node, "-e", FIELDS_SCRIPT, module.as_uri()], input=json.dumps(scenes), text=True,
+                          capture_output=True, check=True)
+    return json.loads(done.stdout)
+
+
+def page_family_body(scene, variant, slider, tree: Path = ROOT, values: dict | None = None) -> dict:
+    """The family request the page of ``tree`` sends on a grab (without "stage"), the other controls at
+    ``values`` (defaults if absent): fields and packed where that page has them."""
+    body = family_body(scene, variant, slider, values)
+    fields = all_preview_fields(tree).get(f"{scene.id}/{variant.id}")
+    return body | ({"fields": fields, "packed": True} if fields else {})

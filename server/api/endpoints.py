@@ -9,6 +9,7 @@ computed only when it is in ``outputs``, or when what is asked is made from it.
 from __future__ import annotations
 
 import math
+from collections.abc import Collection
 
 import numpy as np
 import orjson
@@ -35,6 +36,8 @@ from .schemas_dynamics import FlywheelRequest, MotionRequest, ReductionRequest
 from .schemas_elastic import ElasticRequest
 from .schemas_forces import ChainRequest, ForcesRequest, WearRequest
 from .serialise import Answer, serialise
+
+Reads = Collection[str] | None      # the answer's top-level keys a caller reads; None: every one
 
 # The core's words when a bound stopped a computation with a partial result (server/core/dynamics/motion.py:
 # "stopped at the time budget …"; server/core/elastic/simulate.py and the start from rest: "… the work bound").
@@ -161,23 +164,30 @@ def elastic_machine(request: ElasticRequest) -> ElasticMachine:
         request.b, request.b1, request.speed, request.omega0, request.twist0)
 
 
-def elastic(request: ElasticRequest, lang: str) -> Answer:
+OTHER_ELASTIC = ("rigid", "modal", "bearings")   # an elastic answer's keys that are not the histories'
+
+
+def elastic(request: ElasticRequest, lang: str, reads: Reads = None) -> Answer:
     """Histories (with numerics), the rigid start-up, modal curves, the bearing iteration: each only when
-    asked for; the rigid machine alone is sampled on the histories' times, t = 0 … t_end in n points, and
-    refused where the elastic machine is (no inertia on the mechanism side, an undefined load)."""
+    asked for (and, for a caller that reads only part of the answer, ``reads``, only when read; the check run
+    at rtol/10 only when the numerics or the warnings are); the rigid machine alone is sampled on the
+    histories' times, t = 0 … t_end in n points, and refused where the elastic machine is (no inertia on the
+    mechanism side, an undefined load)."""
     built = elastic_machine(request)
     result, notices = {}, []
     deadline = request_deadline()                  # one for every stage of this request
-    wants_rigid = "rigid" in request.outputs
-    if "histories" in request.outputs:
+    asked = lambda output, *keys: output in request.outputs and (reads is None or any(k in reads for k in keys))
+    wants_rigid = asked("rigid", "rigid")
+    if "histories" in request.outputs and (reads is None or any(key not in OTHER_ELASTIC for key in reads)):
         result, notices = simulate(built, request.t_end, request.n, request.rtol, request.method,
-                                   with_rigid=wants_rigid, deadline=deadline)
+                                   with_rigid=wants_rigid, deadline=deadline, check=reads is None or "numerics" in reads
+                                   or "warnings" in reads)
     elif wants_rigid:
         mechanism_side(built)                      # refuses the elastic machine as its other outputs would
         result["rigid"] = rigid(built, np.linspace(0.0, request.t_end, request.n))
-    if "modal" in request.outputs:
+    if asked("modal", "modal"):
         result["modal"] = modal(built)
-    if "bearings" in request.outputs:
+    if asked("bearings", "bearings", "warnings"):
         result["bearings"] = bearing_iteration(built, Bearing(**request.bearing.model_dump()), request.t_end,
                                                request.n, request.rtol, deadline=deadline)
         notices = [*notices, *bearing_notice(result["bearings"])]
@@ -201,14 +211,17 @@ def _force_analysis(request: ForcesRequest, omega: float | None = None):
     return params, loads, pairs, analyse(params, loads, pairs, phi, request.tolerance)
 
 
-def forces(request: ForcesRequest, lang: str) -> Answer:
+def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
     """The force report and the check (3.2) of the balancing moment against virtual work, with and without
-    friction (without friction in the pairs, the analysis is already the frictionless one)."""
+    friction (without friction in the pairs, the analysis is already the frictionless one); the check only
+    when read (``reads``: a caller that reads only part of the answer)."""
     params, loads, pairs, analysis = _force_analysis(request)
-    rough = any((pairs.f12, pairs.f23, pairs.f34, pairs.f14))
-    frictionless = analyse(params, loads, Pairs(), analysis.phi) if rough else analysis
     result = forces_report(analysis, pairs)
-    result["crank_check"] = crank_check(analysis, frictionless, reduced_moment(params, analysis.applied, analysis.phi))
+    if reads is None or "crank_check" in reads:
+        rough = any((pairs.f12, pairs.f23, pairs.f34, pairs.f14))
+        frictionless = analyse(params, loads, Pairs(), analysis.phi) if rough else analysis
+        result["crank_check"] = crank_check(analysis, frictionless,
+                                            reduced_moment(params, analysis.applied, analysis.phi))
     return answer(result, analysis.notices, lang)
 
 
@@ -255,10 +268,18 @@ ENDPOINTS = {
 }
 
 
-def compute_answer(endpoint: str, body: dict, lang: str = "en") -> Answer:
+# Endpoints whose body skips work whose results a caller will not read (a family pruned to its fields):
+READ_AWARE = frozenset({"elastic", "forces"})
+
+
+def compute_answer(endpoint: str, body: dict, lang: str = "en", reads: Reads = None) -> Answer:
     """POST /api/v1/<endpoint> in-process: validates body with the endpoint's model (pydantic's
-    ValidationError) and computes (the core's GeometryError) exactly where the route would answer 422."""
+    ValidationError) and computes (the core's GeometryError) exactly where the route would answer 422.
+    ``reads``: the top-level keys of the answer the caller reads (None: all); an endpoint of READ_AWARE then
+    leaves out what only the others need (every key read is the same as in the whole answer)."""
     model, body_function = ENDPOINTS[endpoint]
+    if reads is not None and endpoint in READ_AWARE:
+        return body_function(model.model_validate(body), lang, reads)
     return body_function(model.model_validate(body), lang)
 
 

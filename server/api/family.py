@@ -44,20 +44,40 @@ interpolation error; ``full`` (the default) refines. The members are the same va
 family asked right after the coarse one reuses the coarse members (the heavy process's memo,
 server/api/family_batch.py).
 
+Fields. A request may name the leaves a preview draws (``fields``: dotted paths into the answer, e.g.
+"modal.stiffness", "t", "points"): each member's answer is then pruned to those subtrees (a path keeps the
+whole object or array it names) before anything else is done with it, so only they are rounded, checked,
+refined for and sent; numbers shown in tables and readouts always come from an exact answer, never from a
+family. A path a member does not hold is left out of that member silently: an answer's shape depends on the
+values (a stalled machine has no steady cycle) and on its ``outputs``, so a path is not wrong for being
+absent at some values. Without ``fields`` every member is the endpoint's whole answer, as before.
+
+Packed (``packed``: true, what the page asks for). An array that is the same in every answered member (a time
+grid, a crank-angle grid, the forces a friction coefficient does not change) is sent once, in ``shared``, and
+left out of the members: a member's answer is ``shared`` merged with its own, object by object. Every float
+array under objects whose quantity has a span (see ``widths``) is sent as {"exp10": e, "order": n,
+"deltas": [...]}, the integers k_i = round(x_i / 10^e) as differences along the first axis, column by column:
+order 1, d_0 = k_0 and d_i = k_i − k_j with j the last non-null row before i, null where x_i is null
+(x_i = 10^e · the sum of the non-null d of its column up to i); order 2 (an array without null, 3 rows or
+more), e_0 = d_0, e_1 = d_1, e_i = d_i − d_(i−1): a smooth curve's second differences are a digit or two.
+The quantum 10^e is the largest power of ten ≤ PACK_QUANTUM × the leaf's span over
+the family (but ≥ 10^−12 of its largest magnitude), so packing moves a value by at most
+PACK_QUANTUM/2 = 0.005 % of its span, added to the interpolation error reported. A smooth curve's steps
+are a few digits each, where its decimals took eight or nine, and they compress better.
+
 The comparison uses the members as sent: every float rounded to SIGNIFICANT digits (NaN and ±inf → null), so
 the reported interpolation error includes the rounding the page sees.
 """
 from __future__ import annotations
 
-import copy
 import math
+import re
 import time
 from bisect import bisect_right
 from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
-from pydantic import ValidationError
 
 from ..core.mechanisms import GeometryError
 from .serialise import Answer, significant
@@ -82,6 +102,9 @@ UNCHECKED = frozenset({"numerics", "study", "warnings", "directions", "iteration
 # parabola; for a corner (slopes s and s + Δs meeting inside the interval, at d from an end) the smaller of
 # the ends' h²|f''|/8 is Δs·min(d, h − d)/8 against the true Δs·d(h − d)/h: at most 4× too small (d = h/2).
 SAFETY = 4
+PACK_QUANTUM = 1e-4            # a packed array's quantum, at most this fraction of its span (see Packed)
+MAX_FIELDS = 64                 # dotted paths a family request may name (a scene's previews draw ~5–25)
+FIELD = re.compile(r"[A-Za-z0-9_]{1,60}(\.[A-Za-z0-9_]{1,60}){0,7}")     # a dotted path of an answer's keys
 COARSE_TO_FINE = (0, 8, 4, 2, 6, 1, 3, 5, 7)    # the order of the first 9 members
 STAGES = ("coarse", "full")
 
@@ -95,13 +118,14 @@ class Vary:
 
 
 def member_body(request: dict, vary: list[Vary], value: float) -> dict:
-    """The request with each varied path set to value × factor (a deep copy: the request is shared)."""
-    body = copy.deepcopy(request)
+    """The request with each varied path set to value × factor: new objects along the varied paths, the rest
+    shared with the request (read, never written: the endpoints validate a body into models of their own)."""
+    body = dict(request)
     for item in vary:
         *keys, last = item.path.split(".")
         holder = body
         for key in keys:
-            holder = holder[key]
+            holder[key] = holder = dict(holder[key])
         holder[last] = value * item.factor
     return body
 
@@ -125,6 +149,184 @@ def path_exists(request: dict, path: str) -> bool:
             return False
         holder = holder[key]
     return isinstance(holder, (int, float)) and not isinstance(holder, bool)
+
+
+# ---- fields: the leaves a preview draws ------------------------------------------------------------------
+
+Fields = dict      # a trie of dotted paths: key → True (the whole subtree) or a trie of its keys
+
+
+def field_trie(fields: list[str]) -> Fields:
+    """The dotted paths as a trie; a path under another one named whole adds nothing ("modal", "modal.phi")."""
+    trie: Fields = {}
+    for path in fields:
+        *keys, last = path.split(".")
+        node = trie
+        for key in keys:
+            node = node.setdefault(key, {})
+            if node is True:
+                break
+        else:
+            node[last] = True
+    return trie
+
+
+def pruned(answer: dict, trie: Fields) -> dict:
+    """The answer's subtrees the trie names (each kept whole, not copied); what it does not hold is left out,
+    and so is an object of which nothing named is held."""
+    kept = {}
+    for key, below in trie.items():
+        if key not in answer:
+            continue
+        if below is True:
+            kept[key] = answer[key]
+        elif isinstance(answer[key], dict):
+            inner = pruned(answer[key], below)
+            if inner:
+                kept[key] = inner
+    return kept
+
+
+def shared_arrays(answers: list) -> tuple[dict, list]:
+    """(shared, answers without them): the float arrays under objects that are equal in every answered member
+    (NaN equal to NaN), sent once; a member's answer is shared merged with its own (``merged``)."""
+    present = [a for a in answers if a is not None]
+    common = _common(present) if len(present) > 1 else {}
+    if not common:
+        return {}, answers
+    return common, [None if a is None else _without(a, common) for a in answers]
+
+
+def _common(trees: list[dict]) -> dict:
+    found = {}
+    first, others = trees[0], trees[1:]
+    for key, value in first.items():
+        if key in UNCHECKED:
+            continue
+        rest = [tree.get(key) for tree in others]
+        if isinstance(value, dict) and all(isinstance(other, dict) for other in rest):
+            inner = _common([value, *rest])
+            if inner:
+                found[key] = inner
+        elif isinstance(value, np.ndarray) and value.size > 1 and all(
+                isinstance(other, np.ndarray) and other.shape == value.shape
+                and np.array_equal(other, value, equal_nan=True) for other in rest):
+            found[key] = value
+    return found
+
+
+def _without(tree: dict, common: dict) -> dict:
+    """The tree without the common leaves (a new object where one is removed below; objects left empty go)."""
+    kept = {}
+    for key, value in tree.items():
+        below = common.get(key)
+        if below is None:
+            kept[key] = value
+        elif isinstance(below, dict):
+            inner = _without(value, below)
+            if inner:
+                kept[key] = inner
+    return kept
+
+
+def merged(shared: dict, own: dict | None) -> dict | None:
+    """A member's whole answer from the family's shared arrays and its own leaves (the page does the same)."""
+    if own is None:
+        return None
+    whole = dict(own)
+    for key, value in shared.items():
+        below = own.get(key)
+        whole[key] = merged(value, below if isinstance(below, dict) else {}) if isinstance(value, dict) else value
+    return whole
+
+
+def packed(trees: list, quanta: dict[tuple, int]) -> list:
+    """The trees (None: refused) with each float array that has a quantum (path → exponent e) as
+    {"exp10": e, "order": n, "deltas": [...]} (see Packed); the arrays of one path and shape are packed together."""
+    groups: dict[tuple, list] = {}
+    for index, tree in enumerate(trees):
+        for path, leaf in _dict_arrays(tree):
+            if path in quanta and leaf.ndim and leaf.size > 1:
+                groups.setdefault((path, leaf.shape), []).append((index, leaf))
+    replaced: dict[tuple, dict] = {}
+    for (path, _), found in groups.items():
+        exponent = quanta[path]
+        for (index, _), steps in zip(found, deltas(np.stack([leaf for _, leaf in found]), exponent)):
+            replaced[index, path] = {"exp10": exponent, "order": steps[0], "deltas": steps[1]}
+    return [None if tree is None else _replaced(tree, index, replaced) for index, tree in enumerate(trees)]
+
+
+def _dict_arrays(tree, path: tuple = ()):
+    """(path, array) of the arrays reached through objects alone."""
+    if isinstance(tree, dict):
+        for key, value in tree.items():
+            yield from _dict_arrays(value, (*path, key))
+    elif isinstance(tree, np.ndarray):
+        yield path, tree
+
+
+def _replaced(tree, index: int, replaced: dict, path: tuple = ()):
+    if isinstance(tree, dict):
+        return {key: _replaced(value, index, replaced, (*path, key)) for key, value in tree.items()}
+    return replaced.get((index, path), tree)
+
+
+def deltas(x: np.ndarray, exponent: int) -> list[tuple[int, object]]:
+    """For each x[m] of the stack: (order, steps) of the integers k = round(x[m] / 10^exponent) along its
+    first axis (see Packed): order 2 where x[m] has no null and 3 rows or more (an int array), else order 1
+    from the last non-null row of each column (an int array, or nested lists with None where x[m] is NaN)."""
+    scaled = x / 10.0 ** exponent if exponent >= 0 else x * 10.0 ** -exponent     # 10^|e| exact to e = 22
+    count, rows = x.shape[:2]
+    k = np.round(scaled).reshape(count, rows, -1)
+    valid = np.isfinite(k)
+    last = np.where(valid, np.arange(rows)[None, :, None], -1)
+    np.maximum.accumulate(last, axis=1, out=last)                 # the last non-null row at or before i
+    before = np.concatenate([np.full((count, 1, k.shape[2]), -1), last[:, :-1]], axis=1)   # ... before i
+    known = np.take_along_axis(np.where(valid, k, 0.0), np.maximum(before, 0), axis=1)
+    steps = np.where(valid, k - np.where(before >= 0, known, 0.0), 0.0).astype(np.int64)
+    whole = valid.reshape(count, -1).all(axis=1)
+    second = steps.copy()
+    second[:, 2:] -= steps[:, 1:-1]                                # e_i = d_i − d_(i−1) from i = 2 on
+    found = []
+    for m in range(count):
+        if whole[m]:
+            found.append((2, second[m].reshape(x.shape[1:])) if rows > 2 else (1, steps[m].reshape(x.shape[1:])))
+        else:
+            listed = steps[m].astype(object)
+            listed[~valid[m]] = None
+            found.append((1, listed.reshape(x.shape[1:]).tolist()))
+    return found
+
+
+def quanta(span: dict[tuple, float], extent: dict[tuple, list[float]]) -> dict[tuple, int]:
+    """The exponent of each leaf's quantum: 10^e ≤ PACK_QUANTUM × span, and ≥ 10^−12 of its largest magnitude
+    (the integers stay exact in a double)."""
+    found = {}
+    for leaf, width in span.items():
+        if width > 0 and math.isfinite(width) and all(isinstance(key, str) for key in leaf):
+            exponent = math.floor(math.log10(width * PACK_QUANTUM))
+            largest = max(abs(extent[leaf][0]), abs(extent[leaf][1]))
+            found[leaf] = max(exponent, math.floor(math.log10(largest)) - 12) if largest > 0 else exponent
+    return found
+
+
+def unpacked(tree):
+    """A packed tree's arrays as float arrays again (NaN where null): what the page decodes."""
+    if isinstance(tree, dict):
+        if tree.keys() == {"exp10", "order", "deltas"}:
+            return _summed(tree["deltas"], tree["exp10"], tree["order"])
+        return {key: unpacked(value) for key, value in tree.items()}
+    return tree
+
+
+def _summed(steps, exponent: int, order: int) -> np.ndarray:
+    d = np.array(steps, dtype=float)                     # None → NaN
+    flat = d.reshape(len(d), -1)
+    if order == 2:                                       # d_i = d_(i−1) + e_i from i = 2 on: the first differences
+        flat = np.concatenate([flat[:1], np.cumsum(flat[1:], axis=0)])
+    total = np.cumsum(np.nan_to_num(flat), axis=0)
+    values = total / 10.0 ** -exponent if exponent < 0 else total * 10.0 ** exponent
+    return np.where(np.isnan(flat), np.nan, values).reshape(d.shape)
 
 
 # ---- spacing ---------------------------------------------------------------------------------------------
@@ -345,6 +547,20 @@ def extend(extent: dict[tuple, list[float]], leaves: dict[tuple, np.ndarray]) ->
     return extent
 
 
+def extend_member(extent: dict[tuple, list[float]], member: "Member") -> dict[tuple, list[float]]:
+    """extend by a member's leaves, every leaf at once when it has them flat."""
+    flat = member.flat
+    if flat is None:
+        return extend(extent, member.leaves)
+    lows, highs = np.fmin.reduceat(flat.vector, flat.starts).tolist(), np.fmax.reduceat(flat.vector, flat.starts).tolist()
+    for path, low, high in zip(flat.paths, lows, highs):
+        if low != low:                                  # NaN: no element of the leaf is a number
+            continue
+        known = extent.setdefault(path, [low, high])
+        known[0], known[1] = min(known[0], low), max(known[1], high)
+    return extent
+
+
 def ranges(answer, into: dict[tuple, list[float]] | None = None) -> dict[tuple, list[float]]:
     """[min, max] of every element of each checked leaf of the answer (nulls aside), merged into ``into``."""
     return extend({} if into is None else into, flatten(answer))
@@ -387,12 +603,17 @@ def _leaf(tree, path: tuple):
     return tree
 
 
-def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> dict[tuple, float]:
+def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> LeafValues:
     """The largest |f''| at the centre member over the elements of each leaf whose shape the three members
     share: the second divided difference 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋) (nulls aside)."""
     h_minus = coordinate(centre.value, log) - coordinate(left.value, log)
     h_plus = coordinate(right.value, log) - coordinate(centre.value, log)
-    found = {}
+    if same_layout(left, centre, right):                # every leaf at once
+        f_minus, f0, f_plus = left.flat.vector, centre.flat.vector, right.flat.vector
+        with np.errstate(invalid="ignore", over="ignore"):
+            bend = np.abs((f_plus - f0) / h_plus - (f0 - f_minus) / h_minus) * (2 / (h_plus + h_minus))
+        return LeafValues.of(centre.flat, centre.flat.largest(bend))
+    found = LeafValues()
     with np.errstate(invalid="ignore", over="ignore"):
         for path, f0 in centre.leaves.items():
             f_minus, f_plus = left.leaves.get(path), right.leaves.get(path)
@@ -414,6 +635,50 @@ def refusal(error: Exception) -> dict:
     return {"code": first["type"], "message": f"{where}: {first['msg']}" if where else first["msg"]}
 
 
+@dataclass(frozen=True)
+class Flat:
+    """A member's checked leaves as one vector, for the arithmetic of the whole member at once: the leaves'
+    paths and shapes (its layout: members of the same layout are compared element for element), where each
+    leaf starts in the vector, and the vector."""
+
+    layout: tuple
+    paths: tuple
+    starts: np.ndarray
+    vector: np.ndarray
+
+    @classmethod
+    def of(cls, leaves: dict[tuple, np.ndarray]) -> "Flat | None":
+        """None for no leaves or an empty one (no element to reduce)."""
+        if not leaves or any(leaf.size == 0 for leaf in leaves.values()):
+            return None
+        sizes = [leaf.size for leaf in leaves.values()]
+        return cls(tuple((path, leaf.shape) for path, leaf in leaves.items()), tuple(leaves),
+                   np.cumsum([0, *sizes[:-1]]), np.concatenate([leaf.ravel() for leaf in leaves.values()]))
+
+    def largest(self, values: np.ndarray) -> np.ndarray:
+        """The largest of each leaf's elements of values (≥ 0), nulls aside; 0 where a leaf has none."""
+        return np.fmax(np.fmax.reduceat(values, self.starts), 0.0)
+
+
+class LeafValues(dict):
+    """A number per leaf of a member (path → value), and, when computed over the member's Flat at once, the
+    same numbers as an array in its layout's order (``array``, ``layout``; else None)."""
+
+    array: np.ndarray | None = None
+    layout: tuple | None = None
+
+    @classmethod
+    def of(cls, flat: Flat, values: np.ndarray) -> "LeafValues":
+        found = cls(zip(flat.paths, values.tolist()))
+        found.array, found.layout = values, flat.layout
+        return found
+
+
+def same_layout(*members: "Member") -> bool:
+    flats = [member.flat for member in members]
+    return all(flat is not None for flat in flats) and all(flat.layout == flats[0].layout for flat in flats[1:])
+
+
 @dataclass
 class Member:
     """One value of the family: its answer as sent (a tree of rounded arrays; None where refused), the
@@ -424,18 +689,25 @@ class Member:
     error: dict | None
     partial: bool
     leaves: dict[tuple, np.ndarray] = field(default_factory=dict)
+    flat: Flat | None = None                            # the leaves as one vector (made from them if not given)
 
     @classmethod
-    def of(cls, value: float, outcome: Answer | Exception) -> "Member":
-        """The member from the endpoint's Answer, or from its refusal (ValidationError, GeometryError)."""
+    def of(cls, value: float, outcome: Answer | Exception, fields: Fields | None = None) -> "Member":
+        """The member from the endpoint's Answer (pruned to ``fields`` first, if given), or from its refusal
+        (ValidationError, GeometryError)."""
         if isinstance(outcome, Exception):
             return cls(value, None, refusal(outcome), False)
-        tree = as_tree(outcome.payload)
+        tree = as_tree(outcome.payload if fields is None else pruned(outcome.payload, fields))
         return cls(value, tree, None, outcome.partial, flatten(tree))
 
+    def __post_init__(self):
+        if self.flat is None and self.leaves:
+            self.flat = Flat.of(self.leaves)
+
     def size(self) -> int:
-        """Bytes the member holds, roughly (its arrays and a little per leaf): the memo's measure."""
-        return sum(leaf.nbytes + 100 for leaf in self.leaves.values()) + 1000
+        """Bytes the member holds, roughly (its arrays, twice: as leaves and flat, and a little per leaf): the
+        memo's measure."""
+        return sum(2 * leaf.nbytes + 100 for leaf in self.leaves.values()) + 1000
 
 
 MemberBatch = Callable[[list[float], float], list[Member]]
@@ -453,9 +725,10 @@ class Family:
     extent: dict[tuple, list[float]] = field(default_factory=dict)
     _curvatures: dict[float, tuple] = field(default_factory=dict)   # value → (neighbours' values, curvature)
     _errors: dict[tuple, dict] = field(default_factory=dict)  # the 4 members' values → absolute error by leaf
+    _spans: tuple = (None, None)                    # the span dict last asked, and its arrays by layout
 
     def add(self, member: Member) -> None:
-        extend(self.extent, member.leaves)
+        extend_member(self.extent, member)
         self.members.insert(bisect_right([m.value for m in self.members], member.value), member)
 
     @property
@@ -466,7 +739,7 @@ class Family:
         """The width of interval k (members k and k + 1) in the slider's coordinate."""
         return coordinate(self.members[k + 1].value, self.log) - coordinate(self.members[k].value, self.log)
 
-    def curvature(self, k: int) -> dict[tuple, float] | None:
+    def curvature(self, k: int) -> LeafValues | None:
         """|f''| at member k (None at the range's ends and beside a refused member), kept until a neighbour
         changes."""
         if k == 0 or k == len(self.members) - 1 or any(self.members[j].answer is None for j in (k - 1, k, k + 1)):
@@ -488,6 +761,12 @@ class Family:
         found = self.errors(k)
         if found is None:
             return math.inf, ()
+        if found.layout is not None:                    # every leaf at once
+            widths_ = self._span_array(span, a.flat)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                error = np.where(found.array == 0, 0.0, np.where(widths_ > 0, found.array / widths_, 1.0))
+            worst = int(np.argmax(error))
+            return (float(error[worst]), a.flat.paths[worst]) if error[worst] > 0 else (0.0, ())
         worst, where = 0.0, ()
         for path, largest in found.items():
             width = span.get(path, 0.0)
@@ -496,7 +775,16 @@ class Family:
                 worst, where = error, path
         return worst, where
 
-    def errors(self, k: int) -> dict[tuple, float] | None:
+    def _span_array(self, span: dict[tuple, float], flat: Flat) -> np.ndarray:
+        """The span of each leaf of the layout, as an array (kept while the same span dict is asked)."""
+        if self._spans[0] is not span:
+            self._spans = (span, {})
+        kept = self._spans[1].get(flat.layout)
+        if kept is None:
+            kept = self._spans[1][flat.layout] = np.array([span.get(path, 0.0) for path in flat.paths])
+        return kept
+
+    def errors(self, k: int) -> LeafValues | None:
         """Interval k's estimated largest |interpolation − exact| by leaf (absolute), kept until a member
         that enters it changes; None when neither end has a second difference."""
         around = tuple(self.members[j].value if 0 <= j < len(self.members) else None for j in range(k - 1, k + 3))
@@ -505,9 +793,12 @@ class Family:
         a, b = self.members[k], self.members[k + 1]
         ends = [c for c in (self.curvature(k), self.curvature(k + 1)) if c is not None]
         found = None
-        if ends:
+        if ends and same_layout(a, b) and all(c.layout is not None and c.layout == a.flat.layout for c in ends):
+            smallest = ends[0].array if len(ends) == 1 else np.minimum(ends[0].array, ends[1].array)
+            found = LeafValues.of(a.flat, smallest * (self.width(k) ** 2 / 8))
+        elif ends:
             scale = self.width(k) ** 2 / 8
-            found = {}
+            found = LeafValues()
             for path, leaf in a.leaves.items():
                 other = b.leaves.get(path)
                 bends = [c[path] for c in ends if path in c]
@@ -522,6 +813,12 @@ class Family:
         halve, a bound of the interpolation error wherever f is monotone inside it (f and the chord both lie
         between f(a) and f(b)), which a jump's second differences understate (a step of height J reads J/8)."""
         worst, where = 0.0, ()
+        if same_layout(self.members[k], self.members[k + 1]):
+            a, b = self.members[k].flat, self.members[k + 1].flat
+            for path, largest in zip(a.paths, a.largest(np.abs(b.vector - a.vector)).tolist()):
+                if span.get(path) and largest / span[path] > worst:
+                    worst, where = largest / span[path], path
+            return worst, where
         a, b = self.members[k].leaves, self.members[k + 1].leaves
         with np.errstate(invalid="ignore"):
             for path, leaf in a.items():
@@ -538,9 +835,10 @@ class Family:
 
 
 def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = "en",
-          stage: str = "full") -> tuple[dict, bool]:
+          stage: str = "full", pack: bool = False) -> tuple[dict, bool]:
     """The family's answer (see the module) and whether it is partial. members(values, deadline) gives the
-    members at values, in order, stopping early (a shorter list) once the deadline has passed."""
+    members at values, in order, stopping early (a shorter list) once the deadline has passed. ``pack``:
+    sent packed (see the module: shared arrays once, arrays as integer steps)."""
     started = time.perf_counter()
     deadline = started + TIME_BUDGET_S
     family = Family(log, (coordinate(high, log) - coordinate(low, log)) * FINEST_FRACTION)
@@ -561,10 +859,11 @@ def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = 
         for member in computed:
             family.add(member)
         cut = len(computed) < len(values)
-    return _answer(family, lang, cut, started, stage)
+    return _answer(family, lang, cut, started, stage, pack)
 
 
-def _answer(family: Family, lang: str, cut: bool, started: float, stage: str) -> tuple[dict, bool]:
+def _answer(family: Family, lang: str, cut: bool, started: float, stage: str,
+            pack: bool = False) -> tuple[dict, bool]:
     """The answer of the contract, and whether it is partial (cut at the time budget, or a member is)."""
     span = widths(family.extent)
     members = family.members
@@ -575,6 +874,8 @@ def _answer(family: Family, lang: str, cut: bool, started: float, stage: str) ->
         if stage == "full" and not family.halvable(k) and found[0] > TOLERANCE:    # a jump: say how large
             answered[k] = max(found, family.change(k, span))
     error = max((score for score, _ in answered.values()), default=None)
+    if pack and error is not None:
+        error += PACK_QUANTUM / 2                             # packing moves a value by at most this / span
     texts = interface_texts(lang)
     number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
     sentences = []
@@ -602,9 +903,15 @@ def _answer(family: Family, lang: str, cut: bool, started: float, stage: str) ->
         sentences.append(texts["family_partial_members"].format(count=len(partial), values=shown))
     method = texts[f"family_method_{stage}_{'log' if family.log else 'linear'}"].format(
         start=START_MEMBERS, tolerance=number(100 * TOLERANCE), safety=SAFETY, cap=MAX_MEMBERS)
+    answers = [m.answer for m in members]
+    if pack:
+        common, answers = shared_arrays(answers)
+        exponents = quanta(span, family.extent)
+        common, *answers = packed([common, *answers], exponents)
     return {
         "values": [rounded(m.value) for m in members],
-        "answers": [m.answer for m in members],
+        **({"shared": common} if pack else {}),
+        "answers": answers,
         "errors": [m.error for m in members],
         "interpolation_error": rounded(error) if error is not None else None,
         "tolerance": TOLERANCE,

@@ -8,6 +8,11 @@ answers, routers/family.py), else from endpoints.compute_answer, one body after 
 The kinematics core evaluates one parameter set per call (its special positions, harmonics and warnings are
 per mechanism), so a batch is a loop over bodies, not one call over a (φ, value) grid.
 
+Members are pruned to the request's ``fields`` (family.pruned) as they are made, so the memo keys them by
+the fields too: the same body asked with other fields is another member. The endpoint is told which top-level
+keys are read (endpoints.compute_answer ``reads``), so that it skips what no field reads (an elastic member's
+check run at rtol/10, which only estimates the error of numerics no preview draws; the forces' crank check).
+
 The memo is a least-recently-used store per heavy process, bounded both in members (MEMO_MEMBERS) and in the
 bytes their arrays hold (MEMO_BYTES); a member cut short by a bound is not kept (a quieter moment gives it whole).
 """
@@ -29,7 +34,7 @@ MEMO_BYTES = 64 * 2**20
 
 
 class MemberMemo:
-    """Members by (endpoint, canonical body, language), least recently used first out."""
+    """Members by (endpoint, canonical body, language, fields), least recently used first out."""
 
     def __init__(self, entries: int = MEMO_MEMBERS, size: int = MEMO_BYTES):
         self.entries, self.size, self.held = entries, size, 0
@@ -55,24 +60,28 @@ MEMO = MemberMemo()
 
 
 def member_batch(endpoint: str, request: dict, vary: list[family.Vary], lang: str,
-                 counts: dict | None = None) -> family.MemberBatch:
-    """members(values, deadline) for family.build; ``counts`` (if given) gathers "computed" and "reused"."""
+                 counts: dict | None = None, fields: list[str] | None = None) -> family.MemberBatch:
+    """members(values, deadline) for family.build, each pruned to ``fields`` (None: the whole answer);
+    ``counts`` (if given) gathers "computed" and "reused"."""
     counts = {} if counts is None else counts
+    trie = None if fields is None else family.field_trie(fields)
+    reads = None if trie is None else frozenset(trie)      # the endpoint may skip what no field reads
+    named = None if fields is None else tuple(sorted(set(fields)))
 
     def members(values: list[float], deadline: float) -> list[family.Member]:
         found = []
         for value in values:
             body = family.member_body(request, vary, value)
-            key = (endpoint, orjson.dumps(body, option=orjson.OPT_SORT_KEYS), lang)
+            key = (endpoint, orjson.dumps(body, option=orjson.OPT_SORT_KEYS), lang, named)
             member = MEMO.get(key)
             if member is None:
                 if time.perf_counter() > deadline:
                     break
                 try:
-                    outcome = compute_answer(endpoint, body, lang)
+                    outcome = compute_answer(endpoint, body, lang, reads)
                 except (ValidationError, GeometryError) as error:
                     outcome = error
-                member = family.Member.of(value, outcome)
+                member = family.Member.of(value, outcome, trie)
                 MEMO.put(key, member)
                 counts["computed"] = counts.get("computed", 0) + 1
             else:               # the same body may be another slider's member at another value

@@ -18,6 +18,7 @@ import math
 from urllib.parse import parse_qs, urlparse
 
 import httpx
+import numpy as np
 import pytest
 
 from conftest import interface_texts, screenshot
@@ -498,4 +499,164 @@ def test_markers_and_labels_moved_in_place_lie_where_plotly_draws_them(family_pa
         assert numbers(mine) == pytest.approx(numbers(theirs), abs=0.1)
     for mine, theirs in zip(ours["texts"], plotly["texts"], strict=True):
         assert [float(v) for v in mine] == pytest.approx([float(v) for v in theirs], abs=0.1)
+    assert page.problems == []
+
+
+# ---- what the preview draws: fields, packed families, and the curves drawn against the exact answers ----------
+
+SCENE_SLIDERS = [   # every scene, the first variant with sliders and its first slider, and a panel drawn in a preview
+    ("transfer-functions", "slider_crank", "lambda", "#panel-u31 .graph path.js-line"),
+    ("resisting-moment", "sine", "f", "#panel-moment .graph path.js-line"),
+    ("reduced-inertia", "slider_crank", "lambda", "#panel-inertia .graph path.js-line"),
+    ("equation-of-motion", "linear", "lambda", "#panel-omega_phi .graph path.js-line"),
+    ("flywheel", "rig", "delta", "#panel-wittenbauer .graph path.js-line"),
+    ("elastic-transmission", "belt", "c", "#panel-speeds .graph path.js-line"),
+    ("elastic-linkage", "slider_crank", "e1", "#panel-stiffness .graph path.js-line"),
+    ("elastic-four-bar", "assembly_1", "b", "#panel-motor .graph path.js-line"),
+    ("forces-friction", "central", "lambda", "#panel-free_body svg .forces"),
+    ("wear", "engine", "hours", "#panel-cylinder .graph path.js-line"),
+    ("angular-acceleration", "crank_slider", "lam", "#panel-gear_train svg .moving"),
+]
+
+
+def page_fields(page, variant: str) -> list[str]:
+    """What family_fields.js gives for the page's scene and variant (the scene as the page has it)."""
+    return page.evaluate("""async (variantId) => {
+        const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
+        const { previewFields } = await import(new URL("family_fields.js", src));
+        const scene = JSON.parse(document.getElementById("scene-data").textContent);
+        return previewFields(scene, scene.variants.find((v) => v.id === variantId));
+    }""", variant)
+
+
+@pytest.mark.parametrize("scene, variant, slider, ready", SCENE_SLIDERS, ids=[s[0] for s in SCENE_SLIDERS])
+def test_every_scene_asks_for_what_its_panels_draw_and_previews_the_drag(family_page, app_url, scene, variant,
+                                                                          slider, ready):
+    """The family request names the variant's drawn leaves (family_fields.js) and asks for the family packed;
+    the drag is drawn from it as a marked preview, without a request of the endpoint, and nothing is logged."""
+    if not takes_stages(app_url):
+        pytest.skip("the app has no /api/v1/family of its own")
+    page = family_page
+    page.goto(f"/scenes/{scene}?lang=en&variant={variant}")
+    page.wait_for_selector(ready, state="attached", timeout=60_000)
+    page.wait_for_load_state("networkidle")
+    before = len(page.sent)
+    x, y = grab(page, f"#slider-{slider}")
+    family = sent(page, "family", before)[0]
+    fields = page_fields(page, variant)
+    assert family["fields"] == fields and family["packed"] is True and len(fields) >= 2
+    endpoint = family["endpoint"]
+    start = fraction(page, f"#slider-{slider}")
+    step = 0.07 if start < 0.5 else -0.07
+    drag_through(page, x, y, [start + step, start + 2 * step])
+    assert preview_shown(page)
+    assert not sent(page, endpoint, before)                          # the drag asked nothing
+    release_and_wait_for_exact(page, endpoint)
+    assert page.problems == []
+
+
+def drawn_trace(page, panel: str) -> dict:
+    """The first curve of a plot panel as drawn now, in data units: the points of its SVG path through the
+    laid-out axes when the preview moved it in place (as many points as the trace), else the figure Plotly was
+    given (the preview redrawn with Plotly.react, gd.data)."""
+    return page.evaluate("""(id) => {
+        const graph = document.querySelector(`#panel-${id} .graph`);
+        const d = graph.querySelector(".scatterlayer path.js-line").getAttribute("d");
+        const trace = graph._fullData[0];
+        const [xa, ya] = [graph._fullLayout.xaxis, graph._fullLayout[`yaxis${trace.yaxis.slice(1)}`]];
+        const pixels = d.replace(/M/g, "L").split("L").filter(Boolean).map((p) => p.split(",").map(Number));
+        return { moved: pixels.length === graph.data[0].x.length,
+                 x: pixels.map(([px]) => xa.p2c(px)), y: pixels.map(([, py]) => ya.p2c(py)),
+                 figure: { x: graph.data[0].x, y: graph.data[0].y }, pixel: Math.abs(ya.p2c(1) - ya.p2c(0)) };
+    }""", panel)
+
+
+@pytest.mark.parametrize("scene, variant, slider, panel, x_path, y_path", [
+    ("transfer-functions", "slider_crank", "lambda", "u31", "phi", "outputs.u31"),
+    ("elastic-linkage", "slider_crank", "e1", "twist", "t", "twist")])
+def test_the_curve_drawn_during_a_drag_is_the_exact_answer_within_the_tolerance(family_page, app_url, scene, variant,
+                                                                                slider, panel, x_path, y_path):
+    """Once the full family has arrived, a curve drawn in a preview at a slider value between members lies within
+    0.5 % of that quantity's span over the family (the contract; plus half a unit of its 5th significant digit)
+    of the endpoint's exact answer at that value, asked separately at full precision; a point moved in place is
+    read back through Plotly's axes (its pixels are written to 0.01 px, at most a hundredth of a pixel's worth)."""
+    if not takes_stages(app_url):
+        pytest.skip("the app has no /api/v1/family of its own")
+    from server.api import family as contract
+    page = family_page
+    page.goto(f"/scenes/{scene}?lang=en&variant={variant}")
+    page.wait_for_selector(f"#panel-{panel} .graph path.js-line", state="attached", timeout=60_000)
+    page.wait_for_load_state("networkidle")
+    before = len(page.sent)
+    x, y = grab(page, f"#slider-{slider}")
+    page.wait_for_function("() => performance.getEntriesByName('family-full-arrived').length > 0", timeout=120_000)
+    asked = sent(page, "family", before)[-1]
+    page.locator(f"#panel-{panel}").scroll_into_view_if_needed()
+    x, y = thumb(page, f"#slider-{slider}")
+    start = fraction(page, f"#slider-{slider}")
+    drag_through(page, x, y, [start + 0.1, start + 0.237])
+    drawn = drawn_trace(page, panel)
+    value = page.evaluate("""async ([position, slider]) => {        // the thumb's value, as the page reads it
+        const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
+        const { sliderScale } = await import(new URL("slider_scale.js", src));
+        return sliderScale(slider).value(position);
+    }""", [float(page.input_value(f"#slider-{slider}")), {k: asked[k] for k in ("min", "max", "log")}])
+
+    full = httpx.post(f"{app_url}/api/v1/family", params={"lang": "en"}, json=asked, timeout=300).json()
+    shared = contract.unpacked(full["shared"])
+    members = [None if a is None else contract.as_tree(contract.merged(shared, contract.unpacked(a)), sent=False)
+               for a in full["answers"]]
+    assert full["interpolation_error"] <= 0.005 and value not in full["values"]
+    span = contract.spans(members)[tuple(y_path.split("."))]
+    body = copy.deepcopy(asked["request"])
+    for vary in asked["vary"]:
+        set_path(body, vary["path"], value * vary["factor"])
+    reply = httpx.post(f"{app_url}/api/v1/{asked['endpoint']}", params={"precision": "full"}, json=body, timeout=120)
+    assert reply.status_code == 200, reply.text[:500]
+    exact = reply.json()
+    leaf = lambda path: contract._leaf(exact, tuple(path.split(".")))
+    xs, ys = leaf(x_path), leaf(y_path)
+    xs = [math.degrees(v) for v in xs] if x_path == "phi" else xs
+    if drawn["moved"]:
+        shown_x, shown_y, slack = drawn["x"], drawn["y"], drawn["pixel"] / 100
+    else:
+        shown_x, shown_y, slack = drawn["figure"]["x"], drawn["figure"]["y"], 0.0
+    assert len(shown_y) == len(ys)
+    assert max(abs(a - b) for a, b in zip(shown_x, xs)) <= 1e-3 * (max(xs) - min(xs))
+    bound = [0.005 * span + 5e-5 * abs(v) + slack for v in ys]
+    worst = max(abs(a - b) - limit for a, b, limit in zip(shown_y, ys, bound))
+    assert worst <= 0, (value, worst)
+    assert any(abs(a - b) > 0 for a, b in zip(shown_y, ys)) or drawn["moved"]     # a preview, not the exact one
+    assert preview_shown(page)
+    page.mouse.up()
+    assert page.problems == []
+
+
+def test_the_page_unpacks_a_packed_family_as_the_server_does(family_page, app_url):
+    """family_model.js received() against server/api/family.py unpacked + merged, on a packed family with
+    shared arrays, nulls and two-column arrays (the forces' points and reactions)."""
+    if not takes_stages(app_url):
+        pytest.skip("the app has no /api/v1/family of its own")
+    from server.api import family as contract
+    page = family_page
+    page.goto("/scenes/forces-friction?lang=en&variant=central")
+    page.wait_for_selector("#panel-free_body svg .forces", state="attached", timeout=60_000)
+    page.wait_for_load_state("networkidle")
+    scene_body = next(b for name, b in page.sent if name == "forces")        # the page's exact request
+    packed = httpx.post(f"{app_url}/api/v1/family", params={"lang": "en"}, timeout=300, json={
+        "endpoint": "forces", "request": scene_body, "vary": [{"path": "params.l2", "factor": scene_body["params"]["l1"]}],
+        "min": 2.5, "max": 6.0, "stage": "coarse", "fields": page_fields(page, "central"), "packed": True}).json()
+    assert packed["shared"]
+    page_answers = page.evaluate("""async (family) => {
+        const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
+        const { received } = await import(new URL("family_model.js", src));
+        return received(family).answers;
+    }""", packed)
+    shared = contract.unpacked(packed["shared"])
+    for ours, theirs in zip(page_answers, packed["answers"]):
+        mine = contract.flatten(contract.as_tree(json.loads(json.dumps(ours), parse_int=float), sent=False))
+        server = contract.flatten(contract.as_tree(contract.merged(shared, contract.unpacked(theirs)), sent=False))
+        assert mine.keys() == server.keys()
+        for path, leaf in server.items():
+            assert np.allclose(mine[path], leaf, rtol=1e-12, atol=0, equal_nan=True), path
     assert page.problems == []

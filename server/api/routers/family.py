@@ -37,6 +37,25 @@ class FamilyRequest(BaseModel):
     max: float = Field(allow_inf_nan=False, description="the slider's highest value, in its shown units")
     stage: Literal[family.STAGES] = Field("full", description='"coarse": the 9 start members at once, unrefined '
                                           '(asked first, on the grab); "full": refined to the tolerance')
+    fields: list[str] | None = Field(
+        None, min_length=1, max_length=family.MAX_FIELDS,
+        description="dotted paths of the answer's leaves a preview draws (e.g. \"t\", \"modal.stiffness\"): each "
+                    "member is pruned to those subtrees and the interpolation error covers them alone. A path a "
+                    "member does not hold is left out of it (an answer's shape depends on the values and on "
+                    "`outputs`). Absent: the whole answers")
+    packed: bool = Field(False, description="send the family packed: arrays equal in every member once, in "
+                         "`shared`; every float array of a quantity with a span as {exp10: e, order: n, deltas: [...]}, "
+                         "the integers round(x/10^e) as differences of order n along the first axis (order 1 keeps "
+                         "null where x is null), 10^e ≤ 1e-4 of the quantity's span (server/api/family.py, Packed)")
+
+    @field_validator("fields")
+    @classmethod
+    def dotted_paths(cls, fields: list[str] | None) -> list[str] | None:
+        for index, path in enumerate(fields or []):
+            if not family.FIELD.fullmatch(path):
+                raise ValueError(f"fields[{index}]: {path[:80]!r} is not a dotted path of an answer's keys "
+                                 "(letters, digits and _, joined by dots, at most 8 deep)")
+        return fields
 
     @field_validator("vary")
     @classmethod
@@ -78,10 +97,15 @@ class FamilyNumerics(BaseModel):
 
 class FamilyResponse(BaseModel):
     values: list[float] = Field(description="the members' slider values, ascending, min and max included")
-    answers: list[dict | None] = Field(description="the endpoint's answer at each value; null where refused")
+    shared: dict | None = Field(None, description="only when `packed`: the arrays equal in every "
+                                "answered member, sent once; each member's answer is `shared` merged with its own, "
+                                "object by object")
+    answers: list[dict | None] = Field(description="the endpoint's answer at each value (pruned to `fields` when "
+                                       "given; packed, without the `shared` arrays, when `packed`); null where refused")
     errors: list[dict | None] = Field(description="{code, message} of a refused value, else null")
     interpolation_error: float | None = Field(description="largest estimated |interpolation − exact| / span "
-                                                          "over the intervals (h²·|f''|/8, f'' from neighbours)")
+                                                          "over the intervals (h²·|f''|/8, f'' from neighbours; "
+                                                          "packed: plus 5e-5, what packing may move a value)")
     tolerance: float = Field(description="the target: 0.5 % of each plotted quantity's span over the family")
     numerics: FamilyNumerics
 
@@ -103,7 +127,9 @@ def family_answer(body: dict, lang: str) -> tuple[dict, bool]:
     """The family's answer and whether it is partial (run in the heavy process)."""
     vary = [family.Vary(item["path"], item["factor"]) for item in body["vary"]]
     counts = {"computed": 0}
-    members = member_batch(body["endpoint"], body["request"], vary, lang, counts)
-    answer, partial = family.build(members, body["min"], body["max"], body["log"], lang, body["stage"])
+    fields = body.get("fields")
+    members = member_batch(body["endpoint"], body["request"], vary, lang, counts, fields)
+    answer, partial = family.build(members, body["min"], body["max"], body["log"], lang, body.get("stage", "full"),
+                                   pack=body.get("packed", False))
     answer["numerics"]["computed"] = counts["computed"]
     return answer, partial

@@ -12,7 +12,8 @@
  *   objects                           → key by key (the nearer member's keys)
  *   anything else (strings, booleans, arrays of different length) and everything under
  *   "warnings", "numerics" and "study" → the nearer member's leaf.
- * A value equal to a member's gives that member's answer as it is.
+ * A value equal to a member's gives that member's answer as it is; an array the two members share (the same
+ * object: a family's "shared" arrays, withShared) is passed through as it is.
  *
  * Families are kept by the request with the slider's paths removed (familyKey): the same other values
  * give the same family, whichever value the slider had when it was asked for.
@@ -29,6 +30,7 @@ function texts(item) {
 
 /** Mix of two members' leaves a and b at weight w (0 → a, 1 → b). */
 export function blend(a, b, w) {
+  if (a === b) return a;
   if (typeof a === "number" && typeof b === "number") return (1 - w) * a + w * b;
   if (a === null || b === null) return null;
   if (Array.isArray(a)) {
@@ -79,9 +81,60 @@ export function interpolate(family, value) {
   return blend(answers[at.k], answers[at.k + 1], at.w);
 }
 
-/** Key of the family of the slider that sets these paths: the request body with them removed. */
-export function familyKey(body, paths) {
+/** Key of the family of the slider that sets these paths (and of the fields asked): the request body with them removed. */
+export function familyKey(body, paths, fields = []) {
   const rest = structuredClone(body);
   for (const path of paths) setPath(rest, path, undefined);
-  return JSON.stringify([paths, rest]);
+  return JSON.stringify([paths, rest, fields]);
+}
+
+/**
+ * A packed array's values (server/api/family.py, Packed): the integers k as differences of its order along the
+ * first axis, column by column; x = 10^exp10 · k, null where the step is null (order 1 only).
+ */
+function unpackedArray({ exp10, order, deltas }) {
+  const scale = exp10 < 0 ? (k) => k / 10 ** -exp10 : (k) => k * 10 ** exp10;     // 10^|e| exact: a decimal's double
+  const step = (sum, d) => (Array.isArray(d) ? d.map((x, i) => step(sum?.[i], x)) : d === null ? sum : (sum ?? 0) + d);
+  const value = (sum, d) => (Array.isArray(d) ? d.map((x, i) => value(sum[i], x)) : d === null ? null : scale(sum));
+  let steps = deltas;
+  if (order === 2) {         // first differences: d_0 = e_0, d_1 = e_1, d_i = d_(i−1) + e_i
+    let sum;
+    steps = deltas.map((e, i) => (i === 0 ? e : (sum = step(sum, e))));
+  }
+  let sum;
+  return steps.map((d) => {
+    sum = step(sum, d);
+    return value(sum, d);
+  });
+}
+
+const isObject = (x) => x !== null && typeof x === "object" && !Array.isArray(x);
+const isPacked = (x) => isObject(x) && Array.isArray(x.deltas) && typeof x.exp10 === "number" && Object.keys(x).length === 3;
+
+/** A tree with its packed arrays as arrays of numbers (and nulls). */
+function unpacked(tree) {
+  if (isPacked(tree)) return unpackedArray(tree);
+  if (!isObject(tree)) return tree;
+  return Object.fromEntries(Object.entries(tree).map(([key, value]) => [key, unpacked(value)]));
+}
+
+/** shared merged into own, object by object (a new object wherever something is added; arrays by reference). */
+function merged(shared, own) {
+  const whole = { ...own };
+  for (const [key, value] of Object.entries(shared)) {
+    whole[key] = isObject(value) ? merged(value, isObject(own[key]) ? own[key] : {}) : value;
+  }
+  return whole;
+}
+
+/**
+ * A family as sent (POST /api/v1/family) with each member's answer whole: a packed family's arrays unpacked
+ * and its "shared" arrays merged into every answered member (the same array objects in each: the rule
+ * passes them through). A family sent unpacked is returned as it is.
+ */
+export function received(family) {
+  const { shared, ...rest } = family;
+  if (!shared) return rest;
+  const common = unpacked(shared);
+  return { ...rest, answers: family.answers.map((own) => (own ? merged(common, unpacked(own)) : own)) };
 }

@@ -12,8 +12,14 @@
  * when it arrives (and redraws a preview on the screen). A server that refuses "stage" (an older one, 422)
  * gets one request without it, the full family, for the rest of the page's life.
  *
+ * The request names the answer's leaves the variant's panels draw in a preview ("fields", family_fields.js):
+ * the server sends only those, packed ("packed": true: the arrays equal in every member once, in "shared",
+ * every array as integer steps in a quantum of at most 0.01 % of its span), unpacked and merged on arrival
+ * (family_model.js received).
+ *
  * The model is the scene's SceneSettings (a SceneModel or a DynamicsModel): request() is the body sent
- * now, familyVary(slider) the paths the slider sets with their factors, grabbed the slider held.
+ * now, familyVary(slider) the paths the slider sets with their factors, grabbed the slider held, scene and
+ * variant what the page shows.
  *
  * Events:
  *   "preview"  {ok: true, data, preview: true}: draw this interpolated answer (plots, drawings, cursors);
@@ -26,7 +32,8 @@
 import { ApiClient } from "./api.js";
 import { element } from "./dom.js";
 import { Emitter } from "./emitter.js";
-import { familyKey, interpolate, memberInterval } from "./family_model.js";
+import { previewFields } from "./family_fields.js";
+import { familyKey, interpolate, memberInterval, received } from "./family_model.js";
 
 const KEPT = 4;     // families kept on the page: the latest asked (a family may hold several MB)
 const STAGES = ["coarse", "full"];
@@ -79,8 +86,10 @@ export class FamilyPreview extends Emitter {
   #question(slider) {
     const request = this.model.request();
     const vary = this.model.familyVary(slider);
-    const body = { endpoint: this.endpoint, request, vary, min: slider.min, max: slider.max, log: slider.log };
-    return { body, key: familyKey(request, vary.map((v) => v.path)) };
+    const fields = previewFields(this.model.scene, this.model.variant);
+    const body = { endpoint: this.endpoint, request, vary, min: slider.min, max: slider.max, log: slider.log,
+      ...(fields.length ? { fields } : {}), packed: true };
+    return { body, key: familyKey(request, vary.map((v) => v.path), fields) };
   }
 
   #ask(slider) {
@@ -111,7 +120,7 @@ export class FamilyPreview extends Emitter {
       if (coarse && this.#families.get(key)) return;                 // the full family came first
       if (!this.#families.get(key)) performance.mark("family-arrived");
       performance.mark(coarse ? "family-coarse-arrived" : "family-full-arrived");
-      this.#families.set(key, { ...answer.data, log: body.log, coarse });
+      this.#families.set(key, { ...received(answer.data), log: body.log, coarse });
       if (this.showing) this.preview();                            // the better family redraws the preview
     });
   }
