@@ -96,8 +96,9 @@ def test_the_family_request_of_every_slider_follows_the_contract():
         for variant, raw_variant in zip(scene.variants, raw["variants"]):
             for slider, raw_slider in zip(variant.sliders, raw_variant.get("sliders", [])):
                 values = {s.id: rng.choice(slider_values(s)) for s in variant.sliders}
-                body = classroom.family_body(scene, variant, slider, values)
-                assert set(body) == {"endpoint", "request", "vary", "min", "max", "log"}
+                body = classroom.page_family_body(scene, variant, slider, REPO, values)
+                assert set(body) == {"endpoint", "request", "vary", "min", "max", "log", "fields", "packed"}
+                assert body["packed"] is True and body["fields"] and all(isinstance(f, str) for f in body["fields"])
                 assert body["endpoint"] == scene.endpoint and body["endpoint"] in FAMILY_ENDPOINTS
                 assert body["request"] == scene_request(scene, variant, values)
                 assert (body["min"], body["max"], body["log"]) == \
