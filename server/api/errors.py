@@ -7,7 +7,8 @@ from fastapi.responses import Response
 from ..core.mechanisms import GeometryError
 from .serialise import serialise
 
-REQUEST_FIELDS = ("outputs", "phi", "n", "motor", "inertias", "load", "compliances", "loads", "pairs")
+REQUEST_FIELDS = ("outputs", "phi", "n", "motor", "inertias", "load", "compliances", "loads", "pairs",
+                  "linkage", "plan")
 
 
 def _unprocessable(content: dict) -> Response:

@@ -1,0 +1,179 @@
+"""A general mechanism: the input crank and class-II groups composed in order (server/core/structure/),
+behind the one ``Mechanism`` interface.
+
+Outputs (by name; nothing unrequested is computed): joint positions and their first and second analogs
+(x′, y′, x″, y″), link angles θ with θ′, θ″, slides along guides and slots with s′, s″, the structural analysis,
+special positions (each group's limits of assembly and dead positions), and the velocity and acceleration
+plans at one angle.  Where a group cannot be assembled the values are NaN (null in the answer) with a
+sentence naming the group and the angles; where it closes nowhere the mechanism is refused.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..structure.analysis import analyse
+from ..structure.compose import Composition, compose
+from ..structure.plans import plans
+from ..structure.spec import Linkage, parse
+from .base import Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, angle_ranges, point, ranges_text
+from .mechanism import Mechanism
+
+CHECK_POINTS = 721               # the full turn checked for assembly at 0.5°
+DEAD_TOL = 1e-9                  # |det| (a sine of the group's angle) below which a position counts as dead
+
+GENERAL_OUTPUTS = (
+    OutputSpec("joints", "m", "joint and point coordinates (x, y) over φ"),
+    OutputSpec("joints_d1", "m", "first analogs (x′, y′) = dr/dφ of every joint: velocity v = r′ω₁"),
+    OutputSpec("joints_d2", "m", "second analogs (x″, y″) = d²r/dφ²: acceleration a = r″ω₁² + r′ε₁"),
+    OutputSpec("angles", "rad", "angle θ of every moving link, counter-clockwise from +x"),
+    OutputSpec("angles_d1", "1", "θ′ = dθ/dφ of every link (ω = θ′ω₁)"),
+    OutputSpec("angles_d2", "1", "θ″ = d²θ/dφ² of every link"),
+    OutputSpec("slides", "m", "slider travel s along its guide or slot, by pair (joint/guide)"),
+    OutputSpec("slides_d1", "m", "s′ = ds/dφ (sliding velocity analog)"),
+    OutputSpec("slides_d2", "m", "s″ = d²s/dφ²"),
+    OutputSpec("structure", "1", "structural analysis: n, p₅, p₄, W, the structural formula, the class"),
+    OutputSpec("special", "rad", "each group's limits of assembly and dead positions"),
+    OutputSpec("plan", "m/s, m/s²", "velocity and acceleration plans at one angle (request field `plan`)"),
+)
+
+
+class GeneralMechanism(Mechanism):
+    """A linkage given as data (structure/spec.py); ``params`` are unused (the lengths are in the data)."""
+
+    name = "general"
+    title = "Mechanism composed of class-II structural groups"
+    conventions = ("Frame x to the right, y up; angles counter-clockwise from +x; the crank angle θ₁ = θ₀ + σφ. "
+                   "Groups attach in order to joints and guides that exist already.")
+    params = ()
+
+    def __init__(self, linkage: dict | Linkage):
+        self.linkage = linkage if isinstance(linkage, Linkage) else parse(linkage)
+        self.structure = analyse(self.linkage)
+
+    @property
+    def outputs(self):
+        return GENERAL_OUTPUTS
+
+    @property
+    def sliding_pairs(self):
+        return tuple(compose(self.linkage, np.zeros(1)).slides)
+
+    def check_geometry(self, p) -> None:
+        """Refuse a linkage one of whose groups closes at no crank angle of the turn."""
+        comp = compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS))
+        for k, group in enumerate(comp.groups):
+            if not group.closes.any():
+                raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at any "
+                                    "crank angle: its lengths cannot close the loop", "never_closes", group=k)
+
+    def evaluate(self, p, phi, wanted) -> Evaluation:
+        comp = compose(self.linkage, phi)
+        ev = Evaluation(phi)
+        ev.warnings = assembly_notices(comp)
+        ordered = phi.size > 1 and bool(np.all(np.diff(phi) > 0))
+        for name in wanted:
+            if name.startswith("joints"):
+                part = {"joints": "z", "joints_d1": "d1", "joints_d2": "d2"}[name]
+                table = {j: point(getattr(pt, part).real, getattr(pt, part).imag) for j, pt in comp.joints.items()}
+                if name == "joints":
+                    ev.joints = table
+                ev.values[name] = table
+            elif name.startswith("angles"):
+                part = {"angles": "th", "angles_d1": "d1", "angles_d2": "d2"}[name]
+                ev.values[name] = {str(k): unwrapped(getattr(a, part), part == "th" and ordered)
+                                   for k, (_, a) in sorted(comp.links.items())}
+            elif name.startswith("slides"):
+                part = {"slides": "s", "slides_d1": "d1", "slides_d2": "d2"}[name]
+                ev.values[name] = {k: getattr(s, part) for k, s in comp.slides.items()}
+        return ev
+
+    def sliding_squares(self, p, ev):
+        """S(φ) = Σ s′² over the prismatic pairs (Eremyants (3.15)–(3.17)), from the composed slides."""
+        comp = compose(self.linkage, ev.phi)
+        return sum((s.d1**2 for s in comp.slides.values()), np.zeros_like(ev.phi, dtype=float))
+
+    def special_positions(self, p) -> list[SpecialPosition]:
+        return special_positions(compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS)))
+
+    def plan(self, phi: float, omega1: float, epsilon1: float) -> dict:
+        return plans(compose(self.linkage, np.array([float(phi)])), omega1, epsilon1)
+
+    def describe(self, p):
+        return self.structure
+
+
+def unwrapped(values: np.ndarray, unwrap: bool) -> np.ndarray:
+    """A link's angle continuous along an ordered grid (no 2π jumps), NaN where the group does not close."""
+    if not unwrap or not np.isfinite(values).all():
+        return values
+    return np.unwrap(values)
+
+
+def assembly_notices(comp: Composition) -> list[Notice]:
+    """A sentence per group that cannot be assembled at some of the angles: which group, which angles."""
+    notes = []
+    for k, group in enumerate(comp.groups):
+        if not group.closes.all():
+            ranges = angle_ranges(comp.phi, ~group.closes)
+            notes.append(Notice("group_cannot_assemble",
+                                f"Group {k} ({group.kind}) cannot be assembled at φ = {ranges_text(ranges)}: "
+                                "its loop does not close there (limit of assembly), the values are undefined.",
+                                {"group": k, "kind": group.kind, "ranges": ranges}))
+    return notes
+
+
+def special_positions(comp: Composition) -> list[SpecialPosition]:
+    """Per group: where it stops closing (limit of assembly) and where its determinant changes sign or is
+    smallest (dead position: the group's links in line, the analogs unbounded)."""
+    out = []
+    phi = comp.phi
+    for k, group in enumerate(comp.groups):
+        closes = group.closes
+        for edge in np.flatnonzero(np.diff(closes.astype(int))):
+            out.append(SpecialPosition("limit_of_assembly", float(phi[edge + 1 if closes[edge] else edge]),
+                                       f"group {k} ({group.kind}): limit of assembly"))
+        det = np.where(closes, group.determinant, np.nan)
+        if np.isfinite(det).any():
+            worst = int(np.nanargmin(np.abs(det)))
+            out.append(SpecialPosition("smallest_determinant", float(phi[worst]),
+                                       f"group {k} ({group.kind}): closest to a dead position (|sin| of the "
+                                       "angle between its links or guides)", float(abs(det[worst]))))
+            signs = np.sign(det)
+            for edge in np.flatnonzero(signs[:-1] * signs[1:] < 0):
+                out.append(SpecialPosition("dead_position", float(phi[edge]),
+                                           f"group {k} ({group.kind}): dead position, its links in line"))
+    return sorted(out, key=lambda sp: sp.phi)
+
+
+def compute_general(linkage: dict, outputs: list[str], phi: np.ndarray | None = None, n: int | None = None,
+                    plan: dict | None = None):
+    """The kinematics endpoint's general path: the linkage checked (structure, assembly), ``outputs`` at
+    ``phi`` (rad) or on ``n`` points over one turn, the plans at ``plan["phi"]``.  GeometryError names the
+    field and the reason."""
+    from ..kinematics import MAX_POINTS, KinematicsResult, crank_angles
+
+    mech = GeneralMechanism(linkage)
+    known = {o.name for o in GENERAL_OUTPUTS}
+    for i, name in enumerate(outputs):
+        if name not in known:
+            raise GeometryError(f"outputs.{i}", f"'{name}' is not an output of a general mechanism; "
+                                                f"available: {', '.join(sorted(known))}")
+    mech.check_geometry({})
+    if phi is None:
+        if n is None or not 2 <= n <= MAX_POINTS:
+            raise GeometryError("n", f"give between 2 and {MAX_POINTS} points")
+        phi = crank_angles(2 * np.pi, n)
+    result = KinematicsResult("general", {}, 2 * np.pi, phi)
+    wanted = set(outputs)
+    ev = mech.evaluate({}, phi, wanted)
+    result.warnings.extend(ev.warnings)
+    for name in outputs:
+        if name == "structure":
+            result.outputs[name] = mech.structure
+        elif name == "special":
+            result.outputs[name] = [sp.as_dict() for sp in mech.special_positions({})]
+        elif name == "plan":
+            result.outputs[name] = mech.plan(plan["phi"], plan.get("omega1", 1.0), plan.get("epsilon1", 0.0))
+        else:
+            result.outputs[name] = ev.values[name]
+    return result
