@@ -12,6 +12,7 @@ MAX_ANGLE = 1000.0
 MAX_PARAMS = 16                  # a mechanism has at most 6 parameters; unknown names are refused
 Language = Literal["ru", "uk", "en"]
 MechanismName = Literal["sine", "slider_crank", "slotted_link", "four_bar"]
+KinematicsMechanism = Literal["sine", "slider_crank", "slotted_link", "four_bar", "general"]
 
 
 class ParamInfo(BaseModel):
@@ -121,7 +122,7 @@ class KinematicsRequest(BaseModel):
         {"mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3, "e": 0.0}, "n": 361,
          "outputs": ["s", "u31", "du31", "u21", "du21", "joints"]}]})
 
-    mechanism: MechanismName | Literal["general"] = Field(description=(
+    mechanism: KinematicsMechanism = Field(description=(
         "which mechanism; 'general': the one given in `linkage`"))
     linkage: LinkageModel | None = Field(None, description=(
         "with mechanism 'general': the mechanism as data (GET /api/v1/mechanisms/general)"))
@@ -156,7 +157,7 @@ class KinematicsRequest(BaseModel):
 
 
 class KinematicsResponse(BaseModel):
-    mechanism: MechanismName | Literal["general"]
+    mechanism: KinematicsMechanism
     params: dict[str, float] = Field(description="the complete parameter set used (defaults filled in)")
     cycle: float = Field(description="length of one kinematic cycle in φ, rad (2π, or 4π for a change-point "
                                      "four-bar without stroke limiter)")

@@ -15,7 +15,7 @@ from ..structure.analysis import analyse
 from ..structure.compose import Composition, compose
 from ..structure.plans import plans
 from ..structure.spec import Linkage, parse
-from .base import Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, angle_ranges, point, ranges_text
+from .base import Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, angle_ranges, ranges_text
 from .mechanism import Mechanism
 
 CHECK_POINTS = 721               # the full turn checked for assembly at 0.5°
@@ -59,22 +59,33 @@ class GeneralMechanism(Mechanism):
         return tuple(compose(self.linkage, np.zeros(1)).slides)
 
     def check_geometry(self, p) -> None:
-        """Refuse a linkage one of whose groups closes at no crank angle of the turn."""
-        comp = compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS))
-        for k, group in enumerate(comp.groups):
+        """Refuse a linkage one of whose groups closes at no crank angle of the turn (checked at 0.5°)."""
+        self.check_closure(compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS)))
+
+    def check_closure(self, comp: Composition) -> None:
+        """Where a group closes nowhere on ``comp``'s angles, look again over the whole turn at 0.5°; refuse
+        the linkage if it closes nowhere there either."""
+        if all(group.closes.any() for group in comp.groups):
+            return
+        turn = compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS))
+        for k, group in enumerate(turn.groups):
             if not group.closes.any():
                 raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at any "
                                     "crank angle: its lengths cannot close the loop", "never_closes", group=k)
 
     def evaluate(self, p, phi, wanted) -> Evaluation:
-        comp = compose(self.linkage, phi)
+        return self.outputs_of(compose(self.linkage, phi), wanted)
+
+    def outputs_of(self, comp: Composition, wanted) -> Evaluation:
+        """The wanted array outputs of a composed linkage."""
+        phi = comp.phi
         ev = Evaluation(phi)
         ev.warnings = assembly_notices(comp)
         ordered = phi.size > 1 and bool(np.all(np.diff(phi) > 0))
         for name in wanted:
             if name.startswith("joints"):
                 part = {"joints": "z", "joints_d1": "d1", "joints_d2": "d2"}[name]
-                table = {j: point(getattr(pt, part).real, getattr(pt, part).imag) for j, pt in comp.joints.items()}
+                table = {j: xy_pairs(getattr(pt, part)) for j, pt in comp.joints.items()}
                 if name == "joints":
                     ev.joints = table
                 ev.values[name] = table
@@ -100,6 +111,11 @@ class GeneralMechanism(Mechanism):
 
     def describe(self, p):
         return self.structure
+
+
+def xy_pairs(z: np.ndarray) -> np.ndarray:
+    """(N, 2) array of (x, y) from complex z: the same memory read as float pairs."""
+    return np.ascontiguousarray(z, dtype=complex).view(np.float64).reshape(-1, 2)
 
 
 def unwrapped(values: np.ndarray, unwrap: bool) -> np.ndarray:
@@ -158,14 +174,15 @@ def compute_general(linkage: dict, outputs: list[str], phi: np.ndarray | None = 
         if name not in known:
             raise GeometryError(f"outputs.{i}", f"'{name}' is not an output of a general mechanism; "
                                                 f"available: {', '.join(sorted(known))}")
-    mech.check_geometry({})
     if phi is None:
         if n is None or not 2 <= n <= MAX_POINTS:
             raise GeometryError("n", f"give between 2 and {MAX_POINTS} points")
         phi = crank_angles(2 * np.pi, n)
+    comp = compose(mech.linkage, phi)
+    mech.check_closure(comp)
     result = KinematicsResult("general", {}, 2 * np.pi, phi)
     wanted = set(outputs)
-    ev = mech.evaluate({}, phi, wanted)
+    ev = mech.outputs_of(comp, wanted)
     result.warnings.extend(ev.warnings)
     for name in outputs:
         if name == "structure":

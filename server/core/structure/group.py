@@ -13,6 +13,7 @@ written as analogs: a velocity term is V ω₁, an acceleration term A ω₁² +
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -39,19 +40,30 @@ class Term:
     a: np.ndarray
 
 
+Chain = tuple[str, list[Term]]               # (target point, the terms whose sum is its velocity/acceleration)
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A group's plan equations, and the plan targets that are no joint (B₃: the lever's point under B)."""
+
+    velocity: list[Chain]
+    acceleration: list[Chain]
+    coincident: dict[str, Point] = field(default_factory=dict)
+
+
 @dataclass
 class GroupSolution:
-    """A group's new joints, its links (origin point and angle), its slides, where it closes, its plan."""
+    """A group's new joints, its links (origin point and angle), its slides, where it closes, and its plan
+    (built only when asked: ``plan()``; the kinematics over the turn does not need it)."""
 
     kind: str
     joints: dict[str, Point]
     links: dict[int, tuple[Point, Angle]]
-    slides: dict[str, Slide] = field(default_factory=dict)
-    closes: np.ndarray | None = None          # the closure has a real solution at these φ
-    determinant: np.ndarray | None = None     # Jacobian determinant / its scale: 0 at a dead position
-    velocity: list[tuple[str, list[Term]]] = field(default_factory=list)       # (target point, chain)
-    acceleration: list[tuple[str, list[Term]]] = field(default_factory=list)
-    coincident: dict[str, Point] = field(default_factory=dict)   # plan targets that are no new joint (B₃)
+    slides: dict[str, Slide]
+    closes: np.ndarray                        # the closure has a real solution at these φ
+    determinant: np.ndarray                   # Jacobian determinant / its scale: 0 at a dead position
+    plan: Callable[[], Plan]
 
 
 def carried(origin: Point, angle: Angle, z: np.ndarray) -> Point:

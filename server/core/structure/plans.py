@@ -7,8 +7,6 @@ which the textbook's graphical construction only approximates; the plan is drawn
 """
 from __future__ import annotations
 
-import numpy as np
-
 from .compose import Composition
 
 
@@ -20,8 +18,9 @@ def plans(comp: Composition, omega1: float, epsilon1: float, k: int = 0) -> dict
     """The plans at the k-th angle of ``comp``: every vector (x, y, magnitude) with its label and kind."""
     velocity, acceleration = [], []
     for number, group in enumerate(comp.groups):
-        targets = comp.joints | group.coincident
-        for (target, terms), (_, acc_terms) in zip(group.velocity, group.acceleration):
+        plan = group.plan()
+        targets = comp.joints | plan.coincident
+        for (target, terms), (_, acc_terms) in zip(plan.velocity, plan.acceleration):
             point = targets[target]
             vectors = [{"name": t.name, "kind": t.kind, **vector(t.v[k] * omega1)} for t in terms]
             total = sum(t.v[k] * omega1 for t in terms)

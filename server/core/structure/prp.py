@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .group import GroupSolution, Slide, carried, chains, sliding
+from .group import GroupSolution, Plan, Slide, carried, chains, sliding
 from .state import Guide, Point, solve_pair
 
 
@@ -27,13 +27,14 @@ def solve(first: Guide, second: Guide, names: tuple[str, str, str], links: tuple
     c = Point(c_z, p1.d1 + v_1 * u1 + s_1 * du1, p1.d2 + a_1 * u1 + 2 * v_1 * du1 + s_1 * ddu1)
     nc, n1, n2 = names
     slide1, slide2 = Slide(s_1, v_1, a_1), Slide(s_2, v_2, a_2)
-    steps = []
-    for guide, slide, unit, link in ((first, slide1, u1, links[0]), (second, slide2, u2, links[1])):
-        under = carried(guide.point, guide.angle, c_z)
-        steps.append(chains(nc, under, f"{nc}{guide.link}".lower(),
-                            [sliding(f"{nc}{link}", f"{nc}{guide.link}", slide, unit, guide.angle)]))
-    parallel = np.abs(np.sin(g2.th - g1.th)) > 0
+
+    def plan() -> Plan:
+        steps = []
+        for guide, slide, unit, link in ((first, slide1, u1, links[0]), (second, slide2, u2, links[1])):
+            under = carried(guide.point, guide.angle, c_z)
+            steps.append(chains(nc, under, f"{nc}{guide.link}".lower(),
+                                [sliding(f"{nc}{link}", f"{nc}{guide.link}", slide, unit, guide.angle)]))
+        return Plan([v for v, _ in steps], [a for _, a in steps])
+    crossing = np.sin(g2.th - g1.th)
     return GroupSolution("PRP", {nc: c}, {links[0]: (c, g1), links[1]: (c, g2)},
-                         {f"{nc}/{n1}": slide1, f"{nc}/{n2}": slide2}, closes=parallel,
-                         determinant=np.sin(g2.th - g1.th),
-                         velocity=[v for v, _ in steps], acceleration=[a for _, a in steps])
+                         {f"{nc}/{n1}": slide1, f"{nc}/{n2}": slide2}, crossing != 0, crossing, plan)

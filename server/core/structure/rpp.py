@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .group import GroupSolution, Slide, carried, chains, sliding
+from .group import GroupSolution, Plan, Slide, carried, chains, sliding
 from .state import Guide, Point, solve_pair
 
 
@@ -27,15 +27,15 @@ def solve(b: Point, guide: Guide, alpha: float, names: tuple[str, str, str, str]
     a_j, a_i = solve_pair(u, v, b.d2 - p.d2 - 2 * turn1 * (v_j * u + v_i * v) - turn2 * (s_j * u + s_i * v))
     r = Point(p.z + s_j * u, p.d1 + v_j * u + s_j * turn1 * u, p.d2 + a_j * u + 2 * v_j * turn1 * u + s_j * turn2 * u)
     nb, nr, ng, ns = names
-    on_block, on_slot, on_guide = f"{nb}{links[0]}", f"{nb}{links[1]}", f"{nb}{guide.link}"
     along_guide, in_slot = Slide(s_j, v_j, a_j), Slide(s_i, v_i, a_i)
-    under_j = carried(r, g, b.z)
-    back = Slide(-s_i, -v_i, -a_i)             # the slotted link's point relative to the block
-    vel_b, acc_b = chains(on_slot, b, nb.lower(), [sliding(on_slot, on_block, back, v, g)])
-    vel_g, acc_g = chains(on_slot, carried(p, g, b.z), on_guide.lower(),
-                          [sliding(on_slot, on_guide, along_guide, u, g)])
+
+    def plan() -> Plan:
+        on_block, on_slot, on_guide = f"{nb}{links[0]}", f"{nb}{links[1]}", f"{nb}{guide.link}"
+        back = Slide(-s_i, -v_i, -a_i)         # the slotted link's point relative to the block
+        vel_b, acc_b = chains(on_slot, b, nb.lower(), [sliding(on_slot, on_block, back, v, g)])
+        vel_g, acc_g = chains(on_slot, carried(p, g, b.z), on_guide.lower(),
+                              [sliding(on_slot, on_guide, along_guide, u, g)])
+        return Plan([vel_b, vel_g], [acc_b, acc_g], {on_slot: carried(r, g, b.z)})
     return GroupSolution("RPP", {nr: r}, {links[0]: (b, slot), links[1]: (r, g)},
                          {f"{nr}/{ng}": along_guide, f"{nb}/{ns}": in_slot},
-                         closes=np.full(b.z.shape, True), determinant=np.full(b.z.shape, np.sin(alpha)),
-                         velocity=[vel_b, vel_g], acceleration=[acc_b, acc_g],
-                         coincident={on_slot: under_j})
+                         np.full(b.z.shape, True), np.full(b.z.shape, np.sin(alpha)), plan)

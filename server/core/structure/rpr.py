@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .group import GroupSolution, Slide, carried, chains, rotation, sliding
+from .group import GroupSolution, Plan, Slide, carried, chains, rotation, sliding
 from .state import Angle, Point, solve_pair
 
 
@@ -34,14 +34,13 @@ def solve(b: Point, d: Point, offset: float, branch: int, names: tuple[str, str,
     lever = Angle(np.angle(e_j), w1, w2)
     slide = Slide(s, s1, s2)
     nb, nd, name = names
-    on_block, on_lever = f"{nb}{links[0]}", f"{nb}{links[1]}"
-    under = carried(d, lever, b.z)
-    back = Slide(-s, -s1, -s2)                # the lever's point relative to the block
-    vel_b, acc_b = chains(on_lever, b, nb.lower(), [sliding(on_lever, on_block, back, e_j, lever)])
-    vel_d, acc_d = chains(on_lever, d, nd.lower(), [rotation(nd, on_lever, d.z, b.z, lever)])
+
+    def plan() -> Plan:
+        on_block, on_lever = f"{nb}{links[0]}", f"{nb}{links[1]}"
+        back = Slide(-s, -s1, -s2)            # the lever's point relative to the block
+        vel_b, acc_b = chains(on_lever, b, nb.lower(), [sliding(on_lever, on_block, back, e_j, lever)])
+        vel_d, acc_d = chains(on_lever, d, nd.lower(), [rotation(nd, on_lever, d.z, b.z, lever)])
+        return Plan([vel_b, vel_d], [acc_b, acc_d], {on_lever: carried(d, lever, b.z)})
     with np.errstate(divide="ignore", invalid="ignore"):
         det = s / np.abs(arm)
-    return GroupSolution("RPR", {}, {links[0]: (b, lever), links[1]: (d, lever)},
-                         {name: slide}, closes=closes, determinant=det,
-                         velocity=[vel_b, vel_d], acceleration=[acc_b, acc_d],
-                         coincident={on_lever: under})
+    return GroupSolution("RPR", {}, {links[0]: (b, lever), links[1]: (d, lever)}, {name: slide}, closes, det, plan)

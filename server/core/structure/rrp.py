@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .group import GroupSolution, Slide, carried, chains, rotation, sliding
+from .group import GroupSolution, Plan, Slide, carried, chains, rotation, sliding
 from .state import Angle, Guide, Point, solve_pair
 
 
@@ -36,10 +36,12 @@ def solve(b: Point, guide: Guide, length: float, branch: int,
     slide = Slide(s, s1, s2)
     c = carried(b, ang_i, c_z)
     nb, nc, ng = names
-    under = carried(p, g, c_z)               # the guide's point under the slider (on the guide's link)
-    on_guide, on_slider = f"{nc}{guide.link}", f"{nc}{links[1]}"
-    vel_b, acc_b = chains(nc, b, nb.lower(), [rotation(nb, nc, b.z, c_z, ang_i)])
-    vel_g, acc_g = chains(nc, under, on_guide.lower(), [sliding(on_slider, on_guide, slide, u, g)])
+
+    def plan() -> Plan:
+        under = carried(p, g, c_z)           # the guide's point under the slider (on the guide's link)
+        on_guide, on_slider = f"{nc}{guide.link}", f"{nc}{links[1]}"
+        vel_b, acc_b = chains(nc, b, nb.lower(), [rotation(nb, nc, b.z, c_z, ang_i)])
+        vel_g, acc_g = chains(nc, under, on_guide.lower(), [sliding(on_slider, on_guide, slide, u, g)])
+        return Plan([vel_b, vel_g], [acc_b, acc_g])
     return GroupSolution("RRP", {nc: c}, {links[0]: (b, ang_i), links[1]: (c, g)}, {f"{nc}/{ng}": slide},
-                         closes=closes, determinant=np.cos(ang_i.th - g.th),
-                         velocity=[vel_b, vel_g], acceleration=[acc_b, acc_g])
+                         closes, np.cos(ang_i.th - g.th), plan)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .group import GroupSolution, carried, chains, rotation
+from .group import GroupSolution, Plan, carried, chains, rotation
 from .state import Angle, Point, solve_pair
 
 
@@ -36,7 +36,10 @@ def solve(b: Point, d: Point, a_len: float, b_len: float, branch: int, names: tu
     ang_i, ang_j = Angle(th_i, w1, w2), Angle(th_j, v1, v2)
     c = carried(b, ang_i, c_z)
     nb, nd, nc = names
-    vel_b, acc_b = chains(nc, b, nb.lower(), [rotation(nb, nc, b.z, c_z, ang_i)])
-    vel_d, acc_d = chains(nc, d, nd.lower(), [rotation(nd, nc, d.z, c_z, ang_j)])
-    return GroupSolution("RRR", {nc: c}, {links[0]: (b, ang_i), links[1]: (d, ang_j)}, closes=closes,
-                         determinant=np.sin(th_j - th_i), velocity=[vel_b, vel_d], acceleration=[acc_b, acc_d])
+
+    def plan() -> Plan:
+        vel_b, acc_b = chains(nc, b, nb.lower(), [rotation(nb, nc, b.z, c_z, ang_i)])
+        vel_d, acc_d = chains(nc, d, nd.lower(), [rotation(nd, nc, d.z, c_z, ang_j)])
+        return Plan([vel_b, vel_d], [acc_b, acc_d])
+    return GroupSolution("RRR", {nc: c}, {links[0]: (b, ang_i), links[1]: (d, ang_j)}, {}, closes,
+                         np.sin(th_j - th_i), plan)
