@@ -70,7 +70,8 @@ def analyse(linkage: Linkage) -> dict:
     crank = linkage.crank
     if crank.pivot not in linkage.joints:
         raise GeometryError("linkage.input.pivot", f"the crank turns about a frame joint; '{crank.pivot}' is not "
-                                                   "one of linkage.frame.joints", "unknown_element")
+                                                   "one of linkage.frame.joints", "unknown_element",
+                            element=crank.pivot)
     declared: dict[int, str] = {crank.link: "the input crank"}
     duplicate: list[str] = []
 

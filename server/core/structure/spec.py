@@ -88,7 +88,7 @@ def number(value, where: str, positive: bool = False) -> float:
 
 def name_of(value, where: str) -> str:
     if not isinstance(value, str) or not 1 <= len(value) <= 16 or "/" in value:
-        raise GeometryError(where, "must be a name of 1 to 16 characters without '/'", "bad_name")
+        raise GeometryError(where, "must be a name of 1 to 16 characters without '/'", "linkage_shape")
     return value
 
 
@@ -96,13 +96,13 @@ def mapping(value, where: str) -> dict:
     if value is None:
         return {}
     if not isinstance(value, dict) or len(value) > 64:
-        raise GeometryError(where, "must be an object of at most 64 entries", "bad_object")
+        raise GeometryError(where, "must be an object of at most 64 entries", "linkage_shape")
     return value
 
 
 def xy(value, where: str) -> tuple[float, float]:
     if not isinstance(value, (list, tuple)) or len(value) != 2:
-        raise GeometryError(where, "must be [x, y] in metres", "bad_point")
+        raise GeometryError(where, "must be [x, y] in metres", "linkage_shape")
     return number(value[0], f"{where}.0"), number(value[1], f"{where}.1")
 
 
@@ -119,7 +119,7 @@ def attachments(raw, where: str, links: tuple[int, ...], with_angle: bool) -> tu
         item = mapping(item, at)
         link = item.get("link", links[0])
         if link not in links:
-            raise GeometryError(f"{at}.link", f"must be one of this element's links {list(links)}", "bad_link")
+            raise GeometryError(f"{at}.link", f"must be one of this element's links {list(links)}", "linkage_shape")
         out.append(Attachment(name_of(name, at), link, number(item.get("along", 0.0), f"{at}.along"),
                               number(item.get("across", 0.0), f"{at}.across"),
                               number(item.get("angle", 0.0), f"{at}.angle") if with_angle else 0.0))
@@ -129,11 +129,11 @@ def attachments(raw, where: str, links: tuple[int, ...], with_angle: bool) -> tu
 def parse_crank(raw, where: str) -> Crank:
     raw = mapping(raw, where)
     if raw.get("kind", "crank") != "crank":
-        raise GeometryError(f"{where}.kind", "the input link is a crank ('crank')", "bad_input")
+        raise GeometryError(f"{where}.kind", "the input link is a crank ('crank')", "linkage_shape")
     link = link_number(raw.get("link", 1), f"{where}.link")
     sense = raw.get("sense", 1)
     if sense not in (1, -1) or isinstance(sense, bool):
-        raise GeometryError(f"{where}.sense", "must be +1 (counter-clockwise) or −1 (clockwise)", "bad_sense")
+        raise GeometryError(f"{where}.sense", "must be +1 (counter-clockwise) or −1 (clockwise)", "linkage_shape")
     return Crank(link, name_of(raw.get("pivot"), f"{where}.pivot"), name_of(raw.get("joint"), f"{where}.joint"),
                  number(raw.get("length"), f"{where}.length", positive=True),
                  number(raw.get("angle0", 0.0), f"{where}.angle0"), int(sense),
@@ -143,7 +143,7 @@ def parse_crank(raw, where: str) -> Crank:
 
 def link_number(value, where: str) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 99:
-        raise GeometryError(where, "a moving link is numbered by a whole number 1…99 (0 is the frame)", "bad_link")
+        raise GeometryError(where, "a moving link is numbered by a whole number 1…99 (0 is the frame)", "linkage_shape")
     return value
 
 
@@ -151,28 +151,28 @@ def parse_group(raw, where: str) -> Group:
     raw = mapping(raw, where)
     kind = raw.get("kind")
     if kind not in KINDS:
-        raise GeometryError(f"{where}.kind", f"must be one of {', '.join(KINDS)} (class II groups)", "bad_kind")
+        raise GeometryError(f"{where}.kind", f"must be one of {', '.join(KINDS)} (class II groups)", "linkage_shape")
     links = raw.get("links")
     if not isinstance(links, (list, tuple)) or len(links) != 2:
-        raise GeometryError(f"{where}.links", "a class II group has two links: [i, j]", "bad_links")
+        raise GeometryError(f"{where}.links", "a class II group has two links: [i, j]", "linkage_shape")
     links = (link_number(links[0], f"{where}.links.0"), link_number(links[1], f"{where}.links.1"))
     if links[0] == links[1]:
-        raise GeometryError(f"{where}.links", "the group's two links must differ", "bad_links")
+        raise GeometryError(f"{where}.links", "the group's two links must differ", "linkage_shape")
     n_outer, n_guides = {"RRR": (2, 0), "RRP": (1, 1), "RPR": (2, 0), "PRP": (0, 2), "RPP": (1, 1)}[kind]
     outer = tuple(raw.get("outer") or ())
     if len(outer) != n_outer:
-        raise GeometryError(f"{where}.outer", f"{kind} takes {n_outer} outer joint(s)", "bad_outer")
+        raise GeometryError(f"{where}.outer", f"{kind} takes {n_outer} outer joint(s)", "linkage_shape")
     outer = tuple(name_of(o, f"{where}.outer.{k}") for k, o in enumerate(outer))
     guides = tuple(raw.get("guides") or ()) if kind == "PRP" else (raw.get("guide"),) * n_guides
     if len(guides) != n_guides:
-        raise GeometryError(f"{where}.guides", f"{kind} slides along {n_guides} guides [g₁, g₂]", "bad_guides")
+        raise GeometryError(f"{where}.guides", f"{kind} slides along {n_guides} guides [g₁, g₂]", "linkage_shape")
     guides = tuple(name_of(g, f"{where}.guide" if kind != "PRP" else f"{where}.guides.{k}")
                    for k, g in enumerate(guides))
     lengths: tuple[float, ...] = ()
     if kind == "RRR":
         raw_l = raw.get("lengths")
         if not isinstance(raw_l, (list, tuple)) or len(raw_l) != 2:
-            raise GeometryError(f"{where}.lengths", "RRR takes two lengths [BC, DC] in metres", "bad_lengths")
+            raise GeometryError(f"{where}.lengths", "RRR takes two lengths [BC, DC] in metres", "linkage_shape")
         lengths = tuple(number(v, f"{where}.lengths.{k}", positive=True) for k, v in enumerate(raw_l))
     elif kind == "RRP":
         lengths = (number(raw.get("length"), f"{where}.length", positive=True),)
@@ -203,11 +203,11 @@ def parse(raw) -> Linkage:
         through = v.get("through", [0.0, 0.0])
         point = joints.get(through) if isinstance(through, str) else xy(through, f"{at}.through")
         if point is None:
-            raise GeometryError(f"{at}.through", f"no frame joint '{through}'", "unknown_element")
+            raise GeometryError(f"{at}.through", f"no frame joint '{through}'", "unknown_element", element=through)
         guides[name_of(k, at)] = (point, number(v.get("angle", 0.0), f"{at}.angle"))
     groups = raw.get("groups") or []
     if not isinstance(groups, list):
-        raise GeometryError("linkage.groups", "must be a list of groups", "bad_groups")
+        raise GeometryError("linkage.groups", "must be a list of groups", "linkage_shape")
     if len(groups) > MAX_LINKS:
         raise GeometryError("linkage.groups", f"at most {MAX_LINKS} links: {len(groups)} groups are too many",
                             "too_many_links")
