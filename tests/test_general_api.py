@@ -132,3 +132,8 @@ def test_plan_needs_its_angle(client, example):
 
 def test_linkage_only_with_general(client, example):
     refused(client, example | {"mechanism": "slider_crank"}, ["body"], "`linkage` goes with mechanism 'general'")
+
+
+def test_absurd_numbers(client, example):
+    refused(client, with_groups(example, lambda g: g[1].update(length=1e308)),
+            ["body", "linkage", "groups", "1", "length"], "between")

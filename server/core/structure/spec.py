@@ -31,6 +31,7 @@ from ..mechanisms.base import GeometryError
 KINDS = ("RRR", "RRP", "RPR", "PRP", "RPP")
 KIND_NUMBER = {kind: k + 1 for k, kind in enumerate(KINDS)}      # Artobolevsky's kinds 1…5
 MAX_LINKS = 20
+MAX_NUMBER = 1000.0              # |length|, |coordinate| ≤ 1000 m, |angle| ≤ 1000 rad: squares stay finite
 
 
 @dataclass(frozen=True)
@@ -81,6 +82,9 @@ class Linkage:
 def number(value, where: str, positive: bool = False) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise GeometryError(where, "must be a finite number", "not_finite")
+    if abs(value) > MAX_NUMBER:
+        raise GeometryError(where, f"must lie between −{MAX_NUMBER:g} and {MAX_NUMBER:g} (m or rad)", "out_of_range",
+                            minimum=-MAX_NUMBER, maximum=MAX_NUMBER)
     if positive and value <= 0:
         raise GeometryError(where, "must be a positive length (m)", "negative_length")
     return float(value)
