@@ -65,20 +65,20 @@ def constraint_residuals(linkage, comp) -> list[float]:
         j_link = group.links[1]
         if group.kind == "RRR":
             b, d, c = j[group.outer[0]].z, j[group.outer[1]].z, j[group.inner].z
-            out += [np.abs(c - b) - group.lengths[0], np.abs(c - d) - group.lengths[1]]
+            out += [np.abs(c - b) - group.sizes[0], np.abs(c - d) - group.sizes[1]]
         elif group.kind == "RRP":
-            b, c, guide = j[group.outer[0]].z, j[group.inner].z, g[group.guides_used[0]]
-            out += [np.abs(c - b) - group.lengths[0], line_distance(c, guide.point.z, guide.angle.th)]
+            b, c, guide = j[group.outer[0]].z, j[group.inner].z, g[group.guides[0]]
+            out += [np.abs(c - b) - group.sizes[0], line_distance(c, guide.point.z, guide.angle.th)]
         elif group.kind == "RPR":
             b, d = j[group.outer[0]].z, j[group.outer[1]].z
             lever = comp.links[j_link][1].th
-            out.append(line_distance(b, d, lever) - group.lengths[0])
+            out.append(line_distance(b, d, lever) - group.sizes[0])
         elif group.kind == "PRP":
             c = j[group.inner].z
-            for name in group.guides_used:
+            for name in group.guides:
                 out.append(line_distance(c, g[name].point.z, g[name].angle.th))
         else:
-            b, r, guide = j[group.outer[0]].z, j[group.inner].z, g[group.guides_used[0]]
+            b, r, guide = j[group.outer[0]].z, j[group.inner].z, g[group.guides[0]]
             out += [line_distance(r, guide.point.z, guide.angle.th),
                     line_distance(b, r, guide.angle.th + group.angle)]
     return [float(np.max(np.abs(x))) for x in out]
@@ -93,7 +93,7 @@ def fsolve_errors(linkage, comp, k: int = 0) -> list[float]:
     for group in linkage.groups:
         if group.kind == "RRR":
             b, d, c = (j[n].z[k] for n in (*group.outer, group.inner))
-            a_len, b_len = group.lengths
+            a_len, b_len = group.sizes
 
             def eqs(x, b=b, d=d, a_len=a_len, b_len=b_len):
                 z = complex(*x)
@@ -102,17 +102,17 @@ def fsolve_errors(linkage, comp, k: int = 0) -> list[float]:
             root = fsolve(eqs, start, xtol=1e-14)
             errors.append(abs(complex(*root) - c))
         elif group.kind == "RRP":
-            b, c, guide = j[group.outer[0]].z[k], j[group.inner].z[k], g[group.guides_used[0]]
+            b, c, guide = j[group.outer[0]].z[k], j[group.inner].z[k], g[group.guides[0]]
             p, u = guide.point.z[k], np.exp(1j * guide.angle.th[k])
             s0 = ((c - p) * np.conj(u)).real
-            root = fsolve(lambda x: [abs(p + x[0] * u - b) ** 2 - group.lengths[0] ** 2],
+            root = fsolve(lambda x: [abs(p + x[0] * u - b) ** 2 - group.sizes[0] ** 2],
                           [s0 * (1 + 0.02) + 0.001], xtol=1e-14)
             errors.append(abs(p + root[0] * u - c))
         elif group.kind == "RPR":
             b, d = j[group.outer[0]].z[k], j[group.outer[1]].z[k]
             theta = comp.links[group.links[1]][1].th[k]
             s0 = ((b - d) * np.exp(-1j * theta)).real
-            e = group.lengths[0]
+            e = group.sizes[0]
 
             def eqs(x, b=b, d=d, e=e):
                 z = d + (x[0] + 1j * e) * np.exp(1j * x[1]) - b
@@ -120,9 +120,9 @@ def fsolve_errors(linkage, comp, k: int = 0) -> list[float]:
             root = fsolve(eqs, [s0 * 1.02, theta + 0.02], xtol=1e-14)
             errors.append(abs(np.angle(np.exp(1j * (root[1] - theta)))))
         else:
-            first = g[group.guides_used[0]]
+            first = g[group.guides[0]]
             if group.kind == "PRP":
-                second = g[group.guides_used[1]]
+                second = g[group.guides[1]]
                 u1, u2 = np.exp(1j * first.angle.th[k]), np.exp(1j * second.angle.th[k])
                 p1, p2, target = first.point.z[k], second.point.z[k], j[group.inner].z[k]
 

@@ -26,7 +26,7 @@ class Pair:
 
 def outer_elements(group) -> list[tuple[str, str]]:
     """(element, 'joint' | 'guide') the group attaches to."""
-    return [(o, "joint") for o in group.outer] + [(g, "guide") for g in group.guides_used]
+    return [(o, "joint") for o in group.outer] + [(g, "guide") for g in group.guides]
 
 
 def group_pairs(group, home: dict[str, int], host: dict[str, int]) -> list[Pair]:
@@ -38,14 +38,14 @@ def group_pairs(group, home: dict[str, int], host: dict[str, int]) -> list[Pair]
         return [Pair(b, "R", (home[b], i)), Pair(group.inner, "R", (i, j)), Pair(d, "R", (home[d], j))]
     if kind == "RRP":
         return [Pair(group.outer[0], "R", (home[group.outer[0]], i)), Pair(group.inner, "R", (i, j)),
-                Pair(group.guides_used[0], "P", (host[group.guides_used[0]], j))]
+                Pair(group.guides[0], "P", (host[group.guides[0]], j))]
     if kind == "RPR":
         b, d = group.outer
         return [Pair(b, "R", (home[b], i)), Pair(group.inner, "P", (i, j)), Pair(d, "R", (home[d], j))]
     if kind == "PRP":
-        g1, g2 = group.guides_used
+        g1, g2 = group.guides
         return [Pair(g1, "P", (host[g1], i)), Pair(group.inner, "R", (i, j)), Pair(g2, "P", (host[g2], j))]
-    b, g = group.outer[0], group.guides_used[0]
+    b, g = group.outer[0], group.guides[0]
     return [Pair(b, "R", (home[b], i)), Pair(f"{b}/slot", "P", (i, j)), Pair(g, "P", (host[g], j))]
 
 
@@ -65,7 +65,7 @@ def analyse(linkage: Linkage) -> dict:
     host: dict[str, int] = {name: 0 for name in linkage.guides}
     later = {}
     for k, group in enumerate(linkage.groups):
-        for name in list(new_joints(group)) + [a.name for a in group.points + group.guides]:
+        for name in list(new_joints(group)) + [a.name for a in group.points + group.new_guides]:
             later.setdefault(name, k)
     crank = linkage.crank
     if crank.pivot not in linkage.joints:
@@ -83,7 +83,7 @@ def analyse(linkage: Linkage) -> dict:
     place(crank.joint, {crank.link}, "linkage.input.joint")
     for a in crank.points:
         place(a.name, {a.link}, f"linkage.input.points.{a.name}")
-    for a in crank.guides:
+    for a in crank.new_guides:
         if a.name in owners or a.name in host:
             raise GeometryError(f"linkage.input.new_guides.{a.name}", f"the name '{a.name}' is used already",
                                 "duplicate_name")
@@ -122,7 +122,7 @@ def analyse(linkage: Linkage) -> dict:
             place(name, links, f"{where}.inner")
         for a in group.points:
             place(a.name, {a.link}, f"{where}.points.{a.name}")
-        for a in group.guides:
+        for a in group.new_guides:
             if a.name in owners or a.name in host:
                 raise GeometryError(f"{where}.new_guides.{a.name}", f"the name '{a.name}' is used already",
                                     "duplicate_name")

@@ -34,7 +34,7 @@ def attach(comp: Composition, element) -> None:
     for a in element.points:
         origin, angle = comp.links[a.link]
         comp.joints[a.name] = on_link(origin, angle, complex(a.along, a.across))
-    for a in element.guides:
+    for a in element.new_guides:
         origin, angle = comp.links[a.link]
         comp.guides[a.name] = Guide(on_link(origin, angle, complex(a.along, a.across)), angle.shifted(a.angle),
                                     a.link)
@@ -42,20 +42,20 @@ def attach(comp: Composition, element) -> None:
 
 def solve_group(comp: Composition, group) -> GroupSolution:
     j, g = comp.joints, comp.guides
-    names = group.outer + group.guides_used
+    names = group.outer + group.guides
     if group.kind == "RRR":
-        return rrr.solve(j[group.outer[0]], j[group.outer[1]], *group.lengths, group.branch,
+        return rrr.solve(j[group.outer[0]], j[group.outer[1]], *group.sizes, group.branch,
                          (group.outer[0], group.outer[1], group.inner), group.links)
     if group.kind == "RRP":
-        return rrp.solve(j[group.outer[0]], g[group.guides_used[0]], group.lengths[0], group.branch,
-                         (group.outer[0], group.inner, group.guides_used[0]), group.links)
+        return rrp.solve(j[group.outer[0]], g[group.guides[0]], group.sizes[0], group.branch,
+                         (group.outer[0], group.inner, group.guides[0]), group.links)
     if group.kind == "RPR":
-        return rpr.solve(j[group.outer[0]], j[group.outer[1]], group.lengths[0], group.branch,
+        return rpr.solve(j[group.outer[0]], j[group.outer[1]], group.sizes[0], group.branch,
                          (*names, group.inner), group.links)
     if group.kind == "PRP":
-        return prp.solve(g[group.guides_used[0]], g[group.guides_used[1]], (group.inner, *names), group.links)
-    return rpp.solve(j[group.outer[0]], g[group.guides_used[0]], group.angle,
-                     (group.outer[0], group.inner, group.guides_used[0], "slot"), group.links)
+        return prp.solve(g[group.guides[0]], g[group.guides[1]], (group.inner, *names), group.links)
+    return rpp.solve(j[group.outer[0]], g[group.guides[0]], group.angle,
+                     (group.outer[0], group.inner, group.guides[0], "slot"), group.links)
 
 
 def compose(linkage: Linkage, phi: np.ndarray) -> Composition:

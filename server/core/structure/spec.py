@@ -54,7 +54,7 @@ class Crank:
     angle0: float
     sense: int
     points: tuple[Attachment, ...] = ()
-    guides: tuple[Attachment, ...] = ()
+    new_guides: tuple[Attachment, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -62,13 +62,13 @@ class Group:
     kind: str
     links: tuple[int, int]
     outer: tuple[str, ...]
-    guides_used: tuple[str, ...]
+    guides: tuple[str, ...]
     inner: str
-    lengths: tuple[float, ...]
+    sizes: tuple[float, ...]          # RRR (BC, DC); RRP (BC,); RPR (the slot's offset e,); PRP, RPP ()
     branch: int
     angle: float
     points: tuple[Attachment, ...] = ()
-    guides: tuple[Attachment, ...] = ()
+    new_guides: tuple[Attachment, ...] = ()
 
 
 @dataclass(frozen=True)
