@@ -2,6 +2,8 @@
 
 - the four-bar preset: the smallest |sin μ| of its RRR group equals sin of the smallest transmission angle of the
   closed-form module (cos μ = (l₂² + l₃² − d²)/(2l₂l₃), extreme at φ = 0 and π, both on the 0.5° grid: 1e-12);
+- output reversals (Newton on the closed-form analogs): the crank-slider's dead centres and the four-bar's
+  rocker extremes of the closed-form modules, to 1e-9 rad and 1e-12 m or rad;
 - the shaping machine with a rod too short to reach the ram's guide everywhere: the limits of assembly reported
   lie within one grid step (0.5°) of the roots of |y_D(φ) − y_guide| = BC, with y_D from the lever's line
   through C and the crank pin A (y_D = y_C + CD·(y_A − y_C)/|A − C|), found by brentq.
@@ -42,3 +44,27 @@ def test_shaping_machine_limits_of_assembly():
              for k in np.flatnonzero(np.sign(values[:-1]) != np.sign(values[1:]))]
     assert len(roots) == len(limits) == 4
     assert max(abs(r - p) for r, p in zip(roots, limits)) <= grid[1]
+
+
+def reversals(name, what):
+    special = GeneralMechanism(presets()[name]["linkage"]).special_positions({})
+    return sorted((sp.phi, sp.value) for sp in special if sp.kind == "output_reversal" and what in sp.description)
+
+
+def test_slider_dead_centres():
+    module = MECHANISMS["slider_crank"]
+    dead = sorted((sp.phi, sp.value) for sp in module.special_positions(module.check({})))
+    found = reversals("slider_crank", "slide B/x")
+    x_min = 0.2                                   # l₂ − l₁: the slider's travel s is counted from there
+    assert len(found) == len(dead) == 2
+    for (phi, x), (phi_ref, s_ref) in zip(found, dead):
+        assert abs(phi - phi_ref) <= 1e-9 and abs(x - x_min - s_ref) <= 1e-12
+
+
+def test_rocker_extremes():
+    module = MECHANISMS["four_bar"]
+    extremes = module.rocker_extremes(module.check({}))
+    found = reversals("four_bar", "link 3")
+    assert len(found) == len(extremes) == 2
+    for (phi, theta), (phi_ref, theta_ref) in zip(found, extremes):
+        assert abs(phi - phi_ref) <= 1e-9 and abs(theta - theta_ref) <= 1e-12

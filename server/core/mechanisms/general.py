@@ -3,7 +3,7 @@ behind the one ``Mechanism`` interface.
 
 Outputs (by name; nothing unrequested is computed): joint positions and their first and second analogs
 (x′, y′, x″, y″), link angles θ with θ′, θ″, slides along guides and slots with s′, s″, the structural analysis,
-special positions (each group's limits of assembly and dead positions), and the velocity and acceleration
+special positions (each group's limits of assembly, dead positions, output reversals), and the velocity and acceleration
 plans at one angle.  Where a group cannot be assembled the values are NaN (null in the answer) with a
 sentence naming the group and the angles; where it closes nowhere the mechanism is refused.
 """
@@ -15,7 +15,8 @@ from ..structure.analysis import analyse
 from ..structure.compose import Composition, compose
 from ..structure.plans import plans
 from ..structure.spec import Linkage, parse
-from .base import Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, angle_ranges, ranges_text
+from .base import (Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, angle_ranges, ranges_text,
+                   wrap_angle)
 from .mechanism import Mechanism
 
 CHECK_POINTS = 721               # the full turn checked for assembly at 0.5°
@@ -32,7 +33,8 @@ GENERAL_OUTPUTS = (
     OutputSpec("slides_d1", "m", "s′ = ds/dφ (sliding velocity analog)"),
     OutputSpec("slides_d2", "m", "s″ = d²s/dφ²"),
     OutputSpec("structure", "1", "structural analysis: n, p₅, p₄, W, the structural formula, the class"),
-    OutputSpec("special", "rad", "each group's limits of assembly and dead positions"),
+    OutputSpec("special", "rad", "per group: limits of assembly, dead positions, the smallest |sin| of its "
+               "transmission angle, output reversals (extreme positions of its links and slides)"),
     OutputSpec("plan", "m/s, m/s²", "velocity and acceleration plans at one angle (request field `plan`)"),
 )
 
@@ -104,7 +106,8 @@ class GeneralMechanism(Mechanism):
         return sum((s.d1**2 for s in comp.slides.values()), np.zeros_like(ev.phi, dtype=float))
 
     def special_positions(self, p) -> list[SpecialPosition]:
-        return special_positions(compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS)))
+        turn = compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS))
+        return sorted(special_positions(turn) + reversals(self.linkage, turn), key=lambda sp: sp.phi)
 
     def plan(self, phi: float, omega1: float, epsilon1: float) -> dict:
         return plans(compose(self.linkage, np.array([float(phi)])), omega1, epsilon1)
@@ -158,7 +161,53 @@ def special_positions(comp: Composition) -> list[SpecialPosition]:
             for edge in np.flatnonzero(signs[:-1] * signs[1:] < 0):
                 out.append(SpecialPosition("dead_position", float(phi[edge]),
                                            f"group {k} ({group.kind}): dead position, its links in line"))
-    return sorted(out, key=lambda sp: sp.phi)
+    return out
+
+
+def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[SpecialPosition]:
+    """Output reversals (extreme positions: a slider's dead centre, a rocker's extreme): where a link's θ′ or
+    a slide's s′ changes sign on the 0.5° grid, refined by Newton's method on the closed-form analogs,
+    φ ← φ − q′/q″ (quadratic: four steps take the grid's 0.5° to round-off)."""
+    found = []
+    for k, group in enumerate(turn.groups):
+        quantities = [(f"link {link}", "links", link) for link in group.links] + \
+                     [(f"slide {name}", "slides", name) for name in group.slides]
+        for label, table, key in quantities:
+            found += [(k, label, table, key, start) for start in sign_changes(turn.phi, analogs(turn, table, key)[1])]
+    if not found:
+        return []
+    phi = np.array([f[4] for f in found])
+    for _ in range(steps):
+        fine = compose(linkage, phi)
+        step = np.array([analogs(fine, t, key)[1][i] / analogs(fine, t, key)[2][i]
+                         for i, (_, _, t, key, _) in enumerate(found)])
+        phi = phi - step
+    fine = compose(linkage, phi)
+    return [SpecialPosition("output_reversal", wrap_angle(phi[i]),
+                            f"group {k}: {label} reverses (its first analog is zero): an extreme position",
+                            float(analogs(fine, table, key)[0][i]))
+            for i, (k, label, table, key, _) in enumerate(found)]
+
+
+def sign_changes(phi: np.ndarray, d1: np.ndarray) -> list[float]:
+    """Starting angles where d1 changes sign over one turn (the grid's ends are the same angle): between two
+    grid points by linear interpolation, or at a grid point where it is zero up to round-off."""
+    d, h = d1[:-1], phi[1] - phi[0]
+    tiny = 1e-12 * np.nanmax(np.abs(d), initial=0.0)
+    sign = np.where(np.abs(d) <= tiny, 0.0, np.sign(d))
+    after, before = np.roll(sign, -1), np.roll(sign, 1)
+    between = np.flatnonzero(sign * after < 0)
+    at = np.flatnonzero((sign == 0) & (before * after < 0))
+    return [phi[k] - d[k] * h / (np.roll(d, -1)[k] - d[k]) for k in between] + [phi[k] for k in at]
+
+
+def analogs(comp: Composition, table: str, key) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A link's (θ, θ′, θ″) or a slide's (s, s′, s″)."""
+    if table == "links":
+        angle = comp.links[key][1]
+        return angle.th, angle.d1, angle.d2
+    slide = comp.slides[key]
+    return slide.s, slide.d1, slide.d2
 
 
 def compute_general(linkage: dict, outputs: list[str], phi: np.ndarray | None = None, n: int | None = None,
