@@ -3,8 +3,8 @@ behind the one ``Mechanism`` interface.
 
 Outputs (by name; nothing unrequested is computed): joint positions and their first and second analogs
 (x′, y′, x″, y″), link angles θ with θ′, θ″, slides along guides and slots with s′, s″, the structural analysis,
-special positions (each group's limits of assembly, dead positions, output reversals), and the velocity and acceleration
-plans at one angle.  Where a group cannot be assembled the values are NaN (null in the answer) with a
+special positions (each group's limits of assembly, dead positions, output reversals), and the velocity and
+acceleration plans at one angle.  Where a group cannot be assembled the values are NaN (null in the answer) with a
 sentence naming the group and the angles; where it closes nowhere the mechanism is refused.
 """
 from __future__ import annotations
@@ -20,7 +20,7 @@ from .base import (Evaluation, GeometryError, Notice, OutputSpec, SpecialPositio
 from .mechanism import Mechanism
 
 CHECK_POINTS = 721               # the full turn checked for assembly at 0.5°
-DEAD_TOL = 1e-9                  # |det| (a sine of the group's angle) below which a position counts as dead
+SMALL_TRANSMISSION = np.sin(np.radians(10))    # as the four-bar's warning (kinematics.proximity_warnings)
 
 GENERAL_OUTPUTS = (
     OutputSpec("joints", "m", "joint and point coordinates (x, y) over φ"),
@@ -129,9 +129,19 @@ def unwrapped(values: np.ndarray, unwrap: bool) -> np.ndarray:
 
 
 def assembly_notices(comp: Composition) -> list[Notice]:
-    """A sentence per group that cannot be assembled at some of the angles: which group, which angles."""
+    """A sentence per group that cannot be assembled at some of the angles (which group, which angles), or
+    that comes close to a dead position: |sin| of the angle between its links (the transmission angle μ for
+    RRR) below sin 10°, the threshold the four-bar module warns at; the analogs grow as 1/sin μ there."""
     notes = []
     for k, group in enumerate(comp.groups):
+        det = np.abs(np.where(group.closes, group.determinant, np.nan))
+        if np.isfinite(det).any() and np.nanmin(det) < SMALL_TRANSMISSION:
+            worst = int(np.nanargmin(det))
+            mu, at = float(np.degrees(np.arcsin(min(det[worst], 1.0)))), float(np.degrees(comp.phi[worst]))
+            notes.append(Notice("group_dead_position",
+                                f"Group {k} ({group.kind}) comes close to a dead position: its links are {mu:.2f}° "
+                                f"from a line at φ = {at:.1f}°, the velocity and acceleration analogs are large there.",
+                                {"group": k, "kind": group.kind, "mu": mu, "phi": at}))
         if not group.closes.all():
             ranges = angle_ranges(comp.phi, ~group.closes)
             notes.append(Notice("group_cannot_assemble",
