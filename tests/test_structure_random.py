@@ -41,6 +41,8 @@ def linkages(draw, first_kind: str, first_branch: int):
     phi0 = draw(st.floats(0, 2 * np.pi))
     for k, kind in enumerate((first_kind, draw(st.sampled_from(KINDS)))):
         comp = compose(parse(raw), np.array([phi0]))
+        # the first group placed within reach (nearly parallel guides of a PRP put its joint far away)
+        assume(all(np.isfinite(p.z[0]) and abs(p.z[0]) < 10 for p in comp.joints.values()))
         moving = [n for n in comp.joints if n not in raw["frame"]["joints"]]
         guides = list(comp.guides)
         links = [2 + 2 * k, 3 + 2 * k]
