@@ -132,6 +132,7 @@ def test_plan_needs_its_angle(client, example):
 
 def test_linkage_only_with_general(client, example):
     refused(client, example | {"mechanism": "slider_crank"}, ["body"], "`linkage` goes with mechanism 'general'")
+    refused(client, example | {"params": {"l1": 0.1}}, ["body"], "not in `params`")
 
 
 def test_absurd_numbers(client, example):

@@ -151,6 +151,8 @@ class KinematicsRequest(BaseModel):
             raise ValueError("give exactly one of `phi` (angles in radians) or `n` (number of points)")
         if (self.mechanism == "general") != (self.linkage is not None):
             raise ValueError("`linkage` goes with mechanism 'general', and only with it")
+        if self.mechanism == "general" and self.params:
+            raise ValueError("a general mechanism takes its lengths in `linkage`, not in `params`")
         if "plan" in self.outputs and self.plan is None:
             raise ValueError("the output 'plan' needs the field `plan` (its angle phi, omega1, epsilon1)")
         return self
