@@ -41,6 +41,7 @@ def attach(comp: Composition, element) -> None:
 
 
 def solve_group(comp: Composition, group) -> GroupSolution:
+    """The group's kind module, given its outer joints and guides as placed so far."""
     j, g = comp.joints, comp.guides
     names = group.outer + group.guides
     if group.kind == "RRR":
