@@ -29,6 +29,7 @@ from ..core.kinetostatics.crank_slider import Loads, Pairs, analyse
 from ..core.kinetostatics.report import crank_check, forces_report, wear_report
 from ..core.kinetostatics.virtual_work import reduced_moment
 from ..core.mechanisms import MECHANISMS, GeometryError, Notice
+from ..core.mechanisms.general import GENERAL_OUTPUTS, compute_general
 from .messages import localise_numerics, localise_study, translate
 from .schemas import KinematicsRequest, KinematicsResponse
 from .schemas_angular import AngularRequest
@@ -85,15 +86,21 @@ def count_undefined(value) -> int:
 
 def kinematics(request: KinematicsRequest, lang: str) -> Answer:
     """Position and transfer functions; each output's undefined points (singular positions) counted in words."""
-    result = compute_kinematics(request.mechanism, request.params, request.outputs,
-                                phi=None if request.phi is None else np.asarray(request.phi, float), n=request.n)
+    phi = None if request.phi is None else np.asarray(request.phi, float)
+    if request.mechanism == "general":
+        result = compute_general(request.linkage.model_dump(exclude_none=True), request.outputs, phi, request.n,
+                                 None if request.plan is None else request.plan.model_dump())
+        outputs = GENERAL_OUTPUTS
+    else:
+        result = compute_kinematics(request.mechanism, request.params, request.outputs, phi=phi, n=request.n)
+        outputs = MECHANISMS[request.mechanism].outputs
     notices = list(result.warnings)
     for name, value in result.outputs.items():
         bad = count_undefined(value)
         if bad:
             notices.append(Notice("undefined_points", f"{name}: undefined at {bad} point(s), sent as null "
                                   "(singular position).", {"output": name, "count": bad}))
-    units = {o.name: o.unit for o in MECHANISMS[request.mechanism].outputs}
+    units = {o.name: o.unit for o in outputs}
     body = KinematicsResponse.model_construct(     # built from checked numbers: no re-validation of the arrays
         mechanism=result.mechanism, params=result.params, cycle=result.cycle, phi=result.phi,
         outputs=result.outputs, units={name: units.get(name, "") for name in result.outputs},

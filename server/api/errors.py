@@ -14,7 +14,8 @@ from fastapi.responses import Response
 from ..core.mechanisms import GeometryError
 from .serialise import serialise
 
-REQUEST_FIELDS = ("outputs", "phi", "n", "motor", "inertias", "load", "compliances", "loads", "pairs")
+REQUEST_FIELDS = ("outputs", "phi", "n", "motor", "inertias", "load", "compliances", "loads", "pairs",
+                  "linkage", "plan")
 SERVER_ERROR = "internal error: the server could not answer this request (it has been logged)"
 
 

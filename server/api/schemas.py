@@ -12,6 +12,7 @@ MAX_ANGLE = 1000.0
 MAX_PARAMS = 16                  # a mechanism has at most 6 parameters; unknown names are refused
 Language = Literal["ru", "uk", "en"]
 MechanismName = Literal["sine", "slider_crank", "slotted_link", "four_bar"]
+KinematicsMechanism = Literal["sine", "slider_crank", "slotted_link", "four_bar", "general"]
 
 
 class ParamInfo(BaseModel):
@@ -38,6 +39,82 @@ class MechanismInfo(BaseModel):
     outputs: list[OutputInfo]
 
 
+class AttachmentModel(BaseModel):
+    """A point (centre of mass, tool point, joint for a later group) or a guide fixed on one of the element's
+    links, in that link's frame: from its origin joint along its angle (see GET /api/v1/mechanisms/general)."""
+
+    model_config = ConfigDict(extra="forbid")
+    link: int | None = Field(None, description="which of the element's links (default: its first)")
+    along: float = Field(0.0, description="m, along the link's direction from its origin joint")
+    across: float = Field(0.0, description="m, to the left of that direction")
+    angle: float = Field(0.0, description="guides only: the guide's angle to the link's direction, rad")
+
+
+class FrameGuideModel(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    through: tuple[float, float] | str = Field((0.0, 0.0), description="[x, y] in m, or a frame joint's name")
+    angle: float = Field(0.0, description="direction, rad counter-clockwise from +x")
+
+
+class FrameModel(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    joints: dict[str, tuple[float, float]] = Field(default_factory=dict, max_length=64,
+                                                   description="fixed joints {name: [x, y]} in m")
+    guides: dict[str, FrameGuideModel] = Field(default_factory=dict, max_length=64, description="fixed guides")
+
+
+class CrankModel(BaseModel):
+    """The input link: a crank turning about a frame joint; θ₁ = angle0 + sense·φ."""
+
+    model_config = ConfigDict(extra="forbid")
+    kind: Literal["crank"] = "crank"
+    link: int = Field(1, ge=1, le=99)
+    pivot: str = Field(description="the frame joint it turns about")
+    joint: str = Field(description="name of its pin")
+    length: float = Field(gt=0, description="m")
+    angle0: float = Field(0.0, description="crank angle at φ = 0, rad")
+    sense: Literal[1, -1] = Field(1, description="+1 counter-clockwise, −1 clockwise")
+    points: dict[str, AttachmentModel] = Field(default_factory=dict, max_length=64)
+    new_guides: dict[str, AttachmentModel] = Field(default_factory=dict, max_length=64)
+
+
+class GroupModel(BaseModel):
+    """A class-II structural group (kinds 1–5: RRR, RRP, RPR, PRP, RPP) attached to elements placed before."""
+
+    model_config = ConfigDict(extra="forbid")
+    kind: Literal["RRR", "RRP", "RPR", "PRP", "RPP"]
+    links: tuple[int, int] = Field(description="its two links' numbers [i, j]")
+    outer: list[str] = Field(default_factory=list, max_length=2, description=(
+        "outer joints: RRR [B, D]; RRP [B]; RPR [B (block), D (lever pivot)]; RPP [B]; PRP none"))
+    guide: str | None = Field(None, description="RRP, RPP: the guide slider j runs along")
+    guides: list[str] | None = Field(None, max_length=2, description="PRP: the two guides [g₁, g₂]")
+    inner: str | None = Field(None, description="name of the inner joint (RRR, RRP, PRP: C; RPP: R, link j's "
+                                                "point on the guide; RPR: the slide's name)")
+    lengths: tuple[float, float] | None = Field(None, description="RRR: [BC, DC] in m")
+    length: float | None = Field(None, description="RRP: BC in m")
+    offset: float | None = Field(None, description="RPR: the slot's offset e from the lever pivot, m")
+    angle: float | None = Field(None, description="RPP: the slot's angle α to the guide, rad (default π/2)")
+    branch: Literal[1, -1] = Field(1, description="assembly branch σ (RRR, RRP, RPR)")
+    points: dict[str, AttachmentModel] = Field(default_factory=dict, max_length=64)
+    new_guides: dict[str, AttachmentModel] = Field(default_factory=dict, max_length=64)
+
+
+class LinkageModel(BaseModel):
+    """A planar mechanism as data: frame, input crank, class-II groups in the order they are attached."""
+
+    model_config = ConfigDict(extra="forbid")
+    frame: FrameModel
+    input: CrankModel
+    groups: list[GroupModel] = Field(default_factory=list, max_length=20)
+
+
+class PlanRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    phi: float = Field(ge=-MAX_ANGLE, le=MAX_ANGLE, description="crank angle of the plans, rad")
+    omega1: float = Field(1.0, ge=-1e4, le=1e4, description="crank angular velocity ω₁, rad/s")
+    epsilon1: float = Field(0.0, ge=-1e6, le=1e6, description="crank angular acceleration ε₁, rad/s²")
+
+
 class KinematicsRequest(BaseModel):
     """Kinematics of one mechanism over a set of crank angles."""
 
@@ -45,7 +122,11 @@ class KinematicsRequest(BaseModel):
         {"mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3, "e": 0.0}, "n": 361,
          "outputs": ["s", "u31", "du31", "u21", "du21", "joints"]}]})
 
-    mechanism: MechanismName = Field(description="which mechanism")
+    mechanism: KinematicsMechanism = Field(description=(
+        "which mechanism; 'general': the one given in `linkage`"))
+    linkage: LinkageModel | None = Field(None, description=(
+        "with mechanism 'general': the mechanism as data (GET /api/v1/mechanisms/general)"))
+    plan: PlanRequest | None = Field(None, description="with the output 'plan': the angle, ω₁ and ε₁ of the plans")
     params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description=(
         "lengths in metres and switches; missing ones take the defaults of GET /api/v1/mechanisms"))
     phi: list[float] | None = Field(default=None, max_length=MAX_POINTS,
@@ -68,11 +149,17 @@ class KinematicsRequest(BaseModel):
     def one_grid(self):
         if (self.phi is None) == (self.n is None):
             raise ValueError("give exactly one of `phi` (angles in radians) or `n` (number of points)")
+        if (self.mechanism == "general") != (self.linkage is not None):
+            raise ValueError("`linkage` goes with mechanism 'general', and only with it")
+        if self.mechanism == "general" and self.params:
+            raise ValueError("a general mechanism takes its lengths in `linkage`, not in `params`")
+        if "plan" in self.outputs and self.plan is None:
+            raise ValueError("the output 'plan' needs the field `plan` (its angle phi, omega1, epsilon1)")
         return self
 
 
 class KinematicsResponse(BaseModel):
-    mechanism: MechanismName
+    mechanism: KinematicsMechanism
     params: dict[str, float] = Field(description="the complete parameter set used (defaults filled in)")
     cycle: float = Field(description="length of one kinematic cycle in φ, rad (2π, or 4π for a change-point "
                                      "four-bar without stroke limiter)")

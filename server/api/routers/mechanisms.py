@@ -1,10 +1,14 @@
-"""GET /api/v1/mechanisms: what each mechanism takes and gives."""
+"""GET /api/v1/mechanisms: what each mechanism takes and gives; GET /api/v1/mechanisms/general: the JSON of a
+mechanism composed of structural groups, with an example request and the presets."""
 from dataclasses import asdict
 
 from fastapi import APIRouter
 
 from ...core.mechanisms import MECHANISMS
-from ..schemas import MechanismInfo
+from ...core.mechanisms.general import GENERAL_OUTPUTS
+from ...core.structure import spec
+from ...core.structure.presets import presets
+from ..schemas import LinkageModel, MechanismInfo
 
 router = APIRouter(tags=["mechanisms"])
 
@@ -15,3 +19,15 @@ def list_mechanisms() -> list[MechanismInfo]:
     return [MechanismInfo(name=m.name, title=m.title, conventions=m.conventions,
                           params=[asdict(p) for p in m.params], outputs=[asdict(o) for o in m.outputs])
             for m in MECHANISMS.values()]
+
+
+@router.get("/mechanisms/general",
+            summary="A general mechanism as data (frame, crank, class-II groups): its JSON, an example, the presets")
+def general_mechanism() -> dict:
+    example = presets()["shaping_machine"]["linkage"]
+    return {"description": spec.__doc__, "schema": LinkageModel.model_json_schema(),
+            "outputs": [asdict(o) for o in GENERAL_OUTPUTS],
+            "example": {"mechanism": "general", "linkage": example, "n": 361,
+                        "outputs": ["structure", "joints", "joints_d1", "angles_d1", "slides_d1", "special", "plan"],
+                        "plan": {"phi": 0.5, "omega1": 10.0, "epsilon1": 0.0}},
+            "presets": list(presets().values())}

@@ -1,0 +1,255 @@
+"""A general mechanism: the input crank and class-II groups composed in order (server/core/structure/),
+behind the one ``Mechanism`` interface.
+
+Outputs (by name; nothing unrequested is computed): joint positions and their first and second analogs
+(x′, y′, x″, y″), link angles θ with θ′, θ″, slides along guides and slots with s′, s″, the structural analysis,
+special positions (each group's limits of assembly, dead positions, output reversals), and the velocity and
+acceleration plans at one angle.  Where a group cannot be assembled the values are NaN (null in the answer) with a
+sentence naming the group and the angles; where it closes nowhere the mechanism is refused.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..structure.analysis import analyse
+from ..structure.compose import Composition, compose
+from ..structure.plans import plans
+from ..structure.spec import Linkage, parse
+from .base import (Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, angle_ranges, ranges_text,
+                   wrap_angle)
+from .mechanism import Mechanism
+
+CHECK_POINTS = 721               # the full turn checked for assembly at 0.5°
+SMALL_TRANSMISSION = np.sin(np.radians(10))    # as the four-bar's warning (kinematics.proximity_warnings)
+
+GENERAL_OUTPUTS = (
+    OutputSpec("joints", "m", "joint and point coordinates (x, y) over φ"),
+    OutputSpec("joints_d1", "m", "first analogs (x′, y′) = dr/dφ of every joint: velocity v = r′ω₁"),
+    OutputSpec("joints_d2", "m", "second analogs (x″, y″) = d²r/dφ²: acceleration a = r″ω₁² + r′ε₁"),
+    OutputSpec("angles", "rad", "angle θ of every moving link, counter-clockwise from +x"),
+    OutputSpec("angles_d1", "1", "θ′ = dθ/dφ of every link (ω = θ′ω₁)"),
+    OutputSpec("angles_d2", "1", "θ″ = d²θ/dφ² of every link"),
+    OutputSpec("slides", "m", "slider travel s along its guide or slot, by pair (joint/guide)"),
+    OutputSpec("slides_d1", "m", "s′ = ds/dφ (sliding velocity analog)"),
+    OutputSpec("slides_d2", "m", "s″ = d²s/dφ²"),
+    OutputSpec("structure", "1", "structural analysis: n, p₅, p₄, W, the structural formula, the class"),
+    OutputSpec("special", "rad", "per group: limits of assembly, dead positions, the smallest |sin| of its "
+               "transmission angle, output reversals (extreme positions of its links and slides)"),
+    OutputSpec("plan", "m/s, m/s²", "velocity and acceleration plans at one angle (request field `plan`)"),
+)
+
+
+class GeneralMechanism(Mechanism):
+    """A linkage given as data (structure/spec.py); ``params`` are unused (the lengths are in the data)."""
+
+    name = "general"
+    title = "Mechanism composed of class-II structural groups"
+    conventions = ("Frame x to the right, y up; angles counter-clockwise from +x; the crank angle θ₁ = θ₀ + σφ. "
+                   "Groups attach in order to joints and guides that exist already.")
+    params = ()
+
+    def __init__(self, linkage: dict | Linkage):
+        self.linkage = linkage if isinstance(linkage, Linkage) else parse(linkage)
+        self.structure = analyse(self.linkage)
+
+    @property
+    def outputs(self):
+        return GENERAL_OUTPUTS
+
+    @property
+    def sliding_pairs(self):
+        return tuple(compose(self.linkage, np.zeros(1)).slides)
+
+    def check_geometry(self, p) -> None:
+        """Refuse a linkage one of whose groups closes at no crank angle of the turn (checked at 0.5°)."""
+        self.check_closure(compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS)))
+
+    def check_closure(self, comp: Composition) -> None:
+        """Where a group closes nowhere on ``comp``'s angles, look again over the whole turn at 0.5°; refuse
+        the linkage if it closes nowhere there either."""
+        if all(group.closes.any() for group in comp.groups):
+            return
+        turn = compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS))
+        for k, group in enumerate(turn.groups):
+            if not group.closes.any():
+                raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at any "
+                                    "crank angle: its lengths cannot close the loop", "never_closes", group=k)
+
+    def evaluate(self, p, phi, wanted) -> Evaluation:
+        return self.outputs_of(compose(self.linkage, phi), wanted)
+
+    def outputs_of(self, comp: Composition, wanted) -> Evaluation:
+        """The wanted array outputs of a composed linkage."""
+        phi = comp.phi
+        ev = Evaluation(phi)
+        ev.warnings = assembly_notices(comp)
+        ordered = phi.size > 1 and bool(np.all(np.diff(phi) > 0))
+        for name in wanted:
+            if name.startswith("joints"):
+                part = {"joints": "z", "joints_d1": "d1", "joints_d2": "d2"}[name]
+                table = {j: xy_pairs(getattr(pt, part)) for j, pt in comp.joints.items()}
+                if name == "joints":
+                    ev.joints = table
+                ev.values[name] = table
+            elif name.startswith("angles"):
+                part = {"angles": "th", "angles_d1": "d1", "angles_d2": "d2"}[name]
+                ev.values[name] = {str(k): unwrapped(getattr(a, part), part == "th" and ordered)
+                                   for k, (_, a) in sorted(comp.links.items())}
+            elif name.startswith("slides"):
+                part = {"slides": "s", "slides_d1": "d1", "slides_d2": "d2"}[name]
+                ev.values[name] = {k: getattr(s, part) for k, s in comp.slides.items()}
+        return ev
+
+    def sliding_squares(self, p, ev):
+        """S(φ) = Σ s′² over the prismatic pairs (Eremyants (3.15)–(3.17)), from the composed slides."""
+        comp = compose(self.linkage, ev.phi)
+        return sum((s.d1**2 for s in comp.slides.values()), np.zeros_like(ev.phi, dtype=float))
+
+    def special_positions(self, p) -> list[SpecialPosition]:
+        turn = compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS))
+        return sorted(special_positions(turn) + reversals(self.linkage, turn), key=lambda sp: sp.phi)
+
+    def plan(self, phi: float, omega1: float, epsilon1: float) -> dict:
+        return plans(compose(self.linkage, np.array([float(phi)])), omega1, epsilon1)
+
+    def describe(self, p):
+        return self.structure
+
+
+def xy_pairs(z: np.ndarray) -> np.ndarray:
+    """(N, 2) array of (x, y) from complex z: the same memory read as float pairs."""
+    return np.ascontiguousarray(z, dtype=complex).view(np.float64).reshape(-1, 2)
+
+
+def unwrapped(values: np.ndarray, unwrap: bool) -> np.ndarray:
+    """A link's angle continuous along an ordered grid (no 2π jumps), NaN where the group does not close."""
+    if not unwrap or not np.isfinite(values).all():
+        return values
+    return np.unwrap(values)
+
+
+def assembly_notices(comp: Composition) -> list[Notice]:
+    """A sentence per group that cannot be assembled at some of the angles (which group, which angles), or
+    that comes close to a dead position: |sin| of the angle between its links (the transmission angle μ for
+    RRR) below sin 10°, the threshold the four-bar module warns at; the analogs grow as 1/sin μ there."""
+    notes = []
+    for k, group in enumerate(comp.groups):
+        det = np.abs(np.where(group.closes, group.determinant, np.nan))
+        if np.isfinite(det).any() and np.nanmin(det) < SMALL_TRANSMISSION:
+            worst = int(np.nanargmin(det))
+            mu, at = float(np.degrees(np.arcsin(min(det[worst], 1.0)))), float(np.degrees(comp.phi[worst]))
+            notes.append(Notice("group_dead_position",
+                                f"Group {k} ({group.kind}) comes close to a dead position: its links are {mu:.2f}° "
+                                f"from a line at φ = {at:.1f}°, the velocity and acceleration analogs are large there.",
+                                {"group": k, "kind": group.kind, "mu": mu, "phi": at}))
+        if not group.closes.all():
+            ranges = angle_ranges(comp.phi, ~group.closes)
+            notes.append(Notice("group_cannot_assemble",
+                                f"Group {k} ({group.kind}) cannot be assembled at φ = {ranges_text(ranges)}: "
+                                "its loop does not close there (limit of assembly), the values are undefined.",
+                                {"group": k, "kind": group.kind, "ranges": ranges}))
+    return notes
+
+
+def special_positions(comp: Composition) -> list[SpecialPosition]:
+    """Per group: where it stops closing (limit of assembly) and where its determinant changes sign or is
+    smallest (dead position: the group's links in line, the analogs unbounded)."""
+    out = []
+    phi = comp.phi
+    for k, group in enumerate(comp.groups):
+        closes = group.closes
+        for edge in np.flatnonzero(np.diff(closes.astype(int))):
+            out.append(SpecialPosition("limit_of_assembly", float(phi[edge + 1 if closes[edge] else edge]),
+                                       f"group {k} ({group.kind}): limit of assembly"))
+        det = np.where(closes, group.determinant, np.nan)
+        if np.isfinite(det).any():
+            worst = int(np.nanargmin(np.abs(det)))
+            out.append(SpecialPosition("smallest_determinant", float(phi[worst]),
+                                       f"group {k} ({group.kind}): closest to a dead position (|sin| of the "
+                                       "angle between its links or guides)", float(abs(det[worst]))))
+            signs = np.sign(det)
+            for edge in np.flatnonzero(signs[:-1] * signs[1:] < 0):
+                out.append(SpecialPosition("dead_position", float(phi[edge]),
+                                           f"group {k} ({group.kind}): dead position, its links in line"))
+    return out
+
+
+def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[SpecialPosition]:
+    """Output reversals (extreme positions: a slider's dead centre, a rocker's extreme): where a link's θ′ or
+    a slide's s′ changes sign on the 0.5° grid, refined by Newton's method on the closed-form analogs,
+    φ ← φ − q′/q″ (quadratic: four steps take the grid's 0.5° to round-off)."""
+    found = []
+    for k, group in enumerate(turn.groups):
+        quantities = [(f"link {link}", "links", link) for link in group.links] + \
+                     [(f"slide {name}", "slides", name) for name in group.slides]
+        for label, table, key in quantities:
+            found += [(k, label, table, key, start) for start in sign_changes(turn.phi, analogs(turn, table, key)[1])]
+    if not found:
+        return []
+    phi = np.array([f[4] for f in found])
+    for _ in range(steps):
+        fine = compose(linkage, phi)
+        step = np.array([analogs(fine, t, key)[1][i] / analogs(fine, t, key)[2][i]
+                         for i, (_, _, t, key, _) in enumerate(found)])
+        phi = phi - step
+    fine = compose(linkage, phi)
+    return [SpecialPosition("output_reversal", wrap_angle(phi[i]),
+                            f"group {k}: {label} reverses (its first analog is zero): an extreme position",
+                            float(analogs(fine, table, key)[0][i]))
+            for i, (k, label, table, key, _) in enumerate(found)]
+
+
+def sign_changes(phi: np.ndarray, d1: np.ndarray) -> list[float]:
+    """Starting angles where d1 changes sign over one turn (the grid's ends are the same angle): between two
+    grid points by linear interpolation, or at a grid point where it is zero up to round-off."""
+    d, h = d1[:-1], phi[1] - phi[0]
+    tiny = 1e-12 * np.nanmax(np.abs(d), initial=0.0)
+    sign = np.where(np.abs(d) <= tiny, 0.0, np.sign(d))
+    after, before = np.roll(sign, -1), np.roll(sign, 1)
+    between = np.flatnonzero(sign * after < 0)
+    at = np.flatnonzero((sign == 0) & (before * after < 0))
+    return [phi[k] - d[k] * h / (np.roll(d, -1)[k] - d[k]) for k in between] + [phi[k] for k in at]
+
+
+def analogs(comp: Composition, table: str, key) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A link's (θ, θ′, θ″) or a slide's (s, s′, s″)."""
+    if table == "links":
+        angle = comp.links[key][1]
+        return angle.th, angle.d1, angle.d2
+    slide = comp.slides[key]
+    return slide.s, slide.d1, slide.d2
+
+
+def compute_general(linkage: dict, outputs: list[str], phi: np.ndarray | None = None, n: int | None = None,
+                    plan: dict | None = None):
+    """The kinematics endpoint's general path: the linkage checked (structure, assembly), ``outputs`` at
+    ``phi`` (rad) or on ``n`` points over one turn, the plans at ``plan["phi"]``.  GeometryError names the
+    field and the reason."""
+    from ..kinematics import MAX_POINTS, KinematicsResult, crank_angles
+
+    mech = GeneralMechanism(linkage)
+    known = {o.name for o in GENERAL_OUTPUTS}
+    for i, name in enumerate(outputs):
+        if name not in known:
+            raise GeometryError(f"outputs.{i}", f"'{name}' is not an output of a general mechanism; "
+                                                f"available: {', '.join(sorted(known))}")
+    if phi is None:
+        if n is None or not 2 <= n <= MAX_POINTS:
+            raise GeometryError("n", f"give between 2 and {MAX_POINTS} points")
+        phi = crank_angles(2 * np.pi, n)
+    comp = compose(mech.linkage, phi)
+    mech.check_closure(comp)
+    result = KinematicsResult("general", {}, 2 * np.pi, phi)
+    wanted = set(outputs)
+    ev = mech.outputs_of(comp, wanted)
+    result.warnings.extend(ev.warnings)
+    for name in outputs:
+        if name == "structure":
+            result.outputs[name] = mech.structure
+        elif name == "special":
+            result.outputs[name] = [sp.as_dict() for sp in mech.special_positions({})]
+        elif name == "plan":
+            result.outputs[name] = mech.plan(plan["phi"], plan.get("omega1", 1.0), plan.get("epsilon1", 0.0))
+        else:
+            result.outputs[name] = ev.values[name]
+    return result

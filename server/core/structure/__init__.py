@@ -1,0 +1,1 @@
+"""Any planar mechanism built from class-II structural (Assur) groups: parse, analyse, compose, plans."""
