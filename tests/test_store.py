@@ -151,6 +151,29 @@ def test_a_student_is_found_by_their_secret_and_the_secret_can_be_reset(store):
     assert store.set_secret("a1", "ivan", None) is True and store.student("a1", "ivan").secret_hash is None
 
 
+def test_of_claims_on_a_student_without_a_secret_exactly_one_wins(store, open_store):
+    """A name on the roster (no secret yet) claimed by eight students at once, each through a store instance of
+    its own (as eight servers would): exactly one claim succeeds and the student holds that claim's secret."""
+    store.register("a1", ivan(secret_hash=None))
+    instances = [open_store() for _ in range(8)]
+    start = threading.Barrier(len(instances))
+    won = []
+
+    def claim(k, instance):
+        start.wait()
+        if instance.claim_secret("a1", "ivan", f"secret-{k}"):
+            won.append(k)
+
+    threads = [threading.Thread(target=claim, args=(k, instance)) for k, instance in enumerate(instances)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join(timeout=120)
+    assert len(won) == 1 and store.student("a1", "ivan").secret_hash == f"secret-{won[0]}"
+    assert store.claim_secret("a1", "ivan", "late") is False                # a secret is never claimed over
+    assert store.claim_secret("a1", "nobody", "x") is False
+
+
 def test_deleting_a_student_takes_their_submissions(store):
     store.register("a1", ivan())
     store.register("a1", StudentRecord("anna", "Anna", 1, {}, 102.0))

@@ -128,10 +128,8 @@ def register(record: AssignmentRecord, resolved: Plan, name: str,
         same = stored                                    # registered by someone else a moment ago
     if same.secret_hash is None:
         secret = identity.new_secret()
-        store().set_secret(record.id, same.key, identity.secret_hash(secret))
-        claimed = store().student(record.id, same.key)
-        if claimed is not None and claimed.secret_hash == identity.secret_hash(secret):
-            return claimed, secret
+        if store().claim_secret(record.id, same.key, identity.secret_hash(secret)):     # the first claim only
+            return store().student(record.id, same.key), secret
     raise NameRefused("name_taken", f"the name '{same.name}' is already registered; if it is yours, open your "
                                     f"personal link, or ask the instructor for a new one", name=same.name)
 

@@ -145,6 +145,13 @@ class PostgresStore:
             return connection.execute("UPDATE students SET secret_hash = %s WHERE assignment_id = %s AND key = %s",
                                       (secret_hash, assignment_id, key)).rowcount == 1
 
+    def claim_secret(self, assignment_id: str, key: str, secret_hash: str) -> bool:
+        """Give the student this secret only if they have none (one conditional UPDATE: of two claims at once,
+        exactly one succeeds)."""
+        with self._pool.connection() as connection:
+            return connection.execute("UPDATE students SET secret_hash = %s WHERE assignment_id = %s AND key = %s "
+                                      "AND secret_hash IS NULL", (secret_hash, assignment_id, key)).rowcount == 1
+
     def delete_student(self, assignment_id: str, key: str) -> bool:
         """The student and every submission of theirs, in one transaction; the student's row is locked first,
         as a submission locks it, so a submission in flight lands before the deletion or not at all."""

@@ -146,6 +146,13 @@ class SQLiteStore:
             return connection.execute("UPDATE students SET secret_hash = ? WHERE assignment_id = ? AND key = ?",
                                       (secret_hash, assignment_id, key)).rowcount == 1
 
+    def claim_secret(self, assignment_id: str, key: str, secret_hash: str) -> bool:
+        """Give the student this secret only if they have none (one conditional UPDATE: of two claims at once,
+        exactly one succeeds)."""
+        with self._transaction() as connection:
+            return connection.execute("UPDATE students SET secret_hash = ? WHERE assignment_id = ? AND key = ? "
+                                      "AND secret_hash IS NULL", (secret_hash, assignment_id, key)).rowcount == 1
+
     def delete_student(self, assignment_id: str, key: str) -> bool:
         """The student and every submission of theirs, in one transaction."""
         with self._transaction() as connection:

@@ -12,6 +12,7 @@ import { decimalMessage, parseDecimal } from "./decimal_input.js";
 const assignment = JSON.parse(byId("assignment-data").textContent);
 const base = `/api/v1/assignments/${encodeURIComponent(assignment.id)}`;
 const SHOWN_DIGITS = 6;
+const BUSY_TRIES = 6;               // a busy server (503 or 429 with Retry-After) is asked again this often
 
 /** A number typed with a decimal comma (ru, uk) or point, digit groups spaced ("1 234,5"); null if it is
  * not one or is ambiguous ("1,234.5", "2,5,1"; decimal_input.js). */
@@ -129,9 +130,8 @@ function questionItem(state) {
     }
     button.disabled = true;
     try {
-      const response = await fetch(`${base}/submissions`, {
-        method: "POST", headers: { "Content-Type": "application/json" },
-        body: JSON.stringify({ student: assignment.student, question: state.id, answer, ...extra.body }) });
+      const response = await submitted(JSON.stringify(
+        { student: assignment.student, question: state.id, answer, ...extra.body }), feedback);
       const payload = await response.json().catch(() => null);
       if (response.ok) {
         state.answers.push(answer);
@@ -151,6 +151,22 @@ function questionItem(state) {
   });
   show(state);
   return item;
+}
+
+/**
+ * POST the submission; while the server answers "busy" (503: this variant's answers are being computed; 429:
+ * too many at once) with Retry-After, say so and send it again after that wait: such an answer counted no
+ * attempt, so sending it again is safe.
+ */
+async function submitted(body, feedback) {
+  for (let tries = 1; ; tries += 1) {
+    const response = await fetch(`${base}/submissions`, {
+      method: "POST", headers: { "Content-Type": "application/json" }, body });
+    const wait = Number.parseFloat(response.headers.get("Retry-After") ?? "");
+    if (![503, 429].includes(response.status) || !Number.isFinite(wait) || tries === BUSY_TRIES) return response;
+    feedback.textContent = t.busy_retrying;
+    await new Promise((resolve) => setTimeout(resolve, 1000 * Math.min(Math.max(wait, 0.5), 30)));
+  }
 }
 
 async function start() {
