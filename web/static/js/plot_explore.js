@@ -17,6 +17,7 @@
  */
 
 const SUFFIX = "%{y}<extra></extra>";
+const X_FORMATS = { "°": ".1f" };      // the crank angle to a tenth of a degree, as the animation's readout
 const coarse = () => window.matchMedia?.("(pointer: coarse)").matches ?? false;
 
 /** Plotly's pseudo-HTML ("M<sub>с0</sub>, Н·м") as the text it shows, for comparisons. */
@@ -67,7 +68,8 @@ function withUnit(trace, layout, index) {
  * the toolbar's "reset zoom".
  */
 export function explorable({ data, layout }, ghosts = []) {
-  const drawn = { ...layout, uirevision: "explore", dragmode: coarse() ? false : "zoom" };
+  const drawn = { ...layout, uirevision: "explore", dragmode: coarse() ? false : "zoom",
+    showlegend: Boolean(layout.showlegend) || ghosts.length > 0 };
   const ranges = {};
   for (const key of axisKeys(layout)) {
     drawn[key] = { ...layout[key], fixedrange: false };
@@ -78,7 +80,8 @@ export function explorable({ data, layout }, ghosts = []) {
   if (cartesian && layout.hovermode === "x") {
     drawn.hovermode = "x unified";
     const [name, unit] = symbolAndUnit(titleOf(layout.xaxis));
-    const title = unit ? `${name} = %{x}${spaced(unit)}` : `${titleOf(layout.xaxis)}: %{x}`;
+    const x = `%{x:${X_FORMATS[unit] ?? ".4~g"}}`;      // the title's own format: it is not the axis'
+    const title = unit ? `${name} = ${x}${spaced(unit)}` : `${titleOf(layout.xaxis)}: ${x}`;
     drawn.xaxis = { ...drawn.xaxis, unifiedhovertitle: { text: title }, hoverformat: drawn.xaxis.hoverformat ?? ".4g" };
   }
   const counts = new Map();
