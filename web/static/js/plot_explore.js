@@ -89,7 +89,8 @@ export function explorable({ data, layout }, ghosts = []) {
     const axis = trace.yaxis ?? "y";
     const index = counts.get(axis) ?? 0;
     if (trace.hoverinfo !== "skip") counts.set(axis, index + 1);
-    return withUnit(trace, drawn, index);
+    const named = trace.name || !ghosts.length ? trace : { ...trace, showlegend: false };   // a legend for the ghosts only
+    return withUnit(named, drawn, index);
   });
   return { data: [...ghosts, ...traces], layout: drawn };
 }
