@@ -36,12 +36,18 @@ export function unitFromTitle(title, index, label) {
   return named || !part ? "" : part;
 }
 
-/** "Угол кривошипа φ, °" → ["φ", "°"]; "t, с" → ["t", "с"]: the symbol (last word before the comma) and the unit. */
+/**
+ * An axis title's quantity and unit: "Угол кривошипа φ, °" → ["φ", "°"] (words naming a symbol: the symbol),
+ * "t, с" → ["t", "с"], "X от ВМТ, м" → ["X от ВМТ", "м"], "φ<sub>д</sub> − φ₁, рад" → the whole difference.
+ */
 function symbolAndUnit(title) {
   const text = String(title ?? "");
   const comma = text.lastIndexOf(", ");
   if (comma < 0) return [text, ""];
-  return [text.slice(0, comma).split(" ").at(-1), text.slice(comma + 2)];
+  const quantity = text.slice(0, comma);
+  const [, words, symbol] = /^([\p{L}\s]+)\s(\S+)$/u.exec(quantity) ?? [];
+  const named = words && shownText(symbol).length <= 2 && /\p{Ll}{3}/u.test(words);
+  return [named ? symbol : quantity, text.slice(comma + 2)];
 }
 
 const axisKeys = (layout) => Object.keys(layout).filter((key) => /^[xy]axis\d*$/.test(key));
