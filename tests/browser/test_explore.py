@@ -84,6 +84,16 @@ def test_kinematics_scene_exports_hovers_pins_turns_and_marks_stale(browser_page
     assert "," in value and "." not in value, hover
     page.mouse.move(5, 5)
 
+    # Zoom: a box dragged on the plot zooms in (Plotly's own); the toolbar's ⟲ puts the axes back
+    x_range = f"id => {GRAPH}._fullLayout.xaxis.range"
+    page.mouse.move(box["x"] + box["width"] * 0.2, box["y"] + box["height"] * 0.2)
+    page.mouse.down()
+    page.mouse.move(box["x"] + box["width"] * 0.5, box["y"] + box["height"] * 0.8, steps=5)
+    page.mouse.up()
+    page.wait_for_function(f"id => {{ const r = ({x_range})(id); return r[1] - r[0] < 200; }}", arg="u31")
+    page.click(f"{tools} button:has-text('⟲')")
+    page.wait_for_function(f"id => {{ const r = ({x_range})(id); return r[0] === 0 && r[1] === 360; }}", arg="u31")
+
     # Compare runs: pin, change λ, both drawn; clear: the ghosts gone. Nothing is asked for the ghosts.
     asked = []
     page.on("request", lambda request: "/api/" in request.url and asked.append(request.url))
