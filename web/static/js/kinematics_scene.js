@@ -28,7 +28,7 @@ import { byId, lang, scene, t, texts } from "./page_data.js";
 const model = new SceneModel(scene, readState());
 const animation = new CrankAnimation();
 const stage = document.querySelector(".stage");
-const stale = new StaleFeedback([stage, byId("plots")], t.recomputing);
+const stale = new StaleFeedback([stage, byId("plots"), byId("status")], t.recomputing);
 const client = new ApiClient(scene.endpoint, lang, (busy) => {
   stage.classList.toggle("busy", busy);
   stale.busy(busy);
