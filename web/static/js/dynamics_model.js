@@ -9,13 +9,31 @@
  * coefficient of every pair; values the reader edited in a panel (the indicator diagram's points) go to
  * their paths; outputs are whatever the variant's panels need.
  *
+ * The chosen preset of a slider (presets_view.js) is kept here as its index in the scene's presets, so that
+ * the page address holds it (url_state.js).
+ *
  * Events, besides those of SceneSettings:
  *   "result"    the answer for the current values arrived (the results, or why there are none)
+ *   "preset"    a preset was chosen or dropped
  */
 import { pathValue, setPath } from "./dotted_paths.js";
 import { SceneSettings } from "./scene_settings.js";
 
 export class DynamicsModel extends SceneSettings {
+  /** initial: as SceneSettings', plus the edits (Map path → list) and the preset's index from the address. */
+  constructor(scene, initial = {}) {
+    super(scene, initial);
+    for (const [path, values] of initial.edits ?? []) if (this.#editable(path, values)) this.edits.set(path, values);
+    this.choosePreset(initial.preset ?? null);
+  }
+
+  /** Choose preset number index of the scene's presets (null: none); one for a slider of another variant is dropped. */
+  choosePreset(index) {
+    const preset = this.scene.presets?.[index];
+    this.preset = preset && this.variant.sliders.some((s) => s.id === preset.slider) ? index : null;
+    this.emit("preset", this.preset);
+  }
+
   /** The SI value slider sets in the request (l₂ in metres for λ = l₂/l₁). */
   setting(slider) {
     return pathValue(this.request(), slider.param);
@@ -55,6 +73,14 @@ export class DynamicsModel extends SceneSettings {
   useVariant(variant) {
     super.useVariant(variant);
     this.edits = new Map();
+    this.preset = null;
+  }
+
+  /** A list a panel of the variant edits (spec.paths), of as many finite numbers as the variant's own. */
+  #editable(path, values) {
+    const paths = this.variant.panels.flatMap((id) => Object.values(this.scene.panels[id]?.paths ?? {}));
+    const own = pathValue(this.variant.request, path);
+    return paths.includes(path) && Array.isArray(own) && values.length === own.length && values.every(Number.isFinite);
   }
 
   /** Take the answer to the latest request. */

@@ -18,7 +18,10 @@ import { element } from "./dom.js";
 import { DynamicsModel } from "./dynamics_model.js";
 import { DynamicsView } from "./dynamics_view.js";
 import { FamilyPreview, previewMark } from "./family_preview.js";
+import { GhostCurves } from "./ghost_curves.js";
 import { PresetsView } from "./presets_view.js";
+import { sceneTools } from "./scene_tools.js";
+import { StaleFeedback } from "./stale_feedback.js";
 import { readState, writeState } from "./url_state.js";
 import { byId, lang, scene, t, texts } from "./page_data.js";
 
@@ -29,8 +32,14 @@ const wholeTurns = (phi) => Math.max(1, Math.round(phi / TURN)) * TURN;
 
 const model = new DynamicsModel(scene, readState());
 const results = document.querySelector(".results");
-const client = new ApiClient(scene.endpoint, lang, (busy) => results.classList.toggle("busy", busy));
-const view = new DynamicsView(byId("panels"), byId("notices"), { scene, ...texts }, model);
+const stale = new StaleFeedback([results], t.recomputing);
+const client = new ApiClient(scene.endpoint, lang, (busy) => {
+  results.classList.toggle("busy", busy);
+  stale.busy(busy);
+});
+const ghosts = new GhostCurves(t.pinned);
+const view = new DynamicsView(byId("panels"), byId("notices"), { scene, ...texts }, model, ghosts);
+sceneTools(model, ghosts, () => view.graphs(), texts);
 new ControlsView(byId("controls"), model, { ...texts, pickerLabel: t.variant });
 new PresetsView(byId("controls"), model, texts);
 const animation = new CrankAnimation();
@@ -56,6 +65,7 @@ function requestExact() {
   else model.receive({ ok: true, data: { warnings: [] } });   // an assignment hid every computed panel
 }
 
+model.on("preset", () => writeState(model, lang));
 model.on("params", () => {
   writeState(model, lang);
   if (previews.preview()) client.forget("main");     // drawn from the family: an answer on its way is old

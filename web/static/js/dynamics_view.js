@@ -13,6 +13,9 @@
  * A panel that needs nothing from the answer ("needs": [], e.g. a calculator) is always shown. A panel
  * of a kind this page has no view for is left out, so new content never breaks an older page.
  *
+ * Every graph has its toolbar (plot_tools.js: zoom, export) and is drawn explorable (plot_explore.js: hover
+ * readouts with units, zoom, the pinned ghost curves of ghost_curves.js under its own).
+ *
  * A panel view's module is loaded (import()) only when a variant has such a panel: a scene fetches the
  * code it shows and no more. Its panel stays hidden until the view has arrived, then takes the latest answer.
  */
@@ -25,6 +28,8 @@ import { formatQuantity } from "./notation.js";
 import { PanelScheduler } from "./panel_scheduler.js";
 import { sampleAt } from "./phi_samples.js";
 import { PlotCursor } from "./plot_cursor.js";
+import { explorable } from "./plot_explore.js";
+import { plotToolbar } from "./plot_tools.js";
 import { holdsReadings, readings } from "./readings_view.js";
 
 const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
@@ -72,8 +77,10 @@ function holdsPanel(panel, data) {
 }
 
 export class DynamicsView {
-  constructor(container, notices, { scene, t, lang }, model) {
+  /** ghosts: the pinned curves (GhostCurves), drawn under each graph's own. */
+  constructor(container, notices, { scene, t, lang }, model, ghosts) {
     this.container = container;
+    this.ghosts = ghosts;
     this.model = model;
     this.notices = notices;
     this.scene = scene;
@@ -85,6 +92,15 @@ export class DynamicsView {
     model.on("params", () => {
       for (const panel of this.panels) panel.view?.paramsChanged?.();
     });
+    ghosts.on("change", () => {
+      for (const panel of this.panels) if (panel.graph && panel.graph.data) panel.stale = true;
+      this.scheduler.refresh();
+    });
+  }
+
+  /** The graphs drawn now: Map panel id → Plotly graph element. */
+  graphs() {
+    return new Map(this.panels.filter((p) => p.graph?.data && !p.figure.hidden).map((p) => [p.id, p.graph]));
   }
 
   /** One panel per graph, reading or panel view of the variant, hidden until an answer fills it. */
@@ -177,7 +193,10 @@ export class DynamicsView {
 
   #panel(id, spec) {
     const { lang } = this.texts;
-    const title = spec.title ? [element("h3", { rich: spec.title[lang] })] : [];
+    const graph = GRAPH_KINDS.includes(spec.kind) ? element("div", { className: "graph" }) : null;
+    const heading = spec.title ? [element("h3", { rich: spec.title[lang] })] : [];
+    const tools = graph ? [plotToolbar(graph, { name: `${this.scene.id}-${id}`, title: spec.title?.[lang] ?? id }, this.texts)] : [];
+    const title = heading.length || tools.length ? [element("div", { className: "panel-head" }, ...heading, ...tools)] : [];
     const make = (content, ...more) => element("figure", {
       className: `panel panel-${spec.kind}${isDrawing(spec) ? " panel-drawing" : ""}`, id: `panel-${id}`, hidden: true },
     ...title, content, ...more);
@@ -187,8 +206,7 @@ export class DynamicsView {
       loadView(spec.kind).then((View) => this.#viewLoaded(panel, View));
       return panel;
     }
-    if (GRAPH_KINDS.includes(spec.kind)) {
-      const graph = element("div", { className: "graph" });
+    if (graph) {
       const cursor = this.animated && spec.kind === "plot" && spec.x_unit === "deg"
         ? new PlotCursor((phi) => this.#values(spec, phi), this.phi) : null;
       const frame = element("div", { className: "graph-frame" }, graph, ...(cursor ? [cursor.element] : []));
@@ -214,8 +232,8 @@ export class DynamicsView {
 
   #draw(panel) {
     if (!this.plotted) return null;
-    let figure = panel.spec.kind === "polar" ? polarFigure(panel.spec, this.plotted, this.texts)
-      : plotFigure(panel.spec, this.plotted, this.texts);
+    let figure = explorable(panel.spec.kind === "polar" ? polarFigure(panel.spec, this.plotted, this.texts)
+      : plotFigure(panel.spec, this.plotted, this.texts), this.ghosts.traces(panel.id));
     if (this.plotted !== this.data) {             // a preview
       if (moveCurves(panel.graph, figure.data)) return Promise.resolve();
       figure = roomy(figure);

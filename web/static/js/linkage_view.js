@@ -24,7 +24,13 @@ export class LinkageView {
     this.svg = drawing(WIDTH, HEIGHT, t.drawing);
     this.picture = svgElement("g", {}, this.svg);
     this.update = null;
+    this.crankPlace = null;
     container.append(this.svg);
+  }
+
+  /** Where the crank turns, for turning it by hand (crank_drag.js): {centre, start, sense}, or null. */
+  crank() {
+    return this.update ? this.crankPlace : null;
   }
 
   /**
@@ -106,6 +112,7 @@ export class LinkageView {
     const start = direction(0);
     const turn = Math.atan2(Math.sin(direction(SENSE_ARC) - start), Math.cos(direction(SENSE_ARC) - start));
     const end = start + turn;
+    this.crankPlace = { centre, start, sense: Math.sign(turn) };
     const point = (angle) => [centre[0] + arcRadius * Math.cos(angle), centre[1] + arcRadius * Math.sin(angle)];
     const [[x0, y0], [x1, y1]] = [point(start), point(end)];
     svgElement("path", {

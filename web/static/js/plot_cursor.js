@@ -34,6 +34,7 @@ export class PlotCursor {
     const { left, width, x0, x1 } = this.axis;
     const x = left + (degrees(phi) - x0) / (x1 - x0) * width;
     this.element.style.transform = `translateX(${x}px)`;
+    this.element.style.visibility = x < left - 0.5 || x > left + width + 0.5 ? "hidden" : "";   // zoomed away
     this.text.classList.toggle("before", x > left + 0.6 * width);   // keep the values inside the plot
     setRichText(this.text, this.readout(phi));
   }

@@ -5,6 +5,8 @@
  * interpolated from a slider's family) redraws every plot in view at once, moving the curves in place where
  * it can (family_plot.js). Captions and the cursors'
  * values are numbers: they always come from the last exact answer.
+ * Every plot has its toolbar (plot_tools.js: zoom, export) and is drawn explorable (plot_explore.js: hover
+ * readouts with units, zoom, the pinned ghost curves of ghost_curves.js under its own).
  */
 import { element } from "./dom.js";
 import { moveCurves, roomy } from "./family_plot.js";
@@ -13,18 +15,32 @@ import { geometryMessage } from "./messages.js";
 import { formatNumber, symbol } from "./notation.js";
 import { PanelScheduler } from "./panel_scheduler.js";
 import { PlotCursor } from "./plot_cursor.js";
+import { explorable } from "./plot_explore.js";
+import { plotToolbar } from "./plot_tools.js";
 import { valueAt } from "./positions_table.js";
 
 const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
 
 export class PlotsView {
-  constructor(container, { scene, t, lang }) {
+  /** ghosts: the pinned curves (GhostCurves), drawn under each plot's own. */
+  constructor(container, { scene, t, lang }, ghosts) {
     this.container = container;
     this.scene = scene;
     this.texts = { t, lang };
     this.panels = [];
     this.phi = 0;
+    this.ghosts = ghosts;
     this.scheduler = new PanelScheduler((panel) => this.#render(panel));
+    ghosts.on("change", () => {
+      if (!this.table) return;
+      for (const panel of this.panels) panel.stale = true;
+      this.scheduler.refresh();
+    });
+  }
+
+  /** The plots drawn now: Map panel id → Plotly graph element. */
+  graphs() {
+    return new Map(this.panels.filter((p) => p.graph.data).map((p) => [p.id, p.graph]));
   }
 
   /** One panel per plot of the variant, in the scene's order. */
@@ -86,8 +102,10 @@ export class PlotsView {
     const graph = element("div", { className: "graph" });
     const cursor = new PlotCursor((phi) => this.#values(spec, phi), this.phi);
     const caption = element("p", { className: "caption" });
+    const title = spec.title[this.texts.lang];
     const figure = element("figure", { className: "panel", id: `panel-${id}` },
-      element("h3", { rich: spec.title[this.texts.lang] }),
+      element("div", { className: "panel-head" }, element("h3", { rich: title }),
+        plotToolbar(graph, { name: `${this.scene.id}-${id}`, title }, this.texts)),
       element("div", { className: "graph-frame" }, graph, cursor.element), caption,
       ...(spec.note ? [element("p", { className: "note", rich: spec.note[this.texts.lang] })] : []));
     return { id, spec, graph, cursor, caption, figure, stale: false,
@@ -95,7 +113,8 @@ export class PlotsView {
   }
 
   #render(panel) {
-    let { data, layout } = panelFigure(panel.spec, this.plotted, panel.overlays, this.texts);
+    let { data, layout } = explorable(panelFigure(panel.spec, this.plotted, panel.overlays, this.texts),
+      this.ghosts.traces(panel.id));
     if (!panel.captioned) panel.caption.textContent = approximationErrors(panel.spec, this.table, this.texts);
     panel.captioned = true;
     if (this.plotted !== this.table) {            // a preview

@@ -45,8 +45,15 @@ export class PresetsView {
     const select = element("select", { id: "preset" },
       element("option", { value: "", textContent: t.preset_none }),
       ...this.presets.map((p, i) => element("option", { value: i, textContent: plainText(`${p.label[lang]}: ${range(p)}`) })));
+    const all = this.model.scene.presets;
+    const kept = this.presets.indexOf(all[this.model.preset]);      // chosen before (the page address)
+    if (kept >= 0) {
+      select.value = String(kept);
+      this.chosen = this.presets[kept];
+    }
     select.addEventListener("change", () => {
       this.chosen = select.value === "" ? null : this.presets[Number(select.value)];
+      this.model.choosePreset(this.chosen ? all.indexOf(this.chosen) : null);
       if (this.chosen) this.model.setValue(this.chosen.slider, this.chosen.max);
       this.showCheck();
     });

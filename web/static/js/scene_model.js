@@ -31,6 +31,11 @@ export class SceneModel extends SceneSettings {
     this.overlay = Boolean(initial.overlay) && this.variant.overlay_values.length > 0;
   }
 
+  reset() {
+    this.overlay = false;
+    super.reset();
+  }
+
   setOverlay(on) {
     this.overlay = on && this.variant.overlay_values.length > 0;
     if (!this.overlay) this.overlays.clear();

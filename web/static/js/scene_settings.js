@@ -61,6 +61,13 @@ export class SceneSettings extends Emitter {
     this.grabbed = null;
   }
 
+  /** Back to the variant's defaults (the variant stays): every value, and what the models keep besides. */
+  reset() {
+    this.useVariant(this.variant);
+    this.emit("variant", this.variant);
+    this.emit("params");
+  }
+
   /** True if value is allowed for the slider (a number in its range) or the toggle (one of its options) id. */
   accepts(id, value) {
     const slider = this.variant.sliders.find((s) => s.id === id);
