@@ -18,6 +18,7 @@ import { element } from "./dom.js";
 import { DynamicsModel } from "./dynamics_model.js";
 import { DynamicsView } from "./dynamics_view.js";
 import { FamilyPreview, previewMark } from "./family_preview.js";
+import { describePlots } from "./plot_alternatives.js";
 import { PresetsView } from "./presets_view.js";
 import { readState, writeState } from "./url_state.js";
 import { byId, lang, scene, t, texts } from "./page_data.js";
@@ -77,4 +78,5 @@ model.on("result", (answer) => {
 });
 animation.on("phi", (phi) => view.drawAt(phi));
 
+describePlots(document.querySelector("main"), texts);     // text alternatives of the plots
 model.start();

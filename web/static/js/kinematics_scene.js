@@ -14,6 +14,7 @@ import { ApiClient } from "./api.js";
 import { ControlsView } from "./controls_view.js";
 import { FamilyPreview, previewMark } from "./family_preview.js";
 import { LinkageView } from "./linkage_view.js";
+import { describePlots } from "./plot_alternatives.js";
 import { PlotsView } from "./plots_view.js";
 import { SceneModel } from "./scene_model.js";
 import { StatusView } from "./status_view.js";
@@ -93,4 +94,5 @@ animation.on("phi", (phi) => {
   plots.moveCursor(phi);
 });
 
+describePlots(document.querySelector("main"), texts);     // text alternatives of the plots
 model.start();
