@@ -108,6 +108,7 @@ export class FreeBodyView {
     const largest = Math.max(circles.O, circles.A, circles.B);
     this.magnify = largest > 0 ? Math.max(1, roundDown(FRICTION_CIRCLE / (largest * this.k))) : 0;
     this.rho = Object.fromEntries(Object.entries(circles).map(([name, r]) => [name, r * this.k * this.magnify]));
+    this.height = layout.height;
     this.svg.setAttribute("viewBox", `0 0 ${this.width} ${layout.height}`);
     this.#scaleLabels();
 
@@ -149,7 +150,7 @@ export class FreeBodyView {
     const shown = (node) => node.style.display !== "none" && node.closest(".force")?.style.display !== "none";
     const all = (selector) => this.layers.flatMap((layer) => [...layer.querySelectorAll(selector)]).filter(shown);
     separateLabels([...all(".link-name"), ...all(".joint-label"), ...all(".moment .force-label"),
-      ...all(".force:not(.moment) .force-label")]);
+      ...all(".force:not(.moment) .force-label")], { x: 0, y: 0, width: this.width, height: this.height });
   }
 
   /**
