@@ -5,12 +5,16 @@
  * Sliders report on every `input` event, and when the reader takes hold of one (pointer down, keyboard
  * focus), it comes to rest (`change`, pointer up) and it is let go (blur): dragging is drawn from the
  * slider's family (family_preview.js) or, before that arrives, kept cheap by the coalescing client.
+ * Every slider tells a screen reader its value as the page writes it (aria-valuetext "δ = 0,02", not the
+ * thumb's position); a logarithmic one steps from the keyboard by a fraction of a decade (slider_scale.js).
+ * On a phone or tablet the controls are a sheet at the bottom of the screen (controls_sheet.js).
  */
+import { controlsSheet } from "./controls_sheet.js";
 import { element } from "./dom.js";
 import {
   formatNumber, formatQuantity, labelledValue, paramSymbol, plainText, richText, setRichText, unitText,
 } from "./notation.js";
-import { LOG_DIGITS, sliderScale } from "./slider_scale.js";
+import { LOG_DIGITS, logKeyValue, sliderScale } from "./slider_scale.js";
 
 const POWER_FROM = 1e6;     // a slider value from here on reads "4,4·10⁶", not "4400000"
 
@@ -42,6 +46,7 @@ export class ControlsView {
     this.t = t;
     this.lang = lang;
     this.pickerLabel = pickerLabel;
+    controlsSheet(container, t.parameters);
     model.on("variant", () => this.build());
     model.on("params", () => this.showValues());
     model.on("overlay", (on) => { if (this.overlayBox) this.overlayBox.checked = on; });
@@ -72,10 +77,12 @@ export class ControlsView {
   showValues() {
     for (const slider of this.model.variant.sliders) {
       const value = this.model.values[slider.id];
-      const parts = [labelledValue(slider.label[this.lang], sliderValue(value, slider, this.lang))];
+      const named = labelledValue(slider.label[this.lang], sliderValue(value, slider, this.lang));
+      const parts = [named];
       if (slider.english) parts.push(reciprocal(slider.english[this.lang], value, this.lang));
       const { main, length, input, scale } = this.readouts.get(slider.id);
       if (scale.value(Number(input.value)) !== value) input.value = scale.position(value);
+      input.setAttribute("aria-valuetext", plainText(named));
       setRichText(main, parts.join(" · "));
       length.textContent = slider.scale ? `${paramSymbol(slider.param)} = `
         + `${formatNumber(this.model.setting(slider), this.lang, 3)} ${unitText("m", this.t)}` : "";
@@ -98,8 +105,20 @@ export class ControlsView {
     // "change" when the value moved; pointerup also when the thumb was put back where it was taken from
     for (const type of ["change", "pointerup"]) input.addEventListener(type, () => this.model.rest());
     input.addEventListener("blur", () => this.model.letGo());
+    if (slider.log) input.addEventListener("keydown", (event) => this.#logKey(slider, event));
     return element("label", { className: slider.locked ? "slider locked" : "slider", htmlFor: input.id },
       element("span", { className: "slider-text" }, main, length), input);
+  }
+
+  /** A key on a logarithmic slider: the next value on its grid of fractions of a decade, at rest at once. */
+  #logKey(slider, event) {
+    const value = logKeyValue(slider, this.model.values[slider.id], event.key);
+    if (value === null || event.altKey || event.ctrlKey || event.metaKey) return;
+    event.preventDefault();
+    if (value === this.model.values[slider.id]) return;
+    performance.mark("slider-input");
+    this.model.setValue(slider.id, value);
+    this.model.rest();
   }
 
   #toggle(toggle) {

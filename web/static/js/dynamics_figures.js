@@ -16,12 +16,12 @@
  */
 import { pathValue } from "./dotted_paths.js";
 import { degrees, formatQuantity, plotText } from "./notation.js";
-import { baseLayout, GRID, phiAxis, valueAxis } from "./plot_style.js";
+import {
+  baseLayout, GRID, LEVEL_COLOR, LEVEL_DASH, phiAxis, TRACE_COLORS as COLORS, traceDashes, valueAxis,
+} from "./plot_style.js";
 
-const COLORS = ["#1f4e79", "#b5442f", "#e08e0b", "#2e7d4f", "#6a4c93"];
-const LEVEL_COLOR = "#5d6978";
 const DASHES = { solid: "solid", dotted: "dot", dashed: "dash" };
-const STARTUP_COLOR = "#e08e0b";
+const STARTUP_COLOR = COLORS[2];
 
 /** True where the answer holds a value, or a curve with at least one defined point, at path. */
 export function holds(data, path) {
@@ -54,18 +54,20 @@ export function plotFigure(panel, data, texts) {
   const inDegrees = panel.x_unit === "deg";
   const x = inDegrees ? toDegrees(xValues) : xValues;
   const ends = [x[0], x[x.length - 1]];
-  const traces = heldSeries(panel, data).map((series) => {
+  const held = heldSeries(panel, data);
+  const dashes = traceDashes(held.map((series) => (series.style === "hline" ? LEVEL_DASH : DASHES[series.style] ?? null)));
+  const traces = held.map((series, i) => {
     const label = plotText(series.label[lang]);
     const y = pathValue(data, series.y);
     if (series.style === "hline") {
       const name = `${label} = ${formatQuantity(y, lang, 4)}`;
       return { type: "scatter", mode: "lines", x: ends, y: [y, y], name, hoverinfo: "skip",
-        line: { color: LEVEL_COLOR, width: 1.5, dash: "dash" } };
+        line: { color: LEVEL_COLOR, width: 1.5, dash: dashes[i] } };
     }
     const gaps = series.gaps ? pathValue(data, series.gaps) : null;
     return { type: "scatter", mode: "lines", x, y: gaps ? y.map((v, i) => (gaps[i] === null ? null : v)) : y,
       name: label, connectgaps: false, yaxis: series.axis === 2 ? "y2" : "y",
-      line: { color: seriesColor(panel, series), width: 2, dash: DASHES[series.style ?? "solid"] },
+      line: { color: seriesColor(panel, series), width: 2, dash: dashes[i] },
       hovertemplate: `${label} = %{y}<extra></extra>` };
   });
   const layout = {
@@ -93,12 +95,14 @@ export function polarFigure(panel, data, texts) {
   const radius = plotText(panel.r_title[lang]);
   const angle = panel.theta_symbol ?? "φ";
   const [quantity, unit] = panel.r_title[lang].split(/, (?=[^,]+$)/).map(plotText);
-  const traces = heldCurves(panel, data).map((series) => {
+  const curves = heldCurves(panel, data);
+  const dashes = traceDashes(curves.map((series) => (series.style === "bold" ? "solid" : null)));
+  const traces = curves.map((series, i) => {
     const label = plotText(series.label[lang]);
     const bold = series.style === "bold";
     return { type: "scatterpolar", mode: "lines", name: label,
       theta: toDegrees(pathValue(data, series.theta)), r: pathValue(data, series.r), connectgaps: false,
-      line: bold ? { color: COLORS[0], width: 3.5 } : { color: STARTUP_COLOR, width: 1.2 },
+      line: bold ? { color: COLORS[0], width: 3.5, dash: dashes[i] } : { color: STARTUP_COLOR, width: 1.2, dash: dashes[i] },
       hovertemplate: `${label}: ${quantity} = %{r} ${unit}, ${angle} = %{theta}°<extra></extra>` };
   });
   return {

@@ -19,6 +19,7 @@ import { DynamicsModel } from "./dynamics_model.js";
 import { DynamicsView } from "./dynamics_view.js";
 import { FamilyPreview, previewMark } from "./family_preview.js";
 import { GhostCurves } from "./ghost_curves.js";
+import { describePlots } from "./plot_alternatives.js";
 import { PresetsView } from "./presets_view.js";
 import { sceneTools } from "./scene_tools.js";
 import { StaleFeedback } from "./stale_feedback.js";
@@ -87,4 +88,5 @@ model.on("result", (answer) => {
 });
 animation.on("phi", (phi) => view.drawAt(phi));
 
+describePlots(document.querySelector("main"), texts);     // text alternatives of the plots
 model.start();

@@ -7,12 +7,11 @@
  * Values the API leaves null (singular positions) are gaps in the curves.
  */
 import { axisTitle, degrees, exactName, formatNumber, symbol, unitOf, unitText } from "./notation.js";
-import { baseLayout, GRID, phiAxis, valueAxis } from "./plot_style.js";
+import { baseLayout, GRID, phiAxis, TRACE_COLORS, traceDashes, valueAxis } from "./plot_style.js";
 import { specialPositions } from "./positions_table.js";
 
-const LINK_COLORS = { s: "#1f4e79", s2: "#b5442f" };     // output link 3, intermediate link 2
-const APPROXIMATION_COLOR = "#e08e0b";
-const OVERLAY_DASHES = ["dash", "dot", "dashdot"];     // one per overlay value of λ, in the link's colour
+const LINK_COLORS = { s: TRACE_COLORS[0], s2: TRACE_COLORS[1] };     // output link 3, intermediate link 2
+const APPROXIMATION_COLOR = TRACE_COLORS[2];
 const AMPLITUDE_FLOOR = 0.01;   // the amplitude axis reaches at least 1 % of the function's peak: round-off
                                 // (a constant u₃₁ at λ = 1) never fills the plot
 
@@ -66,17 +65,19 @@ function functionsFigure(panel, table, overlays, texts) {
   const secondAxis = new Set(units).size > 1;         // e.g. slider travel in m, rod angle in rad
   const axisOf = (i) => (secondAxis && i > 0 ? "y2" : "y");
   const x = table.phi.map(degrees);
+  const tables = [...overlays].filter(([, answer]) => answer.ok).sort(([a], [b]) => a - b);
+  // every curve its own dash: the outputs, then each overlay value of λ in its output's colour
+  const dashes = traceDashes(Array((1 + tables.length) * outputs.length).fill(null));
   const data = outputs.map((name, i) => ({
     type: "scatter", mode: "lines", x, y: table.outputs[name], yaxis: axisOf(i), connectgaps: false,
-    name: legendName(name, texts), line: { color: color(name), width: 2 },
+    name: legendName(name, texts), line: { color: color(name), width: 2, dash: dashes[i] },
     hovertemplate: `${symbol(name)} = %{y}<extra></extra>` }));
-  const tables = [...overlays].filter(([, answer]) => answer.ok).sort(([a], [b]) => a - b);
   tables.forEach(([lambda, answer], k) => {
     const lambdaText = `λ = ${formatNumber(lambda, texts.lang)}`;
     outputs.forEach((name, i) => data.push({
       type: "scatter", mode: "lines", x: answer.data.phi.map(degrees), y: answer.data.outputs[name],
       yaxis: axisOf(i), connectgaps: false, opacity: 0.75,
-      line: { color: color(name), width: 1.5, dash: OVERLAY_DASHES[k % OVERLAY_DASHES.length] },
+      line: { color: color(name), width: 1.5, dash: dashes[(k + 1) * outputs.length + i] },
       name: lambdaText, legendgroup: lambdaText, showlegend: i === 0,
       hovertemplate: `${symbol(name)} (${lambdaText}) = %{y}<extra></extra>` }));
   });

@@ -14,9 +14,13 @@
  * the sense of rotation of crank and rod is read from the answer's joint paths. Below the drawing the
  * values at φ; where the successive approximations diverge (self-locking) the answer has no reactions
  * and the panel says so.
+ * On a narrow screen (a phone) the links are drawn one below the other, the drawing's units being CSS
+ * pixels, so that the symbols keep their size; in every layout the symbols are moved apart where they
+ * would cover each other (label_placement.js).
  */
 import { element } from "./dom.js";
 import { forceArrow, momentArc, roundDown } from "./force_parts.js";
+import { separateLabels } from "./label_placement.js";
 import { bar, block, drawing, framePivot, guide, label, pin } from "./linkage_parts.js";
 import { degrees, formatNumber, formatQuantity, setRichText, unitText } from "./notation.js";
 import { gridPosition, sampleAt } from "./phi_samples.js";
@@ -33,6 +37,9 @@ const FRICTION_CIRCLE = 14;        // drawing units: the largest friction circle
 const MOMENT_RADIUS = 18;
 const CAPTION = 20;                // drawing units from the top to the links' names
 const LETTERS = { O: [-22, 16], A: [-4, -12], B: [-4, -16] };
+const LABEL_SCALE_LIMIT = 1.6;
+const NARROW = 620;                // CSS px: a narrower panel draws the links one below the other
+const STACKED = { pad: 56, row: 30, reference: 64, legendRow: 24, widest: 520 };   // drawing units (CSS px) of that layout
 
 const MISSING = "—";
 
@@ -50,6 +57,15 @@ export class FreeBodyView {
   constructor(body, spec, { t, lang }) {
     this.t = t;
     this.lang = lang;
+    this.body = body;
+    this.phi = 0;
+    this.stacked = null;
+    new ResizeObserver(() => {            // a phone turned, a window narrowed: lay out again if it changes
+      if (!this.data) return;
+      if (this.#narrow() !== this.stacked) this.show(this.data);
+      else this.#scaleLabels();
+      this.drawAt(this.phi);
+    }).observe(body);
     this.svg = drawing(WIDTH, 300, spec.title[lang]);
     this.picture = svgElement("g", {}, this.svg);
     this.locked = element("p", { className: "note self-locking-note", textContent: t.self_locking_at_angle, hidden: true });
@@ -61,28 +77,51 @@ export class FreeBodyView {
     return Array.isArray(data.points?.A) && Boolean(data.reactions) && Boolean(data.applied);
   }
 
+  /** True if the panel is too narrow for the links side by side. */
+  #narrow() {
+    const width = this.body.clientWidth;
+    return width > 0 && width < NARROW;
+  }
+
+  /**
+   * The symbols' size in drawing units (--label-scale, app.css) such that a drawing shown smaller than its
+   * units keeps them at their size in CSS pixels (up to LABEL_SCALE_LIMIT times larger).
+   */
+  #scaleLabels() {
+    const shownWidth = this.svg.clientWidth || this.width;
+    const scale = Math.min(LABEL_SCALE_LIMIT, Math.max(1, this.width / shownWidth));
+    this.svg.style.setProperty("--label-scale", scale.toFixed(3));
+  }
+
   /** Lay the links out for the answer's cycle, set the force scale, build the parts. */
   show(data) {
     this.data = data;
     const { points } = data;
-    const layout = layOut(points);
+    this.stacked = this.#narrow();
+    this.width = this.stacked ? Math.max(280, Math.floor(this.body.clientWidth)) : WIDTH;
+    const layout = this.stacked ? layOutStacked(points, this.width) : layOut(points);
     this.anchors = layout.anchors;
     this.k = layout.k;
-    this.forceScale = REFERENCE_ARROW / referenceForce(data);
+    this.reference = this.stacked ? STACKED.reference : REFERENCE_ARROW;
+    this.forceScale = this.reference / referenceForce(data);
     const circles = data.friction_circles ?? { O: 0, A: 0, B: 0 };
     const largest = Math.max(circles.O, circles.A, circles.B);
     this.magnify = largest > 0 ? Math.max(1, roundDown(FRICTION_CIRCLE / (largest * this.k))) : 0;
     this.rho = Object.fromEntries(Object.entries(circles).map(([name, r]) => [name, r * this.k * this.magnify]));
-    this.svg.setAttribute("viewBox", `0 0 ${WIDTH} ${layout.height}`);
+    this.height = layout.height;
+    this.svg.setAttribute("viewBox", `0 0 ${this.width} ${layout.height}`);
+    this.#scaleLabels();
 
     const frame = svgElement("g", { class: "frame" });
     const links = svgElement("g", { class: "moving" });
     const forces = svgElement("g", { class: "forces" });
-    const legend = svgElement("g", { class: "scale-legend", transform: `translate(12 ${layout.height - 14})` });
+    const legendTop = layout.height - (this.stacked ? 3 * STACKED.legendRow - 10 : 14);
+    const legend = svgElement("g", { class: "scale-legend", transform: `translate(12 ${legendTop})` });
     this.picture.replaceChildren(frame, links, forces, legend);
+    this.layers = [frame, links, forces];
     framePivot(frame, this.anchors.crank);
     for (const [name, key] of [["crank", "fb_link_crank"], ["rod", "fb_link_rod"], ["slider", "fb_link_slider"]]) {
-      svgElement("text", { class: "link-name", x: this.anchors[name][0], y: CAPTION }, frame).textContent = this.t[key];
+      svgElement("text", { class: "link-name", x: this.anchors[name][0], y: layout.captions[name] }, frame).textContent = this.t[key];
     }
     const [bx, by] = this.anchors.slider;
     guide(frame, bx - 1.2 * SLIDER[0], bx + 1.2 * SLIDER[0], by + SLIDER[1] / 2);
@@ -93,6 +132,7 @@ export class FreeBodyView {
   }
 
   drawAt(phi) {
+    this.phi = phi;
     const state = this.#state(phi);
     const place = (anchor, origin) => ([x, y]) =>
       [anchor[0] + (x - origin[0]) * this.k, anchor[1] - (y - origin[1]) * this.k];
@@ -100,8 +140,17 @@ export class FreeBodyView {
       slider: place(this.anchors.slider, state.B) };
     this.parts(state, map);
     this.arrows(state, map);
+    this.#separateLabels();
     this.locked.hidden = !state.locked;
     for (const [cell, text] of this.rows) setRichText(cell, text(state));
+  }
+
+  /** The symbols shown move apart where they would cover each other: links' names, letters, moments, forces. */
+  #separateLabels() {
+    const shown = (node) => node.style.display !== "none" && node.closest(".force")?.style.display !== "none";
+    const all = (selector) => this.layers.flatMap((layer) => [...layer.querySelectorAll(selector)]).filter(shown);
+    separateLabels([...all(".link-name"), ...all(".joint-label"), ...all(".moment .force-label"),
+      ...all(".force:not(.moment) .force-label")], { x: 0, y: 0, width: this.width, height: this.height });
   }
 
   /**
@@ -220,25 +269,26 @@ export class FreeBodyView {
   #vector(force) {
     if (!force) return [null, false];
     const length = Math.hypot(force[0], force[1]) * this.forceScale;
-    const cut = Math.min(1, LONGEST_ARROW / Math.max(length, 1e-300));
+    const cut = Math.min(1, (LONGEST_ARROW / REFERENCE_ARROW) * this.reference / Math.max(length, 1e-300));
     return [[force[0] * this.forceScale * cut, -force[1] * this.forceScale * cut], cut < 1];
   }
 
   /** Scale bars: a round length, a round force, and the magnification of the friction circles. */
   #legend(layer) {
     const { t, lang } = this;
-    const length = roundDown(0.25 * (WIDTH - 2 * PAD[0]) / this.k);
+    const length = roundDown(0.25 * (this.width - 2 * PAD[0]) / this.k);
     const units = length * this.k;
     svgElement("path", { class: "scale-bar", d: `M0 -4 V4 M0 0 H${units} M${units} -4 V4` }, layer);
-    text(layer, units + 8, `${formatNumber(length, lang)} ${unitText("m", t)}`);
-    const force = roundDown(REFERENCE_ARROW / this.forceScale);
-    const start = Math.max(units + 110, 180);
-    forceArrow(layer, "reaction", "").update([start, 0], [force * this.forceScale, 0]);
-    text(layer, start + force * this.forceScale + 8, `${formatNumber(force, lang)} ${unitText("N", t)}`);
+    text(layer, units + 8, 0, `${formatNumber(length, lang)} ${unitText("m", t)}`);
+    const force = roundDown(this.reference / this.forceScale);
+    // side by side on a wide drawing, one below the other on a narrow one
+    const [start, forceRow] = this.stacked ? [0, STACKED.legendRow] : [Math.max(units + 110, 180), 0];
+    forceArrow(layer, "reaction", "").update([start, forceRow], [force * this.forceScale, 0]);
+    text(layer, start + force * this.forceScale + 8, forceRow, `${formatNumber(force, lang)} ${unitText("N", t)}`);
     if (!this.magnify) return;
-    const circleAt = start + force * this.forceScale + 120;
-    svgElement("circle", { class: "friction-circle", cx: circleAt, cy: 0, r: 7 }, layer);
-    text(layer, circleAt + 14, this.magnify > 1
+    const [circleAt, circleRow] = this.stacked ? [7, 2 * STACKED.legendRow] : [start + force * this.forceScale + 120, 0];
+    svgElement("circle", { class: "friction-circle", cx: circleAt, cy: circleRow, r: 7 }, layer);
+    text(layer, circleAt + 14, circleRow, this.magnify > 1
       ? t.friction_circles_scale.replace("{k}", formatNumber(this.magnify, lang)) : t.friction_circles_to_scale);
   }
 
@@ -297,7 +347,37 @@ function layOut(points) {
     anchors[name] = [name === "slider" ? left + width / 2 : left - x[0] * k, y];
     left += width + GAP;
   }
-  return { anchors, k, height: Math.round(2 * PAD[1] + top - bottom + LEGEND) };
+  const captions = { crank: CAPTION, rod: CAPTION, slider: CAPTION };
+  return { anchors, k, captions, height: Math.round(2 * PAD[1] + top - bottom + LEGEND) };
+}
+
+/** Joints' sweeps about a body's anchor (m): the box {x: [min, max], y: [min, max]} of the offsets. */
+function sweep(points, anchor, names) {
+  const offsets = names.flatMap((name) => points[name].map(([x, y], i) =>
+    [x - points[anchor][i][0], y - points[anchor][i][1]]));
+  const [xs, ys] = [offsets.map((p) => p[0]), offsets.map((p) => p[1])];
+  return { x: [Math.min(...xs), Math.max(...xs)], y: [Math.min(...ys), Math.max(...ys)] };
+}
+
+/**
+ * The narrow layout: crank, rod and slider one below the other, each centred in a row headed by its name,
+ * one length scale k for all that lets the wider of crank and rod fill the width less the margins.
+ */
+function layOutStacked(points, width) {
+  const boxes = { crank: sweep(points, "O", ["A", "O"]), rod: sweep(points, "S2", ["A", "B", "S2"]),
+    slider: { x: [0, 0], y: [0, 0] } };
+  const k = (Math.min(width, STACKED.widest) - 2 * STACKED.pad) / Math.max(...["crank", "rod"].map((name) => boxes[name].x[1] - boxes[name].x[0]));
+  const anchors = {};
+  const captions = {};
+  let y = 0;
+  for (const [name, box] of Object.entries(boxes)) {
+    captions[name] = y + CAPTION;
+    const above = name === "slider" ? SLIDER[1] : box.y[1] * k;
+    const below = name === "slider" ? SLIDER[1] : -box.y[0] * k;
+    anchors[name] = [width / 2 - (box.x[0] + box.x[1]) / 2 * k, y + STACKED.row + STACKED.pad + above];
+    y = anchors[name][1] + below + STACKED.pad;
+  }
+  return { anchors, k, captions, height: Math.round(y + 3 * STACKED.legendRow) };
 }
 
 /** The force (N) the arrows are scaled to: the 90th percentile over φ of the largest force at each angle. */
@@ -323,6 +403,6 @@ function tangent(force, signedRadius) {
   return [-force[1] / length * signedRadius, -force[0] / length * signedRadius];
 }
 
-function text(layer, x, content) {
-  setRichText(svgElement("text", { class: "scale-label", x, y: 0 }, layer), content);
+function text(layer, x, y, content) {
+  setRichText(svgElement("text", { class: "scale-label", x, y }, layer), content);
 }

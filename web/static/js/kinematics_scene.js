@@ -16,6 +16,7 @@ import { CrankDrag } from "./crank_drag.js";
 import { FamilyPreview, previewMark } from "./family_preview.js";
 import { GhostCurves } from "./ghost_curves.js";
 import { LinkageView } from "./linkage_view.js";
+import { describePlots } from "./plot_alternatives.js";
 import { PlotsView } from "./plots_view.js";
 import { SceneModel } from "./scene_model.js";
 import { sceneTools } from "./scene_tools.js";
@@ -104,4 +105,5 @@ animation.on("phi", (phi) => {
   plots.moveCursor(phi);
 });
 
+describePlots(document.querySelector("main"), texts);     // text alternatives of the plots
 model.start();

@@ -36,3 +36,37 @@ export function valueAxis(title, extra = {}) {
   return { title: { text: title }, fixedrange: true, automargin: true, gridcolor: GRID,
     zerolinecolor: "#aab4c2", exponentformat: "power", hoverformat: ".4g", ...extra };
 }
+
+/**
+ * Trace colours, each at least 3:1 against the plot's white (WCAG 2.1, 1.4.11 non-text contrast; the
+ * ratios 8,7 · 5,5 · 3,7 · 5,1 · 6,9, checked from the drawn curves by tests/browser/test_accessibility.py):
+ * blue, red, dark orange, green, violet. LEVEL_COLOR for level lines (a mean, 5,6:1).
+ */
+export const TRACE_COLORS = ["#1f4e79", "#b5442f", "#c07400", "#2e7d4f", "#6a4c93"];
+export const LEVEL_COLOR = "#5d6978";
+
+/**
+ * Dash patterns (Plotly's names, then two of our own), so that the curves of one plot differ by dash as
+ * well as by colour and are told apart in grey print and by readers who do not see the colours.
+ */
+const TRACE_DASHES = ["solid", "dash", "dot", "dashdot", "longdash", "longdashdot", "8px,3px,2px,3px,2px,3px", "2px,5px"];
+export const LEVEL_DASH = "longdash";
+
+/**
+ * One dash per curve of a plot, all different: the requested ones (a name of TRACE_DASHES, or null for
+ * "any") first, each kept if no earlier curve has it, then every other curve the first pattern still free.
+ */
+export function traceDashes(requested) {
+  const taken = new Set();
+  const dashes = requested.map((dash) => {
+    if (dash === null || taken.has(dash)) return null;
+    taken.add(dash);
+    return dash;
+  });
+  return dashes.map((dash) => {
+    if (dash !== null) return dash;
+    const free = TRACE_DASHES.find((candidate) => !taken.has(candidate)) ?? "solid";
+    taken.add(free);
+    return free;
+  });
+}

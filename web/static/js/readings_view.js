@@ -13,7 +13,7 @@
  */
 import { pathValue } from "./dotted_paths.js";
 import { element } from "./dom.js";
-import { degrees, formatNumber, formatQuantity, unitText } from "./notation.js";
+import { degrees, formatNumber, formatQuantity, plainText, unitText } from "./notation.js";
 
 const MISSING = "—";
 const TABLE_DIGITS = 5;
@@ -94,7 +94,16 @@ function rowsTable(panel, data, texts) {
       element("td", { rich: cell(row[column.key], texts.lang, column, texts.t) }))))));
   const series = pathValue(data, panel.path.split(".").slice(0, -1).join("."));
   const summary = series && "converged" in series ? [seriesSummary(series, columns, texts)] : [];
-  return [...summary, element("div", { className: "table-frame" }, table)];
+  return [...summary, scrollingFrame(table, panel, texts)];
+}
+
+/**
+ * A table in a box that scrolls (both ways) instead of widening the page on a phone; focusable, so the
+ * keyboard scrolls it too, and named by its panel's title for screen readers.
+ */
+function scrollingFrame(table, panel, { lang }) {
+  return element("div", { className: "table-frame", tabIndex: 0, role: "region",
+    "aria-label": plainText(panel.title?.[lang] ?? "") }, table);
 }
 
 /**
@@ -120,14 +129,15 @@ function seriesSummary(series, columns, { t, lang }) {
     rich: parts.join(" · ") });
 }
 
-function numericsTable(panel, data, { t, lang }) {
+function numericsTable(panel, data, texts) {
+  const { t, lang } = texts;
   const runs = panel.paths.filter((path) => pathValue(data, path)).map((path) => [path, pathValue(data, path)]);
   const rows = NUMERICS_ROWS.filter(([key]) => runs.some(([, numerics]) => !absent(numerics[key])));
   const head = runs.length > 1 ? [element("thead", {}, element("tr", {}, element("td"),
     ...runs.map(([path]) => element("th", { scope: "col", rich: t[COMPUTATIONS[path]] }))))] : [];
-  return [element("table", { className: "numerics" }, ...head,
+  return [scrollingFrame(element("table", { className: "numerics" }, ...head,
     element("tbody", {}, ...rows.map(([key, label, text]) => element("tr", { className: `numerics-${key}` },
       element("th", { scope: "row", rich: t[label] }),
       ...runs.map(([, numerics]) => element("td", {
-        rich: absent(numerics[key]) ? MISSING : text(numerics[key], lang, t) }))))))];
+        rich: absent(numerics[key]) ? MISSING : text(numerics[key], lang, t) })))))), panel, texts)];
 }

@@ -9,11 +9,12 @@
 import { pathValue } from "./dotted_paths.js";
 import { formatQuantity, plotText, unitText } from "./notation.js";
 import { sampleAt } from "./phi_samples.js";
-import { baseLayout, GRID, valueAxis } from "./plot_style.js";
+import { baseLayout, GRID, TRACE_COLORS, valueAxis } from "./plot_style.js";
 
-const CURVE_COLOR = "#1f4e79";
-const TANGENT_COLORS = { up: "#b5442f", low: "#2e7d4f" };
-const SEGMENT_COLOR = "#e08e0b";
+const CURVE_COLOR = TRACE_COLORS[0];
+const TANGENT_COLORS = { up: TRACE_COLORS[1], low: TRACE_COLORS[3] };
+const TANGENT_DASHES = { up: "dash", low: "dot" };     // told apart without their colours too
+const SEGMENT_COLOR = TRACE_COLORS[2];
 const ORIGIN_REACH = 3;     // O′ is drawn when it lies within this many spans of the curve from it
 const MARGIN = 0.12;        // of the curve's span, around it
 
@@ -54,7 +55,7 @@ export function wittenbauerFigure(panel, data, texts) {
   const number = (v) => formatQuantity(v, lang, 4);
   const tangent = (b, slope, key, name) => ({
     type: "scatter", mode: "lines", name, x: [lineFrom, xEnd], y: [b + slope * lineFrom, b + slope * xEnd],
-    line: { color: TANGENT_COLORS[key], width: 1.5, dash: "dash" }, hoverinfo: "skip" });
+    line: { color: TANGENT_COLORS[key], width: 1.5, dash: TANGENT_DASHES[key] }, hoverinfo: "skip" });
   const traces = [
     { type: "scatter", mode: "lines", name: plotText(t.wittenbauer_curve), x, y, line: { color: CURVE_COLOR, width: 2.5 },
       hovertemplate: `${plotText("I_II")} = %{x}, ${plotText("A_Σ")} = %{y}<extra></extra>` },
@@ -65,7 +66,7 @@ export function wittenbauerFigure(panel, data, texts) {
       showlegend: false, hoverinfo: "skip" },
     { type: "scatter", mode: "lines+markers+text", name: `ab = ${number(up - low)} ${energy}`, x: [0, 0], y: [up, low],
       text: ["a", "b"], textposition: ["top right", "bottom right"], textfont: { size: 14, color: SEGMENT_COLOR },
-      line: { color: SEGMENT_COLOR, width: 5 }, marker: { color: SEGMENT_COLOR, size: 8 },
+      line: { color: SEGMENT_COLOR, width: 5, dash: "dashdot" }, marker: { color: SEGMENT_COLOR, size: 8 },
       hovertemplate: `%{text}: %{y} ${energy}<extra></extra>` },
   ];
   if (withOrigin) {

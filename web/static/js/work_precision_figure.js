@@ -7,10 +7,11 @@
  * server/api/messages.py) is drawn bold. The method names come translated from the server.
  */
 import { formatQuantity, plotText, toleranceText, unitText } from "./notation.js";
-import { baseLayout, valueAxis } from "./plot_style.js";
+import { baseLayout, LEVEL_COLOR, TRACE_COLORS, traceDashes, valueAxis } from "./plot_style.js";
 
-const OURS_COLOR = "#b5442f";
-const COLORS = ["#1f4e79", "#2e7d4f", "#e08e0b", "#6a4c93", "#5d6978"];
+const OURS_COLOR = TRACE_COLORS[1];
+const COLORS = [TRACE_COLORS[0], TRACE_COLORS[3], TRACE_COLORS[2], TRACE_COLORS[4], LEVEL_COLOR];   // 3:1 and more
+const SYMBOLS = ["circle", "square", "diamond", "triangle-up", "cross", "x", "star", "hexagon"];
 const HEIGHT = 440;
 const SAME_SPOT = { x: 0.08, y: 0.25 };      // decades apart in run time and in error below which markers overlap
 const LABELLED_DECADES = 2;      // run times spanning fewer decades get ticks at 2 and 5 of each decade too
@@ -57,7 +58,9 @@ export function workPrecisionFigure(rows, { t, lang }) {
   const ms = unitText("ms", t);
   const plotted = plottedRows(rows);
   let others = 0;
-  const data = [...byMethod(plotted)].map(([method, points]) => {
+  const methods = [...byMethod(plotted)];
+  const dashes = traceDashes(methods.map(([, points]) => (points[0].ours ? "solid" : null)));   // told apart by dash and marker too
+  const data = methods.map(([method, points], i) => {
     const ours = points[0].ours;
     const name = plotText(method);
     const color = ours ? OURS_COLOR : COLORS[others++ % COLORS.length];
@@ -65,7 +68,8 @@ export function workPrecisionFigure(rows, { t, lang }) {
       type: "scatter", mode: "lines+markers+text", name: ours ? `<b>${name}</b>` : name,
       x: points.map((row) => row.runtime_ms), y: points.map((row) => row.error),
       text: toleranceLabels(points, lang), textposition: "top right", textfont: { size: 10, color }, cliponaxis: false,
-      line: { color, width: ours ? 4 : 1.6 }, marker: { color, size: ours ? 10 : 7 },
+      line: { color, width: ours ? 4 : 1.6, dash: dashes[i] },
+      marker: { color, size: ours ? 10 : 7, symbol: SYMBOLS[i % SYMBOLS.length] },
       customdata: points.map((row) => [toleranceText(row.rtol, lang), formatQuantity(row.runtime_ms, lang, 3),
         formatQuantity(row.error, lang, 2)]),
       hovertemplate: `${name}<br>rtol = %{customdata[0]}<br>${t.study_runtime} = %{customdata[1]} ${ms}`
