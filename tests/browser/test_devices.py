@@ -111,6 +111,8 @@ def test_drawing_stays_in_view_while_a_slider_moves_on_a_phone(open_page):
     assert folded["bottom"] - folded["top"] < 60
     toggle.click()
     assert page.locator("#controls").is_visible()
+    page.wait_for_function("""() => parseFloat(getComputedStyle(document.documentElement)      // measured again
+        .getPropertyValue('--sheet-height')) >= document.querySelector('.controls-sheet').offsetHeight - 1""")
 
     page.evaluate("window.scrollTo(0, document.documentElement.scrollHeight)")   # the page's end clears the sheet
     last = page.eval_on_selector("#plots > figure:last-of-type", BOX)

@@ -53,7 +53,7 @@ def test_kinematics_scene_exports_hovers_pins_turns_and_marks_stale(browser_page
 
     # Export: the buttons on the plot, with words in Russian, reachable from the keyboard (buttons)
     labels = page.eval_on_selector_all(f"{tools} button", "bs => bs.map(b => b.getAttribute('aria-label'))")
-    assert labels == [T["plot_zoom_reset"], T["plot_pan_title"], T["export_png"], T["export_svg"], T["export_csv"]]
+    assert labels == [T["plot_zoom_reset"], f"{T['plot_pan']}: {T['plot_pan_title']}", T["export_png"], T["export_svg"], T["export_csv"]]
     png = download(page, f"{tools} button:has-text('PNG')")
     assert png.startswith(b"\x89PNG\r\n\x1a\n") and len(png) > 5000
     svg = download(page, f"{tools} button:has-text('SVG')")

@@ -47,7 +47,8 @@ export function plotToolbar(graph, { name, title }, { t, lang }) {
     node.addEventListener("click", () => action(node));
     return node;
   };
-  const pan = button(t.plot_pan, t.plot_pan_title, (node) => {
+  // the accessible name starts with the visible word (WCAG 2.5.3, label in name), then says what it does
+  const pan = button(t.plot_pan, `${t.plot_pan}: ${t.plot_pan_title}`, (node) => {
     const on = node.getAttribute("aria-pressed") !== "true";
     node.setAttribute("aria-pressed", String(on));
     Plotly.relayout(graph, { dragmode: on ? "pan" : "zoom" });
