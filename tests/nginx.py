@@ -25,6 +25,7 @@ REPO = Path(__file__).resolve().parents[1]
 SITE = REPO / "deploy" / "nginx" / "mdl.conf"
 UPSTREAM_SERVER = re.compile(r"^([ \t]*)server 127\.0\.0\.1:\d+ (.*\n)", re.M)
 LISTEN = re.compile(r"^(\s*)listen 80;$", re.M)
+ACCESS_LOG = re.compile(r"^(\s*)access_log /var/log/nginx/mdl\.access\.log mdl;$", re.M)
 READY_SECONDS = 30        # nginx starts in milliseconds; a generous guard for a loaded machine
 
 # The parts of nginx.conf that Debian's /etc/nginx/nginx.conf would give; the site is included verbatim.
@@ -60,11 +61,14 @@ def nginx_binary() -> str:
     return found
 
 
-def render_site(upstream_ports: list[int], port: int) -> str:
-    """deploy/nginx/mdl.conf with one upstream `server` line per app port and nginx listening on `port`."""
+def render_site(upstream_ports: list[int], port: int, directory: Path) -> str:
+    """deploy/nginx/mdl.conf with one upstream `server` line per app port, nginx listening on `port` and its
+    access log (the shipped format) in `directory`."""
     shipped = SITE.read_text(encoding="utf-8")
     servers = UPSTREAM_SERVER.findall(shipped)
-    assert servers and len(LISTEN.findall(shipped)) == 1, f"{SITE} no longer has the shape the test renders"
+    assert servers and len(LISTEN.findall(shipped)) == 1 and len(ACCESS_LOG.findall(shipped)) == 1, \
+        f"{SITE} no longer has the shape the test renders"
+    shipped = ACCESS_LOG.sub(rf"\g<1>access_log {directory}/access.log mdl;", shipped)
     indent, options = servers[0]
     block = "".join(f"{indent}server 127.0.0.1:{p} {options}" for p in upstream_ports)
     first = UPSTREAM_SERVER.search(shipped).start()
@@ -93,7 +97,7 @@ def nginx_proxy(directory: Path, upstream_ports: list[int]):
     binary = nginx_binary()
     directory.mkdir(parents=True, exist_ok=True)
     port = free_port()
-    (directory / "mdl.conf").write_text(render_site(upstream_ports, port), encoding="utf-8")
+    (directory / "mdl.conf").write_text(render_site(upstream_ports, port, directory), encoding="utf-8")
     user = "user root;\n" if os.geteuid() == 0 else ""    # workers keep access to the temporary directory
     (directory / "nginx.conf").write_text(MAIN.format(dir=directory, user=user), encoding="utf-8")
     command = [binary, "-p", str(directory), "-c", str(directory / "nginx.conf"), "-e", str(directory / "error.log")]

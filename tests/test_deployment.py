@@ -223,6 +223,22 @@ def test_an_assignment_made_through_nginx_links_back_to_nginx(deployment):
             assert httpx.get(f"{server.url}{asset}").status_code == 200, (server.url, asset)
 
 
+def test_nginx_logs_a_personal_link_without_its_secret(deployment):
+    """The shipped site's access log (format mdl) writes /assignments/<id>/me/(secret): a student's secret that
+    went through nginx is nowhere in the log, while the request is (so the line was written)."""
+    created = make_assignment(deployment.proxy.url)
+    student = Student(deployment.proxy.url, created["id"], "Логова Олена")
+    link = student.register()["personal_url"]
+    opened = httpx.get(link, follow_redirects=False)
+    assert opened.status_code in (200, 302, 303, 307)
+    deadline = time.monotonic() + 60               # nginx logs a request after answering it: wait for the line
+    while not (lines := [line for line in deployment.proxy.access_log() if f"/assignments/{created['id']}/me/" in line]):
+        assert time.monotonic() < deadline, "nginx logged no line for the personal link"
+        time.sleep(0.05)
+    assert all("/me/(secret)" in line for line in lines)
+    assert not [line for line in deployment.proxy.access_log() if student.secret in line]
+
+
 class Burst:
     """What the class saw: acknowledged answers, and every status that was not an acknowledgement."""
 

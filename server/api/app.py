@@ -13,7 +13,7 @@ from fastapi.middleware.gzip import GZipMiddleware
 from ..lessons.scenes import REPO_ROOT
 from ..core.mechanisms import GeometryError
 from ..core.warm_up import warm_up
-from . import assignment_store, heavy
+from . import access_log, assignment_store, heavy
 from .errors import geometry_error, server_error, validation_error
 from .admission import AdmissionMiddleware
 from .bench_pages import BenchResults
@@ -54,6 +54,7 @@ class LabApp(FastAPI):
 
 
 def create_app() -> FastAPI:
+    access_log.install()                       # the access log never holds a student's secret
     app = LabApp(title="Mechanism Dynamics Lab API", version="1.0.0",
                   description="Kinematics and dynamics of planar linkages for the theory of machines and "
                               "mechanisms. SI units throughout; angles in radians.\n\n"
