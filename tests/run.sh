@@ -18,4 +18,4 @@ if ! command -v nginx >/dev/null 2>&1 && [ ! -x /usr/sbin/nginx ]; then     # te
 fi
 mkdir -p test-artifacts
 python3 -m server.core.warm_up     # compile the numba kernels once into their disk cache (tens of seconds when new)
-python3 -m pytest -q "$@"
+python3 -m pytest -q --durations=15 "$@"
