@@ -80,42 +80,35 @@ def test_no_english_sentence_of_the_app_on_any_scene(browser_page, lang):
     assert page.problems == []
 
 
-def test_labels_have_subscripts_and_no_underscore_on_any_scene_and_variant(browser_page):
+def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_every_scene_and_variant(browser_page):
+    """Every scene and variant opened once in ru: no "_" on the screen and the subscripts as <sub>; numbers with
+    a true minus, a decimal comma (plots' tick labels included) and no signed zero."""
     page = browser_page
-    underscores, subscripts = {}, {}
-    for scene in SCENES:
-        for variant in scene["variants"]:
-            open_scene(page, scene, "ru", variant["id"])
-            text = page.evaluate(SCREEN_TEXT)
-            found = sorted(set(re.findall(r"\S*_\S*", text)))
-            if found:
-                underscores[f"{scene['id']}/{variant['id']}"] = found
-            subscripts[scene["id"]] = subscripts.get(scene["id"], 0) + page.locator("sub").count()
-    assert underscores == {}
-    # every scene whose Russian texts write a subscript shows it as <sub>; transfer functions use ₁₂₃ glyphs only
-    with_markup = {scene["id"] for name, scene in zip(SCENE_FILES, SCENES)
-                   if any(where.startswith(f"{name}.") and lang == "ru" and "_" in text for where, lang, text in STRINGS)}
-    assert len(with_markup) >= 8 and {scene_id for scene_id in with_markup if not subscripts[scene_id]} == set()
-    assert page.problems == []
-
-
-def test_numbers_have_a_true_minus_a_decimal_comma_and_no_signed_zero(browser_page):
-    page = browser_page
-    problems = {}
+    underscores, subscripts, problems = {}, {}, {}
     checked_ticks = 0
     for scene in SCENES:
         for variant in scene["variants"]:
             open_scene(page, scene, "ru", variant["id"])
+            where = f"{scene['id']}/{variant['id']}"
+            text = page.evaluate(SCREEN_TEXT)
+            found = sorted(set(re.findall(r"\S*_\S*", text)))
+            if found:
+                underscores[where] = found
+            subscripts[scene["id"]] = subscripts.get(scene["id"], 0) + page.locator("sub").count()
             ticks = page.evaluate(TICKS)
             checked_ticks += len(ticks)
             cells = page.evaluate(NUMBER_CELLS)
-            text = page.evaluate(SCREEN_TEXT)
             found = ([f"tick {tick!r}" for tick in ticks if "-" in tick or POINT_NUMBER.search(tick)]
                      + [f"cell {cell!r}" for cell in cells if DECIMAL_POINT.search(cell)]
                      + [f"hyphen {m.group(0)!r}" for m in HYPHEN_NUMBER.finditer(text)]
                      + [f"zero {m.group(0)!r}" for m in SIGNED_ZERO.finditer(text)])
             if found:
-                problems[f"{scene['id']}/{variant['id']}"] = found[:6]
+                problems[where] = found[:6]
+    assert underscores == {}
+    # every scene whose Russian texts write a subscript shows it as <sub>; transfer functions use ₁₂₃ glyphs only
+    with_markup = {scene["id"] for name, scene in zip(SCENE_FILES, SCENES)
+                   if any(where.startswith(f"{name}.") and lang == "ru" and "_" in text for where, lang, text in STRINGS)}
+    assert len(with_markup) >= 8 and {scene_id for scene_id in with_markup if not subscripts[scene_id]} == set()
     assert problems == {}
     assert checked_ticks > 100
     # negative ticks exist and are written with U+2212 (the flywheel's work A_Σ dips below zero)
