@@ -12,13 +12,11 @@ from __future__ import annotations
 import numpy as np
 import orjson
 import pytest
-from fastapi.testclient import TestClient
 
-from server.api import family, heavy
-from server.api.app import app
+from server.api import family
 from server.api.serialise import Answer
-from server.core.dynamics import report
 from test_family import API, SENT, TOLERANCE, exact, family_body, post_family, strict_json
+from test_family_engine import client  # noqa: F401,F811  the fixture: in-process, no time budgets
 
 # What the page's panels draw for these variants (web/static/js/family_fields.js gives the same; the browser
 # test checks the page sends those): a light kinematics scene, the forces' drawing and plots, an elastic scene.
@@ -39,15 +37,6 @@ CASES = {
     "forces, λ (drawing and plots)": ("forces-friction", "central", "lambda"),
     "elastic linkage, e₁": ("elastic-linkage", "slider_crank", "e1"),
 }
-
-
-@pytest.fixture(scope="module")
-def client():
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(heavy, "HEAVY_PROCESSES", 0)
-        patch.setattr(family, "TIME_BUDGET_S", 1e9)
-        patch.setattr(report, "TIME_BUDGET_S", 1e9)
-        yield TestClient(app)
 
 
 def lean_body(scene: str, variant: str, slider: str, **change) -> dict:

@@ -16,6 +16,8 @@ from scipy.optimize import minimize_scalar
 from server.api import assignment_store
 from server.api.app import app
 from server.classroom.visibility import public_views
+
+from test_assignments import as_student
 from server.lessons.scenes import Question, Scene, scenes
 
 API = "/api/v1/assignments"
@@ -38,18 +40,8 @@ def create(client, questions, **more) -> dict:
     return response.json()
 
 
-# How a test acts as a student: the only lines that know how a student is identified (registered by POST;
-# their secret sent as `Authorization: Bearer`, or as the cookie their browser keeps for the page).
-
-def as_student(client, created, name) -> dict:
-    """The headers of the student's requests (registered on first use; the secrets kept in `created`)."""
-    secrets = created.setdefault("secrets", {})
-    if name not in secrets:
-        response = client.post(f"{API}/{created['id']}/students", json={"name": name})
-        assert response.status_code == 201, response.text
-        secrets[name] = response.json()["secret"]
-    return {"Authorization": f"Bearer {secrets[name]}"}
-
+# How a test acts as a student: the only lines that know how a student is identified (registered by POST,
+# test_assignments.as_student; their secret sent as `Authorization: Bearer`, or as their browser's cookie).
 
 def state_of(client, created, name) -> dict:
     """The student's variant and the state of their questions, as their page reads it."""

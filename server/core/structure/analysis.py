@@ -80,14 +80,18 @@ def analyse(linkage: Linkage) -> dict:
             raise GeometryError(where, f"the name '{name}' is used already", "duplicate_name")
         owners[name] = links
 
+    def place_guides(guides, where: str) -> None:
+        """Each new guide on its link, under a name not used yet."""
+        for a in guides:
+            if a.name in owners or a.name in host:
+                raise GeometryError(f"{where}.new_guides.{a.name}", f"the name '{a.name}' is used already",
+                                    "duplicate_name")
+            host[a.name] = a.link
+
     place(crank.joint, {crank.link}, "linkage.input.joint")
     for a in crank.points:
         place(a.name, {a.link}, f"linkage.input.points.{a.name}")
-    for a in crank.new_guides:
-        if a.name in owners or a.name in host:
-            raise GeometryError(f"linkage.input.new_guides.{a.name}", f"the name '{a.name}' is used already",
-                                "duplicate_name")
-        host[a.name] = a.link
+    place_guides(crank.new_guides, "linkage.input")
     formula = ["I(0,1)"]
     groups, pairs = [], [Pair(crank.pivot, "R", (0, crank.link))]
     for k, group in enumerate(linkage.groups):
@@ -122,11 +126,7 @@ def analyse(linkage: Linkage) -> dict:
             place(name, links, f"{where}.inner")
         for a in group.points:
             place(a.name, {a.link}, f"{where}.points.{a.name}")
-        for a in group.new_guides:
-            if a.name in owners or a.name in host:
-                raise GeometryError(f"{where}.new_guides.{a.name}", f"the name '{a.name}' is used already",
-                                    "duplicate_name")
-            host[a.name] = a.link
+        place_guides(group.new_guides, where)
         number = KIND_NUMBER[group.kind]
         formula.append(f"II{str(number).translate(SUBSCRIPT)}({group.links[0]},{group.links[1]})")
         groups.append({"kind": group.kind, "class": 2, "order": 2, "kind_number": number,
