@@ -10,7 +10,7 @@ remainders), and behaves like a scene page in one of two request patterns (``--p
   positions per move, one move every 100 ms (TICK_S), without pauses (a worst case: real students also read);
   sends the request the page sends for the values (``scene_request``, the Python twin of the pages' request
   builders) with at most one request in flight: while an answer is awaited, moves only change the values, and
-  the latest ones are sent as soon as the answer arrives (web/static/js/api.js).
+  the latest ones are sent as soon as the answer arrives (web/static/js/common/model/api.js).
 * **new** (dragging is a lookup): grabs a slider of a variant and at once asks for its family (one
   ``POST /api/v1/family``, bench/family_request.py, on a connection of its own); drags it 1–3 s with the same
   random walk; while the family has not arrived the page sends the old pattern's coalesced exact requests,
@@ -167,7 +167,7 @@ class Student:
 def page_script(student: Student, start: float, end: float):
     """The old page, as commands for a driver: a float is a wait in seconds; bytes are a body to post, and the
     driver comes back once its answer has arrived. The moves made meanwhile only change the values; the latest
-    are sent next (one request in flight, like web/static/js/api.js); the same body is not sent twice in a
+    are sent next (one request in flight, like web/static/js/common/model/api.js); the same body is not sent twice in a
     row."""
     next_tick = start + student.rng.uniform(0, TICK_S)
     last_sent = None
@@ -317,7 +317,7 @@ class FamilyFetcher:
     """The new page's family requests: a thread and a connection of their own, one family in flight; a grab
     while one is in flight asks for its own family once that has come back (the latest grab only). Each grab
     asks for the coarse family (the first preview) and, once it has come back, the full one, as
-    web/static/js/family_preview.js does."""
+    web/static/js/common/view/family_preview.js does."""
 
     def __init__(self, port: int, student: Student, record: Record, end: float):
         self.connection = Connection(port, student, record, end)
@@ -571,7 +571,7 @@ def markdown(results: list[dict], comparison: list[dict], args) -> str:
         f"Each student keeps to one scene (share of the class, students): {mix}. *Old page pattern*: a student "
         "drags one slider of one variant for 3–8 s, then another: a random walk over the slider's values, 1–3 "
         "positions every 100 ms, no pauses; the page's request (`scene_request`) with at most one in flight, the "
-        "latest values sent when the answer arrives (`web/static/js/api.js`). *New page pattern*: grab a slider → "
+        "latest values sent when the answer arrives (`web/static/js/common/model/api.js`). *New page pattern*: grab a slider → "
         "one `POST /api/v1/family` (bench/family_request.py) → drag 1–3 s (the old pattern's exact requests only "
         "until the family has arrived) → release: one exact request → look 1–2 s → grab again. A 429 is waited "
         "out (Retry-After) and sent again; its answer's latency counts from the first send. Latency: from "

@@ -3,7 +3,7 @@ a lookup"; not a test).
 
 For every scene, variant and slider (the variant's default values), each tree answers the family request its
 own page sends on a grab (bench/family_request.py: the old page sends the endpoint's whole answers; the new one
-names the leaves its panels draw, ``fields`` from web/static/js/family_fields.js run in Node, and asks for the
+names the leaves its panels draw, ``fields`` from web/static/js/common/model/family_fields.js run in Node, and asks for the
 family ``packed``). The old tree (default /tmp/mdl-lean-old, a ``git worktree add --detach`` of d0a7cb5, made
 here if absent) and the new one (this repository) each run in a process of their own, the two taking turns
 family by family so that both see the same load.

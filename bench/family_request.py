@@ -7,7 +7,7 @@ slider.scale)`` at ``slider.param`` and every ``slider.also`` path: each of them
 (server/lessons/requests.py, formerly server/api/scene_requests.py). The range is the slider's, in shown
 units: ``min``, ``max`` and ``log``.
 
-The page also names the leaves its panels draw in a preview (``fields``, web/static/js/family_fields.js) and
+The page also names the leaves its panels draw in a preview (``fields``, web/static/js/common/model/family_fields.js) and
 asks for the family packed; ``preview_fields`` runs that module in Node on the scenes as the page gets them
 (Scene.model_dump_json()), so a benchmark sends what the page sends.
 """
@@ -51,9 +51,11 @@ def family_body(scene, variant, slider, values: dict | None = None) -> dict:
 
 @cache
 def all_preview_fields(tree: Path = ROOT) -> dict[str, list[str]]:
-    """"scene/variant" → the fields the page of that tree sends (web/static/js/family_fields.js, run in Node)."""
-    module = tree / "web" / "static" / "js" / "family_fields.js"
-    if not module.exists():
+    """"scene/variant" → the fields the page of that tree sends (web/static/js/common/model/family_fields.js, run in Node)."""
+    js = tree / "web" / "static" / "js"       # a baseline tree may hold the module where it was before the move
+    module = next((m for m in (js / "common" / "model" / "family_fields.js", js / "family_fields.js") if m.exists()),
+                  None)
+    if module is None:
         return {}
     node = shutil.which("node") or shutil.which("nodejs")
     if node is None:

@@ -18,7 +18,7 @@ from server.api.serialise import Answer
 from test_family import API, SENT, TOLERANCE, exact, family_body, post_family, strict_json
 from test_family_engine import client  # noqa: F401,F811  the fixture: in-process, no time budgets
 
-# What the page's panels draw for these variants (web/static/js/family_fields.js gives the same; the browser
+# What the page's panels draw for these variants (web/static/js/common/model/family_fields.js gives the same; the browser
 # test checks the page sends those): a light kinematics scene, the forces' drawing and plots, an elastic scene.
 FIELDS = {
     ("transfer-functions", "slider_crank"): ["cycle", "mechanism", "outputs.approx_error", "outputs.du21",

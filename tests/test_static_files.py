@@ -30,12 +30,12 @@ def test_a_pages_assets_are_versioned_and_immutable_and_the_page_is_revalidated(
 
 def test_a_relative_module_import_stays_under_the_version_and_old_urls_are_revalidated(client):
     scene_js = next(u for u in ASSET.findall(client.get("/scenes/transfer-functions").text) if u.endswith("_scene.js"))
-    imported = scene_js.rsplit("/", 1)[0] + "/api.js"                  # import … from "./api.js"
+    imported = scene_js.rsplit("/", 2)[0] + "/common/model/api.js"     # import … from "../common/model/api.js"
     assert client.get(imported).headers["cache-control"] == IMMUTABLE
-    for old in ("/static/js/api.js", "/vendor/plotly/plotly.min.js"):
+    for old in ("/static/js/common/model/api.js", "/vendor/plotly/plotly.min.js"):
         answer = client.get(old)
         assert answer.status_code == 200 and answer.headers["cache-control"] == "no-cache"
-    assert client.get("/static/0123456789ab/js/api.js").status_code == 404   # not today's version
+    assert client.get("/static/0123456789ab/js/common/model/api.js").status_code == 404   # not today's version
 
 
 def test_the_version_changes_with_any_file_name_or_content(tmp_path):

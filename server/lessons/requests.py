@@ -1,5 +1,5 @@
 """The request a scene page sends for given slider and toggle values: the Python twin of the browser's
-scene models (web/static/js/scene_model.js, dynamics_model.js), used to compute an assignment's answers
+scene models (web/static/js/kinematics/model/scene_model.js, dynamics_model.js), used to compute an assignment's answers
 on the server and by the classroom load test to send what the pages send.
 
 Kinematics scenes: ``params = fixed``, each toggle sets ``params[toggle.param]``, each slider sets
@@ -16,7 +16,7 @@ from .scenes import Scene, Slider, Variant
 
 TURN = 2 * math.pi
 POINTS_PER_TURN = 360          # the kinematics page's grid: 1° of crank angle
-LOG_POSITIONS = 1000           # web/static/js/slider_scale.js
+LOG_POSITIONS = 1000           # web/static/js/common/model/slider_scale.js
 LOG_DIGITS = 3
 
 

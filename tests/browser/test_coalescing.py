@@ -1,4 +1,4 @@
-"""The page's coalescing of requests (web/static/js/api.js) in a real browser, against a slow server.
+"""The page's coalescing of requests (web/static/js/common/model/api.js) in a real browser, against a slow server.
 
 Every answer of the scene's compute endpoint is held back (Playwright's page.route) for DELAY_S, then
 fulfilled with the server's real answer. While a slider is dragged quickly through many values the page
@@ -23,7 +23,7 @@ from conftest import screenshot
 pytestmark = pytest.mark.browser
 
 DELAY_S = 0.4
-OVERLAY_OUTPUTS = ["s", "s2", "u31", "du31", "u21", "du21"]     # web/static/js/scene_model.js
+OVERLAY_OUTPUTS = ["s", "s2", "u31", "du31", "u21", "du21"]     # web/static/js/kinematics/model/scene_model.js
 GRAPH = "document.querySelector(`#panel-${id} .graph`)"
 
 

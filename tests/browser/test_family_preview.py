@@ -403,7 +403,7 @@ def test_preview_on_a_phone(family_page, scene, variant, slider, panel, ready):
 
 
 def test_interpolation_rule_of_the_page(family_page):
-    """The page's rule (web/static/js/family_model.js) against the contract's rule worked by hand."""
+    """The page's rule (web/static/js/common/model/family_model.js) against the contract's rule worked by hand."""
     page = family_page
     page.goto("/scenes/transfer-functions?lang=en")
     family = {"values": [1, 2, 4], "log": False, "answers": [
@@ -414,7 +414,7 @@ def test_interpolation_rule_of_the_page(family_page):
         None]}
     result = page.evaluate("""async ([family, log]) => {
         const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
-        const { interpolate } = await import(new URL("family_model.js", src));
+        const { interpolate } = await import(new URL("../common/model/family_model.js", src));
         const at = (v, f = family) => interpolate(f, v);
         return { quarter: at(1.25), near: at(1.75), member: at(2), refused: at(3), outside: at(0.5),
                  first: at(1), log: interpolate({ ...family, values: [1, 4, 16], log: true }, 2) };
@@ -450,7 +450,7 @@ def test_curves_moved_in_place_lie_where_plotly_draws_them(family_page):
         page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg=panel)
     result = page.evaluate("""async () => {
         const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
-        const { moveCurves } = await import(new URL("family_plot.js", src));
+        const { moveCurves } = await import(new URL("../common/view/family_plot.js", src));
         const paths = (graph) => [...graph.querySelectorAll(".scatterlayer path.js-line")].map((p) => p.getAttribute("d"));
         const out = {};
         for (const id of ["portrait", "omega_phi"]) {
@@ -482,7 +482,7 @@ def test_markers_and_labels_moved_in_place_lie_where_plotly_draws_them(family_pa
     page.wait_for_function("() => document.querySelector('#panel-wittenbauer .graph')?._fullData?.length > 0")
     result = page.evaluate("""async () => {
         const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
-        const { moveCurves } = await import(new URL("family_plot.js", src));
+        const { moveCurves } = await import(new URL("../common/view/family_plot.js", src));
         const graph = document.querySelector("#panel-wittenbauer .graph");
         const placed = () => ({
           markers: [...graph.querySelectorAll(".scatterlayer .points path.point")].map((p) => p.getAttribute("transform")),
@@ -523,7 +523,7 @@ def page_fields(page, variant: str) -> list[str]:
     """What family_fields.js gives for the page's scene and variant (the scene as the page has it)."""
     return page.evaluate("""async (variantId) => {
         const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
-        const { previewFields } = await import(new URL("family_fields.js", src));
+        const { previewFields } = await import(new URL("../common/model/family_fields.js", src));
         const scene = JSON.parse(document.getElementById("scene-data").textContent);
         return previewFields(scene, scene.variants.find((v) => v.id === variantId));
     }""", variant)
@@ -598,7 +598,7 @@ def test_the_curve_drawn_during_a_drag_is_the_exact_answer_within_the_tolerance(
     drawn = drawn_trace(page, panel)
     value = page.evaluate("""async ([position, slider]) => {        // the thumb's value, as the page reads it
         const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
-        const { sliderScale } = await import(new URL("slider_scale.js", src));
+        const { sliderScale } = await import(new URL("../common/model/slider_scale.js", src));
         return sliderScale(slider).value(position);
     }""", [float(page.input_value(f"#slider-{slider}")), {k: asked[k] for k in ("min", "max", "log")}])
 
@@ -649,7 +649,7 @@ def test_the_page_unpacks_a_packed_family_as_the_server_does(family_page, app_ur
     assert packed["shared"]
     page_answers = page.evaluate("""async (family) => {
         const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
-        const { received } = await import(new URL("family_model.js", src));
+        const { received } = await import(new URL("../common/model/family_model.js", src));
         return received(family).answers;
     }""", packed)
     shared = contract.unpacked(packed["shared"])

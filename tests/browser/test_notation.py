@@ -146,7 +146,7 @@ def test_the_page_reads_the_markup_as_the_server_does(browser_page):
     open_scene(page, read_scene("flywheel"), "ru")
     texts = sorted({text for _, _, text in STRINGS} | {"x_", "_y", "solve\\_ivp", "a_{}b", "ω_ср²", "R^{1/3})"})
     parts = page.evaluate("""async (texts) => {
-        const src = document.querySelector('script[type="module"]').src.replace(/[^/]+$/, "notation.js");
+        const src = document.querySelector('script[type="module"]').src.replace(/[^/]+$/, "../common/view/notation.js");
         const { notationParts } = await import(src);
         return texts.map((text) => notationParts(text).map((part) => [part.text, part.shift]));
     }""", texts)

@@ -19,13 +19,13 @@ MEASUREMENTS = Path(REPO_ROOT, "bench", "results", "work_precision.md")
 
 def _lowers(char: str) -> bool:
     """A character of a run after "_" or "^": a letter, a decimal digit or a combining mark (\\p{L}, \\p{Nd},
-    \\p{M} in web/static/js/notation.js)."""
+    \\p{M} in web/static/js/common/view/notation.js)."""
     category = unicodedata.category(char)
     return category[0] in "LM" or category == "Nd"
 
 
 def notation_parts(text: str) -> list[tuple[str, str]]:
-    """text split into (run, shift) with shift "", "sub" or "sup": the markup of web/static/js/notation.js
+    """text split into (run, shift) with shift "", "sub" or "sup": the markup of web/static/js/common/view/notation.js
     ("M_c0", "A_{P,k}", "R^{1/3}", "\\_" a plain underscore), read the same way."""
     parts, plain, i = [], "", 0
     while i < len(text):

@@ -1,0 +1,121 @@
+/**
+ * Plotly figures of a dynamics scene's panels, built from an answer of /reduction or /motion; no DOM.
+ *   plot   series against x: the crank angle in degrees (x_unit "deg", x in rad) or the time in s;
+ *          a scalar series (style "hline", e.g. the mean M_c0) is a dashed level line labelled with its value;
+ *          a series with axis 2 is read on a right-hand axis (panel.y2_title), one with `gaps` (a path) has
+ *          gaps where the answer's values there are null (ζ where the compliance is infinite); x_unit ""
+ *          plots against another series (a phase portrait of the twist), and the nearest point is read
+ *   polar  the phase portrait ω(φ): radius r against angle θ (rad, drawn in degrees), so the start-up
+ *          winds round and round onto the closed steady cycle (style "bold"); panel.r_title names the
+ *          radius and its unit ("ω, рад/с") on the radial axis and in the hover, theta_symbol the angle
+ *          (φ unless named: β around a joint)
+ * Every text goes to Plotly through plotText (subscripts as <sub>), every hovered number through the axis'
+ * hoverformat, so Plotly writes it with the language's decimal separator and a true minus sign.
+ * Series the answer does not hold (no textbook approximation, no steady cycle) are left out; null
+ * values (undefined points, e.g. where the mechanism self-locks) are gaps in the curves.
+ */
+import { pathValue } from "../../common/model/dotted_paths.js";
+import { degrees, formatQuantity, plotText } from "../../common/view/notation.js";
+import {
+  baseLayout, GRID, LEVEL_COLOR, LEVEL_DASH, phiAxis, TRACE_COLORS as COLORS, traceDashes, valueAxis,
+} from "../../common/view/plot_style.js";
+
+const DASHES = { solid: "solid", dotted: "dot", dashed: "dash" };
+const STARTUP_COLOR = COLORS[2];
+
+/** True where the answer holds a value, or a curve with at least one defined point, at path. */
+export function holds(data, path) {
+  const value = pathValue(data, path);
+  if (Array.isArray(value)) return value.some((v) => v !== null);
+  return value !== undefined && value !== null;
+}
+
+/** A series keeps its colour whatever other series the answer leaves out (link 3 is green in every variant). */
+function seriesColor(panel, series) {
+  return COLORS[panel.series.indexOf(series) % COLORS.length];
+}
+
+const toDegrees = (values) => values.map((v) => (v === null ? null : degrees(v)));
+
+/** The series of a plot panel that the answer holds. */
+export function heldSeries(panel, data) {
+  return panel.series.filter((series) => holds(data, series.y));
+}
+
+/** The series of a polar panel that the answer holds. */
+export function heldCurves(panel, data) {
+  return panel.series.filter((series) => holds(data, series.theta) && holds(data, series.r));
+}
+
+/** Plotly figure {data, layout} of a plot panel (content/scenes "panels" entry) for the answer's data. */
+export function plotFigure(panel, data, texts) {
+  const { lang } = texts;
+  const xValues = pathValue(data, panel.x);
+  const inDegrees = panel.x_unit === "deg";
+  const x = inDegrees ? toDegrees(xValues) : xValues;
+  const ends = [x[0], x[x.length - 1]];
+  const held = heldSeries(panel, data);
+  const dashes = traceDashes(held.map((series) => (series.style === "hline" ? LEVEL_DASH : DASHES[series.style] ?? null)));
+  const traces = held.map((series, i) => {
+    const label = plotText(series.label[lang]);
+    const y = pathValue(data, series.y);
+    if (series.style === "hline") {
+      const name = `${label} = ${formatQuantity(y, lang, 4)}`;
+      return { type: "scatter", mode: "lines", x: ends, y: [y, y], name, hoverinfo: "skip",
+        line: { color: LEVEL_COLOR, width: 1.5, dash: dashes[i] } };
+    }
+    const gaps = series.gaps ? pathValue(data, series.gaps) : null;
+    return { type: "scatter", mode: "lines", x, y: gaps ? y.map((v, i) => (gaps[i] === null ? null : v)) : y,
+      name: label, connectgaps: false, yaxis: series.axis === 2 ? "y2" : "y",
+      line: { color: seriesColor(panel, series), width: 2, dash: dashes[i] },
+      hovertemplate: `${label} = %{y}<extra></extra>` };
+  });
+  const layout = {
+    ...baseLayout(texts, 300), showlegend: traces.length > 1,
+    xaxis: inDegrees ? phiAxis(xValues[xValues.length - 1], texts) : timeAxis(panel, texts),
+    yaxis: valueAxis(plotText(panel.y_title[lang])),
+  };
+  if (panel.x_unit === "") layout.hovermode = "closest";
+  if (traces.some((trace) => trace.yaxis === "y2")) {
+    layout.yaxis2 = valueAxis(plotText(panel.y2_title[lang]), {
+      overlaying: "y", side: "right", showgrid: false, zeroline: false, tickmode: "auto" });
+    layout.margin = { ...layout.margin, r: 64 };
+  }
+  return { data: traces, layout };
+}
+
+function timeAxis(panel, { lang }) {
+  return { title: { text: plotText(panel.x_title[lang]) }, fixedrange: true, ticks: "outside", gridcolor: GRID,
+    zeroline: false, rangemode: "tozero", hoverformat: ".4g" };
+}
+
+/** Plotly figure {data, layout} of a polar panel (the phase portrait) for the answer's data. */
+export function polarFigure(panel, data, texts) {
+  const { lang } = texts;
+  const radius = plotText(panel.r_title[lang]);
+  const angle = panel.theta_symbol ?? "φ";
+  const [quantity, unit] = panel.r_title[lang].split(/, (?=[^,]+$)/).map(plotText);
+  const curves = heldCurves(panel, data);
+  const dashes = traceDashes(curves.map((series) => (series.style === "bold" ? "solid" : null)));
+  const traces = curves.map((series, i) => {
+    const label = plotText(series.label[lang]);
+    const bold = series.style === "bold";
+    return { type: "scatterpolar", mode: "lines", name: label,
+      theta: toDegrees(pathValue(data, series.theta)), r: pathValue(data, series.r), connectgaps: false,
+      line: bold ? { color: COLORS[0], width: 3.5, dash: dashes[i] } : { color: STARTUP_COLOR, width: 1.2, dash: dashes[i] },
+      hovertemplate: `${label}: ${quantity} = %{r} ${unit}, ${angle} = %{theta}°<extra></extra>` };
+  });
+  return {
+    data: traces,
+    layout: {
+      ...baseLayout(texts, 440), hovermode: "closest", showlegend: true, margin: { l: 40, r: 40, t: 40, b: 30 },
+      polar: {
+        bgcolor: "#ffffff",
+        angularaxis: { direction: "counterclockwise", rotation: 0, dtick: 45, ticksuffix: "°", gridcolor: GRID,
+          hoverformat: ".1f" },
+        radialaxis: { rangemode: "tozero", angle: 90, tickangle: 90, gridcolor: GRID, exponentformat: "power",
+          hoverformat: ".4g", title: { text: radius } },
+      },
+    },
+  };
+}

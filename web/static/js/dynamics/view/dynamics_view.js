@@ -1,0 +1,243 @@
+/**
+ * The panels of a dynamics scene's variant, in the variant's order, and above them what the answer says
+ * in words. Plot and polar panels are Plotly graphs redrawn by a PanelScheduler (one per animation
+ * frame, only those in view); figures, tables and numerics are HTML, rebuilt with every answer; other
+ * kinds have views of their own (PANEL_VIEWS).
+ *
+ * A variant with a drawing (a panel view with drawAt) is animated: the drawings and a cursor over each
+ * plot against φ follow the crank angle, interpolating in the one answer of the current values.
+ *
+ * A panel the answer holds nothing for is hidden: when the machine stalls or self-locks, or has no
+ * steady cycle, the answer leaves those results out and its warnings say why — they are shown first,
+ * under a heading that says there is no steady motion. A refused request (HTTP 422) says why instead.
+ * A panel that needs nothing from the answer ("needs": [], e.g. a calculator) is always shown. A panel
+ * of a kind this page has no view for is left out, so new content never breaks an older page.
+ *
+ * Every graph has its toolbar (plot_tools.js: zoom, export) and is drawn explorable (plot_explore.js: hover
+ * readouts with units, zoom, the pinned ghost curves of ghost_curves.js under its own).
+ *
+ * A panel view's module is loaded (import()) only when a variant has such a panel: a scene fetches the
+ * code it shows and no more. Its panel stays hidden until the view has arrived, then takes the latest answer.
+ */
+import { element } from "../../common/view/dom.js";
+import { pathValue } from "../../common/model/dotted_paths.js";
+import { heldCurves, heldSeries, holds, plotFigure, polarFigure } from "./dynamics_figures.js";
+import { moveCurves, roomy } from "../../common/view/family_plot.js";
+import { refusalMessage } from "../../common/view/messages.js";
+import { formatQuantity } from "../../common/view/notation.js";
+import { PanelScheduler } from "../../common/view/panel_scheduler.js";
+import { sampleAt } from "../../common/model/phi_samples.js";
+import { PlotCursor } from "../../common/view/plot_cursor.js";
+import { explorable } from "../../common/view/plot_explore.js";
+import { plotToolbar } from "../../common/view/plot_tools.js";
+import { holdsReadings, readings } from "./readings_view.js";
+
+const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
+const GRAPH_KINDS = ["plot", "polar"];
+const READING_KINDS = ["figures", "table", "numerics"];
+
+/**
+ * Panel kinds drawn by views of their own, each loaded on first use: load() gives the class View, and
+ * new View(body, spec, {t, lang}, model) (model: the scene's DynamicsModel, for views that read or edit the
+ * request) has
+ *   holds(data)   true if the answer's data holds what the panel shows
+ *   show(data)    take the answer's data
+ *   drawAt(phi)   drawings (and diagrams that follow the crank angle): show them at crank angle phi (rad);
+ *                 such a view is marked drawing: true here (the page shows the crank-angle clock for it)
+ *   paramsChanged()  optional: a value changed (a view with results of its own marks them as earlier)
+ * A view without holds needs nothing from the answer (as a panel with "needs": []): always shown, never given show.
+ */
+const PANEL_VIEWS = {
+  efficiency_chain: { load: () => import("../../forces_friction/view/efficiency_chain_view.js").then((m) => m.EfficiencyChainView) },
+  flywheel_drawing: { load: () => import("../../flywheel/view/flywheel_drawing_view.js").then((m) => m.FlywheelDrawingView), drawing: true },
+  free_body: { load: () => import("../../forces_friction/view/free_body_view.js").then((m) => m.FreeBodyView), drawing: true },
+  gear_train: { load: () => import("../../angular_acceleration/view/gear_train_view.js").then((m) => m.GearTrainView), drawing: true },
+  indicator_diagram: { load: () => import("../../flywheel/view/indicator_diagram_view.js").then((m) => m.IndicatorDiagramView) },
+  wittenbauer: { load: () => import("../../flywheel/view/wittenbauer_view.js").then((m) => m.WittenbauerView), drawing: true },
+  work_precision: { load: () => import("./work_precision_view.js").then((m) => m.WorkPrecisionView) },
+};
+const loadedViews = new Map();          // kind → promise of its view class, one import per kind
+
+/** The view entry of a panel kind, or null (also for names such as "constructor" that every object has). */
+const panelView = (kind) => (Object.hasOwn(PANEL_VIEWS, kind) ? PANEL_VIEWS[kind] : null);
+const isShown = (spec) => [...GRAPH_KINDS, ...READING_KINDS].includes(spec?.kind) || panelView(spec?.kind) !== null;
+const isDrawing = (spec) => panelView(spec.kind)?.drawing === true;
+
+function loadView(kind) {
+  if (!loadedViews.has(kind)) loadedViews.set(kind, panelView(kind).load());
+  return loadedViews.get(kind);
+}
+
+/** True if the answer's data holds what the panel shows. */
+function holdsPanel(panel, data) {
+  if (panel.view) return panel.view.holds(data);
+  if (panel.spec.kind === "plot") return holds(data, panel.spec.x) && heldSeries(panel.spec, data).length > 0;
+  if (panel.spec.kind === "polar") return heldCurves(panel.spec, data).length > 0;
+  return holdsReadings(panel.spec, data);
+}
+
+export class DynamicsView {
+  /** ghosts: the pinned curves (GhostCurves), drawn under each graph's own. */
+  constructor(container, notices, { scene, t, lang }, model, ghosts) {
+    this.container = container;
+    this.ghosts = ghosts;
+    this.model = model;
+    this.notices = notices;
+    this.scene = scene;
+    this.texts = { t, lang };
+    this.panels = [];
+    this.phi = 0;
+    this.animated = false;
+    this.scheduler = new PanelScheduler((panel) => this.#draw(panel));
+    model.on("params", () => {
+      for (const panel of this.panels) panel.view?.paramsChanged?.();
+    });
+    ghosts.on("change", () => {
+      for (const panel of this.panels) if (panel.graph && panel.graph.data) panel.stale = true;
+      this.scheduler.refresh();
+    });
+  }
+
+  /** The graphs drawn now: Map panel id → Plotly graph element. */
+  graphs() {
+    return new Map(this.panels.filter((p) => p.graph?.data && !p.figure.hidden).map((p) => [p.id, p.graph]));
+  }
+
+  /** One panel per graph, reading or panel view of the variant, hidden until an answer fills it. */
+  build(variant) {
+    for (const panel of this.panels) if (panel.graph) Plotly.purge(panel.graph);
+    const specs = variant.panels.map((id) => [id, this.scene.panels[id]]).filter(([, spec]) => isShown(spec));
+    this.animated = specs.some(([, spec]) => isDrawing(spec));
+    this.answered = false;
+    this.panels = specs.map(([id, spec]) => this.#panel(id, spec));
+    this.container.replaceChildren(...this.panels.map((panel) => panel.figure));
+    this.notices.replaceChildren();
+    this.scheduler.track(this.panels.filter((panel) => panel.graph));
+  }
+
+  /** Show the answer: the panels it holds data for, its warnings; or why the request was refused. */
+  show(answer) {
+    const { t } = this.texts;
+    const data = answer.ok ? answer.data : null;
+    const missing = [];
+    for (const panel of this.panels) if (this.#fill(panel, data) === false && data) missing.push(panel);
+    if (!answer.ok) {
+      this.notices.replaceChildren(refusalMessage(t.computation_refused, answer.error, t));
+    } else if (data.warnings.length) {
+      const noMotion = missing.length > 0;
+      this.notices.replaceChildren(element("section", { className: noMotion ? "warnings no-motion" : "warnings" },
+        element("h2", { textContent: noMotion ? t.no_motion : t.warnings }),
+        element("ul", {}, ...data.warnings.map((warning) => element("li", { rich: warning })))));
+    } else {
+      this.notices.replaceChildren();
+    }
+    this.data = this.plotted = data;
+    this.answered = true;
+    this.drawAt(this.phi);
+    this.scheduler.refresh();
+  }
+
+  /**
+   * Draw an answer's data interpolated from a slider's family (a preview) now: the graphs and drawings that
+   * hold it follow it; figures, tables and numerics keep the last exact answer's numbers.
+   */
+  preview(data) {
+    if (!this.data) return Promise.resolve();
+    this.plotted = data;
+    const drawn = [];
+    for (const panel of this.panels) {
+      if (panel.figure.hidden || panel.loading) continue;
+      if (panel.graph) panel.stale ||= holdsPanel(panel, data);
+      else if (panel.view?.drawAt && panel.view.holds?.(data)) drawn.push(panel.view.preview ? panel.view.preview(data) : panel.view.show(data));
+    }
+    return Promise.all([...drawn, this.scheduler.drawNow()]);
+  }
+
+  /** Resolves once every graph in view shows what it was last given. */
+  drawn() {
+    return this.scheduler.drawn();
+  }
+
+  /** Show or hide one panel for the answer's data (null: refused); whether it holds it, null while loading. */
+  #fill(panel, data) {
+    if (panel.loading) return null;
+    const independent = panel.spec.needs?.length === 0 || (panel.view !== undefined && !panel.view.holds);
+    const held = independent || (Boolean(data) && holdsPanel(panel, data));
+    panel.figure.hidden = !held;
+    if (!held || independent) return held;
+    if (panel.graph) panel.stale = true;
+    else if (panel.view) panel.view.show(data);
+    else panel.body.replaceChildren(...readings(panel.spec, data, this.texts));
+    return held;
+  }
+
+  /** A panel view has loaded: make it, and give it the answer already shown (and the crank angle). */
+  #viewLoaded(panel, View) {
+    if (!this.panels.includes(panel)) return;            // another variant was built meanwhile
+    panel.view = new View(panel.body, panel.spec, this.texts, this.model);
+    panel.loading = false;
+    if (this.answered) this.#fill(panel, this.data);
+    if (this.data && !panel.figure.hidden) panel.view.drawAt?.(this.phi);
+  }
+
+  /** Put the drawings and the plot cursors at crank angle phi (rad). */
+  drawAt(phi) {
+    this.phi = phi;
+    if (!this.data) return;
+    for (const panel of this.panels) {
+      if (panel.figure.hidden) continue;
+      panel.view?.drawAt?.(phi);
+      panel.cursor?.move(phi);
+    }
+  }
+
+  #panel(id, spec) {
+    const { lang } = this.texts;
+    const graph = GRAPH_KINDS.includes(spec.kind) ? element("div", { className: "graph" }) : null;
+    const heading = spec.title ? [element("h3", { rich: spec.title[lang] })] : [];
+    const tools = graph ? [plotToolbar(graph, { name: `${this.scene.id}-${id}`, title: spec.title?.[lang] ?? id }, this.texts)] : [];
+    const title = heading.length || tools.length ? [element("div", { className: "panel-head" }, ...heading, ...tools)] : [];
+    const make = (content, ...more) => element("figure", {
+      className: `panel panel-${spec.kind}${isDrawing(spec) ? " panel-drawing" : ""}`, id: `panel-${id}`, hidden: true },
+    ...title, content, ...more);
+    if (panelView(spec.kind)) {
+      const body = element("div", { className: `${spec.kind}-body` });
+      const panel = { id, spec, figure: make(body), body, loading: true };
+      loadView(spec.kind).then((View) => this.#viewLoaded(panel, View));
+      return panel;
+    }
+    if (graph) {
+      const cursor = this.animated && spec.kind === "plot" && spec.x_unit === "deg"
+        ? new PlotCursor((phi) => this.#values(spec, phi), this.phi) : null;
+      const frame = element("div", { className: "graph-frame" }, graph, ...(cursor ? [cursor.element] : []));
+      return { id, spec, figure: make(frame), graph, cursor, stale: false };
+    }
+    const body = element("div", { className: `readings ${spec.kind}-readings` });
+    return { id, spec, figure: make(body), body };
+  }
+
+  /**
+   * "ε* = 0,0604", "ε** = −0,141", … one line each: the plot's series at crank angle phi, each named by the
+   * first word of its label (its symbol); level lines left out, "—" where the answer has no value.
+   */
+  #values(spec, phi) {
+    if (!this.data) return "";
+    const { lang } = this.texts;
+    const phis = pathValue(this.data, spec.x);
+    return heldSeries(spec, this.data).filter((series) => series.style !== "hline").map((series) => {
+      const value = sampleAt(phis, pathValue(this.data, series.y), phi);
+      return `${series.label[lang].split(" ")[0]} = ${value === null ? "—" : formatQuantity(value, lang, 3)}`;
+    }).join("\n");
+  }
+
+  #draw(panel) {
+    if (!this.plotted) return null;
+    let figure = explorable(panel.spec.kind === "polar" ? polarFigure(panel.spec, this.plotted, this.texts)
+      : plotFigure(panel.spec, this.plotted, this.texts), this.ghosts.traces(panel.id));
+    if (this.plotted !== this.data) {             // a preview
+      if (moveCurves(panel.graph, figure.data)) return Promise.resolve();
+      figure = roomy(figure);
+    }
+    return Plotly.react(panel.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => panel.cursor?.follow(panel.graph));
+  }
+}
