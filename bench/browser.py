@@ -58,7 +58,10 @@ RELEASE_MARK_JS = "document.addEventListener('pointerup', () => performance.mark
 
 
 def scenes() -> list[dict]:
-    loaded = [json.loads(p.read_text(encoding="utf-8")) for p in (ROOT / "content" / "scenes").glob("*.json")]
+    if str(ROOT) not in sys.path:
+        sys.path.insert(0, str(ROOT))
+    from server.lessons.scenes import scene_documents      # shared sliders and inheriting variants resolved
+    loaded = list(scene_documents().values())
     return sorted(loaded, key=lambda s: s["order"])
 
 

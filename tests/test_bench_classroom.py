@@ -13,6 +13,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from server.lessons.scenes import scene_documents
+
 REPO = Path(__file__).resolve().parents[1]
 SPEC = importlib.util.spec_from_file_location("classroom", REPO / "bench" / "classroom.py")
 classroom = importlib.util.module_from_spec(SPEC)
@@ -92,7 +94,7 @@ def test_the_family_request_of_every_slider_follows_the_contract():
     scene_request, slider_values = classroom.scene_request, classroom.slider_values
     checked = 0
     for scene in classroom.scenes().values():
-        raw = json.loads((REPO / "content" / "scenes" / f"{scene.id.replace('-', '_')}.json").read_text("utf-8"))
+        raw = scene_documents()[scene.id.replace("-", "_")]
         for variant, raw_variant in zip(scene.variants, raw["variants"]):
             for slider, raw_slider in zip(variant.sliders, raw_variant.get("sliders", [])):
                 values = {s.id: rng.choice(slider_values(s)) for s in variant.sliders}

@@ -10,7 +10,6 @@
 """
 from __future__ import annotations
 
-import json
 import re
 import string
 from pathlib import Path
@@ -23,7 +22,7 @@ from server.api.messages import from_english, localise_study, signed, skipped_ru
 from server.api.routers.pages import decimal, notation, notation_parts
 from server.core.elastic.simulate import work_bound_message
 from server.lessons.requests import scene_request
-from server.lessons.scenes import interface_texts, scenes
+from server.lessons.scenes import interface_texts, scene_documents, scenes
 
 REPO = Path(__file__).resolve().parents[1]
 LANGUAGES = ("ru", "uk")
@@ -169,8 +168,8 @@ def displayed_strings():
                 yield from walk(item, f"{where}[{i}]", lang)
         elif isinstance(value, str) and lang:
             yield where, lang, value
-    for path in sorted((REPO / "content" / "scenes").glob("*.json")):
-        yield from walk(json.loads(path.read_text(encoding="utf-8")), path.stem)
+    for name, document in scene_documents().items():      # shared sliders (content/sliders.json) where used
+        yield from walk(document, name)
     for lang in ("ru", "uk", "en"):
         for key, text in interface_texts(lang).items():
             yield key, lang, text

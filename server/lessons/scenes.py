@@ -7,9 +7,10 @@ from pathlib import Path
 
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from ..classroom.expression import parse
+from .scene_files import ContentError, resolved_scene
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 CONTENT_DIR = REPO_ROOT / "content"
@@ -173,17 +174,47 @@ def _check_languages(texts: dict, where: str) -> None:
 
 
 @lru_cache(maxsize=1)
+def scene_documents() -> dict[str, dict]:
+    """Every scene file of content/scenes (by file stem) as the app reads it."""
+    return read_scene_documents(CONTENT_DIR)
+
+
+def read_scene_documents(content: Path) -> dict[str, dict]:
+    """The scene files of content/scenes with shared sliders (content/sliders.json) and inheriting variants
+    resolved (scene_files.py), each slider checked with the file, the variant and the slider named."""
+    shared = json.loads((content / "sliders.json").read_text(encoding="utf-8"))
+    documents = {}
+    for path in sorted((content / "scenes").glob("*.json")):
+        document = resolved_scene(json.loads(path.read_text(encoding="utf-8")), path.name, shared)
+        for variant in document["variants"]:
+            for index, slider in enumerate([*variant.get("sliders", []), variant.get("overlay") or {}]):
+                if isinstance(slider, dict) and slider:
+                    _check_slider(slider, f"{path.name}: variant {variant['id']}, slider {slider.get('id', index)}")
+        documents[path.stem] = document
+    return documents
+
+
+def _check_slider(slider: dict, where: str) -> None:
+    try:
+        Slider.model_validate(slider)
+    except ValidationError as error:
+        reasons = "; ".join(f"{'.'.join(map(str, e['loc'])) or 'slider'}: {e['msg']}" for e in error.errors())
+        raise ContentError(f"{where}: {reasons}") from None
+
+
+@lru_cache(maxsize=1)
 def scenes() -> dict[str, Scene]:
     """All scenes in content/scenes, ordered, each checked to carry all three languages."""
     loaded = []
-    for path in sorted((CONTENT_DIR / "scenes").glob("*.json")):
-        scene = Scene.model_validate_json(path.read_text(encoding="utf-8"))
+    for name, document in scene_documents().items():
+        where = f"{name}.json"
+        scene = Scene.model_validate(document)
         for key in ("title", "summary", "text", "source"):
-            _check_languages(getattr(scene, key), f"{path.name}: {key}")
+            _check_languages(getattr(scene, key), f"{where}: {key}")
         for variant in scene.variants:
-            _check_languages(variant.label, f"{path.name}: {variant.id}.label")
+            _check_languages(variant.label, f"{where}: {variant.id}.label")
         for question in scene.questions:
-            _check_languages(question.label, f"{path.name}: question {question.id}")
+            _check_languages(question.label, f"{where}: question {question.id}")
         loaded.append(scene)
     return {s.id: s for s in sorted(loaded, key=lambda s: s.order)}
 

@@ -16,6 +16,8 @@ from pathlib import Path
 import httpx
 import pytest
 
+from server.lessons.scenes import scene_documents
+
 REPO = Path(__file__).resolve().parents[2]
 ARTIFACTS = REPO / "test-artifacts"
 CHROMIUM = Path("/usr/bin/chromium")
@@ -24,8 +26,9 @@ CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-
 
 
 def read_scene(name: str) -> dict:
-    """A scene of content/scenes, e.g. read_scene("transfer_functions")."""
-    return json.loads((REPO / "content" / "scenes" / f"{name}.json").read_text(encoding="utf-8"))
+    """A scene of content/scenes as the app reads it (shared sliders and inheriting variants resolved),
+    e.g. read_scene("transfer_functions")."""
+    return scene_documents()[name]
 
 
 SCENE = read_scene("transfer_functions")

@@ -1,0 +1,81 @@
+"""A scene file as written and as the app reads it: shared slider definitions and variants that inherit.
+
+Two kinds of reference keep content/scenes/*.json free of copies (adding a lesson still needs no Python):
+
+- **A shared slider.** A slider (or a variant's ``overlay``) written ``{"use": "<name>", …}`` is the definition
+  ``<name>`` of content/sliders.json with the reference's own keys replacing the definition's (a scene's range,
+  default, or the path it sets: ``{"use": "crank_rod_ratio", "min": 1.05, "default": 4}``).
+- **A variant that extends another** of the same scene, ``{"extends": "<variant id>", …}``: the named variant
+  (itself resolved first) with the variant's own keys replacing its keys, except ``request``, which is merged
+  key by key (a request's top-level key, e.g. ``"motor"``, is replaced whole). A variant that names sliders
+  names all of them; one that does not keeps the other's.
+
+A reference to nothing, a loop of variants or a variant without an id is refused with the scene file, the
+variant and the slider named (``ContentError``).
+"""
+from __future__ import annotations
+
+import copy
+
+MERGED_KEYS = ("request",)   # merged key by key under "extends"; every other key is replaced whole
+
+
+class ContentError(ValueError):
+    """A scene file that does not resolve; the message names the file, the variant and the slider."""
+
+
+def resolved_scene(raw: dict, where: str, shared: dict[str, dict]) -> dict:
+    """The scene ``raw`` (read from the file ``where``) with every "extends" and every "use" resolved."""
+    variants = raw.get("variants", [])
+    by_id = {}
+    for index, variant in enumerate(variants):
+        if not isinstance(variant, dict) or not isinstance(variant.get("id"), str):
+            raise ContentError(f"{where}: variant {index}: no id")
+        if variant["id"] in by_id:
+            raise ContentError(f"{where}: variant {variant['id']}: two variants with this id")
+        by_id[variant["id"]] = variant
+    resolved = [copy.deepcopy(_with_shared_sliders(_inherited(v, by_id, where, ()), where, shared))
+                for v in variants]                   # each its own objects: inherited parts are not shared
+    return copy.deepcopy(raw | {"variants": []}) | {"variants": resolved}
+
+
+def _inherited(variant: dict, by_id: dict[str, dict], where: str, chain: tuple[str, ...]) -> dict:
+    """The variant with what it inherits through "extends" (a chain of any length)."""
+    base_id = variant.get("extends")
+    if base_id is None:
+        return variant
+    name = variant["id"]
+    if base_id == name or base_id in chain:
+        loop = " → ".join((*chain, name, base_id))
+        raise ContentError(f"{where}: variant {name}: extends {base_id} in a loop ({loop})")
+    if base_id not in by_id:
+        raise ContentError(f"{where}: variant {name}: extends {base_id!r}, which is no variant of this scene "
+                           f"({', '.join(by_id)})")
+    base = _inherited(by_id[base_id], by_id, where, (*chain, name))
+    own = {key: value for key, value in variant.items() if key != "extends"}
+    merged = base | own
+    for key in MERGED_KEYS:
+        if isinstance(base.get(key), dict) and isinstance(own.get(key), dict):
+            merged[key] = base[key] | own[key]
+    return merged
+
+
+def _with_shared_sliders(variant: dict, where: str, shared: dict[str, dict]) -> dict:
+    resolved = dict(variant)
+    if isinstance(variant.get("sliders"), list):
+        resolved["sliders"] = [_slider(entry, f"{where}: variant {variant['id']}, slider", index, shared)
+                               for index, entry in enumerate(variant["sliders"])]
+    if isinstance(variant.get("overlay"), dict):
+        resolved["overlay"] = _slider(variant["overlay"], f"{where}: variant {variant['id']}, overlay", 0, shared)
+    return resolved
+
+
+def _slider(entry, where: str, index: int, shared: dict[str, dict]):
+    """The slider a scene writes: itself, or the shared definition it uses with its own keys replacing."""
+    if not isinstance(entry, dict) or "use" not in entry:
+        return entry
+    name = entry["use"]
+    if not isinstance(name, str) or name not in shared:
+        raise ContentError(f"{where} {entry.get('id', index)}: uses {name!r}, which content/sliders.json "
+                           f"does not define")
+    return shared[name] | {key: value for key, value in entry.items() if key != "use"}
