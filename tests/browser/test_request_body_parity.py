@@ -1,0 +1,65 @@
+"""The page and the server build the same request body from a scene: the page's own models
+(web/static/js/kinematics/model/scene_model.js, web/static/js/dynamics/model/dynamics_model.js), run in
+Chromium as the page loads them, against server/lessons/requests.py (which computes an assignment's answers
+and the classroom benchmark's requests), for every scene and variant at its defaults and at changed values.
+
+Equal exactly, not within a tolerance: both sides do the same IEEE-754 operations in the same order
+(value × to_si × the value at scale, left to right), and JSON carries every double exactly."""
+from __future__ import annotations
+
+import json
+import random
+
+import pytest
+
+from server.lessons.requests import defaults, scene_request, slider_values
+from server.lessons.scenes import scenes
+
+pytestmark = pytest.mark.browser
+
+BUILD_REQUESTS_JS = """async ({ scenes, cases }) => {
+  const entry = document.querySelector('script[type="module"][src*="_scene.js"]').src;
+  const { SceneModel } = await import(new URL("../kinematics/model/scene_model.js", entry));
+  const { DynamicsModel } = await import(new URL("../dynamics/model/dynamics_model.js", entry));
+  return cases.map(({ scene, variant, values }) => {
+    const data = scenes[scene];
+    const model = new (data.kind === "kinematics" ? SceneModel : DynamicsModel)(data, { variant, values });
+    return { values: model.values, body: model.request() };
+  });
+}"""
+
+
+def cases() -> list[dict]:
+    """Per variant: the defaults; every slider at its least value and every toggle at its last option; every
+    slider at its greatest and every toggle at its first; two draws of values the sliders can express."""
+    rng = random.Random(16)
+    out = []
+    for scene in scenes().values():
+        for variant in scene.variants:
+            grids = {s.id: slider_values(s) for s in variant.sliders}
+            options = {t.id: t.options for t in variant.toggles}
+            changed = [{**{i: g[0] for i, g in grids.items()}, **{i: o[-1] for i, o in options.items()}},
+                       {**{i: g[-1] for i, g in grids.items()}, **{i: o[0] for i, o in options.items()}}]
+            changed += [{**{i: rng.choice(g) for i, g in grids.items()}, **{i: rng.choice(o) for i, o in options.items()}}
+                        for _ in range(2)]
+            out += [{"scene": scene.id, "variant": variant.id, "values": values} for values in [{}, *changed]]
+    return out
+
+
+def test_the_page_and_the_server_build_the_same_request_body_from_every_scene(browser_page):
+    page = browser_page
+    page.goto("/scenes/transfer-functions?lang=en")
+    page.locator(".main-svg").first.wait_for(state="visible")        # the page has drawn: its modules ran
+    every = cases()
+    pages = page.evaluate(BUILD_REQUESTS_JS, {
+        "scenes": {s.id: json.loads(s.model_dump_json()) for s in scenes().values()}, "cases": every})
+    differ = []
+    for case, built in zip(every, pages, strict=True):
+        scene = scenes()[case["scene"]]
+        variant = next(v for v in scene.variants if v.id == case["variant"])
+        assert built["values"] == defaults(variant) | case["values"], case      # the page took every value
+        if built["body"] != scene_request(scene, variant, case["values"]):
+            differ.append(case)
+    assert differ == []
+    assert len(every) == 5 * sum(len(s.variants) for s in scenes().values())
+    assert page.problems == []
