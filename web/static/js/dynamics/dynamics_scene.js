@@ -24,7 +24,7 @@ import { PresetsView } from "./view/presets_view.js";
 import { sceneTools } from "../common/view/scene_tools.js";
 import { StaleFeedback } from "../common/view/stale_feedback.js";
 import { readState, writeState } from "../common/model/url_state.js";
-import { byId, lang, scene, t, texts } from "../common/model/page_data.js";
+import { byId, lang, scene, t, texts } from "../common/view/page_data.js";
 
 const TURN = 2 * Math.PI;
 /** A cycle of crank angle is a whole number of turns: 2π, or 4π for a four-stroke engine. */

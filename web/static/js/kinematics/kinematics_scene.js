@@ -23,7 +23,7 @@ import { sceneTools } from "../common/view/scene_tools.js";
 import { StaleFeedback } from "../common/view/stale_feedback.js";
 import { StatusView } from "./view/status_view.js";
 import { readState, writeState } from "../common/model/url_state.js";
-import { byId, lang, scene, t, texts } from "../common/model/page_data.js";
+import { byId, lang, scene, t, texts } from "../common/view/page_data.js";
 
 
 const model = new SceneModel(scene, readState());

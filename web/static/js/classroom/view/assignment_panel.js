@@ -6,7 +6,7 @@
  */
 import { element } from "../../common/view/dom.js";
 import { formatQuantity, labelledValue } from "../../common/view/notation.js";
-import { byId, lang, scene, t } from "../../common/model/page_data.js";
+import { byId, lang, scene, t } from "../../common/view/page_data.js";
 import { decimalMessage, parseDecimal } from "../model/decimal_input.js";
 
 const assignment = JSON.parse(byId("assignment-data").textContent);
