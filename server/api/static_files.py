@@ -1,9 +1,9 @@
 """Our static files and plotly.js on versioned URLs, cached by browsers for a year; the old URLs revalidated.
 
-``/static/<version>/js/api.js`` where the version is a hash of every file name and content under web/static,
-taken at start-up: a changed file gives a new version, hence new URLs, so a browser may keep what it has
-fetched ``immutable`` (RFC 8246) and a repeat visit asks for nothing but the page. Relative ES-module
-imports (``./api.js``) resolve under the same prefix. plotly.js is versioned by plotly's own version. The
+``/static/<version>/js/common/model/api.js`` where the version is a hash of every file name and content under
+web/static (its folders included), taken at start-up: a changed file gives a new version, hence new URLs, so a
+browser may keep what it has fetched ``immutable`` (RFC 8246) and a repeat visit asks for nothing but the page.
+Relative ES-module imports (``../common/model/api.js``) resolve under the same prefix. plotly.js is versioned by plotly's own version. The
 unversioned paths stay for old links, with ``no-cache`` (the browser revalidates by ETag).
 
 Text files are sent gzip-compressed from a copy compressed once per worker (in a thread, on first request),
