@@ -89,6 +89,7 @@ def bearings_report(load: PairLoad, design: Design, outputs) -> tuple[dict, list
     heat = _heat(design, power, f, length) if "heat" in outputs or "checks" in outputs else None
     if "checks" in outputs:
         result["checks"] = _checks(load, design, allowable, pv, heat)
+        result["checks"]["states"] = _states(load, design, allowable, lam, h0, reynolds, result["checks"]["verdict"])
     if "heat" in outputs:
         result["heat"] = heat
     if "sizing" in outputs:
@@ -123,6 +124,23 @@ def _checks(load: PairLoad, design: Design, allowable: dict, pv: np.ndarray, hea
     return {"rows": table, "verdict": overall, "pressure": pressure, "speed": speed, "pv": pv_mean,
             "pv_peak": float(pv.max()), "phi": load.phi, "pv_cycle_MPa_m_s": pv / MPA,
             "pv_allowable_MPa_m_s": _scaled(allowable["pv"], MPA)}
+
+
+def _states(load: PairLoad, design: Design, allowable: dict, lam: float, h0: float, reynolds: np.ndarray,
+            verdict: str) -> list[dict]:
+    """The verdicts in words: all checks, the diameters that pass (2.3), (2.6), (2.9) together, the clearance,
+    the zone of Fig. 2.4 at the operating point (lubricated bearings) and the film's flow (fluid bearings)."""
+    rows = [{"quantity": "verdict", "state": verdict},
+            {"quantity": "sizing", "state": "pass" if _sizing(load, design, allowable)["feasible"] else "fail"},
+            {"quantity": "clearance", "state": _clearance(design, h0)["verdict"]}]
+    if design.kind != "dry":
+        limits = film.regime_limits(h0 / (design.diameter / 2))
+        rows.append({"quantity": "stribeck", "state": film.regime(lam, limits) if math.isfinite(lam) else "fluid"})
+    if design.kind == "fluid":
+        turbulent = reynolds >= film.REYNOLDS_TURBULENT
+        rows.append({"quantity": "film", "state": "turbulent" if turbulent.all() else (
+            "laminar" if not turbulent.any() else "both")})
+    return rows
 
 
 def _scaled(value: float | None, scale: float) -> float | None:
@@ -177,25 +195,27 @@ def _clearance(design: Design, h0: float) -> dict:
 
 
 def _stribeck(lam: float, relative_clearance: float) -> dict:
-    """The curve over λ from λ_t/100 to 100·λ_t (and the operating point's decade), in its three zones."""
+    """The curve against lg(λ/λ_t) from −2 to 2 (widened to half a decade around the operating point), in its
+    three zones; each zone's curve reaches the next zone's first point, so the curve is drawn without gaps."""
     limits = film.regime_limits(relative_clearance)
-    low, high = math.log10(film.TRANSITION) - 2, math.log10(film.TRANSITION) + 2
+    low, high = -2.0, 2.0
     if math.isfinite(lam) and lam > 0:
-        low, high = min(low, math.log10(lam) - 0.5), max(high, math.log10(lam) + 0.5)
-    log_lam = np.linspace(low, high, STRIBECK_POINTS)
-    f = film.stribeck(10**log_lam, relative_clearance)
-    zones = np.array([film.regime(value, limits) for value in 10**log_lam])
-    zone = lambda name: np.where(zones == name, f, np.nan)
-    # each zone's curve reaches the next zone's first point, so the curve is drawn without gaps
-    joined = {name: zone(name) for name in ("boundary", "mixed", "fluid")}
+        where = math.log10(lam / film.TRANSITION)
+        low, high = min(low, where - 0.5), max(high, where + 0.5)
+    log_ratio = np.linspace(low, high, STRIBECK_POINTS)
+    lam_grid = film.TRANSITION * 10**log_ratio
+    f = film.stribeck(lam_grid, relative_clearance)
+    zones = np.array([film.regime(value, limits) for value in lam_grid])
+    joined = {name: np.where(zones == name, f, np.nan) for name in ("boundary", "mixed", "fluid")}
     for a, b in (("boundary", "mixed"), ("mixed", "fluid")):
         first = np.flatnonzero(zones == b)
         if first.size and first[0] > 0:
             joined[a][first[0]] = f[first[0]]
-    operating = float(film.stribeck(lam, relative_clearance)) if math.isfinite(lam) else None
-    return {"log_lambda": log_lam, "f": f, **{f"f_{name}": value for name, value in joined.items()},
-            "lambda": lam if math.isfinite(lam) else None, "f_operating": operating,
-            "regime": film.regime(lam, limits) if math.isfinite(lam) else "fluid",
+    finite = math.isfinite(lam)
+    return {"log_ratio": log_ratio, "lambda_grid": lam_grid, "f": f,
+            **{f"f_{name}": value for name, value in joined.items()},
+            "lambda": lam if finite else None, "f_operating": float(film.stribeck(lam, relative_clearance)) if finite else None,
+            "regime": film.regime(lam, limits) if finite else "fluid",
             "boundary_end": limits[0], "fluid_start": limits[1], "transition": film.TRANSITION}
 
 
