@@ -63,7 +63,7 @@ def reynolds(omega, radius: float, clearance: float, kinematic_viscosity: float)
 
 def turbulence_factor(reynolds_number):
     """Chaika–Vasylenko (2.19): k_τ = 1 + 0.0525·(0.04·Re_ω)^0.75 for a turbulent film (Re_ω ≥ 1000), 1 below:
-    the switch is a jump, k_τ(1000) = 1 + 0.0525·40^0.75 ≈ 1.835."""
+    the switch is a jump, k_τ(1000) = 1 + 0.0525·40^0.75 = 1.835."""
     re = np.asarray(reynolds_number, float)
     return np.where(re >= REYNOLDS_TURBULENT, 1 + 0.0525 * (0.04 * re) ** 0.75, 1.0)
 
