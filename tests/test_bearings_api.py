@@ -115,8 +115,10 @@ def test_fluid_power_switches_regime_with_reynolds():
 
 
 def test_only_what_is_asked_is_answered():
+    """Only the asked output, with the numerics of the kinetostatics that gave the load (its ε_R holds)."""
     answer = compute("bearings", bearing() | {"outputs": ["stribeck"]})
-    assert set(answer) == {"stribeck", "warnings"}
+    assert set(answer) == {"stribeck", "numerics", "warnings"}
+    assert answer["numerics"]["error_estimate"] <= 1e-9
 
 
 @pytest.mark.parametrize("change, loc", [

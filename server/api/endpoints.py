@@ -265,6 +265,7 @@ def bearings(request: BearingsRequest, lang: str) -> Answer:
     fields = request.bearing.model_dump(exclude={"pair"})
     bore = request.loads.gas.piston_diameter if request.loads.gas is not None else None
     result, notices = bearings_report(load, Design(**fields, bore=bore or None), request.outputs)
+    result["numerics"] = analysis.numerics          # how the reactions were solved (the formulas are closed)
     return answer(result, [*analysis.notices, *notices], lang)
 
 
