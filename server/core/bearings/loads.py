@@ -15,8 +15,6 @@ import numpy as np
 
 from ..kinetostatics.crank_slider import ForceAnalysis
 
-PAIRS = ("O", "A", "B")
-
 
 @dataclass(frozen=True)
 class PairLoad:
