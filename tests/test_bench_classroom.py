@@ -58,7 +58,7 @@ def test_three_students_for_three_seconds_write_the_tables_without_errors(tmp_pa
 
 
 FAMILY_ENDPOINTS = {"kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
-                    "angular-acceleration"}          # the contract's cached computing endpoints
+                    "angular-acceleration", "bearings"}          # the contract's cached computing endpoints
 
 
 def substituted(request: dict, vary: list[dict], value: float) -> dict:

@@ -16,6 +16,8 @@ import orjson
 
 from ..core import work_precision
 from ..core.angular_acceleration import CrankLaw, crank_slider, trammel
+from ..core.bearings.loads import pair_load
+from ..core.bearings.report import Design, bearings_report
 from ..core.dynamics import report
 from ..core.dynamics.machine import Machine
 from ..core.dynamics.motors import Motor
@@ -33,6 +35,7 @@ from ..core.mechanisms.general import GENERAL_OUTPUTS, compute_general
 from .messages import localise_numerics, localise_study, translate
 from .schemas import KinematicsRequest, KinematicsResponse
 from .schemas_angular import AngularRequest
+from .schemas_bearings import BearingsRequest
 from .schemas_dynamics import FlywheelRequest, MotionRequest, ReductionRequest
 from .schemas_elastic import ElasticRequest
 from .schemas_forces import ChainRequest, ForcesRequest, WearRequest
@@ -251,6 +254,21 @@ def efficiency_chain(request: ChainRequest, lang: str) -> Answer:
     return Answer({"series": series, "parallel": parallel})
 
 
+def bearings(request: BearingsRequest, lang: str) -> Answer:
+    """The plain-bearing designer on the pair's reaction over the cycle, from the same kinetostatics as /forces
+    (the cylinder bore of an engine's indicator diagram gives the recommended journal diameters)."""
+    _, loads, _, analysis = _force_analysis(request)
+    load = pair_load(analysis, request.bearing.pair, loads.omega)
+    if np.isfinite(load.force).all() and load.peak <= 0:
+        raise GeometryError("loads", "the pair carries no load over the cycle: give the links masses or the "
+                            "slider a force", "bearing_no_load")
+    fields = request.bearing.model_dump(exclude={"pair"})
+    bore = request.loads.gas.piston_diameter if request.loads.gas is not None else None
+    result, notices = bearings_report(load, Design(**fields, bore=bore or None), request.outputs)
+    result["numerics"] = analysis.numerics          # how the reactions were solved (the formulas are closed)
+    return answer(result, [*analysis.notices, *notices], lang)
+
+
 def angular_acceleration(request: AngularRequest, lang: str) -> Answer:
     law = CrankLaw(request.law, request.omega0, request.epsilon0, request.amplitude, request.frequency)
     t = np.asarray(request.t, float) if request.t is not None else np.linspace(0.0, law.turn_time(), request.n)
@@ -272,6 +290,7 @@ ENDPOINTS = {
     "wear": (WearRequest, wear),
     "angular-acceleration": (AngularRequest, angular_acceleration),
     "efficiency-chain": (ChainRequest, efficiency_chain),
+    "bearings": (BearingsRequest, bearings),
 }
 
 

@@ -147,7 +147,7 @@ class Scene(BaseModel):
     order: int
     kind: Literal["kinematics", "dynamics"] = "kinematics"
     endpoint: Literal["kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
-                      "angular-acceleration"] = "kinematics"
+                      "angular-acceleration", "bearings"] = "kinematics"
     source: Text
     title: Text
     summary: Text
