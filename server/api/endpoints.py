@@ -13,6 +13,7 @@ from collections.abc import Collection
 
 import numpy as np
 import orjson
+from pydantic import ValidationError
 
 from ..core import work_precision
 from ..core.angular_acceleration import CrankLaw, crank_slider, trammel
@@ -115,6 +116,15 @@ def reduction(request: ReductionRequest, lang: str) -> Answer:
     return answer(result, notices, lang)
 
 
+def machine_key(request: MotionRequest | FlywheelRequest) -> bytes:
+    """What the machine of a request is made of (mechanism, params, inertias, load, motor), canonically: two
+    requests with one key have equal machines, whatever else (ω_m, δ, ω₀, rtol, sizing) differs."""
+    return orjson.dumps(request.model_dump(include=MACHINE_FIELDS), option=orjson.OPT_SORT_KEYS)
+
+
+MACHINE_FIELDS = {"mechanism", "params", "inertias", "load", "motor"}
+
+
 def machine(request: MotionRequest | FlywheelRequest) -> Machine:
     """The machine of a request, checked: geometry, a piston engine only on a crank-slider, some inertia."""
     params = MECHANISMS[request.mechanism].check(request.params)
@@ -133,14 +143,16 @@ def _motor(motor) -> Motor:
     return Motor(**{**motor.model_dump(), "expansion": tuple(motor.expansion), "compression": tuple(motor.compression)})
 
 
-def motion(request: MotionRequest, lang: str) -> Answer:
-    result, notices = report.motion(machine(request), request.outputs, request.omega0, request.rtol,
+def motion(request: MotionRequest, lang: str, built: Machine | None = None) -> Answer:
+    """The steady cycle and/or the start-up; ``built``: the request's machine made already (a batch)."""
+    result, notices = report.motion(built or machine(request), request.outputs, request.omega0, request.rtol,
                                     request.omega_mean, request.balance, request.max_cycles)
     return answer(result, notices, lang)
 
 
-def flywheel(request: FlywheelRequest, lang: str) -> Answer:
-    built = machine(request)
+def flywheel(request: FlywheelRequest, lang: str, built: Machine | None = None) -> Answer:
+    """The flywheel study; ``built``: the request's machine made already (a batch)."""
+    built = built or machine(request)
     if built.speed_dependent:
         raise GeometryError("motor.kind", "the flywheel methods of the lecture need moments of φ alone: a "
                             "constant-torque motor or an indicator diagram, and no viscous friction",
@@ -288,6 +300,70 @@ def compute_answer(endpoint: str, body: dict, lang: str = "en", reads: Reads = N
     if reads is not None and endpoint in READ_AWARE:
         return body_function(model.model_validate(body), lang, reads)
     return body_function(model.model_validate(body), lang)
+
+
+Outcome = Answer | ValidationError | GeometryError     # one body's answer, or its refusal (HTTP 422)
+
+
+def compute_answers(endpoint: str, bodies: list[dict], lang: str = "en", reads: Reads = None) -> list[Outcome]:
+    """compute_answer over several bodies at once (a family's members: one request with its varied numbers
+    changed), each entry the body's Answer or its refusal, exactly as compute_answer answers or raises it.
+    Every body is validated by itself (its refusal names its own field); the valid ones go to the
+    endpoint's batch body (BATCHES), which computes what they share once, or one by one."""
+    model, _ = ENDPOINTS[endpoint]
+    outcomes: list = []
+    for body in bodies:
+        try:
+            outcomes.append(model.model_validate(body))
+        except ValidationError as error:
+            outcomes.append(error)
+    valid = [k for k, outcome in enumerate(outcomes) if not isinstance(outcome, ValidationError)]
+    batch = BATCHES.get(endpoint, one_by_one(endpoint))
+    for k, answer_or_refusal in zip(valid, batch([outcomes[k] for k in valid], lang, reads)):
+        outcomes[k] = answer_or_refusal
+    return outcomes
+
+
+def refused_or(compute_one) -> Answer | GeometryError:
+    """The answer of compute_one(), or the GeometryError it raised (a member refused where the route says 422)."""
+    try:
+        return compute_one()
+    except GeometryError as error:
+        return error
+
+
+def one_by_one(endpoint: str):
+    """The batch body of an endpoint without one of its own: each request by itself."""
+    _, body_function = ENDPOINTS[endpoint]
+    aware = endpoint in READ_AWARE
+
+    def batch(requests: list, lang: str, reads: Reads) -> list[Answer | GeometryError]:
+        if reads is not None and aware:
+            return [refused_or(lambda: body_function(request, lang, reads)) for request in requests]
+        return [refused_or(lambda: body_function(request, lang)) for request in requests]
+    return batch
+
+
+def machine_batch(body_function):
+    """The batch body of an endpoint of a machine (motion, flywheel): members with equal machines (machine_key:
+    a slider of ω_m, δ, ω₀ or the flywheel's sizing) share one Machine, so its tables (the flywheel's nodes and
+    their error estimate's, the steady cycle's levels and kinks: Machine.memo) are computed once, and so is
+    the machine's check; each member's own answer is then computed as compute_answer computes it."""
+    def batch(requests: list, lang: str, reads: Reads) -> list[Answer | GeometryError]:
+        machines: dict[bytes, Machine | GeometryError] = {}
+        outcomes = []
+        for request in requests:
+            key = machine_key(request)
+            if key not in machines:
+                machines[key] = refused_or(lambda: machine(request))
+            built = machines[key]
+            outcomes.append(built if isinstance(built, GeometryError)
+                            else refused_or(lambda: body_function(request, lang, built)))
+        return outcomes
+    return batch
+
+
+BATCHES = {"motion": machine_batch(motion), "flywheel": machine_batch(flywheel)}
 
 
 def compute(endpoint: str, body: dict, lang: str = "en") -> dict:
