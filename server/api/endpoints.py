@@ -25,7 +25,7 @@ from ..core.dynamics.resistance import Load
 from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, bearing_notice, mechanism_side,
                                    modal, request_deadline, rigid, simulate)
 from ..core.elastic.stiffness import Compliances
-from ..core.kinematics import compute_kinematics
+from ..core.kinematics import compute_kinematics, compute_kinematics_many
 from ..core.kinetostatics.crank_slider import Loads, Pairs, analyse
 from ..core.kinetostatics.report import crank_check, forces_report, wear_report
 from ..core.kinetostatics.virtual_work import reduced_moment
@@ -91,10 +91,14 @@ def kinematics(request: KinematicsRequest, lang: str) -> Answer:
     if request.mechanism == "general":
         result = compute_general(request.linkage.model_dump(exclude_none=True), request.outputs, phi, request.n,
                                  None if request.plan is None else request.plan.model_dump())
-        outputs = GENERAL_OUTPUTS
-    else:
-        result = compute_kinematics(request.mechanism, request.params, request.outputs, phi=phi, n=request.n)
-        outputs = MECHANISMS[request.mechanism].outputs
+        return kinematics_answer(result, GENERAL_OUTPUTS, lang)
+    result = compute_kinematics(request.mechanism, request.params, request.outputs, phi=phi, n=request.n)
+    return kinematics_answer(result, MECHANISMS[request.mechanism].outputs, lang)
+
+
+def kinematics_answer(result, outputs, lang: str) -> Answer:
+    """The answer of a kinematics result: its outputs with their units, the warnings translated, one more
+    for each output's undefined points."""
     notices = list(result.warnings)
     for name, value in result.outputs.items():
         bad = count_undefined(value)
@@ -107,6 +111,21 @@ def kinematics(request: KinematicsRequest, lang: str) -> Answer:
         outputs=result.outputs, units={name: units.get(name, "") for name in result.outputs},
         warnings=[translate(notice, lang) for notice in notices])
     return Answer(dict(body.__dict__))
+
+
+def kinematics_batch(requests: list[KinematicsRequest], lang: str, reads: Reads) -> list[Answer | GeometryError]:
+    """Members of one mechanism of the four (not "general") with the same outputs and angles: one
+    compute_kinematics_many over their parameters (a (member, φ) grid); otherwise one by one."""
+    first = requests[0] if requests else None
+    shared = first is not None and first.mechanism != "general" and all(
+        (r.mechanism, r.outputs, r.phi, r.n) == (first.mechanism, first.outputs, first.phi, first.n) for r in requests)
+    if not shared:
+        return one_by_one("kinematics")(requests, lang, reads)
+    phi = None if first.phi is None else np.asarray(first.phi, float)
+    results = compute_kinematics_many(first.mechanism, [r.params for r in requests], first.outputs, phi, first.n)
+    outputs = MECHANISMS[first.mechanism].outputs
+    return [result if isinstance(result, GeometryError) else kinematics_answer(result, outputs, lang)
+            for result in results]
 
 
 def reduction(request: ReductionRequest, lang: str) -> Answer:
@@ -363,7 +382,7 @@ def machine_batch(body_function):
     return batch
 
 
-BATCHES = {"motion": machine_batch(motion), "flywheel": machine_batch(flywheel)}
+BATCHES = {"kinematics": kinematics_batch, "motion": machine_batch(motion), "flywheel": machine_batch(flywheel)}
 
 
 def compute(endpoint: str, body: dict, lang: str = "en") -> dict:

@@ -75,13 +75,25 @@ class FourBar(Mechanism):
     # --- validity -----------------------------------------------------------------
     @staticmethod
     def _p0_q0(p):
+        """P₀ = P(π), Q₀ = Q(0), each set to exactly 0 within CHANGE_POINT_TOL of the scale (a change point);
+        elementwise for lengths given as arrays (several linkages at once, ``evaluate``)."""
         l0, l1, l2, l3 = p["l0"], p["l1"], p["l2"], p["l3"]
         scale = (l0 + l1 + l2 + l3) ** 2
         p0 = (l2 + l3) ** 2 - (l0 + l1) ** 2
         q0 = (l0 - l1) ** 2 - (l2 - l3) ** 2
+        if np.ndim(scale):
+            return (np.where(np.abs(p0) <= CHANGE_POINT_TOL * scale, 0.0, p0),
+                    np.where(np.abs(q0) <= CHANGE_POINT_TOL * scale, 0.0, q0))
         p0 = 0.0 if abs(p0) <= CHANGE_POINT_TOL * scale else p0
         q0 = 0.0 if abs(q0) <= CHANGE_POINT_TOL * scale else q0
         return p0, q0
+
+    def branch(self, p) -> tuple:
+        """What selects the formulas of ``evaluate``: (Q₀ = 0, P₀ = 0, stroke limiter). Linkages evaluated at
+        once (parameters as arrays of shape (M, 1)) must share it."""
+        p0, q0 = self._p0_q0(p)
+        return tuple(bool(np.all(flag)) if np.all(flag) == np.any(flag) else None
+                     for flag in (q0 == 0.0, p0 == 0.0, np.asarray(p["limiter"]) != 0))
 
     def check_geometry(self, p):
         if p["assembly"] == 0:
@@ -118,11 +130,16 @@ class FourBar(Mechanism):
 
     # --- kinematics ---------------------------------------------------------------
     def evaluate(self, p, phi_in, wanted):
+        """At crank angles phi_in (N,); the parameters may be arrays of shape (M, 1), M linkages of one
+        ``branch`` at once, each output then of shape (M, N) (points (M, N, 2))."""
         l0, l1, l2, l3, sigma, a2 = (p[k] for k in ("l0", "l1", "l2", "l3", "assembly", "a2"))
         p0, q0 = self._p0_q0(p)
-        cp = self.change_point(p)
+        q_zero, p_zero, limiter = self.branch(p)
+        if None in (q_zero, p_zero, limiter):
+            raise ValueError("linkages evaluated at once must share their branch (FourBar.branch)")
+        cp = 0.0 if q_zero else np.pi if p_zero else None
         phi = phi_in
-        if cp is not None and p["limiter"]:
+        if cp is not None and limiter:
             phi = cp + np.mod(phi_in - cp, 2 * np.pi)   # restart the branch after each impact
         half_s, half_c = np.sin(phi / 2), np.cos(phi / 2)
         sin, cos = np.sin(phi), np.cos(phi)
@@ -132,12 +149,12 @@ class FourBar(Mechanism):
         big_q = q0 + 4 * l0 * l1 * half_s**2
         with np.errstate(divide="ignore", invalid="ignore"):
             # signed square roots: in half-angle form at a change point (branch continues through it)
-            root_q = k * half_s if q0 == 0.0 else np.sqrt(big_q)
-            root_p = -k * half_c if p0 == 0.0 else np.sqrt(big_p)
-            q = np.full_like(phi, 1 / k) if q0 == 0.0 else half_s / np.sqrt(big_q)
-            pp = np.full_like(phi, -1 / k) if p0 == 0.0 else half_c / np.sqrt(big_p)
-            dq = 0 * phi if q0 == 0.0 else half_c / (2 * np.sqrt(big_q)) - half_s * l0 * l1 * sin / big_q**1.5
-            dpp = 0 * phi if p0 == 0.0 else -half_s / (2 * np.sqrt(big_p)) + half_c * l0 * l1 * sin / big_p**1.5
+            root_q = k * half_s if q_zero else np.sqrt(big_q)
+            root_p = -k * half_c if p_zero else np.sqrt(big_p)
+            q = 1 / k + 0 * phi if q_zero else half_s / np.sqrt(big_q)
+            pp = -1 / k + 0 * phi if p_zero else half_c / np.sqrt(big_p)
+            dq = 0 * phi if q_zero else half_c / (2 * np.sqrt(big_q)) - half_s * l0 * l1 * sin / big_q**1.5
+            dpp = 0 * phi if p_zero else -half_s / (2 * np.sqrt(big_p)) + half_c * l0 * l1 * sin / big_p**1.5
 
             gamma = np.arctan2(-l1 * sin, l0 - l1 * cos)
             big_n = l3**2 + d2 - l2**2
@@ -164,9 +181,9 @@ class FourBar(Mechanism):
         ordered = np.all(np.diff(phi_in) > 0) if phi_in.size > 1 else False
         ev = Evaluation(phi_in)
         ev.values = {
-            "s": np.unwrap(phi3) if ordered and not p["limiter"] else phi3,
+            "s": np.unwrap(phi3) if ordered and not limiter else phi3,
             "u31": u31, "du31": du31,
-            "s2": np.unwrap(phi2) if ordered and not p["limiter"] else phi2,
+            "s2": np.unwrap(phi2) if ordered and not limiter else phi2,
             "u21": u21, "du21": du21,
             "chi21": np.abs(v_s2), "v_s2": point(v_s2.real, v_s2.imag), "a_s2": point(a_s2.real, a_s2.imag),
             "mu": np.arccos(np.clip(np.cos(phi3 - phi2), -1.0, 1.0)),

@@ -65,7 +65,19 @@ class Mechanism(ABC):
 
     @abstractmethod
     def evaluate(self, p: dict[str, float], phi: np.ndarray, wanted: set[str]) -> Evaluation:
-        """Compute the wanted outputs at crank angles ``phi`` (rad)."""
+        """Compute the wanted outputs at crank angles ``phi`` (rad). The parameters may also be arrays of
+        shape (M, 1): M linkages of one ``branch`` at once, every output that depends on them then of shape
+        (M, N) (points (M, N, 2)); what is not elementwise over φ (reductions, warnings) is left to
+        ``per_linkage``."""
+
+    def branch(self, p: dict) -> tuple:
+        """What selects evaluate's formulas by a scalar test of the parameters; linkages evaluated at once
+        share it (None in a place: they do not). None by default: the formulas are the same for all."""
+        return ()
+
+    def per_linkage(self, p: dict[str, float], ev: Evaluation, wanted: set[str]) -> None:
+        """Add to ``ev`` (one linkage's evaluation) what is not elementwise over φ; nothing by default.
+        evaluate calls it for a single linkage; a caller that evaluated several at once calls it for each."""
 
     def sliding_squares(self, p: dict[str, float], ev: Evaluation) -> np.ndarray:
         """S(φ) = Σ u² over the prismatic pairs, so that viscous friction gives M_T = β ω S(φ)
