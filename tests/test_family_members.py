@@ -143,11 +143,17 @@ def test_a_batch_of_members_answers_as_each_member_alone(scene_id, variant_id, s
     rng = random.Random(f"{scene_id}/{variant_id}/{slider_id}")
     count = ELASTIC_VALUES if scene.endpoint == "elastic" else VALUES
     bodies = [family.member_body(request, vary, value) for value in member_values(slider, rng, count)]
-    reads = None if scene.endpoint != "elastic" else frozenset({"t", "omega", "twist", "modal", "warnings"})
-    batch = compute_answers(scene.endpoint, bodies, "ru", reads)
-    alone = [outcome_alone(scene.endpoint, body, reads) for body in bodies]
-    assert_outcomes_agree(scene.endpoint, batch, alone, BROADCAST)
-    assert any(not isinstance(a, Exception) for a in alone)            # the case computes something
+    for reads in READS.get(scene.endpoint, [None]):
+        batch = compute_answers(scene.endpoint, bodies, "ru", reads)
+        alone = [outcome_alone(scene.endpoint, body, reads) for body in bodies]
+        assert_outcomes_agree(scene.endpoint, batch, alone, BROADCAST)
+        assert any(not isinstance(a, Exception) for a in alone)        # the case computes something
+
+
+# What the endpoints that skip unread work are asked to read (a page's preview), besides everything (None).
+READS = {"elastic": [frozenset({"t", "omega", "twist", "modal", "warnings"})],
+         "flywheel": [None, frozenset({"phi", "curves", "disk", "wittenbauer"})],
+         "forces": [None, frozenset({"phi", "reactions", "magnitudes"})]}
 
 
 def random_linkage(mechanism: str, rng: random.Random) -> dict:

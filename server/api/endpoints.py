@@ -169,15 +169,17 @@ def motion(request: MotionRequest, lang: str, built: Machine | None = None) -> A
     return answer(result, notices, lang)
 
 
-def flywheel(request: FlywheelRequest, lang: str, built: Machine | None = None) -> Answer:
-    """The flywheel study; ``built``: the request's machine made already (a batch)."""
+def flywheel(request: FlywheelRequest, lang: str, reads: Reads = None, built: Machine | None = None) -> Answer:
+    """The flywheel study; its numerics (and their error estimate, a second exact inertia on half the grid)
+    only when read (``reads``); ``built``: the request's machine made already (a batch)."""
     built = built or machine(request)
     if built.speed_dependent:
         raise GeometryError("motor.kind", "the flywheel methods of the lecture need moments of φ alone: a "
                             "constant-torque motor or an indicator diagram, and no viscous friction",
                             "flywheel_needs_phi_moments")
     result, notices = report.flywheel(built, request.omega_mean, request.delta, request.balance,
-                                      request.width_ratio, request.density)
+                                      request.width_ratio, request.density,
+                                      with_numerics=reads is None or "numerics" in reads)
     return answer(result, notices, lang)
 
 
@@ -307,7 +309,7 @@ ENDPOINTS = {
 
 
 # Endpoints whose body skips work whose results a caller will not read (a family pruned to its fields):
-READ_AWARE = frozenset({"elastic", "forces"})
+READ_AWARE = frozenset({"elastic", "forces", "flywheel"})
 
 
 def compute_answer(endpoint: str, body: dict, lang: str = "en", reads: Reads = None) -> Answer:
@@ -363,12 +365,15 @@ def one_by_one(endpoint: str):
     return batch
 
 
-def machine_batch(body_function):
+def machine_batch(endpoint: str):
     """The batch body of an endpoint of a machine (motion, flywheel): members with equal machines (machine_key:
     a slider of ω_m, δ, ω₀ or the flywheel's sizing) share one Machine, so its tables (the flywheel's nodes and
     their error estimate's, the steady cycle's levels and kinks: Machine.memo) are computed once, and so is
     the machine's check; each member's own answer is then computed as compute_answer computes it."""
+    _, body_function = ENDPOINTS[endpoint]
+
     def batch(requests: list, lang: str, reads: Reads) -> list[Answer | GeometryError]:
+        extra = {"reads": reads} if reads is not None and endpoint in READ_AWARE else {}
         machines: dict[bytes, Machine | GeometryError] = {}
         outcomes = []
         for request in requests:
@@ -377,12 +382,12 @@ def machine_batch(body_function):
                 machines[key] = refused_or(lambda: machine(request))
             built = machines[key]
             outcomes.append(built if isinstance(built, GeometryError)
-                            else refused_or(lambda: body_function(request, lang, built)))
+                            else refused_or(lambda: body_function(request, lang, built=built, **extra)))
         return outcomes
     return batch
 
 
-BATCHES = {"kinematics": kinematics_batch, "motion": machine_batch(motion), "flywheel": machine_batch(flywheel)}
+BATCHES = {"kinematics": kinematics_batch, "motion": machine_batch("motion"), "flywheel": machine_batch("flywheel")}
 
 
 def compute(endpoint: str, body: dict, lang: str = "en") -> dict:
