@@ -240,7 +240,7 @@ def elastic_work_precision(request: ElasticRequest, lang: str) -> Answer:
     return answer({"study": study}, work_precision.study_notices(study), lang)
 
 
-def _force_analysis(request: ForcesRequest, omega: float | None = None):
+def _force_analysis(request: ForcesRequest, omega: float | None = None, table: bool = True):
     params = MECHANISMS["slider_crank"].check(request.params)
     fields = request.loads.model_dump()
     fields["gas"] = None if request.loads.gas is None else _motor(request.loads.gas)
@@ -248,18 +248,20 @@ def _force_analysis(request: ForcesRequest, omega: float | None = None):
         fields["omega"] = omega
     loads, pairs = Loads(**fields), Pairs(**request.pairs.model_dump())
     phi = np.linspace(0.0, 2 * np.pi, request.n)
-    return params, loads, pairs, analyse(params, loads, pairs, phi, request.tolerance)
+    return params, loads, pairs, analyse(params, loads, pairs, phi, request.tolerance, table=table)
 
 
 def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
     """The force report and the check (3.2) of the balancing moment against virtual work, with and without
-    friction (without friction in the pairs, the analysis is already the frictionless one); the check only
-    when read (``reads``: a caller that reads only part of the answer)."""
-    params, loads, pairs, analysis = _force_analysis(request)
+    friction (without friction in the pairs, the analysis is already the frictionless one); the check, and the
+    textbook's approximations with the numerics describing them, only when read (``reads``: a caller that
+    reads only part of the answer)."""
+    table = reads is None or "iteration" in reads or "numerics" in reads
+    params, loads, pairs, analysis = _force_analysis(request, table=table)
     result = forces_report(analysis, pairs)
     if reads is None or "crank_check" in reads:
         rough = any((pairs.f12, pairs.f23, pairs.f34, pairs.f14))
-        frictionless = analyse(params, loads, Pairs(), analysis.phi) if rough else analysis
+        frictionless = analyse(params, loads, Pairs(), analysis.phi, table=False) if rough else analysis
         result["crank_check"] = crank_check(analysis, frictionless,
                                             reduced_moment(params, analysis.applied, analysis.phi))
     return answer(result, analysis.notices, lang)
@@ -267,7 +269,7 @@ def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
 
 def wear(request: WearRequest, lang: str) -> Answer:
     """Wear at the request's speed over its service life (cycles = 60 · rpm · hours)."""
-    _, _, _, analysis = _force_analysis(request, omega=request.rpm * 2 * np.pi / 60)
+    _, _, _, analysis = _force_analysis(request, omega=request.rpm * 2 * np.pi / 60, table=False)   # none read
     parts = request.model_dump(include={"pin_diameter", "pin_length", "piston_diameter", "piston_length",
                                         "I_pin", "I_bush", "I_piston", "I_cylinder"})
     return answer(wear_report(analysis, parts, 60 * request.rpm * request.hours), analysis.notices, lang)
