@@ -31,7 +31,7 @@ from server.lessons.scenes import scenes
 
 BROADCAST = 1e-12           # relative to an array's largest magnitude: the kinematics over a (linkage, φ) grid
 ELASTIC_VALUES = 2          # members per elastic slider (each a time integration): the first slider per variant
-VALUES = 3                  # random members per other slider
+VALUES = 2                  # random members per other slider
 
 
 @pytest.fixture(autouse=True)
@@ -63,7 +63,7 @@ def request_and_vary(scene_id: str, variant_id: str, slider_id: str):
 
 
 def member_values(slider, rng: random.Random, count: int) -> list[float]:
-    """Random values in the slider's range (log-uniform on a log slider), its ends, and values past them (a
+    """Random values in the slider's range (log-uniform on a log slider), one of its ends, and values past them (a
     member the geometry or the schema may refuse): shuffled, so that refusals sit between computed members."""
     low, high = slider.min, slider.max
     if slider.log:
@@ -71,7 +71,7 @@ def member_values(slider, rng: random.Random, count: int) -> list[float]:
     else:
         inside = [rng.uniform(low, high) for _ in range(count)]
     span = high - low
-    values = inside + [low, high, low - 0.7 * span, -abs(high) * 3 - 1.0]
+    values = inside + [rng.choice([low, high]), low - 0.7 * span, -abs(high) * 3 - 1.0]
     rng.shuffle(values)
     return values
 
@@ -188,7 +188,7 @@ def test_the_kinematics_of_linkages_at_once_are_each_linkage_alone(mechanism, se
     and off, both assemblies; slotted links with λ = 1 among them) and on a grid of 361 points or at given
     angles: each result that of compute_kinematics (to BROADCAST), refusals the same."""
     rng = random.Random(f"{mechanism}/{seed}")
-    linkages = [random_linkage(mechanism, rng) for _ in range(12)]
+    linkages = [random_linkage(mechanism, rng) for _ in range(8)]
     phi = None if seed else np.sort(np.array([rng.uniform(0, 2 * np.pi) for _ in range(50)] + [np.pi]))
     many = compute_kinematics_many(mechanism, linkages, OUTPUTS[mechanism], phi, 361)
     computed = 0
@@ -203,7 +203,7 @@ def test_the_kinematics_of_linkages_at_once_are_each_linkage_alone(mechanism, se
         as_json = lambda r: orjson.loads(orjson.dumps({"phi": r.phi, "outputs": r.outputs},
                                                       option=orjson.OPT_SERIALIZE_NUMPY, default=_default))
         assert_same(as_json(result), as_json(alone), BROADCAST)
-    assert computed >= 3
+    assert computed >= 2
 
 
 def test_members_past_the_deadline_are_not_computed_and_the_known_ones_come_in_order():
