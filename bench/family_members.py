@@ -24,10 +24,10 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-RUNS = 3
+RUNS = 3                # cold runs per family and tree (--runs)
 
 
-def worker(tree: str) -> None:
+def worker(tree: str, runs: int = RUNS) -> None:
     """Answer family bodies from stdin (one JSON line each) with their cold cost on stdout, in the given tree."""
     sys.path[:0] = [tree, str(ROOT / "bench")]
     os.chdir(tree)
@@ -66,7 +66,7 @@ def worker(tree: str) -> None:
     for line in sys.stdin:
         body = json.loads(line)
         runs = []
-        for _ in range(RUNS):
+        for _ in range(runs):
             batch.MEMO.store.clear()
             batch.MEMO.held = 0
             spent[0] = computing[0] = 0.0
@@ -81,8 +81,8 @@ def worker(tree: str) -> None:
         print(json.dumps(best), flush=True)
 
 
-def start(tree: Path) -> subprocess.Popen:
-    process = subprocess.Popen([sys.executable, __file__, "--worker", str(tree)], stdin=subprocess.PIPE,
+def start(tree: Path, runs: int) -> subprocess.Popen:
+    process = subprocess.Popen([sys.executable, __file__, "--worker", str(tree), "--runs", str(runs)], stdin=subprocess.PIPE,
                                stdout=subprocess.PIPE, text=True, cwd=str(tree))
     assert json.loads(process.stdout.readline())["ready"]
     return process
@@ -111,13 +111,14 @@ def main() -> None:
     parser.add_argument("--worker")
     parser.add_argument("--old", type=Path, required=False)
     parser.add_argument("--scenes", nargs="*", default=[])
+    parser.add_argument("--runs", type=int, default=RUNS)
     args = parser.parse_args()
     if args.worker:
-        worker(args.worker)
+        worker(args.worker, args.runs)
         return
     sys.path[:0] = [str(ROOT / "bench")]
     from classroom import SCENE_MIX
-    old, new = start(args.old), start(ROOT)
+    old, new = start(args.old, args.runs), start(ROOT, args.runs)
     per_scene: dict[str, list] = {}
     for turn, (scene, variant, slider, body) in enumerate(families(args.scenes)):
         pair = {}
