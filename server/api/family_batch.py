@@ -4,9 +4,9 @@
 varied paths set), its answer from the memo when the same endpoint, body and language were computed before in
 this process (a neighbouring family sharing a member; the coarse stage's members, asked again by the full
 family, where both stages run in one process: with heavy processes the coarse stage runs in the lane of
-answers, routers/family.py), else computed: the members the memo lacks, in chunks of CHUNK_MEMBERS, each chunk
-one call of endpoints.compute_answers (what the members share, a machine's tables, computed once for the
-chunk), the deadline checked before each chunk. A member is the same whether computed alone or in a chunk
+answers, routers/family.py), else computed: the members the memo lacks, in chunks of CHUNK_MEMBERS (of one
+member for an endpoint without a batch body), each chunk one call of endpoints.compute_answers (what the
+members share, a machine's tables, computed once for the chunk), the deadline checked before each chunk. A member is the same whether computed alone or in a chunk
 (tests/test_family_members.py); the members returned are the values' first ones, in order, up to the first
 one not computed by the deadline.
 
@@ -27,11 +27,13 @@ from dataclasses import replace
 import orjson
 
 from . import family
-from .endpoints import compute_answers
+from .endpoints import BATCHES, compute_answers
 
 MEMO_MEMBERS = 4096
 MEMO_BYTES = 64 * 2**20
 CHUNK_MEMBERS = 8       # members computed as one batch (endpoints.compute_answers); the deadline is checked between
+# chunks. An endpoint without a batch body of its own (endpoints.BATCHES) computes its members one by one anyway:
+# its chunks are single members, so that the deadline is checked before each, as a long member (elastic) needs.
 
 
 class MemberMemo:
@@ -68,6 +70,7 @@ def member_batch(endpoint: str, request: dict, vary: list[family.Vary], lang: st
     trie = None if fields is None else family.field_trie(fields)
     reads = None if trie is None else frozenset(trie)      # the endpoint may skip what no field reads
     named = None if fields is None else tuple(sorted(set(fields)))
+    size = CHUNK_MEMBERS if endpoint in BATCHES else 1
 
     def members(values: list[float], deadline: float) -> list[family.Member]:
         bodies = [family.member_body(request, vary, value) for value in values]
@@ -75,10 +78,10 @@ def member_batch(endpoint: str, request: dict, vary: list[family.Vary], lang: st
         known = [MEMO.get(key) for key in keys]
         missing = [k for k, member in enumerate(known) if member is None]
         made: dict[int, family.Member] = {}
-        for start in range(0, len(missing), CHUNK_MEMBERS):
+        for start in range(0, len(missing), size):
             if time.perf_counter() > deadline:
                 break
-            chunk = missing[start:start + CHUNK_MEMBERS]
+            chunk = missing[start:start + size]
             for k, outcome in zip(chunk, compute_answers(endpoint, [bodies[k] for k in chunk], lang, reads)):
                 made[k] = family.Member.of(values[k], outcome, trie)
                 MEMO.put(keys[k], made[k])             # not if a bound cut it short
