@@ -79,9 +79,11 @@ def compute_kinematics_many(mechanism: str, params: list[dict[str, float]], outp
         if "harmonics" in wanted:
             grid = harmonic_grid(results[members[0]].cycle)
             spectra = [ev.values["u31"] for ev in _evaluate_many(mech, linkages, grid, set())]
+        special = None if "special" not in wanted else (
+            mech.special_positions_many(linkages) if len(linkages) > 1 else [mech.special_positions(linkages[0])])
         for m, k in enumerate(members):
             _fill(mech, mechanism, results[k], evaluations[m], outputs,
-                  None if spectra is None else spectra[m])
+                  None if spectra is None else spectra[m], None if special is None else special[m])
     return results
 
 
@@ -129,15 +131,16 @@ def _row(value: np.ndarray, m: int, points: bool) -> np.ndarray:
 
 
 def _fill(mech, mechanism: str, result: KinematicsResult, ev: Evaluation, outputs: list[str],
-          spectrum: np.ndarray | None) -> None:
-    """compute_kinematics' outputs and warnings from the linkage's evaluation (and its u₃₁ on the harmonic grid)."""
+          spectrum: np.ndarray | None, special: list | None) -> None:
+    """compute_kinematics' outputs and warnings from the linkage's evaluation (and its u₃₁ on the harmonic grid,
+    its special positions)."""
     p = result.params
     result.warnings.extend(ev.warnings)
     for name in outputs:
         if name == "joints":
             result.outputs[name] = ev.joints
         elif name == "special":
-            result.outputs[name] = [sp.as_dict() for sp in mech.special_positions(p)]
+            result.outputs[name] = [sp.as_dict() for sp in special]
         elif name == "harmonics":
             result.outputs[name] = harmonics(mech, p, "u31", values=spectrum)
         elif name == "info":

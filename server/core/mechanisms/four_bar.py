@@ -212,6 +212,14 @@ class FourBar(Mechanism):
         chosen branch are those where the computed C is at distance AC from A; a change point,
         where all four joints line up, is no extreme (u₃₁ ≠ 0 there) and drops out.
         """
+        candidates, reach = self._extreme_candidates(p)
+        if not candidates:
+            return []
+        ev = self.evaluate(p, np.array(candidates), {"joints"})
+        return self._extremes(p, candidates, reach, np.hypot(*ev.joints["C"].T), ev.values["s"], ev.values["u31"])
+
+    def _extreme_candidates(self, p) -> tuple[list[float], list[float]]:
+        """The crank angles where A, B, C may line up (rocker_extremes), and AC at each."""
         l0, l1, l2, l3 = p["l0"], p["l1"], p["l2"], p["l3"]
         cycle = self.cycle(p)
         candidates, reach = [], []
@@ -226,16 +234,18 @@ class FourBar(Mechanism):
                 for lap in np.arange(0.0, cycle - 1e-9, 2 * np.pi):
                     candidates.append(wrap_angle(phi + lap, cycle))
                     reach.append(ac)
-        if not candidates:
-            return []
-        ev = self.evaluate(p, np.array(candidates), {"joints"})
-        ac_found = np.hypot(*ev.joints["C"].T)
-        scale = l0 + l1 + l2 + l3
-        rows = zip(candidates, reach, ac_found, ev.values["s"], ev.values["u31"])
+        return candidates, reach
+
+    @staticmethod
+    def _extremes(p, candidates, reach, ac_found, s, u31) -> list[tuple[float, float]]:
+        """The candidates on the chosen branch (C at distance AC from A) where u₃₁ vanishes."""
+        scale = p["l0"] + p["l1"] + p["l2"] + p["l3"]
+        rows = zip(candidates, reach, ac_found, s, u31)
         return sorted((phi, float(s)) for phi, ac, found, s, u31 in rows
                       if abs(found - ac) <= 1e-9 * scale and abs(u31) < 1e-6)
 
-    def special_positions(self, p):
+    def special_positions(self, p, extremes: list[tuple[float, float]] | None = None):
+        """``extremes``: rocker_extremes(p) if found already (special_positions_many)."""
         cycle = self.cycle(p)
         positions = []
         cp = self.change_point(p)
@@ -245,13 +255,35 @@ class FourBar(Mechanism):
             for phi in np.arange(cp, cp + cycle - 1e-9, 2 * np.pi):
                 positions.append(SpecialPosition("change_point", wrap_angle(phi, cycle),
                                                  f"all four joints in line (change point); {note}"))
-        for phi, s in self.rocker_extremes(p):
+        for phi, s in self.rocker_extremes(p) if extremes is None else extremes:
             positions.append(SpecialPosition("rocker_extreme", phi,
                                              "rocker at an extreme position: crank and coupler in line, u₃₁ = 0", s))
         phi_mu, mu = min(self.transmission_extremes(p), key=lambda t: t[1])
         positions.append(SpecialPosition("min_transmission_angle", phi_mu,
                                          f"smallest transmission angle μ = {np.degrees(mu):.2f}°", mu))
         return sorted(positions, key=lambda sp: sp.phi)
+
+    def special_positions_many(self, linkages: list[dict]) -> list[list[SpecialPosition]]:
+        """special_positions of linkages of one ``branch``, their candidate extremes evaluated in one call: each
+        candidate a row of its own (parameters and angles of shape (K, 1)), so that the rocker angle comes raw
+        and is unwrapped per linkage as rocker_extremes' evaluation does (over its candidates when they ascend)."""
+        found = [self._extreme_candidates(p) for p in linkages]
+        owner = [m for m, (candidates, _) in enumerate(found) for _ in candidates]
+        if not owner:
+            return [self.special_positions(p, []) for p in linkages]
+        stacked = {name: np.array([linkages[m][name] for m in owner], float)[:, None] for name in linkages[0]}
+        phi = np.array([phi for candidates, _ in found for phi in candidates])[:, None]
+        ev = self.evaluate(stacked, phi, {"joints"})
+        reached, raw, u31 = np.hypot(*ev.joints["C"][:, 0, :].T), ev.values["s"][:, 0], ev.values["u31"][:, 0]
+        positions, start = [], 0
+        for p, (candidates, reach) in zip(linkages, found):
+            rows = slice(start, start + len(candidates))
+            start += len(candidates)
+            ordered = len(candidates) > 1 and bool(np.all(np.diff(candidates) > 0))
+            s = np.unwrap(raw[rows]) if ordered and not p["limiter"] else raw[rows]
+            extremes = self._extremes(p, candidates, reach, reached[rows], s, u31[rows]) if candidates else []
+            positions.append(self.special_positions(p, extremes))
+        return positions
 
     def describe(self, p):
         l0, l1, l2, l3 = p["l0"], p["l1"], p["l2"], p["l3"]

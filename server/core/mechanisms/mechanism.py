@@ -88,6 +88,10 @@ class Mechanism(ABC):
     def special_positions(self, p: dict[str, float]) -> list[SpecialPosition]:
         """Dead centres, rocker extremes and similar positions within one cycle."""
 
+    def special_positions_many(self, linkages: list[dict]) -> list[list[SpecialPosition]]:
+        """special_positions of several linkages of one ``branch``; one by one unless a mechanism does better."""
+        return [self.special_positions(p) for p in linkages]
+
     def describe(self, p: dict[str, float]) -> dict:
         """Words about the configuration (class, type of motion) for the scene header."""
         return {}
