@@ -27,7 +27,7 @@ ROOT = Path(__file__).resolve().parents[1]
 RUNS = 3                # cold runs per family and tree (--runs)
 
 
-def worker(tree: str, runs: int = RUNS) -> None:
+def worker(tree: str, repeat: int = RUNS) -> None:
     """Answer family bodies from stdin (one JSON line each) with their cold cost on stdout, in the given tree."""
     sys.path[:0] = [tree, str(ROOT / "bench")]
     os.chdir(tree)
@@ -66,7 +66,7 @@ def worker(tree: str, runs: int = RUNS) -> None:
     for line in sys.stdin:
         body = json.loads(line)
         runs = []
-        for _ in range(runs):
+        for _ in range(repeat):
             batch.MEMO.store.clear()
             batch.MEMO.held = 0
             spent[0] = computing[0] = 0.0
