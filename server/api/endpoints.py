@@ -2,9 +2,11 @@
 
 A body function takes the endpoint's request model and the reader's language and returns an Answer: the
 payload (numpy arrays as they are, warnings translated, numerics localised) and whether a time or work bound
-cut it short. The routers only parse, call and serialise (server/api/serialise.py); the assignments and the
-family endpoint call ``compute``. Nothing is computed that the request did not ask for: each output is
-computed only when it is in ``outputs``, or when what is asked is made from it.
+cut it short. The routers only parse, call and serialise (server/api/serialise.py); the assignments call
+``compute``, the family endpoint ``compute_answers``: a family's members at once, through an endpoint's batch
+body (BATCHES: the kinematics over a (member, φ) grid, machines shared by members of motion and flywheel) or
+one by one. Nothing is computed that the request did not ask for: each output is computed only when it is in
+``outputs``, or when what is asked is made from it.
 """
 from __future__ import annotations
 
