@@ -2,9 +2,11 @@
 
 A body function takes the endpoint's request model and the reader's language and returns an Answer: the
 payload (numpy arrays as they are, warnings translated, numerics localised) and whether a time or work bound
-cut it short. The routers only parse, call and serialise (server/api/serialise.py); the assignments and the
-family endpoint call ``compute``. Nothing is computed that the request did not ask for: each output is
-computed only when it is in ``outputs``, or when what is asked is made from it.
+cut it short. The routers only parse, call and serialise (server/api/serialise.py); the assignments call
+``compute``, the family endpoint ``compute_answers``: a family's members at once, through an endpoint's batch
+body (BATCHES: the kinematics over a (member, φ) grid, machines shared by members of motion and flywheel) or
+one by one. Nothing is computed that the request did not ask for: each output is computed only when it is in
+``outputs``, or when what is asked is made from it.
 """
 from __future__ import annotations
 
@@ -13,6 +15,7 @@ from collections.abc import Collection
 
 import numpy as np
 import orjson
+from pydantic import ValidationError
 
 from ..core import work_precision
 from ..core.angular_acceleration import CrankLaw, crank_slider, trammel
@@ -26,7 +29,7 @@ from ..core.dynamics.resistance import Load
 from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, bearing_notice, mechanism_side,
                                    modal, request_deadline, rigid, simulate)
 from ..core.elastic.stiffness import Compliances
-from ..core.kinematics import compute_kinematics
+from ..core.kinematics import compute_kinematics, compute_kinematics_many
 from ..core.kinetostatics.crank_slider import Loads, Pairs, analyse
 from ..core.kinetostatics.report import crank_check, forces_report, wear_report
 from ..core.kinetostatics.virtual_work import reduced_moment
@@ -93,10 +96,14 @@ def kinematics(request: KinematicsRequest, lang: str) -> Answer:
     if request.mechanism == "general":
         result = compute_general(request.linkage.model_dump(exclude_none=True), request.outputs, phi, request.n,
                                  None if request.plan is None else request.plan.model_dump())
-        outputs = GENERAL_OUTPUTS
-    else:
-        result = compute_kinematics(request.mechanism, request.params, request.outputs, phi=phi, n=request.n)
-        outputs = MECHANISMS[request.mechanism].outputs
+        return kinematics_answer(result, GENERAL_OUTPUTS, lang)
+    result = compute_kinematics(request.mechanism, request.params, request.outputs, phi=phi, n=request.n)
+    return kinematics_answer(result, MECHANISMS[request.mechanism].outputs, lang)
+
+
+def kinematics_answer(result, outputs, lang: str) -> Answer:
+    """The answer of a kinematics result: its outputs with their units, the warnings translated, one more
+    for each output's undefined points."""
     notices = list(result.warnings)
     for name, value in result.outputs.items():
         bad = count_undefined(value)
@@ -111,11 +118,35 @@ def kinematics(request: KinematicsRequest, lang: str) -> Answer:
     return Answer(dict(body.__dict__))
 
 
+def kinematics_batch(requests: list[KinematicsRequest], lang: str, reads: Reads) -> list[Answer | GeometryError]:
+    """Members of one mechanism of the four (not "general") with the same outputs and angles: one
+    compute_kinematics_many over their parameters (a (member, φ) grid); otherwise one by one."""
+    first = requests[0] if requests else None
+    shared = first is not None and first.mechanism != "general" and all(
+        (r.mechanism, r.outputs, r.phi, r.n) == (first.mechanism, first.outputs, first.phi, first.n) for r in requests)
+    if not shared:
+        return one_by_one("kinematics")(requests, lang, reads)
+    phi = None if first.phi is None else np.asarray(first.phi, float)
+    results = compute_kinematics_many(first.mechanism, [r.params for r in requests], first.outputs, phi, first.n)
+    outputs = MECHANISMS[first.mechanism].outputs
+    return [result if isinstance(result, GeometryError) else kinematics_answer(result, outputs, lang)
+            for result in results]
+
+
 def reduction(request: ReductionRequest, lang: str) -> Answer:
     result, notices = report.reduction(
         request.mechanism, request.params, Inertias(**request.inertias.model_dump()),
         Load(**request.load.model_dump()), request.n, request.omega, request.outputs, request.iteration_phi)
     return answer(result, notices, lang)
+
+
+def machine_key(request: MotionRequest | FlywheelRequest) -> bytes:
+    """What the machine of a request is made of (mechanism, params, inertias, load, motor), canonically: two
+    requests with one key have equal machines, whatever else (ω_m, δ, ω₀, rtol, sizing) differs."""
+    return orjson.dumps(request.model_dump(include=MACHINE_FIELDS), option=orjson.OPT_SORT_KEYS)
+
+
+MACHINE_FIELDS = {"mechanism", "params", "inertias", "load", "motor"}
 
 
 def machine(request: MotionRequest | FlywheelRequest) -> Machine:
@@ -136,20 +167,24 @@ def _motor(motor) -> Motor:
     return Motor(**{**motor.model_dump(), "expansion": tuple(motor.expansion), "compression": tuple(motor.compression)})
 
 
-def motion(request: MotionRequest, lang: str) -> Answer:
-    result, notices = report.motion(machine(request), request.outputs, request.omega0, request.rtol,
+def motion(request: MotionRequest, lang: str, built: Machine | None = None) -> Answer:
+    """The steady cycle and/or the start-up; ``built``: the request's machine made already (a batch)."""
+    result, notices = report.motion(built or machine(request), request.outputs, request.omega0, request.rtol,
                                     request.omega_mean, request.balance, request.max_cycles)
     return answer(result, notices, lang)
 
 
-def flywheel(request: FlywheelRequest, lang: str) -> Answer:
-    built = machine(request)
+def flywheel(request: FlywheelRequest, lang: str, reads: Reads = None, built: Machine | None = None) -> Answer:
+    """The flywheel study; its numerics (and their error estimate, a second exact inertia on half the grid)
+    only when read (``reads``); ``built``: the request's machine made already (a batch)."""
+    built = built or machine(request)
     if built.speed_dependent:
         raise GeometryError("motor.kind", "the flywheel methods of the lecture need moments of φ alone: a "
                             "constant-torque motor or an indicator diagram, and no viscous friction",
                             "flywheel_needs_phi_moments")
     result, notices = report.flywheel(built, request.omega_mean, request.delta, request.balance,
-                                      request.width_ratio, request.density)
+                                      request.width_ratio, request.density,
+                                      with_numerics=reads is None or "numerics" in reads)
     return answer(result, notices, lang)
 
 
@@ -210,7 +245,7 @@ def elastic_work_precision(request: ElasticRequest, lang: str) -> Answer:
     return answer({"study": study}, work_precision.study_notices(study), lang)
 
 
-def _force_analysis(request: ForcesRequest, omega: float | None = None):
+def _force_analysis(request: ForcesRequest, omega: float | None = None, table: bool = True):
     params = MECHANISMS["slider_crank"].check(request.params)
     fields = request.loads.model_dump()
     fields["gas"] = None if request.loads.gas is None else _motor(request.loads.gas)
@@ -218,18 +253,20 @@ def _force_analysis(request: ForcesRequest, omega: float | None = None):
         fields["omega"] = omega
     loads, pairs = Loads(**fields), Pairs(**request.pairs.model_dump())
     phi = np.linspace(0.0, 2 * np.pi, request.n)
-    return params, loads, pairs, analyse(params, loads, pairs, phi, request.tolerance)
+    return params, loads, pairs, analyse(params, loads, pairs, phi, request.tolerance, table=table)
 
 
 def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
     """The force report and the check (3.2) of the balancing moment against virtual work, with and without
-    friction (without friction in the pairs, the analysis is already the frictionless one); the check only
-    when read (``reads``: a caller that reads only part of the answer)."""
-    params, loads, pairs, analysis = _force_analysis(request)
+    friction (without friction in the pairs, the analysis is already the frictionless one); the check, and the
+    textbook's approximations with the numerics describing them, only when read (``reads``: a caller that
+    reads only part of the answer)."""
+    table = reads is None or "iteration" in reads or "numerics" in reads
+    params, loads, pairs, analysis = _force_analysis(request, table=table)
     result = forces_report(analysis, pairs)
     if reads is None or "crank_check" in reads:
         rough = any((pairs.f12, pairs.f23, pairs.f34, pairs.f14))
-        frictionless = analyse(params, loads, Pairs(), analysis.phi) if rough else analysis
+        frictionless = analyse(params, loads, Pairs(), analysis.phi, table=False) if rough else analysis
         result["crank_check"] = crank_check(analysis, frictionless,
                                             reduced_moment(params, analysis.applied, analysis.phi))
     return answer(result, analysis.notices, lang)
@@ -237,7 +274,7 @@ def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
 
 def wear(request: WearRequest, lang: str) -> Answer:
     """Wear at the request's speed over its service life (cycles = 60 · rpm · hours)."""
-    _, _, _, analysis = _force_analysis(request, omega=request.rpm * 2 * np.pi / 60)
+    _, _, _, analysis = _force_analysis(request, omega=request.rpm * 2 * np.pi / 60, table=False)   # none read
     parts = request.model_dump(include={"pin_diameter", "pin_length", "piston_diameter", "piston_length",
                                         "I_pin", "I_bush", "I_piston", "I_cylinder"})
     return answer(wear_report(analysis, parts, 60 * request.rpm * request.hours), analysis.notices, lang)
@@ -295,7 +332,7 @@ ENDPOINTS = {
 
 
 # Endpoints whose body skips work whose results a caller will not read (a family pruned to its fields):
-READ_AWARE = frozenset({"elastic", "forces"})
+READ_AWARE = frozenset({"elastic", "forces", "flywheel"})
 
 
 def compute_answer(endpoint: str, body: dict, lang: str = "en", reads: Reads = None) -> Answer:
@@ -307,6 +344,73 @@ def compute_answer(endpoint: str, body: dict, lang: str = "en", reads: Reads = N
     if reads is not None and endpoint in READ_AWARE:
         return body_function(model.model_validate(body), lang, reads)
     return body_function(model.model_validate(body), lang)
+
+
+Outcome = Answer | ValidationError | GeometryError     # one body's answer, or its refusal (HTTP 422)
+
+
+def compute_answers(endpoint: str, bodies: list[dict], lang: str = "en", reads: Reads = None) -> list[Outcome]:
+    """compute_answer over several bodies at once (a family's members: one request with its varied numbers
+    changed), each entry the body's Answer or its refusal, exactly as compute_answer answers or raises it.
+    Every body is validated by itself (its refusal names its own field); the valid ones go to the
+    endpoint's batch body (BATCHES), which computes what they share once, or one by one."""
+    model, _ = ENDPOINTS[endpoint]
+    outcomes: list = []
+    for body in bodies:
+        try:
+            outcomes.append(model.model_validate(body))
+        except ValidationError as error:
+            outcomes.append(error)
+    valid = [k for k, outcome in enumerate(outcomes) if not isinstance(outcome, ValidationError)]
+    batch = BATCHES.get(endpoint, one_by_one(endpoint))
+    for k, answer_or_refusal in zip(valid, batch([outcomes[k] for k in valid], lang, reads)):
+        outcomes[k] = answer_or_refusal
+    return outcomes
+
+
+def refused_or(compute_one) -> Answer | GeometryError:
+    """The answer of compute_one(), or the GeometryError it raised (a member refused where the route says 422)."""
+    try:
+        return compute_one()
+    except GeometryError as error:
+        return error
+
+
+def one_by_one(endpoint: str):
+    """The batch body of an endpoint without one of its own: each request by itself."""
+    _, body_function = ENDPOINTS[endpoint]
+    aware = endpoint in READ_AWARE
+
+    def batch(requests: list, lang: str, reads: Reads) -> list[Answer | GeometryError]:
+        if reads is not None and aware:
+            return [refused_or(lambda: body_function(request, lang, reads)) for request in requests]
+        return [refused_or(lambda: body_function(request, lang)) for request in requests]
+    return batch
+
+
+def machine_batch(endpoint: str):
+    """The batch body of an endpoint of a machine (motion, flywheel): members with equal machines (machine_key:
+    a slider of ω_m, δ, ω₀ or the flywheel's sizing) share one Machine, so its tables (the flywheel's nodes and
+    their error estimate's, the steady cycle's levels and kinks: Machine.memo) are computed once, and so is
+    the machine's check; each member's own answer is then computed as compute_answer computes it."""
+    _, body_function = ENDPOINTS[endpoint]
+
+    def batch(requests: list, lang: str, reads: Reads) -> list[Answer | GeometryError]:
+        extra = {"reads": reads} if reads is not None and endpoint in READ_AWARE else {}
+        machines: dict[bytes, Machine | GeometryError] = {}
+        outcomes = []
+        for request in requests:
+            key = machine_key(request)
+            if key not in machines:
+                machines[key] = refused_or(lambda: machine(request))
+            built = machines[key]
+            outcomes.append(built if isinstance(built, GeometryError)
+                            else refused_or(lambda: body_function(request, lang, built=built, **extra)))
+        return outcomes
+    return batch
+
+
+BATCHES = {"kinematics": kinematics_batch, "motion": machine_batch("motion"), "flywheel": machine_batch("flywheel")}
 
 
 def compute(endpoint: str, body: dict, lang: str = "en") -> dict:

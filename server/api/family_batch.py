@@ -4,13 +4,15 @@
 varied paths set), its answer from the memo when the same endpoint, body and language were computed before in
 this process (a neighbouring family sharing a member; the coarse stage's members, asked again by the full
 family, where both stages run in one process: with heavy processes the coarse stage runs in the lane of
-answers, routers/family.py), else from endpoints.compute_answer, one body after another until the deadline has passed.
-The kinematics core evaluates one parameter set per call (its special positions, harmonics and warnings are
-per mechanism), so a batch is a loop over bodies, not one call over a (φ, value) grid.
+answers, routers/family.py), else computed: the members the memo lacks, in chunks of CHUNK_MEMBERS (of one
+member for an endpoint without a batch body), each chunk one call of endpoints.compute_answers (what the
+members share, a machine's tables, computed once for the chunk), the deadline checked before each chunk. A member is the same whether computed alone or in a chunk
+(tests/test_family_members.py); the members returned are the values' first ones, in order, up to the first
+one not computed by the deadline.
 
 Members are pruned to the request's ``fields`` (family.pruned) as they are made, so the memo keys them by
 the fields too: the same body asked with other fields is another member. The endpoint is told which top-level
-keys are read (endpoints.compute_answer ``reads``), so that it skips what no field reads (an elastic member's
+keys are read (endpoints.compute_answers ``reads``), so that it skips what no field reads (an elastic member's
 check run at rtol/10, which only estimates the error of numerics no preview draws; the forces' crank check).
 
 The memo is a least-recently-used store per heavy process, bounded both in members (MEMO_MEMBERS) and in the
@@ -23,14 +25,15 @@ from collections import OrderedDict
 from dataclasses import replace
 
 import orjson
-from pydantic import ValidationError
 
-from ..core.mechanisms import GeometryError
 from . import family
-from .endpoints import compute_answer
+from .endpoints import BATCHES, compute_answers
 
 MEMO_MEMBERS = 4096
 MEMO_BYTES = 64 * 2**20
+CHUNK_MEMBERS = 8       # members computed as one batch (endpoints.compute_answers); the deadline is checked between
+# chunks. An endpoint without a batch body of its own (endpoints.BATCHES) computes its members one by one anyway:
+# its chunks are single members, so that the deadline is checked before each, as a long member (elastic) needs.
 
 
 class MemberMemo:
@@ -67,27 +70,31 @@ def member_batch(endpoint: str, request: dict, vary: list[family.Vary], lang: st
     trie = None if fields is None else family.field_trie(fields)
     reads = None if trie is None else frozenset(trie)      # the endpoint may skip what no field reads
     named = None if fields is None else tuple(sorted(set(fields)))
+    size = CHUNK_MEMBERS if endpoint in BATCHES else 1
 
     def members(values: list[float], deadline: float) -> list[family.Member]:
-        found = []
-        for value in values:
-            body = family.member_body(request, vary, value)
-            key = (endpoint, orjson.dumps(body, option=orjson.OPT_SORT_KEYS), lang, named)
-            member = MEMO.get(key)
-            if member is None:
-                if time.perf_counter() > deadline:
-                    break
-                try:
-                    outcome = compute_answer(endpoint, body, lang, reads)
-                except (ValidationError, GeometryError) as error:
-                    outcome = error
-                member = family.Member.of(value, outcome, trie)
-                MEMO.put(key, member)
+        bodies = [family.member_body(request, vary, value) for value in values]
+        keys = [(endpoint, orjson.dumps(body, option=orjson.OPT_SORT_KEYS), lang, named) for body in bodies]
+        known = [MEMO.get(key) for key in keys]
+        missing = [k for k, member in enumerate(known) if member is None]
+        made: dict[int, family.Member] = {}
+        for start in range(0, len(missing), size):
+            if time.perf_counter() > deadline:
+                break
+            chunk = missing[start:start + size]
+            for k, outcome in zip(chunk, compute_answers(endpoint, [bodies[k] for k in chunk], lang, reads)):
+                made[k] = family.Member.of(values[k], outcome, trie)
+                MEMO.put(keys[k], made[k])             # not if a bound cut it short
                 counts["computed"] = counts.get("computed", 0) + 1
+        found = []
+        for k, value in enumerate(values):             # the values in order, up to the first one not computed
+            if known[k] is None:
+                if k not in made:
+                    break
+                found.append(made[k])
             else:               # the same body may be another slider's member at another value
-                member = replace(member, value=value)
+                found.append(replace(known[k], value=value))
                 counts["reused"] = counts.get("reused", 0) + 1
-            found.append(member)
         return found
 
     return members

@@ -16,10 +16,18 @@ HARMONIC_COUNT = 8
 JUMP_SIDE = 1e-9   # rad: one-sided limits at a jump, far below the grid step
 
 
-def harmonics(mech, p: dict[str, float], output: str, count: int = HARMONIC_COUNT) -> dict:
+def harmonic_grid(cycle: float) -> np.ndarray:
+    """The uniform open grid of the FFT over one cycle."""
+    return np.arange(HARMONIC_GRID) * cycle / HARMONIC_GRID
+
+
+def harmonics(mech, p: dict[str, float], output: str, count: int = HARMONIC_COUNT,
+              values: np.ndarray | None = None) -> dict:
+    """``values``: the output on harmonic_grid(cycle) if evaluated already (several linkages at once)."""
     cycle = mech.cycle(p)
-    phi = np.arange(HARMONIC_GRID) * cycle / HARMONIC_GRID
-    values = mech.evaluate(p, phi, set()).values[output]
+    phi = harmonic_grid(cycle)
+    if values is None:
+        values = mech.evaluate(p, phi, set()).values[output]
     for jump in mech.jumps(p):   # a jump on the grid: the mean of the values just before and just after it
         i = int(round(jump / cycle * HARMONIC_GRID)) % HARMONIC_GRID
         sides = mech.evaluate(p, phi[i] + np.array([-JUMP_SIDE, JUMP_SIDE]), set()).values[output]

@@ -160,6 +160,103 @@ def mean_of_extremes(work, total, T0):
     return 0.5 * (_refined(work, total, T0, k_max, 1.0) + _refined(work, total, T0, k_min, -1.0))
 
 
+@njit(cache=True, error_model="numpy")
+def _mean_error(work, total, T0, omega_mean):
+    return mean_of_extremes(work, total, T0) - omega_mean
+
+
+@njit(cache=True, error_model="numpy")
+def periodic_level(work, total, omega_mean, xa, xb, xtol, rtol, iterations):
+    """T₀ with ½(ω_max + ω_min) = ω_m on [xa, xb] (flywheel.periodic_speed): Brent's method, scipy's brentq
+    (scipy/optimize/Zeros/brentq.c) ported line for line, so that the root is the very double scipy finds.
+    Returns (root, status): status 0 converged, 1 no convergence within ``iterations`` (scipy's RuntimeError),
+    2 a NaN value of the function (scipy's ValueError), 3 no sign change on the bracket (scipy's ValueError)."""
+    xpre, xcur = xa, xb
+    xblk, fblk, spre, scur = 0.0, 0.0, 0.0, 0.0
+    fpre = _mean_error(work, total, xpre, omega_mean)
+    if math.isnan(fpre):
+        return xpre, 2
+    fcur = _mean_error(work, total, xcur, omega_mean)
+    if math.isnan(fcur):
+        return xcur, 2
+    if fpre == 0:
+        return xpre, 0
+    if fcur == 0:
+        return xcur, 0
+    if (fpre < 0) == (fcur < 0):
+        return xcur, 3
+    for _ in range(iterations):
+        if fpre != 0 and fcur != 0 and (fpre < 0) != (fcur < 0):
+            xblk = xpre
+            fblk = fpre
+            spre = scur = xcur - xpre
+        if abs(fblk) < abs(fcur):
+            xpre = xcur
+            xcur = xblk
+            xblk = xpre
+            fpre = fcur
+            fcur = fblk
+            fblk = fpre
+        delta = (xtol + rtol * abs(xcur)) / 2
+        sbis = (xblk - xcur) / 2
+        if fcur == 0 or abs(sbis) < delta:
+            return xcur, 0
+        if abs(spre) > delta and abs(fcur) < abs(fpre):
+            if xpre == xblk:            # interpolate
+                stry = -fcur * (xcur - xpre) / (fcur - fpre)
+            else:                       # extrapolate
+                dpre = (fpre - fcur) / (xpre - xcur)
+                dblk = (fblk - fcur) / (xblk - xcur)
+                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
+            if 2 * abs(stry) < min(abs(spre), 3 * abs(sbis) - delta):
+                spre = scur             # good short step
+                scur = stry
+            else:
+                spre = sbis             # bisect
+                scur = sbis
+        else:
+            spre = sbis                 # bisect
+            scur = sbis
+        xpre = xcur
+        fpre = fcur
+        if abs(scur) > delta:
+            xcur += scur
+        else:
+            xcur += delta if sbis > 0 else -delta
+        fcur = _mean_error(work, total, xcur, omega_mean)
+        if math.isnan(fcur):
+            return xcur, 2
+    return xcur, 1
+
+
+@njit(cache=True, error_model="numpy")
+def _vertex(values, sign):
+    """numerics.parabola_extremum(values, sign) of a closed periodic grid, its arithmetic element for element:
+    the first largest of sign·y over the open cycle (a NaN counts as largest, as in numpy's argmax), refined by
+    the parabola through it and its periodic neighbours when that bends the right way."""
+    n = values.size - 1
+    k = 0
+    best = sign * values[0]
+    if not math.isnan(best):
+        for i in range(1, n):
+            y = sign * values[i]
+            if math.isnan(y):
+                k = i
+                break
+            if y > best:
+                best, k = y, i
+    left, mid, right = sign * values[(k - 1) % n], sign * values[k], sign * values[(k + 1) % n]
+    curvature = left - 2 * mid + right
+    top = mid - (right - left) ** 2 / (8 * curvature) if curvature < 0 else mid
+    return sign * top
+
+
+@njit(cache=True, error_model="numpy")
+def speed_extremes(omega):
+    """(ω_max, ω_min) of ω(φ) on a closed grid, each as numerics.parabola_extremum finds it."""
+    return _vertex(omega, 1.0), _vertex(omega, -1.0)
+
+
 @lru_cache(maxsize=1)
 def warm_up() -> float:
     """Compile (or load from the disk cache) every signature the server calls: the RK4 loop here and
@@ -177,5 +274,7 @@ def warm_up() -> float:
         for speed in (False, True):
             rk4_steps(nodes, nodes, nodes, nodes, starts, speed, kind, params, T_nodes, t_nodes, 0, 4)
     mean_of_extremes(nodes, nodes, 1.0)
+    periodic_level(nodes, nodes, 1.0, 0.0, 1.0, 1e-12, 1e-12, 100)
+    speed_extremes(nodes)
     dop853.warm_up()
     return time.perf_counter() - started

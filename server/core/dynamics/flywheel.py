@@ -22,9 +22,13 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..numerics import parabola_extremum
-from .compiled import mean_of_extremes
+from .compiled import mean_of_extremes, periodic_level, speed_extremes
 
 GUTYAR_WINDOW = np.pi / 4      # half-width of the curve pieces Gutyar draws around the extremes, rad
+BRENT_ITERATIONS = 100         # scipy's brentq default, and its refusals by compiled.periodic_level's status
+BRENT_FAILURES = {1: "Failed to converge after 100 iterations, value is {}",
+                  2: "The function value at x={} is NaN; solver cannot continue.",
+                  3: "f(a) and f(b) must have different signs"}
 
 
 @dataclass(frozen=True)
@@ -85,22 +89,23 @@ def wittenbauer(cycle: Cycle, omega_mean: float, delta: float) -> tuple[Method, 
 
 def periodic_speed(cycle: Cycle, inertia_i: float, omega_mean: float) -> np.ndarray:
     """ω(φ) of the exact periodic solution with group-I inertia I_I and mean (ω_max + ω_min)/2 = ω_m;
-    NaN everywhere when there is none (too little inertia for that mean speed: the speed would reach zero)."""
+    NaN everywhere when there is none (too little inertia for that mean speed: the speed would reach zero).
+    T₀ by Brent's method compiled (compiled.periodic_level: scipy's brentq line for line, the same root)."""
     total = np.ascontiguousarray(inertia_i + cycle.inertia_ii, dtype=np.float64)
     work = np.ascontiguousarray(cycle.work, dtype=np.float64)
     lowest = float(np.max(-cycle.work))
-    def mean_error(T0):             # ½(max ω + min ω) − ω_m by the parabola vertex, compiled: no arrays per call
-        return mean_of_extremes(work, total, T0) - omega_mean
     high = lowest + 0.5 * float(total.max()) * (2 * omega_mean) ** 2 + 1.0
-    if mean_error(lowest + 1e-12 * high) > 0:       # even as ω_min → 0 the mean exceeds ω_m: the machine would
-        return np.full_like(cycle.work, np.nan)     # stall within the cycle, there is no periodic motion
-    T0 = brentq(mean_error, lowest + 1e-12 * high, high, xtol=1e-15 * high, rtol=1e-15)
+    if mean_of_extremes(work, total, lowest + 1e-12 * high) - omega_mean > 0:   # even as ω_min → 0 the mean
+        return np.full_like(cycle.work, np.nan)     # exceeds ω_m: the machine would stall within the cycle
+    T0, status = periodic_level(work, total, float(omega_mean), lowest + 1e-12 * high, high, 1e-15 * high, 1e-15,
+                                BRENT_ITERATIONS)
+    if status:
+        raise (RuntimeError if status == 1 else ValueError)(BRENT_FAILURES[status].format(T0))
     return np.sqrt(2 * (T0 + cycle.work) / total)
 
 
 def achieved_delta(cycle: Cycle, inertia_i: float, omega_mean: float) -> float:
-    omega = periodic_speed(cycle, inertia_i, omega_mean)
-    w_max, w_min = parabola_extremum(omega, +1), parabola_extremum(omega, -1)
+    w_max, w_min = speed_extremes(periodic_speed(cycle, inertia_i, omega_mean))   # parabola_extremum, compiled
     return (w_max - w_min) / (0.5 * (w_max + w_min))
 
 

@@ -81,7 +81,16 @@ def node_tables(machine: Machine, steps: int, balance: bool = False):
 
     balance: add the constant crank moment that makes the cycle work of the φ-dependent
     moments zero on these very nodes (the driven machine of a piston engine, M_c = A_д/Φ).
+    Made once per machine, steps and balance (machine.memo: members of a family sharing one machine, the
+    flywheel's error estimate); no caller changes a Tables once made.
     """
+    key = ("node_tables", steps, balance)
+    if key not in machine.memo:
+        machine.memo[key] = _node_tables(machine, steps, balance)
+    return machine.memo[key]
+
+
+def _node_tables(machine: Machine, steps: int, balance: bool) -> Tables:
     tables = machine.tables(np.linspace(0.0, machine.cycle(), 2 * steps + 1))
     if balance:   # Simpson on all nodes is the quadrature RK4 applies to moments of φ alone
         tables.balancing_moment = simpson(tables.net_phi, float(tables.phi[1] - tables.phi[0])) / machine.cycle()

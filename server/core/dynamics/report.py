@@ -120,8 +120,10 @@ def _flywheel_error(machine: Machine, omega_mean: float, delta: float, balance: 
 
 
 def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, width_ratio: float,
-             density: float, steps: int = 2048) -> tuple[dict, list[Notice]]:
-    """Merzalov, Gutyar, Wittenbauer and the exact inertia for δ, with the sizing and the curves to draw."""
+             density: float, steps: int = 2048, with_numerics: bool = True) -> tuple[dict, list[Notice]]:
+    """Merzalov, Gutyar, Wittenbauer and the exact inertia for δ, with the sizing and the curves to draw;
+    ``with_numerics``: also how it was computed, with the error estimate (the exact inertia again on half
+    the grid), left out (no "numerics") for a caller that does not read it."""
     started = time.perf_counter()
     tables = node_tables(machine, steps_per_cycle(machine, steps), balance)
     nodes = slice(0, None, 2)
@@ -183,13 +185,14 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
         "rim": fw.rim(flywheel_inertia, fw.disk(flywheel_inertia, width_ratio, density).diameter, density)
         if flywheel_inertia > 0 else None,
         "balancing_moment": tables.balancing_moment,
-        "numerics": Numerics(
+    }
+    if with_numerics:
+        result["numerics"] = Numerics(
             method="Simpson's rule for A(φ) on a uniform grid; exact inertia by Brent's method on the periodic "
                    "energy solution", code="flywheel_simpson", steps=steps,
             runtime_ms=1e3 * (time.perf_counter() - started),
             error_estimate=_flywheel_error(machine, omega_mean, delta, balance, steps, rows[-1]["inertia"]),
             energy_residual=abs(work[-1]) / driving_cycle,
             message=f"the exact inertia gives δ to a relative {delta_residual:.1e}",
-            message_code="flywheel_delta", message_context={"residual": f"{delta_residual:.1e}"}).as_dict(),
-    }
+            message_code="flywheel_delta", message_context={"residual": f"{delta_residual:.1e}"}).as_dict()
     return result, notices

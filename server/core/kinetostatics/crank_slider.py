@@ -158,16 +158,19 @@ def friction_loads(pairs: Pairs, applied: dict, R12, R23, N, R41, omega1_ccw: fl
 
 
 def analyse(params: dict, loads: Loads, pairs: Pairs, phi: np.ndarray, tolerance: float = 1e-9,
-            shown: int = SHOWN_APPROXIMATIONS) -> ForceAnalysis:
+            shown: int = SHOWN_APPROXIMATIONS, table: bool = True) -> ForceAnalysis:
     """The friction equilibrium at every angle, solved to ε_R (equilibrium.solve), and the textbook's successive
-    approximations of seed 002 §3.1 beside it: the first ``shown`` of them, or fewer if they reach ε_R."""
+    approximations of seed 002 §3.1 beside it: the first ``shown`` of them, or fewer if they reach ε_R.
+    ``table`` False: without the approximations and the numerics that describe them (approximations empty,
+    numerics None), for a caller that reads neither (the wear; a family's preview of the forces)."""
     clock = time.perf_counter()
     points, applied = motion(params, loads, phi)
     result = ForceAnalysis(phi, points, applied)
     omega1_ccw = -loads.omega                             # the crank turns clockwise
     solved = equilibrium.solve(points, applied, pairs, omega1_ccw, tolerance, solve_dyad)
     locked = solved.locked
-    result.approximations = textbook_approximations(points, applied, pairs, omega1_ccw, tolerance, shown, locked)
+    result.approximations = (textbook_approximations(points, applied, pairs, omega1_ccw, tolerance, shown, locked)
+                             if table else [])
     R12, R23, N = solve_dyad(points, applied, {"F34": solved.z[0], "M2": solved.z[1]})
     friction = friction_loads(pairs, applied, R12, R23, N, R12, omega1_ccw)   # R₄₁ = R₁₂ (balanced crank)
     R12, R23, N = solve_dyad(points, applied, friction)                        # in equilibrium with that friction
@@ -200,7 +203,7 @@ def analyse(params: dict, loads: Loads, pairs: Pairs, phi: np.ndarray, tolerance
             f"{reached:.2g}, not ε_R = {tolerance:.2g}, for φ in {ranges_text(ranges)}: rounding or the work bound "
             f"stopped it; the values there carry that error.",
             {"reached": reached, "tolerance": float(tolerance), "ranges": ranges}))
-    result.numerics = numerics(result, solved, tolerance, rough, time.perf_counter() - clock)
+    result.numerics = numerics(result, solved, tolerance, rough, time.perf_counter() - clock) if table else None
     return result
 
 

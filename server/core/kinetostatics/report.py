@@ -43,13 +43,14 @@ def equilibrium_residuals(analysis: ForceAnalysis, k: int = -1) -> dict:
 def forces_report(analysis: ForceAnalysis, pairs) -> dict:
     """Everything the force scene draws: reactions, applied loads, friction, efficiency (all from the solved
     equilibrium), and the textbook's approximations: their changes, the series' ratio q at each angle and the
-    guide's f₃₄|tan ψ| (self-locking where it reaches 1)."""
+    guide's f₃₄|tan ψ| (self-locking where it reaches 1); without "iteration" and "numerics" for an analysis
+    made without the approximations (crank_slider.analyse, table=False)."""
     final = analysis.final
     norm = lambda v: np.linalg.norm(v, axis=1)
     angle = lambda v: np.degrees(np.arctan2(v[:, 1], v[:, 0]))
     reactions = {"R12": final.R12, "R23": final.R23, "R41": analysis.R41,
                  "R34": np.stack([final.N * 0.0, final.N], 1)}          # NaN stays NaN in both components
-    return {
+    report = {
         "phi": analysis.phi,
         "points": analysis.points,
         "reactions": reactions,
@@ -59,13 +60,15 @@ def forces_report(analysis: ForceAnalysis, pairs) -> dict:
         "applied": {k: analysis.applied[k] for k in ("G2", "G3", "F_in2", "F_in3", "F_3p", "M_in2")},
         "friction": {k: final.friction[k] for k in ("M_A", "M_B", "M_O", "F34")},
         "friction_circles": {"O": pairs.f14 * pairs.r14, "A": pairs.f12 * pairs.r12, "B": pairs.f23 * pairs.r23},
-        "iteration": {"changes": [a.change for a in analysis.approximations], "ratio": analysis.ratio,
-                      "approximations": len(analysis.approximations), "ratios": analysis.ratios,
-                      "guide_ratio": analysis.guide_ratio},
         "converged": analysis.converged,
-        "numerics": analysis.numerics,
         **efficiency(analysis),
     }
+    if analysis.numerics is not None:
+        report["iteration"] = {"changes": [a.change for a in analysis.approximations], "ratio": analysis.ratio,
+                               "approximations": len(analysis.approximations), "ratios": analysis.ratios,
+                               "guide_ratio": analysis.guide_ratio}
+        report["numerics"] = analysis.numerics
+    return report
 
 
 def crank_check(analysis: ForceAnalysis, frictionless: ForceAnalysis, reduced_moment: np.ndarray) -> dict:

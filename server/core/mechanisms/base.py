@@ -126,9 +126,10 @@ def ranges_text(ranges: list[list[float]], decimal: str = ".") -> str:
 
 
 def wrap_angle(phi: float, cycle: float = TWO_PI) -> float:
-    """Angle reduced to [0, cycle)."""
+    """Angle reduced to [0, cycle): within 1e-12 + 1e-5·cycle below the cycle's end is 0 (numpy's isclose with
+    atol 1e-12, written out: a scalar's isclose costs more than the special positions' arithmetic)."""
     value = float(np.mod(phi, cycle))
-    return 0.0 if np.isclose(value, cycle, atol=1e-12) else value
+    return 0.0 if abs(value - cycle) <= 1e-12 + 1e-5 * abs(cycle) else value
 
 
 def point(x: np.ndarray, y: np.ndarray) -> np.ndarray:

@@ -75,13 +75,25 @@ class FourBar(Mechanism):
     # --- validity -----------------------------------------------------------------
     @staticmethod
     def _p0_q0(p):
+        """P₀ = P(π), Q₀ = Q(0), each set to exactly 0 within CHANGE_POINT_TOL of the scale (a change point);
+        elementwise for lengths given as arrays (several linkages at once, ``evaluate``)."""
         l0, l1, l2, l3 = p["l0"], p["l1"], p["l2"], p["l3"]
         scale = (l0 + l1 + l2 + l3) ** 2
         p0 = (l2 + l3) ** 2 - (l0 + l1) ** 2
         q0 = (l0 - l1) ** 2 - (l2 - l3) ** 2
+        if np.ndim(scale):
+            return (np.where(np.abs(p0) <= CHANGE_POINT_TOL * scale, 0.0, p0),
+                    np.where(np.abs(q0) <= CHANGE_POINT_TOL * scale, 0.0, q0))
         p0 = 0.0 if abs(p0) <= CHANGE_POINT_TOL * scale else p0
         q0 = 0.0 if abs(q0) <= CHANGE_POINT_TOL * scale else q0
         return p0, q0
+
+    def branch(self, p) -> tuple:
+        """What selects the formulas of ``evaluate``: (Q₀ = 0, P₀ = 0, stroke limiter). Linkages evaluated at
+        once (parameters as arrays of shape (M, 1)) must share it."""
+        p0, q0 = self._p0_q0(p)
+        return tuple(bool(np.all(flag)) if np.all(flag) == np.any(flag) else None
+                     for flag in (q0 == 0.0, p0 == 0.0, np.asarray(p["limiter"]) != 0))
 
     def check_geometry(self, p):
         if p["assembly"] == 0:
@@ -118,11 +130,16 @@ class FourBar(Mechanism):
 
     # --- kinematics ---------------------------------------------------------------
     def evaluate(self, p, phi_in, wanted):
+        """At crank angles phi_in (N,); the parameters may be arrays of shape (M, 1), M linkages of one
+        ``branch`` at once, each output then of shape (M, N) (points (M, N, 2))."""
         l0, l1, l2, l3, sigma, a2 = (p[k] for k in ("l0", "l1", "l2", "l3", "assembly", "a2"))
         p0, q0 = self._p0_q0(p)
-        cp = self.change_point(p)
+        q_zero, p_zero, limiter = self.branch(p)
+        if None in (q_zero, p_zero, limiter):
+            raise ValueError("linkages evaluated at once must share their branch (FourBar.branch)")
+        cp = 0.0 if q_zero else np.pi if p_zero else None
         phi = phi_in
-        if cp is not None and p["limiter"]:
+        if cp is not None and limiter:
             phi = cp + np.mod(phi_in - cp, 2 * np.pi)   # restart the branch after each impact
         half_s, half_c = np.sin(phi / 2), np.cos(phi / 2)
         sin, cos = np.sin(phi), np.cos(phi)
@@ -132,12 +149,12 @@ class FourBar(Mechanism):
         big_q = q0 + 4 * l0 * l1 * half_s**2
         with np.errstate(divide="ignore", invalid="ignore"):
             # signed square roots: in half-angle form at a change point (branch continues through it)
-            root_q = k * half_s if q0 == 0.0 else np.sqrt(big_q)
-            root_p = -k * half_c if p0 == 0.0 else np.sqrt(big_p)
-            q = np.full_like(phi, 1 / k) if q0 == 0.0 else half_s / np.sqrt(big_q)
-            pp = np.full_like(phi, -1 / k) if p0 == 0.0 else half_c / np.sqrt(big_p)
-            dq = 0 * phi if q0 == 0.0 else half_c / (2 * np.sqrt(big_q)) - half_s * l0 * l1 * sin / big_q**1.5
-            dpp = 0 * phi if p0 == 0.0 else -half_s / (2 * np.sqrt(big_p)) + half_c * l0 * l1 * sin / big_p**1.5
+            root_q = k * half_s if q_zero else np.sqrt(big_q)
+            root_p = -k * half_c if p_zero else np.sqrt(big_p)
+            q = 1 / k + 0 * phi if q_zero else half_s / np.sqrt(big_q)
+            pp = -1 / k + 0 * phi if p_zero else half_c / np.sqrt(big_p)
+            dq = 0 * phi if q_zero else half_c / (2 * np.sqrt(big_q)) - half_s * l0 * l1 * sin / big_q**1.5
+            dpp = 0 * phi if p_zero else -half_s / (2 * np.sqrt(big_p)) + half_c * l0 * l1 * sin / big_p**1.5
 
             gamma = np.arctan2(-l1 * sin, l0 - l1 * cos)
             big_n = l3**2 + d2 - l2**2
@@ -164,9 +181,9 @@ class FourBar(Mechanism):
         ordered = np.all(np.diff(phi_in) > 0) if phi_in.size > 1 else False
         ev = Evaluation(phi_in)
         ev.values = {
-            "s": np.unwrap(phi3) if ordered and not p["limiter"] else phi3,
+            "s": np.unwrap(phi3) if ordered and not limiter else phi3,
             "u31": u31, "du31": du31,
-            "s2": np.unwrap(phi2) if ordered and not p["limiter"] else phi2,
+            "s2": np.unwrap(phi2) if ordered and not limiter else phi2,
             "u21": u21, "du21": du21,
             "chi21": np.abs(v_s2), "v_s2": point(v_s2.real, v_s2.imag), "a_s2": point(a_s2.real, a_s2.imag),
             "mu": np.arccos(np.clip(np.cos(phi3 - phi2), -1.0, 1.0)),
@@ -195,6 +212,14 @@ class FourBar(Mechanism):
         chosen branch are those where the computed C is at distance AC from A; a change point,
         where all four joints line up, is no extreme (u₃₁ ≠ 0 there) and drops out.
         """
+        candidates, reach = self._extreme_candidates(p)
+        if not candidates:
+            return []
+        ev = self.evaluate(p, np.array(candidates), {"joints"})
+        return self._extremes(p, candidates, reach, np.hypot(*ev.joints["C"].T), ev.values["s"], ev.values["u31"])
+
+    def _extreme_candidates(self, p) -> tuple[list[float], list[float]]:
+        """The crank angles where A, B, C may line up (rocker_extremes), and AC at each."""
         l0, l1, l2, l3 = p["l0"], p["l1"], p["l2"], p["l3"]
         cycle = self.cycle(p)
         candidates, reach = [], []
@@ -209,16 +234,18 @@ class FourBar(Mechanism):
                 for lap in np.arange(0.0, cycle - 1e-9, 2 * np.pi):
                     candidates.append(wrap_angle(phi + lap, cycle))
                     reach.append(ac)
-        if not candidates:
-            return []
-        ev = self.evaluate(p, np.array(candidates), {"joints"})
-        ac_found = np.hypot(*ev.joints["C"].T)
-        scale = l0 + l1 + l2 + l3
-        rows = zip(candidates, reach, ac_found, ev.values["s"], ev.values["u31"])
+        return candidates, reach
+
+    @staticmethod
+    def _extremes(p, candidates, reach, ac_found, s, u31) -> list[tuple[float, float]]:
+        """The candidates on the chosen branch (C at distance AC from A) where u₃₁ vanishes."""
+        scale = p["l0"] + p["l1"] + p["l2"] + p["l3"]
+        rows = zip(candidates, reach, ac_found, s, u31)
         return sorted((phi, float(s)) for phi, ac, found, s, u31 in rows
                       if abs(found - ac) <= 1e-9 * scale and abs(u31) < 1e-6)
 
-    def special_positions(self, p):
+    def special_positions(self, p, extremes: list[tuple[float, float]] | None = None):
+        """``extremes``: rocker_extremes(p) if found already (special_positions_many)."""
         cycle = self.cycle(p)
         positions = []
         cp = self.change_point(p)
@@ -228,13 +255,35 @@ class FourBar(Mechanism):
             for phi in np.arange(cp, cp + cycle - 1e-9, 2 * np.pi):
                 positions.append(SpecialPosition("change_point", wrap_angle(phi, cycle),
                                                  f"all four joints in line (change point); {note}"))
-        for phi, s in self.rocker_extremes(p):
+        for phi, s in self.rocker_extremes(p) if extremes is None else extremes:
             positions.append(SpecialPosition("rocker_extreme", phi,
                                              "rocker at an extreme position: crank and coupler in line, u₃₁ = 0", s))
         phi_mu, mu = min(self.transmission_extremes(p), key=lambda t: t[1])
         positions.append(SpecialPosition("min_transmission_angle", phi_mu,
                                          f"smallest transmission angle μ = {np.degrees(mu):.2f}°", mu))
         return sorted(positions, key=lambda sp: sp.phi)
+
+    def special_positions_many(self, linkages: list[dict]) -> list[list[SpecialPosition]]:
+        """special_positions of linkages of one ``branch``, their candidate extremes evaluated in one call: each
+        candidate a row of its own (parameters and angles of shape (K, 1)), so that the rocker angle comes raw
+        and is unwrapped per linkage as rocker_extremes' evaluation does (over its candidates when they ascend)."""
+        found = [self._extreme_candidates(p) for p in linkages]
+        owner = [m for m, (candidates, _) in enumerate(found) for _ in candidates]
+        if not owner:
+            return [self.special_positions(p, []) for p in linkages]
+        stacked = {name: np.array([linkages[m][name] for m in owner], float)[:, None] for name in linkages[0]}
+        phi = np.array([phi for candidates, _ in found for phi in candidates])[:, None]
+        ev = self.evaluate(stacked, phi, {"joints"})
+        reached, raw, u31 = np.hypot(*ev.joints["C"][:, 0, :].T), ev.values["s"][:, 0], ev.values["u31"][:, 0]
+        positions, start = [], 0
+        for p, (candidates, reach) in zip(linkages, found):
+            rows = slice(start, start + len(candidates))
+            start += len(candidates)
+            ordered = len(candidates) > 1 and bool(np.all(np.diff(candidates) > 0))
+            s = np.unwrap(raw[rows]) if ordered and not p["limiter"] else raw[rows]
+            extremes = self._extremes(p, candidates, reach, reached[rows], s, u31[rows]) if candidates else []
+            positions.append(self.special_positions(p, extremes))
+        return positions
 
     def describe(self, p):
         l0, l1, l2, l3 = p["l0"], p["l1"], p["l2"], p["l3"]

@@ -65,7 +65,19 @@ class Mechanism(ABC):
 
     @abstractmethod
     def evaluate(self, p: dict[str, float], phi: np.ndarray, wanted: set[str]) -> Evaluation:
-        """Compute the wanted outputs at crank angles ``phi`` (rad)."""
+        """Compute the wanted outputs at crank angles ``phi`` (rad). The parameters may also be arrays of
+        shape (M, 1): M linkages of one ``branch`` at once, every output that depends on them then of shape
+        (M, N) (points (M, N, 2)); what is not elementwise over φ (reductions, warnings) is left to
+        ``per_linkage``."""
+
+    def branch(self, p: dict) -> tuple:
+        """What selects evaluate's formulas by a scalar test of the parameters; linkages evaluated at once
+        share it (None in a place: they do not). None by default: the formulas are the same for all."""
+        return ()
+
+    def per_linkage(self, p: dict[str, float], ev: Evaluation, wanted: set[str]) -> None:
+        """Add to ``ev`` (one linkage's evaluation) what is not elementwise over φ; nothing by default.
+        evaluate calls it for a single linkage; a caller that evaluated several at once calls it for each."""
 
     def sliding_squares(self, p: dict[str, float], ev: Evaluation) -> np.ndarray:
         """S(φ) = Σ u² over the prismatic pairs, so that viscous friction gives M_T = β ω S(φ)
@@ -75,6 +87,10 @@ class Mechanism(ABC):
     @abstractmethod
     def special_positions(self, p: dict[str, float]) -> list[SpecialPosition]:
         """Dead centres, rocker extremes and similar positions within one cycle."""
+
+    def special_positions_many(self, linkages: list[dict]) -> list[list[SpecialPosition]]:
+        """special_positions of several linkages of one ``branch``; one by one unless a mechanism does better."""
+        return [self.special_positions(p) for p in linkages]
 
     def describe(self, p: dict[str, float]) -> dict:
         """Words about the configuration (class, type of motion) for the scene header."""

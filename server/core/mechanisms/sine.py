@@ -39,7 +39,7 @@ class Sine(Mechanism):
             "s": l1 * (1 - c), "u31": l1 * s, "du31": l1 * c,
             "s2": l1 * s, "u21": l1 * c, "du21": -l1 * s,
             # S2 (block) sits on the crank pin A = (−l₁cos φ, l₁sin φ)
-            "chi21": np.full_like(phi, l1),
+            "chi21": l1 + 0 * phi,
             "v_s2": point(l1 * s, l1 * c), "a_s2": point(l1 * c, -l1 * s),
         }
         if "joints" in wanted:

@@ -83,9 +83,14 @@ class SliderCrank(Mechanism):
             ax, ay = -l1 * c, l1 * s
             ev.joints = {"O": point(0 * phi, 0 * phi), "A": point(ax, ay), "B": point(x_b, e + 0 * phi),
                          "S2": point(ax + a2 * (x_b - ax), ay + a2 * (e - ay))}
-        if wanted & set(APPROXIMATIONS + ("approx_error",)):
-            self._approximations(p, phi, ev)
+        if np.ndim(l1) == 0:
+            self.per_linkage(p, ev, wanted)
         return ev
+
+    def per_linkage(self, p, ev, wanted):
+        """The textbook series when asked for (their largest errors are reductions over φ, and they warn)."""
+        if wanted & set(APPROXIMATIONS + ("approx_error",)):
+            self._approximations(p, ev.phi, ev)
 
     def _approximations(self, p, phi, ev):
         """Textbook series (2.16), (2.17*); defined for the central mechanism (e = 0)."""

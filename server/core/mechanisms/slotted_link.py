@@ -40,15 +40,23 @@ class SlottedLink(Mechanism):
     def check_geometry(self, p):
         """Every λ = l₀/l₁ > 0 assembles; λ = 1 has one undefined position, reported when evaluated."""
 
+    def branch(self, p):
+        """Oscillating lever (λ > 1) or rotating (λ ≤ 1): the formula of ψ."""
+        lam = p["l0"] / p["l1"]
+        return (bool(np.all(lam > 1)) if np.all(lam > 1) == np.any(lam > 1) else None,)
+
     def evaluate(self, p, phi, wanted):
         l0, l1 = p["l0"], p["l1"]
         lam = l0 / l1
+        oscillating, = self.branch(p)
+        if oscillating is None:
+            raise ValueError("linkages evaluated at once must share their branch (SlottedLink.branch)")
         c, s = np.cos(phi), np.sin(phi)
         # D = l_BC²/l₁², written as (1 − λ)² + 4λcos²(φ/2) so that it is exact near λ = 1, φ = π
         d2 = (1 - lam) ** 2 + 4 * lam * np.cos(phi / 2) ** 2
         with np.errstate(divide="ignore", invalid="ignore"):
             root = np.sqrt(d2)
-            if lam > 1:
+            if oscillating:
                 psi = np.arctan2(s, lam + c)
             else:  # rotating lever: ψ = φ − arg(1 + λe^{−iφ}) stays continuous
                 psi = phi - np.arctan2(lam * s, 1 + lam * c)
@@ -60,7 +68,7 @@ class SlottedLink(Mechanism):
                 "u21": l1 * lam * s / root,
                 "du21": l1 * lam / root * (c + lam * s**2 / d2),
             }
-        values["chi21"] = np.full_like(phi, l1)       # S2 = block on the crank pin B
+        values["chi21"] = l1 + 0 * phi               # S2 = block on the crank pin B
         values["v_s2"] = point(l1 * c, -l1 * s)
         values["a_s2"] = point(-l1 * s, -l1 * c)
         ev = Evaluation(phi, values)
