@@ -1,0 +1,35 @@
+/**
+ * The special positions of the turn in words (per group: limits of assembly, dead positions, the position
+ * closest to a dead one, output reversals), from the API's `special` list, translated by their kind; and the
+ * API's warnings (already in the reader's language).
+ */
+import { element } from "../../dom.js";
+import { formatNumber } from "../../notation.js";
+
+const DEG = 180 / Math.PI;
+
+/** {group, kind, what} read from the server's description ("group 1 (RRP): …", "group 0: slide E/ram reverses"). */
+function parts(description) {
+  const group = description.match(/^group (\d+)/)?.[1];
+  const kind = description.match(/^group \d+ \((\w+)\)/)?.[1] ?? "";
+  const link = description.match(/: link (\d+) reverses/)?.[1];
+  const slide = description.match(/: slide (\S+) reverses/)?.[1];
+  return { group: group === undefined ? "?" : Number(group) + 1, kind, link, slide };
+}
+
+/** One special position as a sentence in the reader's language. */
+export function specialText(sp, t, lang) {
+  const p = parts(sp.description);
+  const phi = `φ = ${formatNumber(sp.phi * DEG, lang, 1)}°`;
+  const what = p.link ? `${t.editor_link} ${p.link}` : p.slide ? `${t.editor_slide} ${p.slide}` : "";
+  const template = t[`editor_sp_${sp.kind}`] ?? sp.description;
+  return `${phi}: ${template.replace("{group}", p.group).replace("{kind}", p.kind).replace("{what}", what)
+    .replace("{value}", sp.value === null ? "" : formatNumber(sp.value, lang, 3))}`;
+}
+
+export function renderSpecial(listHost, warningsHost, answer, t, lang, onPick) {
+  warningsHost.replaceChildren(...(answer?.warnings ?? []).map((w) => element("p", { className: "notice", textContent: w })));
+  listHost.replaceChildren(...(answer?.outputs.special ?? []).map((sp) => element("li", {},
+    element("button", { type: "button", className: "link-button", textContent: specialText(sp, t, lang),
+      onclick: () => onPick(sp.phi) }))));
+}
