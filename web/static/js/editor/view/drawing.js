@@ -11,7 +11,7 @@ const WIDTH = 800;
 const HEIGHT = 600;
 const DEFAULT_VIEW = { x0: -0.5, y0: 0.5, k: 600 };      // 1.33 m × 1 m around the origin
 const GUIDE_HALF = 3;                                     // m: a frame guide is drawn across the whole view
-const BLOCK = [0.05, 0.025];                              // m: a slider block's length and width
+const BLOCK = [34, 17];                                    // a slider block's length and width, drawing units
 const LINK_COLORS = ["#1f4e79", "#b5442f", "#2e7d4f", "#6a4c93", "#c07400", "#5d6978"];
 
 export class Drawing {
@@ -101,7 +101,7 @@ export class Drawing {
       for (const block of link.blocks) {
         if (!block.at || !Number.isFinite(block.angle)) continue;     // a link the table does not have yet
         const [x, y] = this.xy(block.at);
-        const [w, h] = BLOCK.map((v) => v * this.view.k);
+        const [w, h] = BLOCK;
         svgElement("rect", { x: x - w / 2, y: y - h / 2, width: w, height: h, class: "block", fill: "#ffffff",
           transform: `rotate(${(-block.angle * 180) / Math.PI} ${x} ${y})` }, group);
       }
