@@ -1,8 +1,8 @@
 /**
  * The mechanism editor page: the student places the frame's joints and guides, the crank and class-II groups
  * with the mouse; every change asks the server once for the table over the turn (the structure, positions,
- * analogs, special positions) and once for the plans at the cursor angle; the animation, traced paths and the
- * plot come from the table. The mechanism lives in the address (?m=…), and in files (export, import).
+ * analogs), once for the special positions and once for the plans at the cursor angle; the animation, traced
+ * paths and the plot come from the table. The mechanism lives in the address (?m=…), and in files (export, import).
  */
 import { Drawing } from "./view/drawing.js";
 import { ElementList } from "./view/elements.js";
@@ -15,7 +15,7 @@ import { guideShapes, linkShapes, stateAt } from "./model/geometry.js";
 import { PICKS, addFrameGuide, addFrameJoint, addGroup, addPoint, emptyLinkage, guides, joints, links,
   normalised, requestLinkage, setCrank } from "./model/linkage.js";
 import { LatestRequest, refusalText, refusedGroup } from "./model/service.js";
-import { frameOf, planRequest, quantities, tableRequest } from "./model/table.js";
+import { frameOf, planRequest, quantities, specialRequest, tableRequest } from "./model/table.js";
 import { formatNumber, plainText } from "../notation.js";
 import { parseDecimal } from "../decimal_input.js";
 
@@ -33,6 +33,7 @@ const state = {
 };
 const tables = new LatestRequest(lang);
 const planner = new LatestRequest(lang);
+const specials = new LatestRequest(lang);
 const stage = $("editor-drawing");
 
 const drawing = new Drawing(stage, {
@@ -176,6 +177,10 @@ function changed(structural) {
     showAnswer();
     return;
   }
+  specials.submit(specialRequest(linkage), (answer) => {
+    state.special = answer.ok ? answer.data.outputs.special : [];
+    showSpecial();
+  });
   tables.submit(tableRequest(linkage), (answer) => {
     if (answer.ok) {
       state.table = answer.data;
@@ -194,7 +199,7 @@ function showAnswer() {
   if (refusal && refusedGroup(refusal) !== null) list.refusals.set(refusedGroup(refusal), reason);
   list.render(state.linkage, state.traced);
   renderStructure($("editor-structure"), refusal || !table ? null : table.outputs.structure, reason, t);
-  renderSpecial($("editor-special"), $("editor-warnings"), refusal ? null : table, t, lang, (phi) => setAngle(frameOf(state.table, phi)));
+  showSpecial();
   fillQuantities();
   if (state.fitPending && table) {
     state.fitPending = false;
@@ -204,6 +209,12 @@ function showAnswer() {
   stage.dataset.state = refusal ? "refused" : table ? "ready" : "empty";
   stage.dataset.answers = String(Number(stage.dataset.answers ?? 0) + 1);
   askPlan();
+}
+
+function showSpecial() {
+  const shown = state.refusal || !state.table;
+  renderSpecial($("editor-special"), $("editor-warnings"), shown ? [] : state.special ?? [], shown ? [] : state.table.warnings,
+    t, lang, (phi) => setAngle(frameOf(state.table, phi)));
 }
 
 function askPlan() {

@@ -6,11 +6,20 @@
  */
 export const TURN_POINTS = 361;                   // 1° steps, both ends of the turn included
 export const TABLE_OUTPUTS = ["structure", "joints", "joints_d1", "joints_d2", "angles", "angles_d1", "angles_d2",
-  "slides", "slides_d1", "slides_d2", "special"];
+  "slides", "slides_d1", "slides_d2"];
 
 /** The request of the table for a linkage. */
 export function tableRequest(linkage) {
   return { mechanism: "general", linkage, n: TURN_POINTS, outputs: TABLE_OUTPUTS };
+}
+
+/**
+ * The request of the special positions over the turn, asked apart from the table: the server finds them on
+ * its own 0.5° grid and refines the reversals (25 times the table's work), so that a drag redraws from the
+ * table alone and the list follows when it comes.
+ */
+export function specialRequest(linkage) {
+  return { mechanism: "general", linkage, n: 2, outputs: ["special"] };
 }
 
 /** The request of the plans at crank angle phi (rad) with ω₁ (rad/s) and ε₁ (rad/s²). */

@@ -27,9 +27,10 @@ export function specialText(sp, t, lang) {
     .replace("{value}", sp.value === null ? "" : formatNumber(sp.value, lang, 3))}`;
 }
 
-export function renderSpecial(listHost, warningsHost, answer, t, lang, onPick) {
-  warningsHost.replaceChildren(...(answer?.warnings ?? []).map((w) => element("p", { className: "notice", textContent: w })));
-  listHost.replaceChildren(...(answer?.outputs.special ?? []).map((sp) => element("li", {},
+/** The special positions (the API's `special`) as buttons that turn the crank there, and the warnings. */
+export function renderSpecial(listHost, warningsHost, special, warnings, t, lang, onPick) {
+  warningsHost.replaceChildren(...warnings.map((w) => element("p", { className: "notice", textContent: w })));
+  listHost.replaceChildren(...special.map((sp) => element("li", {},
     element("button", { type: "button", className: "link-button", textContent: specialText(sp, t, lang),
       onclick: () => onPick(sp.phi) }))));
 }
