@@ -7,6 +7,7 @@
 import { Drawing } from "./view/drawing.js";
 import { ElementList } from "./view/elements.js";
 import { QuantityPlot } from "./view/plot.js";
+import { renderGroupsApart } from "./view/groups_apart.js";
 import { renderPlans } from "./view/plans.js";
 import { renderSpecial } from "./view/special.js";
 import { renderStructure } from "./view/structure.js";
@@ -199,6 +200,7 @@ function showAnswer() {
   if (refusal && refusedGroup(refusal) !== null) list.refusals.set(refusedGroup(refusal), reason);
   list.render(state.linkage, state.traced);
   renderStructure($("editor-structure"), refusal || !table ? null : table.outputs.structure, reason, t);
+  renderGroupsApart($("editor-apart"), state.linkage, refusal ? null : table, current(), t);
   showSpecial();
   fillQuantities();
   if (state.fitPending && table) {
@@ -276,6 +278,7 @@ function setAngle(k) {
   if (!state.playing) {
     drawPlot();
     askPlan();
+    if (!state.refusal) renderGroupsApart($("editor-apart"), state.linkage, state.table, current(), t);
   }
 }
 
