@@ -132,6 +132,14 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
             # the plan's sum and the analytic value, 6 significant digits each: equal where shown
             assert number(p["plan"]) == pytest.approx(number(p["analytic"]), rel=2e-6), p
 
+    page.fill("#editor-mu-v", "0.01")                          # the student's own scale μ_v
+    page.press("#editor-mu-v", "Enter")
+    page.wait_for_function("() => document.querySelector('.plan-svg').dataset.scale === '0.01'")
+    velocity = drawn_plans(page)[0]
+    assert number(velocity["written"]) == 0.01
+    for v in velocity["vectors"]:
+        assert v["mm"] * 0.01 == pytest.approx(number(v["shown"]), rel=6e-4, abs=1e-12), v
+
     slider = page.locator('[data-group="1"] > label.field input[type="text"]').first
     before = page.get_attribute('[data-joint="D"]', "cx")
     act(page, lambda: (slider.fill("0.2"), slider.press("Enter")))

@@ -232,9 +232,18 @@ function askPlan() {
   $("editor-plans").dataset.state = "waiting";
   planner.submit(planRequest(state.linkage, phi, read("editor-omega1", 10), read("editor-epsilon1", 0)), (answer) => {
     state.plan = answer.ok ? answer.data.outputs.plan : null;
-    renderPlans($("editor-plans"), state.plan, t, lang);
+    showPlans();
     $("editor-plans").dataset.state = answer.ok ? "ready" : "refused";
   });
+}
+
+/** The plans with the scales the student typed (empty: chosen to fit). */
+function showPlans() {
+  const scale = (id) => {
+    const read = parseDecimal($(id).value, lang);
+    return read.error ? null : read.value;
+  };
+  renderPlans($("editor-plans"), state.plan, t, lang, { velocity: scale("editor-mu-v"), acceleration: scale("editor-mu-a") });
 }
 
 function fillQuantities() {
@@ -327,6 +336,7 @@ $("editor-fit").addEventListener("click", () => {
 });
 $("editor-quantity").addEventListener("change", drawPlot);
 for (const id of ["editor-omega1", "editor-epsilon1"]) $(id).addEventListener("change", askPlan);
+for (const id of ["editor-mu-v", "editor-mu-a"]) $(id).addEventListener("change", showPlans);
 $("editor-omega1").value = formatNumber(10, lang, 1);
 $("editor-epsilon1").value = formatNumber(0, lang, 1);
 

@@ -76,8 +76,11 @@ function table(vectors, targets, scale, unit, t, lang, kind) {
   ];
 }
 
-/** Both plans of the API's `plan` answer into host. */
-export function renderPlans(host, plan, t, lang) {
+/**
+ * Both plans of the API's `plan` answer into host; scales {velocity, acceleration}: the student's μ (m/s per
+ * mm, m/s² per mm), or null for the smallest nice scale at which the plan fits 70 mm.
+ */
+export function renderPlans(host, plan, t, lang, scales = {}) {
   if (!plan) {
     host.replaceChildren(element("p", { className: "hint", textContent: t.editor_plans_none }));
     return;
@@ -88,7 +91,7 @@ export function renderPlans(host, plan, t, lang) {
     const vectors = planVectors(plan[which]);
     const ends = vectors.flatMap((v) => [v.start, v.end]).concat([[0, 0]]);
     const extent = (axis) => Math.max(...ends.map((p) => p[axis])) - Math.min(...ends.map((p) => p[axis]));
-    const scale = niceScale(Math.max(extent(0), extent(1), 1e-12), PLAN_MM);
+    const scale = scales[which] > 0 ? scales[which] : niceScale(Math.max(extent(0), extent(1), 1e-12), PLAN_MM);
     const figure = element("figure", { className: "plan", "data-plan-kind": which },
       drawPlan(vectors, scale, pole, t[`editor_plan_${which}`]),
       element("figcaption", {}, element("span", { textContent: `${t[`editor_plan_${which}`]}: ` }),
