@@ -5,7 +5,7 @@ content/mechanisms/shaping_machine.json) from nothing with the mouse, and on it:
 formula, the animation (the drawing changes between frames), a traced path, the velocity and acceleration
 plans (each drawn vector's SVG length times the scale written under the plan equals the value shown in the
 table; the plan's value of each point equals the analytic one shown beside it), editing a length redraws, a
-refusal's reason beside the group it concerns, the shared link reloads the same mechanism, and the Russian
+refusal's reason beside the group it concerns and undoing its cause, the shared link reloads the same mechanism, and the Russian
 page has no English left. A second load at phone size (the mechanism given in the address) fits the screen,
 passes axe-core, saves the mechanism as a file and opens another from a file.
 """
@@ -151,7 +151,7 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
     assert page.get_attribute("#editor-drawing", "data-state") == "refused"
     assert page.inner_text('[data-group="0"] .refusal-reason') == \
         texts["err_unknown_element"].replace("{element}", "A")
-    place("joint", (0, -0.3))                               # placed again, under the same free name
+    act(page, lambda: page.click("#editor-undo"))           # the removal undone
     assert page.get_attribute("#editor-drawing", "data-state") == "ready"
 
     page.wait_for_function("() => location.search.includes('m=')")

@@ -30,7 +30,7 @@ const SPIN = 60;                               // degrees of crank per second of
 
 const state = {
   linkage: emptyLinkage(), mode: "select", picked: [], table: null, refusal: null, k: 0, playing: false,
-  traced: new Set(), plan: null, quantity: null, fitPending: false,
+  traced: new Set(), plan: null, quantity: null, fitPending: false, history: [],
 };
 const tables = new LatestRequest(lang);
 const planner = new LatestRequest(lang);
@@ -167,7 +167,35 @@ function writeAddress() {
   }
 }
 
+const UNDO_DEPTH = 100;
+const DRAG_MS = 800;                   // changes closer together than this (a drag) are one step to undo
+let saved = null;                      // the mechanism as last shown, JSON
+let savedAt = 0;
+
+/** Keep the mechanism before this change for "Undo" (a drag's many small edits as one step). */
+function remember(structural) {
+  const now = JSON.stringify(state.linkage);
+  if (saved !== null && saved !== now && (structural || performance.now() - savedAt > DRAG_MS)) {
+    state.history.push(saved);
+    if (state.history.length > UNDO_DEPTH) state.history.shift();
+  }
+  if (saved !== now) savedAt = performance.now();
+  saved = now;
+  $("editor-undo").disabled = state.history.length === 0;
+}
+
+function undo() {
+  const before = state.history.pop();
+  if (before === undefined) return;
+  saved = before;
+  savedAt = 0;
+  state.linkage = normalised(JSON.parse(before));
+  setMode("select");
+  changed(true);
+}
+
 function changed(structural) {
+  remember(structural);
   writeAddress();
   if (structural) list.render(state.linkage, state.traced);
   const linkage = requestLinkage(state.linkage);
@@ -350,6 +378,7 @@ $("editor-new").addEventListener("click", () => {
   presetSelect.value = "";
   load(emptyLinkage());
 });
+$("editor-undo").addEventListener("click", undo);
 $("editor-export").addEventListener("click", () => {
   const text = JSON.stringify({ mechanism: "general", linkage: state.linkage }, null, 1);
   const link = document.createElement("a");
@@ -379,6 +408,10 @@ $("copy-link").addEventListener("click", async () => {
 });
 document.addEventListener("keydown", (event) => {
   if (event.key === "Escape") setMode("select");
+  if (event.key === "z" && (event.ctrlKey || event.metaKey) && !event.target.closest("input, select")) {
+    event.preventDefault();
+    undo();
+  }
 });
 
 const fromAddress = readMechanism();
