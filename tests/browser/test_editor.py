@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import REPO, interface_texts, screenshot
+from conftest import REPO, drag_slider, interface_texts, screenshot
 
 PHONE = {"width": 390, "height": 844}
 # Chromium reports every HTTP error answer on the console; the 422 that says why a mechanism is refused is the
@@ -140,11 +140,15 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
     for v in velocity["vectors"]:
         assert v["mm"] * 0.01 == pytest.approx(number(v["shown"]), rel=6e-4, abs=1e-12), v
 
-    slider = page.locator('[data-group="1"] > label.field input[type="text"]').first
+    typed = page.locator('[data-group="1"] > label.field input[type="text"]').first
     before = page.get_attribute('[data-joint="D"]', "cx")
-    act(page, lambda: (slider.fill("0.2"), slider.press("Enter")))
+    act(page, lambda: (typed.fill("0.2"), typed.press("Enter")))
     assert page.get_attribute('[data-joint="D"]', "cx") != before, "the slider D did not move with a longer rod"
     assert page.input_value("#editor-phi") == shown_phi
+    before = page.get_attribute('[data-joint="D"]', "cx")
+    act(page, lambda: drag_slider(page, '[data-group="1"] > label.field input[type="range"]', 0.2))
+    assert number(typed.input_value()) < 0.2, "the dragged length is not written in its field"
+    assert page.get_attribute('[data-joint="D"]', "cx") != before, "dragging the rod's length did not redraw"
 
     texts = interface_texts("en")
     act(page, lambda: page.click('[data-element="A"] button.remove'))     # the lever's pivot gone: refused

@@ -223,10 +223,12 @@ function changed(structural) {
 
 function showAnswer() {
   const { table, refusal } = state;
-  list.refusals = new Map();
   const reason = refusal ? refusalText(refusal, t) : null;
-  if (refusal && refusedGroup(refusal) !== null) list.refusals.set(refusedGroup(refusal), reason);
-  list.render(state.linkage, state.traced);
+  const refusals = new Map(refusal && refusedGroup(refusal) !== null ? [[refusedGroup(refusal), reason]] : []);
+  if (JSON.stringify([...refusals]) !== JSON.stringify([...list.refusals])) {    // not during a drag that closes
+    list.refusals = refusals;
+    list.render(state.linkage, state.traced);
+  }
   renderStructure($("editor-structure"), refusal || !table ? null : table.outputs.structure, reason, t);
   renderGroupsApart($("editor-apart"), state.linkage, refusal ? null : table, current(), t);
   showSpecial();
@@ -301,7 +303,7 @@ function draw() {
   drawing.draw({
     frameJoints: linkage.frame.joints,
     joints: Object.fromEntries(jointNames.map((n) => [n, s.joints[n] ?? null])),
-    guides: guideShapes(linkage, s, [...guides(linkage).keys()]),
+    guides: guideShapes(s, [...guides(linkage).keys()]),
     links: table && !state.refusal ? linkShapes(linkage, table, s) : [],
     traces, picked: new Set(state.picked), clickable,
   });

@@ -11,7 +11,7 @@ const add = (a, b) => [a[0] + b[0], a[1] + b[1]];
 const polar = (r, angle) => [r * Math.cos(angle), r * Math.sin(angle)];
 
 /** A point given in a link's frame {origin, angle} (metres). */
-export function onLink(frame, along, across) {
+function onLink(frame, along, across) {
   const [c, s] = [Math.cos(frame.angle), Math.sin(frame.angle)];
   return [frame.origin[0] + along * c - across * s, frame.origin[1] + along * s + across * c];
 }
@@ -97,6 +97,6 @@ export function linkShapes(linkage, table, s) {
 }
 
 /** Every guide with where it is at state s. */
-export function guideShapes(linkage, s, guideNames) {
+export function guideShapes(s, guideNames) {
   return guideNames.map((name) => ({ name, ...(s.guideAt(name) ?? {}) })).filter((g) => g.point);
 }

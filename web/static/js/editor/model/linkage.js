@@ -20,7 +20,7 @@ const LETTERS = "ABCDEFGHKLMNOPQRSTUVWXYZ";
 const SNAP = 0.005;              // m: placed points snap to a 5 mm grid
 const MILLIMETRE = 1e-3;
 
-export const snap = (value) => Math.round(value / SNAP) * SNAP;
+const snap = (value) => Math.round(value / SNAP) * SNAP;
 const mm = (value) => Math.round(value / MILLIMETRE) * MILLIMETRE;
 const round6 = (value) => Math.round(value * 1e6) / 1e6;
 
@@ -170,18 +170,6 @@ export function addPoint(linkage, link, place, frame) {
 /** The mechanism as the API takes it, or null while it has no crank. */
 export function requestLinkage(linkage) {
   return linkage.input ? linkage : null;
-}
-
-/** Remove group k (later groups that used its joints are refused by the server, with the reason). */
-export function removeGroup(linkage, k) {
-  linkage.groups.splice(k, 1);
-}
-
-/** Remove a frame joint or guide, or the crank (only with no group on it). */
-export function removeFrameElement(linkage, name) {
-  delete linkage.frame.joints[name];
-  delete linkage.frame.guides[name];
-  if (linkage.input?.pivot === name) linkage.input = null;
 }
 
 /** A linkage read from outside (a file, the address, a preset) with the parts the editor needs. */

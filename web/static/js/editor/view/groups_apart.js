@@ -6,6 +6,7 @@
 import { element } from "../../dom.js";
 import { fitScale, svgElement } from "../../svg.js";
 import { linkShapes } from "../model/geometry.js";
+import { KINDS } from "../model/linkage.js";
 
 const SIZE = [170, 130];
 const SUB = "₀₁₂₃₄₅₆₇₈₉";
@@ -60,7 +61,7 @@ export function renderGroupsApart(host, linkage, table, s, t) {
   const figures = [figure(`I(0,${crank.link})`, t.editor_input_mechanism, shapes.filter((sh) => sh.link === crank.link),
     [at(crank.pivot)], [at(crank.joint)], [])];
   linkage.groups.forEach((group, k) => {
-    const kindNumber = ["RRR", "RRP", "RPR", "PRP", "RPP"].indexOf(group.kind) + 1;
+    const kindNumber = KINDS.indexOf(group.kind) + 1;          // Artobolevsky's kinds 1…5
     const guideNames = group.guides ?? (group.guide ? [group.guide] : []);
     const guides = guideNames.map((name) => {
       const g = s.guideAt(name);
