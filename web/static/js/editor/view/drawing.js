@@ -68,6 +68,9 @@ export class Drawing {
    */
   draw(scene) {
     this.svg.replaceChildren();
+    // drawing units per CSS pixel: a finger-sized target (about 14 px round a joint) at any screen width
+    const unit = this.svg.clientWidth > 0 ? WIDTH / this.svg.clientWidth : 1;
+    const reach = Math.max(11, 14 * unit);
     const layer = (name) => svgElement("g", { class: name }, this.svg);
     const guides = layer("guides");
     const traces = layer("traces");
@@ -82,7 +85,7 @@ export class Drawing {
       const b = this.xy([g.point[0] + half * c, g.point[1] + half * s]);
       const line = { x1: a[0], y1: a[1], x2: b[0], y2: b[1] };
       svgElement("line", { ...line, class: `guide${scene.picked.has(g.name) ? " picked" : ""}` }, guides);
-      svgElement("line", { ...line, class: "guide-hit", "data-guide": g.name }, guides);
+      svgElement("line", { ...line, class: "guide-hit", "data-guide": g.name, "stroke-width": reach }, guides);
       const at = this.xy(g.point);
       svgElement("text", { x: at[0] + 6, y: at[1] - 6, class: "guide-label" }, guides).textContent = g.name;
     }
@@ -115,7 +118,7 @@ export class Drawing {
       if (!p) continue;
       const [x, y] = this.xy(p);
       svgElement("circle", { cx: x, cy: y, r: 5.5, class: `joint${scene.picked.has(name) ? " picked" : ""}` }, joints);
-      svgElement("circle", { cx: x, cy: y, r: 11, class: "joint-hit", "data-joint": name }, joints);
+      svgElement("circle", { cx: x, cy: y, r: reach, class: "joint-hit", "data-joint": name }, joints);
       setRichText(svgElement("text", { x: x + 9, y: y - 9, class: "joint-label" }, joints), name);
     }
   }

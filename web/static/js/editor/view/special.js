@@ -17,11 +17,21 @@ function parts(description) {
   return { group: group === undefined ? "?" : Number(group) + 1, kind, link, slide };
 }
 
+/**
+ * A slide as the server names it, in words: "E/ram" (slider E on the guide ram) → "E, направляющая ram";
+ * "B/slot" (the block at B in its slot, RPP) → "B в кулисе"; a slot of RPR ("s23") as it is.
+ */
+function slideLabel(key, t) {
+  const [joint, guide] = key.split("/");
+  if (guide === undefined) return key;
+  return guide === "slot" ? `${joint} ${t.editor_in_slot}` : `${joint} (${t.editor_guide_word} ${guide})`;
+}
+
 /** One special position as a sentence in the reader's language. */
 export function specialText(sp, t, lang) {
   const p = parts(sp.description);
   const phi = `φ = ${formatNumber(sp.phi * DEG, lang, 1)}°`;
-  const what = p.link ? `${t.editor_link} ${p.link}` : p.slide ? `${t.editor_slide} ${p.slide}` : "";
+  const what = p.link ? `${t.editor_link} ${p.link}` : p.slide ? `${t.editor_slide} ${slideLabel(p.slide, t)}` : "";
   const template = t[`editor_sp_${sp.kind}`] ?? sp.description;
   return `${phi}: ${template.replace("{group}", p.group).replace("{kind}", p.kind).replace("{what}", what)
     .replace("{value}", sp.value === null ? "" : formatNumber(sp.value, lang, 3))}`;
