@@ -13,7 +13,7 @@ import { renderSpecial } from "./view/special.js";
 import { renderStructure } from "./view/structure.js";
 import { mechanismQuery, readMechanism } from "./model/address.js";
 import { guideShapes, linkShapes, stateAt } from "./model/geometry.js";
-import { PICKS, addFrameGuide, addFrameJoint, addGroup, addPoint, emptyLinkage, guides, joints, links,
+import { PICKS, addFrameGuide, addFrameJoint, addGroup, addLinkGuide, addPoint, emptyLinkage, guides, joints, links,
   normalised, requestLinkage, setCrank } from "./model/linkage.js";
 import { LatestRequest, refusalText, refusedGroup } from "./model/service.js";
 import { frameOf, planRequest, quantities, specialRequest, tableRequest } from "./model/table.js";
@@ -59,8 +59,9 @@ function setMode(mode) {
   state.mode = mode;
   state.picked = [];
   for (const button of document.querySelectorAll("[data-mode]")) button.setAttribute("aria-pressed", String(button.dataset.mode === mode));
-  $("editor-point-link-label").hidden = mode !== "point";
-  if (mode === "point") {
+  const onLink = mode === "point" || mode === "link_guide";
+  $("editor-point-link-label").hidden = !onLink;
+  if (onLink) {
     const select = $("editor-point-link");
     const keep = select.value;
     select.replaceChildren(...links(state.linkage).map(([link]) => new Option(`${t.editor_link} ${link}`, String(link))));
@@ -95,11 +96,11 @@ function place(p) {
   else if (PICKS[mode]?.[state.picked.length] === "place") {
     const s = current();
     addGroup(linkage, mode, state.picked, p, (name) => s.joints[name], (name) => s.guideAt(name));
-  } else if (mode === "point") {
+  } else if (mode === "point" || mode === "link_guide") {
     const link = Number($("editor-point-link").value);
     const frame = current().frameOf(link);
     if (!frame) return;
-    addPoint(linkage, link, p, frame);
+    (mode === "point" ? addPoint : addLinkGuide)(linkage, link, p, frame);
   } else return;
   finishPick();
 }
@@ -112,7 +113,7 @@ function finishPick() {
 /** The next click places something (a frame element, the crank's pin, a group's inner joint, a point). */
 function placing() {
   const { mode, picked } = state;
-  return ["joint", "guide", "point"].includes(mode) || (mode === "crank" && picked.length === 1)
+  return ["joint", "guide", "point", "link_guide"].includes(mode) || (mode === "crank" && picked.length === 1)
     || PICKS[mode]?.[picked.length] === "place";
 }
 

@@ -167,6 +167,17 @@ export function addPoint(linkage, link, place, frame) {
   return name;
 }
 
+/** A guide fixed on `link` through the point clicked, along the link (its angle α to the link set in the list). */
+export function addLinkGuide(linkage, link, place, frame) {
+  const element = carrier(linkage, link);
+  const [dx, dy] = minus([snap(place[0]), snap(place[1])], frame.origin);
+  const [c, s] = [Math.cos(frame.angle), Math.sin(frame.angle)];
+  const name = freeGuideName(linkage);
+  element.new_guides = { ...(element.new_guides ?? {}),
+    [name]: { link, along: mm(dx * c + dy * s), across: mm(-dx * s + dy * c), angle: 0 } };
+  return name;
+}
+
 /** The mechanism as the API takes it, or null while it has no crank. */
 export function requestLinkage(linkage) {
   return linkage.input ? linkage : null;

@@ -78,7 +78,13 @@ export class ElementList {
       element("span", { rich: `${t.editor_point} ${name} (${t.editor_link} ${p.link ?? owner.links?.[0] ?? owner.link})` }),
       this.#number(t.editor_along, () => p.along ?? 0, (v) => { p.along = v; }, { unit: t.units_m, symbol: false }),
       this.#number(t.editor_across, () => p.across ?? 0, (v) => { p.across = v; }, { unit: t.units_m, symbol: false }),
-      this.#remove(`${t.editor_remove} ${name}`, () => { delete owner.points[name]; })));
+      this.#remove(`${t.editor_remove} ${name}`, () => { delete owner.points[name]; })))
+      .concat(Object.entries(owner.new_guides ?? {}).map(([name, g]) => element("div", { className: "point-row" },
+        element("span", { textContent: `${t.editor_link_guide} ${name} (${t.editor_link} ${g.link ?? owner.links?.[0] ?? owner.link})` }),
+        this.#number(t.editor_along, () => g.along ?? 0, (v) => { g.along = v; }, { unit: t.units_m, symbol: false }),
+        this.#number(t.editor_across, () => g.across ?? 0, (v) => { g.across = v; }, { unit: t.units_m, symbol: false }),
+        this.#number("α", () => g.angle ?? 0, (v) => { g.angle = v; }, { degrees: true, unit: "°" }),
+        this.#remove(`${t.editor_remove} ${name}`, () => { delete owner.new_guides[name]; }))));
   }
 
   render(linkage, traced) {
@@ -140,9 +146,9 @@ export class ElementList {
       }
       const refusal = this.refusals.get(k);
       rows.push(element("div", { className: `element-row group-row${refusal ? " refused" : ""}`, "data-group": k },
-        element("strong", { textContent: `${k + 1}. ${group.kind} (${t.editor_links} ${group.links.join(", ")}) — ${t.editor_on} ${on}` }),
+        element("strong", { textContent: `${t.editor_group} ${k}: ${group.kind} (${t.editor_links} ${group.links.join(", ")}) — ${t.editor_on} ${on}` }),
         ...fields, ...this.#points(group, linkage),
-        this.#remove(`${t.editor_remove} ${group.kind} ${k + 1}`, () => { linkage.groups.splice(k, 1); }),
+        this.#remove(`${t.editor_remove}: ${t.editor_group} ${k}`, () => { linkage.groups.splice(k, 1); }),
         ...(refusal ? [element("p", { className: "refusal-reason", role: "alert", textContent: refusal })] : [])));
     });
     if (!rows.length) rows.push(element("p", { className: "hint", textContent: t.editor_empty }));

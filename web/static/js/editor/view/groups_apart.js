@@ -70,8 +70,8 @@ export function renderGroupsApart(host, linkage, table, s, t) {
       return { at: slider ?? g?.point, angle: g?.angle };
     });
     const inner = group.kind === "RPR" ? [] : [at(group.inner)];
-    figures.push(figure(`${k + 1}. II${sub(kindNumber)}(${group.links.join(",")}) ${group.kind}`,
-      `${t.editor_group_apart} ${k + 1}`, shapes.filter((sh) => group.links.includes(sh.link)),
+    figures.push(figure(`${k}: II${sub(kindNumber)}(${group.links.join(",")}) ${group.kind}`,
+      `${t.editor_group_apart} ${k}`, shapes.filter((sh) => group.links.includes(sh.link)),
       (group.outer ?? []).map(at), inner, guides));
   });
   host.replaceChildren(...figures);

@@ -14,7 +14,7 @@ function parts(description) {
   const kind = description.match(/^group \d+ \((\w+)\)/)?.[1] ?? "";
   const link = description.match(/: link (\d+) reverses/)?.[1];
   const slide = description.match(/: slide (\S+) reverses/)?.[1];
-  return { group: group === undefined ? "?" : Number(group) + 1, kind, link, slide };
+  return { group: group ?? "?", kind, link, slide };      // numbered as the API numbers them (linkage.groups.k)
 }
 
 /**

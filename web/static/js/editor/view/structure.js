@@ -28,7 +28,7 @@ export function renderStructure(host, structure, refusal, t) {
     element("dd", { id: "editor-formula", textContent: s.formula }),
     element("dt", { textContent: t.editor_class }),
     element("dd", { id: "editor-class", textContent: `${s.class === 2 ? "II" : "I"}` }));
-  const groups = element("ol", { className: "structure-groups" }, ...s.groups.map((g) => element("li", {},
+  const groups = element("ol", { className: "structure-groups", start: 0 }, ...s.groups.map((g) => element("li", {},
     `II${sub(g.kind_number)}(${g.links.join(",")}) — ${g.kind}: ${t.editor_attached_to} ${g.attached_to.join(", ")}`)));
   host.replaceChildren(list, groups);
 }
