@@ -28,9 +28,15 @@ const DEG = Math.PI / 180;
 const TURN_DEGREES = 360;
 const SPIN = 60;                               // degrees of crank per second of animation
 
+/**
+ * linkage: the mechanism (the API's JSON); mode: what a click places; picked: the elements clicked so far for
+ * it; table: the last answer over the turn (361 angles, 1°); refusal: the last 422 ({code, message, loc, ctx});
+ * k: the cursor angle in degrees (the table's row); traced: joints whose paths are drawn; plan, special: the
+ * last answers for them; history: earlier mechanisms (JSON) for Undo.
+ */
 const state = {
   linkage: emptyLinkage(), mode: "select", picked: [], table: null, refusal: null, k: 0, playing: false,
-  traced: new Set(), plan: null, quantity: null, fitPending: false, history: [],
+  traced: new Set(), plan: null, special: [], quantities: [], fitPending: false, history: [],
 };
 const tables = new LatestRequest(lang);
 const planner = new LatestRequest(lang);
