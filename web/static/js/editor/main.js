@@ -15,6 +15,7 @@ import { mechanismQuery, readMechanism } from "./model/address.js";
 import { guideShapes, linkShapes, stateAt } from "./model/geometry.js";
 import { PICKS, addFrameGuide, addFrameJoint, addGroup, addLinkGuide, addPoint, emptyLinkage, guides, joints, links,
   normalised, requestLinkage, setCrank } from "./model/linkage.js";
+import { UndoHistory } from "./model/history.js";
 import { LatestRequest, refusalText, refusedGroup } from "./model/service.js";
 import { frameOf, planRequest, quantities, specialRequest, tableRequest } from "./model/table.js";
 import { formatNumber, plainText } from "../notation.js";
@@ -32,15 +33,16 @@ const SPIN = 60;                               // degrees of crank per second of
  * linkage: the mechanism (the API's JSON); mode: what a click places; picked: the elements clicked so far for
  * it; table: the last answer over the turn (361 angles, 1°); refusal: the last 422 ({code, message, loc, ctx});
  * k: the cursor angle in degrees (the table's row); traced: joints whose paths are drawn; plan, special: the
- * last answers for them; history: earlier mechanisms (JSON) for Undo.
+ * last answers for them.
  */
 const state = {
   linkage: emptyLinkage(), mode: "select", picked: [], table: null, refusal: null, k: 0, playing: false,
-  traced: new Set(), plan: null, special: [], quantities: [], fitPending: false, history: [],
+  traced: new Set(), plan: null, special: [], quantities: [], fitPending: false,
 };
 const tables = new LatestRequest(lang);
 const planner = new LatestRequest(lang);
 const specials = new LatestRequest(lang);
+const undoHistory = new UndoHistory();
 const stage = $("editor-drawing");
 
 const drawing = new Drawing(stage, {
@@ -174,28 +176,15 @@ function writeAddress() {
   }
 }
 
-const UNDO_DEPTH = 100;
-const DRAG_MS = 800;                   // changes closer together than this (a drag) are one step to undo
-let saved = null;                      // the mechanism as last shown, JSON
-let savedAt = 0;
-
-/** Keep the mechanism before this change for "Undo" (a drag's many small edits as one step). */
+/** Keep the mechanism before this change for "Undo". */
 function remember(structural) {
-  const now = JSON.stringify(state.linkage);
-  if (saved !== null && saved !== now && (structural || performance.now() - savedAt > DRAG_MS)) {
-    state.history.push(saved);
-    if (state.history.length > UNDO_DEPTH) state.history.shift();
-  }
-  if (saved !== now) savedAt = performance.now();
-  saved = now;
-  $("editor-undo").disabled = state.history.length === 0;
+  undoHistory.remember(JSON.stringify(state.linkage), structural, performance.now());
+  $("editor-undo").disabled = undoHistory.empty;
 }
 
 function undo() {
-  const before = state.history.pop();
-  if (before === undefined) return;
-  saved = before;
-  savedAt = 0;
+  const before = undoHistory.undo();
+  if (before === null) return;
   state.linkage = normalised(JSON.parse(before));
   setMode("select");
   changed(true);
