@@ -22,8 +22,8 @@ from .static_files import content_version, mount_versioned
 from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
 from ..classroom.variants import SpecError
-from .routers import (angular, assignment_pages, assignments, bearings, dynamics, elastic, family, forces,
-                      kinematics, mechanisms, pages, scenes)
+from .routers import (angular, assignment_pages, assignments, bearings, dynamics, editor_pages, elastic, family,
+                      forces, kinematics, mechanisms, pages, scenes)
 
 API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
@@ -73,6 +73,7 @@ def create_app() -> FastAPI:
     app.include_router(api)
     app.include_router(pages.router)
     app.include_router(assignment_pages.router)
+    app.include_router(editor_pages.router)     # /editor: the mechanism editor
     app.add_exception_handler(RequestValidationError, validation_error)  # never echo NaN back
     app.add_exception_handler(GeometryError, geometry_error)
     app.add_exception_handler(SpecError, assignments.spec_error)

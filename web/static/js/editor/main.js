@@ -1,0 +1,425 @@
+/**
+ * The mechanism editor page: the student places the frame's joints and guides, the crank and class-II groups
+ * with the mouse; every change asks the server once for the table over the turn (the structure, positions,
+ * analogs), once for the special positions and once for the plans at the cursor angle; the animation, traced
+ * paths and the plot come from the table. The mechanism lives in the address (?m=…), and in files (export, import).
+ */
+import { Drawing } from "./view/drawing.js";
+import { ElementList } from "./view/elements.js";
+import { QuantityPlot } from "./view/plot.js";
+import { renderGroupsApart } from "./view/groups_apart.js";
+import { renderPlans } from "./view/plans.js";
+import { renderSpecial } from "./view/special.js";
+import { renderStructure } from "./view/structure.js";
+import { mechanismQuery, readMechanism } from "./model/address.js";
+import { guideShapes, linkShapes, stateAt } from "./model/geometry.js";
+import { PICKS, addFrameGuide, addFrameJoint, addGroup, addLinkGuide, addPoint, emptyLinkage, guides, joints, links,
+  normalised, requestLinkage, setCrank } from "./model/linkage.js";
+import { UndoHistory } from "./model/history.js";
+import { LatestRequest, refusalText, refusedGroup } from "./model/service.js";
+import { frameOf, planRequest, quantities, specialRequest, tableRequest } from "./model/table.js";
+import { formatNumber, plainText } from "../common/view/notation.js";
+import { parseDecimal } from "../classroom/model/decimal_input.js";
+
+const lang = document.documentElement.lang;
+const t = JSON.parse(document.getElementById("interface-texts").textContent);
+const presets = JSON.parse(document.getElementById("editor-presets").textContent);
+const $ = (id) => document.getElementById(id);
+const DEG = Math.PI / 180;
+const TURN_DEGREES = 360;
+const SPIN = 60;                               // degrees of crank per second of animation
+
+/**
+ * linkage: the mechanism (the API's JSON); mode: what a click places; picked: the elements clicked so far for
+ * it; table: the last answer over the turn (361 angles, 1°); refusal: the last 422 ({code, message, loc, ctx});
+ * k: the cursor angle in degrees (the table's row); traced: joints whose paths are drawn; plan, special: the
+ * last answers for them.
+ */
+const state = {
+  linkage: emptyLinkage(), mode: "select", picked: [], table: null, refusal: null, k: 0, playing: false,
+  traced: new Set(), plan: null, special: [], quantities: [], fitPending: false,
+};
+const tables = new LatestRequest(lang);
+const planner = new LatestRequest(lang);
+const specials = new LatestRequest(lang);
+const undoHistory = new UndoHistory();
+const stage = $("editor-drawing");
+
+const drawing = new Drawing(stage, {
+  label: t.drawing,
+  onPlace: (p) => place(p),
+  onJoint: (name, at) => pickJoint(name, at),
+  onGuide: (name, at) => pickGuide(name, at),
+});
+const list = new ElementList($("editor-elements"), {
+  t, lang, onEdit: () => changed(false), onStructure: () => changed(true),
+  onTrace: (name, on) => {
+    if (on) state.traced.add(name);
+    else state.traced.delete(name);
+    draw();
+  },
+});
+const plot = new QuantityPlot($("editor-plot"), { t, lang });
+
+/* ---- what the student does in the drawing ---- */
+
+function setMode(mode) {
+  state.mode = mode;
+  state.picked = [];
+  for (const button of document.querySelectorAll("[data-mode]")) button.setAttribute("aria-pressed", String(button.dataset.mode === mode));
+  const onLink = mode === "point" || mode === "link_guide";
+  $("editor-point-link-label").hidden = !onLink;
+  if (onLink) {
+    const select = $("editor-point-link");
+    const keep = select.value;
+    select.replaceChildren(...links(state.linkage).map(([link]) => new Option(`${t.editor_link} ${link}`, String(link))));
+    if (keep) select.value = keep;
+  }
+  prompt();
+  draw();
+}
+
+function prompt() {
+  const { mode, picked, linkage } = state;
+  let text = t[`editor_prompt_${mode}`] ?? "";
+  if (mode === "crank" && picked.length) text = t.editor_prompt_crank_pin;
+  if (PICKS[mode]) {
+    const next = PICKS[mode][picked.length];
+    text = `${mode}: ${t[`editor_prompt_pick_${next}`].replace("{n}", String(picked.length + 1))}`;
+    if (picked.length) text += ` (${picked.join(", ")})`;
+  }
+  if (mode !== "select" && mode !== "joint" && mode !== "guide" && !linkage.input && mode !== "crank") text = t.editor_prompt_crank_first;
+  $("editor-prompt").textContent = text;
+}
+
+function current() {
+  return stateAt(state.linkage, state.table, state.k);
+}
+
+function place(p) {
+  const { mode, linkage } = state;
+  if (mode === "joint") addFrameJoint(linkage, p);
+  else if (mode === "guide") addFrameGuide(linkage, p);
+  else if (mode === "crank" && state.picked.length === 1) setCrank(linkage, state.picked[0], p);
+  else if (PICKS[mode]?.[state.picked.length] === "place") {
+    const s = current();
+    addGroup(linkage, mode, state.picked, p, (name) => s.joints[name], (name) => s.guideAt(name));
+  } else if (mode === "point" || mode === "link_guide") {
+    const link = Number($("editor-point-link").value);
+    const frame = current().frameOf(link);
+    if (!frame) return;
+    (mode === "point" ? addPoint : addLinkGuide)(linkage, link, p, frame);
+  } else return;
+  finishPick();
+}
+
+function finishPick() {
+  setMode("select");
+  changed(true);
+}
+
+/** The next click places something (a frame element, the crank's pin, a group's inner joint, a point). */
+function placing() {
+  const { mode, picked } = state;
+  return ["joint", "guide", "point", "link_guide"].includes(mode) || (mode === "crank" && picked.length === 1)
+    || PICKS[mode]?.[picked.length] === "place";
+}
+
+function pickJoint(name, at) {
+  const { mode, picked, linkage } = state;
+  if (placing()) return place(at);
+  if (mode === "select") {
+    if (state.traced.has(name)) state.traced.delete(name);
+    else if (!(name in linkage.frame.joints)) state.traced.add(name);
+    list.render(linkage, state.traced);
+    draw();
+    return;
+  }
+  if (mode === "crank" && !picked.length) {
+    if (!(name in linkage.frame.joints)) return;
+    picked.push(name);
+  } else if (PICKS[mode]?.[picked.length] === "joint" && !picked.includes(name)) {
+    picked.push(name);
+  } else return;
+  afterPick();
+}
+
+function pickGuide(name, at) {
+  const { mode, picked } = state;
+  if (placing()) place(at);
+  else if (PICKS[mode]?.[picked.length] === "guide" && !picked.includes(name)) {
+    picked.push(name);
+    afterPick();
+  }
+}
+
+function afterPick() {
+  const { mode, picked, linkage } = state;
+  if (PICKS[mode] && picked.length === PICKS[mode].length) {
+    const s = current();
+    addGroup(linkage, mode, picked, null, (n) => s.joints[n], (n) => s.guideAt(n));
+    finishPick();
+    return;
+  }
+  prompt();
+  draw();
+}
+
+/* ---- the table, the plans, the address ---- */
+
+function writeAddress() {
+  const query = mechanismQuery(state.linkage, lang);
+  history.replaceState(null, "", `?${query}`);
+  for (const link of document.querySelectorAll("a[data-lang]")) {
+    query.set("lang", link.dataset.lang);
+    link.href = `?${query}`;
+  }
+}
+
+/** Keep the mechanism before this change for "Undo". */
+function remember(structural) {
+  undoHistory.remember(JSON.stringify(state.linkage), structural, performance.now());
+  $("editor-undo").disabled = undoHistory.empty;
+}
+
+function undo() {
+  const before = undoHistory.undo();
+  if (before === null) return;
+  state.linkage = normalised(JSON.parse(before));
+  setMode("select");
+  changed(true);
+}
+
+function changed(structural) {
+  remember(structural);
+  writeAddress();
+  if (structural) list.render(state.linkage, state.traced);
+  const linkage = requestLinkage(state.linkage);
+  stage.dataset.state = "waiting";
+  if (!linkage) {
+    state.table = null;
+    state.refusal = null;
+    showAnswer();
+    return;
+  }
+  specials.submit(specialRequest(linkage), (answer) => {
+    state.special = answer.ok ? answer.data.outputs.special : [];
+    showSpecial();
+  });
+  tables.submit(tableRequest(linkage), (answer) => {
+    if (answer.ok) {
+      state.table = answer.data;
+      state.refusal = null;
+    } else {
+      state.refusal = answer.error;
+    }
+    showAnswer();
+  });
+}
+
+function showAnswer() {
+  const { table, refusal } = state;
+  const reason = refusal ? refusalText(refusal, t) : null;
+  const refusals = new Map(refusal && refusedGroup(refusal) !== null ? [[refusedGroup(refusal), reason]] : []);
+  if (JSON.stringify([...refusals]) !== JSON.stringify([...list.refusals])) {    // not during a drag that closes
+    list.refusals = refusals;
+    list.render(state.linkage, state.traced);
+  }
+  renderStructure($("editor-structure"), refusal || !table ? null : table.outputs.structure, reason, t);
+  renderGroupsApart($("editor-apart"), state.linkage, refusal ? null : table, current(), t);
+  showSpecial();
+  fillQuantities();
+  if (state.fitPending && table) {
+    state.fitPending = false;
+    fit();
+  }
+  draw();
+  stage.dataset.state = refusal ? "refused" : table ? "ready" : "empty";
+  stage.dataset.answers = String(Number(stage.dataset.answers ?? 0) + 1);
+  askPlan();
+}
+
+function showSpecial() {
+  const shown = state.refusal || !state.table;
+  renderSpecial($("editor-special"), $("editor-warnings"), shown ? [] : state.special ?? [], shown ? [] : state.table.warnings,
+    t, lang, (phi) => setAngle(frameOf(state.table, phi)));
+}
+
+function askPlan() {
+  if (state.playing || !state.table || state.refusal) {
+    if (!state.table || state.refusal) renderPlans($("editor-plans"), null, t, lang);
+    return;
+  }
+  const read = (id, fallback) => {
+    const value = parseDecimal($(id).value, lang);
+    return value.error ? fallback : value.value;
+  };
+  const phi = state.table.phi[state.k];
+  $("editor-plans").dataset.state = "waiting";
+  planner.submit(planRequest(state.linkage, phi, read("editor-omega1", 10), read("editor-epsilon1", 0)), (answer) => {
+    state.plan = answer.ok ? answer.data.outputs.plan : null;
+    showPlans();
+    $("editor-plans").dataset.state = answer.ok ? "ready" : "refused";
+  });
+}
+
+/** The plans with the scales the student typed (empty: chosen to fit). */
+function showPlans() {
+  const scale = (id) => {
+    const read = parseDecimal($(id).value, lang);
+    return read.error ? null : read.value;
+  };
+  renderPlans($("editor-plans"), state.plan, t, lang, { velocity: scale("editor-mu-v"), acceleration: scale("editor-mu-a") });
+}
+
+function fillQuantities() {
+  const select = $("editor-quantity");
+  const all = state.table && !state.refusal ? quantities(state.table) : [];
+  const keep = select.value || all.find((q) => q.id.startsWith("slides:"))?.id || all[0]?.id;
+  select.replaceChildren(...all.map((q) => new Option(plainText(q.label), q.id)));
+  if (keep && all.some((q) => q.id === keep)) select.value = keep;
+  state.quantities = all;
+  drawPlot();
+}
+
+function drawPlot() {
+  const q = state.quantities?.find((item) => item.id === $("editor-quantity").value);
+  plot.draw(state.table?.phi ?? [], q, state.k * DEG);
+}
+
+/* ---- drawing and animation ---- */
+
+function draw() {
+  const { linkage, table } = state;
+  const s = current();
+  const clickable = PICKS[state.mode]?.[state.picked.length] ?? (state.mode === "crank" ? "joint" : null);
+  const jointNames = [...joints(linkage).keys()];
+  const traces = table && !state.refusal ? [...state.traced].filter((n) => table.outputs.joints[n])
+    .map((n) => table.outputs.joints[n].map(([x, y]) => (x === null ? null : [x, y]))) : [];
+  drawing.draw({
+    frameJoints: linkage.frame.joints,
+    joints: Object.fromEntries(jointNames.map((n) => [n, s.joints[n] ?? null])),
+    guides: guideShapes(s, [...guides(linkage).keys()]),
+    links: table && !state.refusal ? linkShapes(linkage, table, s) : [],
+    traces, picked: new Set(state.picked), clickable,
+  });
+  $("editor-phi-value").textContent = `φ = ${formatNumber(state.k, lang, 0)}°`;
+}
+
+function setAngle(k) {
+  state.k = ((k % TURN_DEGREES) + TURN_DEGREES) % TURN_DEGREES;
+  $("editor-phi").value = String(state.k);
+  draw();
+  if (!state.playing) {
+    drawPlot();
+    askPlan();
+    if (!state.refusal) renderGroupsApart($("editor-apart"), state.linkage, state.table, current(), t);
+  }
+}
+
+let started = null;
+function frame(now) {
+  if (!state.playing) return;
+  started ??= now - (state.k / SPIN) * 1000;
+  setAngle(Math.floor(((now - started) / 1000) * SPIN));
+  requestAnimationFrame(frame);
+}
+
+function play(on) {
+  state.playing = on;
+  started = null;
+  $("editor-play").setAttribute("aria-pressed", String(on));
+  $("editor-play").textContent = on ? t.editor_pause : t.editor_play;
+  if (on) requestAnimationFrame(frame);
+  else setAngle(state.k);
+}
+
+function fit() {
+  const points = Object.values(state.linkage.frame.joints);
+  if (state.table) {
+    for (const rows of Object.values(state.table.outputs.joints)) points.push(...rows.filter((p) => p[0] !== null));
+  }
+  drawing.fit(points);
+}
+
+function load(linkage, status = "") {
+  state.linkage = normalised(linkage);
+  state.traced = new Set(Object.keys(state.linkage.groups.at(-1)?.points ?? {}).slice(0, 1));
+  state.fitPending = true;
+  $("editor-file-status").textContent = status;
+  setMode("select");
+  changed(true);
+}
+
+/* ---- tools ---- */
+
+for (const button of document.querySelectorAll("[data-mode]")) button.addEventListener("click", () => setMode(button.dataset.mode));
+$("editor-phi").addEventListener("input", () => setAngle(Number($("editor-phi").value)));
+$("editor-play").addEventListener("click", () => play(!state.playing));
+$("editor-fit").addEventListener("click", () => {
+  fit();
+  draw();
+});
+$("editor-quantity").addEventListener("change", drawPlot);
+for (const id of ["editor-omega1", "editor-epsilon1"]) $(id).addEventListener("change", askPlan);
+for (const id of ["editor-mu-v", "editor-mu-a"]) $(id).addEventListener("change", showPlans);
+$("editor-omega1").value = formatNumber(10, lang, 1);
+$("editor-epsilon1").value = formatNumber(0, lang, 1);
+
+const presetSelect = $("editor-preset");
+presetSelect.append(...presets.map((p) => new Option(p.title, p.name)));
+presetSelect.addEventListener("change", () => {
+  const preset = presets.find((p) => p.name === presetSelect.value);
+  if (preset) load(preset.linkage, preset.source);
+});
+$("editor-new").addEventListener("click", () => {
+  presetSelect.value = "";
+  load(emptyLinkage());
+});
+$("editor-undo").addEventListener("click", undo);
+$("editor-export").addEventListener("click", () => {
+  const text = JSON.stringify({ mechanism: "general", linkage: state.linkage }, null, 1);
+  const link = document.createElement("a");
+  link.href = URL.createObjectURL(new Blob([text], { type: "application/json" }));
+  link.download = "mechanism.json";
+  link.click();
+  setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+});
+$("editor-import").addEventListener("change", async (event) => {
+  const file = event.target.files?.[0];
+  if (!file) return;
+  try {
+    const data = JSON.parse(await file.text());
+    load(data.linkage ?? data, `${t.editor_imported}: ${file.name}`);
+  } catch {
+    $("editor-file-status").textContent = t.editor_import_failed;
+  }
+  event.target.value = "";
+});
+$("copy-link").addEventListener("click", async () => {
+  try {
+    await navigator.clipboard.writeText(location.href);
+    $("editor-file-status").textContent = t.editor_link_copied;
+  } catch {
+    $("editor-file-status").textContent = location.href;
+  }
+});
+document.addEventListener("keydown", (event) => {
+  if (event.key === "Escape") setMode("select");
+  if (event.key === "z" && (event.ctrlKey || event.metaKey) && !event.target.closest("input, select")) {
+    event.preventDefault();
+    undo();
+  }
+});
+
+const fromAddress = readMechanism();
+if (fromAddress) {
+  try {
+    load(fromAddress);
+  } catch {
+    load(emptyLinkage());
+  }
+} else {
+  setMode("select");
+  changed(true);
+}

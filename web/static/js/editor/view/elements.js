@@ -1,0 +1,164 @@
+/**
+ * The list of the mechanism's elements in the order they are attached (frame, crank, groups) with their
+ * sizes typed or dragged (a length's slider runs from a quarter to two and a half times the length it had
+ * when the list was drawn), the assembly branch, points of interest, and a refusal's reason beside the group
+ * it concerns. Editing a value calls onEdit() (the list is not redrawn, so a drag goes on); adding or
+ * removing calls onStructure().
+ */
+import { element } from "../../common/view/dom.js";
+import { formatNumber } from "../../common/view/notation.js";
+import { parseDecimal, decimalMessage } from "../../classroom/model/decimal_input.js";
+import { joints } from "../model/linkage.js";
+
+const DEG = 180 / Math.PI;
+
+export class ElementList {
+  constructor(host, { t, lang, onEdit, onStructure, onTrace }) {
+    Object.assign(this, { host, t, lang, onEdit, onStructure, onTrace });
+    this.refusals = new Map();
+  }
+
+  /** A number field: label, value in SI (shown in degrees when degrees), a slider for positive lengths. */
+  #number(label, get, set, { degrees = false, slider = false, unit = "", symbol = true } = {}) {
+    const { t, lang } = this;
+    const shown = () => formatNumber(degrees ? get() * DEG : get(), lang, degrees ? 1 : 3);
+    const input = element("input", { type: "text", inputmode: "decimal", size: 6, value: shown(),
+      "aria-label": label.replace(/_/g, "") });
+    const note = element("span", { className: "field-error", role: "alert" });
+    const parts = [element("span", { rich: label, ...(symbol ? { translate: false } : {}) }), input, unit];
+    let range = null;
+    if (slider) {
+      const base = get();
+      range = element("input", { type: "range", min: base * 0.25, max: base * 2.5, step: base / 400, value: base,
+        "aria-label": label.replace(/_/g, "") });
+      range.addEventListener("input", () => {
+        set(Number(Number(range.value).toFixed(4)));
+        input.value = shown();
+        this.onEdit();
+      });
+    }
+    input.addEventListener("change", () => {
+      const read = parseDecimal(input.value, lang);
+      if (read.error) {
+        note.textContent = decimalMessage(read.error, input.value, t);
+        return;
+      }
+      note.textContent = "";
+      set(degrees ? read.value / DEG : read.value);
+      input.value = shown();
+      if (range) range.value = get();
+      this.onEdit();
+    });
+    return element("label", { className: "field" }, ...parts, ...(range ? [range] : []), note);
+  }
+
+  #branch(group) {
+    const { t } = this;
+    const select = element("select", { "aria-label": t.editor_branch },
+      element("option", { value: "1", textContent: "+1" }), element("option", { value: "-1", textContent: "−1" }));
+    select.value = String(group.branch ?? 1);
+    select.addEventListener("change", () => {
+      group.branch = Number(select.value);
+      this.onEdit();
+    });
+    return element("label", { className: "field" }, t.editor_branch, select);
+  }
+
+  #remove(label, action) {
+    return element("button", { type: "button", className: "remove", textContent: "×", title: label,
+      "aria-label": label, onclick: () => {
+        action();
+        this.onStructure();
+      } });
+  }
+
+  #points(owner, linkage) {
+    const { t } = this;
+    return Object.entries(owner.points ?? {}).map(([name, p]) => element("div", { className: "point-row" },
+      element("span", { rich: `${t.editor_point} ${name} (${t.editor_link} ${p.link ?? owner.links?.[0] ?? owner.link})` }),
+      this.#number(t.editor_along, () => p.along ?? 0, (v) => { p.along = v; }, { unit: t.units_m, symbol: false }),
+      this.#number(t.editor_across, () => p.across ?? 0, (v) => { p.across = v; }, { unit: t.units_m, symbol: false }),
+      this.#remove(`${t.editor_remove} ${name}`, () => { delete owner.points[name]; })))
+      .concat(Object.entries(owner.new_guides ?? {}).map(([name, g]) => element("div", { className: "point-row" },
+        element("span", { textContent: `${t.editor_link_guide} ${name} (${t.editor_link} ${g.link ?? owner.links?.[0] ?? owner.link})` }),
+        this.#number(t.editor_along, () => g.along ?? 0, (v) => { g.along = v; }, { unit: t.units_m, symbol: false }),
+        this.#number(t.editor_across, () => g.across ?? 0, (v) => { g.across = v; }, { unit: t.units_m, symbol: false }),
+        this.#number("α", () => g.angle ?? 0, (v) => { g.angle = v; }, { degrees: true, unit: "°" }),
+        this.#remove(`${t.editor_remove} ${name}`, () => { delete owner.new_guides[name]; }))));
+  }
+
+  render(linkage, traced) {
+    const { t } = this;
+    const rows = [];
+    for (const [name, p] of Object.entries(linkage.frame.joints)) {
+      rows.push(element("div", { className: "element-row", "data-element": name },
+        element("strong", { textContent: `${t.editor_frame_joint} ${name}` }),
+        this.#number("x", () => p[0], (v) => { p[0] = v; }, { unit: t.units_m }),
+        this.#number("y", () => p[1], (v) => { p[1] = v; }, { unit: t.units_m }),
+        this.#remove(`${t.editor_remove} ${name}`, () => {
+          delete linkage.frame.joints[name];
+          if (linkage.input?.pivot === name) linkage.input = null;
+        })));
+    }
+    for (const [name, g] of Object.entries(linkage.frame.guides)) {
+      const through = Array.isArray(g.through) ? g.through : null;
+      rows.push(element("div", { className: "element-row", "data-element": name },
+        element("strong", { textContent: `${t.editor_frame_guide} ${name}` }),
+        ...(through ? [this.#number("x", () => through[0], (v) => { through[0] = v; }, { unit: t.units_m }),
+          this.#number("y", () => through[1], (v) => { through[1] = v; }, { unit: t.units_m })] : []),
+        this.#number(t.editor_angle, () => g.angle ?? 0, (v) => { g.angle = v; }, { degrees: true, unit: "°", symbol: false }),
+        this.#remove(`${t.editor_remove} ${name}`, () => { delete linkage.frame.guides[name]; })));
+    }
+    const crank = linkage.input;
+    if (crank) {
+      const sense = element("select", { "aria-label": t.editor_sense },
+        element("option", { value: "1", textContent: t.editor_ccw }), element("option", { value: "-1", textContent: t.editor_cw }));
+      sense.value = String(crank.sense ?? 1);
+      sense.addEventListener("change", () => { crank.sense = Number(sense.value); this.onEdit(); });
+      rows.push(element("div", { className: "element-row", "data-element": "crank" },
+        element("strong", {}, `${t.editor_crank} ${crank.link}: `,
+          element("span", { translate: false, textContent: `${crank.pivot}${crank.joint}` })),
+        this.#number(`l_{${crank.pivot}${crank.joint}}`, () => crank.length, (v) => { crank.length = v; },
+          { slider: true, unit: t.units_m }),
+        this.#number("θ_0", () => crank.angle0 ?? 0, (v) => { crank.angle0 = v; }, { degrees: true, unit: "°" }),
+        element("label", { className: "field" }, t.editor_sense, sense),
+        ...this.#points(crank, linkage),
+        this.#remove(`${t.editor_remove} ${t.editor_crank}`, () => { linkage.input = null; })));
+    }
+    linkage.groups.forEach((group, k) => {
+      const on = [...(group.outer ?? []), ...(group.guides ?? (group.guide ? [group.guide] : []))].join(", ");
+      const fields = [];
+      if (group.kind === "RRR") {
+        const [b, d] = group.outer;
+        fields.push(this.#number(`l_{${b}${group.inner}}`, () => group.lengths[0], (v) => { group.lengths[0] = v; },
+          { slider: true, unit: t.units_m }),
+        this.#number(`l_{${d}${group.inner}}`, () => group.lengths[1], (v) => { group.lengths[1] = v; },
+          { slider: true, unit: t.units_m }), this.#branch(group));
+      } else if (group.kind === "RRP") {
+        fields.push(this.#number(`l_{${group.outer[0]}${group.inner}}`, () => group.length, (v) => { group.length = v; },
+          { slider: true, unit: t.units_m }), this.#branch(group));
+      } else if (group.kind === "RPR") {
+        fields.push(this.#number("e", () => group.offset ?? 0, (v) => { group.offset = v; }, { unit: t.units_m }),
+          this.#branch(group));
+      } else if (group.kind === "RPP") {
+        fields.push(this.#number("α", () => group.angle ?? Math.PI / 2, (v) => { group.angle = v; },
+          { degrees: true, unit: "°" }));
+      }
+      const refusal = this.refusals.get(k);
+      rows.push(element("div", { className: `element-row group-row${refusal ? " refused" : ""}`, "data-group": k },
+        element("strong", { textContent: `${t.editor_group} ${k}: ${group.kind} (${t.editor_links} ${group.links.join(", ")}) — ${t.editor_on} ${on}` }),
+        ...fields, ...this.#points(group, linkage),
+        this.#remove(`${t.editor_remove}: ${t.editor_group} ${k}`, () => { linkage.groups.splice(k, 1); }),
+        ...(refusal ? [element("p", { className: "refusal-reason", role: "alert", textContent: refusal })] : [])));
+    });
+    if (!rows.length) rows.push(element("p", { className: "hint", textContent: t.editor_empty }));
+    const moving = [...joints(linkage)].filter(([, on]) => !on.includes(0)).map(([name]) => name);
+    const traces = element("fieldset", { className: "traces" }, element("legend", { textContent: t.editor_traces }),
+      ...moving.map((name) => {
+        const box = element("input", { type: "checkbox", checked: traced.has(name), "data-trace": name });
+        box.addEventListener("change", () => this.onTrace(name, box.checked));
+        return element("label", {}, box, name);
+      }));
+    this.host.replaceChildren(...rows, ...(moving.length ? [traces] : []));
+  }
+}
