@@ -18,7 +18,7 @@ from ..mechanisms.base import angle_ranges, ranges_text
 from ..mechanisms.general import CHECK_POINTS, GeneralMechanism, assembly_notices
 from ..numerics import Numerics
 from ..structure.compose import Composition, compose
-from ..structure.masses import MassModel, check_model
+from ..structure.masses import MassModel, centre_kinematics, check_model
 from ..structure.reduction import reduced_inertia, reduced_loads
 from .machine import Machine, Tables
 from .motors import Motor
@@ -53,8 +53,9 @@ class GeneralMachine(Machine):
 
     def tables(self, phi: np.ndarray) -> Tables:
         comp = compose(self.linkage.linkage, np.asarray(phi, float))
-        inertia = reduced_inertia(self.linkage, comp, self.masses, self.constant_inertia)
-        useful = reduced_loads(self.linkage, comp, self.masses).total + self.load.crank_moment
+        kin = centre_kinematics(self.linkage, self.masses, comp.phi, comp)
+        inertia = reduced_inertia(self.linkage, comp, self.masses, self.constant_inertia, kin)
+        useful = reduced_loads(self.linkage, comp, self.masses, kin).total + self.load.crank_moment
         drive = np.full(comp.phi.shape, self.motor.M0 * self.inertias.gear_ratio) if self.motor.kind == "constant" \
             else np.zeros(comp.phi.shape)
         return Tables(comp.phi, inertia.J, inertia.dJ, drive, useful, np.zeros(comp.phi.shape),
@@ -119,8 +120,9 @@ def reduction(machine: GeneralMachine, n: int, omega: float, outputs: list[str])
         loads = reduced_loads(machine.linkage, comp, machine.masses)
         useful = loads.total + machine.load.crank_moment
         viscous = machine.load.beta * omega * sliding_squares(comp)
-        fine = machine.tables(np.linspace(0.0, TURN, MEAN_POINTS + 1))
-        total = fine.useful + machine.load.beta * omega * fine.sliding
+        fine = compose(machine.linkage.linkage, np.linspace(0.0, TURN, MEAN_POINTS + 1))
+        total = (reduced_loads(machine.linkage, fine, machine.masses).total + machine.load.crank_moment
+                 + machine.load.beta * omega * sliding_squares(fine))
         mean = float(np.mean(total[:-1]))
         error = abs(mean - float(np.mean(total[:-1:2])))
         scale = float(np.mean(np.abs(total[:-1])))

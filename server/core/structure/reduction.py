@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .compose import Composition
-from .masses import MassModel, centre_kinematics, moment_strokes, slider_loads
+from .masses import CentreKinematics, MassModel, centre_kinematics, moment_strokes, slider_loads
 
 
 @dataclass
@@ -46,9 +46,11 @@ class GeneralLoads:
         return sum(self.parts.values(), np.zeros(self.phi.shape))
 
 
-def reduced_inertia(mechanism, comp: Composition, model: MassModel, constant: float) -> GeneralInertia:
-    """J(φ) and dJ/dφ of the linkage ``comp`` with the mass model, plus ``constant`` = J₁ + J_rotor i²."""
-    kin = centre_kinematics(mechanism, model, comp.phi, comp)
+def reduced_inertia(mechanism, comp: Composition, model: MassModel, constant: float,
+                    kin: CentreKinematics | None = None) -> GeneralInertia:
+    """J(φ) and dJ/dφ of the linkage ``comp`` with the mass model, plus ``constant`` = J₁ + J_rotor i²
+    (``kin``: the centres' kinematics on ``comp``, to share them)."""
+    kin = kin or centre_kinematics(mechanism, model, comp.phi, comp)
     parts = {"constant": np.full(comp.phi.shape, float(constant))}
     slopes = {"constant": np.zeros(comp.phi.shape)}
     for row, item in enumerate(model.links):
@@ -59,9 +61,10 @@ def reduced_inertia(mechanism, comp: Composition, model: MassModel, constant: fl
     return GeneralInertia(sum(parts.values()), sum(slopes.values()), parts, slopes)
 
 
-def reduced_loads(mechanism, comp: Composition, model: MassModel) -> GeneralLoads:
+def reduced_loads(mechanism, comp: Composition, model: MassModel,
+                  kin: CentreKinematics | None = None) -> GeneralLoads:
     """M_c(φ) of the slider forces, load moments and gravity, each apart (keys "force E/ram", "moment 3",
-    "gravity")."""
+    "gravity"; ``kin`` as for ``reduced_inertia``)."""
     n = comp.phi.shape
     parts, switches = {}, []
     for load in slider_loads(comp, model):           # −F·v/ω = k P |w|
@@ -74,7 +77,7 @@ def reduced_loads(mechanism, comp: Composition, model: MassModel) -> GeneralLoad
         parts[name] = parts.get(name, np.zeros(n)) - moment * d1
         switches.append(d1)
     if model.gravity and any(item.mass for item in model.links):
-        kin = centre_kinematics(mechanism, model, comp.phi, comp)
+        kin = kin or centre_kinematics(mechanism, model, comp.phi, comp)
         masses = np.array([item.mass for item in model.links])
         parts["gravity"] = model.gravity * masses @ kin.first[:, 1, :]
     return GeneralLoads(comp.phi, parts, switches)
