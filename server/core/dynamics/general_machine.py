@@ -18,7 +18,7 @@ from ..mechanisms.base import angle_ranges, ranges_text
 from ..mechanisms.general import CHECK_POINTS, GeneralMechanism, assembly_notices
 from ..numerics import Numerics
 from ..structure.compose import Composition, compose
-from ..structure.masses import MassModel, centre_kinematics, check_model
+from ..structure.masses import MassModel, centre_points, check_model
 from ..structure.reduction import reduced_inertia, reduced_loads
 from .machine import Machine, Tables
 from .motors import Motor
@@ -53,9 +53,9 @@ class GeneralMachine(Machine):
 
     def tables(self, phi: np.ndarray) -> Tables:
         comp = compose(self.linkage.linkage, np.asarray(phi, float))
-        kin = centre_kinematics(self.linkage, self.masses, comp.phi, comp)
-        inertia = reduced_inertia(self.linkage, comp, self.masses, self.constant_inertia, kin)
-        useful = reduced_loads(self.linkage, comp, self.masses, kin).total + self.load.crank_moment
+        centres = centre_points(comp, self.masses)
+        inertia = reduced_inertia(self.linkage, comp, self.masses, self.constant_inertia, centres)
+        useful = reduced_loads(self.linkage, comp, self.masses, centres).total + self.load.crank_moment
         drive = np.full(comp.phi.shape, self.motor.M0 * self.inertias.gear_ratio) if self.motor.kind == "constant" \
             else np.zeros(comp.phi.shape)
         return Tables(comp.phi, inertia.J, inertia.dJ, drive, useful, np.zeros(comp.phi.shape),

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..mechanisms.base import GeometryError
 from .compose import Composition, compose
-from .state import on_link
+from .state import Angle, Point, on_link
 
 
 @dataclass(frozen=True)
@@ -152,24 +152,27 @@ def check_model(comp: Composition, model: MassModel) -> None:
         pair_of(comp, item.joint, f"masses.forces.{i}.joint")
 
 
+def centre_points(comp: Composition, model: MassModel) -> list[tuple[Point, Angle]]:
+    """Each listed link's centre of mass S (z, z′, z″ complex over φ) and the link's angle, in model order."""
+    out = []
+    for item in model.links:
+        origin, angle = comp.links[item.link]
+        out.append((on_link(origin, angle, complex(*item.centre)), angle))
+    return out
+
+
 def centre_kinematics(mechanism, model: MassModel, phi: np.ndarray,
                       comp: Composition | None = None) -> CentreKinematics:
     """Positions and analogs of every listed link's centre of mass, and its angle with θ′, θ″, at ``phi``
     (``comp``: the linkage already composed there, to share it)."""
     comp = comp if comp is not None else compose(mechanism.linkage, np.asarray(phi, float))
     n = comp.phi.size
-    rows = []
-    for item in model.links:
-        origin, angle = comp.links[item.link]
-        s = on_link(origin, angle, complex(*item.centre))
-        rows.append((s, angle))
-    stack = lambda values: np.stack([np.stack([v.real, v.imag]) for v in values]) if values else \
-        np.zeros((0, 2, n))
-    flat = lambda values: np.stack(values) if values else np.zeros((0, n))
-    return CentreKinematics(tuple(item.link for item in model.links),
-                            stack([s.z for s, _ in rows]), stack([s.d1 for s, _ in rows]),
-                            stack([s.d2 for s, _ in rows]), flat([a.th for _, a in rows]),
-                            flat([a.d1 for _, a in rows]), flat([a.d2 for _, a in rows]))
+    rows = centre_points(comp, model)
+    planar = lambda part: np.stack([np.stack([getattr(s, part).real, getattr(s, part).imag]) for s, _ in rows]) \
+        if rows else np.zeros((0, 2, n))
+    flat = lambda part: np.stack([getattr(a, part) for _, a in rows]) if rows else np.zeros((0, n))
+    return CentreKinematics(tuple(item.link for item in model.links), planar("z"), planar("d1"), planar("d2"),
+                            flat("th"), flat("d1"), flat("d2"))
 
 
 def slider_loads(comp: Composition, model: MassModel) -> list[SliderLoad]:

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .compose import Composition
-from .masses import CentreKinematics, MassModel, centre_kinematics, moment_strokes, slider_loads
+from .masses import MassModel, centre_points, moment_strokes, slider_loads
 
 
 @dataclass
@@ -47,24 +47,22 @@ class GeneralLoads:
 
 
 def reduced_inertia(mechanism, comp: Composition, model: MassModel, constant: float,
-                    kin: CentreKinematics | None = None) -> GeneralInertia:
+                    centres: list | None = None) -> GeneralInertia:
     """J(φ) and dJ/dφ of the linkage ``comp`` with the mass model, plus ``constant`` = J₁ + J_rotor i²
-    (``kin``: the centres' kinematics on ``comp``, to share them)."""
-    kin = kin or centre_kinematics(mechanism, model, comp.phi, comp)
+    (``centres``: masses.centre_points on ``comp``, to share them)."""
+    centres = centres if centres is not None else centre_points(comp, model)
     parts = {"constant": np.full(comp.phi.shape, float(constant))}
     slopes = {"constant": np.zeros(comp.phi.shape)}
-    for row, item in enumerate(model.links):
-        v, a = kin.first[row], kin.second[row]
-        w, dw = kin.theta_d1[row], kin.theta_d2[row]
-        parts[f"link {item.link}"] = item.mass * (v[0] ** 2 + v[1] ** 2) + item.inertia * w**2
-        slopes[f"link {item.link}"] = 2 * (item.mass * (v[0] * a[0] + v[1] * a[1]) + item.inertia * w * dw)
+    for (s, angle), item in zip(centres, model.links):
+        v, a, w, dw = s.d1, s.d2, angle.d1, angle.d2
+        parts[f"link {item.link}"] = item.mass * (v.real**2 + v.imag**2) + item.inertia * w**2
+        slopes[f"link {item.link}"] = 2 * (item.mass * (v.real * a.real + v.imag * a.imag) + item.inertia * w * dw)
     return GeneralInertia(sum(parts.values()), sum(slopes.values()), parts, slopes)
 
 
-def reduced_loads(mechanism, comp: Composition, model: MassModel,
-                  kin: CentreKinematics | None = None) -> GeneralLoads:
+def reduced_loads(mechanism, comp: Composition, model: MassModel, centres: list | None = None) -> GeneralLoads:
     """M_c(φ) of the slider forces, load moments and gravity, each apart (keys "force E/ram", "moment 3",
-    "gravity"; ``kin`` as for ``reduced_inertia``)."""
+    "gravity"; ``centres`` as for ``reduced_inertia``)."""
     n = comp.phi.shape
     parts, switches = {}, []
     for load in slider_loads(comp, model):           # −F·v/ω = k P |w|
@@ -77,7 +75,6 @@ def reduced_loads(mechanism, comp: Composition, model: MassModel,
         parts[name] = parts.get(name, np.zeros(n)) - moment * d1
         switches.append(d1)
     if model.gravity and any(item.mass for item in model.links):
-        kin = kin or centre_kinematics(mechanism, model, comp.phi, comp)
-        masses = np.array([item.mass for item in model.links])
-        parts["gravity"] = model.gravity * masses @ kin.first[:, 1, :]
+        centres = centres if centres is not None else centre_points(comp, model)
+        parts["gravity"] = model.gravity * sum(item.mass * s.d1.imag for (s, _), item in zip(centres, model.links))
     return GeneralLoads(comp.phi, parts, switches)
