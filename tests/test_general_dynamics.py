@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 
 from server.core.mechanisms.general import GeneralMechanism
 from server.core.structure.compose import compose
-from server.core.structure.masses import LinkMass, LinkMoment, MassModel, SliderForce
+from server.core.structure.masses import LinkMass, LinkMoment, MassModel, SliderForce, centre_kinematics
 from server.core.structure.presets import presets
 from server.core.structure.reduction import reduced_inertia, reduced_loads
 from server.core.structure.spec import KINDS
@@ -145,3 +145,22 @@ def test_random_reduction(kind, data):
     moments = tuple(LinkMoment(k, data.draw(st.floats(1, 500)), data.draw(st.floats(0, 1)),
                                data.draw(st.sampled_from([1, -1]))) for k in turning[:2])
     check(linkage, MassModel(masses, 9.81, forces, moments), phi0)
+
+
+def test_centre_kinematics_against_differences():
+    """The kinetostatics' view of the centres (real (L, 2, N) arrays, θ, θ′, θ″): first and second analogs
+    against Richardson differences of the positions, rel 1e-6 (the second difference's round-off, ≈ 1e-8|z|,
+    sets the bound), at 12 angles of the shaping machine with its preset masses."""
+    mech = GeneralMechanism(presets()["shaping_machine"]["linkage"])
+    model = preset_model("shaping_machine")
+    for phi0 in np.linspace(0, 2 * np.pi, 12, endpoint=False) + 0.02:
+        fine = centre_kinematics(mech, model, phi0 + STENCIL)
+        here = centre_kinematics(mech, model, np.array([phi0]))
+        for row in range(len(model.links)):
+            for axis in range(2):
+                d1, d2 = richardson(fine.positions[row, axis])
+                assert abs(d1 - here.first[row, axis, 0]) <= 1e-6 * (abs(d1) + 1e-3)
+                assert abs(d2 - here.second[row, axis, 0]) <= 1e-6 * (abs(d2) + 1e-2)
+            d1, d2 = richardson(np.unwrap(fine.theta[row]))
+            assert abs(d1 - here.theta_d1[row, 0]) <= 1e-6 * (abs(d1) + 1e-3)
+            assert abs(d2 - here.theta_d2[row, 0]) <= 1e-6 * (abs(d2) + 1e-2)
