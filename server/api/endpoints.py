@@ -22,6 +22,8 @@ from ..core.angular_acceleration import CrankLaw, crank_slider, trammel
 from ..core.bearings.loads import pair_load
 from ..core.bearings.report import Design, bearings_report
 from ..core.dynamics import report
+from ..core.dynamics.general_machine import GeneralMachine, general_machine
+from ..core.dynamics.general_machine import reduction as general_reduction
 from ..core.dynamics.machine import Machine
 from ..core.dynamics.motors import Motor
 from ..core.dynamics.reduction import Inertias
@@ -35,6 +37,7 @@ from ..core.kinetostatics.report import crank_check, forces_report, wear_report
 from ..core.kinetostatics.virtual_work import reduced_moment
 from ..core.mechanisms import MECHANISMS, GeometryError, Notice
 from ..core.mechanisms.general import GENERAL_OUTPUTS, compute_general
+from ..core.structure.masses import MassModel
 from .messages import localise_numerics, localise_study, translate
 from .schemas import KinematicsRequest, KinematicsResponse
 from .schemas_angular import AngularRequest
@@ -134,6 +137,10 @@ def kinematics_batch(requests: list[KinematicsRequest], lang: str, reads: Reads)
 
 
 def reduction(request: ReductionRequest, lang: str) -> Answer:
+    if request.mechanism == "general":
+        result, notices = general_reduction(_general_machine(request, Motor()), request.n, request.omega,
+                                            request.outputs)
+        return answer(result, notices, lang)
     result, notices = report.reduction(
         request.mechanism, request.params, Inertias(**request.inertias.model_dump()),
         Load(**request.load.model_dump()), request.n, request.omega, request.outputs, request.iteration_phi)
@@ -151,16 +158,26 @@ MACHINE_FIELDS = {"mechanism", "params", "inertias", "load", "motor"}
 
 def machine(request: MotionRequest | FlywheelRequest) -> Machine:
     """The machine of a request, checked: geometry, a piston engine only on a crank-slider, some inertia."""
-    params = MECHANISMS[request.mechanism].check(request.params)
-    if request.motor.kind == "indicator" and request.mechanism != "slider_crank":
-        raise GeometryError("motor.kind", "an indicator diagram drives a crank-slider (piston engine) only",
-                            "indicator_needs_slider")
-    built = Machine(request.mechanism, params, Inertias(**request.inertias.model_dump()),
-                    Load(**request.load.model_dump()), _motor(request.motor))
+    if request.mechanism == "general":
+        built = _general_machine(request, _motor(request.motor))
+    else:
+        params = MECHANISMS[request.mechanism].check(request.params)
+        if request.motor.kind == "indicator" and request.mechanism != "slider_crank":
+            raise GeometryError("motor.kind", "an indicator diagram drives a crank-slider (piston engine) only",
+                                "indicator_needs_slider")
+        built = Machine(request.mechanism, params, Inertias(**request.inertias.model_dump()),
+                        Load(**request.load.model_dump()), _motor(request.motor))
     if built.tables(np.linspace(0, 2 * math.pi, 73)).J.min() <= 0:      # J = 0 somewhere: no equation of motion
         raise GeometryError("inertias", "the reduced moment of inertia is zero: give the crank (J1) or the motor "
                                         "rotor (J_rotor) some inertia", "zero_inertia")
     return built
+
+
+def _general_machine(request: ReductionRequest | MotionRequest | FlywheelRequest, motor: Motor) -> GeneralMachine:
+    """A general mechanism's machine: its linkage, mass model and loads checked (GeometryError names the field)."""
+    masses = request.masses.model() if request.masses is not None else MassModel()
+    return general_machine(request.linkage.model_dump(exclude_none=True), masses,
+                           Inertias(**request.inertias.model_dump()), Load(**request.load.model_dump()), motor)
 
 
 def _motor(motor) -> Motor:

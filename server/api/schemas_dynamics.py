@@ -5,12 +5,15 @@ from __future__ import annotations
 import math
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from ..core.dynamics.motors import INDICATOR_POINTS, polytropic_diagram
-from .schemas import MAX_PARAMS, MechanismName, NumericsModel
+from ..core.structure.masses import LinkMass, LinkMoment, MassModel, SliderForce
+from .schemas import MAX_PARAMS, LinkageModel, NumericsModel
 
 Positive = Field(ge=0.0, le=1e6)
+DynamicsMechanism = Literal["sine", "slider_crank", "slotted_link", "four_bar", "general"]
+LinkNumber = Field(ge=1, le=99, description="the link's number in the linkage (1 = the input crank)")
 
 
 class InertiaInput(BaseModel):
@@ -77,12 +80,89 @@ class MotorInput(BaseModel):
         return self
 
 
-class ReductionRequest(BaseModel):
+class LinkMassInput(BaseModel):
+    """One moving link of a general mechanism: mass, centre of mass on the link, moment of inertia about it."""
+
+    model_config = ConfigDict(extra="forbid")
+    link: int = LinkNumber
+    mass: float = Field(ge=0, le=1e5, description="m, kg")
+    centre: tuple[float, float] = Field((0.0, 0.0), description=(
+        "centre of mass S in the link's own frame [along, across], m: from the link's origin joint along its "
+        "direction, and to the left of it (as the linkage's points)"))
+    inertia: float = Field(0.0, ge=0, le=1e4, description="J_S about the centre of mass, kg·m²")
+
+    @field_validator("centre")
+    @classmethod
+    def finite_centre(cls, centre):
+        if not all(math.isfinite(x) and abs(x) <= 1000 for x in centre):
+            raise ValueError("the centre's coordinates must be finite numbers of metres, at most 1000 m")
+        return centre
+
+
+class SliderForceInput(BaseModel):
+    """A useful load on a slider along its guide, against the motion: P on the working stroke, k·P on the return."""
+
+    model_config = ConfigDict(extra="forbid")
+    joint: str = Field(min_length=1, max_length=40, description=(
+        "the sliding pair as named in the kinematics' `slides` (\"E/ram\"), or the slider's joint (\"E\")"))
+    working: float = Field(ge=0, le=1e7, description="P on the working stroke, N")
+    k: float = Field(1.0, ge=0, le=1, description="k: return-stroke load / working-stroke load")
+    sense: Literal[1, -1] = Field(1, description="+1: the working stroke moves along the guide's direction")
+
+
+class LinkMomentInput(BaseModel):
+    """A useful load moment on a link, against its rotation: M₀ on the working stroke, k·M₀ on the return."""
+
+    model_config = ConfigDict(extra="forbid")
+    link: int = LinkNumber
+    working: float = Field(ge=0, le=1e7, description="M₀ on the working stroke, N·m")
+    k: float = Field(1.0, ge=0, le=1, description="k: return-stroke moment / working-stroke moment")
+    sense: Literal[1, -1] = Field(1, description="+1: the working stroke turns the link counter-clockwise")
+
+
+class MassInput(BaseModel):
+    """Mass model and loads of a general mechanism (links not listed are massless)."""
+
+    model_config = ConfigDict(extra="forbid")
+    links: list[LinkMassInput] = Field(default_factory=list, max_length=40)
+    gravity: float = Field(9.81, ge=0, le=100, description="g along −y, m/s² (0: the mechanism lies horizontally)")
+    forces: list[SliderForceInput] = Field(default_factory=list, max_length=20)
+    moments: list[LinkMomentInput] = Field(default_factory=list, max_length=40)
+    friction: float = Field(0.0, ge=0, le=2, description="f in the pairs (kinetostatics by groups)")
+    pair_radius: float = Field(0.0, ge=0, le=1, description="radius r of the revolute pairs' journals, m")
+
+    def model(self) -> MassModel:
+        return MassModel(tuple(LinkMass(m.link, m.mass, tuple(m.centre), m.inertia) for m in self.links),
+                         self.gravity, tuple(SliderForce(**f.model_dump()) for f in self.forces),
+                         tuple(LinkMoment(**m.model_dump()) for m in self.moments), self.friction, self.pair_radius)
+
+
+class MechanismChoice(BaseModel):
+    """Which mechanism: one of the four with `params`, or 'general' with `linkage` and `masses`."""
+
+    mechanism: DynamicsMechanism = Field(description="which mechanism; 'general': the one given in `linkage`")
+    linkage: LinkageModel | None = Field(None, description=(
+        "with mechanism 'general': the mechanism as data (GET /api/v1/mechanisms/general)"))
+    masses: MassInput | None = Field(None, description=(
+        "with mechanism 'general': each link's mass, centre of mass and J_S, the loads on sliders and links, g"))
+    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
+
+    @model_validator(mode="after")
+    def general_fields(self):
+        general = self.mechanism == "general"
+        if general != (self.linkage is not None):
+            raise ValueError("`linkage` goes with mechanism 'general', and only with it")
+        if not general and self.masses is not None:
+            raise ValueError("`masses` goes with mechanism 'general' (the four mechanisms take `inertias`, `load`)")
+        if general and self.params:
+            raise ValueError("a general mechanism takes its lengths in `linkage`, not in `params`")
+        return self
+
+
+class ReductionRequest(MechanismChoice):
     """Reduced moment of inertia and of the resisting forces over one cycle; no equation of motion."""
 
     model_config = ConfigDict(extra="forbid")
-    mechanism: MechanismName
-    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
     inertias: InertiaInput = Field(default_factory=InertiaInput)
     load: LoadInput = Field(default_factory=LoadInput)
     n: int = Field(361, ge=3, le=10001, description="points over one closed cycle")
@@ -91,12 +171,10 @@ class ReductionRequest(BaseModel):
     outputs: list[Literal["inertia", "resisting", "friction_iteration"]] = Field(min_length=1, max_length=3)
 
 
-class MotionRequest(BaseModel):
+class MotionRequest(MechanismChoice):
     """The machine's equation of motion: steady cycle and/or start-up."""
 
     model_config = ConfigDict(extra="forbid")
-    mechanism: MechanismName
-    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
     inertias: InertiaInput = Field(default_factory=InertiaInput)
     load: LoadInput = Field(default_factory=LoadInput)
     motor: MotorInput
@@ -146,12 +224,10 @@ class MotionResponse(BaseModel):
     warnings: list[str]
 
 
-class FlywheelRequest(BaseModel):
+class FlywheelRequest(MechanismChoice):
     """Flywheel for a permissible δ: Merzalov, Gutyar, Wittenbauer and the exact periodic solution."""
 
     model_config = ConfigDict(extra="forbid")
-    mechanism: MechanismName
-    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
     inertias: InertiaInput = Field(default_factory=InertiaInput, description="J1 + J_rotor·i² is the group I "
                                                                             "the machine already has (I₁₀)")
     load: LoadInput = Field(default_factory=LoadInput)

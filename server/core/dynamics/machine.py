@@ -122,8 +122,7 @@ class Machine:
         """The kinks in [0, Φ), sorted (``find_kinks``; read-only). They depend on the mechanism, the load and
         whether an indicator diagram drives it, not on the masses or the motor's speeds: machines that differ
         only there (a slider's family over J, ω or a motor's torque) share them, the last KINKS_KEPT kept."""
-        key = (self.mechanism, tuple(sorted(self.params.items())), self.load, self.motor.kind == "indicator",
-               self.cycle())
+        key = self.kinks_key()
         with _kinks_lock:
             found = _kinks_found.get(key)
             if found is not None:
@@ -136,6 +135,15 @@ class Machine:
             while len(_kinks_found) > KINKS_KEPT:
                 _kinks_found.popitem(last=False)
         return found
+
+    def kinks_key(self) -> tuple:
+        """What the kinks depend on (``kinks``)."""
+        return (self.mechanism, tuple(sorted(self.params.items())), self.load, self.motor.kind == "indicator",
+                self.cycle())
+
+    def jumps(self) -> list[float]:
+        """The mechanism's jumps (a stroke limiter), rad."""
+        return MECHANISMS[self.mechanism].jumps(self.params)
 
     def find_kinks(self) -> np.ndarray:
         """The kinks in [0, Φ), sorted: the mechanism's jumps and every sign change of ``switching`` over the
@@ -170,7 +178,7 @@ class Machine:
             moved = np.where(left, 1.0, np.where(right, -1.0, moved))
             low, f_low = np.where(left, guess, low), np.where(left, f_guess, f_low)
             high, f_high = np.where(right, guess, high), np.where(right, f_guess, f_high)
-        found = np.concatenate([0.5 * (low + high), MECHANISMS[self.mechanism].jumps(self.params)])
+        found = np.concatenate([0.5 * (low + high), self.jumps()])
         found = np.sort(np.where((found <= KINK_MERGE) | (found >= cycle - KINK_MERGE), 0.0, found))
         return found[np.append(True, np.diff(found) > KINK_MERGE)] if found.size else found
 

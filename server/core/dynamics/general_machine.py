@@ -1,0 +1,138 @@
+"""A machine whose mechanism is a general linkage of class-II groups (server/core/structure/): motor →
+transmission ratio i → the linkage with its mass model and loads (structure/masses.py).
+
+It is a ``Machine``: the equation of motion, the steady cycle, the start-up, the flywheel and the live study
+ask it the same things (``tables``, ``switching``, ``kinks``, ``cycle``), answered from the composed linkage:
+J(φ), dJ/dφ by kinetic-energy equality and M_c(φ) by power equality (structure/reduction.py, Eremyants
+(1.1)–(1.5)), viscous friction β ω Σ s′² over every prismatic pair (Eremyants (3.15)–(3.17)).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..mechanisms import GeometryError, Notice
+from ..mechanisms.base import angle_ranges, ranges_text
+from ..mechanisms.general import CHECK_POINTS, GeneralMechanism, assembly_notices
+from ..numerics import Numerics
+from ..structure.compose import Composition, compose
+from ..structure.masses import MassModel, centre_points, check_model
+from ..structure.reduction import reduced_inertia, reduced_loads
+from .machine import Machine, Tables
+from .motors import Motor
+from .reduction import Inertias
+from .resistance import Load
+
+TURN = 2 * np.pi
+MEAN_POINTS = 8192       # intervals of the cycle mean M_c0 (trapezoid; the kinks make it second order)
+
+
+@dataclass(frozen=True)
+class GeneralMachine(Machine):
+    linkage: GeneralMechanism | None = field(default=None, compare=False, repr=False)
+    masses: MassModel = field(default_factory=MassModel)
+
+    def cycle(self) -> float:
+        return max(TURN, self.motor.cycle())
+
+    def jumps(self) -> list[float]:
+        return []
+
+    def kinks_key(self) -> tuple:
+        """The kinks are the zeros of the loaded sliders' and links' velocity analogs: they depend on the
+        linkage and the loads, not on the masses."""
+        return ("general", repr(self.linkage.linkage), self.masses.forces, self.masses.moments, self.load,
+                self.cycle())
+
+    @property
+    def constant_inertia(self) -> float:
+        """J₁ + J_rotor i²: the crank's shaft and gears and the motor's rotor (group I)."""
+        return self.inertias.J1 + self.inertias.J_rotor * self.inertias.gear_ratio**2
+
+    def tables(self, phi: np.ndarray) -> Tables:
+        comp = compose(self.linkage.linkage, np.asarray(phi, float))
+        centres = centre_points(comp, self.masses)
+        inertia = reduced_inertia(self.linkage, comp, self.masses, self.constant_inertia, centres)
+        useful = reduced_loads(self.linkage, comp, self.masses, centres).total + self.load.crank_moment
+        drive = np.full(comp.phi.shape, self.motor.M0 * self.inertias.gear_ratio) if self.motor.kind == "constant" \
+            else np.zeros(comp.phi.shape)
+        return Tables(comp.phi, inertia.J, inertia.dJ, drive, useful, np.zeros(comp.phi.shape),
+                      sliding_squares(comp), assembly_notices(comp))
+
+    def switching(self, phi: np.ndarray) -> np.ndarray:
+        comp = compose(self.linkage.linkage, np.asarray(phi, float))
+        rows = reduced_loads(self.linkage, comp, self.masses).switches
+        return np.array(rows) if rows else np.zeros((0, comp.phi.size))
+
+
+def sliding_squares(comp: Composition) -> np.ndarray:
+    """S(φ) = Σ s′² over the prismatic pairs: the viscous moment is β ω S(φ) (Eremyants (3.15)–(3.17))."""
+    return sum((s.d1**2 for s in comp.slides.values()), np.zeros(comp.phi.shape))
+
+
+def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: Load, motor: Motor) -> GeneralMachine:
+    """The machine of a request, checked: the linkage assembles over the whole turn, the mass model names its
+    links and sliders, the loads are the general mechanism's (GeometryError names the field)."""
+    mech = GeneralMechanism(linkage)
+    turn = compose(mech.linkage, np.linspace(0.0, TURN, CHECK_POINTS))
+    for k, group in enumerate(turn.groups):
+        if not group.closes.all():
+            ranges = ranges_text(angle_ranges(turn.phi, ~group.closes))
+            raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at φ = {ranges}: "
+                                "the crank cannot turn fully, a machine needs the whole turn", "no_full_turn",
+                                group=k)
+    check_model(turn, masses)
+    if motor.kind == "indicator":
+        raise GeometryError("motor.kind", "an indicator diagram drives a crank-slider (piston engine) only",
+                            "indicator_needs_slider")
+    refused = {"load.force": load.force, "load.f": load.f, "masses.friction": masses.friction,
+               "inertias.m2": inertias.m2, "inertias.J_S2": inertias.J_S2, "inertias.m3": inertias.m3,
+               "inertias.J3": inertias.J3}
+    for where, value in refused.items():
+        if value:
+            raise GeometryError(where, "a general mechanism takes its link masses and loads in `masses` (links, "
+                                "forces, moments); dry friction of its pairs is the kinetostatics' (forces), the "
+                                "equation of motion takes viscous friction β", "general_masses")
+    if load.convention != "consistent":
+        raise GeometryError("load.convention", "the textbook's printed formulas are for the four fixed mechanisms",
+                            "general_masses")
+    return GeneralMachine("general", {}, inertias, load, motor, linkage=mech, masses=masses)
+
+
+def reduction(machine: GeneralMachine, n: int, omega: float, outputs: list[str]) -> tuple[dict, list[Notice]]:
+    """J(φ), dJ/dφ and M_c(φ) over one turn (closed grid of n points), each link's and load's part apart; the
+    mean M_c0 by the trapezoid rule on MEAN_POINTS intervals, its error against half as many."""
+    if "friction_iteration" in outputs:
+        raise GeometryError("outputs", "the textbook iterates friction forces for the sine mechanism and the "
+                            "crank-slider only", "no_iteration")
+    phi = np.linspace(0.0, TURN, n)
+    comp = compose(machine.linkage.linkage, phi)
+    result, notices = {"phi": phi}, assembly_notices(comp)
+    if "inertia" in outputs:
+        inertia = reduced_inertia(machine.linkage, comp, machine.masses, machine.constant_inertia)
+        mean = float(np.mean(inertia.J[:-1]))
+        result["inertia"] = {"J": inertia.J, "dJ": inertia.dJ, "mean": mean, "variable": inertia.J - mean,
+                             "parts": inertia.parts, "slopes": inertia.slopes, "approximation": None}
+    if "resisting" in outputs:
+        started = time.perf_counter()
+        loads = reduced_loads(machine.linkage, comp, machine.masses)
+        useful = loads.total + machine.load.crank_moment
+        viscous = machine.load.beta * omega * sliding_squares(comp)
+        fine = compose(machine.linkage.linkage, np.linspace(0.0, TURN, MEAN_POINTS + 1))
+        total = (reduced_loads(machine.linkage, fine, machine.masses).total + machine.load.crank_moment
+                 + machine.load.beta * omega * sliding_squares(fine))
+        mean = float(np.mean(total[:-1]))
+        error = abs(mean - float(np.mean(total[:-1:2])))
+        scale = float(np.mean(np.abs(total[:-1])))
+        numerics = Numerics(method="closed-form analogs of every link, power equality at each angle; M_c0 by the "
+                                   "trapezoid rule on a closed uniform grid, error estimated against the grid of half "
+                                   "as many points, relative to the cycle mean of |M_c|", code="closed_forms",
+                            steps=MEAN_POINTS, error_estimate=error / scale if scale > 0 else 0.0,
+                            runtime_ms=1e3 * (time.perf_counter() - started))
+        result["numerics"] = numerics.as_dict()
+        result["resisting"] = {"total": useful + viscous, "useful": useful, "dry": np.zeros_like(phi),
+                               "viscous": viscous, "parts": loads.parts, "mean": mean, "means": {"consistent": mean},
+                               "friction_angle": 0.0, "self_locking": None}
+    return result, notices
