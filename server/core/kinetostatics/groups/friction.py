@@ -1,0 +1,169 @@
+"""Friction in every pair of a general mechanism (Chaika–Vasylenko (3.3)) and its equilibrium.
+
+The friction loads z_p (a moment in a revolute pair, a force along the line of a prismatic pair, on link b of
+the pair, against the relative motion) follow from the reactions:
+    revolute:   z_p = −sgn(θ′_b − θ′_a) f_p r_p |R_p|        (the friction circle ρ = f·r)
+    prismatic:  z_p = −sgn(s′) f_p |N_p|
+and the reactions are affine in z (equilibrium.Influence), so the equilibrium with friction is the fixed point
+z = G(z).  The textbook's successive approximations are the iteration z ← G(z) from z = 0 (approximation 1
+without friction), stopped when the relative change of the reactions is below ε_R (design step 17(d)).
+
+As for the crank-slider (kinetostatics/equilibrium.py), the answer is the fixed point solved directly by
+Newton's method with the generalised Jacobian J = ∂G/∂z (|N| and |R| are piecewise smooth), each step taking
+the Newton point or the textbook's step, whichever leaves the smaller change of the reactions; the error left
+after a Newton correction is bounded by that correction, after a textbook step by q/(1 − q) of it (q the
+spectral radius of J, the series' ratio).  Self-locking is decided as the crank-slider's solve decides it
+where its direct solve goes astray: the equilibrium the mechanism reaches as its friction grows from zero
+(continuation in the share s of the friction, det(I − sJ) > 0 along it, det = 1 at s = 0) must exist up to
+s = 1; where that branch folds (det(I − J) reaches 0) or no equilibrium continues it, the reactions it needs
+grow without bound: no driving moment moves the mechanism there.  The step count is a work bound only: an
+angle still above ε_R after it is reported unconverged, in words, never decided locked by it.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .equilibrium import Influence
+from .pairs import KinematicPair
+
+NEWTON_CAP = 100          # work bound only (module docstring)
+CONTINUATION = 32         # shares of the friction switched on from zero where the direct solve went astray
+
+
+@dataclass(frozen=True)
+class PairFriction:
+    """f and the journal radius r (m) of one pair (r unused for a prismatic pair)."""
+
+    f: float = 0.0
+    r: float = 0.0
+
+
+@dataclass
+class FrictionMap:
+    """Per friction pair p: the reaction coordinates affine in z, r_p(z) = base_p + Σ_q z_q slope_pq
+    (R: (R_x, R_y); P: (N, 0)), and the coefficient −sgn(relative) f_p ρ_p."""
+
+    base: np.ndarray          # (K, N, 2)
+    slope: np.ndarray         # (K, K, N, 2): [p, q]
+    coefficient: np.ndarray   # (K, N)
+
+    def reactions(self, z: np.ndarray) -> np.ndarray:
+        return self.base + np.einsum("pqnk,qn->pnk", self.slope, z)
+
+    def evaluate(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """G(z), J = ∂G/∂z (K, K, N) and the reactions r_p(z)."""
+        r = self.reactions(z)
+        norm = np.hypot(r[..., 0], r[..., 1])
+        unit = np.where(norm[..., None] > 0, r / np.where(norm > 0, norm, 1.0)[..., None], 0.0)
+        G = self.coefficient * norm
+        J = self.coefficient[:, None] * np.einsum("pnk,pqnk->pqn", unit, self.slope)
+        return G, J, r
+
+
+def friction_map(influence: Influence, locate: list[tuple[int, int] | None], pairs: list[KinematicPair],
+                 coefficients: list[PairFriction]) -> FrictionMap:
+    """``locate[p]``: (group, pair index) of friction pair p, None for the crank's pivot."""
+    def coordinates(c):
+        out = []
+        for p, where in enumerate(locate):
+            if where is None:
+                R = influence.crank[c]
+                out.append(np.stack([R.real, R.imag], -1))
+            else:
+                x = influence.group_unknowns[where[0]][c][:, 2 * where[1]:2 * where[1] + 2]
+                out.append(x if pairs[p].kind == "R" else np.stack([x[:, 0], 0 * x[:, 0]], -1))
+        return np.stack(out)
+    K = len(pairs)
+    base = coordinates(0)
+    slope = np.stack([coordinates(q + 1) for q in range(K)], axis=1)
+    coefficient = np.stack([-np.sign(pair.relative) * c.f * (c.r if pair.kind == "R" else 1.0)
+                            for pair, c in zip(pairs, coefficients)])
+    return FrictionMap(base, slope, coefficient)
+
+
+@dataclass
+class Solved:
+    z: np.ndarray                 # (K, N)
+    ratio: np.ndarray             # q: spectral radius of J at z (the textbook series' ratio)
+    locked: np.ndarray
+    converged: np.ndarray
+    error: np.ndarray
+    iterations: int
+
+
+def spectral_radius(J: np.ndarray) -> np.ndarray:
+    """max |λ| of J[:, :, n] for every angle."""
+    matrices = np.nan_to_num(np.moveaxis(J, -1, 0), nan=0.0, posinf=0.0, neginf=0.0)
+    return np.abs(np.linalg.eigvals(matrices)).max(axis=-1) if matrices.shape[-1] else np.zeros(J.shape[-1])
+
+
+def newton_step(J: np.ndarray, residual: np.ndarray) -> np.ndarray:
+    """Δ with (I − J)Δ = G(z) − z at every angle; NaN where I − J is singular."""
+    K, n = residual.shape
+    A = np.eye(K)[None] - np.moveaxis(J, -1, 0)
+    det = np.linalg.det(A)
+    ok = np.isfinite(det) & (np.abs(det) > 1e-14)
+    step = np.full((n, K), np.nan)
+    if ok.any():
+        step[ok] = np.linalg.solve(A[ok], residual.T[ok][..., None])[..., 0]
+    return step.T
+
+
+def determinant(J: np.ndarray) -> np.ndarray:
+    return np.linalg.det(np.eye(J.shape[0])[None] - np.moveaxis(J, -1, 0))
+
+
+def solve(fmap: FrictionMap, tolerance: float) -> Solved:
+    """z = G(z) at every angle (module docstring)."""
+    K, n = fmap.coefficient.shape
+
+    def change(dz):                            # the largest change of a reaction a change dz of friction makes
+        return np.abs(np.einsum("pqnk,qn->pnk", fmap.slope, dz)).max(axis=(0, 2)) if K else np.zeros(n)
+
+    def iterate(z, share, todo):
+        G, J, r = fmap.evaluate(z)
+        G, J = share * G, share * J
+        scale = np.abs(r).max(axis=(0, 2)) if K else np.ones(n)
+        error = np.where(todo, np.inf, 0.0)
+        steps = 0
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            while True:
+                active = todo & ~(error <= tolerance) & np.isfinite(z).all(0)
+                if not active.any() or steps >= NEWTON_CAP:
+                    break
+                steps += 1
+                step = newton_step(J, G - z)
+                usable = np.isfinite(step).all(0)
+                candidates = [z + np.where(usable, step, 0.0), G]
+                left = [change(share * fmap.evaluate(c)[0] - c) for c in candidates]
+                newton = usable & (left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf))
+                chosen = np.where(newton, candidates[0], candidates[1])
+                moved = change(chosen - z)
+                q = spectral_radius(J)
+                z = np.where(active, chosen, z)
+                G, J, r = fmap.evaluate(z)
+                G, J = share * G, share * J
+                scale = np.abs(r).max(axis=(0, 2))
+                moved = moved / np.where(scale > 0, scale, 1.0)
+                estimate = np.where(newton, moved, np.where(q < 1, moved * q / (1 - q), np.inf))
+                error = np.where(active, np.where(np.isfinite(estimate), estimate, np.inf), error)
+        return z, error, determinant(J), spectral_radius(J), steps
+
+    todo = np.isfinite(fmap.base).all(axis=(0, 2)) & np.isfinite(fmap.slope).all(axis=(0, 1, 3))
+    z, error, det, ratio, iterations = iterate(np.zeros((K, n)), 1.0, todo)
+    astray = todo & ~((error <= tolerance) & (det > 0))
+    locked = np.zeros(n, bool)
+    if astray.any():
+        followed, lost = np.zeros((K, n)), np.zeros(n, bool)
+        for share in np.linspace(0, 1, CONTINUATION + 1)[1:]:
+            followed, f_error, f_det, f_ratio, steps = iterate(followed, share, astray & ~lost)
+            iterations += steps
+            lost |= astray & ~((f_error <= tolerance) & (f_det > 0))
+        kept = astray & ~lost
+        z = np.where(kept, followed, z)
+        error, ratio = np.where(kept, f_error, error), np.where(kept, f_ratio, ratio)
+        locked = lost
+    converged = todo & ~locked & (error <= tolerance)
+    return Solved(z, ratio, locked, converged, error, iterations)
