@@ -115,17 +115,31 @@ def determinant(J: np.ndarray) -> np.ndarray:
     return np.linalg.det(np.eye(J.shape[0])[None] - np.moveaxis(J, -1, 0))
 
 
+def bound_ratio(fmap: FrictionMap) -> np.ndarray:
+    """ρ(A), A_pq = |c_p|·‖∂r_p/∂z_q‖: |G(z) − G(0)| ≤ A|z| entrywise, so where ρ(A) < 1 no nonzero friction
+    loads sustain themselves without a load (z = tH(z), t ≤ 1, needs ρ(A) ≥ 1, Collatz–Wielandt): no jam."""
+    A = np.abs(fmap.coefficient)[:, None] * np.hypot(fmap.slope[..., 0], fmap.slope[..., 1])
+    return spectral_radius(A)
+
+
 def solve(fmap: FrictionMap, tolerance: float) -> Solved:
-    """z = G(z) at every angle (module docstring)."""
+    """z = G(z) at every angle (module docstring).
+
+    The equilibrium is first solved directly.  Where that lands on a root with det(I − J) ≤ 0 or does not
+    converge, the branch is followed from zero friction (continuation); where it folds or ends, the mechanism
+    locks.  A jam, friction loads that sustain themselves whatever the load (the crank-slider's rod inside the
+    guide's friction angle), shows as the branch ending for the loads or for the loads reversed (for one guide
+    the jam's sign decides which): so where ρ(A) ≥ 1 (bound_ratio) the branch is followed for the reversed
+    loads too, and the mechanism locks where either ends."""
     K, n = fmap.coefficient.shape
+    iterations = 0
 
     def change(dz):                            # the largest change of a reaction a change dz of friction makes
         return np.abs(np.einsum("pqnk,qn->pnk", fmap.slope, dz)).max(axis=(0, 2)) if K else np.zeros(n)
 
-    def iterate(z, share, todo):
-        G, J, r = fmap.evaluate(z)
+    def iterate(m, z, share, todo):
+        G, J, r = m.evaluate(z)
         G, J = share * G, share * J
-        scale = np.abs(r).max(axis=(0, 2)) if K else np.ones(n)
         error = np.where(todo, np.inf, 0.0)
         steps = 0
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
@@ -137,13 +151,13 @@ def solve(fmap: FrictionMap, tolerance: float) -> Solved:
                 step = newton_step(J, G - z)
                 usable = np.isfinite(step).all(0)
                 candidates = [z + np.where(usable, step, 0.0), G]
-                left = [change(share * fmap.evaluate(c)[0] - c) for c in candidates]
+                left = [change(share * m.evaluate(c)[0] - c) for c in candidates]
                 newton = usable & (left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf))
                 chosen = np.where(newton, candidates[0], candidates[1])
                 moved = change(chosen - z)
                 q = spectral_radius(J)
                 z = np.where(active, chosen, z)
-                G, J, r = fmap.evaluate(z)
+                G, J, r = m.evaluate(z)
                 G, J = share * G, share * J
                 scale = np.abs(r).max(axis=(0, 2))
                 moved = moved / np.where(scale > 0, scale, 1.0)
@@ -151,19 +165,29 @@ def solve(fmap: FrictionMap, tolerance: float) -> Solved:
                 error = np.where(active, np.where(np.isfinite(estimate), estimate, np.inf), error)
         return z, error, determinant(J), spectral_radius(J), steps
 
+    def follow(m, todo):
+        """The branch from zero friction in CONTINUATION shares; where it is lost (folds or ends)."""
+        nonlocal iterations
+        z, lost = np.zeros((K, n)), np.zeros(n, bool)
+        error, ratio = np.full(n, np.inf), np.zeros(n)
+        for share in np.linspace(0, 1, CONTINUATION + 1)[1:]:
+            z, error, det, ratio, steps = iterate(m, z, share, todo & ~lost)
+            iterations += steps
+            lost |= todo & ~((error <= tolerance) & (det > 0))
+        return z, error, ratio, lost
+
     todo = np.isfinite(fmap.base).all(axis=(0, 2)) & np.isfinite(fmap.slope).all(axis=(0, 1, 3))
-    z, error, det, ratio, iterations = iterate(np.zeros((K, n)), 1.0, todo)
+    z, error, det, ratio, iterations = iterate(fmap, np.zeros((K, n)), 1.0, todo)
     astray = todo & ~((error <= tolerance) & (det > 0))
     locked = np.zeros(n, bool)
     if astray.any():
-        followed, lost = np.zeros((K, n)), np.zeros(n, bool)
-        for share in np.linspace(0, 1, CONTINUATION + 1)[1:]:
-            followed, f_error, f_det, f_ratio, steps = iterate(followed, share, astray & ~lost)
-            iterations += steps
-            lost |= astray & ~((f_error <= tolerance) & (f_det > 0))
+        followed, f_error, f_ratio, lost = follow(fmap, astray)
         kept = astray & ~lost
         z = np.where(kept, followed, z)
         error, ratio = np.where(kept, f_error, error), np.where(kept, f_ratio, ratio)
-        locked = lost
+        locked |= lost
+    suspect = todo & ~locked & (bound_ratio(fmap) >= 1)
+    if suspect.any():
+        locked |= follow(FrictionMap(-fmap.base, fmap.slope, fmap.coefficient), suspect)[3]
     converged = todo & ~locked & (error <= tolerance)
     return Solved(z, ratio, locked, converged, error, iterations)
