@@ -28,7 +28,7 @@ import numpy as np
 from .equilibrium import Influence
 from .pairs import KinematicPair
 
-NEWTON_CAP = 100          # work bound only (module docstring)
+NEWTON_CAP = 40           # work bound only (module docstring): Newton on these piecewise-smooth equations takes ≲ 10
 CONTINUATION = 32         # shares of the friction switched on from zero where the direct solve went astray
 
 
@@ -48,6 +48,14 @@ class FrictionMap:
     base: np.ndarray          # (K, N, 2)
     slope: np.ndarray         # (K, K, N, 2): [p, q]
     coefficient: np.ndarray   # (K, N)
+
+    def take(self, where: np.ndarray) -> "FrictionMap":
+        """The map at the angles ``where`` only."""
+        return FrictionMap(self.base[:, where], self.slope[:, :, where], self.coefficient[:, where])
+
+    def change(self, dz: np.ndarray) -> np.ndarray:
+        """The largest change of a reaction that a change dz of the friction loads makes, per angle."""
+        return np.abs(np.einsum("pqnk,qn->pnk", self.slope, dz)).max(axis=(0, 2))
 
     def reactions(self, z: np.ndarray) -> np.ndarray:
         return self.base + np.einsum("pqnk,qn->pnk", self.slope, z)
@@ -134,36 +142,45 @@ def solve(fmap: FrictionMap, tolerance: float) -> Solved:
     K, n = fmap.coefficient.shape
     iterations = 0
 
-    def change(dz):                            # the largest change of a reaction a change dz of friction makes
-        return np.abs(np.einsum("pqnk,qn->pnk", fmap.slope, dz)).max(axis=(0, 2)) if K else np.zeros(n)
-
     def iterate(m, z, share, todo):
-        G, J, r = m.evaluate(z)
-        G, J = share * G, share * J
-        error = np.where(todo, np.inf, 0.0)
+        """Newton (or the textbook's step) on z = share·G(z) at the angles ``todo``, from z."""
+        z, error = z.copy(), np.where(todo, np.inf, 0.0)
+        det, ratio, steps = np.ones(n), np.zeros(n), 0
+        if todo.any():
+            sub = m.take(todo)
+            z_sub, error[todo], det[todo], ratio[todo], steps = newton(sub, z[:, todo], share)
+            z[:, todo] = z_sub
+        return z, error, det, ratio, steps
+
+    def newton(m, z, share):
+        """Each step on the angles still above ε_R only (the others keep their z)."""
+        n_sub = z.shape[1]
+        error = np.full(n_sub, np.inf)
         steps = 0
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            while True:
-                active = todo & ~(error <= tolerance) & np.isfinite(z).all(0)
-                if not active.any() or steps >= NEWTON_CAP:
+            while steps < NEWTON_CAP:
+                active = np.flatnonzero(~(error <= tolerance) & np.isfinite(z).all(0))
+                if not active.size:
                     break
                 steps += 1
-                step = newton_step(J, G - z)
-                usable = np.isfinite(step).all(0)
-                candidates = [z + np.where(usable, step, 0.0), G]
-                left = [change(share * m.evaluate(c)[0] - c) for c in candidates]
-                newton = usable & (left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf))
-                chosen = np.where(newton, candidates[0], candidates[1])
-                moved = change(chosen - z)
-                q = spectral_radius(J)
-                z = np.where(active, chosen, z)
-                G, J, r = m.evaluate(z)
+                here = m.take(active)
+                za = z[:, active]
+                G, J, _ = here.evaluate(za)
                 G, J = share * G, share * J
-                scale = np.abs(r).max(axis=(0, 2))
-                moved = moved / np.where(scale > 0, scale, 1.0)
-                estimate = np.where(newton, moved, np.where(q < 1, moved * q / (1 - q), np.inf))
-                error = np.where(active, np.where(np.isfinite(estimate), estimate, np.inf), error)
-        return z, error, determinant(J), spectral_radius(J), steps
+                step = newton_step(J, G - za)
+                usable = np.isfinite(step).all(0)
+                candidates = [za + np.where(usable, step, 0.0), G]
+                left = [here.change(share * here.evaluate(c)[0] - c) for c in candidates]
+                better = usable & (left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf))
+                chosen = np.where(better, candidates[0], candidates[1])
+                q = spectral_radius(J)
+                scale = np.abs(here.reactions(chosen)).max(axis=(0, 2))
+                moved = here.change(chosen - za) / np.where(scale > 0, scale, 1.0)
+                z[:, active] = chosen
+                estimate = np.where(better, moved, np.where(q < 1, moved * q / (1 - q), np.inf))
+                error[active] = np.where(np.isfinite(estimate), estimate, np.inf)
+        G, J, _ = m.evaluate(z)
+        return z, error, determinant(share * J), spectral_radius(share * J), steps
 
     def follow(m, todo):
         """The branch from zero friction in CONTINUATION shares; where it is lost (folds or ends)."""
