@@ -1,8 +1,9 @@
 """Kinetostatics by structural groups (Chaika–Vasylenko §3.1) on every preset of content/mechanisms/.
 
 Without friction the balancing moment must equal the reduced moment of all the loads by power equality
-(3.24), here with velocities from five-point differences of the exact positions (h = 1e-3: truncation
-~h⁴·|z⁽⁵⁾| ≲ 1e-12 of the moment's scale, round-off ~1e-16/h ≈ 1e-13; bound 1e-9 of the largest |M|), and
+(3.24), here with velocities from five-point differences of the exact positions (h = 2.5e-4: truncation
+~h⁴·|z⁽⁵⁾| ≲ 1e-12 of the moment's scale, round-off ~1e-16/h ≈ 1e-12; bound 1e-9 of the largest |M|) and the
+moment the dynamics' reduction implies (J ε₁ + ½J′ω₁² + M_c, structure/reduction.py; 1e-9), and
 every link must be in equilibrium: ΣF and ΣM_O summed here load by load and pair by pair (1e-9 of the largest
 force on the link, and of it times the mechanism's size; the solve itself leaves ~1e-15).  With friction the
 same sums hold at every approximation of the textbook's table (each approximation is an equilibrium with the
@@ -19,7 +20,7 @@ from server.core.structure.compose import compose
 from server.core.structure.masses import LinkMass, MassModel, SliderForce
 from server.core.structure.presets import presets
 
-from group_force_checks import direct, power_fd, residual
+from group_force_checks import direct, power_fd, reduction_moment, residual
 
 PHI = np.linspace(0, 2 * np.pi, 73) + 0.0123      # off the exact special angles (a friction sense undefined)
 
@@ -47,6 +48,8 @@ def test_frictionless_balancing_moment_is_virtual_work(name):
     expected = power_fd(mechanism, result)
     scale = np.abs(expected[ok]).max()
     assert np.abs(moment - expected)[ok].max() <= 1e-9 * scale
+    dynamics = reduction_moment(mechanism, model, result, 12.0, -4.0)
+    assert np.abs(moment - dynamics)[ok].max() <= 1e-9 * scale
     assert residual(result, result.solution) <= 1e-9
     assert len(result.approximations) == 1 and result.numerics["error_estimate"] == 0.0
 
