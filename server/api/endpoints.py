@@ -28,10 +28,13 @@ from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, b
 from ..core.elastic.stiffness import Compliances
 from ..core.kinematics import compute_kinematics
 from ..core.kinetostatics.crank_slider import Loads, Pairs, analyse
+from ..core.kinetostatics.groups.analysis import analyse as analyse_groups
+from ..core.kinetostatics.groups.friction import PairFriction
+from ..core.kinetostatics.groups.report import group_forces_report
 from ..core.kinetostatics.report import crank_check, forces_report, wear_report
 from ..core.kinetostatics.virtual_work import reduced_moment
 from ..core.mechanisms import MECHANISMS, GeometryError, Notice
-from ..core.mechanisms.general import GENERAL_OUTPUTS, compute_general
+from ..core.mechanisms.general import GENERAL_OUTPUTS, GeneralMechanism, compute_general
 from ..core.structure.masses import MassModel
 from .messages import localise_numerics, localise_study, translate
 from .schemas import KinematicsRequest, KinematicsResponse
@@ -239,6 +242,8 @@ def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
     """The force report and the check (3.2) of the balancing moment against virtual work, with and without
     friction (without friction in the pairs, the analysis is already the frictionless one); the check only
     when read (``reads``: a caller that reads only part of the answer)."""
+    if request.mechanism == "general":
+        return _general_forces(request, lang)
     params, loads, pairs, analysis = _force_analysis(request)
     result = forces_report(analysis, pairs)
     if reads is None or "crank_check" in reads:
@@ -247,6 +252,17 @@ def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
         result["crank_check"] = crank_check(analysis, frictionless,
                                             reduced_moment(params, analysis.applied, analysis.phi))
     return answer(result, analysis.notices, lang)
+
+
+def _general_forces(request: ForcesRequest, lang: str) -> Answer:
+    """A general mechanism by structural groups over one turn (core/kinetostatics/groups), its free bodies at
+    ``free_body_phi``; the crank check (3.2) against the reduced moment by power equality is always in it."""
+    mechanism = GeneralMechanism(request.linkage.model_dump(exclude_none=True))
+    masses = request.masses.model() if request.masses is not None else MassModel()
+    pairs = {name: PairFriction(p.f, p.r) for name, p in request.pair_friction.items()}
+    result = analyse_groups(mechanism, masses, np.linspace(0.0, 2 * np.pi, request.n), request.loads.omega,
+                            request.loads.epsilon, request.tolerance, pairs)
+    return answer(group_forces_report(result, request.free_body_phi), result.notices, lang)
 
 
 def wear(request: WearRequest, lang: str) -> Answer:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...mechanisms.base import Notice, angle_ranges, ranges_text
+from ...mechanisms.base import GeometryError, Notice, angle_ranges, ranges_text
 from ...numerics import Numerics
 from ...structure.compose import Composition, compose
 from ...structure.masses import MassModel, check_model
@@ -87,10 +87,21 @@ def analyse(mechanism, model: MassModel, phi: np.ndarray, omega: float = 10.0, e
     phi = np.asarray(phi, float)
     linkage = mechanism.linkage
     comp = compose(linkage, phi)
+    for k, group in enumerate(comp.groups):
+        if not group.closes.all():
+            ranges = ranges_text(angle_ranges(phi, ~group.closes))
+            raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at φ = {ranges}: "
+                                "the crank cannot turn fully; the forces are computed over the whole turn",
+                                "group_forces_no_full_turn", group=k)
     check_model(comp, model)
     groups = group_pairs(linkage, comp)
     pivot = crank_pair(linkage, comp)
     friction_pairs = [p for g in groups for p in g.pairs] + [pivot]
+    for name in pairs or {}:
+        if name not in {p.name for p in friction_pairs}:
+            known = ", ".join(sorted({p.name for p in friction_pairs}))
+            raise GeometryError(f"pair_friction.{name}", f"no pair '{name}' in this linkage (pairs: {known})",
+                                "unknown_pair", pair=name)
     locate = [(g.index, k) for g in groups for k in range(3)] + [None]
     default = fr.PairFriction(model.friction, model.pair_radius)
     coefficients = [(pairs or {}).get(p.name, default) for p in friction_pairs]
@@ -163,7 +174,7 @@ def say(result: GroupForces, solved: fr.Solved, tolerance: float) -> None:
     if result.influence.singular.any():
         ranges = angle_ranges(phi, result.influence.singular)
         result.notices.append(Notice(
-            "group_dead_position", f"For φ in {ranges_text(ranges)} a group stands at a dead position (its links "
+            "group_forces_dead_position", f"For φ in {ranges_text(ranges)} a group stands at a dead position (its links "
             "or guides in line): its equilibrium equations do not determine the reactions there.",
             {"ranges": ranges}))
     unconverged = ~solved.locked & ~result.influence.singular & ~solved.converged
