@@ -82,8 +82,9 @@ def xy(z) -> list[float]:
 
 def free_body(result: GroupForces, k: int) -> list[dict]:
     """At angle index k: per group (reverse order of attachment, as solved) and then the crank, the loads on
-    each link: points, applied loads, the reactions of every pair on it (third law on the earlier link), the
-    friction and the friction circles ρ = f·r — each force with its point, each couple with its value."""
+    each link: points, applied loads, the reactions of every pair on it (its own pairs' and, by the third law,
+    those of the later groups attached to it), the friction and the friction circles ρ = f·r — each force with
+    its point, each couple with its value."""
     row = result.solution
     links_of = {g.index: g.links for g in result.groups}
     bodies = []
@@ -120,12 +121,11 @@ def free_body(result: GroupForces, k: int) -> list[dict]:
         return entry
 
     indexed = list(enumerate(result.pairs))
+    touching = lambda links: [(i, p) for i, p in indexed if p.a in links or p.b in links]
     for group in reversed(result.groups):
-        mine = [(i, p) for i, p in indexed if i // 3 == group.index and i < 3 * len(result.groups)]
-        bodies.append(body(group.index, group.kind, links_of[group.index], mine))
+        bodies.append(body(group.index, group.kind, links_of[group.index], touching(links_of[group.index])))
     crank = result.crank_link
-    touching = [(i, p) for i, p in indexed if crank in (p.a, p.b)]
-    entry = body("crank", "crank", (crank,), touching)
+    entry = body("crank", "crank", (crank,), touching((crank,)))
     entry["balancing_moment"] = float(result.sense * row.balancing[k])      # counter-clockwise, N·m
     bodies.append(entry)
     return bodies
