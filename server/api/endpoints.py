@@ -49,6 +49,7 @@ Reads = Collection[str] | None      # the answer's top-level keys a caller reads
 # The core's words when a bound stopped a computation with a partial result (server/core/dynamics/motion.py:
 # "stopped at the time budget …"; server/core/elastic/simulate.py and the start from rest: "… the work bound").
 PARTIAL_MARKERS = ("time budget", "work bound")
+FORCES_BUDGET_S = 5.0               # wall clock of a general mechanism's friction solve (the motion request's bound)
 
 
 def payload(result: dict, notices, lang: str) -> dict:
@@ -261,7 +262,7 @@ def _general_forces(request: ForcesRequest, lang: str) -> Answer:
     masses = request.masses.model() if request.masses is not None else MassModel()
     pairs = {name: PairFriction(p.f, p.r) for name, p in request.pair_friction.items()}
     result = analyse_groups(mechanism, masses, np.linspace(0.0, 2 * np.pi, request.n), request.loads.omega,
-                            request.loads.epsilon, request.tolerance, pairs)
+                            request.loads.epsilon, request.tolerance, pairs, budget=FORCES_BUDGET_S)
     return answer(group_forces_report(result, request.free_body_phi), result.notices, lang)
 
 

@@ -77,12 +77,13 @@ def reaction_vector(row: Approximation) -> np.ndarray:
 
 def analyse(mechanism, model: MassModel, phi: np.ndarray, omega: float = 10.0, epsilon: float = 0.0,
             tolerance: float = 1e-9, pairs: dict[str, fr.PairFriction] | None = None,
-            shown: int = SHOWN_APPROXIMATIONS) -> GroupForces:
+            shown: int = SHOWN_APPROXIMATIONS, budget: float | None = None) -> GroupForces:
     """The reactions in every pair and the balancing moment at the crank angles ``phi`` (rad).
 
     ``omega`` > 0: the crank's speed along its rotation, ``epsilon`` its angular acceleration (rad/s, rad/s²);
     friction f and journal radius r of every pair from the model (``friction``, ``pair_radius``), or per pair
-    by name (``pairs``: joint names for revolute pairs, guide names for prismatic, the slide of an RPR, B/slot)."""
+    by name (``pairs``: joint names for revolute pairs, guide names for prismatic, the slide of an RPR, B/slot);
+    ``budget``: a wall-clock bound of the friction solve, s (the server's; None: none)."""
     clock = time.perf_counter()
     phi = np.asarray(phi, float)
     linkage = mechanism.linkage
@@ -112,7 +113,7 @@ def analyse(mechanism, model: MassModel, phi: np.ndarray, omega: float = 10.0, e
                          linkage.crank.sense)
     result.reduced_moment = power_moment(loads)
     fmap = fr.friction_map(influence, locate, friction_pairs, coefficients)
-    solved = fr.solve(fmap, tolerance)
+    solved = fr.solve(fmap, tolerance, budget)
     result.locked = solved.locked
     result.approximations = textbook_approximations(result, fmap, tolerance, shown if result.rough else 1)
     final = fmap.evaluate(solved.z)[0]                 # friction from the solved reactions (3.3), and the

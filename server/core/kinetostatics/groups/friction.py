@@ -16,11 +16,15 @@ spectral radius of J, the series' ratio).  Self-locking is decided as the crank-
 where its direct solve goes astray: the equilibrium the mechanism reaches as its friction grows from zero
 (continuation in the share s of the friction, det(I − sJ) > 0 along it, det = 1 at s = 0) must exist up to
 s = 1; where that branch folds (det(I − J) reaches 0) or no equilibrium continues it, the reactions it needs
-grow without bound: no driving moment moves the mechanism there.  The step count is a work bound only: an
-angle still above ε_R after it is reported unconverged, in words, never decided locked by it.
+grow without bound: no driving moment moves the mechanism there.  As in the crank-slider's solve, an equilibrium
+that Newton's method does not reach from the previous share's within NEWTON_CAP steps is taken as not
+continuing the branch (on these piecewise-smooth equations Newton converges in a few steps where a root
+continues the branch).  The time budget is a work bound only: the angles it leaves are reported unconverged,
+in words, never decided locked by it.
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -130,8 +134,9 @@ def bound_ratio(fmap: FrictionMap) -> np.ndarray:
     return spectral_radius(A)
 
 
-def solve(fmap: FrictionMap, tolerance: float) -> Solved:
-    """z = G(z) at every angle (module docstring).
+def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None) -> Solved:
+    """z = G(z) at every angle (module docstring); ``budget``: a wall-clock bound (s), the angles it leaves are
+    reported unconverged, never locked.
 
     The equilibrium is first solved directly.  Where that lands on a root with det(I − J) ≤ 0 or does not
     converge, the branch is followed from zero friction (continuation); where it folds or ends, the mechanism
@@ -141,6 +146,7 @@ def solve(fmap: FrictionMap, tolerance: float) -> Solved:
     loads too, and the mechanism locks where either ends."""
     K, n = fmap.coefficient.shape
     iterations = 0
+    deadline = time.perf_counter() + (budget if budget is not None else np.inf)
 
     def iterate(m, z, share, todo):
         """Newton (or the textbook's step) on z = share·G(z) at the angles ``todo``, from z."""
@@ -158,7 +164,7 @@ def solve(fmap: FrictionMap, tolerance: float) -> Solved:
         error = np.full(n_sub, np.inf)
         steps = 0
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            while steps < NEWTON_CAP:
+            while steps < NEWTON_CAP and time.perf_counter() < deadline:
                 active = np.flatnonzero(~(error <= tolerance) & np.isfinite(z).all(0))
                 if not active.size:
                     break
@@ -190,6 +196,8 @@ def solve(fmap: FrictionMap, tolerance: float) -> Solved:
         for share in np.linspace(0, 1, CONTINUATION + 1)[1:]:
             z, error, det, ratio, steps = iterate(m, z, share, todo & ~lost)
             iterations += steps
+            if time.perf_counter() >= deadline:             # out of time: undecided, not lost
+                return z, np.where(lost, error, np.inf), ratio, lost
             lost |= todo & ~((error <= tolerance) & (det > 0))
         return z, error, ratio, lost
 
