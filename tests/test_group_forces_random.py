@@ -23,7 +23,8 @@ from group_force_checks import direct, power_fd, reduction_moment, residual
 from test_structure_random import checked, linkages
 
 
-@settings(max_examples=60, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow], phases=[Phase.explicit, Phase.reuse, Phase.generate])  # no shrinking: a failure prints its case
+@settings(max_examples=60, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow],
+          phases=[Phase.explicit, Phase.reuse, Phase.generate])      # no shrinking: a failure prints its case
 @given(data=st.data())
 def test_random_group_forces(data):
     kind = data.draw(st.sampled_from(KINDS))
