@@ -197,22 +197,24 @@ def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None) -> S
             z, error, det, ratio, steps = iterate(m, z, share, todo & ~lost)
             iterations += steps
             if time.perf_counter() >= deadline:             # out of time: undecided, not lost
-                return z, np.where(lost, error, np.inf), ratio, lost
+                return z, np.where(lost, error, np.inf), ratio, lost, todo & ~lost
             lost |= todo & ~((error <= tolerance) & (det > 0))
-        return z, error, ratio, lost
+        return z, error, ratio, lost, np.zeros(n, bool)
 
     todo = np.isfinite(fmap.base).all(axis=(0, 2)) & np.isfinite(fmap.slope).all(axis=(0, 1, 3))
     z, error, det, ratio, iterations = iterate(fmap, np.zeros((K, n)), 1.0, todo)
     astray = todo & ~((error <= tolerance) & (det > 0))
     locked = np.zeros(n, bool)
     if astray.any():
-        followed, f_error, f_ratio, lost = follow(fmap, astray)
+        followed, f_error, f_ratio, lost, _ = follow(fmap, astray)
         kept = astray & ~lost
         z = np.where(kept, followed, z)
         error, ratio = np.where(kept, f_error, error), np.where(kept, f_ratio, ratio)
         locked |= lost
     suspect = todo & ~locked & (bound_ratio(fmap) >= 1)
     if suspect.any():
-        locked |= follow(FrictionMap(-fmap.base, fmap.slope, fmap.coefficient), suspect)[3]
+        _, _, _, jammed, undecided = follow(FrictionMap(-fmap.base, fmap.slope, fmap.coefficient), suspect)
+        locked |= jammed
+        error = np.where(undecided, np.inf, error)         # out of time before the jam was decided
     converged = todo & ~locked & (error <= tolerance)
     return Solved(z, ratio, locked, converged, error, iterations)
