@@ -50,6 +50,7 @@ class GroupForces:
     influence: Influence
     crank_link: int
     sense: int
+    rough_pairs: list[int]                 # the pairs with f > 0: the friction loads the solve carries
     approximations: list[Approximation] = field(default_factory=list)
     solution: Approximation | None = None
     locked: np.ndarray | None = None
@@ -62,12 +63,15 @@ class GroupForces:
 
     @property
     def rough(self) -> bool:
-        return any(c.f > 0 for c in self.coefficients)
+        return bool(self.rough_pairs)
 
 
 def approximation(result: GroupForces, z: np.ndarray, change: float | None) -> Approximation:
+    """The row for the friction loads z of the rough pairs (f > 0); the others' friction is zero."""
     unknowns, R01, balancing = result.influence.at(z)
-    return Approximation(z, unknowns, R01, result.sense * balancing, change)
+    friction = np.zeros((len(result.pairs), result.phi.size))
+    friction[result.rough_pairs] = z
+    return Approximation(friction, unknowns, R01, result.sense * balancing, change)
 
 
 def reaction_vector(row: Approximation) -> np.ndarray:
@@ -108,11 +112,13 @@ def analyse(mechanism, model: MassModel, phi: np.ndarray, omega: float = 10.0, e
     coefficients = [(pairs or {}).get(p.name, default) for p in friction_pairs]
     loads = link_loads(mechanism, comp, model, omega, epsilon)
     force, moment = resultants(loads, comp.links, phi.size)
-    influence = solve_all(groups, linkage.crank.link, pivot, force, moment, friction_pairs)
+    rough = [k for k, c in enumerate(coefficients) if c.f > 0]
+    influence = solve_all(groups, linkage.crank.link, pivot, force, moment, [friction_pairs[k] for k in rough])
     result = GroupForces(phi, comp, groups, friction_pairs, coefficients, loads, influence, linkage.crank.link,
-                         linkage.crank.sense)
+                         linkage.crank.sense, rough)
     result.reduced_moment = power_moment(loads)
-    fmap = fr.friction_map(influence, locate, friction_pairs, coefficients)
+    fmap = fr.friction_map(influence, [locate[k] for k in rough], [friction_pairs[k] for k in rough],
+                           [coefficients[k] for k in rough])
     solved = fr.solve(fmap, tolerance, budget)
     result.locked = solved.locked
     result.approximations = textbook_approximations(result, fmap, tolerance, shown if result.rough else 1)

@@ -39,7 +39,7 @@ class Influence:
     singular: np.ndarray              # (N,) a group at a dead position
 
     def at(self, z: np.ndarray) -> tuple[list[np.ndarray], np.ndarray, np.ndarray]:
-        """The reactions for friction loads z (K, N)."""
+        """The reactions for friction loads z (K, N) of the pairs the influence was computed for."""
         weights = np.concatenate([np.ones((1, z.shape[1])), z])
         combine = lambda x: np.einsum("cn...,cn->n...", x, weights)
         return [combine(x) for x in self.group_unknowns], combine(self.crank), combine(self.balancing)

@@ -88,6 +88,9 @@ def friction_map(influence: Influence, locate: list[tuple[int, int] | None], pai
                 out.append(x if pairs[p].kind == "R" else np.stack([x[:, 0], 0 * x[:, 0]], -1))
         return np.stack(out)
     K = len(pairs)
+    if K == 0:                                 # no friction anywhere
+        n = influence.crank.shape[1]
+        return FrictionMap(np.zeros((0, n, 2)), np.zeros((0, 0, n, 2)), np.zeros((0, n)))
     base = coordinates(0)
     slope = np.stack([coordinates(q + 1) for q in range(K)], axis=1)
     coefficient = np.stack([-np.sign(pair.relative) * c.f * (c.r if pair.kind == "R" else 1.0)
@@ -145,6 +148,9 @@ def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None) -> S
     the jam's sign decides which): so where ρ(A) ≥ 1 (bound_ratio) the branch is followed for the reversed
     loads too, and the mechanism locks where either ends."""
     K, n = fmap.coefficient.shape
+    if K == 0:                                 # without friction the first approximation is the equilibrium
+        none = np.zeros(n, bool)
+        return Solved(np.zeros((0, n)), np.zeros(n), none, np.ones(n, bool), np.zeros(n), 0)
     iterations = 0
     deadline = time.perf_counter() + (budget if budget is not None else np.inf)
 
