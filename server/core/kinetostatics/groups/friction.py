@@ -185,7 +185,9 @@ def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None) -> S
                 left = [here.change(share * here.evaluate(c)[0] - c) for c in candidates]
                 better = usable & (left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf))
                 chosen = np.where(better, candidates[0], candidates[1])
-                q = spectral_radius(J)
+                q = np.zeros(better.size)              # the series' ratio, needed where the textbook's step was taken
+                if (~better).any():
+                    q[~better] = spectral_radius(J[:, :, ~better])
                 scale = np.abs(here.reactions(chosen)).max(axis=(0, 2))
                 moved = here.change(chosen - za) / np.where(scale > 0, scale, 1.0)
                 z[:, active] = chosen
