@@ -19,8 +19,12 @@ s = 1; where that branch folds (det(I − J) reaches 0) or no equilibrium contin
 grow without bound: no driving moment moves the mechanism there.  As in the crank-slider's solve, an equilibrium
 that Newton's method does not reach from the previous share's within NEWTON_CAP steps is taken as not
 continuing the branch (on these piecewise-smooth equations Newton converges in a few steps where a root
-continues the branch).  The time budget is a work bound only: the angles it leaves are reported unconverged,
-in words, never decided locked by it.
+continues the branch).  A jam — friction loads that sustain themselves whatever the load, the crank-slider's
+rod inside the guide's friction angle (f₃₄|tan ψ′| ≥ 1) — is found as the branch ending for the loads or for
+the loads reversed; it is looked for only where the bound ρ(A) ≥ 1 (``bound_ratio``) allows one.  For the
+crank-slider this gives exactly the dedicated solve's locked angles (tests/test_group_forces_crank_slider.py).
+The time budget is a work bound only: the angles it leaves are reported unconverged, in words, never decided
+locked by it.
 """
 from __future__ import annotations
 
@@ -32,7 +36,7 @@ import numpy as np
 from .equilibrium import Influence
 from .pairs import KinematicPair
 
-NEWTON_CAP = 40           # work bound only (module docstring): Newton on these piecewise-smooth equations takes ≲ 10
+NEWTON_CAP = 40           # Newton steps per solve (module docstring); where a root exists it takes ≲ 10
 CONTINUATION = 32         # shares of the friction switched on from zero where the direct solve went astray
 
 
