@@ -17,7 +17,7 @@ import pytest
 from server.core.kinetostatics.groups.analysis import analyse
 from server.core.mechanisms.general import GeneralMechanism
 from server.core.structure.compose import compose
-from server.core.structure.masses import LinkMass, MassModel, SliderForce
+from server.core.structure.masses import LinkMass, LinkMoment, MassModel, SliderForce
 from server.core.structure.presets import presets
 
 from group_force_checks import direct, power_fd, reduction_moment, residual
@@ -26,14 +26,15 @@ PHI = np.linspace(0, 2 * np.pi, 73) + 0.0123      # off the exact special angles
 
 
 def preset_model(name, friction=0.0):
-    """Masses on every link (centres off the links' lines), a useful force on the first slider, a moment on
-    the last link."""
+    """Masses on every link (centres off the links' lines), a useful force on the first slider, or a load
+    moment on the last link where there is no slider."""
     mechanism = GeneralMechanism(presets()[name]["linkage"])
     comp = compose(mechanism.linkage, np.zeros(1))
     links = sorted(comp.links)
     slides = list(comp.slides)
     model = MassModel(tuple(LinkMass(k, 0.5 + k, (0.02 * k, 0.01), 0.002 * k) for k in links),
                       forces=(SliderForce(slides[0], 300.0, 0.4),) if slides else (),
+                      moments=() if slides else (LinkMoment(links[-1], 20.0, 0.5),),
                       friction=friction, pair_radius=0.01)
     return mechanism, model
 
@@ -79,3 +80,27 @@ def test_friction_every_approximation_in_equilibrium_and_fsolve(name):
         (unknowns, R01, balancing), left = direct(result, k, start)
         assert left <= 1e-9 * scale                  # fsolve reached the equilibrium (N and N·m)
         assert abs(balancing[0] - result.solution.balancing[k]) <= 1e-8 * scale
+
+
+@pytest.mark.parametrize("name", sorted(presets()))
+def test_power_balance_with_friction_and_the_efficiency(name):
+    """The pairs' reactions do no work (a revolute pair's force at the common joint, a prismatic pair's normal
+    force across the sliding and its couple on two links turning alike), so at every angle the balancing moment
+    pays the loads' reduced moment and what friction dissipates: M_b = −Σ(F·z′ + Mθ′) + Σ_p |z_p||relative_p|
+    (1e-9 of the largest |M_b|).  Over the cycle that is A_driving = A_useful + A_friction where inertia and
+    gravity do no net work (ε₁ = 0: the cycle closes), so η = A_useful/(A_useful + A_friction) is the useful
+    share of the driving work (1e-6: trapezoid sums of the same grid); η = 1 without friction."""
+    from server.core.kinetostatics.groups.report import efficiency
+    mechanism, model = preset_model(name, friction=0.15)
+    phi = np.linspace(0, 2 * np.pi, 721)
+    result = analyse(mechanism, model, phi, omega=12.0, epsilon=0.0, tolerance=1e-11)
+    free = ~result.locked & ~result.influence.singular
+    lost = sum(np.abs(result.solution.friction[k] * p.relative) for k, p in enumerate(result.pairs))
+    moment = result.solution.balancing
+    assert np.abs(moment - (result.reduced_moment + lost))[free].max() <= 1e-9 * np.abs(moment[free]).max()
+    if free.all():
+        works = efficiency(result)
+        assert abs(works["work_driving"] - works["work_useful"] - works["work_friction"]) <= 1e-6 * works["work_driving"]
+        assert 0 < works["efficiency"] < 1
+    smooth = analyse(mechanism, MassModel(model.links, forces=model.forces, moments=model.moments), phi, omega=12.0)
+    assert efficiency(smooth)["efficiency"] == 1.0
