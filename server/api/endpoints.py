@@ -33,10 +33,13 @@ from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, b
 from ..core.elastic.stiffness import Compliances
 from ..core.kinematics import compute_kinematics, compute_kinematics_many
 from ..core.kinetostatics.crank_slider import Loads, Pairs, analyse
+from ..core.kinetostatics.groups.analysis import analyse as analyse_groups
+from ..core.kinetostatics.groups.friction import PairFriction
+from ..core.kinetostatics.groups.report import group_forces_report
 from ..core.kinetostatics.report import crank_check, forces_report, wear_report
 from ..core.kinetostatics.virtual_work import reduced_moment
 from ..core.mechanisms import MECHANISMS, GeometryError, Notice
-from ..core.mechanisms.general import GENERAL_OUTPUTS, compute_general
+from ..core.mechanisms.general import GENERAL_OUTPUTS, GeneralMechanism, compute_general
 from ..core.structure.masses import MassModel
 from .messages import localise_numerics, localise_study, translate
 from .schemas import KinematicsRequest, KinematicsResponse
@@ -52,6 +55,7 @@ Reads = Collection[str] | None      # the answer's top-level keys a caller reads
 # The core's words when a bound stopped a computation with a partial result (server/core/dynamics/motion.py:
 # "stopped at the time budget …"; server/core/elastic/simulate.py and the start from rest: "… the work bound").
 PARTIAL_MARKERS = ("time budget", "work bound")
+FORCES_BUDGET_S = 5.0               # wall clock of a general mechanism's friction solve (the motion request's bound)
 
 
 def payload(result: dict, notices, lang: str) -> dict:
@@ -278,6 +282,8 @@ def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
     friction (without friction in the pairs, the analysis is already the frictionless one); the check, and the
     textbook's approximations with the numerics describing them, only when read (``reads``: a caller that
     reads only part of the answer)."""
+    if request.mechanism == "general":
+        return _general_forces(request, lang)
     table = reads is None or "iteration" in reads or "numerics" in reads
     params, loads, pairs, analysis = _force_analysis(request, table=table)
     result = forces_report(analysis, pairs)
@@ -287,6 +293,17 @@ def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
         result["crank_check"] = crank_check(analysis, frictionless,
                                             reduced_moment(params, analysis.applied, analysis.phi))
     return answer(result, analysis.notices, lang)
+
+
+def _general_forces(request: ForcesRequest, lang: str) -> Answer:
+    """A general mechanism by structural groups over one turn (core/kinetostatics/groups), its free bodies at
+    ``free_body_phi``; the crank check (3.2) against the reduced moment by power equality is always in it."""
+    mechanism = GeneralMechanism(request.linkage.model_dump(exclude_none=True))
+    masses = request.masses.model() if request.masses is not None else MassModel()
+    pairs = {name: PairFriction(p.f, p.r) for name, p in request.pair_friction.items()}
+    result = analyse_groups(mechanism, masses, np.linspace(0.0, 2 * np.pi, request.n), request.loads.omega,
+                            request.loads.epsilon, request.tolerance, pairs, budget=FORCES_BUDGET_S)
+    return answer(group_forces_report(result, request.free_body_phi), result.notices, lang)
 
 
 def wear(request: WearRequest, lang: str) -> Answer:

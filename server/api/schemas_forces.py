@@ -5,8 +5,8 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from .schemas import MAX_PARAMS
-from .schemas_dynamics import MotorInput
+from .schemas import MAX_PARAMS, LinkageModel
+from .schemas_dynamics import MassInput, MotorInput
 
 
 class PairsInput(BaseModel):
@@ -45,9 +45,28 @@ class ForceLoadsInput(BaseModel):
         return self
 
 
+class PairFrictionInput(BaseModel):
+    """f and the journal radius r of one pair of a general mechanism (Chaika–Vasylenko (3.3))."""
+
+    model_config = ConfigDict(extra="forbid")
+    f: float = Field(0.0, ge=0, le=2, description="friction coefficient")
+    r: float = Field(0.0, ge=0, le=1, description="journal radius of a revolute pair, m (unused for a prismatic one)")
+
+
 class ForcesRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider (seed 002 §3.1)")
+    mechanism: Literal["slider_crank", "general"] = Field("slider_crank", description=(
+        "the crank-slider (seed 002 §3.1), or 'general': the mechanism in `linkage`, by structural groups"))
+    linkage: LinkageModel | None = Field(None, description=(
+        "with mechanism 'general': the mechanism as data (GET /api/v1/mechanisms/general)"))
+    masses: MassInput | None = Field(None, description=(
+        "with mechanism 'general': masses, centres, J_S, the useful loads, g, and f, r of every pair"))
+    pair_friction: dict[Annotated[str, Field(min_length=1, max_length=40)], PairFrictionInput] = Field(
+        default_factory=dict, max_length=64, description=(
+            "with mechanism 'general': f and r of single pairs by name (a joint, a guide, an RPR's slide, "
+            "'B/slot'), instead of masses.friction and masses.pair_radius"))
+    free_body_phi: float = Field(0.0, ge=-100, le=100, description=(
+        "with mechanism 'general': the crank angle of the free-body diagrams and of the table, rad"))
     outputs: list[Literal["forces", "wear"]] = Field(["forces"], max_length=2, description="what the scene shows")
     params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="crank-slider lengths l1, l2, e (m) and a2")
     loads: ForceLoadsInput = Field(default_factory=ForceLoadsInput)
@@ -55,9 +74,32 @@ class ForcesRequest(BaseModel):
     n: int = Field(361, ge=13, le=1441, description="points over one closed cycle")
     tolerance: float = Field(1e-9, ge=1e-14, le=1e-2, description="ε_R: relative error of the reactions the friction equilibrium is solved to (and the change that ends the textbook's table)")
 
+    @model_validator(mode="after")
+    def general_fields(self):
+        general = self.mechanism == "general"
+        if general != (self.linkage is not None):
+            raise ValueError("`linkage` goes with mechanism 'general', and only with it")
+        if not general and (self.masses is not None or self.pair_friction):
+            raise ValueError("`masses` and `pair_friction` go with mechanism 'general' (the crank-slider takes "
+                             "`loads` and `pairs`)")
+        if general:
+            if self.params:
+                raise ValueError("a general mechanism takes its lengths in `linkage`, not in `params`")
+            if "wear" in self.outputs:
+                raise ValueError("outputs: wear is computed for the crank-slider only")
+            kept = {"omega", "epsilon"}
+            loads = self.loads.model_dump(exclude_defaults=True)
+            if set(loads) - kept or self.pairs.model_dump(exclude_defaults=True):
+                raise ValueError("a general mechanism takes its masses and loads in `masses` and its friction in "
+                                 "`masses.friction`, `masses.pair_radius` and `pair_friction`; of `loads` only "
+                                 "omega and epsilon")
+        return self
+
 
 class WearRequest(ForcesRequest):
     """The wear of seed 002 §4 for a crank-slider (by default the two-stroke engine of §4.3)."""
+
+    mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider (seed 002 §4)")
 
     pin_diameter: float = Field(0.02, ge=1e-3, le=1, description="piston pin diameter d₂₃, m")
     pin_length: float = Field(0.025, ge=1e-3, le=1, description="pin bearing length l_z23, m")
