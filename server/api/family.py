@@ -102,10 +102,8 @@ UNCHECKED = frozenset({"numerics", "study", "warnings", "directions", "iteration
 # parabola; for a corner (slopes s and s + Δs meeting inside the interval, at d from an end) the smaller of
 # the ends' h²|f''|/8 is Δs·min(d, h − d)/8 against the true Δs·d(h − d)/h: at most 4× too small (d = h/2).
 SAFETY = 4
-# A cubic interval is halved while its estimate exceeds TOLERANCE / CUBIC_SAFETY: the fourth divided difference
-# is taken from the smaller of two 5-member windows, and the fourth derivative changes across them (measured
-# over every scene's families against exact answers at random values: with 1 the bound failed on 5 of 99
-# families, with 2 on none in intervals a slider resolves).
+# A cubic interval is halved while its estimate exceeds TOLERANCE / CUBIC_SAFETY: the estimate takes the
+# fourth derivative from members around the interval, not inside it, and it changes across them.
 CUBIC_SAFETY = 2
 PACK_QUANTUM = 1e-4            # a packed array's quantum, at most this fraction of its span (see Packed)
 MAX_FIELDS = 64                 # dotted paths a family request may name (a scene's previews draw ~5–25)
@@ -718,6 +716,7 @@ class Stack:
     paths: tuple
     starts: np.ndarray
     rows: np.ndarray            # (M, E)
+    layout: tuple               # ((path, shape), ...): the columns' leaves
 
     @classmethod
     def of(cls, members: list[Member], log: bool) -> "Stack":
@@ -730,20 +729,22 @@ class Stack:
             for index, member in enumerate(members):
                 if member.answer is not None:
                     rows[index] = member.flat.vector
-            return cls(x, answered, paths, starts, rows)
+            return cls(x, answered, paths, starts, rows, layout)
         columns: dict[tuple, int] = {}                      # (path, shape) → its first column
+        width = 0
         for member in members:
             for path, leaf in member.leaves.items():
                 if leaf.size and (path, leaf.shape) not in columns:
-                    columns[path, leaf.shape] = sum(math.prod(shape) for _, shape in columns)
-        width = sum(math.prod(shape) for _, shape in columns)
+                    columns[path, leaf.shape] = width
+                    width += leaf.size
         rows = np.full((len(members), width), np.nan)
         for index, member in enumerate(members):
             for path, leaf in member.leaves.items():
                 if leaf.size:
                     first = columns[path, leaf.shape]
                     rows[index, first:first + leaf.size] = leaf.ravel()
-        return cls(x, answered, tuple(path for path, _ in columns), np.array(list(columns.values()), int), rows)
+        return cls(x, answered, tuple(path for path, _ in columns), np.array(list(columns.values()), int), rows,
+                   tuple(columns))
 
     def largest(self, values: np.ndarray) -> np.ndarray:
         """(K, L): the largest of each leaf's elements of values (K, E), nulls aside; NaN where it has none."""
@@ -769,20 +770,56 @@ def relative(errors: np.ndarray, widths_: np.ndarray) -> np.ndarray:
     return np.where(np.isnan(errors) | (errors == 0), 0.0, found)
 
 
-def curvatures(stack: Stack) -> np.ndarray:
-    """(M, L): the largest |f''| of each leaf at each member, the second divided difference with its two
-    neighbours 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋); NaN rows at the range's ends and beside a refusal."""
-    f, x = stack.rows, stack.x
-    found = np.full((len(x), len(stack.paths)), np.nan)
-    if len(x) < 3:
+def divided(stack: Stack, order: int, kept: dict) -> np.ndarray:
+    """(M − order, L): the largest |f[x_j, …, x_j+order]| of each leaf, the divided difference of order
+    ``order`` over members j … j + order (f″/2 for order 2, f⁗/24 for order 4); NaN where a refusal is among
+    them. A window computed before (the same members) is taken from ``kept``."""
+    count, width = len(stack.x), order + 1
+    found = np.full((max(count - order, 0), len(stack.paths)), np.nan)
+    if count < width:
         return found
-    h = np.diff(x)[:, None]
-    with np.errstate(invalid="ignore", over="ignore"):
-        slope = np.diff(f, axis=0) / h
-        bend = np.abs(np.diff(slope, axis=0)) * (2 / (h[1:] + h[:-1]))
-    found[1:-1] = stack.largest(bend)
-    inside = stack.answered[:-2] & stack.answered[1:-1] & stack.answered[2:]
-    found[1:-1][~inside] = np.nan
+    whole = np.convolve(stack.answered.astype(int), np.ones(width, int), "valid") == width
+    keys = [(order, *stack.x[j:j + width].tolist()) for j in range(count - order)]
+    new = [j for j in range(count - order) if whole[j] and keys[j] not in kept]
+    if new:
+        first = np.array(new)
+        nodes = stack.x[first[:, None] + np.arange(width)]                       # (K, order + 1)
+        # f[x_0 … x_n] = Σ_i f_i / Π_{j≠i} (x_i − x_j): one weighted sum of rows per member of the window
+        gaps = nodes[:, :, None] - nodes[:, None, :]
+        gaps[:, np.arange(width), np.arange(width)] = 1.0
+        weights = 1.0 / np.prod(gaps, axis=2)
+        with np.errstate(invalid="ignore", over="ignore"):
+            total = weights[:, 0, None] * stack.rows[first]
+            for i in range(1, width):
+                total += weights[:, i, None] * stack.rows[first + i]
+            largest = stack.largest(np.abs(total, out=total))
+        for j, row in zip(new, largest):
+            kept[keys[j]] = (stack.layout, row)
+    for j in range(count - order):
+        if whole[j]:
+            layout, row = kept[keys[j]]
+            found[j] = row if layout == stack.layout else _moved(row, layout, stack.layout, kept)
+    return found
+
+
+def _moved(row: np.ndarray, before: tuple, after: tuple, kept: dict) -> np.ndarray:
+    """A window's values per leaf of the layout ``before`` in the layout ``after`` (a union that grew as members
+    were added): NaN for a leaf new to it, which none of the window's members holds."""
+    where = kept.get((before, after))
+    if where is None:
+        index = {leaf: i for i, leaf in enumerate(after)}
+        where = kept[before, after] = np.array([index[leaf] for leaf in before], int)
+    moved = np.full(len(after), np.nan)
+    moved[where] = row
+    return moved
+
+
+def curvatures(stack: Stack, kept: dict) -> np.ndarray:
+    """(M, L): the largest |f″| of each leaf at each member, the second divided difference with its two
+    neighbours 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋); NaN rows at the range's ends and beside a refusal."""
+    found = np.full((len(stack.x), len(stack.paths)), np.nan)
+    if len(stack.x) >= 3:
+        found[1:-1] = 2 * divided(stack, 2, kept)
     return found
 
 
@@ -805,26 +842,21 @@ def lagrange(nodes: np.ndarray, x: float) -> np.ndarray:
 OMEGA_SAMPLES = np.linspace(0.0, 1.0, 65)
 
 
-def cubic_errors(stack: Stack) -> np.ndarray:
+def cubic_errors(stack: Stack, kept: dict) -> np.ndarray:
     """(M − 1, L): interval k's estimated largest |cubic − exact| by leaf, max over the interval of
-    |Π (x − x_i)| over its 4 stencil nodes times |f[5 members]|, the fourth divided difference, from the
-    smaller of the two 5-member windows around the stencil (the one window at the range's ends); NaN where
-    a stencil member or both windows hold a refusal, and for families of fewer than 5 members."""
-    f, x, count = stack.rows, stack.x, len(stack.x)
+    |Π (x − x_i)| over its 4 stencil nodes times |f[5 members]|, the fourth divided difference, the larger
+    of the two 5-member windows around the stencil (the one window at the range's ends): a bend or a corner
+    that one window straddles is not hidden by the other; NaN where a stencil member or both windows hold a
+    refusal, and for families of fewer than 5 members."""
+    x, count = stack.x, len(stack.x)
     found = np.full((count - 1, len(stack.paths)), np.nan)
     if count < 5:
         return found
-    level = f
-    with np.errstate(invalid="ignore", over="ignore"):
-        for order in range(1, 5):                       # divided differences f[x_j … x_j+order]
-            level = np.diff(level, axis=0) / (x[order:] - x[:-order])[:, None]
-        windows = stack.largest(np.abs(level))          # (M − 4, L): window j = members j … j + 4
-    whole = np.convolve(stack.answered.astype(int), np.ones(5, int), "valid") == 5
-    windows[~whole] = np.nan
+    windows = divided(stack, 4, kept)                  # (M − 4, L): window j = members j … j + 4
     first = stencils(count)
     left = np.where((first - 1 >= 0)[:, None], windows[np.maximum(first - 1, 0)], np.nan)
     right = np.where((first + 4 <= count - 1)[:, None], windows[np.minimum(first, count - 5)], np.nan)
-    fourth = np.fmin(left, right)
+    fourth = np.fmax(left, right)
     nodes = x[first[:, None] + np.arange(4)]                                    # (M − 1, 4)
     t = x[:-1, None] + np.diff(x)[:, None] * OMEGA_SAMPLES                       # (M − 1, S)
     omega = np.abs(np.prod(t[:, :, None] - nodes[:, None, :], axis=2)).max(axis=1)
@@ -846,20 +878,22 @@ class Assessment:
     linear: list[tuple[float, tuple]]       # the linear rule's estimate and its leaf, whichever rule is chosen
 
 
-def assess(stack: Stack, span: dict[tuple, float]) -> Assessment:
+def assess(stack: Stack, span: dict[tuple, float], kept: dict) -> Assessment:
     """Every interval at once (see the module, Refinement): the linear estimate h²/8 times the smaller of the
     ends' |f''|, the cubic one from the fourth divided differences, and the rule whose bound is smaller.
     Between an answered and a refused member: 1 (the limit is to be found), between two refused: 0; where
-    neither end has a second difference: infinite."""
+    neither end has a second difference: infinite. ``kept``: divided differences computed before (divided)."""
     count = len(stack.x)
     widths_ = stack.spans(span)
-    bends = curvatures(stack)
+    bends = curvatures(stack, kept)
     h = np.diff(stack.x)
     linear = relative(np.fmin(bends[:-1], bends[1:]) * (h ** 2 / 8)[:, None], widths_)
-    fourth = cubic_errors(stack)
+    fourth = cubic_errors(stack, kept)
     has_cubic = ~np.isnan(fourth).all(axis=1)
     cubic = np.where(np.isnan(fourth), linear, relative(fourth, widths_))   # a leaf the stencil lacks: linear
-    known = ~(np.isnan(bends[:-1]).all(axis=1) & np.isnan(bends[1:]).all(axis=1))
+    bent = np.zeros(count, bool)                        # members with a second difference (answered neighbours)
+    bent[1:-1] = stack.answered[:-2] & stack.answered[1:-1] & stack.answered[2:]
+    known = bent[:-1] | bent[1:]
     orders, scores, where, bounds, linears = [], [], [], [], []
     lin_worst, cub_worst = linear.argmax(axis=1) if linear.size else None, cubic.argmax(axis=1) if cubic.size else None
     for k in range(count - 1):
@@ -893,6 +927,7 @@ class Family:
     finest: float
     members: list[Member] = field(default_factory=list)
     extent: dict[tuple, list[float]] = field(default_factory=dict)
+    kept: dict = field(default_factory=dict)        # divided differences by layout and members (divided)
 
     def add(self, member: Member) -> None:
         extend_member(self.extent, member)
@@ -911,20 +946,19 @@ class Family:
 
     def assess(self) -> tuple[Stack, dict[tuple, float], Assessment]:
         stack, span = Stack.of(self.members, self.log), widths(self.extent)
-        return stack, span, assess(stack, span)
+        return stack, span, assess(stack, span, self.kept)
 
 
-def changes(stack: Stack, span: dict[tuple, float]) -> tuple[np.ndarray, np.ndarray]:
-    """Each interval's largest |f(b) − f(a)| / span over its leaves, and the leaf's index: for an interval too
-    narrow to halve, a bound of the linear interpolation's error wherever f is monotone inside it (f and the
-    chord both lie between f(a) and f(b)), which a jump's second differences understate (a step of height J
-    reads J/8)."""
+def change(stack: Stack, span: dict[tuple, float], k: int) -> tuple[float, tuple]:
+    """Interval k's largest |f(b) − f(a)| / span over its leaves, and where: for an interval too narrow to
+    halve, a bound of the linear interpolation's error wherever f is monotone inside it (f and the chord both
+    lie between f(a) and f(b)), which a jump's second differences understate (a step of height J reads J/8)."""
     with np.errstate(invalid="ignore"):
-        found = relative(stack.largest(np.abs(np.diff(stack.rows, axis=0))), stack.spans(span))
+        found = relative(stack.largest(np.abs(stack.rows[k + 1:k + 2] - stack.rows[k:k + 1])), stack.spans(span))[0]
     if not found.size:
-        return np.zeros(len(found)), np.zeros(len(found), int)
-    worst = found.argmax(axis=1)
-    return found[np.arange(len(found)), worst], worst
+        return 0.0, ()
+    worst = int(found.argmax())
+    return float(found[worst]), stack.paths[worst]
 
 
 def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = "en",
@@ -964,13 +998,10 @@ def _answer(family: Family, assessed: tuple, lang: str, cut: bool, started: floa
     orders, scores, where = list(assessment.orders), list(assessment.scores), list(assessment.where)
     answered = [k for k in range(len(members) - 1)
                 if members[k].answer is not None and members[k + 1].answer is not None and math.isfinite(scores[k])]
-    jumps, at = changes(stack, span)
     for k in answered:
         if stage == "full" and not family.halvable(k) and scores[k] > TOLERANCE:
             orders[k] = 1                                     # a jump: drawn linearly, and said how large
-            scores[k], where[k] = assessment.linear[k]
-            if jumps[k] > scores[k]:
-                scores[k], where[k] = float(jumps[k]), stack.paths[at[k]]
+            scores[k], where[k] = max(assessment.linear[k], change(stack, span, k))
     error = max((scores[k] for k in answered), default=None)
     if pack and error is not None:
         error += PACK_QUANTUM / 2                             # packing moves a value by at most this / span
