@@ -225,7 +225,8 @@ def test_interpolation_is_within_the_bound_of_the_exact_endpoint_at_random_value
         for path, leaf in family.checked_leaves(exact):
             guess = family._leaf(preview, path)
             ends = [family._leaf(members[k], path), family._leaf(members[k + 1], path)]
-            if guess is None or None in ends or len({np.shape(x) for x in (guess, leaf, *ends)}) > 1:
+            shapes = {np.shape(x) for x in (guess, leaf, *ends)}
+            if guess is None or any(end is None for end in ends) or len(shapes) > 1:
                 continue    # the nearer member's leaf (the contract): another grid, or a quantity one end lacks
             bound = TOLERANCE * width[path] + SENT * np.abs(leaf)
             off = np.abs(np.asarray(guess, float) - leaf)
