@@ -16,22 +16,39 @@ w = (v − v_k)/(v_k+1 − v_k) (in log(v) when ``log``) and, leaf by leaf,
     anything else (strings, booleans, arrays of different lengths, a key in one member only)
                                            → the nearer member's leaf (a when w < 1/2, else b).
 A refused member's answer is null, so the values between it and its neighbours interpolate to null.
+Cubic intervals (``orders``[k] = 3, one rule per interval): the stencil is the 4 members k − 1 … k + 2 (moved
+inside the range at its ends: 0 … 3 for the first interval, M − 4 … M − 1 for the last), and a number that all
+4 hold at the same place (the same keys, the same array lengths, objects in arrays of the same texts; not
+null) is Lagrange's cubic through them in the same coordinate, Σ_i ℓ_i(v)·f_i with
+ℓ_i(v) = Π_{j≠i} (v − v_j)/(v_i − v_j); every other leaf follows the rule above (linear, or the nearer
+member's).
 
-Refinement. The error of linear interpolation over an interval of width h (in the slider's coordinate) is
-h²·|f''|/8 for a smooth f; |f''| at a member is its second divided difference with its two neighbours,
+Refinement. Each interval is drawn by the rule whose error bound is smaller, linear or cubic.
+Linear: the error over an interval of width h (in the slider's coordinate) is h²·|f''|/8 for a smooth f;
+|f''| at a member is its second divided difference with its two neighbours,
     f''_k ≈ 2·[(f_k+1 − f_k)/h_+ − (f_k − f_k−1)/h_−] / (h_+ + h_−),
 largest over each quantity's elements (nulls aside), and an interval's estimate takes the smaller of its two
 ends' (an interval beside a jump is not halved for its neighbour's jump; a member at the range's end has no
-second difference, its interval takes its other end's). Every computed value is a member: a round computes the
-midpoints of every interval whose estimate, relative to the quantity's span (see ``widths``), exceeds
-TOLERANCE / SAFETY, as one batch, until none does or the family has MAX_MEMBERS members (worst first). An
+second difference, its interval takes its other end's); its bound is SAFETY × the estimate.
+Cubic: f − p = ω(v)·f[v_0, …, v_3, v] with ω(v) = Π (v − v_i) over the stencil, so the estimate is
+max |ω| over the interval times |f[5 members]|, the fourth divided difference (f⁗/24), largest over each
+quantity's elements, from the larger of the two 5-member windows holding the stencil (the one at the range's
+ends); its bound is CUBIC_SAFETY × the estimate. A jump or a corner near the interval makes the fourth
+differences large, and the linear rule wins there. Every computed value is a member: a round computes the
+midpoints of every interval whose bound, relative to the quantity's span (see ``widths``), exceeds
+TOLERANCE, as one batch, until none does or the family has MAX_MEMBERS members (worst first). An
 interval between an answered and a refused value is halved too (the limit is found). No interval narrower
 than FINEST_FRACTION of the range is halved: no slider resolves it, and an answer that jumps (an efficiency
 that is 0 at zero load and 0.97 just above) or bends at a corner too steep to resolve is named in the message
 instead of taking every member. Where the cap or a jump leaves an interval above the tolerance,
 numerics.message says between which values and for which quantity; for an interval too narrow to halve the
-error given is the change across it, |f(b) − f(a)| / span, if larger than the estimate (a bound wherever f is
-monotone inside; second differences read a step of height J as J/8).
+error given is the change across it, |f(b) − f(a)| / span, if larger than the linear estimate, and the interval
+is drawn linearly (a bound wherever f is monotone inside; second differences read a step of height J as J/8).
+
+The estimates are computed over all members at once: the members' leaves stacked as rows of one array
+(``Stack``: NaN where a member lacks a leaf), the divided differences of every window of 3 and 5 members as
+weighted sums of rows, kept across the rounds of refinement (only the windows a new member enters are
+computed again).
 
 Checked leaves are floats and arrays of floats outside UNCHECKED (how it was computed, the texts, the
 iterations' records of their convergence, the forces' directions in degrees) whose shape is the same at the
