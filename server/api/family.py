@@ -680,10 +680,6 @@ class Flat:
         return cls(tuple((path, leaf.shape) for path, leaf in leaves.items()), tuple(leaves),
                    np.cumsum([0, *sizes[:-1]]), np.concatenate([leaf.ravel() for leaf in leaves.values()]))
 
-    def largest(self, values: np.ndarray) -> np.ndarray:
-        """The largest of each leaf's elements of values (≥ 0), nulls aside; 0 where a leaf has none."""
-        return np.fmax(np.fmax.reduceat(values, self.starts), 0.0)
-
 
 @dataclass
 class Member:
@@ -833,7 +829,8 @@ def _moved(row: np.ndarray, before: tuple, after: tuple, kept: dict) -> np.ndarr
 
 def curvatures(stack: Stack, kept: dict) -> np.ndarray:
     """(M, L): the largest |f″| of each leaf at each member, the second divided difference with its two
-    neighbours 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋); NaN rows at the range's ends and beside a refusal."""
+    neighbours 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋) (twice the divided difference); NaN rows at the
+    range's ends and beside a refusal."""
     found = np.full((len(stack.x), len(stack.paths)), np.nan)
     if len(stack.x) >= 3:
         found[1:-1] = 2 * divided(stack, 2, kept)

@@ -69,7 +69,8 @@ export function blend(a, b, w, outer) {
         mixed[key] = value;
         continue;
       }
-      const inner = objects && outer.trees.every((t) => key in t) ? { trees: outer.trees.map((t) => t[key]), weights: outer.weights } : undefined;
+      const inner = objects && outer.trees.every((t) => key in t)
+        ? { trees: outer.trees.map((t) => t[key]), weights: outer.weights } : undefined;
       mixed[key] = blend(a[key], b[key], w, inner);
     }
     return mixed;
@@ -79,7 +80,8 @@ export function blend(a, b, w, outer) {
 
 /** Σ ℓᵢ·fᵢ over the 4 stencil leaves (pick: the number of each). */
 function cubic({ trees, weights }, pick) {
-  return weights[0] * pick(trees[0]) + weights[1] * pick(trees[1]) + weights[2] * pick(trees[2]) + weights[3] * pick(trees[3]);
+  return weights[0] * pick(trees[0]) + weights[1] * pick(trees[1])
+    + weights[2] * pick(trees[2]) + weights[3] * pick(trees[3]);
 }
 
 /** The first of the 4 members whose cubic draws interval k of count members (server/api/family.py, stencils). */
