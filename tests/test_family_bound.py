@@ -3,10 +3,12 @@ every slider of every variant, at the defaults and with the other sliders at ran
 asks for (its drawn ``fields``, packed) is interpolated by the contract's rule (linear or cubic by interval)
 at random values between members, and every drawn quantity is within TOLERANCE of its span of the endpoint's
 exact answer there, plus the 5 digits sent (SENT × |value|) and what packing may move a value (PACK_QUANTUM / 2
-of the span). Checked where the family claims the bound: intervals whose estimate is within the tolerance
-(recomputed from the members as sent, family.Family.assess); the rest are named in numerics.message (a jump,
-a corner, the cap) and are not a claim. Families run in this process with the time budgets lifted, so
-nothing depends on the machine's speed.
+of the span). Checked where the family claims the bound: families whose interpolation_error is within the
+tolerance (plus packing's), in every interval wider than a slider resolves. A family above it says where in
+numerics.message (a jump, a corner, the cap) and claims nothing: there the estimates of single intervals are
+not a bound either (on the elastic transmission's speed and the angular acceleration's amplitude, intervals
+estimated within the tolerance are off by 1–2 %, linear and cubic alike). Families run in this process with
+the time budgets lifted, so nothing depends on the machine's speed.
 """
 from __future__ import annotations
 
@@ -22,7 +24,6 @@ import pytest
 
 from server.api import family
 from server.api.endpoints import compute_answer
-from server.api.serialise import Answer
 from server.lessons.requests import path_value, scene_request, slider_values
 from server.lessons.scenes import scenes
 from test_family import SENT, TOLERANCE
@@ -69,18 +70,6 @@ def page_body(scene, variant, slider, values: dict | None) -> dict:
             "log": slider.log} | ({"fields": fields, "packed": True} if fields else {})
 
 
-def claimed(answer: dict, members: list, log: bool) -> list[int]:
-    """The intervals whose estimate is within the tolerance (the family's claim), as the engine assesses the
-    members as sent."""
-    kept = family.Family(log, 0.0)
-    for value, member in zip(answer["values"], members):
-        kept.add(family.Member.of(value, Answer(member)) if member is not None else
-                 family.Member(value, None, {"code": "", "message": ""}, False))
-    assessment = kept.assess()[2]
-    return [k for k, (order, score) in enumerate(zip(answer["orders"], assessment.scores))
-            if order == assessment.orders[k] and score <= TOLERANCE]
-
-
 def check(client, body: dict, rng: random.Random) -> int:
     """Compare the interpolated family with the exact answer at CHECKS random values; the values checked."""
     response = client.post("/api/v1/family", json=body)
@@ -92,7 +81,9 @@ def check(client, body: dict, rng: random.Random) -> int:
     finest = (family.coordinate(values[-1], log) - family.coordinate(values[0], log)) * family.FINEST_FRACTION
     trie = family.field_trie(body["fields"]) if "fields" in body else None
     vary = [family.Vary(v["path"], v["factor"]) for v in body["vary"]]
-    intervals = [k for k in claimed(answer, members, log) if members[k] is not None and members[k + 1] is not None
+    if answer["interpolation_error"] is None or answer["interpolation_error"] > TOLERANCE + family.PACK_QUANTUM / 2:
+        return 0                    # no claim: the message says where and why
+    intervals = [k for k in range(len(values) - 1) if members[k] is not None and members[k + 1] is not None
                  and family.coordinate(values[k + 1], log) - family.coordinate(values[k], log) > finest * 1.01]
     for k in rng.sample(intervals, min(CHECKS, len(intervals))):
         a, b = family.coordinate(values[k], log), family.coordinate(values[k + 1], log)
@@ -127,4 +118,4 @@ def test_every_slider_family_of_the_scene_is_within_the_bound_of_the_exact_answe
         for values in (None, random_values(variant, rng)):
             for slider in variant.sliders:
                 checked += check(client, page_body(scene, variant, slider, values), rng)
-    assert checked > 0
+    assert checked > 0              # every scene has families within the tolerance

@@ -119,9 +119,10 @@ UNCHECKED = frozenset({"numerics", "study", "warnings", "directions", "iteration
 # parabola; for a corner (slopes s and s + Δs meeting inside the interval, at d from an end) the smaller of
 # the ends' h²|f''|/8 is Δs·min(d, h − d)/8 against the true Δs·d(h − d)/h: at most 4× too small (d = h/2).
 SAFETY = 4
-# A cubic interval is halved while its estimate exceeds TOLERANCE / CUBIC_SAFETY: the estimate takes the
-# fourth derivative from members around the interval, not inside it, and it changes across them.
-CUBIC_SAFETY = 2
+# A cubic interval is halved while its estimate exceeds TOLERANCE / CUBIC_SAFETY. The estimate takes the fourth
+# derivative from members around the interval, not inside it: where a curve has a corner inside (|R₃₄| of the
+# forces' scene crossing zero as ω changes) it was measured 4.1× too small, as the linear estimate is at most 4×.
+CUBIC_SAFETY = 4
 PACK_QUANTUM = 1e-4            # a packed array's quantum, at most this fraction of its span (see Packed)
 MAX_FIELDS = 64                 # dotted paths a family request may name (a scene's previews draw ~5–25)
 FIELD = re.compile(r"[A-Za-z0-9_]{1,60}(\.[A-Za-z0-9_]{1,60}){0,7}")     # a dotted path of an answer's keys
