@@ -731,6 +731,7 @@ class Stack:
     starts: np.ndarray
     rows: np.ndarray            # (M, E)
     layout: tuple               # ((path, shape), ...): the columns' leaves
+    held: tuple | None = None   # per member, the indices of the leaves it holds (None: every member all)
 
     @classmethod
     def of(cls, members: list[Member], log: bool) -> "Stack":
@@ -752,13 +753,34 @@ class Stack:
                     columns[path, leaf.shape] = width
                     width += leaf.size
         rows = np.full((len(members), width), np.nan)
+        order = {leaf: index for index, leaf in enumerate(columns)}
+        held = []
         for index, member in enumerate(members):
+            mine = []
             for path, leaf in member.leaves.items():
                 if leaf.size:
                     first = columns[path, leaf.shape]
                     rows[index, first:first + leaf.size] = leaf.ravel()
+                    mine.append(order[path, leaf.shape])
+            held.append(frozenset(mine))
         return cls(x, answered, tuple(path for path, _ in columns), np.array(list(columns.values()), int), rows,
-                   tuple(columns))
+                   tuple(columns), tuple(held))
+
+    def common(self, members) -> tuple | None:
+        """The indices of the leaves every one of these members holds, ascending (None: all, one layout)."""
+        if self.held is None:
+            return None
+        return tuple(sorted(frozenset.intersection(*(self.held[m] for m in members))))
+
+    def columns(self, leaves: tuple | None) -> tuple[np.ndarray | None, np.ndarray]:
+        """(the columns of these leaves, None for all; where each leaf starts among them)."""
+        if leaves is None:
+            return None, self.starts
+        ends = np.append(self.starts[1:], self.rows.shape[1])
+        sizes = [ends[leaf] - self.starts[leaf] for leaf in leaves]
+        columns = np.concatenate([np.arange(self.starts[leaf], ends[leaf]) for leaf in leaves]) if leaves else \
+            np.zeros(0, int)
+        return columns, np.cumsum([0, *sizes[:-1]]).astype(int) if leaves else np.zeros(0, int)
 
     def largest(self, values: np.ndarray) -> np.ndarray:
         """(K, L): the largest of each leaf's elements of values (K, E), nulls aside; NaN where it has none."""
@@ -795,19 +817,27 @@ def divided(stack: Stack, order: int, kept: dict) -> np.ndarray:
     whole = np.convolve(stack.answered.astype(int), np.ones(width, int), "valid") == width
     keys = [(order, *stack.x[j:j + width].tolist()) for j in range(count - order)]
     new = [j for j in range(count - order) if whole[j] and keys[j] not in kept]
-    if new:
-        first = np.array(new)
+    groups: dict[tuple, list[int]] = {}                # the leaves all of a window's members hold → windows
+    for j in new:
+        groups.setdefault(stack.common(range(j, j + width)), []).append(j)
+    for leaves, windows in groups.items():
+        first = np.array(windows)
         nodes = stack.x[first[:, None] + np.arange(width)]                       # (K, order + 1)
         # f[x_0 … x_n] = Σ_i f_i / Π_{j≠i} (x_i − x_j): one weighted sum of rows per member of the window
         gaps = nodes[:, :, None] - nodes[:, None, :]
         gaps[:, np.arange(width), np.arange(width)] = 1.0
         weights = 1.0 / np.prod(gaps, axis=2)
-        with np.errstate(invalid="ignore", over="ignore"):
-            total = weights[:, 0, None] * stack.rows[first]
-            for i in range(1, width):
-                total += weights[:, i, None] * stack.rows[first + i]
-            largest = stack.largest(np.abs(total, out=total))
-        for j, row in zip(new, largest):
+        columns, starts = stack.columns(leaves)
+        rows = stack.rows if columns is None else stack.rows[:, columns]
+        found_rows = np.full((len(windows), len(stack.paths)), np.nan)
+        if starts.size:
+            with np.errstate(invalid="ignore", over="ignore"):
+                total = weights[:, 0, None] * rows[first]
+                for i in range(1, width):
+                    total += weights[:, i, None] * rows[first + i]
+                found_rows[:, list(leaves) if columns is not None else slice(None)] = np.fmax.reduceat(
+                    np.abs(total, out=total), starts, axis=1)
+        for j, row in zip(windows, found_rows):
             kept[keys[j]] = (stack.layout, row)
     for j in range(count - order):
         if whole[j]:
