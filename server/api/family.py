@@ -766,11 +766,13 @@ class Stack:
         return cls(x, answered, tuple(path for path, _ in columns), np.array(list(columns.values()), int), rows,
                    tuple(columns), tuple(held))
 
-    def common(self, members) -> tuple | None:
-        """The indices of the leaves every one of these members holds, ascending (None: all, one layout)."""
+    def common_to_any(self, windows: list) -> tuple | None:
+        """The indices of the leaves that every member of at least one of the windows holds, ascending (None:
+        all, one layout)."""
         if self.held is None:
             return None
-        return tuple(sorted(frozenset.intersection(*(self.held[m] for m in members))))
+        return tuple(sorted(set().union(*(frozenset.intersection(*(self.held[m] for m in window))
+                                           for window in windows))))
 
     def columns(self, leaves: tuple | None) -> tuple[np.ndarray | None, np.ndarray]:
         """(the columns of these leaves, None for all; where each leaf starts among them)."""
@@ -817,27 +819,27 @@ def divided(stack: Stack, order: int, kept: dict) -> np.ndarray:
     whole = np.convolve(stack.answered.astype(int), np.ones(width, int), "valid") == width
     keys = [(order, *stack.x[j:j + width].tolist()) for j in range(count - order)]
     new = [j for j in range(count - order) if whole[j] and keys[j] not in kept]
-    groups: dict[tuple, list[int]] = {}                # the leaves all of a window's members hold → windows
-    for j in new:
-        groups.setdefault(stack.common(range(j, j + width)), []).append(j)
-    for leaves, windows in groups.items():
-        first = np.array(windows)
+    if new:
+        first = np.array(new)
         nodes = stack.x[first[:, None] + np.arange(width)]                       # (K, order + 1)
         # f[x_0 … x_n] = Σ_i f_i / Π_{j≠i} (x_i − x_j): one weighted sum of rows per member of the window
         gaps = nodes[:, :, None] - nodes[:, None, :]
         gaps[:, np.arange(width), np.arange(width)] = 1.0
         weights = 1.0 / np.prod(gaps, axis=2)
+        # only the leaves that all members of some window hold: elsewhere the difference is NaN anyway (a
+        # start-up curve whose length changes with the value would fill most columns with NaN)
+        leaves = stack.common_to_any([range(j, j + width) for j in new])
         columns, starts = stack.columns(leaves)
-        rows = stack.rows if columns is None else stack.rows[:, columns]
-        found_rows = np.full((len(windows), len(stack.paths)), np.nan)
+        found_rows = np.full((len(new), len(stack.paths)), np.nan)
         if starts.size:
+            pick = (lambda i: stack.rows[first + i]) if columns is None else (lambda i: stack.rows[first + i][:, columns])
             with np.errstate(invalid="ignore", over="ignore"):
-                total = weights[:, 0, None] * rows[first]
+                total = weights[:, 0, None] * pick(0)
                 for i in range(1, width):
-                    total += weights[:, i, None] * rows[first + i]
+                    total += weights[:, i, None] * pick(i)
                 found_rows[:, list(leaves) if columns is not None else slice(None)] = np.fmax.reduceat(
                     np.abs(total, out=total), starts, axis=1)
-        for j, row in zip(windows, found_rows):
+        for j, row in zip(new, found_rows):
             kept[keys[j]] = (stack.layout, row)
     for j in range(count - order):
         if whole[j]:
