@@ -2,11 +2,11 @@
 a lookup"; not a test).
 
 For every scene, variant and slider (the variant's default values), each tree answers the family request its
-own page sends on a grab (bench/family_request.py: the old page sends the endpoint's whole answers; the new one
-names the leaves its panels draw, ``fields`` from web/static/js/common/model/family_fields.js run in Node, and asks for the
-family ``packed``). The old tree (default /tmp/mdl-lean-old, a ``git worktree add --detach`` of d0a7cb5, made
-here if absent) and the new one (this repository) each run in a process of their own, the two taking turns
-family by family so that both see the same load.
+own page sends on a grab (bench/family_request.py: a page without family_fields.js sends the endpoint's whole
+answers; one with it names the leaves its panels draw, ``fields`` run in Node (web/static/js/common/model/family_fields.js), and asks for the family
+``packed``). The old tree (--old; default /tmp/mdl-engine-old, a ``git worktree add --detach`` of OLD_COMMIT,
+made here if absent) and the new one (this repository) each run in a process of their own, the two taking
+turns family by family so that both see the same load.
 
 Each worker times what the server does for a family: the family's answer (family_answer, as in the heavy
 process), its JSON (serialise, as the route sends it) and its gzip (level GZIP_LEVEL, as the app's middleware),
@@ -37,8 +37,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-OLD_COMMIT = "d0a7cb5"
-DEFAULT_OLD = Path("/tmp/mdl-lean-old")
+OLD_COMMIT = "5a15c56"         # before the stacked engine and the cubic rule (an earlier run: d0a7cb5, whole answers)
+DEFAULT_OLD = Path("/tmp/mdl-engine-old")
 HEAVY = ("elastic-", "forces-friction", "flywheel", "equation-of-motion")
 GZIP_LEVEL = 3                  # server/api/response_cache.py: the app's GZip middleware's level
 COLD_RUNS, WARM_RUNS = 2, 3     # the fastest of these runs is kept: the least disturbed by other work
@@ -155,15 +155,17 @@ def main() -> None:
     for process in (old, new):
         process.stdin.close()
         process.wait()
-    write(rows)
+    commit = subprocess.run(["git", "-C", str(old_path), "rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True).stdout.strip()
+    write(rows, f"{old_path} at {commit or OLD_COMMIT}")
 
 
 def ratio(a: float, b: float) -> str:
     return f"{a / b:.1f}×" if b else "—"
 
 
-def write(rows) -> None:
-    lines = [f"# Family cost, old ({OLD_COMMIT}: the old page's request, whole answers) beside new (fields + packed)",
+def write(rows, old_label: str) -> None:
+    lines = [f"# Family cost, old ({old_label}) beside new (this tree), each with its own page's request",
              "", f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, Python {platform.python_version()}, "
              f"{os.cpu_count()} CPUs shared with other work (compare the ratios, not the figures). `python3 "
              "bench/family_cost.py`: each family answered in-process by each tree, the two in processes of their "
@@ -173,8 +175,9 @@ def write(rows) -> None:
              "warm: the full family again with every member in the memo. Bytes and error: the full family. err: "
              "the reported interpolation error / span (target 0.005; new: over the drawn fields, plus 5e-5 for "
              "packing).", "", "## Per scene (sums over its sliders)", "",
-             "| scene | families | JSON MB old → new | gzip kB old → new | smaller (gzip) | cold ms old → new | "
-             "cheaper (cold) | warm ms old → new | cheaper (warm) | computed old → new |", "|" + "---|" * 10]
+             "| scene | families | members old → new | fewer | JSON MB old → new | gzip kB old → new | smaller (gzip) "
+             "| cold ms old → new | cheaper (cold) | warm ms old → new | cheaper (warm) | computed old → new |",
+             "|" + "---|" * 12]
     by_scene: dict[str, list] = {}
     for row in rows:
         by_scene.setdefault(row[0], []).append(row)
@@ -185,7 +188,9 @@ def write(rows) -> None:
             continue
         cold = [sum(r[k]["cold_ms"] for r in part) for k in (3, 4)]
         warm = [sum(r[k]["warm"]["ms"] for r in part) for k in (3, 4)]
-        lines.append(f"| {scene} | {len(part)} | {total(part, 'old', 'json') / 1e6:.2f} → "
+        members = [total(part, side, "members") for side in ("old", "new")]
+        lines.append(f"| {scene} | {len(part)} | {members[0]} → {members[1]} | {ratio(*members)} | "
+                     f"{total(part, 'old', 'json') / 1e6:.2f} → "
                      f"{total(part, 'new', 'json') / 1e6:.2f} | {total(part, 'old', 'gzip') / 1e3:.0f} → "
                      f"{total(part, 'new', 'gzip') / 1e3:.0f} | "
                      f"{ratio(total(part, 'old', 'gzip'), total(part, 'new', 'gzip'))} | {cold[0]:.0f} → {cold[1]:.0f} | "
@@ -209,7 +214,11 @@ def write(rows) -> None:
               f"{p95([r[4]['warm']['ms'] for r in rows]):.0f} ms, gzip {p95([r[4]['full']['gzip'] for r in rows]) / 1e3:.0f} kB"
               f"; old: cold {p95([r[3]['cold_ms'] for r in rows]):.0f} ms, warm {p95([r[3]['warm']['ms'] for r in rows]):.0f} ms, "
               f"gzip {p95([r[3]['full']['gzip'] for r in rows]) / 1e3:.0f} kB. Median old/new warm: "
-              f"{statistics.median(r[3]['warm']['ms'] / r[4]['warm']['ms'] for r in rows):.1f}×."]
+              f"{statistics.median(r[3]['warm']['ms'] / r[4]['warm']['ms'] for r in rows):.1f}×. The family's own work "
+              "per member (warm build ms / members, the members from the memo: the engine), median over families: "
+              f"old {statistics.median(r[3]['warm']['build_ms'] / r[3]['full']['members'] for r in rows):.2f} ms, new "
+              f"{statistics.median(r[4]['warm']['build_ms'] / r[4]['full']['members'] for r in rows):.2f} ms; members "
+              f"{sum(r[3]['full']['members'] for r in rows)} → {sum(r[4]['full']['members'] for r in rows)}."]
     out = ROOT / "bench" / "results" / "family_cost.md"
     out.write_text("\n".join(lines) + "\n")
     print("\n".join(lines))

@@ -21,6 +21,8 @@ from pathlib import Path
 
 from trees import ROOT, lessons
 
+FIELDS_PLACES = ("", "common/model")     # where a tree keeps web/static/js/…/family_fields.js (before and after
+                                         # the modules were sorted into folders)
 FIELDS_SCRIPT = """
 const scenes = JSON.parse(require("fs").readFileSync(0, "utf8"));
 import(process.argv[1]).then(({ previewFields }) => {
@@ -51,10 +53,9 @@ def family_body(scene, variant, slider, values: dict | None = None) -> dict:
 
 @cache
 def all_preview_fields(tree: Path = ROOT) -> dict[str, list[str]]:
-    """"scene/variant" → the fields the page of that tree sends (web/static/js/common/model/family_fields.js, run in Node)."""
-    js = tree / "web" / "static" / "js"       # a baseline tree may hold the module where it was before the move
-    module = next((m for m in (js / "common" / "model" / "family_fields.js", js / "family_fields.js") if m.exists()),
-                  None)
+    """"scene/variant" → the fields the page of that tree sends (family_fields.js, where that tree keeps it, run in Node)."""
+    module = next((tree / "web" / "static" / "js" / place / "family_fields.js" for place in FIELDS_PLACES
+                   if (tree / "web" / "static" / "js" / place / "family_fields.js").exists()), None)
     if module is None:
         return {}
     node = shutil.which("node") or shutil.which("nodejs")

@@ -114,7 +114,7 @@ def test_interpolating_the_family_is_within_half_a_percent_of_each_span_of_the_e
             continue                # a jump, narrower than any slider resolves, named in numerics.message
         value = family.from_coordinate(a + rng.uniform(0.1, 0.9) * (b - a), log)
         truth = exact(client, body, value)
-        preview = family.interpolate_family(values, members, value, log)
+        preview = family.interpolate_family(values, members, value, log, answer["orders"])
         for path, leaf in family.checked_leaves(truth):
             guess = family._leaf(preview, path)
             shapes = {np.shape(x) for x in (guess, leaf, family._leaf(members[k], path),
@@ -188,8 +188,8 @@ def test_a_range_that_crosses_the_geometric_limit_gives_null_members_with_the_re
     last_refused, first_answered = values[refused].max(), values[~refused].min()
     assert first_answered - last_refused <= (body["max"] - body["min"]) / 1024 * 1.001
     members = [None if a is None else family.as_tree(a) for a in answer["answers"]]
-    assert family.interpolate_family(answer["values"], members, 0.7, False) is None
-    assert family.interpolate_family(answer["values"], members, (last_refused + first_answered) / 2, False) is None
+    assert family.interpolate_family(answer["values"], members, 0.7, False, answer["orders"]) is None
+    assert family.interpolate_family(answer["values"], members, (last_refused + first_answered) / 2, False, answer["orders"]) is None
 
 
 @pytest.mark.parametrize("change, loc, words", [

@@ -43,19 +43,52 @@ def synthetic(f, calls: list | None = None):
     return members
 
 
-def test_the_estimate_of_a_parabola_is_its_exact_interpolation_error():
+def test_the_linear_estimate_of_a_parabola_is_its_exact_interpolation_error():
     """For f = x² the second divided difference is exactly 2 on any spacing, and linear interpolation over
-    [a, b] is off by (b − a)²/4 at the midpoint, i.e. h²·|f''|/8: the estimate is exact (to round-off and the
-    5 digits sent, hence rel=1e-4). The family halves until every interval's estimate is below TOLERANCE /
-    SAFETY of the span (1 on [0, 1])."""
+    [a, b] is off by (b − a)²/4 at the midpoint, i.e. h²·|f''|/8: the linear estimate is exact (to round-off
+    and the 5 digits sent, hence rel=1e-4), on the even start members and on a refined, uneven spacing."""
+    members = synthetic(lambda x: x * x)([0.0, 0.1, 0.2, 0.3, 0.4, 0.6, 0.8, 1.0], None)     # exact in 5 digits
+    stack = family.Stack.of(members, False)
+    assessed = family.assess(stack, {("y",): 1.0}, {})
+    widths = np.diff([m.value for m in members])
+    for k, (score, _) in enumerate(assessed.linear):
+        assert score == pytest.approx(widths[k] ** 2 / 4, rel=1e-4)
+
+
+def test_a_parabola_is_drawn_exactly_by_the_cubic_from_the_start_members():
+    """The cubic through 4 members reproduces x² (its fourth divided differences are 0): the family keeps its
+    9 start members, every interval cubic, the estimate 0 but for the 5 digits sent, and the interpolation
+    exact at random values to those digits."""
     answer, partial = family.build(synthetic(lambda x: x * x), 0.0, 1.0, False)
-    values = np.asarray(answer["values"])
-    assert not partial and answer["numerics"]["stage"] == "full"
-    widths = np.diff(values)
-    assert np.allclose(widths, widths[0])                         # f'' is the same everywhere: even spacing
-    assert answer["interpolation_error"] == pytest.approx(widths[0] ** 2 / 4, rel=1e-4)
-    assert answer["interpolation_error"] <= TOLERANCE / family.SAFETY
-    assert (2 * widths[0]) ** 2 / 4 > TOLERANCE / family.SAFETY     # ... and not one halving more than needed
+    assert not partial and answer["values"] == family.spaced(0.0, 1.0, family.START_MEMBERS, False)
+    assert answer["orders"] == [3] * 8 and answer["interpolation_error"] <= 1e-4
+    members = [family.as_tree(a, sent=False) for a in answer["answers"]]
+    for x in np.random.default_rng(2).uniform(0, 1, 50):
+        assert family.interpolate_family(answer["values"], members, x, False, answer["orders"])["y"][0] == \
+            pytest.approx(x * x, abs=SENT)
+
+
+def test_the_cubic_estimate_of_a_quartic_is_its_exact_interpolation_error():
+    """For f = x⁴ the fourth divided difference is exactly 1 on any 5 members, and the cubic through 4 of
+    them is off by exactly Π (x − xᵢ) at x (f − p = ω(x)·f[x₀ … x₃, x], and that is 1): the estimate, max|ω|
+    over the interval times f[5 members], is the largest true error (rel 1e-2: the fourth differences of the
+    members' 5 significant digits, and the sampling of ω at 65 points).
+    The family halves until every interval's estimate is below TOLERANCE / CUBIC_SAFETY of the span (1)."""
+    answer, _ = family.build(synthetic(lambda x: x ** 4), 0.0, 1.0, False)
+    values = answer["values"]
+    members = [family.as_tree(a, sent=False) for a in answer["answers"]]
+    assert set(answer["orders"]) == {3} and answer["interpolation_error"] <= TOLERANCE / family.CUBIC_SAFETY
+    worst = 0.0
+    for k in range(len(values) - 1):
+        first = int(family.stencils(len(values))[k])
+        nodes = values[first:first + 4]
+        t = np.linspace(values[k], values[k + 1], 401)[1:-1]
+        true = np.array([abs(family.interpolate_family(values, members, x, False, answer["orders"])["y"][0] - x ** 4)
+                         for x in t])
+        omega = np.abs(np.prod([t - node for node in nodes], axis=0))
+        assert np.allclose(true, omega, atol=SENT)               # the error is ω itself, to the digits sent
+        worst = max(worst, omega.max())
+    assert answer["interpolation_error"] == pytest.approx(worst, rel=1e-2)
 
 
 def test_a_corner_in_the_middle_of_an_interval_is_within_the_bound():
@@ -72,7 +105,7 @@ def test_a_corner_in_the_middle_of_an_interval_is_within_the_bound():
         k = np.searchsorted(values, x) - 1
         if values[k + 1] - values[k] <= FINEST * 1.01:
             continue
-        preview = family.interpolate_family(values, members, x, False)["y"]
+        preview = family.interpolate_family(values, members, x, False, answer["orders"])["y"]
         assert abs(preview[0] - abs(x - x0)) <= TOLERANCE * span + SENT
 
 
@@ -85,7 +118,7 @@ def test_a_refined_family_of_a_smooth_curve_is_within_the_bound_at_random_values
     members = [family.as_tree(a, sent=False) for a in answer["answers"]]
     rng = np.random.default_rng(13)
     for x in rng.uniform(0, 4, 400):
-        preview = family.interpolate_family(answer["values"], members, x, False)["y"]
+        preview = family.interpolate_family(answer["values"], members, x, False, answer["orders"])["y"]
         assert np.max(np.abs(preview - np.sin(3 * x + phi))) <= TOLERANCE * 2 + SENT
 
 
@@ -113,8 +146,8 @@ def test_the_coarse_stage_is_the_nine_start_members_with_an_estimate():
     assert answer["values"] == family.spaced(1.0, 3.0, family.START_MEMBERS, False)
     assert answer["numerics"]["stage"] == "coarse" and answer["numerics"]["message"] == ""
     assert "coarse" in answer["numerics"]["method"]
-    # x³ on spacing 0.25: |f''| = 6x, the estimate of the last interval from its left end (x = 2.75)
-    assert answer["interpolation_error"] == pytest.approx(0.25 ** 2 / 8 * 6 * 2.75 / 26, rel=1e-3)
+    # x³ is a cubic: drawn exactly by the cubic through 4 members, its estimate 0 but for the 5 digits sent
+    assert answer["orders"] == [3] * 8 and answer["interpolation_error"] <= 1e-5
 
 
 def test_objects_in_an_array_are_one_quantity_only_while_their_texts_agree():
@@ -169,9 +202,10 @@ def test_the_full_family_after_the_coarse_one_reuses_its_members_and_answers_the
 ])
 def test_interpolation_is_within_the_bound_of_the_exact_endpoint_at_random_values(client, scene, variant, slider):
     """At 8 seeded random values in intervals wider than a slider resolves, every checked leaf of the
-    interpolated family is within TOLERANCE × its span of the endpoint's exact answer, plus SENT × |value|
-    (the 5 digits the contract sends). No other slack: the engine halves at TOLERANCE / SAFETY, and the
-    factor 4 covers that its h²·|f''|/8 is an estimate, 4× too small at worst for a corner (family.SAFETY)."""
+    interpolated family (linear or cubic by interval) is within TOLERANCE × its span of the endpoint's exact
+    answer, plus SENT × |value| (the 5 digits the contract sends). No other slack: the engine halves at
+    TOLERANCE / SAFETY (linear: its h²·|f''|/8 is 4× too small at worst for a corner) or TOLERANCE /
+    CUBIC_SAFETY (cubic)."""
     body = family_body(scene, variant, slider)
     _, answer = post_family(client, body)
     values, log = answer["values"], body["log"]
@@ -187,12 +221,13 @@ def test_interpolation_is_within_the_bound_of_the_exact_endpoint_at_random_value
         value = family.from_coordinate(a + rng.uniform(0.1, 0.9) * (b - a), log)
         exact = family.as_tree(compute_answer(body["endpoint"], family.member_body(body["request"], vary, value)).payload,
                                sent=False)
-        preview = family.interpolate_family(values, members, value, log)
+        preview = family.interpolate_family(values, members, value, log, answer["orders"])
         for path, leaf in family.checked_leaves(exact):
             guess = family._leaf(preview, path)
-            shapes = {np.shape(x) for x in (guess, leaf, family._leaf(members[k], path), family._leaf(members[k + 1], path))}
-            if guess is None or len(shapes) > 1:
-                continue
+            ends = [family._leaf(members[k], path), family._leaf(members[k + 1], path)]
+            shapes = {np.shape(x) for x in (guess, leaf, *ends)}
+            if guess is None or any(end is None for end in ends) or len(shapes) > 1:
+                continue    # the nearer member's leaf (the contract): another grid, or a quantity one end lacks
             bound = TOLERANCE * width[path] + SENT * np.abs(leaf)
             off = np.abs(np.asarray(guess, float) - leaf)
             assert np.all(~(off > bound)), (scene, slider, value, family.quantity(path), float(np.nanmax(off / width[path])))

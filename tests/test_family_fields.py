@@ -72,7 +72,7 @@ def test_a_pruned_packed_family_interpolates_within_half_a_percent_of_the_exact_
             continue
         value = family.from_coordinate((a + b) / 2, log)
         truth = family.pruned(exact(client, body, value), trie)
-        preview = family.interpolate_family(values, members, value, log)
+        preview = family.interpolate_family(values, members, value, log, answer["orders"])
         assert set(preview) == set(truth), value                # the same drawn leaves, nothing else
         for path, leaf in family.checked_leaves(truth):
             guess = family._leaf(preview, path)
@@ -154,10 +154,11 @@ def test_the_memo_keeps_members_of_other_fields_apart(client):
     assert {"points", "reactions", "applied"} <= set(wide["answers"][0])
 
 
-def test_the_whole_member_arithmetic_equals_the_leaf_by_leaf_reference(monkeypatch):
-    """Curvatures, extents, changes and estimates over a member's leaves as one vector (family.Flat) give the
-    same family, byte for byte, as the leaf-by-leaf reference path (same_layout forced false), on a made-up
-    answer with several leaves and shapes, a null inside, a jump, a steep corner and a flat leaf."""
+def test_the_stacked_members_give_the_same_family_whether_their_leaves_agree_or_not(monkeypatch):
+    """The members stacked as rows of one layout (every member holding the same leaves: its flat vector is its
+    row) give the same family, byte for byte, as the union of layouts (each leaf placed in its columns, NaN
+    where a member lacks it; family._one_layout forced false), on a made-up answer with several leaves and
+    shapes, a null inside, a jump, a steep corner and a flat leaf."""
     def answer(v):
         x = np.linspace(0.0, 1.0, 50)
         bend = np.sin(3 * v * x) + (v > 0.61) * 0.3
@@ -173,9 +174,9 @@ def test_the_whole_member_arithmetic_equals_the_leaf_by_leaf_reference(monkeypat
         result["numerics"].pop("runtime_ms")
         return orjson.dumps(result, option=orjson.OPT_SERIALIZE_NUMPY)
 
-    vectorised = built()
-    monkeypatch.setattr(family, "same_layout", lambda *members: False)
-    assert built() == vectorised
+    stacked = built()
+    monkeypatch.setattr(family, "_one_layout", lambda flats, answered: False)
+    assert built() == stacked
 
 
 @pytest.mark.parametrize("scene, variant, fields", [

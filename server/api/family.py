@@ -16,22 +16,39 @@ w = (v − v_k)/(v_k+1 − v_k) (in log(v) when ``log``) and, leaf by leaf,
     anything else (strings, booleans, arrays of different lengths, a key in one member only)
                                            → the nearer member's leaf (a when w < 1/2, else b).
 A refused member's answer is null, so the values between it and its neighbours interpolate to null.
+Cubic intervals (``orders``[k] = 3, one rule per interval): the stencil is the 4 members k − 1 … k + 2 (moved
+inside the range at its ends: 0 … 3 for the first interval, M − 4 … M − 1 for the last), and a number that all
+4 hold at the same place (the same keys, the same array lengths, objects in arrays of the same texts; not
+null) is Lagrange's cubic through them in the same coordinate, Σ_i ℓ_i(v)·f_i with
+ℓ_i(v) = Π_{j≠i} (v − v_j)/(v_i − v_j); every other leaf follows the rule above (linear, or the nearer
+member's).
 
-Refinement. The error of linear interpolation over an interval of width h (in the slider's coordinate) is
-h²·|f''|/8 for a smooth f; |f''| at a member is its second divided difference with its two neighbours,
+Refinement. Each interval is drawn by the rule whose error bound is smaller, linear or cubic.
+Linear: the error over an interval of width h (in the slider's coordinate) is h²·|f''|/8 for a smooth f;
+|f''| at a member is its second divided difference with its two neighbours,
     f''_k ≈ 2·[(f_k+1 − f_k)/h_+ − (f_k − f_k−1)/h_−] / (h_+ + h_−),
 largest over each quantity's elements (nulls aside), and an interval's estimate takes the smaller of its two
 ends' (an interval beside a jump is not halved for its neighbour's jump; a member at the range's end has no
-second difference, its interval takes its other end's). Every computed value is a member: a round computes the
-midpoints of every interval whose estimate, relative to the quantity's span (see ``widths``), exceeds
-TOLERANCE / SAFETY, as one batch, until none does or the family has MAX_MEMBERS members (worst first). An
+second difference, its interval takes its other end's); its bound is SAFETY × the estimate.
+Cubic: f − p = ω(v)·f[v_0, …, v_3, v] with ω(v) = Π (v − v_i) over the stencil, so the estimate is
+max |ω| over the interval times |f[5 members]|, the fourth divided difference (f⁗/24), largest over each
+quantity's elements, from the larger of the two 5-member windows holding the stencil (the one at the range's
+ends); its bound is CUBIC_SAFETY × the estimate. A jump or a corner near the interval makes the fourth
+differences large, and the linear rule wins there. Every computed value is a member: a round computes the
+midpoints of every interval whose bound, relative to the quantity's span (see ``widths``), exceeds
+TOLERANCE, as one batch, until none does or the family has MAX_MEMBERS members (worst first). An
 interval between an answered and a refused value is halved too (the limit is found). No interval narrower
 than FINEST_FRACTION of the range is halved: no slider resolves it, and an answer that jumps (an efficiency
 that is 0 at zero load and 0.97 just above) or bends at a corner too steep to resolve is named in the message
 instead of taking every member. Where the cap or a jump leaves an interval above the tolerance,
 numerics.message says between which values and for which quantity; for an interval too narrow to halve the
-error given is the change across it, |f(b) − f(a)| / span, if larger than the estimate (a bound wherever f is
-monotone inside; second differences read a step of height J as J/8).
+error given is the change across it, |f(b) − f(a)| / span, if larger than the linear estimate, and the interval
+is drawn linearly (a bound wherever f is monotone inside; second differences read a step of height J as J/8).
+
+The estimates are computed over all members at once: the members' leaves stacked as rows of one array
+(``Stack``: NaN where a member lacks a leaf), the divided differences of every window of 3 and 5 members as
+weighted sums of rows, kept across the rounds of refinement (only the windows a new member enters are
+computed again).
 
 Checked leaves are floats and arrays of floats outside UNCHECKED (how it was computed, the texts, the
 iterations' records of their convergence, the forces' directions in degrees) whose shape is the same at the
@@ -102,6 +119,10 @@ UNCHECKED = frozenset({"numerics", "study", "warnings", "directions", "iteration
 # parabola; for a corner (slopes s and s + Δs meeting inside the interval, at d from an end) the smaller of
 # the ends' h²|f''|/8 is Δs·min(d, h − d)/8 against the true Δs·d(h − d)/h: at most 4× too small (d = h/2).
 SAFETY = 4
+# A cubic interval is halved while its estimate exceeds TOLERANCE / CUBIC_SAFETY. The estimate takes the fourth
+# derivative from members around the interval, not inside it: where a curve has a corner inside (|R₃₄| of the
+# forces' scene crossing zero as ω changes) it was measured 4.1× too small, as the linear estimate is at most 4×.
+CUBIC_SAFETY = 4
 PACK_QUANTUM = 1e-4            # a packed array's quantum, at most this fraction of its span (see Packed)
 MAX_FIELDS = 64                 # dotted paths a family request may name (a scene's previews draw ~5–25)
 FIELD = re.compile(r"[A-Za-z0-9_]{1,60}(\.[A-Za-z0-9_]{1,60}){0,7}")     # a dotted path of an answer's keys
@@ -369,31 +390,57 @@ def texts(item) -> tuple:
     return tuple((k, v) for k, v in item.items() if isinstance(v, str)) if isinstance(item, dict) else ()
 
 
-def interpolate(a, b, w: float):
-    """The contract's rule between two members' leaves a (weight 1 − w) and b (weight w); see the module."""
+def interpolate(a, b, w: float, stencil: tuple | None = None):
+    """The contract's rule between two members' leaves a (weight 1 − w) and b (weight w); see the module.
+    ``stencil`` (trees, weights): the 4 members' leaves of a cubic interval and their Lagrange weights, walked
+    alongside (None where the structure parts: that leaf is linear)."""
     if a is None or b is None:
         return None
+    trees, weights = stencil if stencil is not None else ((), ())
     if isinstance(a, np.ndarray) and isinstance(b, np.ndarray) and a.shape == b.shape:
-        return (1 - w) * a + w * b                      # NaN (null) in either stays NaN (null)
+        line = (1 - w) * a + w * b                      # NaN (null) in either stays NaN (null)
+        if trees and all(isinstance(t, np.ndarray) and t.shape == a.shape for t in trees):
+            cubic = sum(weight * t for weight, t in zip(weights, trees))
+            return np.where(np.isnan(cubic), line, cubic)          # a null among the 4: linear there
+        return line
     if _is_number(a) and _is_number(b):
+        if trees and all(_is_number(t) and not math.isnan(t) for t in trees):
+            return sum(weight * t for weight, t in zip(weights, trees))
         return (1 - w) * a + w * b
     if isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
-        return [interpolate(x, y, w) if texts(x) == texts(y) else (x if w < 0.5 else y) for x, y in zip(a, b)]
+        inner = [[t[i] if isinstance(t, list) and len(t) == len(a) and texts(t[i]) == texts(a[i]) else None
+                  for t in trees] for i in range(len(a))] if trees else [()] * len(a)
+        return [interpolate(x, y, w, (inner[i], weights) if trees and all(t is not None for t in inner[i]) else None)
+                if texts(x) == texts(y) else (x if w < 0.5 else y) for i, (x, y) in enumerate(zip(a, b))]
     if isinstance(a, dict) and isinstance(b, dict):
         near, far = (a, b) if w < 0.5 else (b, a)
-        return {key: (interpolate(a[key], b[key], w) if key in far else value) for key, value in near.items()}
+
+        def below(key):
+            found = [t.get(key) if isinstance(t, dict) else None for t in trees]
+            return (found, weights) if trees and all(t is not None for t in found) else None
+        return {key: (interpolate(a[key], b[key], w, below(key)) if key in far else value)
+                for key, value in near.items()}
     return a if w < 0.5 else b
 
 
-def interpolate_family(values: list[float], answers: list, value: float, log: bool):
-    """The family's answer at value by the rule (values ascending; outside the range, the end member)."""
+def interpolate_family(values: list[float], answers: list, value: float, log: bool, orders: list[int] | None = None):
+    """The family's answer at value by the rule (values ascending; outside the range, the end member); orders:
+    each interval's rule (1 linear, 3 cubic; None: every interval linear)."""
     if value <= values[0]:
         return answers[0]
     if value >= values[-1]:
         return answers[-1]
     k = bisect_right(values, value) - 1
     a, b = coordinate(values[k], log), coordinate(values[k + 1], log)
-    return interpolate(answers[k], answers[k + 1], (coordinate(value, log) - a) / (b - a))
+    x = coordinate(value, log)
+    stencil = None
+    if orders is not None and orders[k] == 3:
+        first = int(stencils(len(values))[k])
+        trees = answers[first:first + 4]
+        if all(t is not None for t in trees):
+            nodes = np.array([coordinate(v, log) for v in values[first:first + 4]])
+            stencil = (trees, lagrange(nodes, x).tolist())
+    return interpolate(answers[k], answers[k + 1], (x - a) / (b - a), stencil)
 
 
 # ---- answers as trees of arrays ---------------------------------------------------------------------------
@@ -603,27 +650,6 @@ def _leaf(tree, path: tuple):
     return tree
 
 
-def curvature(left: "Member", centre: "Member", right: "Member", log: bool) -> LeafValues:
-    """The largest |f''| at the centre member over the elements of each leaf whose shape the three members
-    share: the second divided difference 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋) (nulls aside)."""
-    h_minus = coordinate(centre.value, log) - coordinate(left.value, log)
-    h_plus = coordinate(right.value, log) - coordinate(centre.value, log)
-    if same_layout(left, centre, right):                # every leaf at once
-        f_minus, f0, f_plus = left.flat.vector, centre.flat.vector, right.flat.vector
-        with np.errstate(invalid="ignore", over="ignore"):
-            bend = np.abs((f_plus - f0) / h_plus - (f0 - f_minus) / h_minus) * (2 / (h_plus + h_minus))
-        return LeafValues.of(centre.flat, centre.flat.largest(bend))
-    found = LeafValues()
-    with np.errstate(invalid="ignore", over="ignore"):
-        for path, f0 in centre.leaves.items():
-            f_minus, f_plus = left.leaves.get(path), right.leaves.get(path)
-            if f_minus is None or f_plus is None or f_minus.shape != f0.shape or f_plus.shape != f0.shape:
-                continue
-            bend = np.abs((f_plus - f0) / h_plus - (f0 - f_minus) / h_minus) * (2 / (h_plus + h_minus))
-            found[path] = float(np.fmax.reduce(bend, axis=None, initial=0.0))
-    return found
-
-
 # ---- members ----------------------------------------------------------------------------------------------
 
 def refusal(error: Exception) -> dict:
@@ -654,29 +680,6 @@ class Flat:
         sizes = [leaf.size for leaf in leaves.values()]
         return cls(tuple((path, leaf.shape) for path, leaf in leaves.items()), tuple(leaves),
                    np.cumsum([0, *sizes[:-1]]), np.concatenate([leaf.ravel() for leaf in leaves.values()]))
-
-    def largest(self, values: np.ndarray) -> np.ndarray:
-        """The largest of each leaf's elements of values (≥ 0), nulls aside; 0 where a leaf has none."""
-        return np.fmax(np.fmax.reduceat(values, self.starts), 0.0)
-
-
-class LeafValues(dict):
-    """A number per leaf of a member (path → value), and, when computed over the member's Flat at once, the
-    same numbers as an array in its layout's order (``array``, ``layout``; else None)."""
-
-    array: np.ndarray | None = None
-    layout: tuple | None = None
-
-    @classmethod
-    def of(cls, flat: Flat, values: np.ndarray) -> "LeafValues":
-        found = cls(zip(flat.paths, values.tolist()))
-        found.array, found.layout = values, flat.layout
-        return found
-
-
-def same_layout(*members: "Member") -> bool:
-    flats = [member.flat for member in members]
-    return all(flat is not None for flat in flats) and all(flat.layout == flats[0].layout for flat in flats[1:])
 
 
 @dataclass
@@ -713,19 +716,265 @@ class Member:
 MemberBatch = Callable[[list[float], float], list[Member]]
 
 
+# ---- the members stacked: every member's leaves as one row --------------------------------------------------
+
+@dataclass(frozen=True)
+class Stack:
+    """The members' checked leaves stacked, one row per member (M × E): the columns are the elements of every
+    (path, shape) an answered member holds, in the order first met; NaN where a member lacks that leaf (or
+    holds it in another shape: another quantity), where it is null, and in a refused member's row. ``starts``
+    says where each leaf's columns begin, ``paths`` names them (a path may come twice, in two shapes)."""
+
+    x: np.ndarray               # (M,) the members' coordinates (value, or its log)
+    answered: np.ndarray        # (M,) bool
+    paths: tuple
+    starts: np.ndarray
+    rows: np.ndarray            # (M, E)
+    layout: tuple               # ((path, shape), ...): the columns' leaves
+    held: tuple | None = None   # per member, the indices of the leaves it holds (None: every member all)
+
+    @classmethod
+    def of(cls, members: list[Member], log: bool) -> "Stack":
+        x = np.array([coordinate(m.value, log) for m in members])
+        answered = np.array([m.answer is not None for m in members])
+        flats = [m.flat for m in members if m.answer is not None]
+        if _one_layout(flats, answered.sum()):
+            layout, paths, starts, width = flats[0].layout, flats[0].paths, flats[0].starts, flats[0].vector.size
+            rows = np.full((len(members), width), np.nan)
+            for index, member in enumerate(members):
+                if member.answer is not None:
+                    rows[index] = member.flat.vector
+            return cls(x, answered, paths, starts, rows, layout)
+        columns: dict[tuple, int] = {}                      # (path, shape) → its first column
+        width = 0
+        for member in members:
+            for path, leaf in member.leaves.items():
+                if leaf.size and (path, leaf.shape) not in columns:
+                    columns[path, leaf.shape] = width
+                    width += leaf.size
+        rows = np.full((len(members), width), np.nan)
+        order = {leaf: index for index, leaf in enumerate(columns)}
+        held = []
+        for index, member in enumerate(members):
+            mine = []
+            for path, leaf in member.leaves.items():
+                if leaf.size:
+                    first = columns[path, leaf.shape]
+                    rows[index, first:first + leaf.size] = leaf.ravel()
+                    mine.append(order[path, leaf.shape])
+            held.append(frozenset(mine))
+        return cls(x, answered, tuple(path for path, _ in columns), np.array(list(columns.values()), int), rows,
+                   tuple(columns), tuple(held))
+
+    def common_to_any(self, windows: list) -> tuple | None:
+        """The indices of the leaves that every member of at least one of the windows holds, ascending (None:
+        all, one layout)."""
+        if self.held is None:
+            return None
+        return tuple(sorted(set().union(*(frozenset.intersection(*(self.held[m] for m in window))
+                                           for window in windows))))
+
+    def columns(self, leaves: tuple | None) -> tuple[np.ndarray | None, np.ndarray]:
+        """(the columns of these leaves, None for all; where each leaf starts among them)."""
+        if leaves is None:
+            return None, self.starts
+        ends = np.append(self.starts[1:], self.rows.shape[1])
+        sizes = [ends[leaf] - self.starts[leaf] for leaf in leaves]
+        columns = np.concatenate([np.arange(self.starts[leaf], ends[leaf]) for leaf in leaves]) if leaves else \
+            np.zeros(0, int)
+        return columns, np.cumsum([0, *sizes[:-1]]).astype(int) if leaves else np.zeros(0, int)
+
+    def largest(self, values: np.ndarray) -> np.ndarray:
+        """(K, L): the largest of each leaf's elements of values (K, E), nulls aside; NaN where it has none."""
+        if not self.paths:
+            return np.zeros((len(values), 0))
+        return np.fmax.reduceat(values, self.starts, axis=1)
+
+    def spans(self, span: dict[tuple, float]) -> np.ndarray:
+        return np.array([span.get(path, 0.0) for path in self.paths])
+
+
+def _one_layout(flats: list, answered: int) -> bool:
+    """Whether every answered member holds the same leaves in the same shapes (a row is its flat vector)."""
+    return (len(flats) == answered > 0 and all(flat is not None for flat in flats)
+            and all(flat.layout == flats[0].layout for flat in flats[1:]))
+
+
+def relative(errors: np.ndarray, widths_: np.ndarray) -> np.ndarray:
+    """errors (K, L) per leaf as fractions of the leaves' spans: 0 where nothing is estimated (NaN) or the
+    error is 0, 1 (100 %) where a leaf with no span has one."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        found = np.where(widths_ > 0, errors / widths_, 1.0)
+    return np.where(np.isnan(errors) | (errors == 0), 0.0, found)
+
+
+def divided(stack: Stack, order: int, kept: dict) -> np.ndarray:
+    """(M − order, L): the largest |f[x_j, …, x_j+order]| of each leaf, the divided difference of order
+    ``order`` over members j … j + order (f″/2 for order 2, f⁗/24 for order 4); NaN where a refusal is among
+    them. A window computed before (the same members) is taken from ``kept``."""
+    count, width = len(stack.x), order + 1
+    found = np.full((max(count - order, 0), len(stack.paths)), np.nan)
+    if count < width:
+        return found
+    whole = np.convolve(stack.answered.astype(int), np.ones(width, int), "valid") == width
+    keys = [(order, *stack.x[j:j + width].tolist()) for j in range(count - order)]
+    new = [j for j in range(count - order) if whole[j] and keys[j] not in kept]
+    if new:
+        first = np.array(new)
+        nodes = stack.x[first[:, None] + np.arange(width)]                       # (K, order + 1)
+        # f[x_0 … x_n] = Σ_i f_i / Π_{j≠i} (x_i − x_j): one weighted sum of rows per member of the window
+        gaps = nodes[:, :, None] - nodes[:, None, :]
+        gaps[:, np.arange(width), np.arange(width)] = 1.0
+        weights = 1.0 / np.prod(gaps, axis=2)
+        # only the leaves that all members of some window hold: elsewhere the difference is NaN anyway (a
+        # start-up curve whose length changes with the value would fill most columns with NaN)
+        leaves = stack.common_to_any([range(j, j + width) for j in new])
+        columns, starts = stack.columns(leaves)
+        found_rows = np.full((len(new), len(stack.paths)), np.nan)
+        if starts.size:
+            pick = (lambda i: stack.rows[first + i]) if columns is None else (lambda i: stack.rows[first + i][:, columns])
+            with np.errstate(invalid="ignore", over="ignore"):
+                total = weights[:, 0, None] * pick(0)
+                for i in range(1, width):
+                    total += weights[:, i, None] * pick(i)
+                found_rows[:, list(leaves) if columns is not None else slice(None)] = np.fmax.reduceat(
+                    np.abs(total, out=total), starts, axis=1)
+        for j, row in zip(new, found_rows):
+            kept[keys[j]] = (stack.layout, row)
+    for j in range(count - order):
+        if whole[j]:
+            layout, row = kept[keys[j]]
+            found[j] = row if layout == stack.layout else _moved(row, layout, stack.layout, kept)
+    return found
+
+
+def _moved(row: np.ndarray, before: tuple, after: tuple, kept: dict) -> np.ndarray:
+    """A window's values per leaf of the layout ``before`` in the layout ``after`` (a union that grew as members
+    were added): NaN for a leaf new to it, which none of the window's members holds."""
+    where = kept.get((before, after))
+    if where is None:
+        index = {leaf: i for i, leaf in enumerate(after)}
+        where = kept[before, after] = np.array([index[leaf] for leaf in before], int)
+    moved = np.full(len(after), np.nan)
+    moved[where] = row
+    return moved
+
+
+def curvatures(stack: Stack, kept: dict) -> np.ndarray:
+    """(M, L): the largest |f″| of each leaf at each member, the second divided difference with its two
+    neighbours 2·[(f₊ − f₀)/h₊ − (f₀ − f₋)/h₋]/(h₊ + h₋) (twice the divided difference); NaN rows at the
+    range's ends and beside a refusal."""
+    found = np.full((len(stack.x), len(stack.paths)), np.nan)
+    if len(stack.x) >= 3:
+        found[1:-1] = 2 * divided(stack, 2, kept)
+    return found
+
+
+def stencils(count: int) -> np.ndarray:
+    """(M − 1,) the first of the 4 members whose cubic interpolates interval k: k − 1, moved inside the range
+    at its ends (0 for the first interval, M − 4 for the last)."""
+    return np.clip(np.arange(count - 1) - 1, 0, max(count - 4, 0))
+
+
+def lagrange(nodes: np.ndarray, x: float) -> np.ndarray:
+    """The weights of the cubic through the 4 nodes at x: ℓ_i(x) = Π_{j≠i} (x − x_j)/(x_i − x_j)."""
+    weights = np.ones(4)
+    for i in range(4):
+        for j in range(4):
+            if j != i:
+                weights[i] *= (x - nodes[j]) / (nodes[i] - nodes[j])
+    return weights
+
+
+OMEGA_SAMPLES = np.linspace(0.0, 1.0, 65)
+
+
+def cubic_errors(stack: Stack, kept: dict) -> np.ndarray:
+    """(M − 1, L): interval k's estimated largest |cubic − exact| by leaf, max over the interval of
+    |Π (x − x_i)| over its 4 stencil nodes times |f[5 members]|, the fourth divided difference, the larger
+    of the two 5-member windows around the stencil (the one window at the range's ends): a bend or a corner
+    that one window straddles is not hidden by the other; NaN where a stencil member or both windows hold a
+    refusal, and for families of fewer than 5 members."""
+    x, count = stack.x, len(stack.x)
+    found = np.full((count - 1, len(stack.paths)), np.nan)
+    if count < 5:
+        return found
+    windows = divided(stack, 4, kept)                  # (M − 4, L): window j = members j … j + 4
+    first = stencils(count)
+    left = np.where((first - 1 >= 0)[:, None], windows[np.maximum(first - 1, 0)], np.nan)
+    right = np.where((first + 4 <= count - 1)[:, None], windows[np.minimum(first, count - 5)], np.nan)
+    fourth = np.fmax(left, right)
+    nodes = x[first[:, None] + np.arange(4)]                                    # (M − 1, 4)
+    t = x[:-1, None] + np.diff(x)[:, None] * OMEGA_SAMPLES                       # (M − 1, S)
+    omega = np.abs(np.prod(t[:, :, None] - nodes[:, None, :], axis=2)).max(axis=1)
+    stencil_answered = np.all(stack.answered[first[:, None] + np.arange(4)], axis=1)
+    found = fourth * omega[:, None]
+    found[~stencil_answered] = np.nan
+    return found
+
+
+@dataclass
+class Assessment:
+    """Each interval's rule (1 linear, 3 cubic), its estimated error relative to the spans, the leaf where it
+    is largest, and its bound (the estimate times the rule's safety factor, compared with TOLERANCE)."""
+
+    orders: list[int]
+    scores: list[float]
+    where: list[tuple]
+    bounds: list[float]
+    linear: list[tuple[float, tuple]]       # the linear rule's estimate and its leaf, whichever rule is chosen
+
+
+def assess(stack: Stack, span: dict[tuple, float], kept: dict) -> Assessment:
+    """Every interval at once (see the module, Refinement): the linear estimate h²/8 times the smaller of the
+    ends' |f''|, the cubic one from the fourth divided differences, and the rule whose bound is smaller.
+    Between an answered and a refused member: 1 (the limit is to be found), between two refused: 0; where
+    neither end has a second difference: infinite. ``kept``: divided differences computed before (divided)."""
+    count = len(stack.x)
+    widths_ = stack.spans(span)
+    bends = curvatures(stack, kept)
+    h = np.diff(stack.x)
+    linear = relative(np.fmin(bends[:-1], bends[1:]) * (h ** 2 / 8)[:, None], widths_)
+    fourth = cubic_errors(stack, kept)
+    has_cubic = ~np.isnan(fourth).all(axis=1)
+    cubic = np.where(np.isnan(fourth), linear, relative(fourth, widths_))   # a leaf the stencil lacks: linear
+    bent = np.zeros(count, bool)                        # members with a second difference (answered neighbours)
+    bent[1:-1] = stack.answered[:-2] & stack.answered[1:-1] & stack.answered[2:]
+    known = bent[:-1] | bent[1:]
+    orders, scores, where, bounds, linears = [], [], [], [], []
+    lin_worst, cub_worst = linear.argmax(axis=1) if linear.size else None, cubic.argmax(axis=1) if cubic.size else None
+    for k in range(count - 1):
+        a, b = stack.answered[k], stack.answered[k + 1]
+        if not (a and b):
+            score = 0.0 if not (a or b) else 1.0
+            orders.append(1), scores.append(score), where.append(()), bounds.append(score)
+            linears.append((score, ()))
+            continue
+        lin = (float(linear[k, lin_worst[k]]), stack.paths[lin_worst[k]]) if linear.size else (0.0, ())
+        if not known[k]:
+            lin = (math.inf, ())
+        linears.append(lin)
+        order, (score, path), safety = 1, lin, SAFETY
+        if has_cubic[k] and cubic.size:
+            cub = (float(cubic[k, cub_worst[k]]), stack.paths[cub_worst[k]])
+            if cub[0] * CUBIC_SAFETY < lin[0] * SAFETY:
+                order, (score, path), safety = 3, cub, CUBIC_SAFETY
+        orders.append(order), scores.append(score), where.append(path if score > 0 else ())
+        bounds.append(score * safety)
+    return Assessment(orders, scores, where, bounds, linears)
+
+
 # ---- the family -------------------------------------------------------------------------------------------
 
 @dataclass
 class Family:
-    """The members computed so far, ascending in value, and the spans of their leaves."""
+    """The members computed so far, ascending in value, and the extents of their leaves."""
 
     log: bool
     finest: float
     members: list[Member] = field(default_factory=list)
     extent: dict[tuple, list[float]] = field(default_factory=dict)
-    _curvatures: dict[float, tuple] = field(default_factory=dict)   # value → (neighbours' values, curvature)
-    _errors: dict[tuple, dict] = field(default_factory=dict)  # the 4 members' values → absolute error by leaf
-    _spans: tuple = (None, None)                    # the span dict last asked, and its arrays by layout
+    kept: dict = field(default_factory=dict)        # divided differences by layout and members (divided)
 
     def add(self, member: Member) -> None:
         extend_member(self.extent, member)
@@ -739,99 +988,24 @@ class Family:
         """The width of interval k (members k and k + 1) in the slider's coordinate."""
         return coordinate(self.members[k + 1].value, self.log) - coordinate(self.members[k].value, self.log)
 
-    def curvature(self, k: int) -> LeafValues | None:
-        """|f''| at member k (None at the range's ends and beside a refused member), kept until a neighbour
-        changes."""
-        if k == 0 or k == len(self.members) - 1 or any(self.members[j].answer is None for j in (k - 1, k, k + 1)):
-            return None
-        left, centre, right = self.members[k - 1:k + 2]
-        kept = self._curvatures.get(centre.value)
-        if kept is None or kept[0] != (left.value, right.value):
-            kept = ((left.value, right.value), curvature(left, centre, right, self.log))
-            self._curvatures[centre.value] = kept
-        return kept[1]
-
-    def estimate(self, k: int, span: dict[tuple, float]) -> tuple[float, tuple]:
-        """Interval k's estimated interpolation error relative to the span, and the leaf where it is largest:
-        h²/8 times the smaller of its two ends' largest |f''| (the one end that has it at the range's ends); 1 (100 %) between an answered and a refused member (the limit is to be found), 0
-        between two refused; infinite when neither end has a second difference (no neighbour to take it with)."""
-        a, b = self.members[k], self.members[k + 1]
-        if a.answer is None or b.answer is None:
-            return (0.0 if a.answer is None and b.answer is None else 1.0), ()
-        found = self.errors(k)
-        if found is None:
-            return math.inf, ()
-        if found.layout is not None:                    # every leaf at once
-            widths_ = self._span_array(span, a.flat)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                error = np.where(found.array == 0, 0.0, np.where(widths_ > 0, found.array / widths_, 1.0))
-            worst = int(np.argmax(error))
-            return (float(error[worst]), a.flat.paths[worst]) if error[worst] > 0 else (0.0, ())
-        worst, where = 0.0, ()
-        for path, largest in found.items():
-            width = span.get(path, 0.0)
-            error = 0.0 if not largest else largest / width if width > 0 else 1.0
-            if error > worst:
-                worst, where = error, path
-        return worst, where
-
-    def _span_array(self, span: dict[tuple, float], flat: Flat) -> np.ndarray:
-        """The span of each leaf of the layout, as an array (kept while the same span dict is asked)."""
-        if self._spans[0] is not span:
-            self._spans = (span, {})
-        kept = self._spans[1].get(flat.layout)
-        if kept is None:
-            kept = self._spans[1][flat.layout] = np.array([span.get(path, 0.0) for path in flat.paths])
-        return kept
-
-    def errors(self, k: int) -> LeafValues | None:
-        """Interval k's estimated largest |interpolation − exact| by leaf (absolute), kept until a member
-        that enters it changes; None when neither end has a second difference."""
-        around = tuple(self.members[j].value if 0 <= j < len(self.members) else None for j in range(k - 1, k + 3))
-        if around in self._errors:
-            return self._errors[around]
-        a, b = self.members[k], self.members[k + 1]
-        ends = [c for c in (self.curvature(k), self.curvature(k + 1)) if c is not None]
-        found = None
-        if ends and same_layout(a, b) and all(c.layout is not None and c.layout == a.flat.layout for c in ends):
-            smallest = ends[0].array if len(ends) == 1 else np.minimum(ends[0].array, ends[1].array)
-            found = LeafValues.of(a.flat, smallest * (self.width(k) ** 2 / 8))
-        elif ends:
-            scale = self.width(k) ** 2 / 8
-            found = LeafValues()
-            for path, leaf in a.leaves.items():
-                other = b.leaves.get(path)
-                bends = [c[path] for c in ends if path in c]
-                if other is None or other.shape != leaf.shape or not bends:
-                    continue        # another grid at each end: the nearer member's curve, not interpolated
-                found[path] = min(bends) * scale
-        self._errors[around] = found
-        return found
-
-    def change(self, k: int, span: dict[tuple, float]) -> tuple[float, tuple]:
-        """The largest |f(b) − f(a)| / span over interval k's leaves, and where: for an interval too narrow to
-        halve, a bound of the interpolation error wherever f is monotone inside it (f and the chord both lie
-        between f(a) and f(b)), which a jump's second differences understate (a step of height J reads J/8)."""
-        worst, where = 0.0, ()
-        if same_layout(self.members[k], self.members[k + 1]):
-            a, b = self.members[k].flat, self.members[k + 1].flat
-            for path, largest in zip(a.paths, a.largest(np.abs(b.vector - a.vector)).tolist()):
-                if span.get(path) and largest / span[path] > worst:
-                    worst, where = largest / span[path], path
-            return worst, where
-        a, b = self.members[k].leaves, self.members[k + 1].leaves
-        with np.errstate(invalid="ignore"):
-            for path, leaf in a.items():
-                other = b.get(path)
-                if other is None or other.shape != leaf.shape or not span.get(path):
-                    continue
-                error = float(np.fmax.reduce(np.abs(other - leaf), axis=None, initial=0.0)) / span[path]
-                if error > worst:
-                    worst, where = error, path
-        return worst, where
-
     def halvable(self, k: int) -> bool:
         return self.width(k) > self.finest * (1 + 1e-9)
+
+    def assess(self) -> tuple[Stack, dict[tuple, float], Assessment]:
+        stack, span = Stack.of(self.members, self.log), widths(self.extent)
+        return stack, span, assess(stack, span, self.kept)
+
+
+def change(stack: Stack, span: dict[tuple, float], k: int) -> tuple[float, tuple]:
+    """Interval k's largest |f(b) − f(a)| / span over its leaves, and where: for an interval too narrow to
+    halve, a bound of the linear interpolation's error wherever f is monotone inside it (f and the chord both
+    lie between f(a) and f(b)), which a jump's second differences understate (a step of height J reads J/8)."""
+    with np.errstate(invalid="ignore"):
+        found = relative(stack.largest(np.abs(stack.rows[k + 1:k + 2] - stack.rows[k:k + 1])), stack.spans(span))[0]
+    if not found.size:
+        return 0.0, ()
+    worst = int(found.argmax())
+    return float(found[worst]), stack.paths[worst]
 
 
 def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = "en",
@@ -847,11 +1021,11 @@ def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = 
     for member in members(order[:2], math.inf) + members(order[2:], deadline):   # min and max always
         family.add(member)
     cut = len(family.members) < START_MEMBERS
+    assessed = family.assess()
     while stage == "full" and not cut:
-        span = widths(family.extent)
-        scores = sorted(((family.estimate(k, span)[0], k) for k in range(len(family.members) - 1)
-                         if family.halvable(k)), reverse=True)
-        halve = [k for score, k in scores if score > TOLERANCE / SAFETY][:MAX_MEMBERS - len(family.members)]
+        bounds = assessed[2].bounds
+        scores = sorted(((bound, k) for k, bound in enumerate(bounds) if family.halvable(k)), reverse=True)
+        halve = [k for bound, k in scores if bound > TOLERANCE][:MAX_MEMBERS - len(family.members)]
         if not halve:
             break
         values = [midpoint(family.members[k].value, family.members[k + 1].value, log) for k in halve]
@@ -859,21 +1033,23 @@ def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = 
         for member in computed:
             family.add(member)
         cut = len(computed) < len(values)
-    return _answer(family, lang, cut, started, stage, pack)
+        assessed = family.assess()
+    return _answer(family, assessed, lang, cut, started, stage, pack)
 
 
-def _answer(family: Family, lang: str, cut: bool, started: float, stage: str,
+def _answer(family: Family, assessed: tuple, lang: str, cut: bool, started: float, stage: str,
             pack: bool = False) -> tuple[dict, bool]:
     """The answer of the contract, and whether it is partial (cut at the time budget, or a member is)."""
-    span = widths(family.extent)
+    stack, span, assessment = assessed
     members = family.members
-    estimates = {k: family.estimate(k, span) for k in range(len(members) - 1)}
-    answered = {k: found for k, found in estimates.items()
-                if members[k].answer is not None and members[k + 1].answer is not None and math.isfinite(found[0])}
-    for k, found in answered.items():
-        if stage == "full" and not family.halvable(k) and found[0] > TOLERANCE:    # a jump: say how large
-            answered[k] = max(found, family.change(k, span))
-    error = max((score for score, _ in answered.values()), default=None)
+    orders, scores, where = list(assessment.orders), list(assessment.scores), list(assessment.where)
+    answered = [k for k in range(len(members) - 1)
+                if members[k].answer is not None and members[k + 1].answer is not None and math.isfinite(scores[k])]
+    for k in answered:
+        if stage == "full" and not family.halvable(k) and scores[k] > TOLERANCE:
+            orders[k] = 1                                     # a jump: drawn linearly, and said how large
+            scores[k], where[k] = max(assessment.linear[k], change(stack, span, k))
+    error = max((scores[k] for k in answered), default=None)
     if pack and error is not None:
         error += PACK_QUANTUM / 2                             # packing moves a value by at most this / span
     texts = interface_texts(lang)
@@ -883,26 +1059,27 @@ def _answer(family: Family, lang: str, cut: bool, started: float, stage: str,
         sentences.append(texts["family_time_budget"].format(seconds=number(TIME_BUDGET_S), points=len(members)))
     worst: dict[str, tuple[float, int, tuple]] = {}          # the worst interval left above the tolerance, by why
     if stage == "full":
-        for k, (score, where) in answered.items():
-            if score > TOLERANCE:
+        for k in answered:
+            if scores[k] > TOLERANCE:
                 why = ("family_unresolved" if not family.halvable(k) else
                        None if cut else "family_cap_unmet")    # cut short: the budget, said above
-                if why and score > worst.get(why, (0.0,))[0]:
-                    worst[why] = (score, k, where)
+                if why and scores[k] > worst.get(why, (0.0,))[0]:
+                    worst[why] = (scores[k], k, where[k])
         for k in range(1, len(members) - 1):
             if members[k].answer is None and members[k - 1].answer is not None and members[k + 1].answer is not None:
                 worst.setdefault("family_refused_inside", (math.inf, k - 1, ()))
-    for why, (score, k, where) in worst.items():
+    for why, (score, k, path) in worst.items():
         a, b = members[k].value, members[k + 2 if why == "family_refused_inside" else k + 1].value
         sentences.append(texts[why].format(
             low=number(rounded(a)), high=number(rounded(b)), cap=MAX_MEMBERS, tolerance=number(100 * TOLERANCE),
-            error=number(rounded(100 * score)) if math.isfinite(score) else score, quantity=quantity(where)))
+            error=number(rounded(100 * score)) if math.isfinite(score) else score, quantity=quantity(path)))
     partial = [m.value for m in members if m.partial]
     if partial:
         shown = ", ".join(f"{number(rounded(v)):g}" for v in partial[:8]) + (", …" if len(partial) > 8 else "")
         sentences.append(texts["family_partial_members"].format(count=len(partial), values=shown))
     method = texts[f"family_method_{stage}_{'log' if family.log else 'linear'}"].format(
         start=START_MEMBERS, tolerance=number(100 * TOLERANCE), safety=SAFETY, cap=MAX_MEMBERS)
+    method += texts["family_method_cubic"].format(safety=CUBIC_SAFETY, tolerance=number(100 * TOLERANCE))
     answers = [m.answer for m in members]
     if pack:
         common, answers = shared_arrays(answers)
@@ -910,6 +1087,7 @@ def _answer(family: Family, lang: str, cut: bool, started: float, stage: str,
         common, *answers = packed([common, *answers], exponents)
     return {
         "values": [rounded(m.value) for m in members],
+        "orders": orders,
         **({"shared": common} if pack else {}),
         "answers": answers,
         "errors": [m.error for m in members],

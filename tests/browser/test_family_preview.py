@@ -403,7 +403,10 @@ def test_preview_on_a_phone(family_page, scene, variant, slider, panel, ready):
 
 
 def test_interpolation_rule_of_the_page(family_page):
-    """The page's rule (web/static/js/common/model/family_model.js) against the contract's rule worked by hand."""
+    """The page's rule (web/static/js/common/model/family_model.js) against the contract's rule worked by hand, and on a
+    family with cubic intervals against the server's rule (server/api/family.py interpolate_family): a cubic
+    through 4 members reproduces x³ exactly, and numbers one of the 4 members lacks (null, another kind of
+    object, an array of another length) are linear."""
     page = family_page
     page.goto("/scenes/transfer-functions?lang=en")
     family = {"values": [1, 2, 4], "log": False, "answers": [
@@ -412,13 +415,26 @@ def test_interpolation_rule_of_the_page(family_page):
         {"x": 3.0, "y": [2, 20, 5], "s": "two", "n": [1, 2, 3], "warnings": ["b"], "numerics": {"steps": 20},
          "joints": {"A": [[2, 2], [3, 5]]}, "special": [{"kind": "dead", "phi": 1.0}, {"kind": "min", "phi": 3.0}]},
         None]}
+    from server.api.family import interpolate_family                  # the server checks with the same rule
     result = page.evaluate("""async ([family, log]) => {
         const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
         const { interpolate } = await import(new URL("../common/model/family_model.js", src));
         const at = (v, f = family) => interpolate(f, v);
+        const [cubic, cubicValues] = [CUBIC, CUBIC_VALUES];
         return { quarter: at(1.25), near: at(1.75), member: at(2), refused: at(3), outside: at(0.5),
-                 first: at(1), log: interpolate({ ...family, values: [1, 4, 16], log: true }, 2) };
-    }""", [family, True])
+                 first: at(1), log: interpolate({ ...family, values: [1, 4, 16], log: true }, 2),
+                 cubic: cubicValues.map((v) => interpolate(cubic, v)),
+                 cubicLog: cubicValues.map((v) => interpolate({ ...cubic, log: true }, v)) };
+    }""".replace("CUBIC_VALUES", json.dumps(CUBIC_VALUES)).replace("CUBIC", json.dumps(cubic_family())), [family, True])
+    cubic = cubic_family()
+    for name, log in (("cubic", False), ("cubicLog", True)):
+        for value, ours in zip(CUBIC_VALUES, result[name]):
+            theirs = interpolate_family(cubic["values"], cubic["answers"], value, log, cubic["orders"])
+            assert json.dumps(ours) == json.dumps(theirs, allow_nan=False) or _close(ours, theirs), (name, value)
+    x = CUBIC_VALUES[0]                                            # inside the first (cubic) interval
+    assert result["cubic"][0]["z"] == pytest.approx(x ** 3, rel=1e-12) == result["cubic"][0]["y"][1]
+    assert result["cubic"][0]["y"][2] == pytest.approx((2 - x) * 1 + (x - 1) * 2 ** 2)   # null at member 3: linear
+    assert result["cubic"][0]["special"][0]["phi"] == pytest.approx((2 - x) * 1 + (x - 1) * 8)  # another kind there
     quarter = result["quarter"]                                    # w = 0.25: (1 − w)·a + w·b
     assert quarter["x"] == 1.5 and quarter["y"] == [0.5, 12.5, None]
     assert quarter["s"] == "one" and quarter["n"] == [1, 2]        # nearer member's leaf
@@ -427,7 +443,6 @@ def test_interpolation_rule_of_the_page(family_page):
     # objects of one kind are one quantity; another kind at the same index is the nearer member's object
     assert quarter["special"] == [{"kind": "dead", "phi": 0.25}, {"kind": "max", "phi": 2.0}]
     assert result["near"]["special"][1] == {"kind": "min", "phi": 3.0}
-    from server.api.family import interpolate_family                  # the server checks with the same rule
     for value, key in ((1.25, "quarter"), (1.75, "near")):
         assert interpolate_family(family["values"][:2], family["answers"][:2], value, False)["special"] == \
             result[key]["special"]
@@ -438,6 +453,29 @@ def test_interpolation_rule_of_the_page(family_page):
     assert result["first"] == family["answers"][0]
     assert result["log"]["x"] == pytest.approx(1 + 2 * math.log(2) / math.log(4))   # halfway in log v
     assert page.problems == []
+
+
+CUBIC_VALUES = [1.5, 2.6, 4.5, 5.5, 6.9]
+
+
+def cubic_family() -> dict:
+    """5 members, intervals cubic, cubic, linear, cubic: x³ in numbers and arrays, a null at one member, a
+    special position whose kind changes at one member, an array of another length at the last."""
+    values = [1.0, 2.0, 4.0, 5.0, 7.0]
+    answers = [{"z": x ** 3, "y": [x, x ** 3, None if x == 4.0 else x ** 2], "s": "t",
+                "special": [{"kind": "dead" if x != 5.0 else "max", "phi": x ** 3}],
+                "n": [x ** 2, x] if x != 7.0 else [x ** 2, x, 0.5]} for x in values]
+    return {"values": values, "log": False, "orders": [3, 3, 1, 3], "answers": answers}
+
+
+def _close(a, b) -> bool:
+    if isinstance(a, dict):
+        return isinstance(b, dict) and a.keys() == b.keys() and all(_close(a[k], b[k]) for k in a)
+    if isinstance(a, list):
+        return isinstance(b, list) and len(a) == len(b) and all(_close(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) or isinstance(b, float):
+        return a == pytest.approx(b, rel=1e-12, abs=1e-12)
+    return a == b
 
 
 def test_curves_moved_in_place_lie_where_plotly_draws_them(family_page):

@@ -97,6 +97,9 @@ class FamilyNumerics(BaseModel):
 
 class FamilyResponse(BaseModel):
     values: list[float] = Field(description="the members' slider values, ascending, min and max included")
+    orders: list[int] = Field(description="each interval's rule (len(values) − 1 of them): 1 linear between "
+                              "its two members, 3 Lagrange's cubic through the 4 members k − 1 … k + 2 (moved "
+                              "inside the range at its ends) for the numbers all 4 hold (server/api/family.py)")
     shared: dict | None = Field(None, description="only when `packed`: the arrays equal in every "
                                 "answered member, sent once; each member's answer is `shared` merged with its own, "
                                 "object by object")
@@ -104,14 +107,16 @@ class FamilyResponse(BaseModel):
                                        "given; packed, without the `shared` arrays, when `packed`); null where refused")
     errors: list[dict | None] = Field(description="{code, message} of a refused value, else null")
     interpolation_error: float | None = Field(description="largest estimated |interpolation − exact| / span "
-                                                          "over the intervals (h²·|f''|/8, f'' from neighbours; "
+                                                          "over the intervals (linear: h²·|f''|/8, f'' from "
+                                                          "neighbours; cubic: max|Π(v − vᵢ)|·|f[5 members]|; "
                                                           "packed: plus 5e-5, what packing may move a value)")
     tolerance: float = Field(description="the target: 0.5 % of each plotted quantity's span over the family")
     numerics: FamilyNumerics
 
 
 @router.post("/family", summary="A slider's family: the endpoint's answer at values across the slider's range, "
-                                "spaced so that linear interpolation is within 0.5 % of each quantity's span",
+                                "spaced so that interpolation (linear or cubic by interval) is within 0.5 % of each "
+                                "quantity's span",
              responses={200: {"model": FamilyResponse,
                               "description": "the family; header X-Partial: 1 when cut short by a work bound"},
                         422: {"description": "invalid input: the field and the reason"}})

@@ -12,6 +12,10 @@
  *   objects                           → key by key (the nearer member's keys)
  *   anything else (strings, booleans, arrays of different length) and everything under
  *   "warnings", "numerics" and "study" → the nearer member's leaf.
+ * A cubic interval (the family's orders[k] = 3) draws each number that the 4 members of its stencil
+ * (k − 1 … k + 2, moved inside the range at its ends) all hold, at the same place of the same structure, as
+ * Lagrange's cubic through them, Σ ℓᵢ·fᵢ (in the same coordinate as w); where one of the 4 lacks it or holds
+ * null, the number is linear as above.
  * A value equal to a member's gives that member's answer as it is; an array the two members share (the same
  * object: a family's "shared" arrays, withShared) is passed through as it is.
  *
@@ -28,34 +32,71 @@ function texts(item) {
   return JSON.stringify(Object.entries(item).filter(([, value]) => typeof value === "string"));
 }
 
-/** Mix of two members' leaves a and b at weight w (0 → a, 1 → b). */
-export function blend(a, b, w) {
+const number = (x) => typeof x === "number";
+
+/**
+ * Mix of two members' leaves a and b at weight w (0 → a, 1 → b); outer (a cubic interval): {trees, weights},
+ * the 4 stencil members' leaves at the same place and their Lagrange weights, or undefined (linear).
+ */
+export function blend(a, b, w, outer) {
   if (a === b) return a;
-  if (typeof a === "number" && typeof b === "number") return (1 - w) * a + w * b;
+  if (number(a) && number(b)) return outer && outer.trees.every(number) ? cubic(outer, (t) => t) : (1 - w) * a + w * b;
   if (a === null || b === null) return null;
   if (Array.isArray(a)) {
     if (!Array.isArray(b) || a.length !== b.length) return w < 0.5 ? a : b;
+    const trees = outer && outer.trees.every((t) => Array.isArray(t) && t.length === a.length) ? outer.trees : null;
     const mixed = new Array(a.length);
     for (let i = 0; i < a.length; i++) {
       const [x, y] = [a[i], b[i]];
-      mixed[i] = typeof x === "number" && typeof y === "number" ? (1 - w) * x + w * y
-        : texts(x) === texts(y) ? blend(x, y, w) : (w < 0.5 ? x : y);
+      if (number(x) && number(y)) {
+        mixed[i] = trees && trees.every((t) => number(t[i])) ? cubic(outer, (t) => t[i]) : (1 - w) * x + w * y;
+      } else if (texts(x) === texts(y)) {
+        const inner = trees && trees.every((t) => t[i] !== null && t[i] !== undefined && texts(t[i]) === texts(x))
+          ? { trees: trees.map((t) => t[i]), weights: outer.weights } : undefined;
+        mixed[i] = blend(x, y, w, inner);
+      } else {
+        mixed[i] = w < 0.5 ? x : y;
+      }
     }
     return mixed;
   }
   if (typeof a === "object" && typeof b === "object" && !Array.isArray(b)) {
     const [near, far] = w < 0.5 ? [a, b] : [b, a];
+    const objects = outer && outer.trees.every((t) => t !== null && typeof t === "object" && !Array.isArray(t));
     const mixed = {};
     for (const [key, value] of Object.entries(near)) {
-      mixed[key] = NEAREST_ONLY.has(key) || !(key in far) ? value : blend(a[key], b[key], w);
+      if (NEAREST_ONLY.has(key) || !(key in far)) {
+        mixed[key] = value;
+        continue;
+      }
+      const inner = objects && outer.trees.every((t) => key in t)
+        ? { trees: outer.trees.map((t) => t[key]), weights: outer.weights } : undefined;
+      mixed[key] = blend(a[key], b[key], w, inner);
     }
     return mixed;
   }
   return w < 0.5 ? a : b;
 }
 
+/** Σ ℓᵢ·fᵢ over the 4 stencil leaves (pick: the number of each). */
+function cubic({ trees, weights }, pick) {
+  return weights[0] * pick(trees[0]) + weights[1] * pick(trees[1])
+    + weights[2] * pick(trees[2]) + weights[3] * pick(trees[3]);
+}
+
+/** The first of the 4 members whose cubic draws interval k of count members (server/api/family.py, stencils). */
+export function stencilStart(k, count) {
+  return Math.min(Math.max(k - 1, 0), Math.max(count - 4, 0));
+}
+
+/** Lagrange's weights of the cubic through the nodes (4 coordinates) at x. */
+function lagrange(nodes, x) {
+  return nodes.map((xi, i) => nodes.reduce((product, xj, j) => (j === i ? product : product * (x - xj) / (xi - xj)), 1));
+}
+
 /**
- * Where value falls among the family's members: {k, w} with w ∈ [0, 1] towards member k + 1, or null
+ * Where value falls among the family's members: {k, w} with w ∈ [0, 1] towards member k + 1 (and, inside a
+ * cubic interval, stencil: {trees, weights}, its 4 members and their Lagrange weights at value), or null
  * when it is outside the family or a neighbour was refused (no answer to interpolate from).
  */
 export function memberInterval(family, value) {
@@ -68,7 +109,16 @@ export function memberInterval(family, value) {
   const [low, high] = [position(values[k]), position(values[k + 1])];
   const w = Math.min(1, Math.max(0, (position(value) - low) / (high - low)));
   const needed = w === 0 ? [k] : w === 1 ? [k + 1] : [k, k + 1];
-  return needed.every((i) => answers[i]) ? { k, w } : null;
+  if (!needed.every((i) => answers[i])) return null;
+  if (w > 0 && w < 1 && family.orders?.[k] === 3) {
+    const first = stencilStart(k, values.length);
+    const members = answers.slice(first, first + 4);
+    if (members.length === 4 && members.every(Boolean)) {
+      const nodes = values.slice(first, first + 4).map(position);
+      return { k, w, stencil: { trees: members, weights: lagrange(nodes, position(value)) } };
+    }
+  }
+  return { k, w };
 }
 
 /** The answer the family gives for value (see the rule above), or null where it gives none. */
@@ -78,7 +128,7 @@ export function interpolate(family, value) {
   const { answers } = family;
   if (at.w === 0) return answers[at.k];
   if (at.w === 1) return answers[at.k + 1];
-  return blend(answers[at.k], answers[at.k + 1], at.w);
+  return blend(answers[at.k], answers[at.k + 1], at.w, at.stencil);
 }
 
 /** Key of the family of the slider that sets these paths (and of the fields asked): the request body with them removed. */
