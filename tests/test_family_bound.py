@@ -109,19 +109,9 @@ def random_values(variant, rng: random.Random) -> dict:
     return {slider.id: rng.choice(slider_values(slider)) for slider in variant.sliders}
 
 
-# Where the estimate is known not to hold (measured by this test; open, see the family engine's report):
-KNOWN = {
-    # a start-up curve whose length changes with the value: an interval whose two members hold it at one length
-    # while their other neighbours hold other lengths has no second difference for it at either end, and is
-    # drawn without an estimate (β = 705: 1.28 % of the span, linear)
-    "equation-of-motion": "start-up curves of changing length have no estimate between such members",
-    # the motor speed of the transmission at one random draw: 0.517 % against 0.505 % (cubic, safety 4)
-    "elastic-transmission": "one interval 1.03× over the bound (cubic, the motor speed)",
-}
 
 
-@pytest.mark.parametrize("scene_id", [pytest.param(name, marks=pytest.mark.xfail(reason=KNOWN[name], strict=False))
-                                      if name in KNOWN else name for name in scenes()])
+@pytest.mark.parametrize("scene_id", list(scenes()))
 def test_every_slider_family_of_the_scene_is_within_the_bound_of_the_exact_answers(client, scene_id):
     scene = scenes()[scene_id]
     rng = random.Random(scene_id)
