@@ -118,7 +118,7 @@ def wait_until_plotted(page, panel: str, y: list) -> None:
     """Wait until the panel's first trace shows exactly the values y."""
     page.wait_for_function(f"([id, y]) => {{ const shown = {GRAPH}?.data?.[0]?.y; "
                            "return shown?.length === y.length && y.every((v, i) => shown[i] === v); }",
-                           arg=[panel, y], timeout=10_000)
+                           arg=[panel, y])
 
 
 def sweep(start: float, stop: float, back_to: float, steps: int = 40) -> list[float]:
