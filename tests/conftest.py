@@ -8,7 +8,8 @@ What the workers must not share, and how they don't:
 - the app's SQLite store: a test that builds the app without naming `MDL_DATA_DIR` would use the repository's
   `data/`, shared by every worker and every earlier run; here it gets a temporary directory per process.
 The numba disk cache is filled by `python3 -m server.core.warm_up` before pytest starts, so the workers only
-read it.
+read it. No Hypothesis example has a deadline (its default is 200 ms): the suite may not depend on the machine's
+speed, and a parallel run on a loaded 2-CPU machine takes longer than that for an example now and then.
 """
 from __future__ import annotations
 
@@ -17,6 +18,10 @@ import shutil
 import tempfile
 
 import pytest
+from hypothesis import settings
+
+settings.register_profile("suite", deadline=None)
+settings.load_profile("suite")
 
 _DATA_DIR: str | None = None
 
