@@ -2,7 +2,7 @@
 
 What the workers must not share, and how they don't:
 - a module's own fixtures (its servers, nginx, a PostgreSQL) start once per module: every test of a module that
-  uses a module- or class-scoped fixture goes to one worker (the group is the module's path);
+  has a module- or class-scoped fixture goes to one worker, in file order (the group is the module's path);
 - the session fixtures (the browser tests' app server and Chromium, tests/postgres.py's server) start at most
   once per worker, each on a free port, with their data in a temporary directory of their own;
 - the app's SQLite store: a test that builds the app without naming `MDL_DATA_DIR` would use the repository's
@@ -13,6 +13,7 @@ speed, and a parallel run on a loaded 2-CPU machine takes longer than that for a
 """
 from __future__ import annotations
 
+import collections
 import os
 import shutil
 import tempfile
@@ -39,13 +40,32 @@ def pytest_unconfigure(config):
         shutil.rmtree(_DATA_DIR, ignore_errors=True)
 
 
-@pytest.hookimpl(tryfirst=True)          # before xdist reads the groups (--dist loadgroup)
+def _rename(item, nodeid: str) -> None:
+    """Give a test another node id (pytest 9 keeps it in `_id`; xdist's own loadgroup renaming, which sets
+    `_nodeid`, no longer takes effect there)."""
+    if hasattr(item, "_id"):
+        from _pytest.nodes import coerce_node_id
+        item._id = coerce_node_id(nodeid)
+    else:
+        item._nodeid = nodeid
+
+
+@pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
-    """Keep the tests sharing a module's (or class's) own fixture on one worker, so it starts once."""
-    for item in items:
-        info = getattr(item, "_fixtureinfo", None)
-        if info is None or any(True for _ in item.iter_markers("xdist_group")):
-            continue
-        if any(definition.scope in ("module", "class", "package")
-               for definitions in info.name2fixturedefs.values() for definition in definitions):
-            item.add_marker(pytest.mark.xdist_group(item.nodeid.split("::", 1)[0]))
+    """Keep every test of a module that has a module- (or class-) scoped fixture on one worker, in file order:
+    the fixture starts once, and a test may count what the module's earlier tests did
+    (test_schemathesis_api's test_enough_cases_were_sent). Every test gets a node id of its own first: xdist
+    hands out tests by node id."""
+    named = collections.Counter(item.nodeid for item in items)
+    for item in items:            # schemathesis gives each operation's test the same node id; xdist runs one only
+        if named[item.nodeid] > 1:
+            _rename(item, f"{item.nodeid.rsplit('::', 1)[0]}::{item.name}")
+    assert len({item.nodeid for item in items}) == len(items), "two tests share a node id"
+    if getattr(config.option, "dist", "no") != "loadgroup":
+        return
+    shared = {item.path for item in items if any(
+        definition.scope in ("module", "class", "package") for definitions in
+        getattr(getattr(item, "_fixtureinfo", None), "name2fixturedefs", {}).values() for definition in definitions)}
+    for item in items:            # xdist's loadgroup sends the tests whose node ids end in the same "@group" together
+        if item.path in shared and "@" not in item.nodeid.rsplit("]", 1)[-1]:
+            _rename(item, f"{item.nodeid}@{item.nodeid.split('::', 1)[0]}")
