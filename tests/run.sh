@@ -18,4 +18,6 @@ if ! command -v nginx >/dev/null 2>&1 && [ ! -x /usr/sbin/nginx ]; then     # te
 fi
 mkdir -p test-artifacts
 python3 -m server.core.warm_up     # compile the numba kernels once into their disk cache (tens of seconds when new)
-python3 -m pytest -q --durations=15 "$@"
+# three worker processes on two CPUs: the browser and server tests mostly wait, the numeric ones fill the gaps;
+# the tests sharing a module's own fixture stay on one worker (tests/conftest.py)
+python3 -m pytest -q --durations=15 -n 3 --dist loadgroup "$@"

@@ -124,16 +124,19 @@ def test_the_new_page_pattern_reports_a_family_the_server_cannot_give_as_errors(
     family request is an error in the table and the page goes on with exact requests, answered without error;
     with it, no errors at all."""
     output = tmp_path / "classroom_new.md"
-    run = subprocess.run([sys.executable, "bench/classroom.py", "--students", "3", "--seconds", "3", "--workers", "1",
-                          "--compare-clients", "0", "--pattern", "new", "--output", str(output)],
-                         cwd=REPO, capture_output=True, text=True, timeout=120)
-    assert run.returncode == 0, run.stderr[-3000:]
-    text = output.read_text(encoding="utf-8")
-    assert "## 1 worker, new page pattern" in text
-    rows = re.findall(r"^\| `(family \([a-z-]+\)|[a-z-]+)` \| (\d+) \|.*\| (\d+) \((\d+) / (\d+) / (\d+)\) \|",
-                      text, re.MULTILINE)
-    families = [(int(n), int(e), int(c)) for name, n, e, c, _, _ in rows if name.startswith("family")]
-    exact = [(int(n), int(e)) for name, n, e, *_ in rows if not name.startswith("family")]
+    for seconds in ("3", "20"):     # a loaded machine may answer no exact request within 3 s: the class works longer
+        run = subprocess.run([sys.executable, "bench/classroom.py", "--students", "3", "--seconds", seconds,
+                              "--workers", "1", "--compare-clients", "0", "--pattern", "new", "--output", str(output)],
+                             cwd=REPO, capture_output=True, text=True, timeout=240)
+        assert run.returncode == 0, run.stderr[-3000:]
+        text = output.read_text(encoding="utf-8")
+        assert "## 1 worker, new page pattern" in text
+        rows = re.findall(r"^\| `(family \([a-z-]+\)|[a-z-]+)` \| (\d+) \|.*\| (\d+) \((\d+) / (\d+) / (\d+)\) \|",
+                          text, re.MULTILINE)
+        families = [(int(n), int(e), int(c)) for name, n, e, c, _, _ in rows if name.startswith("family")]
+        exact = [(int(n), int(e)) for name, n, e, *_ in rows if not name.startswith("family")]
+        if exact:
+            break
     assert families and sum(n for n, _, _ in families) >= 3, text          # one family per grab at least
     assert exact and all(e == 0 for _, e in exact), text
     if (REPO / "server" / "api" / "routers" / "family.py").exists():

@@ -23,6 +23,8 @@ ARTIFACTS = REPO / "test-artifacts"
 CHROMIUM = Path("/usr/bin/chromium")
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                  "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+START_SECONDS = 240          # the app's start: a guard against a hang; a loaded CI machine imports slowly
+WAIT_MS = 120_000            # Playwright's waits (its own default is 30 s): guards, the tests wait for conditions
 
 
 def read_scene(name: str) -> dict:
@@ -84,7 +86,7 @@ def app_url(tmp_path_factory):
         [sys.executable, "-m", "uvicorn", "server.api.app:app", "--host", "127.0.0.1", "--port", str(port)],
         cwd=REPO, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     url = f"http://127.0.0.1:{port}"
-    deadline = time.monotonic() + 30
+    deadline = time.monotonic() + START_SECONDS
     while True:
         try:
             if httpx.get(f"{url}/", timeout=1).status_code == 200:
@@ -107,8 +109,25 @@ def chromium():
     from playwright.sync_api import sync_playwright
     with sync_playwright() as playwright:
         browser = playwright.chromium.launch(executable_path=str(CHROMIUM), headless=True, args=CHROMIUM_ARGS)
-        yield browser
+        yield PatientBrowser(browser)
         browser.close()
+
+
+class PatientBrowser:
+    """The launched browser, whose every new context waits up to WAIT_MS for a condition or a navigation
+    (Playwright's 30 s default fails a correct page on a loaded machine running the suite in parallel)."""
+
+    def __init__(self, browser):
+        self._browser = browser
+
+    def new_context(self, **options):
+        context = self._browser.new_context(**options)
+        context.set_default_timeout(WAIT_MS)
+        context.set_default_navigation_timeout(WAIT_MS)
+        return context
+
+    def __getattr__(self, name):
+        return getattr(self._browser, name)
 
 
 @pytest.fixture

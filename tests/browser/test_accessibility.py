@@ -96,7 +96,7 @@ def settle(page) -> None:
     page.wait_for_load_state("networkidle")
     page.wait_for_function("""() => [...document.querySelectorAll(".js-plotly-plot")].every((g) =>
         (document.getElementById(g.getAttribute("aria-describedby"))?.textContent ?? "") !== ""
-        || g.closest("[hidden]"))""", timeout=30_000)
+        || g.closest("[hidden]"))""")
 
 
 @pytest.mark.parametrize("name", SCENE_FILES)

@@ -198,7 +198,7 @@ def test_a_prediction_opens_its_plot_once_answered(ru_page):
     assert page.locator("#panel-u31").count() == 0 and "u31" not in shown_scene(page)["outputs"]
     screenshot(page, "assignment_student_prediction_ru")
     page.fill("#answer-u31_max_prediction", f"{u31_max(lam) * 1.01:.6f}".replace(".", ","))
-    with page.expect_event("load", timeout=15_000):                     # the page asks again: the plots open
+    with page.expect_event("load"):                     # the page asks again: the plots open
         page.click("#question-u31_max_prediction button")
     page.wait_for_selector("#questions .question.right")
     assert "u31" in shown_scene(page)["outputs"]
