@@ -169,11 +169,37 @@ def test_kinematics_scene_exports_hovers_pins_turns_and_marks_stale(browser_page
     assert page.problems == []
 
 
-def flywheel_bodies(page) -> list[dict]:
-    bodies = []
-    page.on("request", lambda request: request.url.split("?")[0].endswith("/api/v1/flywheel")
-            and bodies.append(json.loads(request.post_data)))
+class Bodies(list):
+    """The flywheel request bodies a page sent, in order, and how many of them were answered."""
+    answered = 0
+
+
+def flywheel_bodies(page) -> Bodies:
+    bodies = Bodies()
+
+    def flywheel(request) -> bool:
+        return request.url.split("?")[0].endswith("/api/v1/flywheel")
+
+    def finished(request) -> None:
+        bodies.answered += flywheel(request)
+
+    page.on("request", lambda request: flywheel(request) and bodies.append(json.loads(request.post_data)))
+    page.on("requestfinished", finished)
+    page.on("requestfailed", finished)
     return bodies
+
+
+def settled(page, bodies: Bodies) -> None:
+    """Every flywheel request sent is answered, none follows for 300 ms, and the page has drawn the last answer
+    (whatever the machine's speed: the page may send its request a moment after the change that asked for it)."""
+    for _ in range(2400):                              # a guard against a hang (2 minutes), not a time limit
+        page.wait_for_timeout(50)
+        if bodies.answered == len(bodies) > 0:
+            page.wait_for_timeout(300)
+            if bodies.answered == len(bodies):
+                break
+    page.wait_for_function("() => !document.querySelector('.results').classList.contains('busy')")
+    page.evaluate("() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done)))")
 
 
 def test_flywheel_link_is_the_whole_state_and_the_report_prints(browser_page):
@@ -192,7 +218,7 @@ def test_flywheel_link_is_the_whole_state_and_the_report_prints(browser_page):
     point.fill("0.5")
     point.dispatch_event("change")
     page.wait_for_function("() => new URLSearchParams(location.search).has('edit.motor.expansion')")
-    page.wait_for_function("() => !document.querySelector('.results').classList.contains('busy')")
+    settled(page, bodies)
     expected = bodies[-1]
     assert expected["motor"]["strokes"] == 4 and expected["motor"]["expansion"][3] == 0.5
     speed = json.dumps(traces(page, "speed")[0]["y"])
@@ -223,6 +249,7 @@ def test_flywheel_link_is_the_whole_state_and_the_report_prints(browser_page):
     other_bodies = flywheel_bodies(other)
     other.goto(link)
     wait_for_plot(other, "speed")
+    settled(other, other_bodies)
     assert other_bodies[0] == expected
     assert json.dumps(traces(other, "speed")[0]["y"]) == speed
     assert other.input_value("#preset") == "1"
