@@ -30,6 +30,7 @@ from ..core.dynamics.reduction import Inertias
 from ..core.dynamics.resistance import Load
 from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, bearing_notice, mechanism_side,
                                    modal, request_deadline, rigid, simulate)
+from ..core import errata
 from ..core.elastic.compliance import Dimensions, compliance_report
 from ..core.elastic.stiffness import Compliances
 from ..core.kinematics import compute_kinematics, compute_kinematics_many
@@ -146,9 +147,14 @@ def reduction(request: ReductionRequest, lang: str) -> Answer:
         result, notices = general_reduction(_general_machine(request, Motor()), request.n, request.omega,
                                             request.outputs)
         return answer(result, notices, lang)
+    outputs = [name for name in request.outputs if name != "errata"]
     result, notices = report.reduction(
         request.mechanism, request.params, Inertias(**request.inertias.model_dump()),
-        Load(**request.load.model_dump()), request.n, request.omega, request.outputs, request.iteration_phi)
+        Load(**request.load.model_dump()), request.n, request.omega, outputs, request.iteration_phi) \
+        if outputs else ({}, [])
+    if "errata" in request.outputs:
+        result["errata"] = errata.reduction(request.mechanism, MECHANISMS[request.mechanism].check(request.params),
+                                            request.inertias.m3, request.omega)
     return answer(result, notices, lang)
 
 
