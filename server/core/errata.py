@@ -18,9 +18,14 @@ def row(key: str, source: str, equation: str, printed: str, corrected: str, prin
             "printed_value": float(printed_value), "corrected_value": float(corrected_value), "unit": unit}
 
 
+ROUNDING = 1e-12   # a mean below this fraction of the function's largest value is rounding: shown as 0
+
+
 def _cycle_mean(values: np.ndarray) -> float:
-    """Mean over a uniform open grid of one period (spectrally exact for trigonometric polynomials)."""
-    return float(np.mean(values))
+    """Mean over a uniform open grid of one period (spectrally exact for trigonometric polynomials); a mean
+    that is rounding alone (below ROUNDING of the largest |value|) is 0."""
+    mean = float(np.mean(values))
+    return 0.0 if abs(mean) <= ROUNDING * float(np.max(np.abs(values))) else mean
 
 
 def variable_inertia(m3: float, l1: float, lam: float, points: int = 720) -> list[dict]:
