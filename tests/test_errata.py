@@ -10,7 +10,7 @@ from server.core.mechanisms import MECHANISMS
 from server.lessons.requests import scene_request
 from server.lessons.scenes import scenes
 
-ROW_KEYS = {"key", "source", "equation", "printed", "corrected", "printed_value", "corrected_value", "unit"}
+ROW_KEYS = {"key", "source", "equation", "printed_value", "corrected_value", "unit"}
 
 
 @pytest.mark.parametrize("lam", [2.0, 3.0, 6.0])
@@ -121,4 +121,5 @@ def test_every_rows_words_are_in_three_languages(flywheel_answer):
             *errata.wear_example(1, 4), errata.piston_pressure(1, 1, 1)]
     for lang, t in texts.items():
         for r in rows:
-            assert {f"erratum_why_{r['key']}", f"erratum_unit_{r['unit']}", f"source_{r['source']}"} <= set(t), lang
+            assert {f"erratum_why_{r['key']}", f"erratum_printed_{r['key']}", f"erratum_corrected_{r['key']}",
+                    f"erratum_unit_{r['unit']}", f"source_{r['source']}"} <= set(t), lang

@@ -1,9 +1,10 @@
 """The sources' misprints that change a number, each printed beside corrected with the value each gives for
 the scene's own data (one row format for every scene, as the bearings' (2.4), (2.13), (2.16)):
 
-    {"key", "source", "equation", "printed", "corrected", "printed_value", "corrected_value", "unit"}
+    {"key", "source", "equation", "printed_value", "corrected_value", "unit"}
 
-``key`` names the reason (the interface text erratum_why_<key>), ``source`` the source (source_<source>),
+``key`` names the formulas and the reason (the interface texts erratum_printed_<key>, erratum_corrected_<key>,
+erratum_why_<key>), ``source`` the source (source_<source>),
 ``unit`` the unit (erratum_unit_<unit>).  The computations use the corrected forms; these rows only show
 what the printed ones would give.
 """
@@ -12,9 +13,10 @@ from __future__ import annotations
 import numpy as np
 
 
-def row(key: str, source: str, equation: str, printed: str, corrected: str, printed_value: float,
-        corrected_value: float, unit: str) -> dict:
-    return {"key": key, "source": source, "equation": equation, "printed": printed, "corrected": corrected,
+def row(key: str, source: str, equation: str, printed_value: float, corrected_value: float, unit: str) -> dict:
+    """One erratum: the value of the printed formula and of the corrected one (the formulas themselves are
+    interface texts, erratum_printed_<key> and erratum_corrected_<key>, read in the page's language)."""
+    return {"key": key, "source": source, "equation": equation,
             "printed_value": float(printed_value), "corrected_value": float(corrected_value), "unit": unit}
 
 
@@ -42,13 +44,10 @@ def variable_inertia(m3: float, l1: float, lam: float, points: int = 720) -> lis
     fixed_39 = -k * (1 - 2 * s2 * (1 - 2 / lam * c))
     printed_38 = -k * (1 + 1 / (4 * lam**2) - s2 * (1 - 2 / lam * c) + c**2 / lam**2)
     fixed_38 = -k * (1 + 1 / (4 * lam**2) - 2 * s2 * (1 - 2 / lam * c + c**2 / lam**2))
-    return [row("variable_inertia_38", "eremyants", "(3.38)",
-                "J̃ = −(m₃l₁²/2)[1 + 1/(4λ²) − sin²φ(1 − (2/λ)cos φ) + cos²φ/λ²]",
-                "J̃ = −(m₃l₁²/2)[1 + 1/(4λ²) − 2sin²φ(1 − (2/λ)cos φ + cos²φ/λ²)]",
-                _cycle_mean(printed_38), _cycle_mean(fixed_38), "mean_kgm2"),
-            row("variable_inertia_39", "eremyants", "(3.39)", "J̃ ≈ −(m₃l₁²/2)[1 − sin²φ(1 − (2/λ)cos φ)]",
-                "J̃ ≈ −(m₃l₁²/2)[1 − 2sin²φ(1 − (2/λ)cos φ)]",
-                _cycle_mean(printed_39), _cycle_mean(fixed_39), "mean_kgm2")]
+    return [row("variable_inertia_38", "eremyants", "(3.38)", _cycle_mean(printed_38), _cycle_mean(fixed_38),
+                "mean_kgm2"),
+            row("variable_inertia_39", "eremyants", "(3.39)", _cycle_mean(printed_39), _cycle_mean(fixed_39),
+                "mean_kgm2")]
 
 
 def slotted_viscous(omega: float, l1: float, lam: float, points: int = 720) -> list[dict]:
@@ -59,11 +58,10 @@ def slotted_viscous(omega: float, l1: float, lam: float, points: int = 720) -> l
     phi = np.arange(points) * 2 * np.pi / points
     shape = np.sin(phi) ** 2 / (1 + lam**2 + 2 * lam * np.cos(phi))
     half = np.sin(phi / 2) ** 2
-    return [row("slotted_viscous_50", "eremyants", "(3.50)", "M_T = βωl₁²λ sin²φ/(1 + λ² + 2λ cos φ)",
-                "M_T = βωl₁²λ² sin²φ/(1 + λ² + 2λ cos φ)", _cycle_mean(l1**2 * lam * shape),
+    return [row("slotted_viscous_50", "eremyants", "(3.50)", _cycle_mean(l1**2 * lam * shape),
                 _cycle_mean(l1**2 * lam**2 * shape), "per_beta_omega"),
-            row("slotted_viscous_53", "eremyants", "(3.53), λ = 1", "M_T = βω² sin²(φ/2)", "M_T = βωl₁² sin²(φ/2)",
-                _cycle_mean(omega * half), _cycle_mean(l1**2 * half), "per_beta_omega")]
+            row("slotted_viscous_53", "eremyants", "(3.53), λ = 1", _cycle_mean(omega * half),
+                _cycle_mean(l1**2 * half), "per_beta_omega")]
 
 
 def gutyar_squares(work: np.ndarray, inertia_ii: np.ndarray, omega_mean: float, delta: float,
@@ -73,8 +71,7 @@ def gutyar_squares(work: np.ndarray, inertia_ii: np.ndarray, omega_mean: float, 
     the corrected method's I_I (``corrected``), kg·m²."""
     w_max, w_min = (1 + delta / 2) * omega_mean, (1 - delta / 2) * omega_mean
     swing = float(np.max(work - 0.5 * inertia_ii * w_max) - np.min(work - 0.5 * inertia_ii * w_min))
-    return row("gutyar_squares", "lecture10", "(L27)", "ΔT − I_II·ω_max/2, ΔT − I_II·ω_min/2",
-               "ΔT − I_II·ω_max²/2, ΔT − I_II·ω_min²/2", swing / (delta * omega_mean**2), corrected, "kgm2")
+    return row("gutyar_squares", "lecture10", "(L27)", swing / (delta * omega_mean**2), corrected, "kgm2")
 
 
 def wittenbauer_axes(omega_mean: float, delta: float) -> dict:
@@ -82,16 +79,14 @@ def wittenbauer_axes(omega_mean: float, delta: float) -> dict:
     μ_I = 1); the text places y_I = μ_I·I_I, x_I = μ_T·T_нач, i.e. I on y: the same tangent would then have
     the slope 2/ω_max², J/(kg·m²) against (kg·m²)/J."""
     w_max = (1 + delta / 2) * omega_mean
-    return row("wittenbauer_axes", "lecture10", "(L28)–(L29)", "I ↑, T →: tg ψ = 2/ω_max²",
-               "I →, T ↑: tg ψ = ω_max²/2", 2 / w_max**2, w_max**2 / 2, "slope")
+    return row("wittenbauer_axes", "lecture10", "(L28)–(L29)", 2 / w_max**2, w_max**2 / 2, "slope")
 
 
 def flywheel_part(required: float, crank: float, rotor_reduced: float) -> dict:
     """Lecture 10 (L7): I_м = I_I − (I_рот + I_ред + I₀₁); the print I_м = I_I − (I_ред + I₀₁ + I_м) has the
     flywheel on both sides and no rotor, which solves to I_м = (I_I − I₀₁)/2 (the reducer taken with the crank
     here, I_ред = 0 as in the app's group I = J₁ + J_rotor·i²), kg·m²."""
-    return row("flywheel_part", "lecture10", "(L7)", "I_м = I_I − (I_ред + I₀₁ + I_м)",
-               "I_м = I_I − (I_рот + I_ред + I₀₁)", (required - crank) / 2, required - crank - rotor_reduced, "kgm2")
+    return row("flywheel_part", "lecture10", "(L7)", (required - crank) / 2, required - crank - rotor_reduced, "kgm2")
 
 
 def wear_example(l1: float, l2: float, steps: int = 13) -> list[dict]:
@@ -100,17 +95,14 @@ def wear_example(l1: float, l2: float, steps: int = 13) -> list[dict]:
     the 13 table rows Δφ₁ = 2π/(N_p − 1) is printed 0.432, the formula gives π/6 = 0.5236."""
     lam, phi = l1 / l2, np.radians(30.0)
     u21 = lam * np.cos(phi) / np.sqrt(1 - (lam * np.sin(phi)) ** 2)
-    return [row("u21_slip", "chaika_vasylenko", "4.3: φ₁ = 30°", "|u₂₁| = 0,2187", "|u₂₁| = λ cos φ₁/cos φ₂",
-                0.2187, u21, "none"),
-            row("trapezoid_step", "chaika_vasylenko", "4.3: Δφ₁", "Δφ₁ = 0,432", "Δφ₁ = 2π/(N_p − 1)",
-                0.432, 2 * np.pi / (steps - 1), "rad")]
+    return [row("u21_slip", "chaika_vasylenko", "4.3: φ₁ = 30°", 0.2187, u21, "none"),
+            row("trapezoid_step", "chaika_vasylenko", "4.3: Δφ₁", 0.432, 2 * np.pi / (steps - 1), "rad")]
 
 
 def piston_pressure(force: float, length: float, diameter: float) -> dict:
     """Chaika–Vasylenko (4.16): p_max = 2F_e/(π l_p d_p) printed; with d_p a diameter (as (4.4), (4.20) and the
     example's 4R/(π L_p D_p)) it is 4F_e/(π l_p d_p), Pa, for the largest piston side force."""
-    return row("piston_pressure", "chaika_vasylenko", "(4.16)", "p_max = 2F_e/(π·l_p·d_p)",
-               "p_max = 4F_e/(π·l_p·d_p)", 2 * force / (np.pi * length * diameter),
+    return row("piston_pressure", "chaika_vasylenko", "(4.16)", 2 * force / (np.pi * length * diameter),
                4 * force / (np.pi * length * diameter), "Pa")
 
 

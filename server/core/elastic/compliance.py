@@ -17,6 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errata import row
+
 
 @dataclass(frozen=True)
 class Dimensions:
@@ -58,7 +60,5 @@ def compliance_report(d: Dimensions) -> dict:
     return {"e_crank_shaft": e_crank, "e_motor_shaft": e_motor, "e_motor_reduced": corrected,
             "polar_moment": np.pi * d.shaft_diameter**4 / 32, "rod_area": np.pi * d.rod_diameter**2 / 4,
             "e1": e_crank + corrected, "e2": e2, "ratio": d.ratio,
-            "errata": [{"key": "compliance_reduction", "source": "eremyants", "equation": "(1.16), (1.37)",
-                        "printed": "e₁ = e_L + e_D·u²", "corrected": "e₁ = e_L + e_D/u²",
-                        "printed_value": e_crank + printed, "corrected_value": e_crank + corrected,
-                        "unit": "rad_Nm"}]}
+            "errata": [row("compliance_reduction", "eremyants", "(1.16), (1.37)", e_crank + printed,
+                           e_crank + corrected, "rad_Nm")]}
