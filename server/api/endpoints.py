@@ -30,6 +30,8 @@ from ..core.dynamics.reduction import Inertias
 from ..core.dynamics.resistance import Load
 from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, bearing_notice, mechanism_side,
                                    modal, request_deadline, rigid, simulate)
+from ..core import errata
+from ..core.elastic.compliance import Dimensions, compliance_report
 from ..core.elastic.stiffness import Compliances
 from ..core.kinematics import compute_kinematics, compute_kinematics_many
 from ..core.kinetostatics.crank_slider import Loads, Pairs, analyse
@@ -145,9 +147,14 @@ def reduction(request: ReductionRequest, lang: str) -> Answer:
         result, notices = general_reduction(_general_machine(request, Motor()), request.n, request.omega,
                                             request.outputs)
         return answer(result, notices, lang)
+    outputs = [name for name in request.outputs if name != "errata"]
     result, notices = report.reduction(
         request.mechanism, request.params, Inertias(**request.inertias.model_dump()),
-        Load(**request.load.model_dump()), request.n, request.omega, request.outputs, request.iteration_phi)
+        Load(**request.load.model_dump()), request.n, request.omega, outputs, request.iteration_phi) \
+        if outputs else ({}, [])
+    if "errata" in request.outputs:
+        result["errata"] = errata.reduction(request.mechanism, MECHANISMS[request.mechanism].check(request.params),
+                                            request.inertias.m3, request.omega)
     return answer(result, notices, lang)
 
 
@@ -223,11 +230,22 @@ def elastic_machine(request: ElasticRequest) -> ElasticMachine:
     if request.motor.kind == "indicator":
         raise GeometryError("motor.kind", "the elastic models take a motor with a speed characteristic or a "
                             "constant torque", "elastic_motor")
+    params = MECHANISMS[request.mechanism].check(request.params)
+    compliances = Compliances(**request.compliances.model_dump())
+    if request.dimensions is not None:
+        parts = compliance_report(_dimensions(request, params))
+        compliances = Compliances(parts["e1"], parts["e2"])
     return ElasticMachine(
-        request.model, request.mechanism, MECHANISMS[request.mechanism].check(request.params),
+        request.model, request.mechanism, params,
         Inertias(**request.inertias.model_dump()), Load(**request.load.model_dump()), _motor(request.motor),
-        request.J_motor, request.J_middle, request.c, Compliances(**request.compliances.model_dump()),
+        request.J_motor, request.J_middle, request.c, compliances,
         request.b, request.b1, request.speed, request.omega0, request.twist0)
+
+
+def _dimensions(request: ElasticRequest, params: dict) -> Dimensions:
+    """The parts of the elastic linkage: the rod is l₂ long, the motor shaft turns inertias.gear_ratio times
+    as fast as the crank shaft."""
+    return Dimensions(rod_length=params["l2"], ratio=request.inertias.gear_ratio, **request.dimensions.model_dump())
 
 
 OTHER_ELASTIC = ("rigid", "modal", "bearings")   # an elastic answer's keys that are not the histories'
@@ -253,6 +271,8 @@ def elastic(request: ElasticRequest, lang: str, reads: Reads = None) -> Answer:
         result["rigid"] = rigid(built, np.linspace(0.0, request.t_end, request.n))
     if asked("modal", "modal"):
         result["modal"] = modal(built)
+    if asked("compliance", "compliance"):
+        result["compliance"] = compliance_report(_dimensions(request, built.params))
     if asked("bearings", "bearings", "warnings"):
         result["bearings"] = bearing_iteration(built, Bearing(**request.bearing.model_dump()), request.t_end,
                                                request.n, request.rtol, deadline=deadline)

@@ -135,7 +135,7 @@ class KinematicsRequest(BaseModel):
                           description="number of equally spaced angles over one closed cycle, 0…cycle")
     outputs: list[str] = Field(min_length=1, max_length=40, description=(
         "names of the outputs wanted, e.g. s, u31, du31, s2, u21, du21, chi21, v_s2, a_s2, joints, special, "
-        "harmonics, info; each mechanism lists its own"))
+        "harmonics (of u31), harmonics_du31, info; each mechanism lists its own"))
 
     @field_validator("phi")
     @classmethod

@@ -168,7 +168,10 @@ class ReductionRequest(MechanismChoice):
     n: int = Field(361, ge=3, le=10001, description="points over one closed cycle")
     omega: float = Field(1.0, ge=0, le=1e4, description="crank speed for the viscous moment β ω Σu², rad/s")
     iteration_phi: float = Field(math.pi / 2, ge=-100, le=100, description="crank angle of the friction iteration, rad")
-    outputs: list[Literal["inertia", "resisting", "friction_iteration"]] = Field(min_length=1, max_length=3)
+    outputs: list[Literal["inertia", "resisting", "friction_iteration", "errata"]] = Field(
+        min_length=1, max_length=4, description="errata: the source's misprints of the formulas used (Eremyants "
+                                                "(3.38)/(3.39) crank-slider, (3.50)/(3.53) slotted link), printed "
+                                                "beside corrected with the value each gives")
 
 
 class MotionRequest(MechanismChoice):

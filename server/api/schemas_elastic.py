@@ -18,6 +18,20 @@ class CompliancesInput(BaseModel):
     e3: float = Field(0.0, ge=0, le=1, description="rocker-shaft torsion e₃ = L₃/(G I_p3), rad/(N·m) (four-bar)")
 
 
+class DimensionsInput(BaseModel):
+    """The elastic linkage's compliances from its parts, Eremyants (1.16), (1.24)–(1.25), (1.37): the crank
+    shaft, the motor shaft behind the gear (inertias.gear_ratio = u) and the rod (its length is l₂)."""
+
+    model_config = ConfigDict(extra="forbid")
+    shaft_length: float = Field(0.3, gt=0, le=10, description="crank shaft's length L, m")
+    shaft_diameter: float = Field(0.04, ge=1e-3, le=1, description="crank shaft's diameter d, m")
+    rod_diameter: float = Field(0.02, ge=1e-3, le=1, description="rod's diameter d₂ (round section), m")
+    motor_shaft_length: float = Field(0.2, ge=0, le=10, description="motor shaft's length L_D, m (0: none)")
+    motor_shaft_diameter: float = Field(0.03, ge=1e-3, le=1, description="motor shaft's diameter d_D, m")
+    shear_modulus: float = Field(8.0e10, ge=1e8, le=1e12, description="shear modulus G, Pa")
+    young: float = Field(2.1e11, ge=1e8, le=1e12, description="Young's modulus E, Pa")
+
+
 class BearingInput(BaseModel):
     """Ball bearings in the rod's joints B and C, seed 000 (1.43)–(1.44)."""
 
@@ -34,7 +48,7 @@ MODEL_FIELDS = {        # the fields each model reads besides the common ones (b
     "two_mass": {"motor", "J_motor", "c", "b", "omega0", "twist0"},
     "kinematic_drive": {"c", "b", "speed", "omega0", "twist0"},
     "three_mass": {"motor", "J_motor", "J_middle", "c", "compliances", "b", "b1", "omega0", "twist0"},
-    "elastic_linkage": {"motor", "J_motor", "compliances", "b", "omega0", "twist0"},
+    "elastic_linkage": {"motor", "J_motor", "compliances", "dimensions", "b", "omega0", "twist0"},
     "elastic_four_bar": {"motor", "J_motor", "compliances", "b", "omega0", "twist0"},
 }
 
@@ -56,6 +70,8 @@ class ElasticRequest(BaseModel):
     J_middle: float = Field(0.0, ge=0, le=1e4, description="three-mass: the middle mass, kg·m²")
     c: float = Field(0.0, ge=0, le=1e12, description="constant stiffness (belt, or the first spring), N·m/rad")
     compliances: CompliancesInput = Field(default_factory=CompliancesInput)
+    dimensions: DimensionsInput | None = Field(None, description=(
+        "elastic_linkage: e₁ and e₂ from the parts instead of `compliances` (Eremyants (1.16), (1.24)–(1.25))"))
     b: float = Field(0.0, ge=0, le=1e9, description="damping across the spring next to the mechanism, N·m·s/rad")
     b1: float = Field(0.0, ge=0, le=1e9, description="three-mass: damping across the first spring, N·m·s/rad")
     speed: float = Field(0.0, ge=0, le=1e4, description="kinematic drive: the motor side's constant speed, rad/s")
@@ -67,10 +83,12 @@ class ElasticRequest(BaseModel):
     method: Literal["auto", "DOP853", "RK45", "Radau", "BDF", "LSODA"] = Field(
         "auto", description="auto: chosen by the stiffness the server measures")
     bearing: BearingInput = Field(default_factory=lambda: BearingInput(), description="ball bearings in B and C")
-    outputs: list[Literal["histories", "modal", "rigid", "bearings"]] = Field(min_length=1, max_length=4, description=(
+    outputs: list[Literal["histories", "modal", "rigid", "bearings", "compliance"]] = Field(
+        min_length=1, max_length=5, description=(
         "histories: time histories with numerics; modal: c(φ), e(φ), natural frequency and damping ratio over a "
         "turn (closed forms); rigid: the rigid machine's start-up on the same times; bearings: the successive "
-        "approximations of the ball-bearing stiffness (1.44) over the largest rod force (elastic crank-slider)"))
+        "approximations of the ball-bearing stiffness (1.44) over the largest rod force (elastic crank-slider); "
+        "compliance: e₁, e₂ from `dimensions` with the erratum of (1.16)/(1.37), printed beside corrected"))
 
     @model_validator(mode="after")
     def only_used_fields(self):
@@ -89,7 +107,12 @@ class ElasticRequest(BaseModel):
     @model_validator(mode="after")
     def complete(self):
         needs_linkage = self.model in ("three_mass", "elastic_linkage", "elastic_four_bar")
-        if needs_linkage and not (self.compliances.e1 or self.compliances.e2 or self.compliances.e3):
+        if self.dimensions is not None and "compliances" in self.model_fields_set:
+            raise ValueError("dimensions: give the compliances or the dimensions, not both")
+        if "compliance" in self.outputs and self.dimensions is None:
+            raise ValueError("compliance: give the dimensions the compliances are computed from")
+        if needs_linkage and self.dimensions is None and not (
+                self.compliances.e1 or self.compliances.e2 or self.compliances.e3):
             raise ValueError(f"{self.model}: give the linkage's compliances e1, e2 (e3)")
         if self.model in ("two_mass", "kinematic_drive", "three_mass") and self.c <= 0:
             raise ValueError(f"{self.model}: give the stiffness c > 0")

@@ -1,6 +1,10 @@
-"""The two components of a coupler's angular acceleration (seed 001, Kuleshova & Tokhtar 2007).
+"""The two components of a coupler's angular acceleration (Kuleshova–Tokhtar (1)–(4)).
 
-    ε = d/dt (V_A/AP) = ε* + ε**,   ε* = (dV_A/dt)/AP = a_A^τ/AP,   ε** = V_A·d(1/AP)/dt      (1)–(4)
+    ε = d/dt (V_A/AP) = ε* + ε**   (1), (2),   ε* = (dV_A/dt)/AP = a_A^τ/AP   (3),
+    ε** = V_A·d(1/AP)/dt   (4)
+
+beside the paper's classical method (a), the vector polygon a_B = a_A + a^n_BA + a^τ_BA, ε_AB = a^τ_BA/AB
+(``vector_polygon``: an independent route through the velocity and acceleration polygons).
 
 One convention for both mechanisms and for the transfer-function scenes (Eremyants, Fig. 2.2): O at the
 origin, the slider's guide along the x axis; φ is measured from that line, φ = 0 with the crank pointing
@@ -83,9 +87,11 @@ def crank_slider(lam: float, length: float, law: CrankLaw, t: np.ndarray) -> dic
     with np.errstate(divide="ignore", invalid="ignore"):     # P on line OA above B; NaN where P is at infinity
         P = np.stack([x_b, np.where(np.abs(c) > 1e-12, -x_b * s / c, np.nan)], 1)
     P[np.isnan(P[:, 1])] = np.nan
+    B = np.stack([x_b, 0 * t], 1)
     return {"t": t, "phi": phi, "omega": w, "epsilon_crank": eps, "psi": np.arcsin(sin_psi), "omega_coupler": w_ab,
             "inv_AP": inv_ap, "epsilon_star": e_star, "epsilon_star2": e_star2, "epsilon": e_star + e_star2,
-            "psi_dd": psi_dd, "points": {"O": np.zeros_like(A), "A": A, "B": np.stack([x_b, 0 * t], 1), "P": P},
+            "psi_dd": psi_dd, "points": {"O": np.zeros_like(A), "A": A, "B": B, "P": P},
+            "polygon": vector_polygon(A, B - A, w, eps, np.ones(t.size, bool), e_star + e_star2),
             "numerics": _numerics(e_star + e_star2, psi_dd, started)}
 
 
@@ -96,12 +102,39 @@ def trammel(length: float, law: CrankLaw, t: np.ndarray) -> dict:
     c, s = np.cos(phi), np.sin(phi)
     A = np.stack([-length * c, length * s], 1)
     psi_dd = -eps                                    # the angle of BD in the crank's sense is −φ (+ const)
+    B, D = np.stack([-2 * length * c, 0 * t], 1), np.stack([0 * t, 2 * length * s], 1)
+    along_x = np.abs(c) >= np.abs(s)    # the better conditioned guide: B's (y = 0) or D's (x = 0)
     return {"t": t, "phi": phi, "omega": w, "epsilon_crank": eps, "omega_coupler": -w,
             "inv_AP": np.full_like(t, -1 / length), "epsilon_star": -eps, "epsilon_star2": np.zeros_like(t),
             "epsilon": -eps, "psi_dd": psi_dd,
-            "points": {"O": np.zeros_like(A), "A": A, "B": np.stack([-2 * length * c, 0 * t], 1),
-                       "D": np.stack([0 * t, 2 * length * s], 1), "P": 2 * A},
+            "points": {"O": np.zeros_like(A), "A": A, "B": B, "D": D, "P": 2 * A},
+            "polygon": vector_polygon(A, np.where(along_x[:, None], B - A, D - A), w, eps, along_x, -eps),
             "numerics": _numerics(-eps, psi_dd, started)}
+
+
+def vector_polygon(A: np.ndarray, r: np.ndarray, w: np.ndarray, eps: np.ndarray, along_x: np.ndarray,
+                   decomposed: np.ndarray) -> dict:
+    """Kuleshova–Tokhtar's method (a), the velocity and acceleration polygons of the coupler from its pole A
+    (crank O→A turning clockwise at ω, ε; r = the coupler's point B − A, B on the guide y = 0 where
+    ``along_x``, else on the guide x = 0), in counter-clockwise components θ̇₂, θ̈₂ of the coupler:
+
+        V_B = V_A + ω₂ k × r,   a_B = a_A + a^n_BA + a^τ_BA,   a^n_BA = −ω₂² r,   a^τ_BA = θ̈₂ k × r,
+        a_A = −ε k × OA − ω² OA   (the crank's clockwise ω, ε),
+
+    the guide's normal component of V_B and a_B zero gives ω₂ and θ̈₂; ε_AB = a^τ_BA/AB, returned in the
+    crank's sense (clockwise positive) as every angular quantity here, with |a^n_BA|, |a^τ_BA| in m/s² and
+    ``difference``, the largest |ε_AB − (ε* + ε**)| against the decomposition (1)–(4) (``decomposed``), s⁻²."""
+    k_cross = lambda v: np.stack([-v[:, 1], v[:, 0]], 1)   # noqa: E731  (k × v in the plane)
+    v_a = -w[:, None] * k_cross(A)
+    a_a = -eps[:, None] * k_cross(A) - (w**2)[:, None] * A
+    normal = np.where(along_x, 1, 0)           # the component the guide forbids: y for B on y = 0, x for x = 0
+    pick = lambda v: np.where(normal == 1, v[:, 1], v[:, 0])   # noqa: E731
+    kr = k_cross(r)
+    w2 = -pick(v_a) / pick(kr)
+    theta_dd = (pick((w2**2)[:, None] * r) - pick(a_a)) / pick(kr)
+    length = np.hypot(r[:, 0], r[:, 1])
+    return {"epsilon": -theta_dd, "a_n_BA": w2**2 * length, "a_tau_BA": np.abs(theta_dd) * length,
+            "omega": -w2, "difference": float(np.max(np.abs(-theta_dd - decomposed))) if A.size else 0.0}
 
 
 def _numerics(epsilon: np.ndarray, psi_dd: np.ndarray, started: float) -> dict:

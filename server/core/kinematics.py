@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .harmonics import harmonic_grid, harmonics
+from .harmonics import fourth_harmonic_claim, harmonic_grid, harmonics
 from .mechanisms import MECHANISMS, GeometryError, Notice
 from .mechanisms.base import Evaluation
 
@@ -89,7 +89,7 @@ def compute_kinematics_many(mechanism: str, params: list[dict[str, float]], outp
 
 def _checked(mech, mechanism, params, outputs, phi, n) -> KinematicsResult:
     """compute_kinematics' checks, in its order: the outputs, the parameters, the angles."""
-    known = {o.name for o in mech.outputs} | {"harmonics", "info"}
+    known = {o.name for o in mech.outputs} | {"harmonics", "harmonics_du31", "info"}
     for i, name in enumerate(outputs):
         if name not in known:
             raise GeometryError(f"outputs.{i}", f"'{name}' is not an output of {mechanism}; "
@@ -143,6 +143,10 @@ def _fill(mech, mechanism: str, result: KinematicsResult, ev: Evaluation, output
             result.outputs[name] = [sp.as_dict() for sp in special]
         elif name == "harmonics":
             result.outputs[name] = harmonics(mech, p, "u31", values=spectrum)
+        elif name == "harmonics_du31":
+            result.outputs[name] = harmonics(mech, p, "du31")
+            if mechanism == "slider_crank" and p["e"] == 0:   # the book's claim is for the central crank-slider
+                result.outputs[name]["claim"] = fourth_harmonic_claim(result.outputs[name], p["l2"] / p["l1"])
         elif name == "info":
             result.outputs[name] = mech.describe(p)
         else:

@@ -12,6 +12,7 @@ from .friction_iteration import friction_iteration
 from .machine import Machine
 from .motion import node_tables, startup, steady_cycle, steps_per_cycle
 from ..numerics import Numerics, cumulative_simpson
+from .. import errata
 from .reduction import Inertias, reduced_inertia, textbook_inertia_approximation
 from .resistance import CONVENTIONS, Load, mean_over_cycle, resisting_moment
 
@@ -185,6 +186,9 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
         "rim": fw.rim(flywheel_inertia, fw.disk(flywheel_inertia, width_ratio, density).diameter, density)
         if flywheel_inertia > 0 else None,
         "balancing_moment": tables.balancing_moment,
+        "errata": [errata.gutyar_squares(work, cycle.inertia_ii, omega_mean, delta, rows[1]["inertia"]),
+                   errata.wittenbauer_axes(omega_mean, delta),
+                   errata.flywheel_part(required, machine.inertias.J1, group_i_existing - machine.inertias.J1)],
     }
     if with_numerics:
         result["numerics"] = Numerics(

@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..mechanisms import GeometryError
+from .. import errata
 from .crank_slider import ForceAnalysis, cross
 
 
@@ -125,4 +126,11 @@ def wear_report(analysis: ForceAnalysis, parts: dict, cycles: float) -> dict:
                                   parts["piston_length"], parts["piston_diameter"], side),
         "mean_pressure_23": p23, "mean_pressure_34": p34, "pressed_side": side,
         "book": BOOK_WEAR, "allowed": [150.0, 180.0],
+        "errata": [*errata.wear_example(*_crank_and_rod(analysis.points)),
+                   errata.piston_pressure(float(np.nanmax(pressed)), parts["piston_length"], parts["piston_diameter"])],
     }
+
+
+def _crank_and_rod(points: dict) -> tuple[float, float]:
+    """l₁ = OA and l₂ = AB from the joints' positions (rigid links: any angle)."""
+    return (float(np.hypot(*(points["A"][0] - points["O"][0]))), float(np.hypot(*(points["B"][0] - points["A"][0]))))

@@ -3,10 +3,10 @@
  *   functions       outputs against the crank angle φ in degrees, special positions as dashed lines,
  *                   overlay tables (other λ) as dashed traces
  *   approximations  each exact transfer function with its textbook approximation, one row each
- *   harmonics       amplitudes of the harmonics of u₃₁ as bars
+ *   harmonics       amplitudes of the harmonics of u₃₁ (or u′₃₁, harmonics_du31) as bars
  * Values the API leaves null (singular positions) are gaps in the curves.
  */
-import { axisTitle, degrees, exactName, formatNumber, symbol, unitOf, unitText } from "../../common/view/notation.js";
+import { axisTitle, degrees, exactName, formatNumber, formatQuantity, symbol, unitOf, unitText } from "../../common/view/notation.js";
 import { baseLayout, GRID, phiAxis, TRACE_COLORS, traceDashes, valueAxis } from "../../common/view/plot_style.js";
 import { specialPositions } from "../../common/model/positions_table.js";
 
@@ -17,7 +17,8 @@ const AMPLITUDE_FLOOR = 0.01;   // the amplitude axis reaches at least 1 % of th
 
 /** Plotly figure {data, layout} of a panel (content/scenes "panels" entry) for the answer's table. */
 export function panelFigure(panel, table, overlays, texts) {
-  if (panel.outputs.includes("harmonics")) return harmonicsFigure(table, texts);
+  const spectrum = panel.outputs.find(isSpectrum);
+  if (spectrum) return harmonicsFigure(table, table.outputs[spectrum], texts);
   if (panel.outputs.some((name) => name.endsWith("_approx"))) return approximationsFigure(panel, table, texts);
   return functionsFigure(panel, table, overlays, texts);
 }
@@ -29,6 +30,23 @@ export function approximationErrors(panel, table, { t, lang }) {
   const parts = exactOutputs(panel).map((name) =>
     `${symbol(name)} ${formatNumber(errors[name], lang)} ${unitText(unitOf(table.mechanism, name), t)}`);
   return `${t.max_error}: ${parts.join("; ")}`;
+}
+
+/** True for an output that is a spectrum (harmonics of u₃₁ or of u′₃₁), drawn as bars without a cursor. */
+export function isSpectrum(name) {
+  return name === "harmonics" || name === "harmonics_du31";
+}
+
+/**
+ * Eremyants (2.17)'s claim on the 4φ harmonic of u′₃₁, checked: "A₄/A₁ = 1,01 %: the book says < 0,5 %
+ * (printed 1/(8λ³) = 0,463 %); corrected 1/(4λ³) = 0,926 %", or "" without the claim (not a central crank-slider).
+ */
+export function harmonicClaim(panel, table, { t, lang }) {
+  const claim = panel.outputs.includes("harmonics_du31") ? table.outputs.harmonics_du31?.claim : undefined;
+  if (!claim) return "";
+  const percent = (value) => `${formatQuantity(100 * value, lang, 3)} %`;
+  return t.harmonic_claim.replace("{computed}", percent(claim.computed)).replace("{below}", percent(claim.claimed_below))
+    .replace("{printed}", percent(claim.printed)).replace("{corrected}", percent(claim.corrected));
 }
 
 /** The exact position and transfer functions a panel shows (not approximations, errors or spectra). */
@@ -124,11 +142,10 @@ function approximationsFigure(panel, table, texts) {
   return { data, layout };
 }
 
-function harmonicsFigure(table, texts) {
+function harmonicsFigure(table, spectrum, texts) {
   const { t } = texts;
-  const spectrum = table.outputs.harmonics;
   const unit = unitText(unitOf(table.mechanism, spectrum.output), t);
-  const peak = Math.max(...table.outputs[spectrum.output].map((v) => Math.abs(v ?? 0)));
+  const peak = Math.max(...(table.outputs[spectrum.output] ?? spectrum.amplitude).map((v) => Math.abs(v ?? 0)));
   const top = 1.1 * Math.max(...spectrum.amplitude, AMPLITUDE_FLOOR * peak);
   return {
     data: [{ type: "bar", x: spectrum.k, y: spectrum.amplitude, marker: { color: LINK_COLORS.s },

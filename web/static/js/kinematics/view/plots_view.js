@@ -10,7 +10,7 @@
  */
 import { element } from "../../common/view/dom.js";
 import { moveCurves, roomy } from "../../common/view/family_plot.js";
-import { approximationErrors, exactOutputs, panelFigure } from "./figures.js";
+import { approximationErrors, exactOutputs, harmonicClaim, isSpectrum, panelFigure } from "./figures.js";
 import { geometryMessage } from "../../common/view/messages.js";
 import { formatNumber, symbol } from "../../common/view/notation.js";
 import { PanelScheduler } from "../../common/view/panel_scheduler.js";
@@ -109,13 +109,16 @@ export class PlotsView {
       element("div", { className: "graph-frame" }, graph, cursor.element), caption,
       ...(spec.note ? [element("p", { className: "note", rich: spec.note[this.texts.lang] })] : []));
     return { id, spec, graph, cursor, caption, figure, stale: false,
-      hasCursor: !spec.outputs.includes("harmonics") };
+      hasCursor: !spec.outputs.some(isSpectrum) };
   }
 
   #render(panel) {
     let { data, layout } = explorable(panelFigure(panel.spec, this.plotted, panel.overlays, this.texts),
       this.ghosts.traces(panel.id));
-    if (!panel.captioned) panel.caption.textContent = approximationErrors(panel.spec, this.table, this.texts);
+    if (!panel.captioned) {
+      panel.caption.textContent = approximationErrors(panel.spec, this.table, this.texts)
+        || harmonicClaim(panel.spec, this.table, this.texts);
+    }
     panel.captioned = true;
     if (this.plotted !== this.table) {            // a preview
       if (moveCurves(panel.graph, data)) return Promise.resolve();

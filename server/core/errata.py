@@ -1,0 +1,116 @@
+"""The sources' misprints that change a number, each printed beside corrected with the value each gives for
+the scene's own data (one row format for every scene, as the bearings' (2.4), (2.13), (2.16)):
+
+    {"key", "source", "equation", "printed_value", "corrected_value", "unit"}
+
+``key`` names the formulas and the reason (the interface texts erratum_printed_<key>, erratum_corrected_<key>,
+erratum_why_<key>), ``source`` the source (source_<source>),
+``unit`` the unit (erratum_unit_<unit>).  The computations use the corrected forms; these rows only show
+what the printed ones would give.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def row(key: str, source: str, equation: str, printed_value: float, corrected_value: float, unit: str) -> dict:
+    """One erratum: the value of the printed formula and of the corrected one (the formulas themselves are
+    interface texts, erratum_printed_<key> and erratum_corrected_<key>, read in the page's language)."""
+    return {"key": key, "source": source, "equation": equation,
+            "printed_value": float(printed_value), "corrected_value": float(corrected_value), "unit": unit}
+
+
+ROUNDING = 1e-12   # a mean below this fraction of the function's largest value is rounding: shown as 0
+
+
+def _cycle_mean(values: np.ndarray) -> float:
+    """Mean over a uniform open grid of one period (spectrally exact for trigonometric polynomials); a mean
+    that is rounding alone (below ROUNDING of the largest |value|) is 0."""
+    mean = float(np.mean(values))
+    return 0.0 if abs(mean) <= ROUNDING * float(np.max(np.abs(values))) else mean
+
+
+def variable_inertia(m3: float, l1: float, lam: float, points: int = 720) -> list[dict]:
+    """Eremyants (3.38)/(3.39), the crank-slider's variable part J̃ = J_M − J̄ of m₃u₃₁² (λ = l₂/l₁): as
+    printed (3.39) −(m₃l₁²/2)[1 − sin²φ(1 − (2/λ)cos φ)] has the mean −m₃l₁²/4, not zero; the corrected
+    (3.39*) −(m₃l₁²/2)[1 − 2sin²φ(1 − (2/λ)cos φ)] has mean 0.  (3.38) printed lacks the factor 2 and the
+    sin φ of the bracket: −(m₃l₁²/2)[1 + 1/(4λ²) − sin²(1 − (2/λ)cos φ) + cos²φ/λ²] (the OCR's "sin²" read as
+    sin²φ); (3.38*) −(m₃l₁²/2)[1 + 1/(4λ²) − 2sin²φ(1 − (2/λ)cos φ + cos²φ/λ²)].  Each row gives the cycle
+    mean, kg·m²: a variable part's mean is zero."""
+    phi = np.arange(points) * 2 * np.pi / points
+    s2, c = np.sin(phi) ** 2, np.cos(phi)
+    k = m3 * l1**2 / 2
+    printed_39 = -k * (1 - s2 * (1 - 2 / lam * c))
+    fixed_39 = -k * (1 - 2 * s2 * (1 - 2 / lam * c))
+    printed_38 = -k * (1 + 1 / (4 * lam**2) - s2 * (1 - 2 / lam * c) + c**2 / lam**2)
+    fixed_38 = -k * (1 + 1 / (4 * lam**2) - 2 * s2 * (1 - 2 / lam * c + c**2 / lam**2))
+    return [row("variable_inertia_38", "eremyants", "(3.38)", _cycle_mean(printed_38), _cycle_mean(fixed_38),
+                "mean_kgm2"),
+            row("variable_inertia_39", "eremyants", "(3.39)", _cycle_mean(printed_39), _cycle_mean(fixed_39),
+                "mean_kgm2")]
+
+
+def slotted_viscous(omega: float, l1: float, lam: float, points: int = 720) -> list[dict]:
+    """Eremyants (3.50)/(3.53), the slotted link's viscous moment M_T = βωu₂₁² (λ = l₀/l₁), as cycle means of
+    M_T/(βω) in m² (any β): (3.50) printed l₁²λ sin²φ/(1 + λ² + 2λcos φ), corrected (3.50*) with λ²; (3.53) at
+    λ = 1 printed βω² sin²(φ/2), i.e. M_T/(βω) = ω sin²(φ/2) (mean ω/2, in s⁻¹, not m²), corrected (3.53*)
+    βωl₁² sin²(φ/2) (mean l₁²/2)."""
+    phi = np.arange(points) * 2 * np.pi / points
+    shape = np.sin(phi) ** 2 / (1 + lam**2 + 2 * lam * np.cos(phi))
+    half = np.sin(phi / 2) ** 2
+    return [row("slotted_viscous_50", "eremyants", "(3.50)", _cycle_mean(l1**2 * lam * shape),
+                _cycle_mean(l1**2 * lam**2 * shape), "per_beta_omega"),
+            row("slotted_viscous_53", "eremyants", "(3.53), λ = 1", _cycle_mean(omega * half),
+                _cycle_mean(l1**2 * half), "per_beta_omega")]
+
+
+def gutyar_squares(work: np.ndarray, inertia_ii: np.ndarray, omega_mean: float, delta: float,
+                   corrected: float) -> dict:
+    """Lecture 10 (L27), Gutyar's curve pieces ΔT − I_II ω_max²/2, ΔT − I_II ω_min²/2 printed without the
+    squares: I_I from the printed pieces (their extremes over the whole cycle) beside
+    the corrected method's I_I (``corrected``), kg·m²."""
+    w_max, w_min = (1 + delta / 2) * omega_mean, (1 - delta / 2) * omega_mean
+    swing = float(np.max(work - 0.5 * inertia_ii * w_max) - np.min(work - 0.5 * inertia_ii * w_min))
+    return row("gutyar_squares", "lecture10", "(L27)", swing / (delta * omega_mean**2), corrected, "kgm2")
+
+
+def wittenbauer_axes(omega_mean: float, delta: float) -> dict:
+    """Lecture 10 (L28)–(L29): the tangent of slope tg ψ_max = ω_max²/2 (energy T on y, inertia I on x, μ_T =
+    μ_I = 1); the text places y_I = μ_I·I_I, x_I = μ_T·T_нач, i.e. I on y: the same tangent would then have
+    the slope 2/ω_max², J/(kg·m²) against (kg·m²)/J."""
+    w_max = (1 + delta / 2) * omega_mean
+    return row("wittenbauer_axes", "lecture10", "(L28)–(L29)", 2 / w_max**2, w_max**2 / 2, "slope")
+
+
+def flywheel_part(required: float, crank: float, rotor_reduced: float) -> dict:
+    """Lecture 10 (L7): I_м = I_I − (I_рот + I_ред + I₀₁); the print I_м = I_I − (I_ред + I₀₁ + I_м) has the
+    flywheel on both sides and no rotor, which solves to I_м = (I_I − I₀₁)/2 (the reducer taken with the crank
+    here, I_ред = 0 as in the app's group I = J₁ + J_rotor·i²), kg·m²."""
+    return row("flywheel_part", "lecture10", "(L7)", (required - crank) / 2, required - crank - rotor_reduced, "kgm2")
+
+
+def wear_example(l1: float, l2: float, steps: int = 13) -> list[dict]:
+    """Chaika–Vasylenko, Table 4.3 and the §4.3 example: u₂₁(30°) = λ cos φ/√(1 − λ²sin²φ) (λ = l₁/l₂) is
+    printed 0.2187 where the formulas of §2.3.1 give 0.2182 for the book's mechanism; the trapezoid step over
+    the 13 table rows Δφ₁ = 2π/(N_p − 1) is printed 0.432, the formula gives π/6 = 0.5236."""
+    lam, phi = l1 / l2, np.radians(30.0)
+    u21 = lam * np.cos(phi) / np.sqrt(1 - (lam * np.sin(phi)) ** 2)
+    return [row("u21_slip", "chaika_vasylenko", "4.3: φ₁ = 30°", 0.2187, u21, "none"),
+            row("trapezoid_step", "chaika_vasylenko", "4.3: Δφ₁", 0.432, 2 * np.pi / (steps - 1), "rad")]
+
+
+def piston_pressure(force: float, length: float, diameter: float) -> dict:
+    """Chaika–Vasylenko (4.16): p_max = 2F_e/(π l_p d_p) printed; with d_p a diameter (as (4.4), (4.20) and the
+    example's 4R/(π L_p D_p)) it is 4F_e/(π l_p d_p), Pa, for the largest piston side force."""
+    return row("piston_pressure", "chaika_vasylenko", "(4.16)", 2 * force / (np.pi * length * diameter),
+               4 * force / (np.pi * length * diameter), "Pa")
+
+
+def reduction(mechanism: str, params: dict, m3: float, omega: float) -> list[dict]:
+    """The misprints of the reduction formulas of the mechanism: Eremyants (3.38)/(3.39) for the crank-slider
+    (λ = l₂/l₁), (3.50)/(3.53) for the slotted link (λ = l₀/l₁); none for the others."""
+    if mechanism == "slider_crank":
+        return variable_inertia(m3, params["l1"], params["l2"] / params["l1"])
+    if mechanism == "slotted_link":
+        return slotted_viscous(omega, params["l1"], params["l0"] / params["l1"])
+    return []
