@@ -41,7 +41,7 @@ from ..core.kinetostatics.virtual_work import reduced_moment
 from ..core.mechanisms import MECHANISMS, GeometryError, Notice
 from ..core.mechanisms.general import GENERAL_OUTPUTS, GeneralMechanism, compute_general
 from ..core.structure.masses import MassModel
-from .messages import localise_numerics, localise_study, translate
+from .messages import localise_numerics, localise_study, special_text, translate
 from .schemas import KinematicsRequest, KinematicsResponse
 from .schemas_angular import AngularRequest
 from .schemas_bearings import BearingsRequest
@@ -103,6 +103,8 @@ def kinematics(request: KinematicsRequest, lang: str) -> Answer:
     if request.mechanism == "general":
         result = compute_general(request.linkage.model_dump(exclude_none=True), request.outputs, phi, request.n,
                                  None if request.plan is None else request.plan.model_dump())
+        if "special" in result.outputs:           # each special position said in the reader's language too
+            result.outputs["special"] = [sp | {"text": special_text(sp, lang)} for sp in result.outputs["special"]]
         return kinematics_answer(result, GENERAL_OUTPUTS, lang)
     result = compute_kinematics(request.mechanism, request.params, request.outputs, phi=phi, n=request.n)
     return kinematics_answer(result, MECHANISMS[request.mechanism].outputs, lang)

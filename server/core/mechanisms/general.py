@@ -9,6 +9,8 @@ sentence naming the group and the angles; where it closes nowhere the mechanism 
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..structure.analysis import analyse
@@ -39,6 +41,22 @@ GENERAL_OUTPUTS = (
 )
 
 
+@dataclass(frozen=True)
+class GroupSpecial(SpecialPosition):
+    """A special position of one group as data: the group's number (as in linkage.groups), its kind, and the
+    link or slide it concerns (output reversals); the English ``description`` is for scripts, the pages say it
+    from these fields (server/api/messages.py: special_text)."""
+
+    group: int = 0
+    group_kind: str = ""
+    link: int | None = None
+    slide: str | None = None
+
+    def as_dict(self) -> dict:
+        return super().as_dict() | {"group": self.group, "group_kind": self.group_kind, "link": self.link,
+                                    "slide": self.slide}
+
+
 class GeneralMechanism(Mechanism):
     """A linkage given as data (structure/spec.py); ``params`` are unused (the lengths are in the data)."""
 
@@ -67,6 +85,13 @@ class GeneralMechanism(Mechanism):
     def check_closure(self, comp: Composition) -> None:
         """Where a group closes nowhere on ``comp``'s angles, look again over the whole turn at 0.5°; refuse
         the linkage if it closes nowhere there either."""
+        for k, group in enumerate(comp.groups):
+            if group.undetermined is not None and comp.phi.size > 1 and group.undetermined.all():
+                raise GeometryError(f"linkage.groups.{k}", f"the RPR group's block joint {self.linkage.groups[k].outer[0]} "
+                                    f"lies on the lever's pivot {self.linkage.groups[k].outer[1]} at every crank angle: "
+                                    "the slot through the pivot may point any way, the lever's angle is not "
+                                    "determined (the lever is free)", "rpr_block_on_pivot", group=k,
+                                    block=self.linkage.groups[k].outer[0], pivot=self.linkage.groups[k].outer[1])
         if all(group.closes.any() for group in comp.groups):
             return
         turn = compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS))
@@ -151,7 +176,7 @@ def assembly_notices(comp: Composition) -> list[Notice]:
     return notes
 
 
-def special_positions(comp: Composition) -> list[SpecialPosition]:
+def special_positions(comp: Composition) -> list[GroupSpecial]:
     """Per group: where it stops closing (limit of assembly) and where its determinant changes sign or is
     smallest (dead position: the group's links in line, the analogs unbounded)."""
     out = []
@@ -159,22 +184,23 @@ def special_positions(comp: Composition) -> list[SpecialPosition]:
     for k, group in enumerate(comp.groups):
         closes = group.closes
         for edge in np.flatnonzero(np.diff(closes.astype(int))):
-            out.append(SpecialPosition("limit_of_assembly", float(phi[edge + 1 if closes[edge] else edge]),
-                                       f"group {k} ({group.kind}): limit of assembly"))
+            out.append(GroupSpecial("limit_of_assembly", float(phi[edge + 1 if closes[edge] else edge]),
+                                    f"group {k} ({group.kind}): limit of assembly", None, k, group.kind))
         det = np.where(closes, group.determinant, np.nan)
         if np.isfinite(det).any():
             worst = int(np.nanargmin(np.abs(det)))
-            out.append(SpecialPosition("smallest_determinant", float(phi[worst]),
-                                       f"group {k} ({group.kind}): closest to a dead position (|sin| of the "
-                                       "angle between its links or guides)", float(abs(det[worst]))))
+            out.append(GroupSpecial("smallest_determinant", float(phi[worst]),
+                                    f"group {k} ({group.kind}): closest to a dead position (|sin| of the "
+                                    "angle between its links or guides)", float(abs(det[worst])), k, group.kind))
             signs = np.sign(det)
             for edge in np.flatnonzero(signs[:-1] * signs[1:] < 0):
-                out.append(SpecialPosition("dead_position", float(phi[edge]),
-                                           f"group {k} ({group.kind}): dead position, its links in line"))
+                out.append(GroupSpecial("dead_position", float(phi[edge]),
+                                        f"group {k} ({group.kind}): dead position, its links in line", None, k,
+                                        group.kind))
     return out
 
 
-def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[SpecialPosition]:
+def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[GroupSpecial]:
     """Output reversals (extreme positions: a slider's dead centre, a rocker's extreme): where a link's θ′ or
     a slide's s′ changes sign on the 0.5° grid, refined by Newton's method on the closed-form analogs,
     φ ← φ − q′/q″ (quadratic: four steps take the grid's 0.5° to round-off)."""
@@ -183,7 +209,8 @@ def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[Speci
         quantities = [(f"link {link}", "links", link) for link in group.links] + \
                      [(f"slide {name}", "slides", name) for name in group.slides]
         for label, table, key in quantities:
-            found += [(k, label, table, key, start) for start in sign_changes(turn.phi, analogs(turn, table, key)[1])]
+            found += [((k, group.kind), label, table, key, start)
+                      for start in sign_changes(turn.phi, analogs(turn, table, key)[1])]
     if not found:
         return []
     phi = np.array([f[4] for f in found])
@@ -193,10 +220,11 @@ def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[Speci
                          for i, (_, _, t, key, _) in enumerate(found)])
         phi = phi - step
     fine = compose(linkage, phi)
-    return [SpecialPosition("output_reversal", wrap_angle(phi[i]),
-                            f"group {k}: {label} reverses (its first analog is zero): an extreme position",
-                            float(analogs(fine, table, key)[0][i]))
-            for i, (k, label, table, key, _) in enumerate(found)]
+    return [GroupSpecial("output_reversal", wrap_angle(phi[i]),
+                         f"group {k}: {label} reverses (its first analog is zero): an extreme position",
+                         float(analogs(fine, table, key)[0][i]), k, kind,
+                         key if table == "links" else None, key if table == "slides" else None)
+            for i, ((k, kind), label, table, key, _) in enumerate(found)]
 
 
 def sign_changes(phi: np.ndarray, d1: np.ndarray) -> list[float]:

@@ -242,7 +242,7 @@ function showAnswer() {
 function showSpecial() {
   const shown = state.refusal || !state.table;
   renderSpecial($("editor-special"), $("editor-warnings"), shown ? [] : state.special ?? [], shown ? [] : state.table.warnings,
-    t, lang, (phi) => setAngle(frameOf(state.table, phi)));
+    lang, (phi) => setAngle(frameOf(state.table, phi)));
 }
 
 function askPlan() {
