@@ -301,6 +301,7 @@ def _general_forces(request: ForcesRequest, lang: str) -> Answer:
     """A general mechanism by structural groups over one turn (core/kinetostatics/groups), its free bodies at
     ``free_body_phi``; the crank check (3.2) against the reduced moment by power equality is always in it."""
     mechanism = GeneralMechanism(request.linkage.model_dump(exclude_none=True))
+    mechanism.require_crank("the kinetostatics")
     masses = request.masses.model() if request.masses is not None else MassModel()
     pairs = {name: PairFriction(p.f, p.r) for name, p in request.pair_friction.items()}
     result = analyse_groups(mechanism, masses, np.linspace(0.0, 2 * np.pi, request.n), request.loads.omega,

@@ -14,7 +14,7 @@ import { renderStructure } from "./view/structure.js";
 import { mechanismQuery, readMechanism } from "./model/address.js";
 import { guideShapes, linkShapes, stateAt } from "./model/geometry.js";
 import { PICKS, addFrameGuide, addFrameJoint, addGroup, addLinkGuide, addPoint, emptyLinkage, guides, joints, links,
-  normalised, requestLinkage, setCrank } from "./model/linkage.js";
+  normalised, requestLinkage, setCrank, setSlider } from "./model/linkage.js";
 import { UndoHistory } from "./model/history.js";
 import { LatestRequest, refusalText, refusedGroup } from "./model/service.js";
 import { frameOf, planRequest, quantities, specialRequest, tableRequest } from "./model/table.js";
@@ -83,12 +83,15 @@ function prompt() {
   const { mode, picked, linkage } = state;
   let text = t[`editor_prompt_${mode}`] ?? "";
   if (mode === "crank" && picked.length) text = t.editor_prompt_crank_pin;
+  if (mode === "slider" && picked.length) text = t.editor_prompt_slider_joint;
   if (PICKS[mode]) {
     const next = PICKS[mode][picked.length];
     text = `${mode}: ${t[`editor_prompt_pick_${next}`].replace("{n}", String(picked.length + 1))}`;
     if (picked.length) text += ` (${picked.join(", ")})`;
   }
-  if (mode !== "select" && mode !== "joint" && mode !== "guide" && !linkage.input && mode !== "crank") text = t.editor_prompt_crank_first;
+  if (mode !== "select" && mode !== "joint" && mode !== "guide" && !linkage.input && mode !== "crank" && mode !== "slider") {
+    text = t.editor_prompt_crank_first;
+  }
   $("editor-prompt").textContent = text;
 }
 
@@ -101,6 +104,7 @@ function place(p) {
   if (mode === "joint") addFrameJoint(linkage, p);
   else if (mode === "guide") addFrameGuide(linkage, p);
   else if (mode === "crank" && state.picked.length === 1) setCrank(linkage, state.picked[0], p);
+  else if (mode === "slider" && state.picked.length === 1) setSlider(linkage, state.picked[0], p, current().guideAt(state.picked[0]));
   else if (PICKS[mode]?.[state.picked.length] === "place") {
     const s = current();
     addGroup(linkage, mode, state.picked, p, (name) => s.joints[name], (name) => s.guideAt(name));
@@ -121,7 +125,7 @@ function finishPick() {
 /** The next click places something (a frame element, the crank's pin, a group's inner joint, a point). */
 function placing() {
   const { mode, picked } = state;
-  return ["joint", "guide", "point", "link_guide"].includes(mode) || (mode === "crank" && picked.length === 1)
+  return ["joint", "guide", "point", "link_guide"].includes(mode) || ((mode === "crank" || mode === "slider") && picked.length === 1)
     || PICKS[mode]?.[picked.length] === "place";
 }
 
@@ -147,7 +151,10 @@ function pickJoint(name, at) {
 function pickGuide(name, at) {
   const { mode, picked } = state;
   if (placing()) place(at);
-  else if (PICKS[mode]?.[picked.length] === "guide" && !picked.includes(name)) {
+  else if (mode === "slider" && !picked.length && name in state.linkage.frame.guides) {
+    picked.push(name);
+    afterPick();
+  } else if (PICKS[mode]?.[picked.length] === "guide" && !picked.includes(name)) {
     picked.push(name);
     afterPick();
   }
@@ -284,7 +291,7 @@ function fillQuantities() {
 
 function drawPlot() {
   const q = state.quantities?.find((item) => item.id === $("editor-quantity").value);
-  plot.draw(state.table?.phi ?? [], q, state.k * DEG);
+  plot.draw(state.table?.phi ?? [], q, sliderInput() ? state.table.phi[state.k] : state.k * DEG, sliderInput());
 }
 
 /* ---- drawing and animation ---- */
@@ -292,7 +299,8 @@ function drawPlot() {
 function draw() {
   const { linkage, table } = state;
   const s = current();
-  const clickable = PICKS[state.mode]?.[state.picked.length] ?? (state.mode === "crank" ? "joint" : null);
+  const clickable = PICKS[state.mode]?.[state.picked.length]
+    ?? ({ crank: "joint", slider: state.picked.length ? null : "guide" }[state.mode] ?? null);
   const jointNames = [...joints(linkage).keys()];
   const traces = table && !state.refusal ? [...state.traced].filter((n) => table.outputs.joints[n])
     .map((n) => table.outputs.joints[n].map(([x, y]) => (x === null ? null : [x, y]))) : [];
@@ -303,7 +311,14 @@ function draw() {
     links: table && !state.refusal ? linkShapes(linkage, table, s) : [],
     traces, picked: new Set(state.picked), clickable,
   });
-  $("editor-phi-value").textContent = `φ = ${formatNumber(state.k, lang, 0)}°`;
+  const travel = sliderInput() && state.table ? state.table.phi[state.k] : undefined;
+  $("editor-phi-value").textContent = travel === undefined ? `φ = ${formatNumber(state.k, lang, 0)}°`
+    : `s = ${formatNumber(travel, lang, 3)} ${t.units_m}`;
+}
+
+/** Whether the input link is a slider: the table's rows are then its travel s (m), not the crank's degrees. */
+function sliderInput() {
+  return state.linkage.input?.kind === "slider";
 }
 
 function setAngle(k) {

@@ -107,10 +107,21 @@ export class ElementList {
         ...(through ? [this.#number("x", () => through[0], (v) => { through[0] = v; }, { unit: t.units_m }),
           this.#number("y", () => through[1], (v) => { through[1] = v; }, { unit: t.units_m })] : []),
         this.#number(t.editor_angle, () => g.angle ?? 0, (v) => { g.angle = v; }, { degrees: true, unit: "°", symbol: false }),
-        this.#remove(`${t.editor_remove} ${name}`, () => { delete linkage.frame.guides[name]; })));
+        this.#remove(`${t.editor_remove} ${name}`, () => {
+          delete linkage.frame.guides[name];
+          if (linkage.input?.guide === name) linkage.input = null;
+        })));
     }
     const crank = linkage.input;
-    if (crank) {
+    if (crank?.kind === "slider") {
+      rows.push(element("div", { className: "element-row", "data-element": "crank" },
+        element("strong", {}, `${t.editor_input_slider} ${crank.link}: `,
+          element("span", { translate: false, textContent: `${crank.joint} (${t.editor_guide_word} ${crank.guide})` })),
+        this.#number("s_min", () => crank.travel[0], (v) => { crank.travel[0] = v; }, { slider: true, unit: t.units_m }),
+        this.#number("s_max", () => crank.travel[1], (v) => { crank.travel[1] = v; }, { slider: true, unit: t.units_m }),
+        ...this.#points(crank, linkage),
+        this.#remove(`${t.editor_remove} ${t.editor_input_slider}`, () => { linkage.input = null; })));
+    } else if (crank) {
       const sense = element("select", { "aria-label": t.editor_sense },
         element("option", { value: "1", textContent: t.editor_ccw }), element("option", { value: "-1", textContent: t.editor_cw }));
       sense.value = String(crank.sense ?? 1);
