@@ -106,11 +106,11 @@ export function setCrank(linkage, pivot, pin) {
 
 /**
  * The input slider on the frame guide `guide` {point, angle}, its joint where the student clicked (projected
- * on the guide): s measured from the guide's point, the travel ±50 mm about the click (edited in the list).
+ * on the guide): s measured from the guide's point, the travel 100 mm on from the click (edited in the list).
  */
 export function setSlider(linkage, guide, at, line) {
   const s = mm((snap(at[0]) - line.point[0]) * Math.cos(line.angle) + (snap(at[1]) - line.point[1]) * Math.sin(line.angle));
-  linkage.input = { kind: "slider", link: 1, guide, joint: freeName(linkage), travel: [mm(s - 0.05), mm(s + 0.05)] };
+  linkage.input = { kind: "slider", link: 1, guide, joint: freeName(linkage), travel: [s, mm(s + 0.1)] };
 }
 
 const cross = (a, b) => a[0] * b[1] - a[1] * b[0];
