@@ -10,7 +10,7 @@ page has no English left. A second load at phone size (the mechanism given in th
 passes axe-core, saves the mechanism as a file and opens another from a file. A third builds a mechanism
 driven by a slider (an input slider on a frame guide and an RRR group to a frame joint): W = 1 with the
 slider's prismatic pair, the cursor shows s in metres, the special positions are said; then the slider-driven
-preset loads.
+preset loads; on the crank-slider preset the rod's length is also shown and set as λ = l₂/l₁ and r/l.
 """
 from __future__ import annotations
 
@@ -250,6 +250,9 @@ def test_a_slider_driven_mechanism(browser_page):
     assert page.inner_text("#editor-mobility") == "W = 3·3 − 2·4 − 0 = 1"
     assert page.inner_text("#editor-formula") == "I(0,1) → II₁(2,3)"
     assert page.inner_text("#editor-phi-value").startswith("s = 0.1")      # the travel 0.1…0.2 m
+    assert page.inner_text("#editor-phi-label") == interface_texts("en")["editor_travel_s"]
+    plans_ready(page)
+    assert page.inner_text("#editor-plans .hint").startswith("s = 0.1")    # the plans at s, with v₁ and a₁
     page.wait_for_function("() => document.querySelectorAll('#editor-special li').length > 0")
     assert "link 3 reverses" not in page.inner_text("#editor-special")      # the crank turns one way
     frame = page.inner_html("#editor-drawing .links")
@@ -263,4 +266,15 @@ def test_a_slider_driven_mechanism(browser_page):
     settled(page, before)
     assert page.inner_text("#editor-formula") == "I(0,1) → II₁(2,3)"
     assert page.get_attribute("#editor-drawing", "data-state") == "ready"
+
+    before = answers(page)                 # a crank again: the rod's length also as λ = l₂/l₁ and r/l
+    page.select_option("#editor-preset", "slider_crank")
+    settled(page, before)
+    assert page.inner_text("#editor-phi-label") == "Crank angle φ"
+    ratio = page.locator('[data-group="0"] input[type="text"][aria-label="λ = l{AB}/l{OA}"]')
+    inverse = page.locator('[data-group="0"] input[type="text"][aria-label="r/l = l{OA}/l{AB}"]')
+    assert number(ratio.input_value()) == pytest.approx(3.0) and number(inverse.input_value()) == pytest.approx(1 / 3, abs=5e-4)
+    act(page, lambda: (ratio.fill("4"), ratio.press("Enter")))
+    rod = page.locator('[data-group="0"] > label.field input[type="text"]').first
+    assert number(rod.input_value()) == pytest.approx(0.4) and number(inverse.input_value()) == pytest.approx(0.25)
     assert [p for p in page.problems if not REFUSED.search(p)] == []

@@ -25,6 +25,9 @@ const lang = document.documentElement.lang;
 const t = JSON.parse(document.getElementById("interface-texts").textContent);
 const presets = JSON.parse(document.getElementById("editor-presets").textContent);
 const $ = (id) => document.getElementById(id);
+/** The crank's words as the page was served (notation with real subscripts), to put back after a slider. */
+const CRANK_LABELS = Object.fromEntries(["editor-phi-label", "editor-omega1-label", "editor-epsilon1-label"]
+  .map((id) => [id, [...$(id).childNodes].map((node) => node.cloneNode(true))]));
 const DEG = Math.PI / 180;
 const TURN_DEGREES = 360;
 const SPIN = 60;                               // degrees of crank per second of animation
@@ -224,7 +227,19 @@ function changed(structural) {
   });
 }
 
+/** The input's words: the crank's angle φ and ω₁, ε₁, or the input slider's s and v₁, a₁. */
+function inputLabels() {
+  const slider = sliderInput();
+  const words = { "editor-phi-label": t.editor_travel_s, "editor-omega1-label": t.editor_v1, "editor-epsilon1-label": t.editor_a1 };
+  for (const [id, text] of Object.entries(words)) {
+    if (slider) $(id).textContent = text;
+    else $(id).replaceChildren(...CRANK_LABELS[id].map((node) => node.cloneNode(true)));
+  }
+  $("editor-play").textContent = state.playing ? t.editor_pause : slider ? t.editor_play_slider : t.editor_play;
+}
+
 function showAnswer() {
+  inputLabels();
   const { table, refusal } = state;
   const reason = refusal ? refusalText(refusal, t) : null;
   const refusals = new Map(refusal && refusedGroup(refusal) !== null ? [[refusedGroup(refusal), reason]] : []);
@@ -249,7 +264,7 @@ function showAnswer() {
 function showSpecial() {
   const shown = state.refusal || !state.table;
   renderSpecial($("editor-special"), $("editor-warnings"), shown ? [] : state.special ?? [], shown ? [] : state.table.warnings,
-    lang, (phi) => setAngle(frameOf(state.table, phi)));
+    lang, (phi) => setAngle(frameOf(state.table, phi)), sliderInput(), t.units_m);
 }
 
 function askPlan() {
@@ -276,7 +291,8 @@ function showPlans() {
     const read = parseDecimal($(id).value, lang);
     return read.error ? null : read.value;
   };
-  renderPlans($("editor-plans"), state.plan, t, lang, { velocity: scale("editor-mu-v"), acceleration: scale("editor-mu-a") });
+  renderPlans($("editor-plans"), state.plan, t, lang, { velocity: scale("editor-mu-v"), acceleration: scale("editor-mu-a") },
+    sliderInput());
 }
 
 function fillQuantities() {
@@ -344,7 +360,7 @@ function play(on) {
   state.playing = on;
   started = null;
   $("editor-play").setAttribute("aria-pressed", String(on));
-  $("editor-play").textContent = on ? t.editor_pause : t.editor_play;
+  inputLabels();
   if (on) requestAnimationFrame(frame);
   else setAngle(state.k);
 }
