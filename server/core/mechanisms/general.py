@@ -36,7 +36,8 @@ GENERAL_OUTPUTS = (
     OutputSpec("slides_d2", "m", "s″ = d²s/dφ²"),
     OutputSpec("structure", "1", "structural analysis: n, p₅, p₄, W, the structural formula, the class"),
     OutputSpec("special", "rad", "per group: limits of assembly, dead positions, the smallest |sin| of its "
-               "transmission angle, output reversals (extreme positions of its links and slides)"),
+               "transmission angle, output reversals (extreme positions of its links and slides); each with kind, "
+               "phi, group, group_kind, link or slide, value and text (in the request's language)"),
     OutputSpec("plan", "m/s, m/s²", "velocity and acceleration plans at one angle (request field `plan`)"),
 )
 

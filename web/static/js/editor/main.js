@@ -231,6 +231,7 @@ function changed(structural) {
 function inputLabels() {
   const slider = sliderInput();
   const words = { "editor-phi-label": t.editor_travel_s, "editor-omega1-label": t.editor_v1, "editor-epsilon1-label": t.editor_a1 };
+  $("editor-plot-heading").textContent = slider ? t.editor_plot_s : t.editor_plot;
   for (const [id, text] of Object.entries(words)) {
     if (slider) $(id).textContent = text;
     else $(id).replaceChildren(...CRANK_LABELS[id].map((node) => node.cloneNode(true)));
