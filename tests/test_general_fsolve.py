@@ -3,7 +3,7 @@
 The unknowns are every group's two (RRR: θ_i, θ_j; RRP: θ_i, s; RPR: θ_j, s; PRP: s₁, s₂; RPP: s_j, s_i); the
 equations every group's closure (RRR: B + l_BC e^{iθ_i} = D + l_DC e^{iθ_j}; RRP: B + l e^{iθ_i} = P + s u;
 RPR: B = D + (s + ie) e^{iθ_j}; PRP: P₁ + s₁u₁ = P₂ + s₂u₂; RPP: B = P + s_j u + s_i e^{iα}u), with the
-crank, the points and the guides placed from the unknowns here (written from the linkage's definition, not from
+crank (or the input slider), the points and the guides placed from the unknowns here (written from the linkage's definition, not from
 structure/), and solved together, from the code's answer perturbed by 1e-2 rad or m, to xtol 1e-14.  Every joint
 agrees to 1e-10 m: fsolve's root is as exact as round-off (|F| ~ 1e-16) allows, amplified by the Jacobian's
 inverse, at most 1/|det| = 5 per group here.
@@ -20,7 +20,7 @@ from scipy.optimize import fsolve
 from server.core.mechanisms.general import GeneralMechanism
 from server.core.structure.compose import compose
 from server.core.structure.presets import presets
-from server.core.structure.spec import KINDS
+from server.core.structure.spec import KINDS, SliderInput
 
 from test_structure_random import checked, linkages
 
@@ -40,9 +40,14 @@ def place(linkage, phi: float, x: np.ndarray):
             guides[a.name] = (origin + complex(a.along, a.across) * np.exp(1j * angle), angle + a.angle)
 
     crank = linkage.crank
-    theta1 = crank.angle0 + crank.sense * phi
-    frames[crank.link] = (joints[crank.pivot], theta1)
-    joints[crank.joint] = joints[crank.pivot] + crank.length * np.exp(1j * theta1)
+    if isinstance(crank, SliderInput):           # the input slider: A = P + s u, its frame along the guide
+        p, angle = guides[crank.guide]
+        joints[crank.joint] = p + phi * np.exp(1j * angle)
+        frames[crank.link] = (joints[crank.joint], angle)
+    else:
+        theta1 = crank.angle0 + crank.sense * phi
+        frames[crank.link] = (joints[crank.pivot], theta1)
+        joints[crank.joint] = joints[crank.pivot] + crank.length * np.exp(1j * theta1)
     attach(crank)
     for k, group in enumerate(linkage.groups):
         a, b = x[2 * k], x[2 * k + 1]
@@ -122,9 +127,11 @@ def check(linkage, phi: float) -> None:
 
 @pytest.mark.parametrize("name", sorted(presets()))
 def test_preset_positions(name):
-    linkage = GeneralMechanism(presets()[name]["linkage"]).linkage
-    for phi in np.linspace(0, 2 * np.pi, 24, endpoint=False) + 0.011:
-        check(linkage, phi)
+    """24 crank angles over the turn, or 24 positions over an input slider's travel."""
+    mech = GeneralMechanism(presets()[name]["linkage"])
+    start, end = mech.linkage.coordinate_range
+    for phi in np.linspace(start, end, 24, endpoint=False) + 0.011 * (end - start) / (2 * np.pi):
+        check(mech.linkage, phi)
 
 
 @pytest.mark.parametrize("kind", KINDS)

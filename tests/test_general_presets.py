@@ -1,6 +1,7 @@
 """The presets of content/mechanisms/ through the general path, and the four existing mechanisms reproduced.
 
-Every preset: W = 1 and its structural formula; assembled over the whole turn (721 angles); lengths and guide
+Every preset: W = 1 and its structural formula; assembled over the whole turn (721 angles; a slider-driven
+preset over its travel); lengths and guide
 constraints to 1e-12 m there; analogs against Richardson-extrapolated central differences of the exact
 positions at 24 angles (rel 1e-6, floor 1e-7; the presets stay at |det| ≥ 0.5, far from dead positions);
 positions against fsolve of each group's closure to 1e-10; the plans' equations to 1e-12.
@@ -23,9 +24,8 @@ FORMULAS = {
     "four_bar": "I(0,1) → II₁(2,3)", "shaping_machine": "I(0,1) → II₃(2,3) → II₂(4,5)",
     "whitworth": "I(0,1) → II₃(2,3) → II₂(4,5)", "jaw_crusher": "I(0,1) → II₁(2,3) → II₁(4,5)",
     "knuckle_press": "I(0,1) → II₁(2,3) → II₂(4,5)", "v_engine": "I(0,1) → II₂(2,3) → II₂(4,5)",
-    "lever_ram": "I(0,1) → II₃(2,3) → II₄(4,5)",
+    "lever_ram": "I(0,1) → II₃(2,3) → II₄(4,5)", "slider_driven_crank": "I(0,1) → II₁(2,3)",
 }
-TURN = np.linspace(0, 2 * np.pi, 721)
 
 
 def test_every_preset_is_listed_with_three_languages_and_a_source():
@@ -41,12 +41,13 @@ def test_preset(name):
     assert mech.structure["W"] == 1 and mech.structure["formula"] == FORMULAS[name]
     assert mech.structure["n"] == 1 + 2 * len(mech.linkage.groups)
     mech.check_geometry({})
-    comp = compose(mech.linkage, TURN)
+    turn = mech.turn(721)                       # the crank's turn, or the input slider's travel
+    comp = compose(mech.linkage, turn)
     assert all(g.closes.all() and np.min(np.abs(g.determinant)) >= 0.5 for g in comp.groups)
     assert max(constraint_residuals(mech.linkage, comp)) <= 1e-12
     for k in range(0, 721, 30):
         assert max(fsolve_errors(mech.linkage, comp, k)) <= 1e-10
-    for phi0 in TURN[::30] + 0.013:
+    for phi0 in turn[::30] + 0.013 * (turn[-1] - turn[0]) / (2 * np.pi):
         for label, error, size in analog_errors(mech.linkage, phi0):
             assert error <= 1e-6 * size + 1e-7, (label, phi0)
         plan = plans(compose(mech.linkage, np.array([phi0])), 12.0, 4.0)

@@ -43,7 +43,7 @@ from ..core.kinetostatics.virtual_work import reduced_moment
 from ..core.mechanisms import MECHANISMS, GeometryError, Notice
 from ..core.mechanisms.general import GENERAL_OUTPUTS, GeneralMechanism, compute_general
 from ..core.structure.masses import MassModel
-from .messages import localise_numerics, localise_study, translate
+from .messages import localise_numerics, localise_study, special_text, translate
 from .schemas import KinematicsRequest, KinematicsResponse
 from .schemas_angular import AngularRequest
 from .schemas_bearings import BearingsRequest
@@ -105,6 +105,8 @@ def kinematics(request: KinematicsRequest, lang: str) -> Answer:
     if request.mechanism == "general":
         result = compute_general(request.linkage.model_dump(exclude_none=True), request.outputs, phi, request.n,
                                  None if request.plan is None else request.plan.model_dump())
+        if "special" in result.outputs:           # each special position said in the reader's language too
+            result.outputs["special"] = [sp | {"text": special_text(sp, lang)} for sp in result.outputs["special"]]
         return kinematics_answer(result, GENERAL_OUTPUTS, lang)
     result = compute_kinematics(request.mechanism, request.params, request.outputs, phi=phi, n=request.n)
     return kinematics_answer(result, MECHANISMS[request.mechanism].outputs, lang)
@@ -319,6 +321,7 @@ def _general_forces(request: ForcesRequest, lang: str) -> Answer:
     """A general mechanism by structural groups over one turn (core/kinetostatics/groups), its free bodies at
     ``free_body_phi``; the crank check (3.2) against the reduced moment by power equality is always in it."""
     mechanism = GeneralMechanism(request.linkage.model_dump(exclude_none=True))
+    mechanism.require_crank("the kinetostatics")
     masses = request.masses.model() if request.masses is not None else MassModel()
     pairs = {name: PairFriction(p.f, p.r) for name, p in request.pair_friction.items()}
     result = analyse_groups(mechanism, masses, np.linspace(0.0, 2 * np.pi, request.n), request.loads.omega,

@@ -177,6 +177,26 @@ def translate(notice: Notice, lang: str) -> str:
     return template.format(**filled(notice.context, lang))
 
 
+def special_text(special: dict, lang: str) -> str:
+    """A general mechanism's special position (its fields: kind, group, group_kind, link or slide, value) as a
+    sentence in ``lang``: "group 1 (RRP): limit of assembly", "group 0: slider E (guide ram) reverses …".  A
+    slide is named as the core names it: "E/ram" is the slider E on the guide ram, "B/slot" the block at B in
+    its slot (RPP), an RPR group's slide ("s23") as it is."""
+    texts = interface_texts(lang)
+    number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
+    what = ""
+    if special.get("link") is not None:
+        what = f"{texts['editor_link']} {special['link']}"
+    elif special.get("slide") is not None:
+        joint, _, guide = special["slide"].partition("/")
+        where = "" if not guide else (f" {texts['editor_in_slot']}" if guide == "slot"
+                                      else f" ({texts['editor_guide_word']} {guide})")
+        what = f"{texts['editor_slide']} {joint}{where}"
+    value = "" if special.get("value") is None else format(number(special["value"]), ".3g")
+    return texts[f"editor_sp_{special['kind']}"].format(group=special["group"], kind=special["group_kind"],
+                                                         what=what, value=value)
+
+
 def filled(context: dict, lang: str) -> dict:
     """A template's context as lang writes it: floats and numbers formatted already ("4.4e-16") with its
     decimal separator and minus sign, angle ranges as "57,0°–133,0°"."""

@@ -78,6 +78,20 @@ class CrankModel(BaseModel):
     new_guides: dict[str, AttachmentModel] = Field(default_factory=dict, max_length=64)
 
 
+class SliderInputModel(BaseModel):
+    """The input link: a slider on a frame guide, A = P + s·u; s (m) over ``travel`` is the generalised
+    coordinate (the answer's `phi` holds s; analogs are with respect to s)."""
+
+    model_config = ConfigDict(extra="forbid")
+    kind: Literal["slider"]
+    link: int = Field(1, ge=1, le=99)
+    guide: str = Field(description="the frame guide it slides along")
+    joint: str = Field(description="name of its joint A (at s = 0 on the guide's point)")
+    travel: tuple[float, float] = Field(description="[s_min, s_max] in m, s measured from the guide's point")
+    points: dict[str, AttachmentModel] = Field(default_factory=dict, max_length=64)
+    new_guides: dict[str, AttachmentModel] = Field(default_factory=dict, max_length=64)
+
+
 class GroupModel(BaseModel):
     """A class-II structural group (kinds 1–5: RRR, RRP, RPR, PRP, RPP) attached to elements placed before."""
 
@@ -100,11 +114,12 @@ class GroupModel(BaseModel):
 
 
 class LinkageModel(BaseModel):
-    """A planar mechanism as data: frame, input crank, class-II groups in the order they are attached."""
+    """A planar mechanism as data: frame, input link (a crank or a slider), class-II groups in the order they
+    are attached."""
 
     model_config = ConfigDict(extra="forbid")
     frame: FrameModel
-    input: CrankModel
+    input: CrankModel | SliderInputModel
     groups: list[GroupModel] = Field(default_factory=list, max_length=20)
 
 

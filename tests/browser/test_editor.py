@@ -7,7 +7,10 @@ plans (each drawn vector's SVG length times the scale written under the plan equ
 table; the plan's value of each point equals the analytic one shown beside it), editing a length redraws, a
 refusal's reason beside the group it concerns and undoing its cause, the shared link reloads the same mechanism, and the Russian
 page has no English left. A second load at phone size (the mechanism given in the address) fits the screen,
-passes axe-core, saves the mechanism as a file and opens another from a file.
+passes axe-core, saves the mechanism as a file and opens another from a file. A third builds a mechanism
+driven by a slider (an input slider on a frame guide and an RRR group to a frame joint): W = 1 with the
+slider's prismatic pair, the cursor shows s in metres, the special positions are said; then the slider-driven
+preset loads; on the crank-slider preset the rod's length is also shown and set as λ = l₂/l₁ and r/l.
 """
 from __future__ import annotations
 
@@ -226,3 +229,52 @@ def test_a_shared_mechanism_on_a_phone(phone, tmp_path):
     settled(phone, before)
     assert phone.inner_text("#editor-formula") == "I(0,1) → II₁(2,3) → II₁(4,5)"
     assert phone.problems == []
+
+
+def test_a_slider_driven_mechanism(browser_page):
+    page = browser_page
+    page.goto("/editor?lang=en")
+    page.wait_for_function("() => document.querySelector('#editor-drawing').dataset.answers !== undefined")
+
+    def place(mode, *clicks):
+        page.click(f'[data-mode="{mode}"]')
+        for item in clicks[:-1]:
+            click_at(page, *item)
+        act(page, lambda: click_at(page, *clicks[-1]))
+
+    place("joint", (0, 0))                                  # O, the crank's pivot
+    place("guide", (0.2, 0))                                # g1 through (0.2, 0), along x
+    place("slider", (0.45, 0), (0.3, 0))                    # the input slider on g1, its joint at s = 0.1 m
+    place("RRR", (0.3, 0), (0, 0), (0, 0.1))                # rod to the crank pin, crank about O
+    assert page.get_attribute("#editor-drawing", "data-state") == "ready"
+    assert page.inner_text("#editor-mobility") == "W = 3·3 − 2·4 − 0 = 1"
+    assert page.inner_text("#editor-formula") == "I(0,1) → II₁(2,3)"
+    assert page.inner_text("#editor-phi-value").startswith("s = 0.1")      # the travel 0.1…0.2 m
+    assert page.inner_text("#editor-phi-label") == interface_texts("en")["editor_travel_s"]
+    plans_ready(page)
+    assert page.inner_text("#editor-plans .hint").startswith("s = 0.1")    # the plans at s, with v₁ and a₁
+    page.wait_for_function("() => document.querySelectorAll('#editor-special li').length > 0")
+    assert "link 3 reverses" not in page.inner_text("#editor-special")      # the crank turns one way
+    frame = page.inner_html("#editor-drawing .links")
+    page.fill("#editor-phi", "200")
+    page.dispatch_event("#editor-phi", "input")
+    page.wait_for_function("html => document.querySelector('#editor-drawing .links').innerHTML !== html", arg=frame)
+    screenshot(page, "editor_slider_input")
+
+    before = answers(page)
+    page.select_option("#editor-preset", "slider_driven_crank")
+    settled(page, before)
+    assert page.inner_text("#editor-formula") == "I(0,1) → II₁(2,3)"
+    assert page.get_attribute("#editor-drawing", "data-state") == "ready"
+
+    before = answers(page)                 # a crank again: the rod's length also as λ = l₂/l₁ and r/l
+    page.select_option("#editor-preset", "slider_crank")
+    settled(page, before)
+    assert page.inner_text("#editor-phi-label") == "Crank angle φ"
+    ratio = page.locator('[data-group="0"] input[type="text"][aria-label="λ = l{AB}/l{OA}"]')
+    inverse = page.locator('[data-group="0"] input[type="text"][aria-label="r/l = l{OA}/l{AB}"]')
+    assert number(ratio.input_value()) == pytest.approx(3.0) and number(inverse.input_value()) == pytest.approx(1 / 3, abs=5e-4)
+    act(page, lambda: (ratio.fill("4"), ratio.press("Enter")))
+    rod = page.locator('[data-group="0"] > label.field input[type="text"]').first
+    assert number(rod.input_value()) == pytest.approx(0.4) and number(inverse.input_value()) == pytest.approx(0.25)
+    assert [p for p in page.problems if not REFUSED.search(p)] == []

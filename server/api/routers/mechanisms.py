@@ -22,7 +22,7 @@ def list_mechanisms() -> list[MechanismInfo]:
 
 
 @router.get("/mechanisms/general",
-            summary="A general mechanism as data (frame, crank, class-II groups): its JSON, an example, the presets")
+            summary="A general mechanism as data (frame, input crank or slider, class-II groups): its JSON, examples, the presets")
 def general_mechanism() -> dict:
     example = presets()["shaping_machine"]["linkage"]
     return {"description": spec.__doc__, "schema": LinkageModel.model_json_schema(),
@@ -30,4 +30,6 @@ def general_mechanism() -> dict:
             "example": {"mechanism": "general", "linkage": example, "n": 361,
                         "outputs": ["structure", "joints", "joints_d1", "angles_d1", "slides_d1", "special", "plan"],
                         "plan": {"phi": 0.5, "omega1": 10.0, "epsilon1": 0.0}},
+            "example_slider_input": {"mechanism": "general", "linkage": presets()["slider_driven_crank"]["linkage"],
+                                     "n": 141, "outputs": ["structure", "joints", "angles", "angles_d1", "special"]},
             "presets": list(presets().values())}

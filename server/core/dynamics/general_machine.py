@@ -76,6 +76,7 @@ def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: 
     """The machine of a request, checked: the linkage assembles over the whole turn, the mass model names its
     links and sliders, the loads are the general mechanism's (GeometryError names the field)."""
     mech = GeneralMechanism(linkage)
+    mech.require_crank("the dynamics")
     turn = compose(mech.linkage, np.linspace(0.0, TURN, CHECK_POINTS))
     for k, group in enumerate(turn.groups):
         if not group.closes.all():

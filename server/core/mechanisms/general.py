@@ -9,12 +9,14 @@ sentence naming the group and the angles; where it closes nowhere the mechanism 
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..structure.analysis import analyse
 from ..structure.compose import Composition, compose
 from ..structure.plans import plans
-from ..structure.spec import Linkage, parse
+from ..structure.spec import Linkage, SliderInput, parse
 from .base import (Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, angle_ranges, ranges_text,
                    wrap_angle)
 from .mechanism import Mechanism
@@ -34,9 +36,26 @@ GENERAL_OUTPUTS = (
     OutputSpec("slides_d2", "m", "s″ = d²s/dφ²"),
     OutputSpec("structure", "1", "structural analysis: n, p₅, p₄, W, the structural formula, the class"),
     OutputSpec("special", "rad", "per group: limits of assembly, dead positions, the smallest |sin| of its "
-               "transmission angle, output reversals (extreme positions of its links and slides)"),
+               "transmission angle, output reversals (extreme positions of its links and slides); each with kind, "
+               "phi, group, group_kind, link or slide, value and text (in the request's language)"),
     OutputSpec("plan", "m/s, m/s²", "velocity and acceleration plans at one angle (request field `plan`)"),
 )
+
+
+@dataclass(frozen=True)
+class GroupSpecial(SpecialPosition):
+    """A special position of one group as data: the group's number (as in linkage.groups), its kind, and the
+    link or slide it concerns (output reversals); the English ``description`` is for scripts, the pages say it
+    from these fields (server/api/messages.py: special_text)."""
+
+    group: int = 0
+    group_kind: str = ""
+    link: int | None = None
+    slide: str | None = None
+
+    def as_dict(self) -> dict:
+        return super().as_dict() | {"group": self.group, "group_kind": self.group_kind, "link": self.link,
+                                    "slide": self.slide}
 
 
 class GeneralMechanism(Mechanism):
@@ -44,8 +63,10 @@ class GeneralMechanism(Mechanism):
 
     name = "general"
     title = "Mechanism composed of class-II structural groups"
-    conventions = ("Frame x to the right, y up; angles counter-clockwise from +x; the crank angle θ₁ = θ₀ + σφ. "
-                   "Groups attach in order to joints and guides that exist already.")
+    conventions = ("Frame x to the right, y up; angles counter-clockwise from +x; the crank angle θ₁ = θ₀ + σφ, or "
+                   "an input slider's displacement s along its frame guide (then `phi` holds s in m over its travel, "
+                   "and every analog is with respect to s: θ′ in 1/m, x′ dimensionless). Groups attach in order to "
+                   "joints and guides that exist already.")
     params = ()
 
     def __init__(self, linkage: dict | Linkage):
@@ -60,16 +81,35 @@ class GeneralMechanism(Mechanism):
     def sliding_pairs(self):
         return tuple(compose(self.linkage, np.zeros(1)).slides)
 
+    def require_crank(self, what: str) -> None:
+        """Refuse a slider-driven linkage where ``what`` (the dynamics, the kinetostatics) needs the crank's
+        full turn as the machine's cycle."""
+        if isinstance(self.linkage.crank, SliderInput):
+            raise GeometryError("linkage.input.kind", f"{what} of a general mechanism takes a crank as the input "
+                                "link (its cycle is the crank's turn); a slider input is for the kinematics",
+                                "slider_input_kinematics_only", what=what)
+
+    def turn(self, points: int = CHECK_POINTS) -> np.ndarray:
+        """The generalised coordinate over its cycle: the crank's turn, or the input slider's travel (m)."""
+        return np.linspace(*self.linkage.coordinate_range, points)
+
     def check_geometry(self, p) -> None:
         """Refuse a linkage one of whose groups closes at no crank angle of the turn (checked at 0.5°)."""
-        self.check_closure(compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS)))
+        self.check_closure(compose(self.linkage, self.turn()))
 
     def check_closure(self, comp: Composition) -> None:
         """Where a group closes nowhere on ``comp``'s angles, look again over the whole turn at 0.5°; refuse
         the linkage if it closes nowhere there either."""
+        for k, group in enumerate(comp.groups):
+            if group.undetermined is not None and comp.phi.size > 1 and group.undetermined.all():
+                raise GeometryError(f"linkage.groups.{k}", f"the RPR group's block joint {self.linkage.groups[k].outer[0]} "
+                                    f"lies on the lever's pivot {self.linkage.groups[k].outer[1]} at every crank angle: "
+                                    "the slot through the pivot may point any way, the lever's angle is not "
+                                    "determined (the lever is free)", "rpr_block_on_pivot", group=k,
+                                    block=self.linkage.groups[k].outer[0], pivot=self.linkage.groups[k].outer[1])
         if all(group.closes.any() for group in comp.groups):
             return
-        turn = compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS))
+        turn = compose(self.linkage, self.turn())
         for k, group in enumerate(turn.groups):
             if not group.closes.any():
                 raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at any "
@@ -106,7 +146,7 @@ class GeneralMechanism(Mechanism):
         return sum((s.d1**2 for s in comp.slides.values()), np.zeros_like(ev.phi, dtype=float))
 
     def special_positions(self, p) -> list[SpecialPosition]:
-        turn = compose(self.linkage, np.linspace(0, 2 * np.pi, CHECK_POINTS))
+        turn = compose(self.linkage, self.turn())
         return sorted(special_positions(turn) + reversals(self.linkage, turn), key=lambda sp: sp.phi)
 
     def plan(self, phi: float, omega1: float, epsilon1: float) -> dict:
@@ -151,7 +191,7 @@ def assembly_notices(comp: Composition) -> list[Notice]:
     return notes
 
 
-def special_positions(comp: Composition) -> list[SpecialPosition]:
+def special_positions(comp: Composition) -> list[GroupSpecial]:
     """Per group: where it stops closing (limit of assembly) and where its determinant changes sign or is
     smallest (dead position: the group's links in line, the analogs unbounded)."""
     out = []
@@ -159,31 +199,34 @@ def special_positions(comp: Composition) -> list[SpecialPosition]:
     for k, group in enumerate(comp.groups):
         closes = group.closes
         for edge in np.flatnonzero(np.diff(closes.astype(int))):
-            out.append(SpecialPosition("limit_of_assembly", float(phi[edge + 1 if closes[edge] else edge]),
-                                       f"group {k} ({group.kind}): limit of assembly"))
+            out.append(GroupSpecial("limit_of_assembly", float(phi[edge + 1 if closes[edge] else edge]),
+                                    f"group {k} ({group.kind}): limit of assembly", None, k, group.kind))
         det = np.where(closes, group.determinant, np.nan)
         if np.isfinite(det).any():
             worst = int(np.nanargmin(np.abs(det)))
-            out.append(SpecialPosition("smallest_determinant", float(phi[worst]),
-                                       f"group {k} ({group.kind}): closest to a dead position (|sin| of the "
-                                       "angle between its links or guides)", float(abs(det[worst]))))
+            out.append(GroupSpecial("smallest_determinant", float(phi[worst]),
+                                    f"group {k} ({group.kind}): closest to a dead position (|sin| of the "
+                                    "angle between its links or guides)", float(abs(det[worst])), k, group.kind))
             signs = np.sign(det)
             for edge in np.flatnonzero(signs[:-1] * signs[1:] < 0):
-                out.append(SpecialPosition("dead_position", float(phi[edge]),
-                                           f"group {k} ({group.kind}): dead position, its links in line"))
+                out.append(GroupSpecial("dead_position", float(phi[edge]),
+                                        f"group {k} ({group.kind}): dead position, its links in line", None, k,
+                                        group.kind))
     return out
 
 
-def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[SpecialPosition]:
+def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[GroupSpecial]:
     """Output reversals (extreme positions: a slider's dead centre, a rocker's extreme): where a link's θ′ or
     a slide's s′ changes sign on the 0.5° grid, refined by Newton's method on the closed-form analogs,
     φ ← φ − q′/q″ (quadratic: four steps take the grid's 0.5° to round-off)."""
     found = []
+    slider = isinstance(linkage.crank, SliderInput)
     for k, group in enumerate(turn.groups):
         quantities = [(f"link {link}", "links", link) for link in group.links] + \
                      [(f"slide {name}", "slides", name) for name in group.slides]
         for label, table, key in quantities:
-            found += [(k, label, table, key, start) for start in sign_changes(turn.phi, analogs(turn, table, key)[1])]
+            found += [((k, group.kind), label, table, key, start)
+                      for start in sign_changes(turn.phi, analogs(turn, table, key)[1], not slider)]
     if not found:
         return []
     phi = np.array([f[4] for f in found])
@@ -193,19 +236,23 @@ def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[Speci
                          for i, (_, _, t, key, _) in enumerate(found)])
         phi = phi - step
     fine = compose(linkage, phi)
-    return [SpecialPosition("output_reversal", wrap_angle(phi[i]),
-                            f"group {k}: {label} reverses (its first analog is zero): an extreme position",
-                            float(analogs(fine, table, key)[0][i]))
-            for i, (k, label, table, key, _) in enumerate(found)]
+    return [GroupSpecial("output_reversal", float(phi[i]) if slider else wrap_angle(phi[i]),
+                         f"group {k}: {label} reverses (its first analog is zero): an extreme position",
+                         float(analogs(fine, table, key)[0][i]), k, kind,
+                         key if table == "links" else None, key if table == "slides" else None)
+            for i, ((k, kind), label, table, key, _) in enumerate(found)]
 
 
-def sign_changes(phi: np.ndarray, d1: np.ndarray) -> list[float]:
-    """Starting angles where d1 changes sign over one turn (the grid's ends are the same angle): between two
-    grid points by linear interpolation, or at a grid point where it is zero up to round-off."""
-    d, h = d1[:-1], phi[1] - phi[0]
+def sign_changes(phi: np.ndarray, d1: np.ndarray, periodic: bool = True) -> list[float]:
+    """Starting values where d1 changes sign over one turn (periodic: the grid's ends are the same angle) or
+    over an input slider's travel (not periodic: its ends are the travel's ends): between two grid points by
+    linear interpolation, or at a grid point where it is zero up to round-off."""
+    d, h = (d1[:-1] if periodic else d1), phi[1] - phi[0]
     tiny = 1e-12 * np.nanmax(np.abs(d), initial=0.0)
     sign = np.where(np.abs(d) <= tiny, 0.0, np.sign(d))
     after, before = np.roll(sign, -1), np.roll(sign, 1)
+    if not periodic:
+        after[-1] = before[0] = 0.0
     between = np.flatnonzero(sign * after < 0)
     at = np.flatnonzero((sign == 0) & (before * after < 0))
     return [phi[k] - d[k] * h / (np.roll(d, -1)[k] - d[k]) for k in between] + [phi[k] for k in at]
@@ -225,7 +272,7 @@ def compute_general(linkage: dict, outputs: list[str], phi: np.ndarray | None = 
     """The kinematics endpoint's general path: the linkage checked (structure, assembly), ``outputs`` at
     ``phi`` (rad) or on ``n`` points over one turn, the plans at ``plan["phi"]``.  GeometryError names the
     field and the reason."""
-    from ..kinematics import MAX_POINTS, KinematicsResult, crank_angles
+    from ..kinematics import MAX_POINTS, KinematicsResult
 
     mech = GeneralMechanism(linkage)
     known = {o.name for o in GENERAL_OUTPUTS}
@@ -236,10 +283,11 @@ def compute_general(linkage: dict, outputs: list[str], phi: np.ndarray | None = 
     if phi is None:
         if n is None or not 2 <= n <= MAX_POINTS:
             raise GeometryError("n", f"give between 2 and {MAX_POINTS} points")
-        phi = crank_angles(2 * np.pi, n)
+        phi = mech.turn(n)
     comp = compose(mech.linkage, phi)
     mech.check_closure(comp)
-    result = KinematicsResult("general", {}, 2 * np.pi, phi)
+    start, end = mech.linkage.coordinate_range
+    result = KinematicsResult("general", {}, end - start, phi)
     wanted = set(outputs)
     ev = mech.outputs_of(comp, wanted)
     result.warnings.extend(ev.warnings)

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..mechanisms.base import GeometryError
-from .spec import KIND_NUMBER, MAX_LINKS, Linkage
+from .spec import KIND_NUMBER, MAX_LINKS, Linkage, SliderInput
 
 SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
@@ -68,11 +68,16 @@ def analyse(linkage: Linkage) -> dict:
         for name in list(new_joints(group)) + [a.name for a in group.points + group.new_guides]:
             later.setdefault(name, k)
     crank = linkage.crank
-    if crank.pivot not in linkage.joints:
+    slider = isinstance(crank, SliderInput)
+    if slider and crank.guide not in linkage.guides:
+        raise GeometryError("linkage.input.guide", f"the input slider runs along a frame guide; '{crank.guide}' is "
+                                                   "not one of linkage.frame.guides", "unknown_element",
+                            element=crank.guide)
+    if not slider and crank.pivot not in linkage.joints:
         raise GeometryError("linkage.input.pivot", f"the crank turns about a frame joint; '{crank.pivot}' is not "
                                                    "one of linkage.frame.joints", "unknown_element",
                             element=crank.pivot)
-    declared: dict[int, str] = {crank.link: "the input crank"}
+    declared: dict[int, str] = {crank.link: "the input slider" if slider else "the input crank"}
     duplicate: list[str] = []
 
     def place(name: str, links: set[int], where: str) -> None:
@@ -92,8 +97,8 @@ def analyse(linkage: Linkage) -> dict:
     for a in crank.points:
         place(a.name, {a.link}, f"linkage.input.points.{a.name}")
     place_guides(crank.new_guides, "linkage.input")
-    formula = ["I(0,1)"]
-    groups, pairs = [], [Pair(crank.pivot, "R", (0, crank.link))]
+    formula = [f"I(0,{crank.link})"]
+    groups, pairs = [], [Pair(crank.guide, "P", (0, crank.link)) if slider else Pair(crank.pivot, "R", (0, crank.link))]
     for k, group in enumerate(linkage.groups):
         where = f"linkage.groups.{k}"
         attached: set[int] = set()
@@ -139,7 +144,7 @@ def analyse(linkage: Linkage) -> dict:
     if mobility != 1:
         raise GeometryError("linkage.groups", f"W = 3n − 2p₅ − p₄ = 3·{n} − 2·{p5} − {p4} = {mobility} ≠ 1: "
                             + "; ".join(duplicate), "mobility", mobility=mobility)
-    return {"n": n, "p5": p5, "p4": p4, "W": mobility,
+    return {"n": n, "p5": p5, "p4": p4, "W": mobility, "input": "slider" if slider else "crank",
             "formula": " → ".join(formula), "class": 2 if linkage.groups else 1,
             "groups": groups,
             "pairs": [{"name": p.name, "kind": p.kind, "links": list(p.links)} for p in pairs]}

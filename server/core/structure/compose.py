@@ -2,6 +2,8 @@
 §3.1: the kinematic analysis follows the order of attachment; seed 000 §2.1 for the analogs).
 
     crank:  A = O + l e^{iθ₁},  θ₁ = θ₀ + σφ,  θ′₁ = σ,  θ″₁ = 0
+    slider: A = P + s u (a frame guide through P along u = e^{iθ_g}),  A′ = u,  A″ = 0: the generalised
+            coordinate is s (``phi`` holds s, m) and every analog is with respect to it
 Every group returns its joints, links, slides and the angles where its closure has a real solution; a point
 or guide fixed on a link follows the link rigidly (state.on_link).
 """
@@ -12,8 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import prp, rpp, rpr, rrp, rrr
-from .group import GroupSolution
-from .spec import Linkage
+from .group import GroupSolution, Slide
+from .spec import Linkage, SliderInput
 from .state import Angle, Guide, Point, fixed_angle, fixed_point, on_link
 
 
@@ -69,10 +71,18 @@ def compose(linkage: Linkage, phi: np.ndarray) -> Composition:
     for name, ((x, y), angle) in linkage.guides.items():
         comp.guides[name] = Guide(fixed_point(x, y, n), fixed_angle(angle, n), 0)
     crank = linkage.crank
-    pivot = comp.joints[crank.pivot]
-    theta = Angle(crank.angle0 + crank.sense * phi, np.full(n, float(crank.sense)), np.zeros(n))
-    comp.links[crank.link] = (pivot, theta)
-    comp.joints[crank.joint] = on_link(pivot, theta, complex(crank.length))
+    if isinstance(crank, SliderInput):
+        guide = comp.guides[crank.guide]
+        unit = guide.angle.unit()
+        joint = Point(guide.point.z + phi * unit, unit, np.zeros(n, complex))
+        comp.links[crank.link] = (joint, guide.angle)
+        comp.joints[crank.joint] = joint
+        comp.slides[f"{crank.joint}/{crank.guide}"] = Slide(phi.copy(), np.ones(n), np.zeros(n))
+    else:
+        pivot = comp.joints[crank.pivot]
+        theta = Angle(crank.angle0 + crank.sense * phi, np.full(n, float(crank.sense)), np.zeros(n))
+        comp.links[crank.link] = (pivot, theta)
+        comp.joints[crank.joint] = on_link(pivot, theta, complex(crank.length))
     attach(comp, crank)
     for group in linkage.groups:
         solution = solve_group(comp, group)

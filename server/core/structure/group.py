@@ -64,6 +64,7 @@ class GroupSolution:
     closes: np.ndarray                        # the closure has a real solution at these φ
     determinant: np.ndarray                   # Jacobian determinant / its scale: 0 at a dead position
     plan: Callable[[], Plan]
+    undetermined: np.ndarray | None = None    # angles where the closure leaves a link's angle free (RPR, B ≡ D)
 
 
 def carried(origin: Point, angle: Angle, z: np.ndarray) -> Point:

@@ -8,6 +8,10 @@ The slot runs at the offset e from D (e = 0: through D).
         s′ e_j + θ′_j i(s + ie) e_j = B′ − D′
         s″ e_j + θ″_j i(s + ie) e_j = B″ − D″ − 2s′θ′_j i e_j + θ′_j²(s + ie) e_j      (2s′θ′_j i e_j: Coriolis)
 determinant s: zero where the block passes over the lever's pivot (e = 0) or the slot is tangent (e ≠ 0).
+With e = 0 and B on D (|B − D| at round-off, 1e-9 of the joints' distance from the origin) the slot may point any way: the lever's
+angle is not determined by the closure (arg of round-off noise).  Those angles are singular (determinant 0, the
+lever's angle and every analog undefined); a group whose B stays on D over the whole turn is refused
+(general.py), since its lever is then free.
 The block turns with the lever (θ_i = θ_j); plan: v_B3 = v_B2 + v_B3B2 = v_D + v_B3D, and
 a_B3 = a_B2 + a^k_B3B2 + a^r_B3B2 = a_D + a^n_B3D + a^τ_B3D with a^k_B3B2 = 2ω₂ × v_B3B2.
 """
@@ -23,8 +27,11 @@ def solve(b: Point, d: Point, offset: float, branch: int, names: tuple[str, str,
           links: tuple[int, int]) -> GroupSolution:
     """Lever angle and block slide from B, D; ``names`` = (B, D, slide name); links (block i, lever j)."""
     diag = b.z - d.z
+    size = max(float(np.max(np.abs(b.z), initial=0.0)), float(np.max(np.abs(d.z), initial=0.0)))
+    undetermined = np.abs(diag) <= 1e-9 * size if offset == 0 else np.zeros(diag.shape, bool)
+    diag = np.where(undetermined, np.nan, diag)
     radicand = np.abs(diag) ** 2 - offset**2
-    closes = radicand >= 0
+    closes = (radicand >= 0) | undetermined
     s = branch * np.sqrt(np.where(closes, radicand, np.nan))
     arm = s + 1j * offset
     e_j = np.exp(1j * (np.angle(diag) - np.angle(arm)))
@@ -42,5 +49,6 @@ def solve(b: Point, d: Point, offset: float, branch: int, names: tuple[str, str,
         vel_d, acc_d = chains(on_lever, d, nd.lower(), [rotation(nd, on_lever, d.z, b.z, lever)])
         return Plan([vel_b, vel_d], [acc_b, acc_d], {on_lever: carried(d, lever, b.z)})
     with np.errstate(divide="ignore", invalid="ignore"):
-        det = s / np.abs(arm)
-    return GroupSolution("RPR", {}, {links[0]: (b, lever), links[1]: (d, lever)}, {name: slide}, closes, det, plan)
+        det = np.where(undetermined, 0.0, s / np.abs(arm))
+    return GroupSolution("RPR", {}, {links[0]: (b, lever), links[1]: (d, lever)}, {name: slide}, closes, det, plan,
+                         undetermined)

@@ -7,6 +7,8 @@ angles in radians (counter-clockwise from +x).
     {"frame": {"joints": {"O": [0, 0]}, "guides": {"g0": {"through": [0, 0], "angle": 0}}},
      "input": {"kind": "crank", "link": 1, "pivot": "O", "joint": "A", "length": 0.1,
                "angle0": 0, "sense": 1, "points": {...}, "new_guides": {...}},
+     (or a slider: {"kind": "slider", "link": 1, "guide": "g0", "joint": "A", "travel": [0, 0.2], ...}:
+      A = P + s u along the frame guide g0, the generalised coordinate s over its travel instead of φ over a turn)
      "groups": [{"kind": "RRP", "links": [2, 3], "outer": ["A"], "guide": "g0", "inner": "B",
                  "length": 0.3, "branch": 1, "points": {...}, "new_guides": {...}}, ...]}
 
@@ -58,6 +60,20 @@ class Crank:
 
 
 @dataclass(frozen=True)
+class SliderInput:
+    """The input link as a slider on a frame guide: its joint A = P + s u, s the generalised coordinate over
+    ``travel`` (s_min, s_max); every analog is then with respect to s (A′ = u, A″ = 0; the slider does not
+    turn: its frame is A along the guide)."""
+
+    link: int
+    guide: str
+    joint: str
+    travel: tuple[float, float]
+    points: tuple[Attachment, ...] = ()
+    new_guides: tuple[Attachment, ...] = ()
+
+
+@dataclass(frozen=True)
 class Group:
     kind: str
     links: tuple[int, int]
@@ -75,8 +91,13 @@ class Group:
 class Linkage:
     joints: dict[str, tuple[float, float]]
     guides: dict[str, tuple[tuple[float, float], float]]
-    crank: Crank
+    crank: Crank | SliderInput         # the input link
     groups: tuple[Group, ...] = field(default_factory=tuple)
+
+    @property
+    def coordinate_range(self) -> tuple[float, float]:
+        """The generalised coordinate's cycle: the crank's turn 0…2π, or the input slider's travel (m)."""
+        return self.crank.travel if isinstance(self.crank, SliderInput) else (0.0, 2 * math.pi)
 
 
 def number(value, where: str, positive: bool = False) -> float:
@@ -130,10 +151,28 @@ def attachments(raw, where: str, links: tuple[int, ...], with_angle: bool) -> tu
     return tuple(out)
 
 
-def parse_crank(raw, where: str) -> Crank:
+def parse_slider(raw: dict, where: str) -> SliderInput:
+    """The input slider: a frame guide (checked in analysis.py), its joint and its travel s_min < s_max."""
+    link = link_number(raw.get("link", 1), f"{where}.link")
+    travel = raw.get("travel")
+    if not isinstance(travel, (list, tuple)) or len(travel) != 2:
+        raise GeometryError(f"{where}.travel", "the input slider's travel is [s_min, s_max] in metres",
+                            "linkage_shape")
+    travel = (number(travel[0], f"{where}.travel.0"), number(travel[1], f"{where}.travel.1"))
+    if not travel[0] < travel[1]:
+        raise GeometryError(f"{where}.travel", "s_min must be smaller than s_max", "slider_travel")
+    return SliderInput(link, name_of(raw.get("guide"), f"{where}.guide"), name_of(raw.get("joint"), f"{where}.joint"),
+                       travel, attachments(raw.get("points"), f"{where}.points", (link,), False),
+                       attachments(raw.get("new_guides"), f"{where}.new_guides", (link,), True))
+
+
+def parse_crank(raw, where: str) -> Crank | SliderInput:
     raw = mapping(raw, where)
+    if raw.get("kind", "crank") == "slider":
+        return parse_slider(raw, where)
     if raw.get("kind", "crank") != "crank":
-        raise GeometryError(f"{where}.kind", "the input link is a crank ('crank')", "linkage_shape")
+        raise GeometryError(f"{where}.kind", "the input link is a crank ('crank') or a slider ('slider')",
+                            "linkage_shape")
     link = link_number(raw.get("link", 1), f"{where}.link")
     sense = raw.get("sense", 1)
     if sense not in (1, -1) or isinstance(sense, bool):

@@ -14,7 +14,7 @@ import { renderStructure } from "./view/structure.js";
 import { mechanismQuery, readMechanism } from "./model/address.js";
 import { guideShapes, linkShapes, stateAt } from "./model/geometry.js";
 import { PICKS, addFrameGuide, addFrameJoint, addGroup, addLinkGuide, addPoint, emptyLinkage, guides, joints, links,
-  normalised, requestLinkage, setCrank } from "./model/linkage.js";
+  normalised, requestLinkage, setCrank, setSlider } from "./model/linkage.js";
 import { UndoHistory } from "./model/history.js";
 import { LatestRequest, refusalText, refusedGroup } from "./model/service.js";
 import { frameOf, planRequest, quantities, specialRequest, tableRequest } from "./model/table.js";
@@ -25,6 +25,9 @@ const lang = document.documentElement.lang;
 const t = JSON.parse(document.getElementById("interface-texts").textContent);
 const presets = JSON.parse(document.getElementById("editor-presets").textContent);
 const $ = (id) => document.getElementById(id);
+/** The crank's words as the page was served (notation with real subscripts), to put back after a slider. */
+const CRANK_LABELS = Object.fromEntries(["editor-phi-label", "editor-omega1-label", "editor-epsilon1-label"]
+  .map((id) => [id, [...$(id).childNodes].map((node) => node.cloneNode(true))]));
 const DEG = Math.PI / 180;
 const TURN_DEGREES = 360;
 const SPIN = 60;                               // degrees of crank per second of animation
@@ -83,12 +86,15 @@ function prompt() {
   const { mode, picked, linkage } = state;
   let text = t[`editor_prompt_${mode}`] ?? "";
   if (mode === "crank" && picked.length) text = t.editor_prompt_crank_pin;
+  if (mode === "slider" && picked.length) text = t.editor_prompt_slider_joint;
   if (PICKS[mode]) {
     const next = PICKS[mode][picked.length];
     text = `${mode}: ${t[`editor_prompt_pick_${next}`].replace("{n}", String(picked.length + 1))}`;
     if (picked.length) text += ` (${picked.join(", ")})`;
   }
-  if (mode !== "select" && mode !== "joint" && mode !== "guide" && !linkage.input && mode !== "crank") text = t.editor_prompt_crank_first;
+  if (mode !== "select" && mode !== "joint" && mode !== "guide" && !linkage.input && mode !== "crank" && mode !== "slider") {
+    text = t.editor_prompt_crank_first;
+  }
   $("editor-prompt").textContent = text;
 }
 
@@ -101,6 +107,7 @@ function place(p) {
   if (mode === "joint") addFrameJoint(linkage, p);
   else if (mode === "guide") addFrameGuide(linkage, p);
   else if (mode === "crank" && state.picked.length === 1) setCrank(linkage, state.picked[0], p);
+  else if (mode === "slider" && state.picked.length === 1) setSlider(linkage, state.picked[0], p, current().guideAt(state.picked[0]));
   else if (PICKS[mode]?.[state.picked.length] === "place") {
     const s = current();
     addGroup(linkage, mode, state.picked, p, (name) => s.joints[name], (name) => s.guideAt(name));
@@ -121,7 +128,7 @@ function finishPick() {
 /** The next click places something (a frame element, the crank's pin, a group's inner joint, a point). */
 function placing() {
   const { mode, picked } = state;
-  return ["joint", "guide", "point", "link_guide"].includes(mode) || (mode === "crank" && picked.length === 1)
+  return ["joint", "guide", "point", "link_guide"].includes(mode) || ((mode === "crank" || mode === "slider") && picked.length === 1)
     || PICKS[mode]?.[picked.length] === "place";
 }
 
@@ -147,7 +154,10 @@ function pickJoint(name, at) {
 function pickGuide(name, at) {
   const { mode, picked } = state;
   if (placing()) place(at);
-  else if (PICKS[mode]?.[picked.length] === "guide" && !picked.includes(name)) {
+  else if (mode === "slider" && !picked.length && name in state.linkage.frame.guides) {
+    picked.push(name);
+    afterPick();
+  } else if (PICKS[mode]?.[picked.length] === "guide" && !picked.includes(name)) {
     picked.push(name);
     afterPick();
   }
@@ -217,7 +227,20 @@ function changed(structural) {
   });
 }
 
+/** The input's words: the crank's angle φ and ω₁, ε₁, or the input slider's s and v₁, a₁. */
+function inputLabels() {
+  const slider = sliderInput();
+  const words = { "editor-phi-label": t.editor_travel_s, "editor-omega1-label": t.editor_v1, "editor-epsilon1-label": t.editor_a1 };
+  $("editor-plot-heading").textContent = slider ? t.editor_plot_s : t.editor_plot;
+  for (const [id, text] of Object.entries(words)) {
+    if (slider) $(id).textContent = text;
+    else $(id).replaceChildren(...CRANK_LABELS[id].map((node) => node.cloneNode(true)));
+  }
+  $("editor-play").textContent = state.playing ? t.editor_pause : slider ? t.editor_play_slider : t.editor_play;
+}
+
 function showAnswer() {
+  inputLabels();
   const { table, refusal } = state;
   const reason = refusal ? refusalText(refusal, t) : null;
   const refusals = new Map(refusal && refusedGroup(refusal) !== null ? [[refusedGroup(refusal), reason]] : []);
@@ -242,7 +265,7 @@ function showAnswer() {
 function showSpecial() {
   const shown = state.refusal || !state.table;
   renderSpecial($("editor-special"), $("editor-warnings"), shown ? [] : state.special ?? [], shown ? [] : state.table.warnings,
-    t, lang, (phi) => setAngle(frameOf(state.table, phi)));
+    lang, (phi) => setAngle(frameOf(state.table, phi)), sliderInput(), t.units_m);
 }
 
 function askPlan() {
@@ -269,7 +292,8 @@ function showPlans() {
     const read = parseDecimal($(id).value, lang);
     return read.error ? null : read.value;
   };
-  renderPlans($("editor-plans"), state.plan, t, lang, { velocity: scale("editor-mu-v"), acceleration: scale("editor-mu-a") });
+  renderPlans($("editor-plans"), state.plan, t, lang, { velocity: scale("editor-mu-v"), acceleration: scale("editor-mu-a") },
+    sliderInput());
 }
 
 function fillQuantities() {
@@ -284,7 +308,7 @@ function fillQuantities() {
 
 function drawPlot() {
   const q = state.quantities?.find((item) => item.id === $("editor-quantity").value);
-  plot.draw(state.table?.phi ?? [], q, state.k * DEG);
+  plot.draw(state.table?.phi ?? [], q, sliderInput() ? state.table.phi[state.k] : state.k * DEG, sliderInput());
 }
 
 /* ---- drawing and animation ---- */
@@ -292,7 +316,8 @@ function drawPlot() {
 function draw() {
   const { linkage, table } = state;
   const s = current();
-  const clickable = PICKS[state.mode]?.[state.picked.length] ?? (state.mode === "crank" ? "joint" : null);
+  const clickable = PICKS[state.mode]?.[state.picked.length]
+    ?? ({ crank: "joint", slider: state.picked.length ? null : "guide" }[state.mode] ?? null);
   const jointNames = [...joints(linkage).keys()];
   const traces = table && !state.refusal ? [...state.traced].filter((n) => table.outputs.joints[n])
     .map((n) => table.outputs.joints[n].map(([x, y]) => (x === null ? null : [x, y]))) : [];
@@ -303,7 +328,14 @@ function draw() {
     links: table && !state.refusal ? linkShapes(linkage, table, s) : [],
     traces, picked: new Set(state.picked), clickable,
   });
-  $("editor-phi-value").textContent = `φ = ${formatNumber(state.k, lang, 0)}°`;
+  const travel = sliderInput() && state.table ? state.table.phi[state.k] : undefined;
+  $("editor-phi-value").textContent = travel === undefined ? `φ = ${formatNumber(state.k, lang, 0)}°`
+    : `s = ${formatNumber(travel, lang, 3)} ${t.units_m}`;
+}
+
+/** Whether the input link is a slider: the table's rows are then its travel s (m), not the crank's degrees. */
+function sliderInput() {
+  return state.linkage.input?.kind === "slider";
 }
 
 function setAngle(k) {
@@ -329,7 +361,7 @@ function play(on) {
   state.playing = on;
   started = null;
   $("editor-play").setAttribute("aria-pressed", String(on));
-  $("editor-play").textContent = on ? t.editor_pause : t.editor_play;
+  inputLabels();
   if (on) requestAnimationFrame(frame);
   else setAngle(state.k);
 }

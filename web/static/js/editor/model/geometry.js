@@ -63,10 +63,11 @@ export function linkShapes(linkage, table, s) {
     const lines = [];
     const blocks = [];
     const extras = pointsOf(element, link);
-    const kind = element === linkage.input ? "crank" : element.kind;
+    const kind = element === linkage.input ? (element.kind === "slider" ? "slider" : "crank") : element.kind;
     const isI = element.links?.[0] === link;
     const angle = s.angles[String(link)];
     if (kind === "crank") lines.push([origin, s.joints[element.joint]]);
+    else if (kind === "slider") blocks.push({ at: origin, angle });
     else if (kind === "RRR") lines.push([origin, s.joints[element.inner]]);
     else if (kind === "RRP") {
       if (isI) lines.push([origin, s.joints[element.inner]]);

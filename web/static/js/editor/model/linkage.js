@@ -104,6 +104,15 @@ export function setCrank(linkage, pivot, pin) {
     angle0: round6(Math.atan2(dy, dx)), sense: 1 };
 }
 
+/**
+ * The input slider on the frame guide `guide` {point, angle}, its joint where the student clicked (projected
+ * on the guide): s measured from the guide's point, the travel 100 mm on from the click (edited in the list).
+ */
+export function setSlider(linkage, guide, at, line) {
+  const s = mm((snap(at[0]) - line.point[0]) * Math.cos(line.angle) + (snap(at[1]) - line.point[1]) * Math.sin(line.angle));
+  linkage.input = { kind: "slider", link: 1, guide, joint: freeName(linkage), travel: [s, mm(s + 0.1)] };
+}
+
 const cross = (a, b) => a[0] * b[1] - a[1] * b[0];
 const minus = (a, b) => [a[0] - b[0], a[1] - b[1]];
 
@@ -150,7 +159,7 @@ export function carrier(linkage, link) {
 /** The joint names of a link's origin (see the module's comment). */
 export function linkOrigin(linkage, link) {
   const element = carrier(linkage, link);
-  if (element === linkage.input) return element.pivot;
+  if (element === linkage.input) return element.kind === "slider" ? element.joint : element.pivot;
   const [i] = element.links;
   if (element.kind === "PRP") return element.inner;
   if (link === i) return element.outer[0];

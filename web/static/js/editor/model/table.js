@@ -75,8 +75,8 @@ export function quantities(table) {
   return out;
 }
 
-/** The frame whose crank angle is nearest to phi (rad). */
+/** The frame whose crank angle (or input slider's s) is nearest to phi (rad or m). */
 export function frameOf(table, phi) {
   const step = table.phi[1] - table.phi[0];
-  return Math.max(0, Math.min(table.phi.length - 1, Math.round(phi / step)));
+  return Math.max(0, Math.min(table.phi.length - 1, Math.round((phi - table.phi[0]) / step)));
 }

@@ -16,6 +16,16 @@ export class ElementList {
   constructor(host, { t, lang, onEdit, onStructure, onTrace }) {
     Object.assign(this, { host, t, lang, onEdit, onStructure, onTrace });
     this.refusals = new Map();
+    this.fields = [];
+  }
+
+  /** Every other field shown again from the mechanism: a length and its ratio λ show the same change. */
+  #refresh(except) {
+    for (const field of this.fields) {
+      if (field === except) continue;
+      field.input.value = field.shown();
+      if (field.range) field.range.value = field.get();
+    }
   }
 
   /** A number field: label, value in SI (shown in degrees when degrees), a slider for positive lengths. */
@@ -31,12 +41,15 @@ export class ElementList {
       const base = get();
       range = element("input", { type: "range", min: base * 0.25, max: base * 2.5, step: base / 400, value: base,
         "aria-label": label.replace(/_/g, "") });
-      range.addEventListener("input", () => {
-        set(Number(Number(range.value).toFixed(4)));
-        input.value = shown();
-        this.onEdit();
-      });
     }
+    const field = { input, range, shown, get };
+    this.fields.push(field);
+    range?.addEventListener("input", () => {
+      set(Number(Number(range.value).toFixed(4)));
+      input.value = shown();
+      this.#refresh(field);
+      this.onEdit();
+    });
     input.addEventListener("change", () => {
       const read = parseDecimal(input.value, lang);
       if (read.error) {
@@ -47,6 +60,7 @@ export class ElementList {
       set(degrees ? read.value / DEG : read.value);
       input.value = shown();
       if (range) range.value = get();
+      this.#refresh(field);
       this.onEdit();
     });
     return element("label", { className: "field" }, ...parts, ...(range ? [range] : []), note);
@@ -87,9 +101,23 @@ export class ElementList {
         this.#remove(`${t.editor_remove} ${name}`, () => { delete owner.new_guides[name]; }))));
   }
 
+  /**
+   * A group hinged to the crank's pin by its link of length l₂: the ratio beside the absolute length in both
+   * of the textbook's conventions, λ = l₂/l₁ and r/l = l₁/l₂ (as the crank-slider's sliders), each editable.
+   */
+  #ratios(linkage, group, get, set) {
+    const crank = linkage.input;
+    if (crank?.kind === "slider" || !crank || group.outer?.[0] !== crank.joint) return [];
+    const rod = `l_{${group.outer[0]}${group.inner}}`;
+    const r = `l_{${crank.pivot}${crank.joint}}`;
+    return [this.#number(`λ = ${rod}/${r}`, () => get() / crank.length, (v) => set(v * crank.length), { slider: true }),
+      this.#number(`r/l = ${r}/${rod}`, () => crank.length / get(), (v) => set(crank.length / v), { slider: true })];
+  }
+
   render(linkage, traced) {
     const { t } = this;
     const rows = [];
+    this.fields = [];
     for (const [name, p] of Object.entries(linkage.frame.joints)) {
       rows.push(element("div", { className: "element-row", "data-element": name },
         element("strong", { textContent: `${t.editor_frame_joint} ${name}` }),
@@ -107,10 +135,21 @@ export class ElementList {
         ...(through ? [this.#number("x", () => through[0], (v) => { through[0] = v; }, { unit: t.units_m }),
           this.#number("y", () => through[1], (v) => { through[1] = v; }, { unit: t.units_m })] : []),
         this.#number(t.editor_angle, () => g.angle ?? 0, (v) => { g.angle = v; }, { degrees: true, unit: "°", symbol: false }),
-        this.#remove(`${t.editor_remove} ${name}`, () => { delete linkage.frame.guides[name]; })));
+        this.#remove(`${t.editor_remove} ${name}`, () => {
+          delete linkage.frame.guides[name];
+          if (linkage.input?.guide === name) linkage.input = null;
+        })));
     }
     const crank = linkage.input;
-    if (crank) {
+    if (crank?.kind === "slider") {
+      rows.push(element("div", { className: "element-row", "data-element": "crank" },
+        element("strong", {}, `${t.editor_input_slider} ${crank.link}: `,
+          element("span", { translate: false, textContent: `${crank.joint} (${t.editor_guide_word} ${crank.guide})` })),
+        this.#number("s_min", () => crank.travel[0], (v) => { crank.travel[0] = v; }, { slider: true, unit: t.units_m }),
+        this.#number("s_max", () => crank.travel[1], (v) => { crank.travel[1] = v; }, { slider: true, unit: t.units_m }),
+        ...this.#points(crank, linkage),
+        this.#remove(`${t.editor_remove} ${t.editor_input_slider}`, () => { linkage.input = null; })));
+    } else if (crank) {
       const sense = element("select", { "aria-label": t.editor_sense },
         element("option", { value: "1", textContent: t.editor_ccw }), element("option", { value: "-1", textContent: t.editor_cw }));
       sense.value = String(crank.sense ?? 1);
@@ -133,10 +172,12 @@ export class ElementList {
         fields.push(this.#number(`l_{${b}${group.inner}}`, () => group.lengths[0], (v) => { group.lengths[0] = v; },
           { slider: true, unit: t.units_m }),
         this.#number(`l_{${d}${group.inner}}`, () => group.lengths[1], (v) => { group.lengths[1] = v; },
-          { slider: true, unit: t.units_m }), this.#branch(group));
+          { slider: true, unit: t.units_m }), this.#branch(group),
+        ...this.#ratios(linkage, group, () => group.lengths[0], (v) => { group.lengths[0] = v; }));
       } else if (group.kind === "RRP") {
         fields.push(this.#number(`l_{${group.outer[0]}${group.inner}}`, () => group.length, (v) => { group.length = v; },
-          { slider: true, unit: t.units_m }), this.#branch(group));
+          { slider: true, unit: t.units_m }), this.#branch(group),
+        ...this.#ratios(linkage, group, () => group.length, (v) => { group.length = v; }));
       } else if (group.kind === "RPR") {
         fields.push(this.#number("e", () => group.offset ?? 0, (v) => { group.offset = v; }, { unit: t.units_m }),
           this.#branch(group));

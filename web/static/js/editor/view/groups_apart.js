@@ -58,8 +58,10 @@ export function renderGroupsApart(host, linkage, table, s, t) {
   const shapes = linkShapes(linkage, table, s);
   const crank = linkage.input;
   const at = (name) => ({ name, at: s.joints[name] ?? null });
+  const inputGuide = crank.kind === "slider" ? s.guideAt(crank.guide) : null;
   const figures = [figure(`I(0,${crank.link})`, t.editor_input_mechanism, shapes.filter((sh) => sh.link === crank.link),
-    [at(crank.pivot)], [at(crank.joint)], [])];
+    inputGuide ? [] : [at(crank.pivot)], [at(crank.joint)],
+    inputGuide ? [{ at: s.joints[crank.joint] ?? inputGuide.point, angle: inputGuide.angle }] : [])];
   linkage.groups.forEach((group, k) => {
     const kindNumber = KINDS.indexOf(group.kind) + 1;          // Artobolevsky's kinds 1…5
     const guideNames = group.guides ?? (group.guide ? [group.guide] : []);

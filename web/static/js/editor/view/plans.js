@@ -80,7 +80,7 @@ function table(vectors, targets, scale, unit, t, lang, kind) {
  * Both plans of the API's `plan` answer into host; scales {velocity, acceleration}: the student's μ (m/s per
  * mm, m/s² per mm), or null for the smallest nice scale at which the plan fits 70 mm.
  */
-export function renderPlans(host, plan, t, lang, scales = {}) {
+export function renderPlans(host, plan, t, lang, scales = {}, slider = false) {
   if (!plan) {
     host.replaceChildren(element("p", { className: "hint", textContent: t.editor_plans_none }));
     return;
@@ -104,7 +104,9 @@ export function renderPlans(host, plan, t, lang, scales = {}) {
   const links = element("p", { className: "plan-links" }, ...Object.entries(plan.links).flatMap(([link, w]) => [
     element("span", { rich: `ω_${link} = ${formatQuantity(w.omega, lang, 4)} ${t.units_rad_s}, ε_${link} = ${formatQuantity(w.epsilon, lang, 4)} ${t.units_rad_s2}` }),
     "; "]).slice(0, -1));
-  host.replaceChildren(element("p", { className: "hint", textContent:
-    `φ = ${formatNumber(plan.phi * 180 / Math.PI, lang, 1)}°, ω₁ = ${formatQuantity(plan.omega1, lang, 4)} ${t.units_rad_s}, ε₁ = ${formatQuantity(plan.epsilon1, lang, 4)} ${t.units_rad_s2}` }),
+  const input = slider      // an input slider: its position s, velocity v₁ and acceleration a₁
+    ? `s = ${formatNumber(plan.phi, lang, 3)} ${t.units_m}, v₁ = ${formatQuantity(plan.omega1, lang, 4)} ${t.editor_unit_velocity}, a₁ = ${formatQuantity(plan.epsilon1, lang, 4)} ${t.editor_unit_acceleration}`
+    : `φ = ${formatNumber(plan.phi * 180 / Math.PI, lang, 1)}°, ω₁ = ${formatQuantity(plan.omega1, lang, 4)} ${t.units_rad_s}, ε₁ = ${formatQuantity(plan.epsilon1, lang, 4)} ${t.units_rad_s2}`;
+  host.replaceChildren(element("p", { className: "hint", textContent: input }),
   ...parts, links);
 }

@@ -12,18 +12,20 @@ export class QuantityPlot {
     Object.assign(this, { host, t, lang });
   }
 
-  draw(phi, quantity, cursor) {
+  /** Against φ (rad, drawn in degrees), or against the input slider's s (m) when `slider`. */
+  draw(phi, quantity, cursor, slider = false) {
     const { t, lang } = this;
     if (!window.Plotly || !quantity) {
       this.host.replaceChildren();
       return;
     }
-    const x = phi.map((p) => p * DEG);
+    const x = slider ? phi : phi.map((p) => p * DEG);
+    const at = slider ? cursor : cursor * DEG;
     const unit = unitText(quantity.unit, t);
     const title = `${plotText(quantity.label)}${quantity.unit === "1" ? "" : `, ${unit}`}`;
-    const layout = { ...baseLayout({ lang }, 300), xaxis: phiAxis(2 * Math.PI, { t }), yaxis: valueAxis(title),
+    const layout = { ...baseLayout({ lang }, 300), xaxis: slider ? valueAxis(`s, ${unitText("m", t)}`) : phiAxis(2 * Math.PI, { t }), yaxis: valueAxis(title),
       showlegend: false,
-      shapes: [{ type: "line", xref: "x", yref: "paper", x0: cursor * DEG, x1: cursor * DEG, y0: 0, y1: 1,
+      shapes: [{ type: "line", xref: "x", yref: "paper", x0: at, x1: at, y0: 0, y1: 1,
         line: { color: "#5d6978", width: 1, dash: "dot" } }] };
     const trace = { x, y: quantity.values, type: "scatter", mode: "lines", name: plotText(quantity.label),
       line: { color: TRACE_COLORS[0], width: 2 }, hovertemplate: "%{y}<extra></extra>" };
