@@ -61,7 +61,7 @@ def test_shaping_machine_forces_and_free_bodies(browser_page):
     cells = page.locator(f"{BODIES} .free-body-cell")
     assert cells.count() == 3                                # RRP (4, 5), RPR (2, 3), the crank
     assert page.locator(f"{BODIES} .friction-circle").count() > 0
-    assert page.locator(f"{BODIES} .force-reaction").count() >= 6
+    assert page.locator(f"{BODIES} .reaction").count() >= 6
     readings = page.inner_html("#panel-group_free_body .free-body-readings")     # real subscripts: R<sub>34</sub>
     assert "R<sub>34</sub>" in readings and "R<sub>01</sub>" in readings
     assert shown_symbol(t["symbol_balancing_moment"]) in page.inner_text("#panel-group_free_body .free-body-readings")
@@ -83,6 +83,7 @@ def test_shaping_machine_forces_and_free_bodies(browser_page):
     assert "NaN" not in page.inner_html("#panels")
     screenshot(page, "general_forces_shaping_ru")
     page.set_viewport_size({"width": 390, "height": 844})
+    page.wait_for_function(f"() => document.querySelector('{BODIES}').viewBox.baseVal.width < 600")   # one below the other
     page.locator("#panel-group_free_body").scroll_into_view_if_needed()
     screenshot(page, "general_forces_shaping_ru_phone")
     assert page.problems == []

@@ -5,7 +5,7 @@
  * the frame (R₃₄: link 3 on link 4), friction (moments M_f in revolute pairs, forces F_f in prismatic ones) and
  * the friction circles ρ = f·r (magnified); the crank with its balancing moment. Every body's forces share one
  * scale (the largest force of the picture is REFERENCE_ARROW long). Below, each body's outer reactions with
- * their values at that angle.
+ * their values at that angle. On a narrow screen (a phone) the bodies are drawn one below the other.
  */
 import { element } from "../../common/view/dom.js";
 import { forceArrow, momentArc } from "./force_parts.js";
@@ -17,9 +17,13 @@ import { bodyParts, GroupFreeBody, symbolOf } from "../model/group_free_body.js"
 const WIDTH = 960;
 const HEIGHT = 360;
 const PAD = 90;                 // drawing units around a body's joints: room for the arrows
-const REFERENCE_ARROW = 80;     // drawing units of the largest force of the picture
+const REFERENCE_ARROW = 100;     // drawing units of the largest force of the picture
 const CIRCLE = 9;               // drawing units of the largest friction circle (magnified)
 const MOMENT_RADIUS = 16;
+const NARROW = 620;             // CSS px: a narrower panel draws the bodies one below the other
+const STACKED = [480, 300];     // drawing units of one body's cell in that layout
+const CLASS_OF = { useful: "load" };   // the crank-slider's diagram's colours (app.css): reaction, load, inertia, …
+const classOf = (kind) => CLASS_OF[kind] ?? kind;
 
 export class GroupFreeBodyView {
   constructor(body, spec, { t, lang }, model) {
@@ -30,7 +34,16 @@ export class GroupFreeBodyView {
     this.angle = element("p", { className: "note group-free-body-angle" });
     this.list = element("dl", { className: "figures-list free-body-readings" });
     body.append(this.angle, this.svg, this.list);
+    this.body = body;
+    this.stacked = null;
     this.bodies = new GroupFreeBody(model, lang, (freeBody) => this.#draw(freeBody));
+    new ResizeObserver(() => {            // a phone turned, a window narrowed: lay out again if it changes
+      if (this.freeBody && this.#narrow() !== this.stacked) this.#draw(this.freeBody);
+    }).observe(body);
+  }
+
+  #narrow() {
+    return this.body.clientWidth > 0 && this.body.clientWidth < NARROW;
   }
 
   holds(data) {
@@ -48,19 +61,22 @@ export class GroupFreeBodyView {
   #draw(freeBody) {
     const { t, lang } = this;
     this.svg.replaceChildren(this.svg.querySelector("defs"));
+    this.freeBody = freeBody;
+    this.stacked = this.#narrow();
     const bodies = freeBody.bodies;
+    const [cell, height] = this.stacked ? STACKED : [WIDTH / bodies.length, HEIGHT];
+    this.svg.setAttribute("viewBox", `0 0 ${this.stacked ? cell : WIDTH} ${this.stacked ? height * bodies.length : height}`);
     const parts = bodies.map(bodyParts);
     const largest = Math.max(1e-12, ...parts.flatMap((p) => p.forces.map((f) => Math.hypot(...f.force))));
     const largestCircle = Math.max(1e-12, ...parts.flatMap((p) => p.circles.map((c) => c.radius)));
-    const cell = WIDTH / bodies.length;
     bodies.forEach((body, i) => {
       const layer = svgElement("g", { class: "free-body-cell", "data-group": String(body.group),
-        transform: `translate(${i * cell} 0)` }, this.svg);
+        transform: this.stacked ? `translate(0 ${i * height})` : `translate(${i * cell} 0)` }, this.svg);
       const caption = body.group === "crank" ? t.fb_group_crank
         : t.fb_group_named.replace("{kind}", body.kind).replace("{links}", body.links.join(", "));
       setRichText(svgElement("text", { class: "free-body-caption", x: cell / 2, y: 22, "text-anchor": "middle" }, layer), caption);
       const points = Object.values(body.points);
-      const scale = fitScale(points, cell, HEIGHT - 30, Math.min(PAD, cell / 4));
+      const scale = fitScale(points, cell, height - 30, Math.min(PAD, cell / 4));
       const at = (p) => { const [x, y] = scale.point(p); return [x, y + 30]; };
       const joints = Object.entries(body.points);
       for (let k = 1; k < joints.length; k += 1) {
@@ -77,11 +93,11 @@ export class GroupFreeBodyView {
       }
       for (const f of parts[i].forces) {
         const v = [f.force[0] / largest * REFERENCE_ARROW, -f.force[1] / largest * REFERENCE_ARROW];
-        forceArrow(layer, `force-${f.kind}`, f.symbol).update(at(f.at), v, { pushes: f.kind === "reaction" });
+        forceArrow(layer, classOf(f.kind), f.symbol).update(at(f.at), v, { pushes: f.kind === "reaction" });
       }
       for (const m of parts[i].moments) {
         const symbol = m.kind === "balancing" ? t.symbol_balancing_moment : m.symbol;
-        momentArc(layer, `moment-${m.kind}`, symbol, m.kind === "balancing" ? 1.6 * MOMENT_RADIUS : MOMENT_RADIUS)
+        momentArc(layer, classOf(m.kind), symbol, m.kind === "balancing" ? 1.6 * MOMENT_RADIUS : MOMENT_RADIUS)
           .update(at(m.at), m.moment);
       }
     });
