@@ -66,7 +66,6 @@ class Variant(BaseModel):
     overlay_values: list[float] = []
     panels: list[str]
     request: dict = Field(default_factory=dict, description="dynamics scenes: the request body before the sliders")
-    preset: dict | None = Field(None, description="the mechanism preset (content/mechanisms) the request takes keys from")
 
 
 class AngleGrid(BaseModel):
