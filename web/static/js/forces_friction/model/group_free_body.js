@@ -35,15 +35,15 @@ export function bodyParts(body) {
   const forces = [];
   const moments = [];
   for (const load of body.loads) {
-    if (load.force) forces.push({ symbol: symbolOf(load.name, load.kind), at: load.at, force: load.force, kind: load.kind });
-    else if (load.moment) moments.push({ symbol: symbolOf(load.name, load.kind), at: first, moment: load.moment, kind: load.kind });
+    if (isVector(load.force)) forces.push({ symbol: symbolOf(load.name, load.kind), at: load.at, force: load.force, kind: load.kind });
+    else if (Number.isFinite(load.moment) && load.moment !== 0) moments.push({ symbol: symbolOf(load.name, load.kind), at: first, moment: load.moment, kind: load.kind });
   }
   const outer = body.reactions.filter((r) => !innerReaction(r.name, links));
-  for (const r of outer) forces.push({ symbol: symbolOf(r.name), at: r.at, force: r.force, kind: "reaction", name: r.name });
+  for (const r of outer.filter((reaction) => isVector(reaction.force))) forces.push({ symbol: symbolOf(r.name), at: r.at, force: r.force, kind: "reaction", name: r.name });
   for (const f of body.friction) {
     if (innerReaction(f.name, links)) continue;
-    if (f.force) forces.push({ symbol: symbolOf(f.name, "friction"), at: f.at, force: f.force, kind: "friction" });
-    else if (f.moment) moments.push({ symbol: symbolOf(f.name, "friction"), at: f.at, moment: f.moment, kind: "friction" });
+    if (isVector(f.force)) forces.push({ symbol: symbolOf(f.name, "friction"), at: f.at, force: f.force, kind: "friction" });
+    else if (Number.isFinite(f.moment) && f.moment !== 0) moments.push({ symbol: symbolOf(f.name, "friction"), at: f.at, moment: f.moment, kind: "friction" });
   }
   if (Number.isFinite(body.balancing_moment)) {
     const pivot = body.reactions.find((r) => r.name.startsWith("R0"))?.at ?? first;
@@ -53,6 +53,9 @@ export function bodyParts(body) {
     .map(([pair, radius]) => ({ pair, at: body.points[pair], radius })).filter((c) => c.at && c.radius > 0);
   return { forces, moments, circles, reactions: outer };
 }
+
+/** A force the answer gives (where the mechanism self-locks its reactions are null). */
+const isVector = (v) => Array.isArray(v) && v.length === 2 && v.every(Number.isFinite);
 
 /** A reaction between two links of the same group (R45 and R54 inside the group 4–5) is not an outer load. */
 function innerReaction(name, links) {
@@ -83,7 +86,7 @@ export class GroupFreeBody {
     clearTimeout(this.timer);
     if (!this.shown || this.#near(phi, this.shown.phi)) return;
     this.timer = setTimeout(() => {
-      const body = { ...this.model.request(), free_body_phi: phi, n: this.model.request().n ?? 361 };
+      const body = { ...this.model.request(), free_body_phi: phi };
       this.api.submit("free_body", body, (answer) => {
         if (!answer.ok || !answer.data.free_body) return;
         this.shown = answer.data.free_body;

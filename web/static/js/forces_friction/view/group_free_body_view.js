@@ -103,7 +103,8 @@ export class GroupFreeBodyView {
     });
     this.angle.textContent = t.fb_group_angle.replace("{phi}", formatNumber(degrees(freeBody.phi), lang, 1));
     const rows = parts.flatMap((p, i) => [
-      ...p.reactions.map((r) => [symbolOf(r.name), formatQuantity(Math.hypot(...r.force), lang, 4), t.units_N]),
+      ...p.reactions.map((r) => [symbolOf(r.name),
+        Array.isArray(r.force) && r.force.every(Number.isFinite) ? formatQuantity(Math.hypot(...r.force), lang, 4) : "—", t.units_N]),
       ...(Number.isFinite(bodies[i].balancing_moment)
         ? [[t.symbol_balancing_moment, formatQuantity(bodies[i].balancing_moment, lang, 4), t.units_N_m]] : []),
     ]);
