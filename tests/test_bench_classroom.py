@@ -67,9 +67,11 @@ def substituted(request: dict, vary: list[dict], value: float) -> dict:
     for item in vary:
         *keys, last = item["path"].split(".")
         node = body
+        index = lambda node, key: int(key) if isinstance(node, list) else key      # "masses.forces.0.working"
         for key in keys:
-            node = node[key]
-        assert last in node, item["path"]           # a path the page's request has, not a new field
+            node = node[index(node, key)]
+        last = index(node, last)
+        assert last in (range(len(node)) if isinstance(node, list) else node), item["path"]   # not a new field
         node[last] = value * item["factor"]
     return body
 

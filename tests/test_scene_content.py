@@ -7,23 +7,11 @@ import pytest
 from fastapi.testclient import TestClient
 
 from server.api.app import app
+from server.lessons.requests import path_value as get_path, set_path
 from server.lessons.scenes import LANGUAGES, interface_texts, scenes
 
 client = TestClient(app)
 DYNAMIC = [(s.id, v.id) for s in scenes().values() if s.kind == "dynamics" for v in s.variants]
-
-
-def set_path(body: dict, path: str, value) -> None:
-    *parents, last = path.split(".")
-    for key in parents:
-        body = body.setdefault(key, {})
-    body[last] = value
-
-
-def get_path(body: dict, path: str):
-    for key in path.split("."):
-        body = body[key]
-    return body
 
 
 def _has(data: dict, path: str) -> bool:

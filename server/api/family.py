@@ -147,9 +147,15 @@ def member_body(request: dict, vary: list[Vary], value: float) -> dict:
         *keys, last = item.path.split(".")
         holder = body
         for key in keys:
-            holder[key] = holder = dict(holder[key])
-        holder[last] = value * item.factor
+            step = _step(holder, key)
+            holder[step] = holder = (list if isinstance(holder[step], list) else dict)(holder[step])
+        holder[_step(holder, last)] = value * item.factor
     return body
+
+
+def _step(holder, key: str):
+    """A dotted path's key as its holder takes it: a list's item by its index ("masses.forces.0.working")."""
+    return int(key) if isinstance(holder, list) and key.isdigit() else key
 
 
 def shared(body):
@@ -167,9 +173,12 @@ def path_exists(request: dict, path: str) -> bool:
     """Whether the dotted path names a number (not a boolean) in the request."""
     holder = request
     for key in path.split("."):
-        if not isinstance(holder, dict) or key not in holder:
+        if isinstance(holder, list) and key.isdigit() and int(key) < len(holder):
+            holder = holder[int(key)]
+        elif isinstance(holder, dict) and key in holder:
+            holder = holder[key]
+        else:
             return False
-        holder = holder[key]
     return isinstance(holder, (int, float)) and not isinstance(holder, bool)
 
 

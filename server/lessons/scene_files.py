@@ -1,6 +1,6 @@
 """A scene file as written and as the app reads it: shared slider definitions and variants that inherit.
 
-Two kinds of reference keep content/scenes/*.json free of copies (adding a lesson still needs no Python):
+Three kinds of reference keep content/scenes/*.json free of copies (adding a lesson still needs no Python):
 
 - **A shared slider.** A slider (or a variant's ``overlay``) written ``{"use": "<name>", …}`` is the definition
   ``<name>`` of content/sliders.json with the reference's own keys replacing the definition's (a scene's range,
@@ -9,6 +9,11 @@ Two kinds of reference keep content/scenes/*.json free of copies (adding a lesso
   (itself resolved first) with the variant's own keys replacing its keys, except ``request``, which is merged
   key by key (a request's top-level key, e.g. ``"motor"``, is replaced whole). A variant that names sliders
   names all of them; one that does not keeps the other's.
+- **A mechanism preset** of content/mechanisms/, ``"preset": {"name": "shaping_machine", "request": {"linkage":
+  "linkage", "masses": "dynamics.masses"}}``: each named key of the variant's ``request`` is the value at that
+  dotted path of the preset, with the variant's own ``request`` merged over it key by key at every depth (its
+  ``"masses": {"friction": 0.1}`` adds to the preset's masses). The scene names the preset; the linkage and the
+  masses stay written once, in the preset.
 
 A reference to nothing, a loop of variants or a variant without an id is refused with the scene file, the
 variant and the slider named (``ContentError``).
@@ -24,8 +29,9 @@ class ContentError(ValueError):
     """A scene file that does not resolve; the message names the file, the variant and the slider."""
 
 
-def resolved_scene(raw: dict, where: str, shared: dict[str, dict]) -> dict:
-    """The scene ``raw`` (read from the file ``where``) with every "extends" and every "use" resolved."""
+def resolved_scene(raw: dict, where: str, shared: dict[str, dict], presets: dict[str, dict] | None = None) -> dict:
+    """The scene ``raw`` (read from the file ``where``) with every "extends", "use" and "preset" resolved
+    (``presets``: content/mechanisms/*.json by name)."""
     variants = raw.get("variants", [])
     by_id = {}
     for index, variant in enumerate(variants):
@@ -34,7 +40,8 @@ def resolved_scene(raw: dict, where: str, shared: dict[str, dict]) -> dict:
         if variant["id"] in by_id:
             raise ContentError(f"{where}: variant {variant['id']}: two variants with this id")
         by_id[variant["id"]] = variant
-    resolved = [copy.deepcopy(_with_shared_sliders(_inherited(v, by_id, where, ()), where, shared))
+    resolved = [copy.deepcopy(_with_preset(_with_shared_sliders(_inherited(v, by_id, where, ()), where, shared),
+                                           where, presets or {}))
                 for v in variants]                   # each its own objects: inherited parts are not shared
     return copy.deepcopy(raw | {"variants": []}) | {"variants": resolved}
 
@@ -68,6 +75,34 @@ def _with_shared_sliders(variant: dict, where: str, shared: dict[str, dict]) -> 
     if isinstance(variant.get("overlay"), dict):
         resolved["overlay"] = _slider(variant["overlay"], f"{where}: variant {variant['id']}, overlay", 0, shared)
     return resolved
+
+
+def _with_preset(variant: dict, where: str, presets: dict[str, dict]) -> dict:
+    """The variant with its request's keys taken from the mechanism preset it names, its own merged over them."""
+    reference = variant.get("preset")
+    if reference is None:
+        return variant
+    name = reference.get("name") if isinstance(reference, dict) else None
+    if name not in presets:
+        raise ContentError(f"{where}: variant {variant['id']}: preset {name!r} is no file of content/mechanisms "
+                           f"({', '.join(sorted(presets))})")
+    taken = {}
+    for key, path in reference.get("request", {}).items():
+        value = presets[name]
+        for step in str(path).split("."):
+            if not isinstance(value, dict) or step not in value:
+                raise ContentError(f"{where}: variant {variant['id']}: preset {name} has no {path!r} (for {key})")
+            value = value[step]
+        taken[key] = copy.deepcopy(value)
+    return variant | {"request": _merged(taken, variant.get("request", {}))}
+
+
+def _merged(base: dict, own: dict) -> dict:
+    """base with own's keys replacing its keys, dictionaries merged key by key at every depth."""
+    out = dict(base)
+    for key, value in own.items():
+        out[key] = _merged(base[key], value) if isinstance(base.get(key), dict) and isinstance(value, dict) else value
+    return out
 
 
 def _slider(entry, where: str, index: int, shared: dict[str, dict]):

@@ -180,12 +180,14 @@ def scene_documents() -> dict[str, dict]:
 
 
 def read_scene_documents(content: Path) -> dict[str, dict]:
-    """The scene files of content/scenes with shared sliders (content/sliders.json) and inheriting variants
-    resolved (scene_files.py), each slider checked with the file, the variant and the slider named."""
+    """The scene files of content/scenes with shared sliders (content/sliders.json), inheriting variants and
+    mechanism presets (content/mechanisms) resolved (scene_files.py), each slider checked with the file, the variant and the slider named."""
     shared = json.loads((content / "sliders.json").read_text(encoding="utf-8"))
+    presets = {path.stem: json.loads(path.read_text(encoding="utf-8"))
+               for path in sorted((content / "mechanisms").glob("*.json"))}
     documents = {}
     for path in sorted((content / "scenes").glob("*.json")):
-        document = resolved_scene(json.loads(path.read_text(encoding="utf-8")), path.name, shared)
+        document = resolved_scene(json.loads(path.read_text(encoding="utf-8")), path.name, shared, presets)
         for variant in document["variants"]:
             for index, slider in enumerate([*variant.get("sliders", []), variant.get("overlay") or {}]):
                 if isinstance(slider, dict) and slider:

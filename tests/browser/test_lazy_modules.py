@@ -6,7 +6,7 @@ import pytest
 pytestmark = pytest.mark.browser
 
 VIEW_MODULES = {"efficiency_chain_view.js", "flywheel_drawing_view.js", "free_body_view.js", "gear_train_view.js",
-                "indicator_diagram_view.js", "wittenbauer_view.js", "work_precision_view.js"}
+                "group_free_body_view.js", "indicator_diagram_view.js", "wittenbauer_view.js", "work_precision_view.js"}
 
 
 def scripts_requested(page, scene: str, shown: str) -> set[str]:
@@ -28,4 +28,5 @@ def test_the_equation_of_motion_fetches_no_drawing_views(browser_page):
 def test_forces_and_friction_fetches_the_free_body_view_and_draws_it(browser_page):
     scripts = scripts_requested(browser_page, "forces-friction", "#panel-free_body svg")
     assert {"free_body_view.js", "efficiency_chain_view.js"} <= scripts
-    assert scripts.isdisjoint({"gear_train_view.js", "wittenbauer_view.js", "work_precision_view.js"})
+    assert scripts.isdisjoint({"gear_train_view.js", "group_free_body_view.js", "wittenbauer_view.js",
+                               "work_precision_view.js"})      # the six-bar's group bodies: its variant only

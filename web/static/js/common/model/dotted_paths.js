@@ -1,6 +1,7 @@
 /**
  * Values inside nested objects named by dotted paths, as the scenes name them: a slider's "load.f" or
  * "params.l2" in a request body, a panel's "resisting.means.textbook" or "startup.omega" in an answer.
+ * A number in a path indexes a list: "masses.forces.0.working" (server/lessons/requests.py, the twin).
  */
 
 /** The value at path, or undefined where the path does not exist (null stays null). */
@@ -18,6 +19,6 @@ export function setPath(object, path, value) {
   const keys = path.split(".");
   const last = keys.pop();
   let parent = object;
-  for (const key of keys) parent = parent[key] ??= {};
-  parent[last] = value;
+  for (const key of keys) parent = Array.isArray(parent) ? parent[Number(key)] : (parent[key] ??= {});
+  parent[Array.isArray(parent) ? Number(last) : last] = value;
 }

@@ -20,10 +20,12 @@ const FIELDS_OF = {
   // kinematics_scene.js: LinkageView (joints at φ, ghosts at the special positions) and PlotsView (figures.js)
   linkage: () => [...KINEMATICS_FRAME, "outputs.joints"],
   plot: (spec) => (spec.outputs ? [...KINEMATICS_FRAME, ...spec.outputs.map((name) => `outputs.${name}`)]
-    : [spec.x, ...spec.series.flatMap((series) => [series.y, ...(series.gaps ? [series.gaps] : [])])]),
+    : [spec.x, ...spec.series.flatMap((series) => [series.y, ...(series.gaps ? [series.gaps] : [])]),
+      ...(spec.series_each ? [spec.series_each.path] : [])]),
   polar: (spec) => spec.series.flatMap((series) => [series.theta, series.r]),
   // dynamics panel views with a preview (dynamics_view.js PANEL_VIEWS with drawAt)
   free_body: () => ["phi", "points", "reactions", "applied", "friction", "friction_circles", "balancing_moment"],
+  group_free_body: () => ["free_body"],
   gear_train: () => ["phi", "points", "inv_AP", "omega_coupler", "epsilon_star", "epsilon_star2", "epsilon"],
   wittenbauer: (spec) => ["phi", spec.x, spec.y, spec.diagram],
   flywheel_drawing: (spec) => [spec.disk],

@@ -4,7 +4,10 @@
  *          a scalar series (style "hline", e.g. the mean M_c0) is a dashed level line labelled with its value;
  *          a series with axis 2 is read on a right-hand axis (panel.y2_title), one with `gaps` (a path) has
  *          gaps where the answer's values there are null (ζ where the compliance is infinite); x_unit ""
- *          plots against another series (a phase portrait of the twist), and the nearest point is read
+ *          plots against another series (a phase portrait of the twist), and the nearest point is read;
+ *          `series_each: {path, label}` adds one series per key of the answer's object at path (the reactions
+ *          of a general mechanism by pair, "magnitudes": {R12, R23, …}), labelled by the template with {key}
+ *          written as a symbol with its subscript (R12 → R₁₂)
  *   polar  the phase portrait ω(φ): radius r against angle θ (rad, drawn in degrees), so the start-up
  *          winds round and round onto the closed steady cycle (style "bold"); panel.r_title names the
  *          radius and its unit ("ω, рад/с") on the radial axis and in the hover, theta_symbol the angle
@@ -32,14 +35,30 @@ export function holds(data, path) {
 
 /** A series keeps its colour whatever other series the answer leaves out (link 3 is green in every variant). */
 function seriesColor(panel, series) {
-  return COLORS[panel.series.indexOf(series) % COLORS.length];
+  const index = panel.series.indexOf(series);
+  return COLORS[(index >= 0 ? index : panel.series.length + series.each) % COLORS.length];
+}
+
+/** "R12" → "R_{12}", "R05" → "R_{05}": a key of the answer as notation markup. */
+const keySymbol = (key) => key.replace(/^([^\d]+)(\d+)$/, "$1_{$2}");
+
+/** The panel's series with those its series_each makes from the answer's keys. */
+function panelSeries(panel, data) {
+  const each = panel.series_each;
+  const object = each ? pathValue(data, each.path) : null;
+  if (!object || typeof object !== "object") return panel.series;
+  const made = Object.keys(object).map((key, i) => {
+    const text = each.label.replaceAll("{key}", keySymbol(key));
+    return { y: `${each.path}.${key}`, each: i, label: { ru: text, uk: text, en: text } };
+  });
+  return [...panel.series, ...made];
 }
 
 const toDegrees = (values) => values.map((v) => (v === null ? null : degrees(v)));
 
 /** The series of a plot panel that the answer holds. */
 export function heldSeries(panel, data) {
-  return panel.series.filter((series) => holds(data, series.y));
+  return panelSeries(panel, data).filter((series) => holds(data, series.y));
 }
 
 /** The series of a polar panel that the answer holds. */

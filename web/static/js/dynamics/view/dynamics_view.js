@@ -51,6 +51,7 @@ const PANEL_VIEWS = {
   efficiency_chain: { load: () => import("../../forces_friction/view/efficiency_chain_view.js").then((m) => m.EfficiencyChainView) },
   flywheel_drawing: { load: () => import("../../flywheel/view/flywheel_drawing_view.js").then((m) => m.FlywheelDrawingView), drawing: true },
   free_body: { load: () => import("../../forces_friction/view/free_body_view.js").then((m) => m.FreeBodyView), drawing: true },
+  group_free_body: { load: () => import("../../forces_friction/view/group_free_body_view.js").then((m) => m.GroupFreeBodyView), drawing: true },
   gear_train: { load: () => import("../../angular_acceleration/view/gear_train_view.js").then((m) => m.GearTrainView), drawing: true },
   indicator_diagram: { load: () => import("../../flywheel/view/indicator_diagram_view.js").then((m) => m.IndicatorDiagramView) },
   wittenbauer: { load: () => import("../../flywheel/view/wittenbauer_view.js").then((m) => m.WittenbauerView), drawing: true },
