@@ -6,6 +6,7 @@ from __future__ import annotations
 import pytest
 
 from conftest import drag_slider, interface_texts, read_scene, screenshot
+from test_crank_drag import assert_turned, before_turning, turn_crank
 from test_dynamics import figure_value, open_scene, prefix, trace, wait_for_new_trace, warnings
 
 pytestmark = pytest.mark.browser
@@ -165,6 +166,11 @@ def test_gear_train_follows_the_crank_and_turns_into_parallel_lines_at_90_degree
     page.wait_for_function("() => document.querySelectorAll('.gear-train-readings dd')[6]?.textContent === '1 m'")
     assert reading(page, "AP") == reading(page, "OA") == "1 m"                    # P: the rectangle's fourth corner
     assert reading(page, "ε**") == "0 rad/s²"
+    # the trammel's crank OA turns by hand (the view built anew for this variant); the plots' cursors follow
+    state = before_turning(page, "#panel-gear_train svg")
+    state["pivot"], state["end"] = turn_crank(page, "#panel-gear_train svg")
+    phi = assert_turned(page, "#panel-gear_train svg", "components", state)
+    assert reading(page, "φ") == f"{phi:.1f}°"
     assert shows_no_nan(page)
     screenshot(page, "angular_trammel")
     assert page.problems == []

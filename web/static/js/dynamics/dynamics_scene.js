@@ -3,6 +3,8 @@
  * /forces, …) and the views. One request per change of the values; while a slider is dragged the client
  * keeps one in flight and sends only the latest values next. A variant with a drawing gets the
  * crank-angle clock and its controls above the parameters; animation frames only interpolate in the answer.
+ * A drawing's crank turns by hand too (crank_drag.js): the clock is put at the pointer's angle, so the plots'
+ * cursors and every per-angle readout follow as they follow the animation, and nothing is asked.
  * While a slider is dragged and its family has arrived, plots and drawings follow answers interpolated from
  * the family (a preview, marked and with the numbers of the last exact answer dimmed) and nothing is asked;
  * the exact answer is asked for when the slider comes to rest.
@@ -14,6 +16,7 @@ import { AnimationControls } from "../common/view/animation_controls.js";
 import { CrankAnimation } from "../common/model/animation.js";
 import { ApiClient } from "../common/model/api.js";
 import { ControlsView } from "../common/view/controls_view.js";
+import { CrankDrag } from "../common/view/crank_drag.js";
 import { element } from "../common/view/dom.js";
 import { DynamicsModel } from "./model/dynamics_model.js";
 import { DynamicsView } from "./view/dynamics_view.js";
@@ -39,11 +42,12 @@ const client = new ApiClient(scene.endpoint, lang, (busy) => {
   stale.busy(busy);
 });
 const ghosts = new GhostCurves(t.pinned);
-const view = new DynamicsView(byId("panels"), byId("notices"), { scene, ...texts }, model, ghosts);
+const animation = new CrankAnimation();
+const view = new DynamicsView(byId("panels"), byId("notices"), { scene, ...texts }, model, ghosts,
+  (drawing) => new CrankDrag(drawing, animation, texts));
 sceneTools(model, ghosts, () => view.graphs(), texts);
 new ControlsView(byId("controls"), model, { ...texts, pickerLabel: t.variant });
 new PresetsView(byId("controls"), model, texts);
-const animation = new CrankAnimation();
 const animationBar = element("section", { id: "animation", className: "animation", "aria-label": t.animation });
 new AnimationControls(animationBar, animation, texts);
 

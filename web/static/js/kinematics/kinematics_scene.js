@@ -12,7 +12,7 @@ import { AnimationControls } from "../common/view/animation_controls.js";
 import { CrankAnimation } from "../common/model/animation.js";
 import { ApiClient } from "../common/model/api.js";
 import { ControlsView } from "../common/view/controls_view.js";
-import { CrankDrag } from "./view/crank_drag.js";
+import { CrankDrag } from "../common/view/crank_drag.js";
 import { FamilyPreview, previewMark } from "../common/view/family_preview.js";
 import { GhostCurves } from "../common/model/ghost_curves.js";
 import { LinkageView } from "../common/view/linkage_view.js";

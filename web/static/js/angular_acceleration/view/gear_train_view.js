@@ -11,6 +11,7 @@
  * the circle about P is drawn as its limit, the straight line through A perpendicular to OA. The drawing
  * is bounded by the mechanism; whatever reaches farther is clipped.
  */
+import { crankPlace } from "../../common/view/crank_drag.js";
 import { element } from "../../common/view/dom.js";
 import { bar, block, drawing, framePivot, guide, label, pin } from "../../common/view/linkage_parts.js";
 import { degrees, formatNumber, formatQuantity, unitText } from "../../common/view/notation.js";
@@ -47,6 +48,14 @@ export class GearTrainView {
     this.infinity = element("p", { className: "note instant-centre-note", textContent: t.instant_centre_at_infinity });
     body.append(element("div", { className: "drawing-with-readings" }, this.svg,
       element("div", { className: "drawing-readings" }, list, this.infinity)));
+    /** The crank OA turns by hand (crank_drag.js) about O, where the drawing puts it. */
+    this.turnable = { svg: this.svg, name: spec.title[lang], crank: () => this.#crankPlace() };
+  }
+
+  #crankPlace() {
+    if (!this.data) return null;
+    const point = (name, phi) => this.scale.point(sampleAt(this.data.phi, this.data.points[name], phi));
+    return crankPlace(point("O", 0), (phi) => point("A", phi));
   }
 
   holds(data) {

@@ -45,6 +45,8 @@ const READING_KINDS = ["figures", "table", "numerics"];
  *   drawAt(phi)   drawings (and diagrams that follow the crank angle): show them at crank angle phi (rad);
  *                 such a view is marked drawing: true here (the page shows the crank-angle clock for it)
  *   paramsChanged()  optional: a value changed (a view with results of its own marks them as earlier)
+ *   turnable      optional, a drawing view's: the drawing whose crank turns by hand, {svg, crank(), name?}
+ *                 (crank_drag.js), handed to the page's turn(turnable) once the view is made
  * A view without holds needs nothing from the answer (as a panel with "needs": []): always shown, never given show.
  */
 const PANEL_VIEWS = {
@@ -78,9 +80,13 @@ function holdsPanel(panel, data) {
 }
 
 export class DynamicsView {
-  /** ghosts: the pinned curves (GhostCurves), drawn under each graph's own. */
-  constructor(container, notices, { scene, t, lang }, model, ghosts) {
+  /**
+   * ghosts: the pinned curves (GhostCurves), drawn under each graph's own; turn(turnable): makes a drawing's
+   * crank turn by hand with the page's clock.
+   */
+  constructor(container, notices, { scene, t, lang }, model, ghosts, turn) {
     this.container = container;
+    this.turn = turn;
     this.ghosts = ghosts;
     this.model = model;
     this.notices = notices;
@@ -177,6 +183,7 @@ export class DynamicsView {
     if (!this.panels.includes(panel)) return;            // another variant was built meanwhile
     panel.view = new View(panel.body, panel.spec, this.texts, this.model);
     panel.loading = false;
+    if (panel.view.turnable) this.turn(panel.view.turnable);
     if (this.answered) this.#fill(panel, this.data);
     if (this.data && !panel.figure.hidden) panel.view.drawAt?.(this.phi);
   }

@@ -81,6 +81,7 @@ export class FlywheelDrawingView {
     this.numbers = element("p", { className: "flywheel-numbers" });
     body.append(stage, this.numbers);
     this.linkage = new LinkageView(stage, { t, lang });
+    this.turnable = this.linkage;             // its crank turns by hand (crank_drag.js)
     this.kinematics = new ApiClient("kinematics", lang, (busy) => body.classList.toggle("busy", busy));
     this.joints = null;
     this.phi = 0;

@@ -18,6 +18,7 @@
  * pixels, so that the symbols keep their size; in every layout the symbols are moved apart where they
  * would cover each other (label_placement.js).
  */
+import { crankPlace } from "../../common/view/crank_drag.js";
 import { element } from "../../common/view/dom.js";
 import { forceArrow, momentArc, roundDown } from "./force_parts.js";
 import { separateLabels } from "./label_placement.js";
@@ -71,6 +72,20 @@ export class FreeBodyView {
     this.locked = element("p", { className: "note self-locking-note", textContent: t.self_locking_at_angle, hidden: true });
     this.list = element("dl", { className: "figures-list free-body-readings" });
     body.append(this.svg, this.locked, this.list);
+    /** The crank 1 turns by hand (crank_drag.js) about O, where the diagram draws it. */
+    this.turnable = { svg: this.svg, name: spec.title[lang], crank: () => this.#crankPlace() };
+  }
+
+  /** The crank as drawn: pivot O at its anchor, the pin A turned with the answer's OA at φ (y up). */
+  #crankPlace() {
+    if (!this.data) return null;
+    const { data, anchors, k } = this;
+    const at = (name, phi) => sampleAt(data.phi, data.points[name], phi);
+    const [x, y] = anchors.crank;
+    return crankPlace(anchors.crank, (phi) => {
+      const [O, A] = [at("O", phi), at("A", phi)];
+      return [x + (A[0] - O[0]) * k, y - (A[1] - O[1]) * k];
+    });
   }
 
   holds(data) {
