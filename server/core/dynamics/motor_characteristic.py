@@ -60,12 +60,12 @@ def critical_speed(motor: Motor, gear_ratio: float) -> float:
     return 0.0
 
 
-def characteristic(motor: Motor, gear_ratio: float, points: int = 241) -> dict:
-    """The curve from ω₁ = 0 to ω₁с on ``points`` speeds, with the branch of each point and the marked
-    points a (start), b (maximum) and d (synchronous)."""
+def characteristic(motor: Motor, gear_ratio: float, points: int = 241, extra=()) -> dict:
+    """The curve from ω₁ = 0 to ω₁с on ``points`` speeds and the ``extra`` ones (operating points), with the
+    branch of each point and the marked points a (start), b (maximum) and d (synchronous)."""
     sync = motor.omega_sync / gear_ratio
     knee = critical_speed(motor, gear_ratio)
-    omega = np.unique(np.concatenate([np.linspace(0.0, sync, points), [knee]]))
+    omega = np.unique(np.concatenate([np.linspace(0.0, sync, points), [knee], list(extra)]))
     moment, slope = reduced_torque(motor, gear_ratio, omega)
     start = float(reduced_torque(motor, gear_ratio, 0.0)[0])
     peak = float(reduced_torque(motor, gear_ratio, knee)[0])
