@@ -357,7 +357,7 @@ def motor_characteristic(request: MotorCharacteristicRequest, lang: str) -> Answ
     """The induction motor's characteristic, the operating point's stability, the successive approximations
     and the joint solution (Lecture 10 (10.9)–(10.10))."""
     result, notices = motor_study(machine(request), request.outputs, request.tol)
-    return answer(result, notices, lang)
+    return answer(nested_numerics(result, ("approximations", "joint"), lang), notices, lang)
 
 
 def flywheel_given(request: FlywheelAnalysisRequest, lang: str) -> Answer:
@@ -368,7 +368,15 @@ def flywheel_given(request: FlywheelAnalysisRequest, lang: str) -> Answer:
                             "constant or indicator motor, no viscous load", "flywheel_needs_phi_moments")
     result, notices = flywheel_analysis(built, request.omega_mean, request.inertia, request.delta, request.balance,
                                         request.outputs)
-    return answer(result, notices, lang)
+    return answer(nested_numerics(result, ("analysis",), lang), notices, lang)
+
+
+def nested_numerics(result: dict, parts: tuple[str, ...], lang: str) -> dict:
+    """The numerics of each part of an answer (not at its top) in the reader's language."""
+    for part in parts:
+        if isinstance((result.get(part) or {}).get("numerics"), dict):
+            result[part]["numerics"] = localise_numerics(result[part]["numerics"], lang)
+    return result
 
 
 # POST /api/v1/<name>: the request model and the body; the answer is a function of (name, lang, body) alone.

@@ -35,7 +35,7 @@ def motor_study(machine: Machine, outputs: list[str], tol: float) -> tuple[dict,
     if working is None:
         peak = mc.characteristic(motor, i)["maximum"]["moment"]
         notices.append(Notice("motor_stalls", f"The motor stalls: the mean load {load:.4g} N·m exceeds the largest "
-                              f"torque of the characteristic M_дmax = {peak:.4g} N·m.", {"load": load, "peak": peak}))
+                              f"torque of the characteristic M_d,max = {peak:.4g} N·m.", {"load": load, "peak": peak}))
     if "characteristic" in outputs:
         curve = mc.characteristic(motor, i, extra=[p.omega for p in points])
         omega = curve["omega"]
@@ -58,7 +58,7 @@ def motor_study(machine: Machine, outputs: list[str], tol: float) -> tuple[dict,
                                  "time_constant": cycle_mean(tables.J, tables.phi) / abs(working.drive_slope - working.load_slope)}
         unstable = [p for p in points if not p.stable]
         notices += [Notice("operating_point_unstable", f"The crossing at ω = {p.omega:.4g} rad/s is on the unstable "
-                           f"branch: dM_д/dω = {p.drive_slope:.4g} ≥ dM_с/dω = {p.load_slope:.4g}.",
+                           f"branch: dM_d/dω = {p.drive_slope:.4g} ≥ dM_c/dω = {p.load_slope:.4g}.",
                            {"omega": p.omega, "drive": p.drive_slope, "load": p.load_slope}) for p in unstable]
     if "approximations" in outputs and working is not None:
         steps = successive_approximations(machine, tables, working.omega, tol)
