@@ -83,7 +83,7 @@ def test_the_successive_approximations_reach_the_joint_solution():
     tables = mo.cycle_tables(built, built.kinks(), 2048)
     load = -cycle_mean(tables.net_phi, tables.phi)
     working = mc.operating_points(KLOSS, I, load)[0]
-    steps = successive_approximations(built, tables, working.omega, tol=1e-9)
+    steps = successive_approximations(built, tables, working.omega, mc.critical_speed(KLOSS, I), tol=1e-9)
     assert steps.converged and steps.ratio < 1
     joint = mo.steady_cycle(built, 1e-10).steady
     last = np.interp(joint.phi, tables.phi, steps.omega[-1])
@@ -99,7 +99,7 @@ def test_the_approximations_diverge_when_rho_exceeds_one_though_the_joint_soluti
     built = machine(1.0)
     tables = mo.cycle_tables(built, built.kinks(), 2048)
     working = mc.operating_points(KLOSS, I, -cycle_mean(tables.net_phi, tables.phi))[0]
-    steps = successive_approximations(built, tables, working.omega)
+    steps = successive_approximations(built, tables, working.omega, mc.critical_speed(KLOSS, I))
     assert steps.ratio > 1 and not steps.converged
     assert "approximations_diverge" in [n.code for n in steps.notices]
     assert mo.steady_cycle(built, 1e-8).steady is not None

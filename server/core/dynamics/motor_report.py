@@ -61,7 +61,7 @@ def motor_study(machine: Machine, outputs: list[str], tol: float) -> tuple[dict,
                            f"branch: dM_d/dω = {p.drive_slope:.4g} ≥ dM_c/dω = {p.load_slope:.4g}.",
                            {"omega": p.omega, "drive": p.drive_slope, "load": p.load_slope}) for p in unstable]
     if "approximations" in outputs and working is not None:
-        steps = successive_approximations(machine, tables, working.omega, tol)
+        steps = successive_approximations(machine, tables, working.omega, mc.critical_speed(motor, i), tol)
         notices += steps.notices
         plotted = np.linspace(0.0, machine.cycle(), PLOTTED)
         curves = {"phi": plotted}
@@ -72,7 +72,7 @@ def motor_study(machine: Machine, outputs: list[str], tol: float) -> tuple[dict,
             if laws:
                 curves[f"{name}_last"] = np.interp(plotted, tables.phi, laws[-1])
         last = steps.omega[-1] if steps.omega else None
-        result["approximations"] = {"rows": steps.rows, "ratio": steps.ratio, "converged": steps.converged,
+        result["approximations"] = {"rows": steps.rows, "contraction": steps.ratio, "converged": steps.converged,
                                     "curves": curves, "numerics": steps.numerics.as_dict()}
     if "joint" in outputs and working is not None:
         motion = steady_cycle(machine, min(tol * 10, 1e-6), deadline=time.perf_counter() + TIME_BUDGET_S)

@@ -72,8 +72,11 @@ def energy_law(tables: Tables, work: np.ndarray, mean: float) -> np.ndarray | No
     return np.sqrt(np.maximum(2 * (T0 + work) / tables.J, 0.0))
 
 
-def successive_approximations(machine: Machine, tables: Tables, omega_operating: float, tol: float = 1e-8) -> Approximations:
-    """The steps of (10.10) on the nodes of ``tables``, from the operating point's speed."""
+def successive_approximations(machine: Machine, tables: Tables, omega_operating: float, knee: float,
+                              tol: float = 1e-8) -> Approximations:
+    """The steps of (10.10) on the nodes of ``tables``, from the operating point's speed; ``knee``: the speed
+    where the characteristic's stable branch begins (motor_characteristic.critical_speed)."""
+    sync = machine.motor.omega_sync / machine.inertias.gear_ratio
     started = time.perf_counter()
     phi = tables.phi
     result = Approximations(phi)
@@ -91,7 +94,8 @@ def successive_approximations(machine: Machine, tables: Tables, omega_operating:
     omega = np.full_like(phi, omega_operating)
     limit = STEPS_MAX if result.ratio < 1 else SHOWN_DIVERGING
     for step in range(1, limit + 1):
-        low, high = -float(omega.min()) + 1e-9 * omega_operating, 4 * omega_operating
+        level = cycle_mean(omega, phi)      # the shift keeps the mean speed on the stable branch, knee to ω₁с
+        low, high = knee - level, sync - level
         if balance(omega + low) * balance(omega + high) > 0:
             result.notices.append(Notice("approximation_no_balance", f"Step {step}: no mean speed balances the "
                                          "cycle's work on the characteristic: the motor cannot carry the load.",
