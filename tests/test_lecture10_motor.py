@@ -101,7 +101,7 @@ def test_the_approximations_diverge_when_rho_exceeds_one_though_the_joint_soluti
     working = mc.operating_points(KLOSS, I, -cycle_mean(tables.net_phi, tables.phi))[0]
     steps = successive_approximations(built, tables, working.omega, mc.critical_speed(KLOSS, I))
     assert steps.ratio > 1 and not steps.converged
-    assert "approximations_diverge" in [n.code for n in steps.notices]
+    assert "motor_approximations_diverge" in [n.code for n in steps.notices]
     assert mo.steady_cycle(built, 1e-8).steady is not None
 
 
@@ -144,3 +144,13 @@ def test_bad_input_is_refused_naming_the_field(client, change, field):
     answer = client.post("/api/v1/motor-characteristic", json={**BODY, **change})
     assert answer.status_code == 422
     assert field in json.dumps([d["loc"] for d in answer.json()["detail"]])
+
+
+def test_diverging_approximations_are_said_in_russian_beside_the_joint_solution(client):
+    body = {**BODY, "inertias": {**BODY["inertias"], "J1": 0.3}}
+    answer = client.post("/api/v1/motor-characteristic?lang=ru", json=body)
+    assert answer.status_code == 200
+    data = answer.json()
+    assert not data["approximations"]["converged"] and data["approximations"]["contraction"] > 1
+    assert "расходятся" in data["approximations"]["numerics"]["message"]
+    assert any("расходятся" in w for w in data["warnings"]) and data["joint"]["delta"] > 0

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import ConfigDict, Field, field_validator
+from pydantic import ConfigDict, Field, field_validator, model_validator
 
 from .schemas_dynamics import FlywheelRequest, InertiaInput, LoadInput, MechanismChoice, MotorInput
 
@@ -40,3 +40,9 @@ class FlywheelAnalysisRequest(FlywheelRequest):
     inertia: float = Field(ge=1e-6, le=1e6, description="the flywheel's moment of inertia I_м, kg·m² (added to "
                                                         "the crank's and rotor's I₁₀)")
     outputs: list[Literal[ANALYSIS_OUTPUTS]] = Field(min_length=1, max_length=4)
+
+    @model_validator(mode="after")
+    def crank_slider_figures(self):
+        if "transfer_functions" in self.outputs and self.mechanism != "slider_crank":
+            raise ValueError("outputs: the transfer functions u₂₁, V_qC, V_qS2 of Fig. 10.5 are the crank-slider's")
+        return self

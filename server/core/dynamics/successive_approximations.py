@@ -97,7 +97,7 @@ def successive_approximations(machine: Machine, tables: Tables, omega_operating:
         level = cycle_mean(omega, phi)      # the shift keeps the mean speed on the stable branch, knee to ω₁с
         low, high = knee - level, sync - level
         if balance(omega + low) * balance(omega + high) > 0:
-            result.notices.append(Notice("approximation_no_balance", f"Step {step}: no mean speed balances the "
+            result.notices.append(Notice("motor_approximation_no_balance", f"Step {step}: no mean speed balances the "
                                          "cycle's work on the characteristic: the motor cannot carry the load.",
                                          {"step": step}))
             break
@@ -106,7 +106,7 @@ def successive_approximations(machine: Machine, tables: Tables, omega_operating:
         work = cumulative_trapezoid(tables.net_phi + driving, phi)
         new = energy_law(tables, work, cycle_mean(omega, phi) + shift)
         if new is None:
-            result.notices.append(Notice("approximation_stops", f"Step {step}: the kinetic energy runs out within "
+            result.notices.append(Notice("motor_approximation_stops", f"Step {step}: the kinetic energy runs out within "
                                          "the cycle: the machine stops.", {"step": step}))
             break
         change = float(np.max(np.abs(new - omega)) / np.mean(new))
@@ -121,7 +121,7 @@ def successive_approximations(machine: Machine, tables: Tables, omega_operating:
             result.converged = True
             break
     if result.ratio >= 1:
-        result.notices.append(Notice("approximations_diverge", f"The successive approximations diverge: ρ = "
+        result.notices.append(Notice("motor_approximations_diverge", f"The successive approximations diverge: ρ = "
                                      f"|k₁*|/(Ī ω̄) = {result.ratio:.3g} ≥ 1 (the drive's time constant is shorter "
                                      "than one radian's time). Add inertia or take the joint solution.",
                                      {"ratio": result.ratio}))
