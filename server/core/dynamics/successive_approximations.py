@@ -9,10 +9,11 @@ equation again (L4):
     I(φ) ω^(k+1)(φ)²/2 = T₀ + ∫₀^φ (M_д^(k+1) − M_с) dφ,   T₀: mean of ω^(k+1) = mean of ω^(k) + c.
 
 The steps stop when two laws differ by less than the tolerance.  Linearised about the mean speed
-(M_д ≈ M̄ + k₁*·Δω), a step maps a speed error e(φ) to (k₁*/(Ī ω̄))·∫(e − ē)dφ (its mean removed), whose
+(M_д − M_с ≈ M̄ + k·Δω, k = dM_д/dω − dM_с/dω at the operating point: the slope k₁* of (L30) for a load
+independent of speed), a step maps a speed error e(φ) to (k/(Ī ω̄))·∫(e − ē)dφ (its mean removed), whose
 largest factor, on the first harmonic, is
 
-    ρ = |k₁*|/(Ī ω̄) = 1/(τ ω̄),   τ = Ī/|k₁*| the drive's time constant (Lecture 10 §10.9),
+    ρ = |k|/(Ī ω̄) = 1/(τ ω̄),   τ = Ī/|k| the drive's time constant (Lecture 10 §10.9),
 
 so the steps converge when ρ < 1 (the drive's time constant longer than the time of one radian) and
 diverge otherwise: a steep characteristic or a small flywheel (Lecture 10 §6).  ρ decides; the count of
@@ -122,7 +123,7 @@ def successive_approximations(machine: Machine, tables: Tables, omega_operating:
             break
     if result.ratio >= 1:
         result.notices.append(Notice("motor_approximations_diverge", f"The successive approximations diverge: ρ = "
-                                     f"|k₁*|/(Ī ω̄) = {result.ratio:.3g} ≥ 1 (the drive's time constant is shorter "
+                                     f"|k|/(Ī ω̄) = {result.ratio:.3g} ≥ 1 (the drive's time constant is shorter "
                                      "than one radian's time). Add inertia or take the joint solution.",
                                      {"ratio": result.ratio}))
     steps = len(result.rows)
