@@ -55,7 +55,8 @@ def motor_study(machine: Machine, outputs: list[str], tol: float) -> tuple[dict,
             result["figures"] = {"omega": working.omega, "moment": working.moment,
                                  "drive_slope": working.drive_slope, "load_slope": working.load_slope,
                                  "margin": working.load_slope - working.drive_slope,
-                                 "time_constant": cycle_mean(tables.J, tables.phi) / abs(working.drive_slope - working.load_slope)}
+                                 "time_constant": cycle_mean(tables.J, tables.phi)
+                                 / abs(working.drive_slope - working.load_slope)}
         unstable = [p for p in points if not p.stable]
         notices += [Notice("operating_point_unstable", f"The crossing at ω = {p.omega:.4g} rad/s is on the unstable "
                            f"branch: dM_d/dω = {p.drive_slope:.4g} ≥ dM_c/dω = {p.load_slope:.4g}.",

@@ -9,14 +9,14 @@ equation again (L4):
     I(φ) ω^(k+1)(φ)²/2 = T₀ + ∫₀^φ (M_д^(k+1) − M_с) dφ,   T₀: mean of ω^(k+1) = mean of ω^(k) + c.
 
 The steps stop when two laws differ by less than the tolerance.  Linearised about the mean speed
-(M_д − M_с ≈ M̄ + k·Δω, k = dM_д/dω − dM_с/dω at the operating point: the slope k₁* of (L30) for a load
-independent of speed), a step maps a speed error e(φ) to (k/(Ī ω̄))·∫(e − ē)dφ (its mean removed), whose
-largest factor, on the first harmonic, is
+(M_д − M_с ≈ M̄ + k·Δω, k = dM_д/dω − dM_с/dω at the operating point; k₁* of (L30) for the
+linearised characteristic and a load independent of speed), a step maps a speed error e(φ) to
+(k/(Ī ω̄))·∫(e − ē)dφ (its mean removed), whose largest factor, on the first harmonic, is
 
     ρ = |k|/(Ī ω̄) = 1/(τ ω̄),   τ = Ī/|k| the drive's time constant (Lecture 10 §10.9),
 
 so the steps converge when ρ < 1 (the drive's time constant longer than the time of one radian) and
-diverge otherwise: a steep characteristic or a small flywheel (Lecture 10 §6).  ρ decides; the count of
+diverge otherwise: a steep characteristic or a small flywheel.  ρ decides; the count of
 steps is only a guard.
 """
 from __future__ import annotations
@@ -107,8 +107,8 @@ def successive_approximations(machine: Machine, tables: Tables, omega_operating:
         work = cumulative_trapezoid(tables.net_phi + driving, phi)
         new = energy_law(tables, work, cycle_mean(omega, phi) + shift)
         if new is None:
-            result.notices.append(Notice("motor_approximation_stops", f"Step {step}: the kinetic energy runs out within "
-                                         "the cycle: the machine stops.", {"step": step}))
+            result.notices.append(Notice("motor_approximation_stops", f"Step {step}: the kinetic energy runs out "
+                                         "within the cycle: the machine stops.", {"step": step}))
             break
         change = float(np.max(np.abs(new - omega)) / np.mean(new))
         w_max, w_min = float(new.max()), float(new.min())
