@@ -125,6 +125,7 @@ def test_the_endpoint_answers_by_name_without_nan_and_with_numerics(client):
     assert data["approximations"]["numerics"]["converged"] and data["joint"]["numerics"]["error_estimate"] < 1e-6
     assert data["joint"]["difference"] < 1e-6
     assert data["figures"]["margin"] > 0
+    assert data["numerics"]["error_estimate"] < 1e-12                # the operating point's residual
     only = client.post("/api/v1/motor-characteristic", json={**BODY, "outputs": ["characteristic"]}).json()
     assert set(only) == {"characteristic", "warnings"}
 

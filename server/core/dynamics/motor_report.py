@@ -8,6 +8,7 @@ import time
 import numpy as np
 
 from ..mechanisms import Notice
+from ..numerics import Numerics
 from . import motor_characteristic as mc
 from .machine import Machine
 from .motion import cycle_tables, steady_cycle
@@ -46,6 +47,11 @@ def motor_study(machine: Machine, outputs: list[str], tol: float) -> tuple[dict,
             curve["linearised"] = np.where(omega >= curve["maximum"]["omega"], line["b"] + line["k"] * omega, np.nan)
         result["characteristic"] = curve
     if "operating_point" in outputs:
+        residual = max((abs(p.moment - load - load_slope * p.omega) for p in points), default=0.0)
+        result["numerics"] = Numerics(
+            method="operating points by Brent's method on M_d(ω) − M_c(ω) on each branch (bracketed at ω₁k)",
+            code="operating_point_brent", rtol=1e-14, iterations=len(points),
+            error_estimate=residual / max(abs(load), 1e-300)).as_dict()
         result["operating_point"] = [{"omega": p.omega, "moment": p.moment, "drive_slope": p.drive_slope,
                                       "load_slope": p.load_slope, "branch": p.branch, "stable": p.stable}
                                      for p in points]
