@@ -22,7 +22,7 @@ from .static_files import content_version, mount_versioned
 from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
 from ..classroom.variants import SpecError
-from .routers import (angular, assignment_pages, assignments, bearings, dynamics, editor_pages, elastic, family,
+from .routers import (angular, assignment_pages, assignments, bearings, dynamics, editor_pages, elastic, family, motor,
                       forces, kinematics, mechanisms, pages, scenes)
 
 API_PREFIX = "/api/v1"
@@ -67,7 +67,8 @@ def create_app() -> FastAPI:
                   openapi_url=f"{API_PREFIX}/openapi.json", docs_url=None, redoc_url=None,
                   lifespan=lifespan)
     api = APIRouter(prefix=API_PREFIX)
-    for module in (mechanisms, kinematics, dynamics, elastic, forces, bearings, angular, family, scenes, assignments):
+    for module in (mechanisms, kinematics, dynamics, motor, elastic, forces, bearings, angular, family, scenes,
+                   assignments):
         api.include_router(module.router)
     api.include_router(cache_stats.router)  # GET /api/v1/cache
     app.include_router(api)

@@ -22,9 +22,11 @@ from ..core.angular_acceleration import CrankLaw, crank_slider, trammel
 from ..core.bearings.loads import pair_load
 from ..core.bearings.report import Design, bearings_report
 from ..core.dynamics import report
+from ..core.dynamics.flywheel_analysis import flywheel_analysis
 from ..core.dynamics.general_machine import GeneralMachine, general_machine
 from ..core.dynamics.general_machine import reduction as general_reduction
 from ..core.dynamics.machine import Machine
+from ..core.dynamics.motor_report import motor_study
 from ..core.dynamics.motors import Motor
 from ..core.dynamics.reduction import Inertias
 from ..core.dynamics.resistance import Load
@@ -50,6 +52,7 @@ from .schemas_bearings import BearingsRequest
 from .schemas_dynamics import FlywheelRequest, MotionRequest, ReductionRequest
 from .schemas_elastic import ElasticRequest
 from .schemas_forces import ChainRequest, ForcesRequest, WearRequest
+from .schemas_motor import FlywheelAnalysisRequest, MotorCharacteristicRequest
 from .serialise import Answer, serialise
 
 Reads = Collection[str] | None      # the answer's top-level keys a caller reads; None: every one
@@ -373,6 +376,32 @@ def angular_acceleration(request: AngularRequest, lang: str) -> Answer:
     return answer(result, [], lang)
 
 
+def motor_characteristic(request: MotorCharacteristicRequest, lang: str) -> Answer:
+    """The induction motor's characteristic, the operating point's stability, the successive approximations
+    and the joint solution (Lecture 10 (10.9)–(10.10))."""
+    result, notices = motor_study(machine(request), request.outputs, request.tol)
+    return answer(nested_numerics(result, ("approximations", "joint"), lang), notices, lang)
+
+
+def flywheel_given(request: FlywheelAnalysisRequest, lang: str) -> Answer:
+    """The analysis problem: the flywheel's I given, δ found, beside the synthesis for [δ] (Lecture 10 (10.4))."""
+    built = machine(request)
+    if built.speed_dependent:
+        raise GeometryError("motor.kind", "the flywheel methods of the lecture need moments of φ alone: a "
+                            "constant or indicator motor, no viscous load", "flywheel_needs_phi_moments")
+    result, notices = flywheel_analysis(built, request.omega_mean, request.inertia, request.delta, request.balance,
+                                        request.outputs)
+    return answer(nested_numerics(result, ("analysis",), lang), notices, lang)
+
+
+def nested_numerics(result: dict, parts: tuple[str, ...], lang: str) -> dict:
+    """The numerics of each part of an answer (not at its top) in the reader's language."""
+    for part in parts:
+        if isinstance((result.get(part) or {}).get("numerics"), dict):
+            result[part]["numerics"] = localise_numerics(result[part]["numerics"], lang)
+    return result
+
+
 # POST /api/v1/<name>: the request model and the body; the answer is a function of (name, lang, body) alone.
 ENDPOINTS = {
     "kinematics": (KinematicsRequest, kinematics),
@@ -385,6 +414,8 @@ ENDPOINTS = {
     "angular-acceleration": (AngularRequest, angular_acceleration),
     "efficiency-chain": (ChainRequest, efficiency_chain),
     "bearings": (BearingsRequest, bearings),
+    "motor-characteristic": (MotorCharacteristicRequest, motor_characteristic),
+    "flywheel-analysis": (FlywheelAnalysisRequest, flywheel_given),
 }
 
 

@@ -147,7 +147,8 @@ class Scene(BaseModel):
     order: int
     kind: Literal["kinematics", "dynamics"] = "kinematics"
     endpoint: Literal["kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
-                      "angular-acceleration", "bearings"] = "kinematics"
+                      "angular-acceleration", "bearings", "motor-characteristic",
+                      "flywheel-analysis"] = "kinematics"
     source: Text
     title: Text
     summary: Text

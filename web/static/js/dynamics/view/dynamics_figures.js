@@ -7,7 +7,8 @@
  *          plots against another series (a phase portrait of the twist), and the nearest point is read;
  *          `series_each: {path, label}` adds one series per key of the answer's object at path (the reactions
  *          of a general mechanism by pair, "magnitudes": {R12, R23, …}), labelled by the template with {key}
- *          written as a symbol with its subscript (R12 → R₁₂)
+ *          written as a symbol with its subscript (R12 → R₁₂);
+ *          style "markers" draws the defined points alone (an operating point on a characteristic)
  *   polar  the phase portrait ω(φ): radius r against angle θ (rad, drawn in degrees), so the start-up
  *          winds round and round onto the closed steady cycle (style "bold"); panel.r_title names the
  *          radius and its unit ("ω, рад/с") on the radial axis and in the hover, theta_symbol the angle
@@ -84,8 +85,9 @@ export function plotFigure(panel, data, texts) {
         line: { color: LEVEL_COLOR, width: 1.5, dash: dashes[i] } };
     }
     const gaps = series.gaps ? pathValue(data, series.gaps) : null;
-    return { type: "scatter", mode: "lines", x, y: gaps ? y.map((v, i) => (gaps[i] === null ? null : v)) : y,
-      name: label, connectgaps: false, yaxis: series.axis === 2 ? "y2" : "y",
+    return { type: "scatter", mode: series.style === "markers" ? "markers" : "lines",
+      x, y: gaps ? y.map((v, i) => (gaps[i] === null ? null : v)) : y,
+      name: label, connectgaps: false, yaxis: series.axis === 2 ? "y2" : "y", marker: { size: 10 },
       line: { color: seriesColor(panel, series), width: 2, dash: dashes[i] },
       hovertemplate: `${label} = %{y}<extra></extra>` };
   });
