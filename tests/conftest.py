@@ -2,7 +2,8 @@
 
 What the workers must not share, and how they don't:
 - a module's own fixtures (its servers, nginx, a PostgreSQL) start once per module: every test of a module that
-  has a module- or class-scoped fixture goes to one worker, in file order (the group is the module's path);
+  has a module- or class-scoped fixture goes to one worker, in file order (the group is the module's path;
+  schemathesis's items do not take it: tests/run.sh runs test_schemathesis_api.py in a process of its own);
 - the session fixtures (the browser tests' app server and Chromium, tests/postgres.py's server) start at most
   once per worker, each on a free port, with their data in a temporary directory of their own;
 - the app's SQLite store: a test that builds the app without naming `MDL_DATA_DIR` would use the repository's

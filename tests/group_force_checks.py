@@ -11,6 +11,7 @@ import numpy as np
 from scipy.optimize import fsolve
 
 from server.core.structure.compose import compose
+from server.core.structure.presets import presets
 
 
 def cross(a, b):
@@ -173,3 +174,9 @@ def cut(pair, k):
     from dataclasses import replace
     return replace(pair, z=pair.z[k:k + 1], u=None if pair.u is None else pair.u[k:k + 1],
                    relative=pair.relative[k:k + 1])
+
+
+def crank_driven() -> list[str]:
+    """The presets whose input link is a crank: the kinetostatics' cycle is the crank's turn (a slider-driven
+    preset is for the kinematics, and /forces refuses it: tests/test_general_slider_input.py)."""
+    return sorted(name for name, preset in presets().items() if preset["linkage"]["input"].get("kind", "crank") == "crank")

@@ -20,7 +20,7 @@ from server.core.structure.compose import compose
 from server.core.structure.masses import LinkMass, LinkMoment, MassModel, SliderForce
 from server.core.structure.presets import presets
 
-from group_force_checks import direct, power_fd, reduction_moment, residual
+from group_force_checks import crank_driven, direct, power_fd, reduction_moment, residual
 
 PHI = np.linspace(0, 2 * np.pi, 73) + 0.0123      # off the exact special angles (a friction sense undefined)
 
@@ -39,7 +39,7 @@ def preset_model(name, friction=0.0):
     return mechanism, model
 
 
-@pytest.mark.parametrize("name", sorted(presets()))
+@pytest.mark.parametrize("name", crank_driven())
 def test_frictionless_balancing_moment_is_virtual_work(name):
     mechanism, model = preset_model(name)
     result = analyse(mechanism, model, PHI, omega=12.0, epsilon=-4.0)
@@ -55,7 +55,7 @@ def test_frictionless_balancing_moment_is_virtual_work(name):
     assert len(result.approximations) == 1 and result.numerics["error_estimate"] == 0.0
 
 
-@pytest.mark.parametrize("name", sorted(presets()))
+@pytest.mark.parametrize("name", crank_driven())
 def test_friction_every_approximation_in_equilibrium_and_fsolve(name):
     mechanism, model = preset_model(name, friction=0.15)
     result = analyse(mechanism, model, PHI, omega=12.0, epsilon=-4.0, tolerance=1e-11)
@@ -82,7 +82,7 @@ def test_friction_every_approximation_in_equilibrium_and_fsolve(name):
         assert abs(balancing[0] - result.solution.balancing[k]) <= 1e-8 * scale
 
 
-@pytest.mark.parametrize("name", sorted(presets()))
+@pytest.mark.parametrize("name", crank_driven())
 def test_power_balance_with_friction_and_the_efficiency(name):
     """The pairs' reactions do no work (a revolute pair's force at the common joint, a prismatic pair's normal
     force across the sliding and its couple on two links turning alike), so at every angle the balancing moment

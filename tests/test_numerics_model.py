@@ -14,10 +14,11 @@ from server.lessons.scenes import scenes
 # transfer functions, reduced inertia's J(φ), wear's closed forms)
 COMPUTED = {"resisting-moment", "equation-of-motion", "flywheel", "elastic-transmission", "elastic-linkage",
             "elastic-four-bar", "forces-friction", "angular-acceleration"}
-# elastic-linkage/bearings asks for the modal analysis and the bearing iteration alone: no integration
+# elastic-linkage/bearings asks for the modal analysis and the bearing iteration alone, elastic-linkage/dimensions
+# for the compliances from dimensions (Eremyants (1.16)/(1.37)) and the modal curves: closed forms, no integration
 CASES = [(scene.endpoint, scene.id, variant.id, scene_request(scene, variant, None))
          for scene in scenes().values() if scene.id in COMPUTED for variant in scene.variants
-         if (scene.id, variant.id) != ("elastic-linkage", "bearings")]
+         if (scene.id, variant.id) not in {("elastic-linkage", "bearings"), ("elastic-linkage", "dimensions")}]
 EXTRA = [("forces", {"params": {"l1": 0.1, "l2": 0.13}, "loads": {"force": 1000, "gravity": False, "omega": 10},
                      "pairs": {"f34": 0.8}, "n": 73}),
          ("elastic", {"model": "two_mass", "mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3},

@@ -164,12 +164,13 @@ def reduction(request: ReductionRequest, lang: str) -> Answer:
 
 
 def machine_key(request: MotionRequest | FlywheelRequest) -> bytes:
-    """What the machine of a request is made of (mechanism, params, inertias, load, motor), canonically: two
-    requests with one key have equal machines, whatever else (ω_m, δ, ω₀, rtol, sizing) differs."""
+    """What the machine of a request is made of (mechanism, params, inertias, load, motor; a general mechanism's
+    linkage and masses), canonically: two requests with one key have equal machines, whatever else (ω_m, δ, ω₀,
+    rtol, sizing) differs."""
     return orjson.dumps(request.model_dump(include=MACHINE_FIELDS), option=orjson.OPT_SORT_KEYS)
 
 
-MACHINE_FIELDS = {"mechanism", "params", "inertias", "load", "motor"}
+MACHINE_FIELDS = {"mechanism", "params", "inertias", "load", "motor", "linkage", "masses"}
 
 
 def machine(request: MotionRequest | FlywheelRequest) -> Machine:

@@ -95,8 +95,8 @@ def wear_example(l1: float, l2: float, steps: int = 13) -> list[dict]:
     the 13 table rows Δφ₁ = 2π/(N_p − 1) is printed 0.432, the formula gives π/6 = 0.5236."""
     lam, phi = l1 / l2, np.radians(30.0)
     u21 = lam * np.cos(phi) / np.sqrt(1 - (lam * np.sin(phi)) ** 2)
-    return [row("u21_slip", "chaika_vasylenko", "4.3: φ₁ = 30°", 0.2187, u21, "none"),
-            row("trapezoid_step", "chaika_vasylenko", "4.3: Δφ₁", 0.432, 2 * np.pi / (steps - 1), "rad")]
+    return [row("u21_slip", "chaika_vasylenko", "§4.3: φ₁ = 30°", 0.2187, u21, "none"),
+            row("trapezoid_step", "chaika_vasylenko", "§4.3: Δφ₁", 0.432, 2 * np.pi / (steps - 1), "rad")]
 
 
 def piston_pressure(force: float, length: float, diameter: float) -> dict:

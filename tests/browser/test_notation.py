@@ -29,7 +29,7 @@ STUDY_TIMEOUT = 90_000
 HYPHEN_NUMBER = re.compile(r"(?:^|[\s(=:;/\[])-\d")        # "-2,7": a hyphen where a minus belongs
 SIGNED_ZERO = re.compile(r"(?<![\w,.])[−-]0(?:[,.]0+)?(?![\d,.])")
 POINT_NUMBER = re.compile(r"\d\.\d")
-DECIMAL_POINT = re.compile(r"(?<![(§\d.])\d+\.\d")        # not an equation "(1.9)" or a section "§3.2"
+DECIMAL_POINT = re.compile(r"(?<![(§\d.])(?<!табл\. )\d+\.\d")   # not an equation "(1.9)", a section "§3.2", a table "табл. 4.3"
 
 # every text on screen: the page's words (with what <sub> holds) and the text of every SVG (drawings, plots)
 SCREEN_TEXT = """() => document.body.innerText + "\\n" +
