@@ -13,6 +13,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+from server.api.response_cache import CACHED_ENDPOINTS
 from server.lessons.scenes import scene_documents
 
 REPO = Path(__file__).resolve().parents[1]
@@ -57,8 +58,7 @@ def test_three_students_for_three_seconds_write_the_tables_without_errors(tmp_pa
     assert text.count("s after it stopped (SIGTERM, 15 s): 0.") == 2, text       # no process outlives it
 
 
-FAMILY_ENDPOINTS = {"kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
-                    "angular-acceleration", "bearings"}          # the contract's cached computing endpoints
+FAMILY_ENDPOINTS = set(CACHED_ENDPOINTS) - {"family"}       # the contract's cached computing endpoints
 
 
 def substituted(request: dict, vary: list[dict], value: float) -> dict:
