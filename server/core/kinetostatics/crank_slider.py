@@ -232,27 +232,33 @@ def textbook_approximations(points: dict, applied: dict, pairs: Pairs, omega1_cc
     return table
 
 
+def approximations_outcome(approximations: list, ratio: float | None, tolerance: float,
+                           rough: bool) -> tuple[str, dict, str]:
+    """(message code, its context, the sentence): how much of the textbook's series of successive approximations
+    the table shows: all of it down to ε_R, a series whose ratio is ≥ 1 somewhere (it does not converge there),
+    or its first terms, with the n ≈ ln ε_R / ln q + 1 it would need at the ratio q (Chaika–Vasylenko §3.3)."""
+    shown = len(approximations)
+    ratio = ratio or 0.0
+    last = approximations[-1].change
+    if not rough or (last is not None and last < tolerance):
+        return ("approximations_complete", {"shown": shown},
+                f"the table shows all {shown} successive approximations down to ε_R")
+    if ratio >= 1:
+        return ("approximations_diverge", {"shown": shown, "ratio": ratio},
+                f"the textbook's series has the ratio {ratio:.3g} ≥ 1 at some angles and does not converge there, "
+                f"though the mechanism does not lock; the table shows {shown} approximations; the reactions come "
+                f"from Newton's solve")
+    needed = int(np.ceil(np.log(tolerance) / np.log(ratio))) + 1 if 0 < ratio < 1 else shown
+    return ("approximations_truncated", {"shown": shown, "needed": needed, "ratio": ratio},
+            f"the table shows the first {shown} successive approximations; at the ratio {ratio:.3g} the series "
+            f"needs about {needed} to reach ε_R; the reactions come from Newton's solve")
+
+
 def numerics(result: ForceAnalysis, solved, tolerance: float, rough: bool, seconds: float) -> dict:
     """How the reactions were found: the direct solve, its error, and how much of the textbook's series is shown."""
     free = ~solved.locked
     error = float(np.max(solved.error[free], initial=0.0))
-    shown = len(result.approximations)
-    ratio = result.ratio or 0.0
-    last = result.approximations[-1].change
-    complete = not rough or (last is not None and last < tolerance)
-    needed = shown if complete else int(np.ceil(np.log(tolerance) / np.log(ratio))) + 1 if 0 < ratio < 1 else None
-    if complete:
-        code, context = "approximations_complete", {"shown": shown}
-        message = f"the table shows all {shown} successive approximations down to ε_R"
-    elif ratio >= 1:
-        code, context = "approximations_diverge", {"shown": shown, "ratio": ratio}
-        message = (f"the textbook's series has the ratio {ratio:.3g} ≥ 1 at some angles and does not converge "
-                   f"there, though the mechanism does not lock; the table shows {shown} approximations; the "
-                   f"reactions come from Newton's solve")
-    else:
-        code, context = "approximations_truncated", {"shown": shown, "needed": needed, "ratio": ratio}
-        message = (f"the table shows the first {shown} successive approximations; at the ratio {ratio:.3g} the "
-                   f"series needs about {needed} to reach ε_R; the reactions come from Newton's solve")
+    code, context, message = approximations_outcome(result.approximations, result.ratio, tolerance, rough)
     return Numerics(
         method="Newton's method on the friction equilibrium (the friction of (3.3) as unknowns), safeguarded by "
                "the textbook's step; the textbook's successive approximations shown beside it",

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...mechanisms.base import GeometryError, Notice, angle_ranges, ranges_text
+from ..crank_slider import approximations_outcome
 from ...numerics import Numerics
 from ...structure.compose import Composition, compose
 from ...structure.masses import MassModel, check_model
@@ -199,23 +200,8 @@ def numerics(result: GroupForces, solved: fr.Solved, tolerance: float, seconds: 
     """As the crank-slider's: the direct solve, its error, how much of the textbook's series the table shows."""
     free = ~solved.locked & ~result.influence.singular
     error = float(np.max(solved.error[free], initial=0.0))
-    shown = len(result.approximations)
-    ratio = result.ratio or 0.0
-    last = result.approximations[-1].change
-    complete = not result.rough or (last is not None and last < tolerance)
-    if complete:
-        code, context = "approximations_complete", {"shown": shown}
-        message = f"the table shows all {shown} successive approximations down to ε_R"
-    elif ratio >= 1:
-        code, context = "approximations_diverge", {"shown": shown, "ratio": ratio}
-        message = (f"the textbook's series has the ratio {ratio:.3g} ≥ 1 at some angles and does not converge "
-                   f"there, though the mechanism does not lock; the table shows {shown} approximations; the "
-                   f"reactions come from Newton's solve")
-    else:
-        needed = int(np.ceil(np.log(tolerance) / np.log(ratio))) + 1 if 0 < ratio < 1 else shown
-        code, context = "approximations_truncated", {"shown": shown, "needed": needed, "ratio": ratio}
-        message = (f"the table shows the first {shown} successive approximations; at the ratio {ratio:.3g} the "
-                   f"series needs about {needed} to reach ε_R; the reactions come from Newton's solve")
+    code, context, message = approximations_outcome(result.approximations, result.ratio, tolerance,
+                                                     result.rough)
     return Numerics(
         method="Newton's method on the friction equilibrium of all the groups and the crank (the friction of "
                "(3.3) as unknowns), safeguarded by the textbook's step; the textbook's successive approximations "
