@@ -141,3 +141,19 @@ def browser_page(chromium, app_url):
     page.on("pageerror", lambda error: page.problems.append(str(error)))
     yield page
     context.close()
+
+
+PHONE = {"width": 390, "height": 844}
+
+
+@pytest.fixture
+def phone(chromium, app_url):
+    """A page at phone size whose problems are kept as browser_page's; CSP bypassed only so that a test may inject
+    axe-core (the app never serves it)."""
+    context = chromium.new_context(base_url=app_url, viewport=PHONE, bypass_csp=True, device_scale_factor=1)
+    page = context.new_page()
+    page.problems = []
+    page.on("console", lambda message: message.type == "error" and page.problems.append(message.text))
+    page.on("pageerror", lambda error: page.problems.append(str(error)))
+    yield page
+    context.close()

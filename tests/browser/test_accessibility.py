@@ -25,7 +25,6 @@ from conftest import REPO, read_scene
 pytestmark = pytest.mark.browser
 
 AXE = REPO / "tests" / "browser" / "vendor" / "axe.min.js"
-PHONE = {"width": 390, "height": 844}
 SCENE_FILES = sorted(path.stem for path in (REPO / "content" / "scenes").glob("*.json"))
 MIN_CONTRAST = 3.0          # WCAG 2.1 SC 1.4.11 for graphical objects needed to understand the content
 
@@ -77,18 +76,6 @@ def test_contrast_formula_matches_wcag_examples():
     assert contrast("rgb(0, 0, 0)", 1, "rgb(255, 255, 255)") == pytest.approx(21, abs=1e-9)
     assert contrast("rgb(118, 118, 118)", 1, "rgb(255, 255, 255)") == pytest.approx(4.54, abs=0.01)
     assert contrast("rgb(0, 0, 0)", 0.5, "rgb(255, 255, 255)") < contrast("rgb(0, 0, 0)", 1, "rgb(255, 255, 255)")
-
-
-@pytest.fixture
-def phone(chromium, app_url):
-    """A page at phone size; CSP bypassed only so that the test may inject axe-core (the app never serves it)."""
-    context = chromium.new_context(base_url=app_url, viewport=PHONE, bypass_csp=True, device_scale_factor=1)
-    page = context.new_page()
-    page.problems = []
-    page.on("console", lambda message: message.type == "error" and page.problems.append(message.text))
-    page.on("pageerror", lambda error: page.problems.append(str(error)))
-    yield page
-    context.close()
 
 
 def settle(page) -> None:

@@ -21,9 +21,8 @@ from pathlib import Path
 
 import pytest
 
-from conftest import REPO, drag_slider, interface_texts, screenshot
+from conftest import PHONE, REPO, drag_slider, interface_texts, screenshot
 
-PHONE = {"width": 390, "height": 844}
 # Chromium reports every HTTP error answer on the console; the 422 that says why a mechanism is refused is the
 # answer the page shows in words (as tests/browser/test_scene.py)
 REFUSED = re.compile(r"Failed to load resource: the server responded with a status of 422")
@@ -188,18 +187,6 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
     assert re.search(r"\d,\d", text), "no decimal comma on the Russian page"
     screenshot(page, "editor_ru_desktop")
     assert [p for p in page.problems if not REFUSED.search(p)] == []
-
-
-@pytest.fixture
-def phone(chromium, app_url):
-    """A phone-size page; CSP bypassed only so that the test may inject axe-core (the app never serves it)."""
-    context = chromium.new_context(base_url=app_url, viewport=PHONE, bypass_csp=True, device_scale_factor=1)
-    page = context.new_page()
-    page.problems = []
-    page.on("console", lambda message: message.type == "error" and page.problems.append(message.text))
-    page.on("pageerror", lambda error: page.problems.append(str(error)))
-    yield page
-    context.close()
 
 
 def test_a_shared_mechanism_on_a_phone(phone, tmp_path):
