@@ -218,7 +218,7 @@ PARSED = [("2,5", "ru", 2.5), ("2,5", "uk", 2.5), ("2.5", "ru", 2.5), ("2,5", "e
 def test_the_page_parser_reads_each_language_as_documented(ru_page):
     """decimal_input.js as the browser runs it (the module the builder and the answer fields import)."""
     open_builder(ru_page)
-    module = re.search(r'src="([^"]*/js/)classroom/view/assignment_builder\.js"', ru_page.content()).group(1) + "classroom/model/decimal_input.js"
+    module = re.search(r'src="([^"]*/js/)classroom/view/assignment_builder\.js"', ru_page.content()).group(1) + "common/model/decimal_input.js"
     results = ru_page.evaluate("""async ([url, cases]) => {
         const { parseDecimal } = await import(url);
         return cases.map(([text, lang]) => parseDecimal(text, lang));

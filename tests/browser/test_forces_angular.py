@@ -81,20 +81,28 @@ def test_self_locking_is_told_in_words_and_the_drawing_has_no_reactions_there(br
 
 
 def test_efficiency_chain_calculator(browser_page):
+    """On a Russian page the fields are read with a decimal comma whatever the browser's locale, and what could
+    mean two numbers is refused in words."""
     page = browser_page
-    open_scene(page, FORCES, "en")
+    t = interface_texts("ru")
+    open_scene(page, FORCES, "ru")
     page.locator("#panel-chain").scroll_into_view_if_needed()
-    page.wait_for_function("() => document.querySelector('.chain-series').textContent === '0.72'")
-    assert page.inner_text(".chain-parallel") == "0.85"          # (0.9·100 + 0.8·100) / 200
+    page.wait_for_function("() => document.querySelector('.chain-series').textContent === '0,72'")
+    assert page.inner_text(".chain-parallel") == "0,85"          # (0.9·100 + 0.8·100) / 200
+    assert page.input_value(".chain-table tr:nth-child(1) .chain-efficiency") == "0,9"
     page.click(".chain-add")
-    page.wait_for_function("() => document.querySelector('.chain-series').textContent === '0.576'")
-    page.fill(".chain-table tr:nth-child(3) .chain-efficiency", "1.5")
+    page.wait_for_function("() => document.querySelector('.chain-series').textContent === '0,576'")
+    page.fill(".chain-table tr:nth-child(3) .chain-efficiency", "1,5")
     assert page.get_attribute(".chain-table tr:nth-child(3) .chain-efficiency", "aria-invalid") == "true"
     assert page.inner_text(".chain-series") == "—"
+    page.fill(".chain-table tr:nth-child(3) .chain-efficiency", "0,5")            # 0.9·0.8·0.5
+    page.wait_for_function("() => document.querySelector('.chain-series').textContent === '0,36'")
+    page.fill(".chain-table tr:nth-child(3) .chain-efficiency", "0,5.1")
+    assert page.inner_text(".chain-message") == t["number_ambiguous"].replace("{text}", "0,5.1")
     page.click(".chain-table tr:nth-child(3) .chain-remove")
-    page.wait_for_function("() => document.querySelector('.chain-series').textContent === '0.72'")
+    page.wait_for_function("() => document.querySelector('.chain-series').textContent === '0,72'")
     page.fill(".chain-table tr:nth-child(2) .chain-work", "300")
-    page.wait_for_function("() => document.querySelector('.chain-parallel').textContent === '0.825'")
+    page.wait_for_function("() => document.querySelector('.chain-parallel').textContent === '0,825'")
     screenshot(page, "forces_efficiency_chain")
     assert page.problems == []
 

@@ -19,7 +19,7 @@ import { UndoHistory } from "./model/history.js";
 import { LatestRequest, refusalText, refusedGroup } from "./model/service.js";
 import { frameOf, planRequest, quantities, specialRequest, tableRequest } from "./model/table.js";
 import { formatNumber, plainText } from "../common/view/notation.js";
-import { parseDecimal } from "../classroom/model/decimal_input.js";
+import { parseDecimal } from "../common/model/decimal_input.js";
 
 const lang = document.documentElement.lang;
 const t = JSON.parse(document.getElementById("interface-texts").textContent);

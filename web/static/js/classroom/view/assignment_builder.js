@@ -6,7 +6,7 @@
  * fields and read by decimal_input.js (a decimal comma in ru/uk; what is ambiguous is refused, in the page's
  * language, before anything is sent). A 422 answer names the field and the reason, shown beside the form.
  */
-import { decimalMessage, parseDecimal } from "../model/decimal_input.js";
+import { decimalMessage, parseDecimal } from "../../common/model/decimal_input.js";
 
 const form = document.getElementById("assignment-form");
 const t = JSON.parse(document.getElementById("interface-texts").textContent);

@@ -7,7 +7,7 @@
 import { element } from "../../common/view/dom.js";
 import { formatQuantity, labelledValue } from "../../common/view/notation.js";
 import { byId, lang, scene, t } from "../../common/view/page_data.js";
-import { decimalMessage, parseDecimal } from "../model/decimal_input.js";
+import { decimalMessage, parseDecimal } from "../../common/model/decimal_input.js";
 
 const assignment = JSON.parse(byId("assignment-data").textContent);
 const base = `/api/v1/assignments/${encodeURIComponent(assignment.id)}`;

@@ -7,7 +7,7 @@
  */
 import { element } from "../../common/view/dom.js";
 import { formatNumber } from "../../common/view/notation.js";
-import { parseDecimal, decimalMessage } from "../../classroom/model/decimal_input.js";
+import { parseDecimal, decimalMessage } from "../../common/model/decimal_input.js";
 import { joints } from "../model/linkage.js";
 
 const DEG = 180 / Math.PI;

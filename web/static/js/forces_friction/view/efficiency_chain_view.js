@@ -2,15 +2,18 @@
  * Panel view of the efficiency-chain calculator (model: efficiency_chain.js): a row per mechanism with
  * its η_k and A_P,k, buttons to add and remove mechanisms, and η of the chain in series (3.39) and in
  * parallel (3.40). It needs nothing from the scene's answer: its own client asks /efficiency-chain
- * whenever a valid value changes.
+ * whenever a valid value changes. The fields are text read by decimal_input.js, so "0,9" is 0.9 on a
+ * Russian page whatever the browser's locale (an <input type="number"> would follow the browser's).
  */
 import { ApiClient } from "../../common/model/api.js";
 import { element } from "../../common/view/dom.js";
 import { EfficiencyChain } from "../model/efficiency_chain.js";
+import { decimalMessage, parseDecimal } from "../../common/model/decimal_input.js";
 import { refusalMessage } from "../../common/view/messages.js";
 import { formatQuantity, plainText, unitText } from "../../common/view/notation.js";
 
-const STEPS = { efficiency: 0.01, work: 10 };
+/** A value as typed back into a field: no grouping, the page's decimal separator (a comma in ru and uk). */
+const typed = (value, lang) => (lang === "en" ? String(value) : String(value).replace(".", ","));
 
 export class EfficiencyChainView {
   constructor(body, spec, { t, lang }) {
@@ -60,12 +63,16 @@ export class EfficiencyChainView {
   }
 
   #row(mechanism, index) {
-    const field = (key, max) => {
+    const field = (key) => {
       const input = element("input", {
-        type: "number", min: 0, step: STEPS[key], value: mechanism[key], className: `chain-${key}`,
-        "aria-label": plainText(key === "efficiency" ? `η_{${index + 1}}` : `A_{P,${index + 1}}`), "data-key": key, "data-index": index,
-        ...(max === undefined ? {} : { max }) });
-      input.addEventListener("input", () => this.model.set(index, key, input.value === "" ? NaN : Number(input.value)));
+        type: "text", inputmode: "decimal", size: 6, value: typed(mechanism[key], this.lang), className: `chain-${key}`,
+        "aria-label": plainText(key === "efficiency" ? `η_{${index + 1}}` : `A_{P,${index + 1}}`), "data-key": key, "data-index": index });
+      input.addEventListener("input", () => {
+        const read = parseDecimal(input.value, this.lang);
+        input.title = read.error ? decimalMessage(read.error, input.value, this.t) : "";
+        this.message.textContent = input.title;
+        this.model.set(index, key, read.error ? NaN : read.value);
+      });
       return element("td", {}, input);
     };
     const remove = element("button", {
@@ -73,7 +80,7 @@ export class EfficiencyChainView {
       "aria-label": this.t.chain_remove, disabled: this.model.mechanisms.length < 2 });
     remove.addEventListener("click", () => this.model.remove(index));
     return element("tr", {}, element("th", { scope: "row", textContent: String(index + 1) }),
-      field("efficiency", 1), field("work"), element("td", {}, remove));
+      field("efficiency"), field("work"), element("td", {}, remove));
   }
 
   #result(answer) {
