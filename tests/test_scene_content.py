@@ -63,6 +63,9 @@ def test_every_panel_path_of_a_scene_exists_in_its_answer(scene_id, variant_id):
         paths += [panel[key] for key in ("x", "y", "path", "diagram") if key in panel]
         if panel["kind"] == "numerics":       # shows whichever of its paths the variant computes
             assert any(_has(data, path) for path in panel["paths"])
+            if len(panel["paths"]) > 1:       # a column per computation, headed by its name in three languages
+                assert len(panel["columns"]) == len(panel["paths"]), name
+                assert all(column.get(lang) for column in panel["columns"] for lang in LANGUAGES), name
         for path in paths:
             if path.startswith("inertia.parts.link2_rotation") and variant.mechanism == "sine":
                 continue          # the sine mechanism's block does not rotate

@@ -78,7 +78,7 @@ def test_every_dynamics_scene_and_variant_shows_all_its_panels(browser_page):
             if page.input_value("#variant") != variant["id"]:
                 page.select_option("#variant", variant["id"])
             wait_for_panels(page, scene, variant)
-            titles = page.locator(".panel:visible h3").all_inner_texts()
+            titles = page.locator(".panel:visible h2").all_inner_texts()
             assert titles == [shown(scene["panels"][p]["title"]["ru"]) for p in variant["panels"] if "title" in scene["panels"][p]]
             assert page.inner_text(".variant-text") == shown(variant["text"]["ru"])
             assert page.locator(".refusal, .no-motion").count() == 0

@@ -74,7 +74,7 @@ def test_every_variant_draws_its_linkage_and_plots(browser_page):
             wait_for_new_plot(page, "u31", before)
         assert page.locator("#linkage svg .moving line").count() >= 1
         assert page.locator(".geometry-error").count() == 0
-        titles = page.locator(".panel h3").all_inner_texts()
+        titles = page.locator(".panel h2").all_inner_texts()
         plots = [panel for panel in variant["panels"] if SCENE["panels"][panel]["kind"] == "plot"]
         assert titles == [SCENE["panels"][panel]["title"]["ru"] for panel in plots]
         assert page.inner_text(".variant-text") == variant["text"]["ru"]

@@ -83,7 +83,7 @@ function describe(graph, texts) {
   graph.dataset.described = "yes";
   count += 1;
   const id = `plot-alternative-${count}`;
-  const title = () => graph.closest("figure")?.querySelector("h3, h2")?.textContent.trim() ?? "";
+  const title = () => graph.closest("figure")?.querySelector("h2, h3")?.textContent.trim() ?? "";
   const text = element("p", { className: "visually-hidden", id: `${id}-summary` });
   const frame = element("div", { className: "table-frame plot-table", id: `${id}-table`, tabIndex: 0,
     role: "region", "aria-label": texts.t.plot_table, hidden: true });

@@ -202,7 +202,7 @@ export class DynamicsView {
   #panel(id, spec) {
     const { lang } = this.texts;
     const graph = GRAPH_KINDS.includes(spec.kind) ? element("div", { className: "graph" }) : null;
-    const heading = spec.title ? [element("h3", { rich: spec.title[lang] })] : [];
+    const heading = spec.title ? [element("h2", { rich: spec.title[lang] })] : [];
     const tools = graph ? [plotToolbar(graph, { name: `${this.scene.id}-${id}`, title: spec.title?.[lang] ?? id }, this.texts)] : [];
     const title = heading.length || tools.length ? [element("div", { className: "panel-head" }, ...heading, ...tools)] : [];
     const make = (content, ...more) => element("figure", {

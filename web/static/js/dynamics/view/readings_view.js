@@ -19,8 +19,6 @@ const MISSING = "—";
 const TABLE_DIGITS = 5;
 
 /** Headings of the computations a numerics panel may show, by their path in the answer. */
-const COMPUTATIONS = { numerics: "steady_cycle", "startup.numerics": "startup" };
-
 /** Rows of a numerics panel: the key in the answer's numerics, its label, how its value reads. */
 const NUMERICS_ROWS = [
   ["method", "numerics_method", (v) => v],
@@ -133,8 +131,9 @@ function numericsTable(panel, data, texts) {
   const { t, lang } = texts;
   const runs = panel.paths.filter((path) => pathValue(data, path)).map((path) => [path, pathValue(data, path)]);
   const rows = NUMERICS_ROWS.filter(([key]) => runs.some(([, numerics]) => !absent(numerics[key])));
+  const column = (path) => panel.columns[panel.paths.indexOf(path)][lang];     // the scene names each computation
   const head = runs.length > 1 ? [element("thead", {}, element("tr", {}, element("td"),
-    ...runs.map(([path]) => element("th", { scope: "col", rich: t[COMPUTATIONS[path]] }))))] : [];
+    ...runs.map(([path]) => element("th", { scope: "col", rich: column(path) }))))] : [];
   return [scrollingFrame(element("table", { className: "numerics" }, ...head,
     element("tbody", {}, ...rows.map(([key, label, text]) => element("tr", { className: `numerics-${key}` },
       element("th", { scope: "row", rich: t[label] }),

@@ -104,7 +104,7 @@ export class PlotsView {
     const caption = element("p", { className: "caption" });
     const title = spec.title[this.texts.lang];
     const figure = element("figure", { className: "panel", id: `panel-${id}` },
-      element("div", { className: "panel-head" }, element("h3", { rich: title }),
+      element("div", { className: "panel-head" }, element("h2", { rich: title }),
         plotToolbar(graph, { name: `${this.scene.id}-${id}`, title }, this.texts)),
       element("div", { className: "graph-frame" }, graph, cursor.element), caption,
       ...(spec.note ? [element("p", { className: "note", rich: spec.note[this.texts.lang] })] : []));
