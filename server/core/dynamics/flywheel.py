@@ -1,4 +1,4 @@
-"""Flywheel for a given coefficient of speed fluctuation δ: seed 004 (lecture 10), §10.3–10.8.
+"""Flywheel for a given coefficient of speed fluctuation δ: Lecture 10 §10.3–§10.8.
 
 The moments depend on φ alone and balance over the cycle (A_Σ(Φ) = 0).  Links split into
 group I (constant reduced inertia I_I: crank, rotor, flywheel) and group II (I_II(φ)).

@@ -1,11 +1,11 @@
 """Reduced moment of inertia J(φ) and dJ/dφ of a machine, reduced to the crank shaft.
 
-Kinetic-energy equality (seed 000 (1.1)–(1.5), seed 002 (3.22)–(3.23)):
+Kinetic-energy equality (Eremyants (1.1)–(1.5), Chaika–Vasylenko (3.22)–(3.23)):
 
     J(φ) = J_rotor·i² + J₁ + Σ_links [ m_k |V_qSk|² + J_Sk u_k1² ]
 
 with V_qS = dr_S/dφ the velocity analog of a centre of mass, u_k1 = ω_k/ω₁ and
-i = ω_motor/ω₁ the transmission ratio.  Differentiating (seed 002, [derived]):
+i = ω_motor/ω₁ the transmission ratio.  Differentiating (3.23) (not printed there):
 
     dJ/dφ = 2 Σ [ m_k V_qSk · V′_qSk + J_Sk u_k1 u′_k1 ]
 

@@ -1,6 +1,6 @@
 """Elastic machine models as first-order systems y′ = f(t, y) with analytic Jacobians.
 
-Two masses (seed 000 (1.20)–(1.21), (1.31)–(1.32); seed 003 (1), (11) corrected):
+Two masses (Eremyants (1.20)–(1.21), (1.31)–(1.32); Drakunov–Tuleshova (1), (11) corrected):
     J₁ω̇₁ = M_д(ω₁) − F,                      F = c(φ₂)θ + bθ̇,  θ = φ₁ − φ₂ (the twist)
     J₂(φ₂)ω̇₂ = F − ½c′(φ₂)θ² − ½J₂′(φ₂)ω₂² − M_c(φ₂, ω₂)
 Kinematic drive, a powerful motor φ₁ = ω t (1.22)–(1.23): only the mechanism moves; M_д = F.

@@ -1,4 +1,4 @@
-"""The reduced moment of all loads on the crank-slider by virtual work (power equality, seed 002 (3.24)).
+"""The reduced moment of all loads on the crank-slider by virtual work (power equality, Chaika–Vasylenko (3.24)).
 
 M = −Σ(F·V_q + M·u) over gravity, d'Alembert inertia loads and the piston force, along ω₁:
 the balancing moment of the frictionless kinetostatics must equal it at every angle.

@@ -1,4 +1,4 @@
-"""Sine (Scotch-yoke) mechanism, seed 000 §2.2, Fig. 2.1.
+"""Sine (Scotch-yoke) mechanism, Eremyants §2.2, Fig. 2.1.
 
 Crank 1 (length l₁) turns about O; block 2 on the crank pin A slides in the slot of
 yoke 3, which translates along x.  φ = 0 with the crank pointing to −x (yoke at its

@@ -1,4 +1,4 @@
-"""Slotted-link (кулисный) mechanism: crank 1, block 2, slotted lever 3; seed 000 §2.4.
+"""Slotted-link (кулисный) mechanism: crank 1, block 2, slotted lever 3; Eremyants §2.4.
 
 Crank pivot A at the origin, lever pivot C at (0, −l₀) directly below it.  φ = 0 with
 crank and lever vertical and B above A (l_BC = l₀ + l₁); φ and the lever angle ψ grow
@@ -78,7 +78,7 @@ class SlottedLink(Mechanism):
                 values[key] = np.where(singular, np.nan, values[key])
             ev.warnings.append(Notice("slotted_jamming", "λ = 1 and φ = 180°: the block is on the lever pivot C, the "
                                       "lever's position and the block's sliding speed are undefined there "
-                                      "(theoretical jamming, seed 000 §3.3)."))
+                                      "(theoretical jamming, Eremyants §3.3)."))
         if "joints" in wanted:
             lever = l0 + l1  # drawn lever length: reaches B in every position
             ev.joints = {"A": point(0 * phi, 0 * phi), "B": point(l1 * s, l1 * c), "C": point(0 * phi, -l0 + 0 * phi),

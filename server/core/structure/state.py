@@ -1,7 +1,7 @@
 """The kinematic state of a linkage being composed: joints, links and guides over an array of crank angles.
 
 Everything is vectorised over φ (arrays of shape (N,)).  A point is its position z = x + iy with the first
-and second transfer functions (analogs) z′ = dz/dφ, z″ = d²z/dφ² (seed 000 §2.1: velocities v = z′ω₁,
+and second transfer functions (analogs) z′ = dz/dφ, z″ = d²z/dφ² (Eremyants §2.1: velocities v = z′ω₁,
 accelerations a = z″ω₁² + z′ε₁).  A link carries its angle θ with θ′, θ″.  A guide is a straight line fixed
 on a link: a point P on it and its direction θ_g = θ_link + α, so u = e^{iθ_g}, u′ = iθ′_g u,
 u″ = (iθ″_g − θ′_g²)u.
