@@ -15,7 +15,7 @@ ANALYSIS_OUTPUTS = ("analysis", "synthesis", "driving_moment", "transfer_functio
 
 class MotorCharacteristicRequest(MechanismChoice):
     """The machine of /motion driven by an induction motor ('kloss': the whole curve; 'induction': the
-    linearised stable branch (L30))."""
+    linearised stable branch, Lecture 10 (L30))."""
 
     model_config = ConfigDict(extra="forbid")
     inertias: InertiaInput = Field(default_factory=InertiaInput)

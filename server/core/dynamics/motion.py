@@ -52,7 +52,7 @@ class Steady:
     omega: np.ndarray
     t: np.ndarray
     epsilon: np.ndarray
-    omega_mean: float          # (ω_max + ω_min)/2, Lecture 10 §10.2
+    omega_mean: float          # (ω_max + ω_min)/2, Lecture 10 (L3)
     omega_time_mean: float     # cycle angle / cycle time
     delta: float               # (ω_max − ω_min)/ω_mean
     efficiency: float | None   # A_useful/(A_useful + A_losses) over the cycle, Chaika–Vasylenko (3.38); see efficiency()

@@ -5,9 +5,9 @@ to i·M(iω) (power equality, Eremyants (1.17)).  Characteristics:
 
     constant     M = M₀
     linear       M = M₀ − b ω_m                                      Eremyants §3.1
-    induction    M = M_н (ω_с − ω_m)/(ω_с − ω_н)  (stable branch, linearised)  Lecture 10 §10.9, Fig. 10.14
+    induction    M = M_н (ω_с − ω_m)/(ω_с − ω_н)  (stable branch, linearised)  Lecture 10 (L30)
     kloss        M = 2M_к/(s/s_к + s_к/s),  s = (ω_с − ω_m)/ω_с      standard addition, not in the lecture
-    indicator    M = −p(x) A_p u₃₁ of the crank-slider's piston        Lecture 10 §10.6, Fig. 10.6
+    indicator    M = −p(x) A_p u₃₁ of the crank-slider's piston        Lecture 10 (L15)–(L17)
 
 The indicator diagram gives p/p_max at 11 equally spaced piston positions x/H from top dead
 centre for the expansion and the compression stroke; p between them by monotone (PCHIP)
@@ -119,7 +119,7 @@ def piston_travel(params: dict[str, float], phi: np.ndarray, kinematics=None) ->
 
 
 def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray, kinematics=None) -> np.ndarray:
-    """Gas force on the crank-slider's piston, N, from the indicator diagram (Lecture 10 §10.6, scales μ_p, μ_F):
+    """Gas force on the crank-slider's piston, N, from the indicator diagram (Lecture 10 (L15)–(L16)):
     p/p_max interpolated over the piston travel from top dead centre; it pushes towards the crank."""
     x = piston_travel(params, phi, kinematics)
     expansion = diagram_curve(motor.expansion)(x)
@@ -131,7 +131,7 @@ def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray, kinematic
 
 def indicator_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray,
                      kinematics=None) -> np.ndarray:
-    """M_д = F·V_qC·cos(F, V) with F = p A_p on the piston (Lecture 10 §10.6); gas pushes towards the crank."""
+    """M_д = F·V_qC·cos(F, V) with F = p A_p on the piston (Lecture 10 (L17)); gas pushes towards the crank."""
     if mechanism != "slider_crank":
         raise ValueError("an indicator diagram drives a crank-slider (piston engine) only")
     kinematics = kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())
