@@ -1,4 +1,4 @@
-"""The analysis problem of Merzalov's method (Lecture 10 (10.4), step 8): the group-I inertia given, the δ it
+"""The analysis problem of Merzalov's method (Lecture 10 §10.4, step 8): the group-I inertia given, the δ it
 gives, beside the synthesis (the inertia a permissible [δ] needs), with the driving-moment diagram (Fig. 10.6)
 and the transfer functions (Fig. 10.5) of the crank-slider.
 

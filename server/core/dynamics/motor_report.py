@@ -1,4 +1,4 @@
-"""The answer of the induction-motor study (Lecture 10 (10.9)–(10.10)): the reduced static characteristic with
+"""The answer of the induction-motor study (Lecture 10 §10.9–§10.10): the reduced static characteristic with
 its branches and the load line, the operating point and its stability, the successive approximations beside
 the joint solution of the equation of motion with the characteristic (motion.steady_cycle)."""
 from __future__ import annotations
