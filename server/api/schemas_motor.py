@@ -1,6 +1,6 @@
 """Request models of /motor-characteristic (the induction motor's static characteristic, the stability of the
-operating point and the successive approximations of Lecture 10 (10.9)–(10.10)) and /flywheel-analysis (the
-analysis problem of Merzalov's method: the flywheel's I given, δ found, Lecture 10 (10.4))."""
+operating point and the successive approximations of Lecture 10 §10.9–§10.10) and /flywheel-analysis (the
+analysis problem of Merzalov's method: the flywheel's I given, δ found, Lecture 10 §10.4)."""
 from __future__ import annotations
 
 from typing import Literal
