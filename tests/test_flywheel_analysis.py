@@ -1,4 +1,4 @@
-"""Lecture 10 (10.4), step 8: the analysis problem (the flywheel's I given, δ found) against the synthesis
+"""Lecture 10 §10.4, step 8: the analysis problem (the flywheel's I given, δ found) against the synthesis
 (I for [δ], flywheel.exact and Merzalov) and against the notes' worked numbers for the drilling rig (§4.2:
 the transfer functions and I_II of (L12)–(L14), (L18)) and the analytic case of §4.3."""
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Lecture 10 (10.9)–(10.10): the induction motor's static characteristic, the stability of its operating point
+"""Lecture 10 §10.9–§10.10: the induction motor's static characteristic, the stability of its operating point
 (Fig. 10.14) and the successive approximations, each against something that is not the code under test:
 finite differences of the characteristic, the sign of the restoring moment after a small speed change, the
 closed form (L30), and the joint solution of the equation of motion (motion.steady_cycle, Newton shooting)."""
