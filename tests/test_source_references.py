@@ -22,6 +22,8 @@ FORBIDDEN = {
     "a seed's file number": re.compile(r"\bseeds?[ _-]?00[0-4](?![0-9])", re.IGNORECASE),
     "a notes file": re.compile(r"\b00[0-4]\.md\b|seeds/(?:notes|original)", re.IGNORECASE),
     "an issue number": re.compile(r"\bissues?[ _-]?#?\d+", re.IGNORECASE),
+    "a section of Lecture 10 written as an equation (it numbers none; §10.9)":
+        re.compile(r"\b(?:[Ll]ecture|[Лл]екци[яи]|[Лл]екці[яї]) 10 \(10\."),
 }
 WORD = r"[A-ZА-ЯЁЄІЇ][a-zа-яёєіїь]+(?:'[a-zа-яёєіїь]+)?"
 REFERENCE = r"(?:'s|')? (?:\(\d+(?:\.\d+)?\*?\)|§ ?\d|(?:Figs?\.|рис\.|Table|табл\.) ?\d)"
