@@ -42,12 +42,12 @@ class OperatingPoint:
 
     @property
     def stable(self) -> bool:
-        """The criterion of Fig. 10.14: dM_д/dω < dM_с/dω."""
+        """The criterion of Lecture 10 §10.9, Fig. 10.14: dM_д/dω < dM_с/dω."""
         return self.drive_slope < self.load_slope
 
 
 def reduced_torque(motor: Motor, gear_ratio: float, omega):
-    """M_д(ω₁) = i·M(iω₁) and dM_д/dω₁ = i²·M′(iω₁), reduced to the crank (power equality)."""
+    """M_д(ω₁) = i·M(iω₁) and dM_д/dω₁ = i²·M′(iω₁), reduced to the crank (power equality, Eremyants (1.17))."""
     torque, slope = motor.torque(gear_ratio * np.asarray(omega, float))
     return gear_ratio * torque, gear_ratio**2 * slope
 

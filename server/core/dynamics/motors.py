@@ -73,7 +73,9 @@ class Motor:
         return np.inf
 
     def torque(self, w):
-        """Motor-shaft torque M and its slope dM/dω_m at motor speed ω_m (float or array)."""
+        """Motor-shaft torque M and its slope dM/dω_m at motor speed ω_m (float or array):
+        linear M₀ − bω (Eremyants §3.1), induction linearised (Lecture 10 (L30)),
+        Kloss 2M_к/(s/s_к + s_к/s) (a standard addition)."""
         if self.kind == "constant":
             return self.M0 + 0 * w, 0 * w
         if self.kind == "linear":
@@ -91,7 +93,8 @@ class Motor:
 
 def driving_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray,
                    omega: np.ndarray | float, gear_ratio: float = 1.0, kinematics=None) -> np.ndarray:
-    """M_д at crank angles φ and crank speed ω, reduced to the crank shaft (N·m); ``kinematics``: the
+    """M_д at crank angles φ and crank speed ω, reduced to the crank shaft (N·m): i·M(iω) (Eremyants (1.17)) or the
+    indicator moment (Lecture 10 (L17)); ``kinematics``: the
     mechanism already evaluated at phi, to share one evaluation."""
     if motor.kind != "indicator":
         return gear_ratio * motor.torque(gear_ratio * np.asarray(omega, float) + 0 * phi)[0]

@@ -50,7 +50,7 @@ class ReducedInertia:
 
     @property
     def mean(self) -> float:
-        """J̄ over a uniform closed grid (trapezoid on a periodic function)."""
+        """J̄ over a uniform closed grid (trapezoid on a periodic function), Eremyants (3.19)."""
         return float(np.mean(self.J[:-1])) if self.J.size > 1 else float(self.J[0])
 
 
@@ -62,7 +62,8 @@ LINK3_MOTION = {"sine": "translation", "slider_crank": "translation", "slotted_l
 
 def reduced_inertia(mechanism: str, params: dict[str, float], inertias: Inertias,
                     phi: np.ndarray, kinematics=None) -> ReducedInertia:
-    """J(φ) and dJ/dφ reduced to the crank, from closed-form velocity and acceleration analogs
+    """J(φ) and dJ/dφ reduced to the crank by kinetic-energy equality (Eremyants (1.1)–(1.5)), from closed-form
+    velocity and acceleration analogs
     (``kinematics``: the mechanism already evaluated at phi, to share one evaluation)."""
     values = (kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())).values
     v, a = values["v_s2"], values["a_s2"]

@@ -66,17 +66,20 @@ class ResistingMoment:
 
     @property
     def total(self) -> np.ndarray:
+        """M_c = useful + dry + viscous: M_p (3.5), the dry friction (3.1)–(3.4), (3.24)–(3.30), (3.42)–(3.49)
+        and the viscous (3.15)–(3.17), (3.33), (3.50*) of Eremyants, chapter 3."""
         return self.useful + self.dry + self.viscous
 
 
 def stroke_factor(u31: np.ndarray, k: float) -> np.ndarray:
-    """1 on the working stroke (u₃₁ ≥ 0), k on the return stroke."""
+    """1 on the working stroke (u₃₁ ≥ 0), k on the return stroke (k_p of Eremyants (3.30), k_M of §3.3)."""
     return np.where(u31 >= 0, 1.0, k)
 
 
 def resisting_moment(mechanism: str, params: dict[str, float], load: Load, phi: np.ndarray,
                      omega: np.ndarray | float = 0.0, kinematics=None) -> ResistingMoment:
-    """M_c(φ, ω) reduced to the crank shaft; ω (rad/s) enters only through viscous friction
+    """M_c(φ, ω) reduced to the crank shaft, Eremyants (3.5)–(3.53) by mechanism (module docstring);
+    ω (rad/s) enters only through viscous friction
     (``kinematics``: the mechanism already evaluated at phi, to share one evaluation)."""
     kinematics = kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())
     values = kinematics.values
@@ -174,5 +177,5 @@ def _locked(phi, mask, notice):
 
 
 def mean_over_cycle(values: np.ndarray) -> float:
-    """Mean of a periodic function sampled on a closed uniform grid (trapezoid rule)."""
+    """Mean of a periodic function sampled on a closed uniform grid (trapezoid rule): M_c0, Eremyants (3.11), (3.31)."""
     return float(np.mean(values[:-1]))

@@ -56,11 +56,13 @@ def cumulative_trapezoid(values: np.ndarray, phi: np.ndarray) -> np.ndarray:
 
 
 def cycle_mean(values: np.ndarray, phi: np.ndarray) -> float:
+    """(1/Φ)∫ values dφ over the cycle's nodes (trapezoidal rule)."""
     return float(cumulative_trapezoid(values, phi)[-1] / (phi[-1] - phi[0]))
 
 
 def energy_law(tables: Tables, work: np.ndarray, mean: float) -> np.ndarray | None:
-    """ω(φ) = √(2(T₀ + A)/I) with the cycle mean of ω equal to ``mean``; None where even the lowest level
+    """ω(φ) = √(2(T₀ + A)/I) (Lecture 10 (L4))
+    with the cycle mean of ω equal to ``mean``; None where even the lowest level
     (the speed touching zero) has a larger mean: the machine stops within the cycle."""
     lowest = float(np.max(-work))
 

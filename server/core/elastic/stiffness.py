@@ -40,7 +40,8 @@ def link_angles(mechanism: str, values: dict) -> tuple[np.ndarray, np.ndarray, n
 
 
 def linkage_stiffness(mechanism: str, params: dict, compliances: Compliances, phi: np.ndarray):
-    """c(φ) in N·m/rad, dc/dφ and the compliance e(φ) = 1/c (inf at the dead positions)."""
+    """c(φ) in N·m/rad (module docstring: Eremyants (1.24)–(1.29), (1.33)–(1.34), Drakunov–Tuleshova (2)), dc/dφ and
+    the compliance e(φ) = 1/c (inf at the dead positions)."""
     values = MECHANISMS[mechanism].evaluate(params, phi, set()).values | {"phi": phi}
     theta12, d12, theta23, d23 = link_angles(mechanism, values)
     l1, l3 = params["l1"], params.get("l3", 0.0)

@@ -21,7 +21,7 @@ def mean_pressure(reaction: np.ndarray, length: float, diameter: float) -> float
 
 def revolute_wear(phi: np.ndarray, reaction: np.ndarray, relative_rate: np.ndarray, link_angle: np.ndarray,
                   beta: np.ndarray, k: float, cycles: float, length: float, journal: bool) -> np.ndarray:
-    """δ(β) in µm over the points β (rad) of one element of a revolute pair.
+    """δ(β) in µm over the points β (rad) of one element of a revolute pair, Chaika–Vasylenko (4.12)–(4.13).
 
     reaction: (n, 2) force the mating element exerts on this one; relative_rate: |u_j1 − u_{j+1,1}|;
     link_angle: the element's angle in the frame (its points turn with it); journal: a pin is pressed on

@@ -32,6 +32,7 @@ class Sine(Mechanism):
         """Any crank length in the offered range works: the yoke follows the pin everywhere."""
 
     def evaluate(self, p, phi, wanted):
+        """x, y, u₃₁, u′₃₁, u₂₁, u′₂₁ at φ: Eremyants (2.1)–(2.6) (module docstring)."""
         l1 = p["l1"]
         c, s = np.cos(phi), np.sin(phi)
         ev = Evaluation(phi)

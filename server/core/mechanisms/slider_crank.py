@@ -58,6 +58,7 @@ class SliderCrank(Mechanism):
                 "slider_crank_no_full_turn", l2=p["l2"], limit=p["l1"] + abs(p["e"]))
 
     def evaluate(self, p, phi, wanted):
+        """x_B, ψ, u₂₁, u′₂₁, u₃₁, u′₃₁ at φ, offset e included: Eremyants (2.7)–(2.15) (module docstring)."""
         l1, l2, e, a2 = p["l1"], p["l2"], p["e"], p["a2"]
         c, s = np.cos(phi), np.sin(phi)
         sin_psi = (l1 * s - e) / l2

@@ -46,6 +46,7 @@ class SlottedLink(Mechanism):
         return (bool(np.all(lam > 1)) if np.all(lam > 1) == np.any(lam > 1) else None,)
 
     def evaluate(self, p, phi, wanted):
+        """ψ, y, u₃₁, u′₃₁, u₂₁, u′₂₁ at φ: Eremyants (2.27)–(2.34) (module docstring)."""
         l0, l1 = p["l0"], p["l1"]
         lam = l0 / l1
         oscillating, = self.branch(p)
