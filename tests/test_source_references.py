@@ -24,6 +24,8 @@ FORBIDDEN = {
     "an issue number": re.compile(r"\bissues?[ _-]?#?\d+", re.IGNORECASE),
     "a section of Lecture 10 written as an equation (it numbers none; §10.9)":
         re.compile(r"\b(?:[Ll]ecture|[Лл]екци[яи]|[Лл]екці[яї]) 10 \(10\."),
+    "a two-author key spelled otherwise than 'Chaika–Vasylenko' (an en dash)":
+        re.compile(r"\b(?:Chaika|Drakunov|Kuleshova|Чайка|Дракунов|Кулешова)(?: ?&| and| и| і|,|-) ?(?=[A-ZА-ЯЄІ][a-zа-яєі])"),
 }
 WORD = r"[A-ZА-ЯЁЄІЇ][a-zа-яёєіїь]+(?:'[a-zа-яёєіїь]+)?"
 REFERENCE = r"(?:'s|')? (?:\(\d+(?:\.\d+)?\*?\)|§ ?\d|(?:Figs?\.|рис\.|Table|табл\.) ?\d)"
