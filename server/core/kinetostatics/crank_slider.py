@@ -94,6 +94,7 @@ class ForceAnalysis:
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """z-component of the plane vector product a × b = a_x b_y − a_y b_x (moments of forces)."""
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 

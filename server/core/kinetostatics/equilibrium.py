@@ -61,6 +61,8 @@ class Dyad:
 
 
 def dyad(points: dict, applied: dict, omega1_ccw: float) -> Dyad:
+    """The rod's tan ψ = AB_y/AB_x, 1/AB_x and the signs of V_B, ω₂ − ω₁, ω₂ that orient the friction
+    loads f·N, f·R·r of Chaika–Vasylenko (3.3) at every angle."""
     AB = points["B"] - points["A"]
     return Dyad(AB[:, 1] / AB[:, 0], 1.0 / AB[:, 0], np.sign(applied["slider_velocity"]),
                 np.sign(applied["omega2"] - omega1_ccw), np.sign(applied["omega2"]))

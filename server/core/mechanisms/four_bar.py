@@ -96,6 +96,8 @@ class FourBar(Mechanism):
                      for flag in (q0 == 0.0, p0 == 0.0, np.asarray(p["limiter"]) != 0))
 
     def check_geometry(self, p):
+        """Refuse a crank that cannot turn fully: P₀ = (l₂ + l₃)² − (l₀ + l₁)² < 0 (no φ = 180°),
+        Q₀ = (l₀ − l₁)² − (l₂ − l₃)² < 0 (no φ = 0), or l₀ = l₁ (the pin through the pivot D); Eremyants §2.5."""
         if p["assembly"] == 0:
             raise GeometryError("assembly", "must be +1 or −1", "assembly_sign")
         p0, q0 = self._p0_q0(p)
