@@ -49,6 +49,7 @@ class Sine(Mechanism):
         return ev
 
     def special_positions(self, p):
+        """Dead centres at φ = 0 and π, where u₃₁ = l₁ sin φ = 0 (Eremyants (2.3)); the stroke is 2l₁."""
         l1 = p["l1"]
         return [SpecialPosition("dead_centre", 0.0, "yoke at its left extreme, u₃₁ = 0", 0.0),
                 SpecialPosition("dead_centre", np.pi, "yoke at its right extreme, u₃₁ = 0", 2 * l1)]

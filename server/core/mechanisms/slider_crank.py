@@ -51,6 +51,7 @@ class SliderCrank(Mechanism):
     )
 
     def check_geometry(self, p):
+        """A full turn needs l₂ > l₁ + |e| (λ > 1 + |e|/l₁)."""
         if p["l2"] <= p["l1"] + abs(p["e"]):
             raise GeometryError(
                 "l2", f"the crank cannot turn fully: l₂ = {p['l2']:.4g} m must exceed l₁ + |e| = "
@@ -116,6 +117,8 @@ class SliderCrank(Mechanism):
                                       f"(λ² ≫ 1); here λ = {lam:.3g}.", {"lam": lam}))
 
     def special_positions(self, p):
+        """Dead centres, crank and rod in line (u₃₁ = 0): x_out = √((l₁ + l₂)² − e²), x_in = √((l₂ − l₁)² − e²),
+        stroke x_out − x_in (2l₁ for e = 0, Eremyants §2.3); an offset makes the strokes' crank angles unequal."""
         l1, l2, e = p["l1"], p["l2"], p["e"]
         # Crank and rod in line: outer (A on OB) and inner (A opposite OB) dead centres.
         x_out, x_in = np.sqrt((l1 + l2) ** 2 - e**2), np.sqrt((l2 - l1) ** 2 - e**2)

@@ -98,6 +98,8 @@ class SlottedLink(Mechanism):
         return p["l1"] ** 2 * np.sin(half) ** 2 * ratio
 
     def special_positions(self, p):
+        """λ > 1: the lever's extremes ±ψ_max, ψ_max = arcsin(1/λ); λ < 1: u₃₁ from 1/(1 + λ) at φ = 0 to
+        1/(1 − λ) at φ = π; λ = 1: jamming at φ = π (Eremyants §2.4, §3.3)."""
         lam = p["l0"] / p["l1"]
         if lam > 1:
             psi_max = np.arcsin(1 / lam)

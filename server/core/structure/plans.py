@@ -11,6 +11,7 @@ from .compose import Composition
 
 
 def vector(value: complex) -> dict:
+    """A plan's vector: its x, y and magnitude |z|."""
     return {"x": float(value.real), "y": float(value.imag), "value": float(abs(value))}
 
 

@@ -31,9 +31,11 @@ class Angle:
     d2: np.ndarray
 
     def unit(self) -> np.ndarray:
+        """e^{iθ}: the unit vector at the angle."""
         return np.exp(1j * self.th)
 
     def shifted(self, alpha: float) -> "Angle":
+        """θ + α with the same analogs θ′, θ″."""
         return Angle(self.th + alpha, self.d1, self.d2)
 
 
@@ -47,11 +49,13 @@ class Guide:
 
 
 def fixed_point(x: float, y: float, n: int) -> Point:
+    """A point of the frame: z = x + iy at every angle, z′ = z″ = 0."""
     zero = np.zeros(n, complex)
     return Point(np.full(n, complex(x, y)), zero, zero)
 
 
 def fixed_angle(theta: float, n: int) -> Angle:
+    """An angle of the frame: θ at every angle, θ′ = θ″ = 0."""
     zero = np.zeros(n)
     return Angle(np.full(n, float(theta)), zero, zero)
 
