@@ -1,4 +1,4 @@
-"""Benchmark of issue 13, point 3: dragging a slider in Chromium, drawn from the slider's family.
+"""Benchmark: dragging a slider in Chromium, drawn from the slider's family.
 
 For every scene (its first variant with sliders, and that variant's first slider) on a fresh page at 1400 × 900, from the page's own
 performance marks (web/static/js: controls_view, family_preview, *_scene):
@@ -304,7 +304,7 @@ def main() -> None:
 
     problems = [f"{r['scene']}: {p}" for r in rows for p in r["problems"]]
     report = "\n".join([
-        "# Browser: dragging a slider drawn from its family (issue 13, point 3)",
+        "# Browser: dragging a slider drawn from its family",
         "",
         f"`python bench/browser.py` at commit {commit()}, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; "
         f"{platform.processor() or platform.machine()}, {os.cpu_count()} CPUs; Chromium headless at "

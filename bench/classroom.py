@@ -5,7 +5,7 @@ folder, as a subprocess on loopback (``--tree`` names another source tree to run
 change). Each simulated student keeps to one scene, the class spread over the scenes by SCENE_MIX (largest
 remainders), and behaves like a scene page in one of two request patterns (``--pattern``):
 
-* **old** (the page before issue 13): drags one slider of one of the scene's variants for 3–8 s, then picks
+* **old** (the page before slider families): drags one slider of one of the scene's variants for 3–8 s, then picks
   another variant and slider: a random walk over the values the slider can express (``slider_values``), a few
   positions per move, one move every 100 ms (TICK_S), without pauses (a worst case: real students also read);
   sends the request the page sends for the values (``scene_request``, the Python twin of the pages' request
@@ -74,7 +74,7 @@ BUDGETED = ("motion", "elastic")                 # endpoints that stop at a wall
 BUDGET_MARKERS = (b"time budget", b"work bound")  # server/core/dynamics/motion.py, server/core/elastic/simulate.py
 CACHE_AT_EXIT = "response cache at exit:"        # server/api/response_cache.py: each worker logs its counters
 ELASTIC = "elastic"
-# Targets at 100 students (issue 13, point 4), ms: p95 of exact answers and of families, light and elastic scenes.
+# Targets at 100 students, ms: p95 of exact answers and of families, light and elastic scenes.
 TARGETS_P95_MS = {("exact", "light"): 150, ("exact", "elastic"): 500, ("coarse", "light"): 500,
                   ("coarse", "elastic"): 1500, ("family", "light"): 500, ("family", "elastic"): 1500}
 # Share of the class on each scene (%): kinematics first, then the dynamics lessons; the three elastic scenes
@@ -189,7 +189,7 @@ def page_script(student: Student, start: float, end: float):
 
 
 def cut_short(endpoint: str, raw: bytes, encoding: str | None, partial_header: str | None = None) -> bool:
-    """Whether an answer (or a family of answers) says a budget cut it short: the header X-Partial: 1 (issue 13),
+    """Whether an answer (or a family of answers) says a budget cut it short: the header X-Partial: 1,
     or, from an endpoint with a wall-clock time budget (motion, elastic), the core's sentence in
     numerics.message (English in every language)."""
     if partial_header == "1":
@@ -577,7 +577,7 @@ def markdown(results: list[dict], comparison: list[dict], args) -> str:
         "out (Retry-After) and sent again; its answer's latency counts from the first send. Latency: from "
         "sending to the last byte of the gzip answer. The cache starts empty, at its default size "
         "(MDL_CACHE_BYTES). *Cut short*: answers marked `X-Partial: 1`, or answers of /motion and /elastic (or "
-        "families of them) that say they stopped at their wall-clock time budget with a partial result. Targets (issue 13, at 100 students): "
+        "families of them) that say they stopped at their wall-clock time budget with a partial result. Targets (at 100 students): "
         "p95 ≤ 150 ms for exact answers on the light scenes, ≤ 500 ms on the elastic ones; families ≤ 500 ms "
         "light, ≤ 1.5 s elastic; no errors, nothing cut short. Other jobs may share the machine: their CPU time "
         "during each run is given, and when it is large the numbers understate what the server does on its own.",

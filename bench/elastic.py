@@ -10,7 +10,7 @@
 3. Compile time of the compiled functions: cold (an empty numba cache) and cached (a fresh process loading
    numba's disk cache), each in a process of its own.
 4. For four problems — a belt drive of moderate stiffness, a very stiff and heavily damped one (stiffness
-   ratio ~1e4), an elastic crank-slider linkage and seed 003's elastic four-bar — every solve_ivp method and the two compiled solvers at
+   ratio ~1e4), an elastic crank-slider linkage and Drakunov–Tuleshova's elastic four-bar — every solve_ivp method and the two compiled solvers at
    several tolerances on the same first-order model (twists as states, analytic Jacobian for the implicit
    methods).  Error: the largest twist difference against a reference (Radau at rtol 1e-11 for the stiff
    problem, DOP853 at 1e-11 otherwise; compiled), relative to the largest twist.  The method the server picks by its
@@ -66,7 +66,7 @@ PROBLEMS = {
                                                                       **RIG), 0.5),
     "elastic crank-slider linkage, c(φ) from e₁ = 1e-6, e₂ = 1e-9, b = 100": (ElasticMachine(
         "elastic_linkage", "slider_crank", SLIDER, compliances=Compliances(1e-6, 1e-9), b=100.0, **RIG), 0.5),
-    "seed 003 elastic four-bar, b_n = 0.02": (ElasticMachine(
+    "Drakunov–Tuleshova elastic four-bar, b_n = 0.02": (ElasticMachine(
         "elastic_four_bar", "four_bar", FOUR_BAR, Inertias(J1=0.01, J3=0.05), Load(0.5), Motor("linear", M0=2.0, b=0.05),
         J_motor=0.02, compliances=Compliances(2e-6, 1e-9, 3e-6), b=0.02), 0.5),
 }

@@ -1,5 +1,5 @@
-"""Fairness: one client's heavy load against another client's kinematics, old server beside new (issue 13,
-point 5: kinematics p95 ≤ 100 ms while another client holds 64 concurrent heavy requests).
+"""Fairness: one client's heavy load against another client's kinematics, old server beside new (the
+target: kinematics p95 ≤ 100 ms while another client holds 64 concurrent heavy requests).
 
 For each tree and each load (none; a heavy client that honours Retry-After; one that does not), a fresh server
 is started as the README says (``python3 -m server --port P``, one worker unless ``--workers``) and two clients
@@ -191,7 +191,7 @@ def fmt(ms: float) -> str:
 
 
 def markdown(args, results: dict) -> str:
-    lines = ["# Fairness: another client's kinematics under one client's heavy load (issue 13, point 5)", "",
+    lines = ["# Fairness: another client's kinematics under one client's heavy load", "",
              f"{machine_line()}. `python bench/fairness.py --heavy {args.heavy} --seconds {args.seconds:g} --ramp "
              f"{args.ramp:g} --workers {args.workers}`.", "",
              f"* old: `{args.old}` ({commit_of(args.old)}), new: `{args.new}` ({commit_of(args.new)}); a fresh "

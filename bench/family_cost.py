@@ -1,4 +1,4 @@
-"""What one slider family costs the server and the wire, old page and engine beside new (issue 13, "Dragging is
+"""What one slider family costs the server and the wire, old page and engine beside new ("Dragging is
 a lookup"; not a test).
 
 For every scene, variant and slider (the variant's default values), each tree answers the family request its

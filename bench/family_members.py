@@ -1,4 +1,4 @@
-"""What a cold full family's members cost, before beside after computing them at once (issue 13; not a test).
+"""What a cold full family's members cost, before beside after computing them at once (not a test).
 
 For every scene, variant and slider (the variant's default values, the page's own family body with its
 ``fields``, bench/family_request.py), each tree answers the full family with an empty memo of members, in a

@@ -1,7 +1,7 @@
 """Benchmark: a six-bar's dynamics requests through the general path beside the same requests on the dedicated
 crank-slider, in this process (the endpoint bodies, validation included, no HTTP and no response cache),
 interleaved so that both see the same machine and load.  Reports the medians and their ratio (the target of
-issue 18: every dynamics request of a six-bar ≤ 20 ms of server compute).
+the general pipeline: every dynamics request of a six-bar ≤ 20 ms of server compute).
 
   * reduction: J, dJ/dφ, M_c over 361 angles and the mean M_c0 on 8192 intervals;
   * motion: the steady cycle with a linear motor (rtol 1e-8), and the steady cycle with the start-up;

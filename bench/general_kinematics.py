@@ -1,6 +1,6 @@
 """Benchmark: a six-bar's kinematics through the general path (server/core/structure/) beside the existing
 closed-form slider-crank module, 721 crank angles each, in this process, interleaved so that both see the same
-machine and load.  Reports the medians and their ratio (the target of issue 17: ≤ 2 ms of server compute).
+machine and load.  Reports the medians and their ratio (the target: ≤ 2 ms of server compute).
 
   * general: ``compute_general`` for each six-bar preset (shaping machine, jaw crusher, lever with a ram) with
     every array output (joints and their first and second analogs, link angles θ, θ′, θ″, slides s, s′, s″)

@@ -2,7 +2,7 @@
 and loads, content/mechanisms/*.json 'dynamics'), without and with friction (f = 0.1, r = 0.01 m in every pair),
 beside the dedicated crank-slider's /forces (baseline, the forces scene's default request with f = 0.1 in every
 pair), 361 crank angles each, interleaved so that all see the same machine and load.  Reports the medians and
-their ratio to the baseline (issue 18's target: every dynamics request of a six-bar ≤ 20 ms of server compute).
+their ratio to the baseline (the target: every dynamics request of a six-bar ≤ 20 ms of server compute).
 
     python bench/group_forces.py [--repeats 30]
 

@@ -1,4 +1,4 @@
-"""HTTP round trips against the floor of a bare endpoint, old app beside new (issue 13, point 2).
+"""HTTP round trips against the floor of a bare endpoint, old app beside new.
 
 Starts the old and the new app as the README says (``python3 -m server --port P``, one worker each, from their
 own trees) and a bare Starlette/uvicorn app (bench/floor_app.py) that answers with the very bytes each app sent
@@ -165,7 +165,7 @@ def fmt(ms: float) -> str:
 
 def markdown(args, targets: list[Target], sizes: dict, scenes: dict, startup: dict) -> str:
     by_label = {t.label: t for t in targets}
-    lines = ["# HTTP round trips against the floor, old beside new (issue 13, point 2)", "",
+    lines = ["# HTTP round trips against the floor, old beside new", "",
              f"{machine_line()}. `python bench/http_floor.py --requests {args.requests} --scene-requests "
              f"{args.scene_requests} --elastic-requests {args.elastic_requests}`.", "",
              f"* old: `{args.old}` ({commit_of(args.old)}), new: `{args.new}` ({commit_of(args.new)}); each "

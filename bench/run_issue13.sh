@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The measurements of issue 13, points 1, 2, 4 and 5, at the sizes the issue asks for, old (the commit before
+# The classroom-scale measurements (sweep, HTTP floor, classroom, fairness) at the sizes asked for, old (the commit before
 # the change) beside new (this tree). Run from anywhere on a quiet machine; about an hour in all (the old
 # elastic scenes dominate the sweep; the classroom runs take 60 s each plus start-up).
 #

@@ -1,4 +1,4 @@
-"""Server compute of every scene over slider sweeps, old tree beside new (issue 13, point 1: ≤ 20 ms at p95).
+"""Server compute of every scene over slider sweeps, old tree beside new (target ≤ 20 ms at p95).
 
 For every scene, variant and slider, the slider is swept across its range (``--points`` values in equal steps,
 log steps on a log slider, each the nearest value the slider can express; the other sliders
@@ -201,7 +201,7 @@ def fmt(ms: float) -> str:
 def markdown(result: dict, args) -> str:
     rows = result["rows"]
     lines = [
-        "# Server compute over slider sweeps, old beside new (issue 13, point 1)", "",
+        "# Server compute over slider sweeps, old beside new", "",
         f"{machine_line()}. `python bench/scene_sweep.py --points {args.points} --rounds {args.rounds}`.", "",
         f"* old: `{result['infos']['old']['tree']}` ({result['commits']['old']}), timed: "
         f"{result['infos']['old']['compute']}; warm-up (every scene's default request once) "

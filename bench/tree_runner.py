@@ -3,7 +3,7 @@
 stdin, one JSON answer line each on the original stdout (the tree's own prints go to stderr).
 
 The compute timed is what the server does for a request up to the answer's bytes, without HTTP:
-* a tree with ``server.api.endpoints.compute_answer`` and ``server.api.serialise.serialise`` (issue 13): the
+* a tree with ``server.api.endpoints.compute_answer`` and ``server.api.serialise.serialise`` (with slider families): the
   answer and its serialisation at the default (plot) precision, the bytes the page gets; failing those,
   ``server.api.endpoints.compute`` and the serialisation of its answer when it is not bytes;
 * the base tree: validation and the route function of ``server.api.compute.ENDPOINTS`` — the JSONResponse it

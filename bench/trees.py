@@ -26,7 +26,7 @@ DEFAULT_OLD = Path("/tmp/mdl-old")
 BASE_COMMIT = "276f0e6"
 OUTLIVE_GRACE_S = 3.0           # multiprocessing's resource tracker may still be cleaning up as the server exits
 
-# Where the lesson model lives: server/lessons/ after issue 13, server/api/ before.
+# Where the lesson model lives: server/lessons/ with slider families, server/api/ before.
 LESSON_MODULES = ("server.lessons.scene_requests", "server.lessons.requests", "server.api.scene_requests")
 CONTENT_MODULES = ("server.lessons.content", "server.lessons.scenes", "server.lessons", "server.api.content")
 

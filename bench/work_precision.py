@@ -1,7 +1,7 @@
 """Work–precision study: error against run time for every computation that uses a solver or a quadrature.
 
-Problems (issue 8): the rigid steady cycle (crank-slider, linear motor), the flywheel's exact inertia,
-the elastic crank-slider linkage with c(φ), and seed 003's elastic four-bar.  For each, our method at
+Problems: the rigid steady cycle (crank-slider, linear motor), the flywheel's exact inertia,
+the elastic crank-slider linkage with c(φ), and Drakunov–Tuleshova's elastic four-bar.  For each, our method at
 several tolerances against scipy's general solvers (RK45, DOP853, Radau, BDF, LSODA), errors against a
 reference computed to 1e-11…1e-13 by a different method.  Writes bench/results/work_precision.md, one
 interactive plot per problem (bench/results/<name>.html, plotly.js from the app's /vendor path, served
@@ -160,7 +160,7 @@ def main() -> None:
     for key, name in (("elastic_belt", "belt drive, c = 1e5 N·m/rad, b = 30"),
                       ("elastic_stiff", "stiff belt, c = 1e8, b = 1e5 (heavily damped)"),
                       ("elastic_linkage", "elastic crank-slider linkage, c(φ) from e₁ = 1e-6, e₂ = 1e-9, b = 100"),
-                      ("elastic_four_bar", "seed 003 elastic four-bar, b_n = 0.02")):
+                      ("elastic_four_bar", "Drakunov–Tuleshova elastic four-bar, b_n = 0.02")):
         studies[key] = elastic_study(name)
     lines = ["# Work–precision: error against run time", ""]
     for key, study in studies.items():

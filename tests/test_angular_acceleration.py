@@ -1,4 +1,4 @@
-"""The two components of the coupler's angular acceleration (seed 001) against the paper, its table and ψ(t)."""
+"""The two components of the coupler's angular acceleration (Kuleshova–Tokhtar (2)–(4)) against the paper, its table and ψ(t)."""
 import json
 
 import numpy as np

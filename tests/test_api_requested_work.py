@@ -1,4 +1,4 @@
-"""No wasted work: each endpoint computes what the request asks for and nothing else (issue 13, point 6).
+"""No wasted work: each endpoint computes what the request asks for and nothing else.
 
 The core functions are wrapped to count their calls (in this process: the heavy pool off); what the answer
 holds is checked against the same quantities computed another way."""

@@ -18,7 +18,7 @@ RPM = 2 * math.pi / 60
 
 
 def test_tables_hold_the_printed_rows():
-    """Tables 2.1 and 2.2 as printed (notes §3.3, §3.4), in SI; exact: they are typed data."""
+    """Tables 2.1 and 2.2 as printed (Chaika–Vasylenko), in SI; exact: they are typed data."""
     bronze = DRY["bronze_brof"]
     assert (bronze.pressure, bronze.speed, bronze.pv, bronze.temperature, bronze.friction) == (
         (5 * MPA, 20 * MPA), (1.1, 1.1), (25 * MPA, 35 * MPA), (70, 80), (0.12, 0.20))

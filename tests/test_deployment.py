@@ -1,4 +1,4 @@
-"""Several app servers behind nginx with one database, as a university runs them (issue 15).
+"""Several app servers behind nginx with one database, as a university runs them.
 
 Two app servers (`python3 -m server --port P`, as the README starts them) on loopback share one database,
 behind a real nginx running the shipped `deploy/nginx/mdl.conf` (tests/nginx.py). An assignment is made

@@ -1,4 +1,4 @@
-"""Issue 14, defect 5 and the one result type: the slotted link's viscous moment at λ = 1, one sign convention
+"""Edge values and the one result type: the slotted link's viscous moment at λ = 1, one sign convention
 for the coupler, the declared Numerics, the parabola-vertex extremum and Simpson's rule — each against something
 that is not the code under test (closed forms, finite differences of the drawn geometry, analytic integrals)."""
 import dataclasses

@@ -1,4 +1,4 @@
-"""Elastic machines against analytic solutions, the rigid limit, conservation of energy and seed 003's claim."""
+"""Elastic machines against analytic solutions, the rigid limit, conservation of energy and Drakunov–Tuleshova's claim."""
 import numpy as np
 import pytest
 
@@ -60,8 +60,8 @@ def test_energy_balance_with_damping_holds_to_the_tolerance():
 
 
 @pytest.mark.parametrize("fraction, oscillates", [(0.05, True), (3.0, False)])
-def test_seed_003_small_damping_oscillates_large_damping_creeps(fraction, oscillates):
-    """Seed 003's claim: small b_n gives decaying oscillation, large b_n aperiodic decay of the twist."""
+def test_drakunov_tuleshova_small_damping_oscillates_large_damping_creeps(fraction, oscillates):
+    """Drakunov–Tuleshova's claim (Figs. 4–5): small b_n gives decaying oscillation, large b_n aperiodic decay of the twist."""
     compliances = Compliances(2e-6, 1e-9, 3e-6)
     probe = ElasticMachine("elastic_four_bar", "four_bar", FOUR_BAR, Inertias(J1=0.01, J3=0.05), Load(),
                            Motor("constant", M0=0.0), J_motor=0.02, compliances=compliances, twist0=0.001)

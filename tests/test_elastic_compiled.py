@@ -102,16 +102,16 @@ def test_vectorised_table_reads_equal_the_scalar_ones():
     assert np.isnan(value[-2:]).all()
 
 
-def seed_003_four_bar():
+def drakunov_tuleshova_four_bar():
     scene = scenes()["elastic-four-bar"]
     return elastic_machine(ElasticRequest.model_validate(scene_request(scene, scene.variants[0])))
 
 
-def test_compiled_dop853_takes_scipys_steps_on_the_seed_003_four_bar():
+def test_compiled_dop853_takes_scipys_steps_on_the_drakunov_tuleshova_four_bar():
     """A line-for-line port: the same accepted and rejected steps (this case does not sit on a rounding-level
     step-size decision) and the twist to rounding amplified by the motion (1e-9 of its largest value)."""
     ready()
-    machine = seed_003_four_bar()
+    machine = drakunov_tuleshova_four_bar()
     model, y0 = build(machine)
     samples = np.linspace(0.0, 0.5, 601)
     runs = [integrate(model, y0, 0.5, 1e-6, "DOP853", samples, math.inf, absolute_tolerances(machine, model, 1e-6),
@@ -175,14 +175,14 @@ def test_simulate_computes_the_rigid_start_up_only_when_asked():
 
 @pytest.mark.parametrize("case", ["belt", "four-bar"])
 def test_the_compiled_rigid_start_up_equals_the_equation_of_motions_start_up(case):
-    """report.rigid (J(φ)ω̇ + ½J′ω² = M − M_c in time, compiled DOP853 at rtol 1e-10) against issue 3's start-up
+    """report.rigid (J(φ)ω̇ + ½J′ω² = M − M_c in time, compiled DOP853 at rtol 1e-10) against /motion's start-up
     (RK4 in φ on dT/dφ, another method in another variable), read at the start-up's own nodes (no interpolation).
     Tolerance 5e-6 of the top speed: the RK4 steps across the load's jumps at the dead centres (first order there)
     and differs from a DOP853 run at rtol 1e-12 by 1e-6; the compiled run differs from that one by 4e-9."""
     from server.core.dynamics.machine import Machine
     from server.core.dynamics.motion import startup
     from server.core.dynamics.reduction import Inertias
-    machine = STIFF_CASES["no damping"] if case == "belt" else seed_003_four_bar()
+    machine = STIFF_CASES["no damping"] if case == "belt" else drakunov_tuleshova_four_bar()
     inertias = Inertias(**{**machine.inertias.__dict__, "J1": machine.inertias.J1 + machine.J_motor, "J_rotor": 0.0})
     run = startup(Machine(machine.mechanism, machine.params, inertias, machine.load, machine.motor), 0.0, rtol=0.0,
                   max_cycles=40).transient
@@ -193,9 +193,9 @@ def test_the_compiled_rigid_start_up_equals_the_equation_of_motions_start_up(cas
     assert np.max(np.abs(rigid["phi"] - run.phi[nodes])) <= 5e-6 * np.max(run.phi[nodes])
 
 
-def test_the_rigid_machine_that_stalls_stands_where_the_start_up_of_issue_3_stalls():
+def test_the_rigid_machine_that_stalls_stands_where_the_motion_start_up_stalls():
     """A motor torque that moves the crank off the dead centre (M_c = 0 there) but not past the working stroke:
-    ω rises, falls back to zero, and from there φ, ω are undefined; issue 3's start-up stalls at the same angle
+    ω rises, falls back to zero, and from there φ, ω are undefined; /motion's start-up stalls at the same angle
     (to its RK4 step, 2π/256)."""
     from server.core.dynamics.machine import Machine
     from server.core.dynamics.motion import startup

@@ -1,4 +1,4 @@
-"""The elastic answers' diagnostics against independent references (issue 14): the energy residual against the
+"""The elastic answers' diagnostics against independent references: the energy residual against the
 energy computed afresh from the histories, the error estimate against rtol 1e-12 reference runs, the bearing
 iteration against a direct solve of its fixed point, and the fields a model does not use refused by name."""
 import numpy as np
@@ -24,7 +24,7 @@ FREE_SLIDER = {"model": "two_mass", "mechanism": "slider_crank", "params": {"l1"
 
 
 def test_a_free_vibration_reports_the_energy_drift_of_its_histories_relative_to_its_energy():
-    """Issue 14's body: no input work (it was divided by 1e-300 J). The residual is the drift of E = ½J_mω_m² +
+    """A free vibration: no input work (it was divided by 1e-300 J). The residual is the drift of E = ½J_mω_m² +
     ½J(φ)ω² + ½cθ² over the run relative to E itself, with J(φ) here from the closed form (not the run's table):
     equal to 1e-9 of E (the table's interpolation error is ~1e-13), and within 10× the rtol 1e-6 asked."""
     machine = elastic_machine(ElasticRequest.model_validate(FREE_SLIDER))
@@ -66,8 +66,8 @@ def true_error_and_estimate(machine, t_end, samples):
     return error, result["numerics"]["error_estimate"]
 
 
-def test_the_error_estimate_holds_on_seed_003_assembly_2():
-    """The case of issue 14: the twist passes the dead positions (c → 0 where the load M₃|u₃₁| turns over) and
+def test_the_error_estimate_holds_on_drakunov_tuleshovas_assembly_2():
+    """The reported case: the twist passes the dead positions (c → 0 where the load M₃|u₃₁| turns over) and
     a run at rtol 1e-6 is 7.2e-2 off the rtol 1e-12 reference; the estimate has to say so (it said 1.7e-4)."""
     scene = scenes()["elastic-four-bar"]
     variant = next(v for v in scene.variants if v.id == "assembly_2")
@@ -122,8 +122,8 @@ def test_an_unconverged_bearing_iteration_says_so_in_words():
     assert notice.code == "bearings_unconverged" and "not converged" in notice.text and notice.context["rounds"] == 2
 
 
-def seed_003_critical_damping(phi, sign, e=(2e-6, 1e-9, 3e-6), l=(1.0, 0.3, 1.0, 0.8), I1=0.01, I3=0.05, I_d=0.02):
-    """2√(c_n I_eq) from seed 003's own closed forms: position (3)–(5), φ₂ by (6) reconstructed, u₃₁ by (8) with
+def drakunov_tuleshova_critical_damping(phi, sign, e=(2e-6, 1e-9, 3e-6), l=(1.0, 0.3, 1.0, 0.8), I1=0.01, I3=0.05, I_d=0.02):
+    """2√(c_n I_eq) from Drakunov–Tuleshova's own closed forms: position (3)–(5), φ₂ by (6) reconstructed, u₃₁ by (8) with
     its sign corrected, c_n by (2), I_n = I₁ + I₃u₃₁², I_eq = I_dI_n/(I_d + I_n); and c_n."""
     l0, l1, l2, l3 = l
     l_gamma = np.hypot(l0 - l1 * np.cos(phi), l1 * np.sin(phi))
@@ -137,13 +137,13 @@ def seed_003_critical_damping(phi, sign, e=(2e-6, 1e-9, 3e-6), l=(1.0, 0.3, 1.0,
     return 2 * np.sqrt(c * I_d * inertia / (I_d + inertia)), c
 
 
-def test_the_scene_says_why_seed_003s_damping_claim_fails_for_its_values():
-    """Defect 6: the numbers of the elastic-four-bar text (b_n = 57 N·m·s/rad needed for ζ ≥ 1 everywhere, ζ ≈ 7e-4
-    over most of the turn at b_n = 0.02, ζ ≥ 1 only within 0.13° of the dead positions) from seed 003's closed
+def test_the_scene_says_why_drakunov_tuleshovas_damping_claim_fails_for_its_values():
+    """The numbers of the elastic-four-bar text (b_n = 57 N·m·s/rad needed for ζ ≥ 1 everywhere, ζ ≈ 7e-4
+    over most of the turn at b_n = 0.02, ζ ≥ 1 only within 0.13° of the dead positions) from Drakunov–Tuleshova's closed
     forms, independent of the app's tables; the app's modal ζ(φ) agrees with them (0.1 %)."""
-    assert seed_003_critical_damping(0.7, +1, e=(2e-4, 1e-7, 3e-4))[1] == pytest.approx(1.829090, rel=1e-6)  # notes §4
+    assert drakunov_tuleshova_critical_damping(0.7, +1, e=(2e-4, 1e-7, 3e-4))[1] == pytest.approx(1.829090, rel=1e-6)  # (2) at φ₁ = 0.7
     phi = np.linspace(0.0, 2 * np.pi, 360_001)
-    critical, _ = seed_003_critical_damping(phi, +1)
+    critical, _ = drakunov_tuleshova_critical_damping(phi, +1)
     zeta = 0.02 / critical
     assert np.max(critical) == pytest.approx(57, rel=0.01)
     assert np.median(zeta) == pytest.approx(7e-4, rel=0.05)

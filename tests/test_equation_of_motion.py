@@ -112,7 +112,7 @@ def test_piston_engine_with_balanced_load_runs_at_the_given_mean_speed():
     steady = result.steady
     assert steady.omega_mean == pytest.approx(47.124, rel=1e-9)
     assert 0 < steady.delta < 0.2
-    # the balancing moment is the mean driving moment A_д/2π (seed 004 §10.5)
+    # the balancing moment is the mean driving moment A_д/2π (Lecture 10 (L8))
     phi = np.linspace(0, 2 * np.pi, 400001)
     mean_drive = np.mean(driving_moment(engine, "slider_crank", p, phi, 0.0)[:-1])
     assert steady.works["balancing_moment"] == pytest.approx(mean_drive, rel=1e-6)

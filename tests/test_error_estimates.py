@@ -1,9 +1,9 @@
-"""Error estimates that hold (issue 14, defect 2): the steady cycle's and the start-up's reported error
+"""Error estimates that hold: the steady cycle's and the start-up's reported error
 estimate against the true error, measured against reference runs.
 
 - Random machines (every mechanism /motion accepts; random geometry, inertias, motors and switching loads
   within the request schema's bounds; seeded): the steady cycle at rtol against our own run at rtol/1000
-  with the kinks on its nodes (the acceptance of issue 14 allows this reference). Its own error is ≤ rtol/1000
+  with the kinks on its nodes (an accepted reference). Its own error is ≤ rtol/1000
   by its estimate, so it adds at most 1e-3 of rtol to what is measured. The true error (ω relative to its
   largest value, t relative to the cycle time, the largest over the nodes) is at most 3× the estimate and
   at most 2× rtol. A floor of 1e-13 absorbs rounding: Newton on the cycle map stops at 1e-13 of T₀.

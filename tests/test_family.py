@@ -1,6 +1,6 @@
 """POST /api/v1/family: a slider's family of answers, interpolated by the page while the slider moves.
 
-The bound the issue asks for (issue 13, "Dragging is a lookup"): between members, the interpolated answer is
+The bound "dragging is a lookup" asks for: between members, the interpolated answer is
 within 0.5 % of each plotted quantity's span of the exact answer at that value, a plot's resolution. It is
 checked against the endpoint itself (a separate POST at random slider values between the members), not
 against the family's own midpoint checks. The families here run in this process (no heavy process) with the

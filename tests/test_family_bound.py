@@ -1,4 +1,4 @@
-"""The family's bound against the endpoints' exact answers on every scene (server/api/family.py, issue 13): for
+"""The family's bound against the endpoints' exact answers on every scene (server/api/family.py): for
 every slider of every variant, at the defaults and with the other sliders at random values, the family the page
 asks for (its drawn ``fields``, packed) is interpolated by the contract's rule (linear or cubic by interval)
 at random values between members, and every drawn quantity is within TOLERANCE of its span of the endpoint's

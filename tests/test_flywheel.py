@@ -1,4 +1,4 @@
-"""Flywheel for a given δ (seed 004): four methods against the analytic case, each other and a time simulation."""
+"""Flywheel for a given δ (Lecture 10 §10.3–§10.8): four methods against the analytic case, each other and a time simulation."""
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -18,7 +18,7 @@ RIG = Machine("slider_crank", PARAMS, Inertias(J1=2.72, m2=24.2, J_S2=1.21, m3=3
 
 
 def test_analytic_case_all_four_methods_give_7_2050():
-    """I_II = 0, M_Σ = M_a sin φ: A = M_a(1 − cos φ), ΔT_max = 2M_a, I_I = 2M_a/(δω²) (notes 004 §4.3)."""
+    """I_II = 0, M_Σ = M_a sin φ: A = M_a(1 − cos φ), ΔT_max = 2M_a, I_I = 2M_a/(δω²) (an analytic case, not in Lecture 10)."""
     phi = np.linspace(0, 2 * np.pi, 4097)
     cycle = fw.Cycle(phi, 100.0 * (1 - np.cos(phi)), np.zeros_like(phi))
     expected = 2 * 100.0 / (DELTA * OMEGA**2)

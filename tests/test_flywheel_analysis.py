@@ -1,4 +1,4 @@
-"""Lecture 10 (10.4), step 8: the analysis problem (the flywheel's I given, δ found) against the synthesis
+"""Lecture 10 §10.4, step 8: the analysis problem (the flywheel's I given, δ found) against the synthesis
 (I for [δ], flywheel.exact and Merzalov) and against the notes' worked numbers for the drilling rig (§4.2:
 the transfer functions and I_II of (L12)–(L14), (L18)) and the analytic case of §4.3."""
 from __future__ import annotations
@@ -53,7 +53,7 @@ def test_merzalov_analysis_inverts_merzalov_synthesis_and_overstates_delta(clien
 
 
 def test_the_analytic_case_of_the_notes():
-    """Notes §4.3: I_II = 0, M_Σ = M_a sin φ, M_a = 100 N·m, ω = 47.124 rad/s: I_I = 7.2050 kg·m² gives
+    """An analytic case: I_II = 0, M_Σ = M_a sin φ, M_a = 100 N·m, ω = 47.124 rad/s: I_I = 7.2050 kg·m² gives
     δ = 2M_a/(I_I ω²) = 1/80, Merzalov exact here (printed to 5 digits: rel 1e-4)."""
     phi = np.linspace(0, 2 * np.pi, 4097)
     cycle = fw.Cycle(phi, 100 * (1 - np.cos(phi)), np.zeros_like(phi))
@@ -62,7 +62,7 @@ def test_the_analytic_case_of_the_notes():
 
 
 def test_the_rigs_reduced_inertia_of_group_two_as_the_notes_compute_it():
-    """Notes §4.2 from (L12)–(L14), (L18): I_II max 0.90191 at φ₁ ≈ 168°, min 0.22360 at the dead centres,
+    """Lecture 10's rig (§10.5) by (L12)–(L14), (L18): I_II max 0.90191 at φ₁ ≈ 168°, min 0.22360 at the dead centres,
     cycle mean 0.55079 kg·m², max|V_qC| = 0.12307 m (5 digits printed: abs 2e-5; 36 000 points, the
     sampling error at the peak ~1e-9)."""
     phi = np.linspace(0, 2 * np.pi, 36001)
@@ -74,7 +74,7 @@ def test_the_rigs_reduced_inertia_of_group_two_as_the_notes_compute_it():
     assert np.abs(values["u31"]).max() == pytest.approx(0.12307, abs=2e-5)
 
 
-# notes §4.2, every 30° of the lecture's φ₁: u₂₁, V_qC, V_qS2, I_II^пр
+# Lecture 10's rig by (L12)–(L14), (L18), every 30° of the lecture's φ₁: u₂₁, V_qC, V_qS2, I_II^пр
 TABLE = [(0, 0.0000, 0.1200, 0.1200, 0.8698), (30, -0.1159, 0.1160, 0.1152, 0.8245),
          (60, -0.1981, 0.0719, 0.0952, 0.4539),
          (90, -0.2273, 0.0000, 0.0816, 0.2236), (120, -0.1981, -0.0719, 0.0952, 0.4539),

@@ -1,4 +1,4 @@
-"""The crank-slider's kinetostatics with friction (seed 002 §3.1, Chaika–Vasylenko (3.3), (3.17)–(3.20))
+"""The crank-slider's kinetostatics with friction (Chaika–Vasylenko §3.1, (3.3), (3.17)–(3.20))
 against references that are not the code under test:
 
 * fsolve of the full friction equilibrium, written here from the free-body diagrams of rod and slider, with

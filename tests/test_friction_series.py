@@ -1,4 +1,4 @@
-"""The textbook's friction series of /reduction (Eremyants §3.1, §3.2; seed 000 (3.24)) against its closed form and
+"""The textbook's friction series of /reduction (Eremyants §3.1, §3.2, (3.24)) against its closed form and
 a 5000-step run: the ratio test decides whether the series converges, never the number of rows shown.
 
 Crank-slider at φ: F_T,k = P Σ_{i=1}^{k} (f|tan ψ|)^i → P q/(1 − q), q = f|tan ψ|, sin ψ = l₁ sin φ/l₂ (e = 0);
@@ -81,7 +81,7 @@ def test_ratio_just_below_one_converges_and_just_above_diverges():
 
 
 def test_sine_mechanism_series_ratio_is_f_squared():
-    """R₂₃ → P/(1 − f²) (seed 000 §3.1): f = 0.99 (ratio 0.98) converges, the table is not what decides."""
+    """R₂₃ → P/(1 − f²) (Eremyants §3.1): f = 0.99 (ratio 0.98) converges, the table is not what decides."""
     log = friction_iteration("sine", {"l1": 1.0}, 0.3, force=2.0, f=0.99)
     assert log.converged and log.ratio == pytest.approx(0.9801)
     assert log.limit["R23"] == pytest.approx(2.0 / (1 - 0.9801), rel=1e-12)

@@ -1,4 +1,4 @@
-"""Issue 15, point 3: the answers of an assignment are computed in the heavy processes under a budget, kept per
+"""The answers of an assignment are computed in the heavy processes under a budget, kept per
 variant in the store, and one address makes assignments at a bounded rate.
 
 Reproductions: making an assignment computed 8 variants' answers in the request's own thread (19 s on an elastic

@@ -1,4 +1,4 @@
-"""Issue 15, point 7: the response cache must never change what validation says.
+"""The response cache must never change what validation says.
 
 Reproductions (they failed with the cache keyed on the raw body, rounded to 10 digits, in front of validation):
 once l1 = 1.0 was cached, l1 = 1.00000000001 (above its bound of 1 m) answered 200 with l1: 1.0; after a hit,

@@ -1,4 +1,4 @@
-"""Issue 15, point 8: one deadline per request, kept by every stage, and said in words when it is reached.
+"""One deadline per request, kept by every stage, and said in words when it is reached.
 
 Before, /elastic gave its run 4 s, the check run 2 s more, and the bearing iteration a fresh 8 s of its own
 (9.9–18.4 s measured); /work-precision/elastic gave its reference up to 12 s and then the runs 6 s more. Now one

@@ -1,4 +1,4 @@
-"""Issue 15, point 6: hostile and broken bodies answer 422 naming the body, and every error, a 500 included,
+"""Hostile and broken bodies answer 422 naming the body, and every error, a 500 included,
 carries the security headers and a JSON body.
 
 Reproductions (each answered a plain-text 500 without the security headers on every POST endpoint before):

@@ -1,4 +1,4 @@
-"""A student's identity (issue 15, points 1, 4 and 5): registration by POST with a personal secret, the cookie
+"""A student's identity: registration by POST with a personal secret, the cookie
 and the personal link, what a request without the secret may do (nothing), the instructor's roster, links,
 lock, reset and delete, CSV cells that a spreadsheet would run as formulas, and a name with "/".
 

@@ -1,4 +1,4 @@
-"""Kinetostatics of the crank-slider with friction (seed 002 §3.1) against virtual work, equilibrium and the iteration."""
+"""Kinetostatics of the crank-slider with friction (Chaika–Vasylenko §3.1) against virtual work, equilibrium and the iteration."""
 import numpy as np
 import pytest
 
@@ -64,7 +64,7 @@ def test_slider_self_locking_is_reported_not_a_number():
 
 
 def test_piston_wear_of_the_book_reproduces_76_micrometres_from_its_own_integrands():
-    """Seed 002 §4.3 (B): δ₃p = a₃p ∫|R₃₄V_qB|dφ with the printed integrands of Table 4.4 (right side)."""
+    """Chaika–Vasylenko §4.3 (B): δ₃p = a₃p ∫|R₃₄V_qB|dφ with the printed integrands of Table 4.4 (right side)."""
     from server.core.kinetostatics.wear import mean_pressure, piston_wear
     phi = np.radians(np.arange(0, 361, 30))
     integrand = np.array([0, 83, 164, 155, 94, 61, 0, 0, 0, 0, 0, 0, 0], float)     # printed, N·m/rad

@@ -1,4 +1,4 @@
-"""Lecture 10 (10.9)–(10.10): the induction motor's static characteristic, the stability of its operating point
+"""Lecture 10 §10.9–§10.10: the induction motor's static characteristic, the stability of its operating point
 (Fig. 10.14) and the successive approximations, each against something that is not the code under test:
 finite differences of the characteristic, the sign of the restoring moment after a small speed change, the
 closed form (L30), and the joint solution of the equation of motion (motion.steady_cycle, Newton shooting)."""
@@ -75,7 +75,7 @@ def test_the_linearised_branch_corrected_passes_through_both_points_the_printed_
 
 
 def test_the_successive_approximations_reach_the_joint_solution():
-    """The limit of (10.10) against the equation of motion solved with the characteristic (Newton shooting,
+    """The limit of §10.10 against the equation of motion solved with the characteristic (Newton shooting,
     RK4, rtol 1e-10): max|Δω|/ω̄ ≤ 1e-6 (the trapezoid rule on 2048 steps per turn: ~3e-8 measured, the
     iteration's tolerance 1e-9·ρ/(1 − ρ)); the step-to-step change shrinks by ρ = |k₁*|/(Ī ω̄), the linearised
     contraction, within 10 % (the harmonics beyond the first and the φ-dependence of I and ω are neglected)."""

@@ -1,4 +1,4 @@
-"""The steady cycle's efficiency η = A_useful/A_driving (seed 002 (3.38)) within its meaning (issue 14, defect 3).
+"""The steady cycle's efficiency η = A_useful/A_driving (Chaika–Vasylenko (3.38)) within its meaning (never absurd).
 
 Over a periodic cycle the kinetic energy returns to its value, so A_driving = A_useful + A_friction: without
 friction η is 1 by construction, exactly (no quadrature can make it 1.0000005); with friction whose work is
@@ -87,7 +87,7 @@ def test_the_textbook_formulas_that_let_friction_help_leave_eta_unset_in_words()
 
 
 def test_the_constant_torque_default_says_its_stall_concerns_the_start_up_beside_its_steady_cycle():
-    """Issue 14, defect 7. The scene's constant-torque machine has a steady cycle and stalls only when started
+    """The scene's constant-torque machine has a steady cycle and stalls only when started
     from rest; the answer says which. Bound, independent of the integrator: viscous friction only takes energy,
     so from rest T(φ) ≤ W(φ) = ∫₀^φ (i·M₀ − M_c,φ) dφ (the φ-dependent moments, by the trapezoid rule on a
     fine grid), and the start-up must stop no later than W's first zero (0.5° of grid and refinement)."""

@@ -1,6 +1,6 @@
 """Students' names (server/classroom/names.py): which typed names are one student, which only look like another.
 
-The hand cases are those of issue 15 ("IVAN  PETROV" spent "Ivan Petrov"'s attempts; "Пётр" and "Петр", a
+The hand cases are the classroom's reported ones ("IVAN  PETROV" spent "Ivan Petrov"'s attempts; "Пётр" and "Петр", a
 Cyrillic "о" inside a Latin name made a second student who looks the same). The properties are checked with
 hypothesis over names drawn from Latin, Cyrillic and Greek letters, digits and the punctuation of group codes.
 """

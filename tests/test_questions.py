@@ -1,4 +1,4 @@
-"""Questions that are not one readout (issue 15, point 2): a value at an angle the student chooses, a quantity
+"""Questions that are not one readout: a value at an angle the student chooses, a quantity
 computed from named readouts, a prediction made before its plot opens; and where the public pages show an
 answer. Answers are checked against the crank-slider's exact geometry written here (closed forms of u₃₁ and
 u′₃₁, and central differences of the position s), never against the code under test.

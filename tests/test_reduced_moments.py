@@ -1,4 +1,4 @@
-"""Reduced moments of resistance and inertia against the numbers of seed 000 (notes 000.md §7) and geometry."""
+"""Reduced moments of resistance and inertia against Eremyants' numbers ((3.12), (3.32) and its formulas evaluated) and geometry."""
 import numpy as np
 import pytest
 
@@ -21,7 +21,7 @@ def params(mechanism, **given):
 
 def test_sine_mean_resisting_moment_is_the_printed_0_748():
     m = resisting_moment("sine", params("sine", l1=1.0), Load(force=1.0, f=0.15, convention="textbook"), PHI)
-    # the printed 0.748 is 0.748585 truncated (notes P1)
+    # the printed 0.748 is 0.748585 truncated (Eremyants (3.12))
     assert mean_over_cycle(m.total) == pytest.approx(2 * (1 + 0.15**2) * (1 + 0.15) / np.pi, rel=1e-8)   # (3.12)
     assert int(mean_over_cycle(m.total) * 1000) == 748
 
@@ -45,7 +45,7 @@ def test_crank_slider_mean_moment_as_printed_and_consistent():
     printed = resisting_moment("slider_crank", p, Load(1.0, 0.2, 0.2, convention="textbook"), PHI)
     exact = resisting_moment("slider_crank", p, Load(1.0, 0.2, 0.2), PHI)
     assert mean_over_cycle(printed.total) == pytest.approx(1.2 / np.pi + 0.8 * 0.2 / 12, rel=1e-9)   # (3.32): 0.395
-    assert mean_over_cycle(exact.total) == pytest.approx(0.40419, abs=5e-6)                          # notes §5.2
+    assert mean_over_cycle(exact.total) == pytest.approx(0.40419, abs=5e-6)                          # Eremyants §3.2
     assert at(printed.total, [30, 90, 120, 240, 270]) == pytest.approx(
         [0.37233, 1.06667, 1.06036, 0.19207, 0.18667], abs=6e-6)
     assert at(exact.total, [30, 90, 120, 240, 270]) == pytest.approx(
@@ -77,7 +77,7 @@ def test_crank_slider_self_locks_where_f_tan_psi_reaches_one():
     assert m.notices[0].code == "slider_crank_self_locking"
     assert np.isnan(m.total[m.self_locking]).all() and np.isfinite(m.total[~m.self_locking]).all()
     free = resisting_moment("slider_crank", params("slider_crank", l1=1.0, l2=1.03), Load(1.0, f=0.2), PHI)
-    assert free.self_locking is None        # λ > √(1 + f²) = 1.0198: no self-locking (notes §7.2)
+    assert free.self_locking is None        # λ > √(1 + f²) = 1.0198: no self-locking (Eremyants §3.2)
 
 
 def test_friction_iteration_converges_to_the_closed_form_and_diverges_when_locked():
@@ -153,11 +153,11 @@ def test_crank_slider_inertia_approximation_of_the_textbook():
     assert exact.mean == pytest.approx(0.514719, abs=1e-6)                                    # exact u₃₁²
 
 
-def test_seed_004_group_two_inertia():
+def test_lecture_10_group_two_inertia():
     p = params("slider_crank", l1=0.12, l2=0.528, a2=0.169 / 0.528)
     J = reduced_inertia("slider_crank", p, Inertias(m2=24.2, J_S2=1.21, m3=36.2), PHI)
     assert J.J.max() == pytest.approx(0.90191, abs=1e-5) and J.J.min() == pytest.approx(0.22360, abs=1e-5)
-    assert J.mean == pytest.approx(0.55079, abs=1e-5)                                         # notes 004 §4.2
+    assert J.mean == pytest.approx(0.55079, abs=1e-5)                                         # Lecture 10 §10.5
 
 
 def test_partial_self_locking_keeps_the_moment_where_the_slider_moves():

@@ -1,18 +1,18 @@
-"""Reference values from the seeds reproduce: tables, worked examples and claims of the texts.
+"""Reference values from the sources reproduce: tables, worked examples and claims of the texts.
 
-Sources (in /work/shared/seeds/notes): 000.md §4 and §7.2 (Eremyants: crank-slider, slotted
+Sources (README, "Sources"): Eremyants §2.3–§2.5, its formulas evaluated (crank-slider, slotted
 link, four-bar, change-point four-bars, approximations (2.16)/(2.17*), harmonic claims),
-002.md Table 4.3 and §4.2 (Chaika & Vasylenko: ICE crank-slider), 003.md §4 (Drakunov &
-Tuleshova: four-bar oracle).  Each printed number is compared to half a unit in its last
+Chaika–Vasylenko Table 4.3 (ICE crank-slider), Drakunov–Tuleshova (3)–(8) (the
+four-bar oracle).  Each printed number is compared to half a unit in its last
 printed digit, the precision the text gives; where a printed value is wrong the test says so.
 
 Converting the sources to the app's conventions (each conversion is itself checked here):
-* Crank-slider, seed 000 = ours: φ from the inner dead centre, clockwise; s = x; s2 = ψ.
-* Crank-slider, seed 002: φ₁ from the crank pointing at the slider, counter-clockwise, so
+* Crank-slider, Eremyants = ours: φ from the inner dead centre, clockwise; s = x; s2 = ψ.
+* Crank-slider, Chaika–Vasylenko: φ₁ from the crank pointing at the slider, counter-clockwise, so
   φ₁ = π − φ, V_qB(φ₁) = dx_B/dφ₁ = −u₃₁(φ), φ₂ = −ψ (mod 360°), u₂₁ = dφ₂/dφ₁ = dψ/dφ = u₂₁.
-* Four-bar: A origin, D = (l₀, 0), φ counter-clockwise from AD; assembly = +1 is seed 000's
-  (2.41) branch and seed 003's "+".
-* Change-point four-bars (seed 000 §2.5): φ from the special position.  Schemes 1, 2: our φ,
+* Four-bar: A origin, D = (l₀, 0), φ counter-clockwise from AD; assembly = +1 is Eremyants'
+  (2.41) branch and Drakunov–Tuleshova's "+".
+* Change-point four-bars (Eremyants §2.5): φ from the special position.  Schemes 1, 2: our φ,
   scheme 2's textbook branch is our assembly = −1.  Scheme 3: our φ = φ_textbook + π and its
   rocker angle is counted the other way, u₃₁(textbook) = −u₃₁(ours).
 """
@@ -42,7 +42,7 @@ def values_at(mech, params: dict, phi, outputs=("s", "u31", "du31", "s2", "u21",
     return {k: ev.values[k] for k in outputs}
 
 
-# --- seed 000 §7.2: crank-slider, l₁ = 1 --------------------------------------------------------
+# --- Eremyants §2.3, (2.7)–(2.15) evaluated: crank-slider, l₁ = 1 --------------------------------------------------------
 
 # λ = l₂/l₁, φ (deg), x, u₃₁, u′₃₁ (6 decimals), ψ (deg, 4 decimals), u₂₁, u′₂₁ (6 decimals)
 CRANK_SLIDER_000 = [
@@ -59,7 +59,7 @@ CRANK_SLIDER_000 = [
 
 
 @pytest.mark.parametrize("row", CRANK_SLIDER_000, ids=lambda r: f"λ={r[0]} φ={r[1]}°")
-def test_crank_slider_positions_and_transfer_functions_match_seed_000_table(row):
+def test_crank_slider_positions_and_transfer_functions_match_eremyants(row):
     lam, phi_deg, x, u31, du31, psi_deg, u21, du21 = row
     v = values_at(SLIDER, {"l1": 1.0, "l2": lam}, np.radians(phi_deg))
     for name, got, printed in (("x", v["s"], x), ("u31", v["u31"], u31), ("du31", v["du31"], du31),
@@ -69,7 +69,7 @@ def test_crank_slider_positions_and_transfer_functions_match_seed_000_table(row)
 
 
 @pytest.mark.parametrize("lam, u_max, phi_deg", [(1.5, 1.22693, 115.70), (3, 1.05464, 106.80), (5, 1.01983, 100.90)])
-def test_fastest_slider_speed_and_its_crank_angle_match_seed_000(lam, u_max, phi_deg):
+def test_fastest_slider_speed_and_its_crank_angle_match_eremyants(lam, u_max, phi_deg):
     p = SLIDER.check({"l1": 1.0, "l2": lam})
     best = minimize_scalar(lambda x: -SLIDER.evaluate(p, np.array([x]), set()).values["u31"][0],
                            bounds=(np.pi / 2, np.pi), method="bounded", options={"xatol": 1e-10})
@@ -101,11 +101,11 @@ def test_rod_inclination_never_exceeds_arctan_of_one_over_root_lambda_squared_mi
     assert (np.max(np.tan(np.abs(psi))) < 1) == (lam**2 > 2)
 
 
-# --- seed 000 §4.3: approximations (2.16), (2.17*) -----------------------------------------------
+# --- Eremyants §2.3: approximations (2.16), (2.17*) -----------------------------------------------
 
 @pytest.mark.parametrize("lam, err_u31, err_u21, decimals", [(1.5, 0.066, 0.075, 3), (3, 0.0064, 0.0076, 4),
                                                              (5, 0.0013, 0.0016, 4)])
-def test_largest_errors_of_the_approximations_2_16_match_seed_000(lam, err_u31, err_u21, decimals):
+def test_largest_errors_of_the_approximations_2_16_match_eremyants(lam, err_u31, err_u21, decimals):
     result = compute_kinematics("slider_crank", {"l1": 1.0, "l2": lam}, ["approx_error"], n=10001)
     errors = result.outputs["approx_error"]
     # a 0.036° grid finds the maximum to ≈ (Δφ)²·|u‴| < 1e-6, far inside the printed precision
@@ -132,7 +132,7 @@ def test_corrected_sign_of_the_rod_acceleration_approximation_at_lambda_3_phi_1_
     assert abs(v["du21_approx"][0] - (-0.249)) <= half_unit(3)
 
 
-# --- seed 000 §4.3: harmonic content of the crank-slider ----------------------------------------
+# --- Eremyants §2.3, (2.17): harmonic content of the crank-slider ----------------------------------------
 
 def amplitudes(params: dict, output: str) -> np.ndarray:
     return np.array(harmonics(SLIDER, SLIDER.check(params), output)["amplitude"])
@@ -181,7 +181,7 @@ def test_sine_mechanism_transfer_functions_are_single_harmonics_of_amplitude_l1(
         assert max(h["amplitude"][1:]) < 1e-15 and abs(h["mean"]) < 1e-15
 
 
-# --- seed 000 §7.2: slotted link, l₁ = 1 ----------------------------------------------------------
+# --- Eremyants §2.4, its formulas evaluated: slotted link, l₁ = 1 ----------------------------------------------------------
 
 # λ = l₀/l₁, φ (deg), ψ (deg, 4 decimals), y, u₃₁, u′₃₁, u₂₁, u′₂₁ (6 decimals)
 SLOTTED_000 = [
@@ -198,7 +198,7 @@ SLOTTED_000 = [
 
 
 @pytest.mark.parametrize("row", SLOTTED_000, ids=lambda r: f"λ={r[0]} φ={r[1]}°")
-def test_slotted_link_positions_and_transfer_functions_match_seed_000_table(row):
+def test_slotted_link_positions_and_transfer_functions_match_eremyants(row):
     lam, phi_deg, psi_deg, y, u31, du31, u21, du21 = row
     v = values_at(SLOTTED, {"l0": lam, "l1": 1.0}, np.radians(phi_deg))
     assert abs(np.degrees(v["s"][0]) - psi_deg) <= half_unit(4)
@@ -238,9 +238,9 @@ def test_oscillating_lever_swings_through_two_arcsin_one_over_lambda(lam):
         assert np.degrees(gamma) == pytest.approx(60.0, abs=1e-12)
 
 
-# --- seed 000 §7.2: general four-bar check case ---------------------------------------------------
+# --- Eremyants (2.42*), (2.44*): general four-bar check case ---------------------------------------------------
 
-def test_four_bar_check_case_of_seed_000_gives_the_corrected_2_42_and_2_44():
+def test_four_bar_check_case_of_eremyants_gives_the_corrected_2_42_and_2_44():
     """λ₀ = 4, λ₂ = 3.5, λ₃ = 3, φ = 1 rad: u₃₁ = 0.128989 (2.42*), u₂₁ = −0.222160 (2.44*); printed (2.42) −0.356."""
     v = values_at(FOUR_BAR, {"l0": 4.0, "l1": 1.0, "l2": 3.5, "l3": 3.0, "assembly": 1}, 1.0)
     assert abs(v["u31"][0] - 0.128989) <= half_unit(6)
@@ -253,7 +253,7 @@ def test_four_bar_check_case_of_seed_000_gives_the_corrected_2_42_and_2_44():
     assert abs(printed_2_42 - (-0.356)) <= half_unit(3)   # the misprint the corrected form replaces
 
 
-# --- seed 000 §2.5, §7.2: change-point ("special") four-bars ------------------------------------
+# --- Eremyants §2.5: change-point ("special") four-bars ------------------------------------
 
 # (λ₂, λ₃, λ₀), our assembly, our φ at the textbook's φ = 0, sign of u₃₁(textbook)/u₃₁(ours)
 SCHEMES = {1: ((4, 3, 2), 1, 0.0, 1), 2: ((3, 4, 2), -1, 0.0, 1), 3: ((3, 2, 4), 1, np.pi, -1)}
@@ -303,14 +303,14 @@ SPECIAL_000 = {1: (0.63299, -2.63299, 0.56181, 0.33333, -0.16181),
 
 
 @pytest.mark.parametrize("scheme", SCHEMES)
-def test_change_point_four_bar_u31_matches_seed_000_values(scheme):
+def test_change_point_four_bar_u31_matches_eremyants_values(scheme):
     leaving, arriving, *quarters = SPECIAL_000[scheme]
     u = textbook_u31(scheme, np.radians([0.0, 360.0, 90.0, 180.0, 270.0]))
     np.testing.assert_allclose(u, [leaving, arriving, *quarters], rtol=0, atol=half_unit(5))
 
 
 @pytest.mark.parametrize("scheme", SCHEMES)
-def test_rocker_speed_at_the_special_position_follows_the_closed_forms_of_seed_000(scheme):
+def test_rocker_speed_at_the_special_position_follows_the_closed_forms_of_eremyants(scheme):
     (l2, l3, l0), _, _, _ = SCHEMES[scheme]
     root = np.sqrt(l0 * l2 / l3)
     if scheme == 3:
@@ -359,7 +359,7 @@ def test_stroke_limiter_makes_u31_jump_from_the_arriving_to_the_leaving_value(sc
 
 
 @pytest.mark.parametrize("scheme, swing_deg", [(1, 109.47), (2, 75.52), (3, 75.52)])
-def test_rocker_swing_from_the_special_position_matches_seed_000(scheme, swing_deg):
+def test_rocker_swing_from_the_special_position_matches_eremyants(scheme, swing_deg):
     """With limiter the rocker swings to one side and back; without, to both sides over the 4π cycle."""
     _, _, shift, _ = SCHEMES[scheme]
     exact = {1: 180 - np.degrees(np.arccos(1 / 3)), 2: np.degrees(np.arccos(1 / 4)), 3: np.degrees(np.arccos(1 / 4))}
@@ -382,9 +382,9 @@ def test_impact_speed_of_schemes_1_and_2_is_several_times_that_of_scheme_3():
     assert impact[1] > 3 * impact[3] and impact[2] > 3 * impact[3]
 
 
-# --- seed 002 Table 4.3 and §4.2: ICE crank-slider, l₁ = 0.045 m, l₂ = 0.18 m, e = 0 ------------------
+# --- Chaika–Vasylenko Table 4.3: ICE crank-slider, l₁ = 0.045 m, l₂ = 0.18 m, e = 0 ------------------
 
-# φ₁ (deg), V_qB (m/rad), u₂₁, φ₂ (deg, 1 decimal), x_B (m, derived in 002.md §4.2) — as printed (4 decimals)
+# φ₁ (deg), V_qB (m/rad), u₂₁, φ₂ (deg, 1 decimal), x_B (m, derived from l₁, l₂, not printed) — as printed (4 decimals)
 TABLE_4_3 = [
     (0, 0.0, -0.2500, 360.0, 0.2250), (30, -0.0274, -0.2187, 352.8, 0.2176), (60, -0.0440, -0.1280, 347.5, 0.1982),
     (90, -0.0450, 0.0, 345.5, 0.1743), (120, -0.0340, 0.1280, 347.5, 0.1532), (150, -0.0176, 0.2187, 352.8, 0.1396),
@@ -392,12 +392,12 @@ TABLE_4_3 = [
     (270, 0.0450, 0.0, 14.5, 0.1743), (300, 0.0440, -0.1280, 12.5, 0.1982), (330, 0.0274, -0.2182, 7.2, 0.2176),
     (360, 0.0, -0.2500, 360.0, 0.2250),
 ]
-MISPRINTS_4_3 = {30: -0.2182, 150: 0.2182}   # printed ∓0.2187: a print/OCR slip (002.md §3.7, §4.2)
+MISPRINTS_4_3 = {30: -0.2182, 150: 0.2182}   # printed ∓0.2187: a print/OCR slip (210° and 330° print 0.2182)
 ICE = {"l1": 0.045, "l2": 0.18, "e": 0.0}
 
 
 def ice_kinematics(phi1_deg) -> dict[str, np.ndarray]:
-    """Seed 002's quantities from the app's: φ = π − φ₁, V_qB = −u₃₁, φ₂ = −ψ mod 360°, x_B from the joints."""
+    """Chaika–Vasylenko's quantities from the app's: φ = π − φ₁, V_qB = −u₃₁, φ₂ = −ψ mod 360°, x_B from the joints."""
     p = SLIDER.check(ICE)
     phi = np.pi - np.radians(np.atleast_1d(phi1_deg))
     ev = SLIDER.evaluate(p, phi, {"joints"})
@@ -406,7 +406,7 @@ def ice_kinematics(phi1_deg) -> dict[str, np.ndarray]:
 
 
 @pytest.mark.parametrize("row", TABLE_4_3, ids=lambda r: f"φ1={r[0]}°")
-def test_ice_crank_slider_reproduces_seed_002_table_4_3(row):
+def test_ice_crank_slider_reproduces_chaika_vasylenko_table_4_3(row):
     phi1, v_qb, u21, phi2, x_b = row
     got = {k: v[0] for k, v in ice_kinematics(phi1).items()}
     assert abs(got["V_qB"] - v_qb) <= half_unit(4)
@@ -427,7 +427,7 @@ def test_ice_stroke_is_twice_the_crank_090_m():
     assert np.ptp(x_b) == pytest.approx(0.090, abs=1e-12)
 
 
-# --- seed 003 §4: four-bar oracle, l₀ = 1, l₁ = 0.3, l₂ = 1, l₃ = 0.8, φ₁ = 0.7 rad -----------------
+# --- Drakunov–Tuleshova (3)–(8) evaluated: four-bar oracle, l₀ = 1, l₁ = 0.3, l₂ = 1, l₃ = 0.8, φ₁ = 0.7 rad -----------------
 
 ORACLE_003 = {  # assembly: φ₂ (deg), φ₃ (deg), u₂₁, u₃₁ (true, corrected sign), u′₃₁
     1: (37.32641, 88.23453, -0.287823, 0.0234393, 0.615568),
@@ -437,7 +437,7 @@ OAK = {"l0": 1.0, "l1": 0.3, "l2": 1.0, "l3": 0.8}
 
 
 @pytest.mark.parametrize("assembly", ORACLE_003)
-def test_four_bar_reproduces_the_seed_003_oracle(assembly):
+def test_four_bar_reproduces_the_drakunov_tuleshova_oracle(assembly):
     phi2, phi3, u21, u31, du31 = ORACLE_003[assembly]
     v = values_at(FOUR_BAR, OAK | {"assembly": assembly}, 0.7)
     wrap = lambda deg: (deg + 180.0) % 360.0 - 180.0
@@ -449,7 +449,7 @@ def test_four_bar_reproduces_the_seed_003_oracle(assembly):
 
 
 @pytest.mark.parametrize("assembly", [1, -1])
-def test_seed_003_cramer_formulas_hold_with_the_corrected_sign_of_8(assembly):
+def test_drakunov_tuleshova_cramer_formulas_hold_with_the_corrected_sign_of_8(assembly):
     """(7) u₂₁ = −l₁sin(φ₃−φ₁)/(l₂sin(φ₃−φ₂)); (8*) u₃₁ = +l₁sin(φ₁−φ₂)/(l₃sin(φ₃−φ₂)) — the printed
     (8) has a minus sign and gives −u₃₁; (10) u′₃₁ = u₃₁[cot(φ₁−φ₂)(1−u₂₁) − cot(φ₃−φ₂)(u₃₁−u₂₁)]."""
     p = OAK | {"assembly": assembly}

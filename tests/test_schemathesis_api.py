@@ -1,4 +1,4 @@
-"""Issue 15's acceptance: schemathesis over the whole API (every operation of /api/v1/openapi.json, valid and
+"""Hostile input's acceptance: schemathesis over the whole API (every operation of /api/v1/openapi.json, valid and
 invalid requests), with a real assignment, its instructor token, a registered student's personal secret
 (Authorization: Bearer) and another student's handle supplied in most cases, so that the requests reach past the
 401s and 404s: no answer may be a 5xx, and every answer carries the security headers. (The instructor operations

@@ -184,7 +184,7 @@ def test_wear_at_extreme_speed_and_life():
     assert no_non_finite(strict(client.post("/api/v1/wear", json=body)))
 
 
-# --- no diagnostic beyond its physical meaning, across the grid (issue 14, acceptance 3) ----------------------------
+# --- no diagnostic beyond its physical meaning, across the grid ----------------------------
 # Every answer's numerics (the answer's own, the start-up's, any nested one) and every efficiency η:
 #   error_estimate: a finite number ≥ 0, or null with the reason in words (numerics.message or a warning);
 #   energy_residual: |net work| / driving work, within [0, 1] (a residual above 1 says nothing about energy);

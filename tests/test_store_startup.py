@@ -1,4 +1,4 @@
-"""Issue 15, point 9: a database the server cannot write stops it at start-up with a message naming the file
+"""A database the server cannot write stops it at start-up with a message naming the file
 and the reason (it used to start and answer 500 on the first submission).
 
 The machine runs the tests as root, for whom file modes do not stop writes: a read-only file or directory is

@@ -88,9 +88,9 @@ CASES = [
     # hinged four-bar
     case("crank-rocker +", "four_bar", l0=0.4, l1=0.1, l2=0.35, l3=0.3, assembly=1),
     case("crank-rocker −", "four_bar", l0=0.4, l1=0.1, l2=0.35, l3=0.3, assembly=-1),
-    case("crank-rocker seed 003 +", "four_bar", l0=1.0, l1=0.3, l2=1.0, l3=0.8, assembly=1),
-    case("crank-rocker seed 003 −", "four_bar", l0=1.0, l1=0.3, l2=1.0, l3=0.8, assembly=-1),
-    case("crank-rocker seed 000 check case", "four_bar", l0=4.0, l1=1.0, l2=3.5, l3=3.0, assembly=1),
+    case("crank-rocker Drakunov–Tuleshova +", "four_bar", l0=1.0, l1=0.3, l2=1.0, l3=0.8, assembly=1),
+    case("crank-rocker Drakunov–Tuleshova −", "four_bar", l0=1.0, l1=0.3, l2=1.0, l3=0.8, assembly=-1),
+    case("crank-rocker Eremyants check case", "four_bar", l0=4.0, l1=1.0, l2=3.5, l3=3.0, assembly=1),
     case("double-crank +", "four_bar", l0=0.1, l1=0.3, l2=0.35, l3=0.4, assembly=1),
     case("double-crank −", "four_bar", l0=0.1, l1=0.3, l2=0.35, l3=0.4, assembly=-1),
     # within 1° of a change point: smallest transmission angle 0.79° at φ = 180°, 0.54° at φ = 0
@@ -98,7 +98,7 @@ CASES = [
     case("crank-rocker μmin=0.79° −", "four_bar", h=2.5e-4, hot=(PI,), l0=0.4, l1=0.1, l2=0.35, l3=0.15001, assembly=-1),
     case("crank-rocker μmin=0.54° −", "four_bar", h=2.5e-4, hot=(0.0, 2 * PI), l0=0.4, l1=0.1, l2=0.45, l3=0.15001,
          assembly=-1),
-    # change-point ("special") four-bars of seed 000 §2.5, (λ₂, λ₃, λ₀) = (4, 3, 2), (3, 4, 2), (3, 2, 4).
+    # change-point ("special") four-bars of Eremyants §2.5, (λ₂, λ₃, λ₀) = (4, 3, 2), (3, 4, 2), (3, 2, 4).
     # Without limiter the rocker passes the change point (at φ = 2π for schemes 1, 2; 3π for scheme 3)
     # smoothly: it is sampled densely there.  With the limiter u₃₁ jumps there: not differentiated across.
     case("scheme 1 no limiter", "four_bar", hot=(0.0, 2 * PI), l0=2, l1=1, l2=4, l3=3, assembly=1, limiter=0),

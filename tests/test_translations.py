@@ -1,4 +1,4 @@
-"""Every string in the reader's language and in the textbooks' notation (issue 16, points 7 and 8).
+"""Every string in the reader's language and in the textbooks' notation.
 
 - The API's texts for every scene and variant in Russian and Ukrainian (warnings, numerics, the work–precision
   study) hold no English sentence of the app's own (content/i18n/en.json).

@@ -1,5 +1,5 @@
 """An assignment's correct answers, computed where they cannot starve the server, and assignments made at a
-bounded rate (issue 15, point 3).
+bounded rate (no expensive anonymous work).
 
 Each variant's answers (question id → correct value, or the reason it has none) are computed in a heavy process
 (server/api/heavy.py, the answers' lane) under a budget, and kept in the store per variant

@@ -379,13 +379,13 @@ def angular_acceleration(request: AngularRequest, lang: str) -> Answer:
 
 def motor_characteristic(request: MotorCharacteristicRequest, lang: str) -> Answer:
     """The induction motor's characteristic, the operating point's stability, the successive approximations
-    and the joint solution (Lecture 10 (10.9)–(10.10))."""
+    and the joint solution (Lecture 10 §10.9–§10.10)."""
     result, notices = motor_study(machine(request), request.outputs, request.tol)
     return answer(nested_numerics(result, ("approximations", "joint"), lang), notices, lang)
 
 
 def flywheel_given(request: FlywheelAnalysisRequest, lang: str) -> Answer:
-    """The analysis problem: the flywheel's I given, δ found, beside the synthesis for [δ] (Lecture 10 (10.4))."""
+    """The analysis problem: the flywheel's I given, δ found, beside the synthesis for [δ] (Lecture 10 §10.4)."""
     built = machine(request)
     if built.speed_dependent:
         raise GeometryError("motor.kind", "the flywheel methods of the lecture need moments of φ alone: a "

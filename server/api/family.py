@@ -1,5 +1,5 @@
 """A slider's family: one endpoint's answer at N values across the slider's range, every other parameter fixed,
-so that dragging the slider is a lookup (POST /api/v1/family, issue 13).
+so that dragging the slider is a lookup (POST /api/v1/family, the page's family preview).
 
 Members. A member's body is a deep copy of the request with each varied dotted path set to value × factor.
 The first members are 9 values evenly spaced from min to max (in log(value) when ``log``), computed coarse to
@@ -101,7 +101,7 @@ from .serialise import Answer, significant
 from .messages import CommaFloat, DECIMAL_COMMA, ReadableFloat
 from ..lessons.scenes import interface_texts
 
-TOLERANCE = 0.005               # 0.5 % of a plotted quantity's span: below a plot's resolution (issue 13)
+TOLERANCE = 0.005               # 0.5 % of a plotted quantity's span: below a plot's resolution
 START_MEMBERS = 9
 MAX_MEMBERS = 65                # 8 intervals halved three times over the whole range, at most
 FINEST_FRACTION = 1 / 1024      # an interval this narrow (of the range) is not halved: no slider resolves it

@@ -1,4 +1,4 @@
-"""Request and response models of /angular-acceleration: the coupler's angular acceleration (seed 001), every input
+"""Request and response models of /angular-acceleration: the coupler's angular acceleration (Kuleshova–Tokhtar (1)–(4)), every input
 with its unit; signs in the one convention of server/core/angular_acceleration.py."""
 from __future__ import annotations
 

@@ -30,7 +30,7 @@ class InertiaInput(BaseModel):
 
 
 class LoadInput(BaseModel):
-    """Useful load and friction (seed 000, chapter 3)."""
+    """Useful load and friction (Eremyants, chapter 3)."""
 
     model_config = ConfigDict(extra="forbid")
     force: float = Field(0.0, ge=0, le=1e7, description="P_c on the slider/yoke in N, or M₃ on the lever/rocker in N·m")
@@ -48,7 +48,7 @@ class MotorInput(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     kind: Literal["constant", "linear", "induction", "kloss", "indicator"] = Field(
-        description="constant M₀; linear M₀ − bω; induction: linearised stable branch (seed 004 L30); "
+        description="constant M₀; linear M₀ − bω; induction: linearised stable branch (Lecture 10 (L30)); "
                     "kloss: Kloss curve (standard addition, not in the lecture); indicator: piston engine")
     M0: float = Field(0.0, ge=0, le=1e7, description="constant, linear: torque at standstill, N·m")
     b: float = Field(0.0, ge=0, le=1e6, description="linear: slope of the characteristic, N·m·s/rad")

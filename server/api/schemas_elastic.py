@@ -10,7 +10,7 @@ from .schemas_dynamics import InertiaInput, LoadInput, MotorInput
 
 
 class CompliancesInput(BaseModel):
-    """Compliances of the elastic linkage, seed 000 (1.24)–(1.25), (1.34); seed 003 (2)."""
+    """Compliances of the elastic linkage, Eremyants (1.24)–(1.25), (1.34); Drakunov–Tuleshova (2)."""
 
     model_config = ConfigDict(extra="forbid")
     e1: float = Field(0.0, ge=0, le=1, description="crank-shaft torsion e₁ = L₁/(G I_p1), rad/(N·m)")
@@ -33,7 +33,7 @@ class DimensionsInput(BaseModel):
 
 
 class BearingInput(BaseModel):
-    """Ball bearings in the rod's joints B and C, seed 000 (1.43)–(1.44)."""
+    """Ball bearings in the rod's joints B and C, Eremyants (1.43)–(1.44)."""
 
     model_config = ConfigDict(extra="forbid")
     balls: int = Field(9, ge=3, le=60, description="number of balls z")
@@ -60,7 +60,7 @@ class ElasticRequest(BaseModel):
     model: Literal["two_mass", "kinematic_drive", "three_mass", "elastic_linkage", "elastic_four_bar"] = Field(
         description="two_mass: belt drive (1.20)–(1.21); kinematic_drive: powerful motor φ₁ = ωt (1.22)–(1.23); "
                     "three_mass: (1.40)–(1.42); elastic_linkage: c(φ) of the linkage (1.29)/(1.34), (1.31)–(1.32); "
-                    "elastic_four_bar: seed 003's two-mass model with c_n(φ₁) and damping b_n")
+                    "elastic_four_bar: Drakunov–Tuleshova's two-mass model with c_n(φ₁) and damping b_n")
     mechanism: MechanismName
     params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
     inertias: InertiaInput = Field(default_factory=InertiaInput, description="the mechanism side; J1 is the crank")
@@ -121,7 +121,7 @@ class ElasticRequest(BaseModel):
         if self.model in ("elastic_linkage", "three_mass") and self.mechanism not in ("slider_crank", "four_bar"):
             raise ValueError("an elastic linkage is a slider_crank or a four_bar")
         if "bearings" in self.outputs and not (self.model == "elastic_linkage" and self.mechanism == "slider_crank"):
-            raise ValueError("bearings: the iteration of seed 000 §1.4 is for the elastic crank-slider linkage")
+            raise ValueError("bearings: the iteration of Eremyants §1.4 is for the elastic crank-slider linkage")
         if self.model == "kinematic_drive" and self.speed <= 0:
             raise ValueError("kinematic_drive: give the motor side's speed > 0")
         if self.model != "kinematic_drive" and self.J_motor <= 0:

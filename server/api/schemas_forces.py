@@ -10,7 +10,7 @@ from .schemas_dynamics import MassInput, MotorInput
 
 
 class PairsInput(BaseModel):
-    """Friction coefficients and journal radii of the crank-slider's pairs (seed 002 (3.3))."""
+    """Friction coefficients and journal radii of the crank-slider's pairs (Chaika–Vasylenko (3.3))."""
 
     model_config = ConfigDict(extra="forbid")
     f14: float = Field(0.0, ge=0, le=2, description="main bearing O (crank–frame), revolute")
@@ -56,7 +56,7 @@ class PairFrictionInput(BaseModel):
 class ForcesRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     mechanism: Literal["slider_crank", "general"] = Field("slider_crank", description=(
-        "the crank-slider (seed 002 §3.1), or 'general': the mechanism in `linkage`, by structural groups"))
+        "the crank-slider (Chaika–Vasylenko §3.1), or 'general': the mechanism in `linkage`, by structural groups"))
     linkage: LinkageModel | None = Field(None, description=(
         "with mechanism 'general': the mechanism as data (GET /api/v1/mechanisms/general)"))
     masses: MassInput | None = Field(None, description=(
@@ -97,9 +97,9 @@ class ForcesRequest(BaseModel):
 
 
 class WearRequest(ForcesRequest):
-    """The wear of seed 002 §4 for a crank-slider (by default the two-stroke engine of §4.3)."""
+    """The wear of Chaika–Vasylenko §4 for a crank-slider (by default the two-stroke engine of §4.3)."""
 
-    mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider (seed 002 §4)")
+    mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider (Chaika–Vasylenko §4)")
 
     pin_diameter: float = Field(0.02, ge=1e-3, le=1, description="piston pin diameter d₂₃, m")
     pin_length: float = Field(0.025, ge=1e-3, le=1, description="pin bearing length l_z23, m")

@@ -1,6 +1,6 @@
 """Request models of /motor-characteristic (the induction motor's static characteristic, the stability of the
-operating point and the successive approximations of Lecture 10 (10.9)–(10.10)) and /flywheel-analysis (the
-analysis problem of Merzalov's method: the flywheel's I given, δ found, Lecture 10 (10.4))."""
+operating point and the successive approximations of Lecture 10 §10.9–§10.10) and /flywheel-analysis (the
+analysis problem of Merzalov's method: the flywheel's I given, δ found, Lecture 10 §10.4)."""
 from __future__ import annotations
 
 from typing import Literal
@@ -15,7 +15,7 @@ ANALYSIS_OUTPUTS = ("analysis", "synthesis", "driving_moment", "transfer_functio
 
 class MotorCharacteristicRequest(MechanismChoice):
     """The machine of /motion driven by an induction motor ('kloss': the whole curve; 'induction': the
-    linearised stable branch (L30))."""
+    linearised stable branch, Lecture 10 (L30))."""
 
     model_config = ConfigDict(extra="forbid")
     inertias: InertiaInput = Field(default_factory=InertiaInput)

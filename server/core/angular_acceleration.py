@@ -70,7 +70,8 @@ class CrankLaw:
 
 
 def crank_slider(lam: float, length: float, law: CrankLaw, t: np.ndarray) -> dict:
-    """Components of ε_AB, ψ̈ by the independent route, ω_AB, 1/AP and the points O, A, B, P."""
+    """Kuleshova–Tokhtar example 2: ε_AB = ε* + ε** by (3), (4) (module docstring), ψ̈ by the independent route,
+    ω_AB, 1/AP and the points O, A, B, P."""
     started = time.perf_counter()
     phi, w, eps = law.at(t)
     s, c = np.sin(phi), np.cos(phi)
@@ -96,7 +97,8 @@ def crank_slider(lam: float, length: float, law: CrankLaw, t: np.ndarray) -> dic
 
 
 def trammel(length: float, law: CrankLaw, t: np.ndarray) -> dict:
-    """Elliptic trammel with OA = AB = AD: AP = −OA, ε* = ε_OA·OA/AP = −ε_OA, ε** = 0 (signed as above)."""
+    """Kuleshova–Tokhtar example 1, the elliptic trammel with OA = AB = AD: AP = −OA, ε* = ε_OA·OA/AP = −ε_OA,
+    ε** = 0 (signed as above)."""
     started = time.perf_counter()
     phi, w, eps = law.at(t)
     c, s = np.cos(phi), np.sin(phi)

@@ -1,4 +1,4 @@
-"""A small live work–precision study for the current machine (issue 8's in-app Numerics page).
+"""A small live work–precision study for the current machine (the scenes' in-app Numerics page, "Run the study").
 
 Each entry is (method, tolerance, relative error, run time in ms) against a reference computed at a
 tighter tolerance by a different route.  One deadline per study (BUDGET_S from its start), the reference

@@ -1,4 +1,4 @@
-"""Every student (issue 16, point 10) in a real browser.
+"""Every student (accessibility) in a real browser.
 
 Every scene is loaded once, on a phone (390 × 844, ru), and that one load serves all its checks:
 - the page is no wider than the screen (tables scroll inside their box; point 9, measured here so that each

@@ -1,4 +1,4 @@
-"""The instructor's form in a real Chromium with a Russian locale (issue 15, points 2 and 11): a number typed
+"""The instructor's form in a real Chromium with a Russian locale: a number typed
 with a decimal comma means what it says, ambiguous text is refused in the page's language before anything is
 sent, each question says where the public pages show its answer, and an assignment with questions of the new
 kinds (a value at an angle the student chooses, a prediction) works from the student's side: the angle field,

@@ -1,5 +1,5 @@
 """The benchmarks' stored figures (/bench-results/wp_*.html, plotly's HTML export) draw in a real browser
-under the app's Content-Security-Policy (issue 15, point 10: 0 of them drew, their inline scripts blocked).
+under the app's Content-Security-Policy (once 0 of them drew, their inline scripts blocked).
 
 Each page's policy lets run exactly its own inline scripts, named by sha256 (no 'unsafe-inline', no
 'unsafe-eval', plotly.js from this server); a page draws one SVG trace per trace of its figure, with no

@@ -8,7 +8,7 @@ ends showing the answer to it. An answer that is overtaken (the slider moved on 
 dropped even when it arrives: the page shows the next one.
 
 The slider's family (POST /api/v1/family, asked when a slider is grabbed) is never answered here: these
-are the drags of a scene whose family is not there yet, which behave as before families (issue 13).
+are the drags of a scene whose family is not there yet, which behave as before families.
 """
 from __future__ import annotations
 

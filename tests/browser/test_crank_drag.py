@@ -1,4 +1,4 @@
-"""The crank turned by hand in the dynamics scenes' drawings, in a real browser (issue 16, "Turn the crank by
+"""The crank turned by hand in the dynamics scenes' drawings, in a real browser ("Turn the crank by
 dragging it"): in the forces scene's free-body diagram and the flywheel scene's machine, a mouse drag about the
 crank's pivot puts the crank where the pointer let go, and the crank-angle clock, the plots' cursors and the
 per-angle readings follow; one arrow key steps the angle by 1°; nothing is asked of the server meanwhile. One

@@ -1,4 +1,4 @@
-"""Every device (issue 16, point 9) in a real browser, at phone (390 × 844) and tablet (768 × 1024) size.
+"""Every device (phone and tablet) in a real browser, at phone (390 × 844) and tablet (768 × 1024) size.
 
 - The parameters are a sheet fixed at the bottom of the screen: moving a slider from the keyboard or by
   dragging never scrolls the page, so the drawing in view stays in view, above the sheet; the sheet folds

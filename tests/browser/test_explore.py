@@ -1,4 +1,4 @@
-"""Issue 16, "Take the results away" and "Explore", in a real browser: each plot's export (PNG, SVG, CSV
+""""Take the results away" and "Explore", in a real browser: each plot's export (PNG, SVG, CSV
 equal to the plotted data), hover readouts in notation with units and the decimal comma, pinned ghost curves,
 reset, the crank turned by hand (pointer and keys) with the plots' cursors following, stale results dimmed
 while a computation is held back, the link that is the whole state (opened in a new page: the same request

@@ -1,4 +1,4 @@
-"""Dragging is a lookup (issue 13): grabbing a slider asks for its family (POST /api/v1/family), first the
+"""Dragging is a lookup (the family preview): grabbing a slider asks for its family (POST /api/v1/family), first the
 coarse one ("stage": "coarse", the 9 start members) and, once it has arrived, the full one; the drag is drawn
 from the best family there as a marked preview without a request, and the exact answer replaces the preview
 when the slider rests. On the transfer-functions scene (crank-slider, λ), the equation-of-motion scene (λ, a

@@ -1,4 +1,4 @@
-"""Say it right (issue 16, points 7 and 8) in a real browser, on every scene:
+"""Say it right (notation and translation) in a real browser, on every scene:
 - a page in ru or uk shows no English sentence of the app's own strings (content/i18n/en.json, the server's
   templates), its default computation and, where there is one, its live study included;
 - the labels show real subscripts (<sub>, or shifted <tspan>s in drawings), no "_" anywhere on screen;

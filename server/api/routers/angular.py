@@ -1,4 +1,4 @@
-"""POST /api/v1/angular-acceleration: the two components of a coupler's angular acceleration (seed 001)."""
+"""POST /api/v1/angular-acceleration: the two components of a coupler's angular acceleration (Kuleshova–Tokhtar (2)–(4))."""
 from fastapi import APIRouter
 
 from .. import endpoints

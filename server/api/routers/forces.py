@@ -1,4 +1,4 @@
-"""POST /api/v1/forces, /wear, /efficiency-chain: kinetostatics with friction (seed 002)."""
+"""POST /api/v1/forces, /wear, /efficiency-chain: kinetostatics with friction (Chaika–Vasylenko §3, §4)."""
 from fastapi import APIRouter
 
 from .. import endpoints
@@ -18,7 +18,7 @@ def forces(request: ForcesRequest, lang: Language = LANG, precision: Precision =
 
 
 @router.post("/wear", responses=INVALID,
-             summary="Expected wear of the pin, bush, piston and cylinder (seed 002 §4)")
+             summary="Expected wear of the pin, bush, piston and cylinder (Chaika–Vasylenko §4)")
 def wear(request: WearRequest, lang: Language = LANG, precision: Precision = PRECISION):
     return respond(endpoints.wear(request, lang), precision)
 

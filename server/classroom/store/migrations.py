@@ -3,7 +3,7 @@
 Each migration is applied once, in order, inside the transaction that records its number in the table
 ``schema_version``; a backend holds a lock while it migrates (SQLite ``BEGIN IMMEDIATE``, PostgreSQL an
 advisory lock), so servers starting together apply each one exactly once. A SQLite file made before the
-schema was versioned (main before issue 15) has no ``schema_version``: ``legacy_version`` tells which
+schema was versioned (main before the numbered migrations) has no ``schema_version``: ``legacy_version`` tells which
 migrations its tables already contain, and the rest are applied on opening.
 """
 from __future__ import annotations

@@ -27,6 +27,7 @@ class PairLoad:
 
     @property
     def peak(self) -> float:
+        """The largest |R| over the cycle, N."""
         return float(self.force.max())
 
     @property
@@ -35,6 +36,7 @@ class PairLoad:
         return float(np.trapezoid(self.force, self.phi) / (self.phi[-1] - self.phi[0]))
 
     def cycle_mean(self, values: np.ndarray) -> float:
+        """(1/Φ)∫ values dφ over the analysed cycle (trapezoidal rule)."""
         return float(np.trapezoid(values, self.phi) / (self.phi[-1] - self.phi[0]))
 
 

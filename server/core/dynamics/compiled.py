@@ -1,7 +1,7 @@
 """The RK4-in-φ loop of the equation of motion compiled with numba: the same scalar arithmetic as the
 reference loop in integrator.py, operation for operation, so the two agree to rounding.
 
-    dT/dφ = M_φ(φ) + M_ω(ω, φ),  ω = √(2T/J(φ)),   dS/dφ = (∂M_ω/∂ω)/(J ω) · S      seed 000 (1.9), (1.13)
+    dT/dφ = M_φ(φ) + M_ω(ω, φ),  ω = √(2T/J(φ)),   dS/dφ = (∂M_ω/∂ω)/(J ω) · S     Eremyants (1.9), (1.13)
 
 The speed-dependent moment i·M(iω) − β ω S(φ) (motors.py, Machine.speed_moment) is dispatched on a small
 integer kind with its parameters in one float array (``speed_parameters``). Compiled code is cached on disk

@@ -1,6 +1,6 @@
 """Leaving rest in time, compiled: scipy's DOP853 with its events, written out for numba.
 
-    φ̇ = ω,   J(φ) ω̇ = M(φ) + M_ω(ω, φ) − ½ J′(φ) ω²                          seed 000 (1.13)
+    φ̇ = ω,   J(φ) ω̇ = M(φ) + M_ω(ω, φ) − ½ J′(φ) ω²                         Eremyants (1.13)
 
 The same method as integrator.leave_rest's reference call of ``solve_ivp(method="DOP853", events=...)``
 (Hairer, Nørsett & Wanner, Solving ODE I, §II.5 and §II.10; scipy.integrate._ivp.rk.DOP853): scipy's

@@ -1,4 +1,4 @@
-"""Flywheel for a given coefficient of speed fluctuation δ: seed 004 (lecture 10), §10.3–10.8.
+"""Flywheel for a given coefficient of speed fluctuation δ: Lecture 10 §10.3–§10.8.
 
 The moments depend on φ alone and balance over the cycle (A_Σ(Φ) = 0).  Links split into
 group I (constant reduced inertia I_I: crank, rotor, flywheel) and group II (I_II(φ)).
@@ -48,6 +48,8 @@ class Method:
 
 
 def merzalov(cycle: Cycle, omega_mean: float, delta: float) -> Method:
+    """Merzalov, Lecture 10 §10.4, (L9)–(L10), (L6): ΔT_I = A − I_II ω_m²/2 (group II at the mean speed),
+    I_I = (max ΔT_I − min ΔT_I)/(δ ω_m²)."""
     group_one = cycle.work - 0.5 * cycle.inertia_ii * omega_mean**2
     swing = parabola_extremum(group_one, +1) - parabola_extremum(group_one, -1)
     return Method("merzalov", swing / (delta * omega_mean**2), swing)
@@ -72,12 +74,15 @@ def tangent_intercepts(cycle: Cycle, omega_mean: float, delta: float, window: fl
 
 
 def gutyar(cycle: Cycle, omega_mean: float, delta: float) -> Method:
+    """Gutyar, Lecture 10 §10.7 (L27): I_I = (b_up − b_low)/(δ ω_m²), the intercepts of A − I_II ω_max²/2 near
+    the top and A − I_II ω_min²/2 near the bottom (within GUTYAR_WINDOW), ω_max,min = (1 ± δ/2) ω_m."""
     b_up, b_low, _, _ = tangent_intercepts(cycle, omega_mean, delta, GUTYAR_WINDOW)
     return Method("gutyar", (b_up - b_low) / (delta * omega_mean**2), b_up - b_low)
 
 
 def wittenbauer(cycle: Cycle, omega_mean: float, delta: float) -> tuple[Method, dict]:
-    """The inertia and the diagram: tangent intercepts, touching angles and the tangents' intersection."""
+    """Wittenbauer, Lecture 10 §10.8 (L28)–(L29): I_I = (b_up − b_low)/(δ ω_m²) from the tangents of slopes
+    ω_max²/2, ω_min²/2 to the curve (I_II, A); the diagram: intercepts, touching angles, the tangents' intersection."""
     b_up, b_low, phi_up, phi_low = tangent_intercepts(cycle, omega_mean, delta)
     inertia = (b_up - b_low) / (delta * omega_mean**2)
     w_max = (1 + delta / 2) * omega_mean
@@ -105,6 +110,8 @@ def periodic_speed(cycle: Cycle, inertia_i: float, omega_mean: float) -> np.ndar
 
 
 def achieved_delta(cycle: Cycle, inertia_i: float, omega_mean: float) -> float:
+    """δ = (ω_max − ω_min)/ω_m, ω_m = (ω_max + ω_min)/2 (Lecture 10 (L3)), of the exact periodic solution
+    ω(φ)² = 2(T₀ + A)/(I_I + I_II) with group-I inertia I_I."""
     w_max, w_min = speed_extremes(periodic_speed(cycle, inertia_i, omega_mean))   # parabola_extremum, compiled
     return (w_max - w_min) / (0.5 * (w_max + w_min))
 
@@ -140,12 +147,14 @@ class Disk:
 
 
 def disk(inertia: float, width_ratio: float = 0.2, density: float = 7800.0) -> Disk:
+    """Solid disk of inertia I, Lecture 10 §10.6 (L25) with its constants kept: I = mD²/8, m = ρπψ_b D³/4,
+    so D = (32I/(ρπψ_b))^{1/5}, b = ψ_b D."""
     diameter = (32 * inertia / (density * np.pi * width_ratio)) ** 0.2
     return Disk(diameter, width_ratio * diameter, density * np.pi * width_ratio * diameter**3 / 4)
 
 
 def disk_as_printed(inertia: float) -> Disk:
-    """The lecture's rounded constants for ψ_b = 0.2, ρ = 7800 kg/m³: D = 0.366·I^{1/5}, m = 1230·D³."""
+    """Lecture 10 (L25), its rounded constants for ψ_b = 0.2, ρ = 7800 kg/m³: D = 0.366·I^{1/5}, m = 1230·D³."""
     diameter = 0.366 * inertia**0.2
     return Disk(diameter, 0.2 * diameter, 1230 * diameter**3)
 

@@ -1,4 +1,4 @@
-"""The analysis problem of Merzalov's method (Lecture 10 (10.4), step 8): the group-I inertia given, the δ it
+"""The analysis problem of Merzalov's method (Lecture 10 §10.4, step 8): the group-I inertia given, the δ it
 gives, beside the synthesis (the inertia a permissible [δ] needs), with the driving-moment diagram (Fig. 10.6)
 and the transfer functions (Fig. 10.5) of the crank-slider.
 
@@ -33,6 +33,9 @@ def merzalov_delta(cycle: fw.Cycle, inertia_i: float, omega_mean: float) -> floa
 
 def flywheel_analysis(machine: Machine, omega_mean: float, flywheel: float, delta: float, balance: bool,
                       outputs: list[str], steps: int = STEPS) -> tuple[dict, list[Notice]]:
+    """Merzalov's analysis problem (Lecture 10 §10.4): δ = ΔT_Imax/(I_I ω_ср²), (L6) solved for δ, with
+    ΔT_I = A − I_II ω_ср²/2 (L10); beside it the exact δ (L3) of the periodic solution, the synthesis for [δ]
+    (L6) and the diagrams of Figs. 10.5, 10.6 (module docstring)."""
     started = time.perf_counter()
     tables = node_tables(machine, steps_per_cycle(machine, steps), balance)
     nodes = slice(0, None, 2)

@@ -1,4 +1,4 @@
-"""The textbook's successive approximations of the friction forces, step by step (seed 000 §3.1, §3.2).
+"""The textbook's successive approximations of the friction forces, step by step (Eremyants §3.1, §3.2).
 
 Sine mechanism, yoke 3 (Fig. 3.1): (R₂₃)₀ = P_c; then F_T2 = f R₂₃ (block in the slot),
 R₀₃ = F_T2, F_T3 = f R₀₃ (yoke in its guide), R₂₃ = P_c + F_T3, so

@@ -1,6 +1,6 @@
 """Fixed-step RK4 in the crank angle for the energy form of the equation of motion.
 
-    dT/dφ = F(φ, T) = M_φ(φ) + M_ω(ω, φ),   ω = √(2T/J(φ))          seed 000 (1.9), (1.13)
+    dT/dφ = F(φ, T) = M_φ(φ) + M_ω(ω, φ),   ω = √(2T/J(φ))         Eremyants (1.9), (1.13)
     dS/dφ = ∂F/∂T · S,   ∂F/∂T = (∂M_ω/∂ω)/(J ω)                       variational equation
 
 The nodes are fixed in φ, so every φ-dependent quantity is tabulated in one vectorised

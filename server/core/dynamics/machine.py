@@ -1,6 +1,6 @@
 """A machine: motor → transmission ratio i → mechanism with its masses, load and friction.
 
-The equation of motion of the one-mass model reduced to the crank (seed 000 (1.13), (3.22)):
+The equation of motion of the one-mass model reduced to the crank (Eremyants (1.13), (3.22)):
 
     J(φ) ε + ½ J′(φ) ω² = M_д(φ, ω) − M_c(φ, ω),   or with T = Jω²/2:   dT/dφ = M_д − M_c
 

@@ -1,6 +1,6 @@
 """Equation of motion of the machine: start-up transient and the steady periodic cycle.
 
-Two paths, chosen by what the moments depend on (seed 000 §1.1):
+Two paths, chosen by what the moments depend on (Eremyants §1.1):
 - moments of φ alone: the energy integral (1.9)–(1.12), T = T₀ + ∫(M_д − M_c)dφ by Simpson's
   rule; ω = √(2T/J), t = ∫dφ/ω, ε = (M − ½J′ω²)/J.  A steady cycle exists only when the
   cycle work is zero, and then for any energy level: the caller gives the mean speed.
@@ -52,10 +52,10 @@ class Steady:
     omega: np.ndarray
     t: np.ndarray
     epsilon: np.ndarray
-    omega_mean: float          # (ω_max + ω_min)/2, seed 004 (L3)
+    omega_mean: float          # (ω_max + ω_min)/2, Lecture 10 (L3)
     omega_time_mean: float     # cycle angle / cycle time
     delta: float               # (ω_max − ω_min)/ω_mean
-    efficiency: float | None   # A_useful/(A_useful + A_losses) over the cycle, seed 002 (3.38); see efficiency()
+    efficiency: float | None   # A_useful/(A_useful + A_losses) over the cycle, Chaika–Vasylenko (3.38); see efficiency()
     works: dict[str, float]
 
 
@@ -129,7 +129,7 @@ def _cycle_tables(machine: Machine, kinks: np.ndarray, per_2pi: int, balance: bo
 
 def step_integral(tables: Tables, values: np.ndarray) -> np.ndarray:
     """∫ values dφ from the first node to each step node, by Simpson's rule on each step's three nodes: the
-    quadrature RK4 applies to a right-hand side of φ alone (seed 000 (1.9))."""
+    quadrature RK4 applies to a right-hand side of φ alone (Eremyants (1.9))."""
     start = tables.step_nodes[:-1]
     h = tables.phi[start + 2] - tables.phi[start]
     return np.concatenate([[0.0], np.cumsum(h / 6 * (values[start] + 4 * values[start + 1] + values[start + 2]))])
@@ -171,7 +171,7 @@ def mean_speed_balance(machine: Machine, tables: Tables) -> float | None:
 
 
 def efficiency(machine: Machine, works: dict[str, float]) -> float | None:
-    """η = A_useful/A_driving over the steady cycle (seed 002 (3.38)), with A_driving = A_useful + A_losses:
+    """η = A_useful/A_driving over the steady cycle (Chaika–Vasylenko (3.38)), with A_driving = A_useful + A_losses:
     over a periodic cycle the kinetic energy returns to its value, so the driving work is the useful work
     plus the work of friction (the quadrature's difference from the driving work integrated directly is
     the reported energy residual). Without friction (f = 0, β = 0) the losses are zero and η = 1 exactly,

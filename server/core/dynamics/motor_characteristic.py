@@ -1,5 +1,5 @@
 """The induction motor's reduced static characteristic M_д(ω₁) and the stability of an operating point
-(Lecture 10 (10.9), Fig. 10.14).
+(Lecture 10 §10.9, Fig. 10.14).
 
 Reduced to the crank by power equality, a motor torque M(ω_m) at ω_m = iω₁ gives M_д(ω₁) = i·M(iω₁).
 The full curve is Kloss's formula (a standard addition, not in the lecture):
@@ -10,7 +10,7 @@ with the points of Fig. 10.14: a (ω₁ = 0, the starting torque M_дп), b (the
 ω₁к = ω_с(1 − s_к)/i, M_дmax = iM_к) and d (the synchronous speed ω₁с = ω_с/i, no torque).  bd is the
 stable branch, ab the unstable one.  An operating point ω* is where M_д(ω*) = M_с(ω*); it is stable when
 
-    dM_д/dω₁ < dM_с/dω₁   at ω*                                            Lecture 10 (10.9), Fig. 10.14
+    dM_д/dω₁ < dM_с/dω₁   at ω*                                            Lecture 10 §10.9, Fig. 10.14
 
 (a small rise of speed makes the resistance win and brings the speed back).  Above M_дmax there is no
 operating point: the motor stalls.  Linearised through an operating point (ω₁н, M_дн) and ω₁с:
@@ -42,12 +42,12 @@ class OperatingPoint:
 
     @property
     def stable(self) -> bool:
-        """The criterion of Fig. 10.14: dM_д/dω < dM_с/dω."""
+        """The criterion of Lecture 10 §10.9, Fig. 10.14: dM_д/dω < dM_с/dω."""
         return self.drive_slope < self.load_slope
 
 
 def reduced_torque(motor: Motor, gear_ratio: float, omega):
-    """M_д(ω₁) = i·M(iω₁) and dM_д/dω₁ = i²·M′(iω₁), reduced to the crank (power equality)."""
+    """M_д(ω₁) = i·M(iω₁) and dM_д/dω₁ = i²·M′(iω₁), reduced to the crank (power equality, Eremyants (1.17))."""
     torque, slope = motor.torque(gear_ratio * np.asarray(omega, float))
     return gear_ratio * torque, gear_ratio**2 * slope
 

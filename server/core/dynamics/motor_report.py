@@ -1,4 +1,4 @@
-"""The answer of the induction-motor study (Lecture 10 (10.9)–(10.10)): the reduced static characteristic with
+"""The answer of the induction-motor study (Lecture 10 §10.9–§10.10): the reduced static characteristic with
 its branches and the load line, the operating point and its stability, the successive approximations beside
 the joint solution of the equation of motion with the characteristic (motion.steady_cycle)."""
 from __future__ import annotations
@@ -26,6 +26,8 @@ def mean_load(machine: Machine, tables) -> tuple[float, float]:
 
 
 def motor_study(machine: Machine, outputs: list[str], tol: float) -> tuple[dict, list[Notice]]:
+    """Lecture 10 §10.9–§10.10 on the machine: the operating point M_д(ω*) = M_с(ω*), its stability
+    dM_д/dω < dM_с/dω (Fig. 10.14), the successive approximations and the joint solution (module docstring)."""
     motor, i = machine.motor, machine.inertias.gear_ratio
     tables = cycle_tables(machine, machine.kinks(), GRID)
     load, load_slope = mean_load(machine, tables)

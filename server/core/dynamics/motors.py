@@ -1,13 +1,13 @@
 """Driving moment M_д(φ, ω) of the motor, reduced to the crank shaft (ω in rad/s of the crank).
 
 With the transmission ratio i = ω_motor/ω₁ a motor torque M(ω_m) at ω_m = iω reduces
-to i·M(iω) (power equality, seed 000 (1.17)).  Characteristics:
+to i·M(iω) (power equality, Eremyants (1.17)).  Characteristics:
 
     constant     M = M₀
-    linear       M = M₀ − b ω_m                                       seed 000 §3.1
-    induction    M = M_н (ω_с − ω_m)/(ω_с − ω_н)  (stable branch, linearised)  seed 004 (L30)
+    linear       M = M₀ − b ω_m                                      Eremyants §3.1
+    induction    M = M_н (ω_с − ω_m)/(ω_с − ω_н)  (stable branch, linearised)  Lecture 10 (L30)
     kloss        M = 2M_к/(s/s_к + s_к/s),  s = (ω_с − ω_m)/ω_с      standard addition, not in the lecture
-    indicator    M = −p(x) A_p u₃₁ of the crank-slider's piston        seed 004 §10.6 (L15)–(L17)
+    indicator    M = −p(x) A_p u₃₁ of the crank-slider's piston        Lecture 10 (L15)–(L17)
 
 The indicator diagram gives p/p_max at 11 equally spaced piston positions x/H from top dead
 centre for the expansion and the compression stroke; p between them by monotone (PCHIP)
@@ -73,7 +73,9 @@ class Motor:
         return np.inf
 
     def torque(self, w):
-        """Motor-shaft torque M and its slope dM/dω_m at motor speed ω_m (float or array)."""
+        """Motor-shaft torque M and its slope dM/dω_m at motor speed ω_m (float or array):
+        linear M₀ − bω (Eremyants §3.1), induction linearised (Lecture 10 (L30)),
+        Kloss 2M_к/(s/s_к + s_к/s) (a standard addition)."""
         if self.kind == "constant":
             return self.M0 + 0 * w, 0 * w
         if self.kind == "linear":
@@ -91,7 +93,8 @@ class Motor:
 
 def driving_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray,
                    omega: np.ndarray | float, gear_ratio: float = 1.0, kinematics=None) -> np.ndarray:
-    """M_д at crank angles φ and crank speed ω, reduced to the crank shaft (N·m); ``kinematics``: the
+    """M_д at crank angles φ and crank speed ω, reduced to the crank shaft (N·m): i·M(iω) (Eremyants (1.17)) or the
+    indicator moment (Lecture 10 (L17)); ``kinematics``: the
     mechanism already evaluated at phi, to share one evaluation."""
     if motor.kind != "indicator":
         return gear_ratio * motor.torque(gear_ratio * np.asarray(omega, float) + 0 * phi)[0]
@@ -119,7 +122,7 @@ def piston_travel(params: dict[str, float], phi: np.ndarray, kinematics=None) ->
 
 
 def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray, kinematics=None) -> np.ndarray:
-    """Gas force on the crank-slider's piston, N, from the indicator diagram (seed 004 (L15)–(L16)):
+    """Gas force on the crank-slider's piston, N, from the indicator diagram (Lecture 10 (L15)–(L16)):
     p/p_max interpolated over the piston travel from top dead centre; it pushes towards the crank."""
     x = piston_travel(params, phi, kinematics)
     expansion = diagram_curve(motor.expansion)(x)
@@ -131,7 +134,7 @@ def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray, kinematic
 
 def indicator_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray,
                      kinematics=None) -> np.ndarray:
-    """M_д = F·V_qC·cos(F, V) with F = p A_p on the piston (seed 004 (L17)); gas pushes towards the crank."""
+    """M_д = F·V_qC·cos(F, V) with F = p A_p on the piston (Lecture 10 (L17)); gas pushes towards the crank."""
     if mechanism != "slider_crank":
         raise ValueError("an indicator diagram drives a crank-slider (piston engine) only")
     kinematics = kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())

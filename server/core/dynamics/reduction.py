@@ -1,11 +1,11 @@
 """Reduced moment of inertia J(φ) and dJ/dφ of a machine, reduced to the crank shaft.
 
-Kinetic-energy equality (seed 000 (1.1)–(1.5), seed 002 (3.22)–(3.23)):
+Kinetic-energy equality (Eremyants (1.1)–(1.5), Chaika–Vasylenko (3.22)–(3.23)):
 
     J(φ) = J_rotor·i² + J₁ + Σ_links [ m_k |V_qSk|² + J_Sk u_k1² ]
 
 with V_qS = dr_S/dφ the velocity analog of a centre of mass, u_k1 = ω_k/ω₁ and
-i = ω_motor/ω₁ the transmission ratio.  Differentiating (seed 002, [derived]):
+i = ω_motor/ω₁ the transmission ratio.  Differentiating (3.23) (not printed there):
 
     dJ/dφ = 2 Σ [ m_k V_qSk · V′_qSk + J_Sk u_k1 u′_k1 ]
 
@@ -50,7 +50,7 @@ class ReducedInertia:
 
     @property
     def mean(self) -> float:
-        """J̄ over a uniform closed grid (trapezoid on a periodic function)."""
+        """J̄ over a uniform closed grid (trapezoid on a periodic function), Eremyants (3.19)."""
         return float(np.mean(self.J[:-1])) if self.J.size > 1 else float(self.J[0])
 
 
@@ -62,7 +62,8 @@ LINK3_MOTION = {"sine": "translation", "slider_crank": "translation", "slotted_l
 
 def reduced_inertia(mechanism: str, params: dict[str, float], inertias: Inertias,
                     phi: np.ndarray, kinematics=None) -> ReducedInertia:
-    """J(φ) and dJ/dφ reduced to the crank, from closed-form velocity and acceleration analogs
+    """J(φ) and dJ/dφ reduced to the crank by kinetic-energy equality (Eremyants (1.1)–(1.5)), from closed-form
+    velocity and acceleration analogs
     (``kinematics``: the mechanism already evaluated at phi, to share one evaluation)."""
     values = (kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())).values
     v, a = values["v_s2"], values["a_s2"]

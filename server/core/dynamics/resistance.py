@@ -1,6 +1,6 @@
 """Reduced moment of the resisting forces M_c(φ, ω): useful load, dry and viscous friction.
 
-Seed 000, chapter 3.  M_c is positive when it resists the crank.  k(φ) = 1 on the
+Eremyants, chapter 3.  M_c is positive when it resists the crank.  k(φ) = 1 on the
 working stroke (u₃₁ > 0: slider or lever moving forward) and k_p (k_M) on the return.
 
 Sine mechanism (§3.1): the successive approximations converge to R₂₃ = P_c/(1 − f²), so
@@ -14,7 +14,7 @@ Crank-slider (§3.2): (F_T)_k = P_c Σ (f tan ψ)^i → P_c f tan ψ/(1 − f ta
 Slotted link (§3.3): R₁₂ᵗ = M₃/l_BC, F_T = f R₁₂ᵗ, so
     M_c = k M₃ (|u₃₁| + f|u₂₁|/l_BC)                       (3.42)–(3.43), friction always resisting
     textbook (3.44)–(3.49): k M₃ [1 + λ(cos φ ± f sin φ)]/(1 + λ² + 2λ cos φ), negative on the idle stroke
-Four-bar: the rocker load M₃ reduced by u₃₁ (seed 003 (1)), no friction model in the sources.
+Four-bar: the rocker load M₃ reduced by u₃₁ (Drakunov–Tuleshova (1)), no friction model in the sources.
 Viscous friction (3.15)–(3.17), (3.33), (3.50*): M_T = β ω Σ u², u the sliding-velocity analogs.
 
 M_c is smooth in φ except where the argument of a |·| or of a stroke condition changes sign: the output's
@@ -42,7 +42,7 @@ class Load:
     f: dry sliding-friction coefficient in the prismatic pairs; beta: viscous coefficient β
     in N·s/m; convention: 'consistent' physics or the formulas 'textbook' prints;
     crank_moment: a constant resisting moment on the crank shaft, N·m (the driven machine
-    of a piston engine, seed 004 §10.5: M_c = A_д/Φ).
+    of a piston engine, Lecture 10 §10.5: M_c = A_д/Φ).
     """
 
     force: float = 0.0
@@ -66,17 +66,20 @@ class ResistingMoment:
 
     @property
     def total(self) -> np.ndarray:
+        """M_c = useful + dry + viscous: M_p (3.5), the dry friction (3.1)–(3.4), (3.24)–(3.30), (3.42)–(3.49)
+        and the viscous (3.15)–(3.17), (3.33), (3.50*) of Eremyants, chapter 3."""
         return self.useful + self.dry + self.viscous
 
 
 def stroke_factor(u31: np.ndarray, k: float) -> np.ndarray:
-    """1 on the working stroke (u₃₁ ≥ 0), k on the return stroke."""
+    """1 on the working stroke (u₃₁ ≥ 0), k on the return stroke (k_p of Eremyants (3.30), k_M of §3.3)."""
     return np.where(u31 >= 0, 1.0, k)
 
 
 def resisting_moment(mechanism: str, params: dict[str, float], load: Load, phi: np.ndarray,
                      omega: np.ndarray | float = 0.0, kinematics=None) -> ResistingMoment:
-    """M_c(φ, ω) reduced to the crank shaft; ω (rad/s) enters only through viscous friction
+    """M_c(φ, ω) reduced to the crank shaft, Eremyants (3.5)–(3.53) by mechanism (module docstring);
+    ω (rad/s) enters only through viscous friction
     (``kinematics``: the mechanism already evaluated at phi, to share one evaluation)."""
     kinematics = kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())
     values = kinematics.values
@@ -158,7 +161,7 @@ def _slotted_link(p, load, phi, values, k):
     if f > 0 and on_pivot.any():
         result.notices.append(Notice("slotted_jamming_friction", "λ = 1: at φ = 180° the dry-friction moment "
                                      "M_T = ±0.5 M₃ f tan(φ/2) is unbounded, the mechanism jams for any load "
-                                     "(seed 000 (3.52)); in a real machine clearances prevent it."))
+                                     "(Eremyants (3.52)); in a real machine clearances prevent it."))
     return result
 
 
@@ -174,5 +177,5 @@ def _locked(phi, mask, notice):
 
 
 def mean_over_cycle(values: np.ndarray) -> float:
-    """Mean of a periodic function sampled on a closed uniform grid (trapezoid rule)."""
+    """Mean of a periodic function sampled on a closed uniform grid (trapezoid rule): M_c0, Eremyants (3.11), (3.31)."""
     return float(np.mean(values[:-1]))

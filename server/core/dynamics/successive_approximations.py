@@ -1,7 +1,7 @@
-"""Taking the motor's characteristic into account by successive approximations (Lecture 10 (10.10)).
+"""Taking the motor's characteristic into account by successive approximations (Lecture 10 §10.10).
 
 Step 1 takes the driving moment constant (forces of position alone): it balances the cycle's resistance,
-and the mean speed is the operating point of the characteristic (10.9).  Step k + 1 reads the moment
+and the mean speed is the operating point of the characteristic (§10.9).  Step k + 1 reads the moment
 M_д^(k+1)(φ) = M_д(ω^(k)(φ) + c) off the characteristic along the previous law of motion, c the shift of
 the mean speed that makes the cycle's work zero (A_д^ц = A_с^ц, Lecture 10 (L1)), and solves the energy
 equation again (L4):
@@ -56,11 +56,13 @@ def cumulative_trapezoid(values: np.ndarray, phi: np.ndarray) -> np.ndarray:
 
 
 def cycle_mean(values: np.ndarray, phi: np.ndarray) -> float:
+    """(1/Φ)∫ values dφ over the cycle's nodes (trapezoidal rule)."""
     return float(cumulative_trapezoid(values, phi)[-1] / (phi[-1] - phi[0]))
 
 
 def energy_law(tables: Tables, work: np.ndarray, mean: float) -> np.ndarray | None:
-    """ω(φ) = √(2(T₀ + A)/I) with the cycle mean of ω equal to ``mean``; None where even the lowest level
+    """ω(φ) = √(2(T₀ + A)/I) (Lecture 10 (L4))
+    with the cycle mean of ω equal to ``mean``; None where even the lowest level
     (the speed touching zero) has a larger mean: the machine stops within the cycle."""
     lowest = float(np.max(-work))
 
@@ -75,7 +77,7 @@ def energy_law(tables: Tables, work: np.ndarray, mean: float) -> np.ndarray | No
 
 def successive_approximations(machine: Machine, tables: Tables, omega_operating: float, knee: float,
                               tol: float = 1e-8) -> Approximations:
-    """The steps of (10.10) on the nodes of ``tables``, from the operating point's speed; ``knee``: the speed
+    """The steps of (§10.10) on the nodes of ``tables``, from the operating point's speed; ``knee``: the speed
     where the characteristic's stable branch begins (motor_characteristic.critical_speed)."""
     sync = machine.motor.omega_sync / machine.inertias.gear_ratio
     started = time.perf_counter()
@@ -128,7 +130,7 @@ def successive_approximations(machine: Machine, tables: Tables, omega_operating:
                                      {"ratio": result.ratio}))
     steps = len(result.rows)
     result.numerics = Numerics(
-        method="successive approximations of Lecture 10 (10.10): the characteristic read along the previous law "
+        method="successive approximations of Lecture 10 §10.10: the characteristic read along the previous law "
                "of motion, the energy equation by the trapezoid rule on the cycle's nodes",
         code="successive_approximations", rtol=tol, steps=int(phi.size - 1), iterations=steps,
         converged=result.converged, runtime_ms=1e3 * (time.perf_counter() - started),

@@ -1,6 +1,6 @@
 """Elastic machine models as first-order systems y′ = f(t, y) with analytic Jacobians.
 
-Two masses (seed 000 (1.20)–(1.21), (1.31)–(1.32); seed 003 (1), (11) corrected):
+Two masses (Eremyants (1.20)–(1.21), (1.31)–(1.32); Drakunov–Tuleshova (1), (11) corrected):
     J₁ω̇₁ = M_д(ω₁) − F,                      F = c(φ₂)θ + bθ̇,  θ = φ₁ − φ₂ (the twist)
     J₂(φ₂)ω̇₂ = F − ½c′(φ₂)θ² − ½J₂′(φ₂)ω₂² − M_c(φ₂, ω₂)
 Kinematic drive, a powerful motor φ₁ = ω t (1.22)–(1.23): only the mechanism moves; M_д = F.
@@ -32,6 +32,8 @@ class MechanismSide:
     beta: float
 
     def stiff(self, phi: float) -> tuple[float, float, float]:
+        """c, c′, c″ at φ: the reduced stiffness (Eremyants (1.24)–(1.29), (1.33)–(1.34); Drakunov–Tuleshova (2))
+        from its table, or a constant c."""
         if isinstance(self.stiffness, PeriodicTable):
             return self.stiffness(phi)
         return self.stiffness, 0.0, 0.0
@@ -95,6 +97,8 @@ class TwoMass:
         return y[0], y[1]
 
     def rhs(self, t: float, y) -> list[float]:
+        """y′ of the two masses, Eremyants (1.20)–(1.21), (1.31)–(1.32), Drakunov–Tuleshova (1), (11) corrected
+        (module docstring); for a kinematic drive (1.22)–(1.23) only the mechanism moves."""
         phi2, w2 = self.mechanism_state(t, y)
         twist, rate = y[2], y[3]
         c, force, w2_dot, mc = self.side.fast(phi2, w2, twist, lambda c: c * twist + self.b * rate)
@@ -106,6 +110,7 @@ class TwoMass:
         return [w2, w2_dot, rate, (torque - force) / self.J1 - w2_dot, torque * w1, mc * w2, self.b * rate * rate]
 
     def jac(self, t: float, y) -> np.ndarray:
+        """∂f/∂y of ``rhs``, analytic (the same equations differentiated)."""
         phi2, w2 = self.mechanism_state(t, y)
         twist, rate = y[2], y[3]
         c, dc, _ = self.side.stiff(phi2)
@@ -159,6 +164,7 @@ class ThreeMass:
         self.J1, self.J2, self.c1, self.b1, self.side, self.b2, self.drive = J1, J2, c1, b1, side, b2, drive
 
     def rhs(self, t: float, y) -> list[float]:
+        """y′ of the three masses, Eremyants (1.40)–(1.42) (module docstring)."""
         phi3, w3, twist2, rate2, twist1, rate1 = y[:6]
         w1 = w3 + rate2 + rate1
         f1 = self.c1 * twist1 + self.b1 * rate1
@@ -170,6 +176,7 @@ class ThreeMass:
                 torque * w1, mc * w3, self.b1 * rate1 * rate1 + self.b2 * rate2 * rate2]
 
     def jac(self, t: float, y) -> np.ndarray:
+        """∂f/∂y of ``rhs``, analytic (the same equations differentiated)."""
         phi3, w3, twist2, rate2, twist1, rate1 = y[:6]
         w1 = w3 + rate2 + rate1
         c2, dc2, _ = self.side.stiff(phi3)

@@ -29,6 +29,7 @@ class PeriodicTable:
 
     @cached_property
     def derivatives(self) -> list[float] | None:
+        """The tangents at the nodes as a list (None for a table without given tangents)."""
         return None if self.tangents is None else self.tangents.tolist()
 
     def evaluate(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

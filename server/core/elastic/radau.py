@@ -156,6 +156,7 @@ def predict_factor(h_abs, h_abs_old, error_norm, error_norm_old):
 
 @njit(cache=True)
 def error_norm_of(error, y, y_new, atol, rtol):
+    """RMS of errorᵢ/(atolᵢ + rtol·max(|yᵢ|, |y_newᵢ|)): scipy's Radau error norm."""
     total = 0.0
     for i in range(y.size):
         total += (error[i] / (atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol)) ** 2

@@ -62,7 +62,7 @@ class ElasticMachine:
     J_motor: float = 0.0        # kg·m²
     J_middle: float = 0.0       # three-mass: middle mass, kg·m²
     c: float = 0.0              # constant stiffness: the belt (two-mass) or the first spring (three-mass), N·m/rad
-    compliances: Compliances = field(default_factory=Compliances)   # elastic linkage, seed 000 (1.24)–(1.34)
+    compliances: Compliances = field(default_factory=Compliances)   # elastic linkage, Eremyants (1.24)–(1.34)
     b: float = 0.0              # damping across the spring next to the mechanism, N·m·s/rad
     b1: float = 0.0             # three-mass: damping across the first spring, N·m·s/rad
     speed: float = 0.0          # kinematic drive: prescribed motor-side speed, rad/s
@@ -337,7 +337,7 @@ def rigid_start_up(machine: ElasticMachine, t: np.ndarray) -> dict:
 
 def modal(machine: ElasticMachine, points: int = 361) -> dict:
     """Over one turn: c(φ), e(φ), natural frequency √(c(J_m + J)/(J_m J)) and damping ratio
-    ζ = b/(2√(c J_eq)), J_eq = J_m J/(J_m + J) (notes 003 §4, §6)."""
+    ζ = b/(2√(c J_eq)), J_eq = J_m J/(J_m + J) (the two masses of Drakunov–Tuleshova (1))."""
     side = mechanism_side(machine)
     period = side.inertia.period
     phi = np.linspace(0.0, period, points)
@@ -354,7 +354,7 @@ def modal(machine: ElasticMachine, points: int = 361) -> dict:
 
 @dataclass(frozen=True)
 class Bearing:
-    """Ball bearings in joints B and C (seed 000 §1.4): z balls, race radii r₁, r₂ (m), E (Pa), μ."""
+    """Ball bearings in joints B and C (Eremyants §1.4): z balls, race radii r₁, r₂ (m), E (Pa), μ."""
 
     balls: int = 9
     r_inner: float = 0.01
@@ -375,7 +375,7 @@ def rod_force(machine: ElasticMachine, phi: np.ndarray, twist: np.ndarray) -> np
 
 def bearing_iteration(machine: ElasticMachine, bearing: Bearing, t_end: float, samples: int, rtol: float,
                       tolerance: float = 1e-3, max_rounds: int = 12, deadline: float | None = None) -> dict:
-    """Successive approximations of seed 000 §1.4: rigid bearings → R_m → c_n (1.44) → e = e₁ + (e₂ + 2/c_n)λ₁₂²
+    """Successive approximations of Eremyants §1.4: rigid bearings → R_m → c_n (1.44) → e = e₁ + (e₂ + 2/c_n)λ₁₂²
     (1.43) → R_m again: the fixed point R = g(R). Each round is one run (no check run: only R_m is read).
     Convergence is decided from the iteration's own contraction q = |R_{k+1} − R_k|/|R_k − R_{k−1}|: for q < 1
     the fixed point lies within q/(1 − q)·|R_{k+1} − R_k| of R_{k+1} (Banach), and the rounds stop when that

@@ -12,7 +12,7 @@ a run at ten times tighter tolerance (same method, chunks of other lengths), rel
 twist.  The chunks differ because each chunk restarts the step-size sequence: where the motion is
 sensitive to a sharp feature (the four-bar's load M₃|u₃₁| turns over at the dead positions, exactly
 where c(φ) → 0 uncouples motor and mechanism), two runs that restart at the same times can step
-over the feature alike and agree with each other far better than with the true motion (seed 003's
+over the feature alike and agree with each other far better than with the true motion (Drakunov–Tuleshova's
 assembly 2: 1.7e-4 between rtol 1e-6 and 1e-7 with equal chunks, 7.2e-2 from an rtol 1e-12 run).
 
 Engines: "compiled" (default) runs DOP853 and Radau as scipy's algorithms ported into numba loops

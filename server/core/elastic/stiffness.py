@@ -1,13 +1,13 @@
-"""Reduced stiffness of an elastic linkage, seed 000 (1.24)–(1.29), (1.33)–(1.34); seed 003 (2).
+"""Reduced stiffness of an elastic linkage, Eremyants (1.24)–(1.29), (1.33)–(1.34); Drakunov–Tuleshova (2).
 
 The compliances in series reduce to the crank as e = e₁ + e₂λ₁₂² + e₃u₁₃², with λ₁₂ = 1/(l₁ sin θ₁₂)
 (θ₁₂ the angle between crank and rod/coupler) and, for the four-bar, u₁₃ = 1/u₃₁ written through
 the coupler–rocker angle θ₂₃.  At the dead positions sin θ₁₂ = 0 and e → ∞, so the stiffness is
-computed in the finite form (seed 003 (2))
+computed in the finite form (Drakunov–Tuleshova (2))
 
     c = l₁² S/Δ,   Δ = e₁ l₁² S + e₂ + e₃ l₃² R,   S = sin²θ₁₂,  R = sin²θ₂₃
 
-and dc/dφ = (N′ − cΔ′)/Δ with N = l₁²S, Δ′ = e₁N′ + e₃l₃²R′ (seed 003, unnumbered, checked there).
+and dc/dφ = (N′ − cΔ′)/Δ with N = l₁²S, Δ′ = e₁N′ + e₃l₃²R′ (Drakunov–Tuleshova, unnumbered, checked there).
 e₁ = L₁/(G I_p1) crank-shaft torsion (rad/(N·m)); e₂ = l₂/(E F₂) rod tension/compression (m/N);
 e₃ = L₃/(G I_p3) rocker-shaft torsion (rad/(N·m)).  The crank-slider's sin θ₁₂ is sin(φ − ψ) in the
 convention of §2.3 (the textbook's sin(φ + ψ) counts φ from the outer dead centre).
@@ -40,7 +40,8 @@ def link_angles(mechanism: str, values: dict) -> tuple[np.ndarray, np.ndarray, n
 
 
 def linkage_stiffness(mechanism: str, params: dict, compliances: Compliances, phi: np.ndarray):
-    """c(φ) in N·m/rad, dc/dφ and the compliance e(φ) = 1/c (inf at the dead positions)."""
+    """c(φ) in N·m/rad (module docstring: Eremyants (1.24)–(1.29), (1.33)–(1.34), Drakunov–Tuleshova (2)), dc/dφ and
+    the compliance e(φ) = 1/c (inf at the dead positions)."""
     values = MECHANISMS[mechanism].evaluate(params, phi, set()).values | {"phi": phi}
     theta12, d12, theta23, d23 = link_angles(mechanism, values)
     l1, l3 = params["l1"], params.get("l3", 0.0)
@@ -57,7 +58,7 @@ def linkage_stiffness(mechanism: str, params: dict, compliances: Compliances, ph
 
 def bearing_stiffness(load: float, balls: int, r_inner: float, r_outer: float, young: float = 2.1e11,
                       poisson: float = 0.3) -> float:
-    """Radial stiffness of a ball bearing under its largest reaction R_m, N/m (seed 000 (1.44)):
+    """Radial stiffness of a ball bearing under its largest reaction R_m, N/m (Eremyants (1.44)):
     c_n = 3.34 (z k_B)^{2/3} R_m^{1/3}/(1 + ∛(r₁/r₂)),  k_B = 2E√r₁/(3(1 − μ²))."""
     k_b = 2 * young * np.sqrt(r_inner) / (3 * (1 - poisson**2))
     return float(3.34 * (balls * k_b) ** (2 / 3) * load ** (1 / 3) / (1 + (r_inner / r_outer) ** (1 / 3)))

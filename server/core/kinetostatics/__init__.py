@@ -1,1 +1,1 @@
-"""Force analysis by structural groups with friction in the pairs (seed 002, section 3)."""
+"""Force analysis by structural groups with friction in the pairs (Chaika–Vasylenko, section 3)."""

@@ -1,4 +1,4 @@
-"""Kinetostatics of the crank-slider with friction in every pair: seed 002 §3.1, (3.1)–(3.20).
+"""Kinetostatics of the crank-slider with friction in every pair: Chaika–Vasylenko §3.1, (3.1)–(3.20).
 
 The dyad 2–3 (RRP) first, then the crank; inertia loads by d'Alembert (3.1): F_in = −m a_S,
 M_in = −J_S ε.  Unknowns of the dyad: R₁₂ (crank on rod at A), R₂₃ (rod on slider at B) and
@@ -14,7 +14,7 @@ that series converges slowly (ratio f₃₄|tan ψ| → 1).  The answer is there
 directly to ε_R (equilibrium.py: Newton's method; self-locking where the rod's line of force, tangent to the
 friction circles, lies within the guide's friction angle, f₃₄|tan ψ'| ≥ 1, or where the equilibrium followed
 from zero friction folds); the textbook's approximations are kept as the table the page shows.  Angles and moments are counter-clockwise internally; the crank turns clockwise in
-the drawing (seed 000's convention), so the balancing moment is reported along ω₁.
+the drawing (Eremyants' convention), so the balancing moment is reported along ω₁.
 """
 from __future__ import annotations
 
@@ -94,6 +94,7 @@ class ForceAnalysis:
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """z-component of the plane vector product a × b = a_x b_y − a_y b_x (moments of forces)."""
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
@@ -160,7 +161,7 @@ def friction_loads(pairs: Pairs, applied: dict, R12, R23, N, R41, omega1_ccw: fl
 def analyse(params: dict, loads: Loads, pairs: Pairs, phi: np.ndarray, tolerance: float = 1e-9,
             shown: int = SHOWN_APPROXIMATIONS, table: bool = True) -> ForceAnalysis:
     """The friction equilibrium at every angle, solved to ε_R (equilibrium.solve), and the textbook's successive
-    approximations of seed 002 §3.1 beside it: the first ``shown`` of them, or fewer if they reach ε_R.
+    approximations of Chaika–Vasylenko §3.1 beside it: the first ``shown`` of them, or fewer if they reach ε_R.
     ``table`` False: without the approximations and the numerics that describe them (approximations empty,
     numerics None), for a caller that reads neither (the wear; a family's preview of the forces)."""
     clock = time.perf_counter()

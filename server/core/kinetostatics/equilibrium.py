@@ -7,7 +7,7 @@ friction from the reactions:
     F₃₄ = −sgn(V_B) f₃₄ |N|,    M₂ = −sgn(ω₂ − ω₁) ρ_A |R₁₂| − sgn(ω₂) ρ_B |R₂₃|,    ρ = f·r (friction circles).
 The textbook's successive approximations are the fixed-point iteration z ← G(z).  Its ratio at an angle is
 the spectral radius q of J = ∂G/∂z; for the guide alone J = −sgn(V_B) f₃₄ sgn(N) tan ψ and q = f₃₄|tan ψ|,
-the ratio of the series in Eremyants' sine and crank-slider iterations (seed 000 (3.24)).
+the ratio of the series in Eremyants' sine and crank-slider iterations (Eremyants (3.24)).
 
 Self-locking is decided from the physics, per angle, by the limit in which the reactions grow without bound
 (the loads then negligible beside them): the rod is a two-force member whose line of force is tangent to the
@@ -61,6 +61,8 @@ class Dyad:
 
 
 def dyad(points: dict, applied: dict, omega1_ccw: float) -> Dyad:
+    """The rod's tan ψ = AB_y/AB_x, 1/AB_x and the signs of V_B, ω₂ − ω₁, ω₂ that orient the friction
+    loads f·N, f·R·r of Chaika–Vasylenko (3.3) at every angle."""
     AB = points["B"] - points["A"]
     return Dyad(AB[:, 1] / AB[:, 0], 1.0 / AB[:, 0], np.sign(applied["slider_velocity"]),
                 np.sign(applied["omega2"] - omega1_ccw), np.sign(applied["omega2"]))

@@ -9,7 +9,7 @@ from .crank_slider import ForceAnalysis, cross
 
 
 def efficiency(analysis: ForceAnalysis) -> dict:
-    """η = |A_useful|/(|A_useful| + |A_friction|) over the cycle, the second form of seed 002 (3.38).
+    """η = |A_useful|/(|A_useful| + |A_friction|) over the cycle, the second form of Chaika–Vasylenko (3.38).
 
     A_useful is the work against the piston force, A_friction what the pairs dissipate, each power divided by
     ω₁: f₃₄|N||V_qB| in the guide, M_A|1 − u₂₁| and M_B|u₂₁| in the joints A and B, M_O in the main bearing
@@ -73,14 +73,14 @@ def forces_report(analysis: ForceAnalysis, pairs) -> dict:
 
 
 def crank_check(analysis: ForceAnalysis, frictionless: ForceAnalysis, reduced_moment: np.ndarray) -> dict:
-    """Seed 002 (3.2): the balancing moment against the reduced moment known from dynamics (virtual work),
+    """Chaika–Vasylenko (3.2): the balancing moment against the reduced moment known from dynamics (virtual work),
     as a relative error; with friction it measures friction's share, without it the arithmetic."""
     scale = np.maximum(np.abs(reduced_moment).max(), 1e-300)
     return {"frictionless": float(np.nanmax(np.abs(frictionless.balancing_moment - reduced_moment)) / scale),
             "with_friction": float(np.nanmax(np.abs(analysis.balancing_moment - reduced_moment)) / scale)}
 
 
-BOOK_WEAR = {"bush_23": 88.0, "pin_23": 36.0, "cylinder": 43.0, "piston": 76.0}   # seed 002 §4.3, µm
+BOOK_WEAR = {"bush_23": 88.0, "pin_23": 36.0, "cylinder": 43.0, "piston": 76.0}   # Chaika–Vasylenko §4.3, µm
 
 
 def wear_report(analysis: ForceAnalysis, parts: dict, cycles: float) -> dict:

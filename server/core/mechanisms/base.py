@@ -2,7 +2,7 @@
 
 A mechanism is a pure-numeric object: given lengths in metres and crank angles in
 radians it returns position functions, the first transfer functions u = ds/dφ and
-the second u′ = d²s/dφ² in closed form (seed 000, §2.1), joint coordinates for
+the second u′ = d²s/dφ² in closed form (Eremyants §2.1), joint coordinates for
 drawing, its valid parameter ranges and its special positions.  Nothing here knows
 about HTTP or the browser.
 """

@@ -1,12 +1,12 @@
-"""Hinged four-bar: crank 1, coupler 2, rocker 3, frame 0; seed 000 §2.5, seed 003 (3)–(10).
+"""Hinged four-bar: crank 1, coupler 2, rocker 3, frame 0; Eremyants §2.5, Drakunov–Tuleshova (3)–(10).
 
 A at the origin, D at (l₀, 0); φ from AD, counter-clockwise, B = l₁(cos φ, sin φ).
-The diagonal (Zinoviev) method of seed 000 gives the rocker angle ψ = φ₃ from +x at D:
+The diagonal (Zinoviev) method of Eremyants gives the rocker angle ψ = φ₃ from +x at D:
 
     d² = l₀² + l₁² − 2l₀l₁cos φ,   γ = atan2(−l₁sin φ, l₀ − l₁cos φ)         (2.38), (2.39)
     φ₃ = π + γ − σψ₁,  cos ψ₁ = (l₃² + d² − l₂²)/(2l₃d)                     (2.40), (2.41)
 
-σ = +1 is the textbook's assembly (seed 003's "+" sign in (4)); σ = −1 the other one.
+σ = +1 is the textbook's assembly (Drakunov–Tuleshova's "+" sign in (4)); σ = −1 the other one.
 The radicand of sin ψ₁ factorises exactly as 4l₃²d² − (l₃² + d² − l₂²)² = P·Q with
 
     P = (l₂ + l₃)² − (l₀ + l₁)² + 4l₀l₁cos²(φ/2),   Q = (l₀ − l₁)² − (l₂ − l₃)² + 4l₀l₁sin²(φ/2),
@@ -24,7 +24,7 @@ the cycle is 2π and u₃₁ jumps there.
     u′₃₁ = γ″ + σ·d/dφ[K sin φ/√(PQ)]                        (analytic; the textbook gives none)
     u′₂₁ = Im[(l₁e^{iφ} + l₃(iu′₃₁ − u₃₁²)e^{iφ₃}) e^{−iφ₂}]/l₂
 
-These agree with seed 003's (7), (8) with the corrected sign u₃₁ = +l₁sin(φ₁−φ₂)/(l₃sin(φ₃−φ₂))
+These agree with Drakunov–Tuleshova (7), (8) with the corrected sign u₃₁ = +l₁sin(φ₁−φ₂)/(l₃sin(φ₃−φ₂))
 and stay finite at the change points, where (7), (8) are 0/0.
 """
 from __future__ import annotations
@@ -96,6 +96,8 @@ class FourBar(Mechanism):
                      for flag in (q0 == 0.0, p0 == 0.0, np.asarray(p["limiter"]) != 0))
 
     def check_geometry(self, p):
+        """Refuse a crank that cannot turn fully: P₀ = (l₂ + l₃)² − (l₀ + l₁)² < 0 (no φ = 180°),
+        Q₀ = (l₀ − l₁)² − (l₂ − l₃)² < 0 (no φ = 0), or l₀ = l₁ (the pin through the pivot D); Eremyants §2.5."""
         if p["assembly"] == 0:
             raise GeometryError("assembly", "must be +1 or −1", "assembly_sign")
         p0, q0 = self._p0_q0(p)
@@ -124,7 +126,7 @@ class FourBar(Mechanism):
         return 4 * np.pi if self.change_point(p) is not None and not p["limiter"] else 2 * np.pi
 
     def jumps(self, p):
-        """With a stroke limiter the rocker rebounds at the change point: u₃₁ jumps there (seed 000, Fig. 2.9b)."""
+        """With a stroke limiter the rocker rebounds at the change point: u₃₁ jumps there (Eremyants Fig. 2.9b)."""
         cp = self.change_point(p)
         return [cp] if cp is not None and p["limiter"] else []
 

@@ -116,6 +116,8 @@ class GeneralMechanism(Mechanism):
                                     "crank angle: its lengths cannot close the loop", "never_closes", group=k)
 
     def evaluate(self, p, phi, wanted) -> Evaluation:
+        """The outputs at φ from the groups composed in order of attachment (Chaika–Vasylenko §3.1), the
+        analogs z′, z″ as in Eremyants §2.1."""
         return self.outputs_of(compose(self.linkage, phi), wanted)
 
     def outputs_of(self, comp: Composition, wanted) -> Evaluation:

@@ -1,4 +1,4 @@
-"""Sine (Scotch-yoke) mechanism, seed 000 §2.2, Fig. 2.1.
+"""Sine (Scotch-yoke) mechanism, Eremyants §2.2, Fig. 2.1.
 
 Crank 1 (length l₁) turns about O; block 2 on the crank pin A slides in the slot of
 yoke 3, which translates along x.  φ = 0 with the crank pointing to −x (yoke at its
@@ -32,6 +32,7 @@ class Sine(Mechanism):
         """Any crank length in the offered range works: the yoke follows the pin everywhere."""
 
     def evaluate(self, p, phi, wanted):
+        """x, y, u₃₁, u′₃₁, u₂₁, u′₂₁ at φ: Eremyants (2.1)–(2.6) (module docstring)."""
         l1 = p["l1"]
         c, s = np.cos(phi), np.sin(phi)
         ev = Evaluation(phi)
@@ -48,6 +49,7 @@ class Sine(Mechanism):
         return ev
 
     def special_positions(self, p):
+        """Dead centres at φ = 0 and π, where u₃₁ = l₁ sin φ = 0 (Eremyants (2.3)); the stroke is 2l₁."""
         l1 = p["l1"]
         return [SpecialPosition("dead_centre", 0.0, "yoke at its left extreme, u₃₁ = 0", 0.0),
                 SpecialPosition("dead_centre", np.pi, "yoke at its right extreme, u₃₁ = 0", 2 * l1)]

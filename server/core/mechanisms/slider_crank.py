@@ -1,22 +1,22 @@
-"""Crank-slider mechanism, central and with offset e: seed 000 §2.3, seed 002 §3.1.
+"""Crank-slider mechanism, central and with offset e: Eremyants §2.3, Chaika–Vasylenko §3.1.
 
 Crank 1 (l₁) turns about O, connecting rod 2 (l₂) joins the crank pin A to the slider
-B, which runs along the line y = e.  Textbook convention (seed 000, Fig. 2.2):
+B, which runs along the line y = e.  Textbook convention (Eremyants Fig. 2.2):
 φ = 0 with the crank along −x (slider near its left, inner dead centre), φ grows
 clockwise, A = (−l₁cos φ, l₁sin φ); the rod angle ψ is counted the same way,
 sin ψ = (l₁sin φ − e)/l₂.  λ = l₂/l₁ (rod/crank); the English r/l = 1/λ.
 
     x_B = −l₁cos φ + l₂cos ψ,  s = x_B − x_B,min                         (2.7)–(2.11)
     u₂₁ = dψ/dφ = l₁cos φ /(l₂cos ψ)                                      (2.14), (3.7)
-    u′₂₁ = (−l₁sin φ + l₂u₂₁² sin ψ)/(l₂cos ψ)                            (2.15), seed 002 [derived]
-    u₃₁ = l₁sin φ − l₂u₂₁ sin ψ                                          (2.12), V_qB of seed 002
+    u′₂₁ = (−l₁sin φ + l₂u₂₁² sin ψ)/(l₂cos ψ)                            (2.15), derived for e ≠ 0
+    u₃₁ = l₁sin φ − l₂u₂₁ sin ψ                                          (2.12), V_qB of Chaika–Vasylenko
     u′₃₁ = l₁cos φ − l₂(u′₂₁ sin ψ + u₂₁² cos ψ)                          (2.13)
 
 With e = 0 these reduce to (2.11)–(2.15).  Textbook approximations for λ > 3:
     u₃₁ ≈ l₁(sin φ − sin 2φ/(2λ)),  u₂₁ ≈ cos φ/λ                         (2.16)
     u′₃₁ ≈ l₁(cos φ − cos 2φ/λ − 1/(8λ³) + cos 4φ/(8λ³)),  u′₂₁ ≈ (1−λ²)sin φ/λ³   (2.17*)
 The textbook prints −cos 4φ/(8λ³) and (λ²−1)/λ³ in (2.17); both signs are wrong
-(notes 000.md §4.3), the corrected (2.17*) is computed here.
+(checked against finite differences), the corrected (2.17*) is computed here.
 """
 from __future__ import annotations
 
@@ -32,7 +32,7 @@ class SliderCrank(Mechanism):
     name = "slider_crank"
     title = "Crank-slider mechanism"
     conventions = ("Crank pivot O at the origin, slider guide along y = e. φ = 0: crank along −x; φ grows "
-                   "clockwise (seed 000, Fig. 2.2). s = slider travel from the inner dead centre (m); "
+                   "clockwise (Eremyants Fig. 2.2). s = slider travel from the inner dead centre (m); "
                    "s2 = rod angle ψ, clockwise, sin ψ = (l₁ sin φ − e)/l₂ (rad). λ = l₂/l₁ (textbook), "
                    "r/l = l₁/l₂ = 1/λ (English texts).")
     sliding_pairs = ("u31",)
@@ -51,6 +51,7 @@ class SliderCrank(Mechanism):
     )
 
     def check_geometry(self, p):
+        """A full turn needs l₂ > l₁ + |e| (λ > 1 + |e|/l₁)."""
         if p["l2"] <= p["l1"] + abs(p["e"]):
             raise GeometryError(
                 "l2", f"the crank cannot turn fully: l₂ = {p['l2']:.4g} m must exceed l₁ + |e| = "
@@ -58,6 +59,7 @@ class SliderCrank(Mechanism):
                 "slider_crank_no_full_turn", l2=p["l2"], limit=p["l1"] + abs(p["e"]))
 
     def evaluate(self, p, phi, wanted):
+        """x_B, ψ, u₂₁, u′₂₁, u₃₁, u′₃₁ at φ, offset e included: Eremyants (2.7)–(2.15) (module docstring)."""
         l1, l2, e, a2 = p["l1"], p["l2"], p["e"], p["a2"]
         c, s = np.cos(phi), np.sin(phi)
         sin_psi = (l1 * s - e) / l2
@@ -115,6 +117,8 @@ class SliderCrank(Mechanism):
                                       f"(λ² ≫ 1); here λ = {lam:.3g}.", {"lam": lam}))
 
     def special_positions(self, p):
+        """Dead centres, crank and rod in line (u₃₁ = 0): x_out = √((l₁ + l₂)² − e²), x_in = √((l₂ − l₁)² − e²),
+        stroke x_out − x_in (2l₁ for e = 0, Eremyants §2.3); an offset makes the strokes' crank angles unequal."""
         l1, l2, e = p["l1"], p["l2"], p["e"]
         # Crank and rod in line: outer (A on OB) and inner (A opposite OB) dead centres.
         x_out, x_in = np.sqrt((l1 + l2) ** 2 - e**2), np.sqrt((l2 - l1) ** 2 - e**2)

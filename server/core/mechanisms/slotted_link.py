@@ -1,4 +1,4 @@
-"""Slotted-link (кулисный) mechanism: crank 1, block 2, slotted lever 3; seed 000 §2.4.
+"""Slotted-link (кулисный) mechanism: crank 1, block 2, slotted lever 3; Eremyants §2.4.
 
 Crank pivot A at the origin, lever pivot C at (0, −l₀) directly below it.  φ = 0 with
 crank and lever vertical and B above A (l_BC = l₀ + l₁); φ and the lever angle ψ grow
@@ -46,6 +46,7 @@ class SlottedLink(Mechanism):
         return (bool(np.all(lam > 1)) if np.all(lam > 1) == np.any(lam > 1) else None,)
 
     def evaluate(self, p, phi, wanted):
+        """ψ, y, u₃₁, u′₃₁, u₂₁, u′₂₁ at φ: Eremyants (2.27)–(2.34) (module docstring)."""
         l0, l1 = p["l0"], p["l1"]
         lam = l0 / l1
         oscillating, = self.branch(p)
@@ -78,7 +79,7 @@ class SlottedLink(Mechanism):
                 values[key] = np.where(singular, np.nan, values[key])
             ev.warnings.append(Notice("slotted_jamming", "λ = 1 and φ = 180°: the block is on the lever pivot C, the "
                                       "lever's position and the block's sliding speed are undefined there "
-                                      "(theoretical jamming, seed 000 §3.3)."))
+                                      "(theoretical jamming, Eremyants §3.3)."))
         if "joints" in wanted:
             lever = l0 + l1  # drawn lever length: reaches B in every position
             ev.joints = {"A": point(0 * phi, 0 * phi), "B": point(l1 * s, l1 * c), "C": point(0 * phi, -l0 + 0 * phi),
@@ -97,6 +98,8 @@ class SlottedLink(Mechanism):
         return p["l1"] ** 2 * np.sin(half) ** 2 * ratio
 
     def special_positions(self, p):
+        """λ > 1: the lever's extremes ±ψ_max, ψ_max = arcsin(1/λ); λ < 1: u₃₁ from 1/(1 + λ) at φ = 0 to
+        1/(1 − λ) at φ = π; λ = 1: jamming at φ = π (Eremyants §2.4, §3.3)."""
         lam = p["l0"] / p["l1"]
         if lam > 1:
             psi_max = np.arcsin(1 / lam)

@@ -1,4 +1,4 @@
-"""Structural analysis (Chaika–Vasylenko §3.1, Fig. 3.3; seed 002 (3.4)): the order of attachment checked,
+"""Structural analysis (Chaika–Vasylenko §3.1, Fig. 3.3, (3.4)): the order of attachment checked,
 Chebyshev's formula W = 3n − 2p₅ − p₄, the structural formula I(0,1) → II₂(2,3) → …, the class.
 
 A group may attach only to elements that exist already (frame, input, earlier groups): otherwise it would

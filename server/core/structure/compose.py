@@ -1,5 +1,5 @@
 """Composition in order: the input crank, then each group from the elements already placed (Chaika–Vasylenko
-§3.1: the kinematic analysis follows the order of attachment; seed 000 §2.1 for the analogs).
+§3.1: the kinematic analysis follows the order of attachment; Eremyants §2.1 for the analogs).
 
     crank:  A = O + l e^{iθ₁},  θ₁ = θ₀ + σφ,  θ′₁ = σ,  θ″₁ = 0
     slider: A = P + s u (a frame guide through P along u = e^{iθ_g}),  A′ = u,  A″ = 0: the generalised

@@ -1,7 +1,7 @@
 """Velocity and acceleration plans (планы скоростей и ускорений) at one crank angle, group by group.
 
 Each group's vector equations (group.py) are evaluated with ω₁, ε₁: a velocity term is V ω₁, an acceleration
-term A ω₁² + V ε₁ (seed 000 §2.1: v = z′ω₁, a = z″ω₁² + z′ε₁).  Every equation's sum is compared with the
+term A ω₁² + V ε₁ (Eremyants §2.1: v = z′ω₁, a = z″ω₁² + z′ε₁).  Every equation's sum is compared with the
 target point's analytic velocity and acceleration from the closed-form analogs (``residual``, m/s and m/s²),
 which the textbook's graphical construction only approximates; the plan is drawn from the pole p (π).
 """
@@ -11,6 +11,7 @@ from .compose import Composition
 
 
 def vector(value: complex) -> dict:
+    """A plan's vector: its x, y and magnitude |z|."""
     return {"x": float(value.real), "y": float(value.imag), "value": float(abs(value))}
 
 

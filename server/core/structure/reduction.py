@@ -43,6 +43,8 @@ class GeneralLoads:
 
     @property
     def total(self) -> np.ndarray:
+        """M_c(φ) = Σ of the parts: each load reduced by power equality, M = −F·V_q or −M·θ′
+        (Chaika–Vasylenko (3.24))."""
         return sum(self.parts.values(), np.zeros(self.phi.shape))
 
 

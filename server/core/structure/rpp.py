@@ -1,4 +1,4 @@
-"""Class II, kind 5 group RPP (the sine mechanism's dyad, seed 000 §2.2): block i hinged at the outer joint B
+"""Class II, kind 5 group RPP (the sine mechanism's dyad, Eremyants §2.2): block i hinged at the outer joint B
 slides in a slot of link j; link j slides along a guide (P, u = e^{iθ_g}) of an earlier link.  The slot makes
 the fixed angle α with the guide and passes through link j's reference point R = P + s_j u.
 

@@ -1,4 +1,4 @@
-"""Class II, kind 3 group RPR, the slotted link (кулисная группа; Chaika–Vasylenko §3.1, seed 000 §2.4):
+"""Class II, kind 3 group RPR, the slotted link (кулисная группа; Chaika–Vasylenko §3.1, Eremyants §2.4):
 block i is hinged at the outer joint B and slides in the slot of lever j, which turns about the outer joint D.
 The slot runs at the offset e from D (e = 0: through D).
 

@@ -1,5 +1,5 @@
 """Class II, kind 1 group RRR (two links i, j; outer joints B on an earlier link, D on an earlier link; inner
-joint C): Chaika–Vasylenko §3.1; the diagonal (Zinoviev) method of seed 000 (2.38)–(2.41).
+joint C): Chaika–Vasylenko §3.1; the diagonal (Zinoviev) method of Eremyants (2.38)–(2.41).
 
     BC = a, DC = b, d = D − B, L = |d|,  cos α = (a² + L² − b²)/(2aL),  C = B + a e^{i(arg d + σα)}
     closes iff |a − b| ≤ L ≤ a + b   (limit of assembly: the triangle BCD flattens)

@@ -1,7 +1,7 @@
 """The kinematic state of a linkage being composed: joints, links and guides over an array of crank angles.
 
 Everything is vectorised over φ (arrays of shape (N,)).  A point is its position z = x + iy with the first
-and second transfer functions (analogs) z′ = dz/dφ, z″ = d²z/dφ² (seed 000 §2.1: velocities v = z′ω₁,
+and second transfer functions (analogs) z′ = dz/dφ, z″ = d²z/dφ² (Eremyants §2.1: velocities v = z′ω₁,
 accelerations a = z″ω₁² + z′ε₁).  A link carries its angle θ with θ′, θ″.  A guide is a straight line fixed
 on a link: a point P on it and its direction θ_g = θ_link + α, so u = e^{iθ_g}, u′ = iθ′_g u,
 u″ = (iθ″_g − θ′_g²)u.
@@ -31,9 +31,11 @@ class Angle:
     d2: np.ndarray
 
     def unit(self) -> np.ndarray:
+        """e^{iθ}: the unit vector at the angle."""
         return np.exp(1j * self.th)
 
     def shifted(self, alpha: float) -> "Angle":
+        """θ + α with the same analogs θ′, θ″."""
         return Angle(self.th + alpha, self.d1, self.d2)
 
 
@@ -47,11 +49,13 @@ class Guide:
 
 
 def fixed_point(x: float, y: float, n: int) -> Point:
+    """A point of the frame: z = x + iy at every angle, z′ = z″ = 0."""
     zero = np.zeros(n, complex)
     return Point(np.full(n, complex(x, y)), zero, zero)
 
 
 def fixed_angle(theta: float, n: int) -> Angle:
+    """An angle of the frame: θ at every angle, θ′ = θ″ = 0."""
     zero = np.zeros(n)
     return Angle(np.full(n, float(theta)), zero, zero)
 

@@ -66,6 +66,7 @@ class FrictionMap:
         return np.abs(np.einsum("pqnk,qn->pnk", self.slope, dz)).max(axis=(0, 2))
 
     def reactions(self, z: np.ndarray) -> np.ndarray:
+        """r_p(z) = r_p(0) + Σ_q (∂r_p/∂z_q) z_q: the reactions are linear in the friction loads z."""
         return self.base + np.einsum("pqnk,qn->pnk", self.slope, z)
 
     def evaluate(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -131,6 +132,7 @@ def newton_step(J: np.ndarray, residual: np.ndarray) -> np.ndarray:
 
 
 def determinant(J: np.ndarray) -> np.ndarray:
+    """det(I − J) at every angle: zero where the friction equilibrium z = G(z) has no unique solution."""
     return np.linalg.det(np.eye(J.shape[0])[None] - np.moveaxis(J, -1, 0))
 
 

@@ -77,10 +77,14 @@ def carriers(linkage: Linkage) -> tuple[dict[str, int], dict[str, int]]:
 
 
 def revolute(comp: Composition, name: str, a: int, b: int) -> KinematicPair:
+    """Pair R at joint ``name``: relative turning θ′_b − θ′_a, the sense of its friction moment f·R·r
+    (Chaika–Vasylenko (3.3))."""
     return KinematicPair(name, "R", a, b, comp.joints[name].z, None, turning(comp, b) - turning(comp, a), name)
 
 
 def prismatic(comp: Composition, name: str, joint: str, u: np.ndarray, a: int, b: int) -> KinematicPair:
+    """Pair P along u at ``joint``: sliding analog Re(ū(v_b − v_a)), the sense of its friction force f·N
+    (Chaika–Vasylenko (3.3))."""
     z = comp.joints[joint].z
     slip = link_velocity(comp, b, z) - link_velocity(comp, a, z)
     return KinematicPair(name, "P", a, b, z, u, (np.conj(u) * slip).real, joint)

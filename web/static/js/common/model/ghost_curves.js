@@ -1,5 +1,5 @@
 /**
- * Pinned runs (issue 16, "compare runs", PhET's ghosts): the curves of every plot as they are now, kept
+ * Pinned runs ("compare runs", PhET's ghosts): the curves of every plot as they are now, kept
  * faded under the curves of later values until cleared. They live in the page only: nothing is asked of
  * the server, and a reload forgets them. Keyed by panel id, so a pinned u₃₁ stays under u₃₁ when the
  * mechanism changes; a panel pinned with nothing drawn has no ghosts.

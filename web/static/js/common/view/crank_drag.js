@@ -1,5 +1,5 @@
 /**
- * Turn the crank by hand (issue 16): press anywhere on the linkage drawing and the crank angle follows the
+ * Turn the crank by hand: press anywhere on the linkage drawing and the crank angle follows the
  * pointer, φ = sense · (atan2 of the pointer about the crank's pivot − the pin's direction at φ = 0), taken
  * the short way round from where the crank stands (a 4π change-point cycle goes on into its second turn).
  * The animation clock is put there (it pauses), so the drawing and the plots' cursors follow as they follow

@@ -1,5 +1,5 @@
 /**
- * A plot's data as CSV (issue 16, "Take the results away"), read from the Plotly graph as drawn, so the
+ * A plot's data as CSV ("Take the results away"), read from the Plotly graph as drawn, so the
  * file holds exactly the plotted numbers (as sent by the server, every digit) — pinned ghost curves and
  * level lines (their value is in the legend) left out. No DOM beyond the graph's data.
  *

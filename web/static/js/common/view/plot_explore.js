@@ -1,5 +1,5 @@
 /**
- * What every Plotly graph of a scene offers the reader besides its curves (issue 16, "Explore"): hover
+ * What every Plotly graph of a scene offers the reader besides its curves ("Explore"): hover
  * readouts in the textbook's notation with units, zoom and pan, and the pinned ("ghost") curves under the
  * current ones. One function applied to each figure before Plotly draws it, so the figure builders
  * (figures.js, dynamics_figures.js) stay about the physics.

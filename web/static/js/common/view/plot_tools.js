@@ -1,5 +1,5 @@
 /**
- * The small toolbar on every plot (issue 16): zoom back, pan or zoom by dragging, and the plot taken away
+ * The small toolbar on every plot: zoom back, pan or zoom by dragging, and the plot taken away
  * as PNG, SVG (Plotly.toImage, drawn by the page itself, nothing fetched) or CSV (export_csv.js). Buttons
  * with words in the reader's language, reachable from the keyboard; Plotly's modebar stays off.
  *

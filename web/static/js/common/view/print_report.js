@@ -1,5 +1,5 @@
 /**
- * The scene as a printed report (issue 16): print.css lays the page out as a report; the plots are first
+ * The scene as a printed report: print.css lays the page out as a report; the plots are first
  * drawn again at the printed page's width (class "printing": the plot column as wide as A4 between its
  * margins), so that no plot is cut at the page's edge, and put back after the print dialog closes.
  */

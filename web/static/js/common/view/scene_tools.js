@@ -1,5 +1,5 @@
 /**
- * The scene's toolbar (scene.html #scene-tools, issue 16): copy the link of the whole state, reset to the
+ * The scene's toolbar (scene.html #scene-tools): copy the link of the whole state, reset to the
  * variant's defaults, pin the curves as ghosts and clear them, print the report, and the CSV files' decimal
  * separator. The buttons are in the page's template (translated there); this wires them to the model, the
  * ghosts and the views. graphs() gives the plots drawn now (Map panel id → Plotly graph element).

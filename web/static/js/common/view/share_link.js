@@ -1,5 +1,5 @@
 /**
- * "Copy link" (issue 16): the address of the scene's whole state (url_state.js stateQuery: variant, values,
+ * "Copy link": the address of the scene's whole state (url_state.js stateQuery: variant, values,
  * toggles, overlay, the indicator diagram's edits, the preset), written at once — the address bar itself is
  * updated a little later while a slider moves. Put on the clipboard where the browser lets the page do so;
  * shown, selected, in a field beside the button either way, so it can be copied by hand.

@@ -1,5 +1,5 @@
 /**
- * Immediate feedback (issue 16): a computation that takes longer than DELAY shows a progress bar and dims
+ * Immediate feedback: a computation that takes longer than DELAY shows a progress bar and dims
  * what is on the screen (class "stale": the old curves and drawing stay, visibly old, never silently so)
  * until the answer arrives. Shorter ones change nothing, so a quick answer does not flicker. The bar is
  * fixed at the top of the window, so it is seen wherever the page is scrolled (a phone shows one column).

@@ -2,7 +2,7 @@
  * One table per change of the mechanism: the kinematics answer over one turn of the crank (n angles), from
  * which the page animates, traces paths and plots without asking the server again. Positions in metres,
  * first analogs x′ = dx/dφ (velocity v = x′ω₁), second x″ (acceleration a = x″ω₁² + x′ε₁); link angles θ (rad)
- * with θ′, θ″; slides s along their guides with s′, s″ (seed 000 §2.1).
+ * with θ′, θ″; slides s along their guides with s′, s″ (Eremyants §2.1).
  */
 export const TURN_POINTS = 361;                   // 1° steps, both ends of the turn included
 export const TABLE_OUTPUTS = ["structure", "joints", "joints_d1", "joints_d2", "angles", "angles_d1", "angles_d2",

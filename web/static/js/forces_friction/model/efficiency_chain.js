@@ -1,5 +1,5 @@
 /**
- * Model of the efficiency-chain calculator (POST /api/v1/efficiency-chain), seed 002 (3.39)–(3.40): the
+ * Model of the efficiency-chain calculator (POST /api/v1/efficiency-chain), Chaika–Vasylenko (3.39)–(3.40): the
  * mechanisms k = 1…n of a machine, each with its efficiency η_k (0 ≤ η_k ≤ 1) and the driving work A_P,k
  * (J) it receives when the mechanisms share the input in parallel. The server answers both connections:
  *   in series    η = η₁·η₂·…·ηₙ                   (3.39)
