@@ -5,12 +5,13 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from ..core.elastic.assemblies import OUTPUT as ASSEMBLIES
 from .schemas import MAX_PARAMS, MechanismName
 from .schemas_dynamics import InertiaInput, LoadInput, MotorInput
 
 
 class CompliancesInput(BaseModel):
-    """Compliances of the elastic linkage, seed 000 (1.24)–(1.25), (1.34); seed 003 (2)."""
+    """Compliances of the elastic linkage, Eremyants (1.24)–(1.25), (1.34); Drakunov–Tuleshova (2)."""
 
     model_config = ConfigDict(extra="forbid")
     e1: float = Field(0.0, ge=0, le=1, description="crank-shaft torsion e₁ = L₁/(G I_p1), rad/(N·m)")
@@ -33,7 +34,7 @@ class DimensionsInput(BaseModel):
 
 
 class BearingInput(BaseModel):
-    """Ball bearings in the rod's joints B and C, seed 000 (1.43)–(1.44)."""
+    """Ball bearings in the rod's joints B and C, Eremyants (1.43)–(1.44)."""
 
     model_config = ConfigDict(extra="forbid")
     balls: int = Field(9, ge=3, le=60, description="number of balls z")
@@ -60,7 +61,7 @@ class ElasticRequest(BaseModel):
     model: Literal["two_mass", "kinematic_drive", "three_mass", "elastic_linkage", "elastic_four_bar"] = Field(
         description="two_mass: belt drive (1.20)–(1.21); kinematic_drive: powerful motor φ₁ = ωt (1.22)–(1.23); "
                     "three_mass: (1.40)–(1.42); elastic_linkage: c(φ) of the linkage (1.29)/(1.34), (1.31)–(1.32); "
-                    "elastic_four_bar: seed 003's two-mass model with c_n(φ₁) and damping b_n")
+                    "elastic_four_bar: Drakunov–Tuleshova's two-mass model with c_n(φ₁) and damping b_n")
     mechanism: MechanismName
     params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
     inertias: InertiaInput = Field(default_factory=InertiaInput, description="the mechanism side; J1 is the crank")
@@ -83,12 +84,14 @@ class ElasticRequest(BaseModel):
     method: Literal["auto", "DOP853", "RK45", "Radau", "BDF", "LSODA"] = Field(
         "auto", description="auto: chosen by the stiffness the server measures")
     bearing: BearingInput = Field(default_factory=lambda: BearingInput(), description="ball bearings in B and C")
-    outputs: list[Literal["histories", "modal", "rigid", "bearings", "compliance"]] = Field(
-        min_length=1, max_length=5, description=(
+    outputs: list[Literal["histories", "modal", "rigid", "bearings", "compliance", ASSEMBLIES]] = Field(
+        min_length=1, max_length=6, description=(
         "histories: time histories with numerics; modal: c(φ), e(φ), natural frequency and damping ratio over a "
         "turn (closed forms); rigid: the rigid machine's start-up on the same times; bearings: the successive "
         "approximations of the ball-bearing stiffness (1.44) over the largest rod force (elastic crank-slider); "
-        "compliance: e₁, e₂ from `dimensions` with the erratum of (1.16)/(1.37), printed beside corrected"))
+        "compliance: e₁, e₂ from `dimensions` with the erratum of (1.16)/(1.37), printed beside corrected; "
+        f"{ASSEMBLIES}: I_n, I_n′, c_n, c_n′ over a turn for both assemblies of the elastic four-bar "
+        "(Drakunov–Tuleshova (2), (9), (10))"))
 
     @model_validator(mode="after")
     def only_used_fields(self):
@@ -120,8 +123,11 @@ class ElasticRequest(BaseModel):
             raise ValueError("elastic_four_bar: the mechanism is the four_bar")
         if self.model in ("elastic_linkage", "three_mass") and self.mechanism not in ("slider_crank", "four_bar"):
             raise ValueError("an elastic linkage is a slider_crank or a four_bar")
+        if ASSEMBLIES in self.outputs and not (needs_linkage and self.mechanism == "four_bar"):
+            raise ValueError(f"{ASSEMBLIES}: the two assemblies are those of a four_bar with elastic links "
+                             "(models three_mass, elastic_linkage, elastic_four_bar)")
         if "bearings" in self.outputs and not (self.model == "elastic_linkage" and self.mechanism == "slider_crank"):
-            raise ValueError("bearings: the iteration of seed 000 §1.4 is for the elastic crank-slider linkage")
+            raise ValueError("bearings: the iteration of Eremyants §1.4 is for the elastic crank-slider linkage")
         if self.model == "kinematic_drive" and self.speed <= 0:
             raise ValueError("kinematic_drive: give the motor side's speed > 0")
         if self.model != "kinematic_drive" and self.J_motor <= 0:
