@@ -42,8 +42,9 @@ export class ToggleDrawingsView {
     const request = this.model.request();
     const chosen = this.model.values[this.toggle.id];
     for (const drawing of this.drawings) {
-      drawing.figure.classList.toggle("chosen", drawing.option === chosen);
-      drawing.figure.setAttribute("aria-current", String(drawing.option === chosen));
+      const computed = String(drawing.option) === String(chosen);     // an address gives the value as text
+      drawing.figure.classList.toggle("chosen", computed);
+      drawing.figure.setAttribute("aria-current", String(computed));
       const params = { ...request.params, [this.spec.param]: drawing.option };
       this.kinematics.submit(`option ${drawing.option}`, {
         mechanism: request.mechanism, params, n: JOINT_POINTS, outputs: ["joints"] }, (answer) => {
