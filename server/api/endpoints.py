@@ -33,6 +33,7 @@ from ..core.dynamics.resistance import Load
 from ..core.elastic.report import (Bearing, ElasticMachine, bearing_iteration, bearing_notice, mechanism_side,
                                    modal, request_deadline, rigid, simulate)
 from ..core import errata
+from ..core.elastic.assemblies import OUTPUT as ASSEMBLIES, assembly_curves
 from ..core.elastic.compliance import Dimensions, compliance_report
 from ..core.elastic.stiffness import Compliances
 from ..core.kinematics import compute_kinematics, compute_kinematics_many
@@ -254,7 +255,7 @@ def _dimensions(request: ElasticRequest, params: dict) -> Dimensions:
     return Dimensions(rod_length=params["l2"], ratio=request.inertias.gear_ratio, **request.dimensions.model_dump())
 
 
-OTHER_ELASTIC = ("rigid", "modal", "bearings")   # an elastic answer's keys that are not the histories'
+OTHER_ELASTIC = ("rigid", "modal", "bearings", ASSEMBLIES)   # an elastic answer's keys that are not the histories'
 
 
 def elastic(request: ElasticRequest, lang: str, reads: Reads = None) -> Answer:
@@ -277,6 +278,8 @@ def elastic(request: ElasticRequest, lang: str, reads: Reads = None) -> Answer:
         result["rigid"] = rigid(built, np.linspace(0.0, request.t_end, request.n))
     if asked("modal", "modal"):
         result["modal"] = modal(built)
+    if asked(ASSEMBLIES, ASSEMBLIES):
+        result[ASSEMBLIES] = assembly_curves(built)
     if asked("compliance", "compliance"):
         result["compliance"] = compliance_report(_dimensions(request, built.params))
     if asked("bearings", "bearings", "warnings"):

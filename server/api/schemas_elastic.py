@@ -5,6 +5,7 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from ..core.elastic.assemblies import OUTPUT as ASSEMBLIES
 from .schemas import MAX_PARAMS, MechanismName
 from .schemas_dynamics import InertiaInput, LoadInput, MotorInput
 
@@ -83,12 +84,14 @@ class ElasticRequest(BaseModel):
     method: Literal["auto", "DOP853", "RK45", "Radau", "BDF", "LSODA"] = Field(
         "auto", description="auto: chosen by the stiffness the server measures")
     bearing: BearingInput = Field(default_factory=lambda: BearingInput(), description="ball bearings in B and C")
-    outputs: list[Literal["histories", "modal", "rigid", "bearings", "compliance"]] = Field(
-        min_length=1, max_length=5, description=(
+    outputs: list[Literal["histories", "modal", "rigid", "bearings", "compliance", ASSEMBLIES]] = Field(
+        min_length=1, max_length=6, description=(
         "histories: time histories with numerics; modal: c(φ), e(φ), natural frequency and damping ratio over a "
         "turn (closed forms); rigid: the rigid machine's start-up on the same times; bearings: the successive "
         "approximations of the ball-bearing stiffness (1.44) over the largest rod force (elastic crank-slider); "
-        "compliance: e₁, e₂ from `dimensions` with the erratum of (1.16)/(1.37), printed beside corrected"))
+        "compliance: e₁, e₂ from `dimensions` with the erratum of (1.16)/(1.37), printed beside corrected; "
+        f"{ASSEMBLIES}: I_n, I_n′, c_n, c_n′ over a turn for both assemblies of the elastic four-bar "
+        "(Drakunov–Tuleshova (2), (9), (10))"))
 
     @model_validator(mode="after")
     def only_used_fields(self):
@@ -120,6 +123,9 @@ class ElasticRequest(BaseModel):
             raise ValueError("elastic_four_bar: the mechanism is the four_bar")
         if self.model in ("elastic_linkage", "three_mass") and self.mechanism not in ("slider_crank", "four_bar"):
             raise ValueError("an elastic linkage is a slider_crank or a four_bar")
+        if ASSEMBLIES in self.outputs and not (needs_linkage and self.mechanism == "four_bar"):
+            raise ValueError(f"{ASSEMBLIES}: the two assemblies are those of a four_bar with elastic links "
+                             "(models three_mass, elastic_linkage, elastic_four_bar)")
         if "bearings" in self.outputs and not (self.model == "elastic_linkage" and self.mechanism == "slider_crank"):
             raise ValueError("bearings: the iteration of Eremyants §1.4 is for the elastic crank-slider linkage")
         if self.model == "kinematic_drive" and self.speed <= 0:

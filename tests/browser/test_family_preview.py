@@ -550,7 +550,7 @@ SCENE_SLIDERS = [   # every scene, the first variant with sliders and its first 
     ("flywheel", "rig", "delta", "#panel-wittenbauer .graph path.js-line"),
     ("elastic-transmission", "belt", "c", "#panel-speeds .graph path.js-line"),
     ("elastic-linkage", "slider_crank", "e1", "#panel-stiffness .graph path.js-line"),
-    ("elastic-four-bar", "assembly_1", "b", "#panel-motor .graph path.js-line"),
+    ("elastic-four-bar", "dialog", "b", "#panel-motor .graph path.js-line"),
     ("forces-friction", "central", "lambda", "#panel-free_body svg .forces"),
     ("wear", "engine", "hours", "#panel-cylinder .graph path.js-line"),
     ("angular-acceleration", "crank_slider", "lam", "#panel-gear_train svg .moving"),

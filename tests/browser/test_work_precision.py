@@ -37,7 +37,7 @@ def run_study(page, texts: dict[str, str]) -> tuple[dict, list[dict]]:
         page.click("#panel-study .study-run")
         assert page.is_disabled("#panel-study .study-run")            # busy until the answer is drawn
         assert page.inner_text("#panel-study .study-state") == texts["study_running"]
-    page.wait_for_function(f"{GRAPH}?.data?.length > 0")
+    page.wait_for_function(f"() => {GRAPH}?.data?.length > 0")
     traces = page.evaluate(f"""() => {GRAPH}.data.map(t => ({{
         name: t.name.replace(/<\\/?b>/g, ""), bold: t.name.startsWith("<b>"), points: t.x.length,
         width: t.line.width, text: t.text }}))""")
