@@ -111,6 +111,16 @@ class WearRequest(ForcesRequest):
     I_cylinder: float = Field(3e-12, gt=0, le=1e-3, description="wear intensity of the cylinder liner")
     rpm: float = Field(2400, ge=1, le=1e5, description="crank speed, rev/min (one cycle per revolution)")
     hours: float = Field(1000, gt=0, le=1e6, description="service life, h")
+    reactions: Literal["kinetostatics", "table_4_3"] = Field(
+        "kinetostatics", description="the loads: the kinetostatics of params and loads, or the reaction columns of "
+        "Chaika–Vasylenko Table 4.3 (its engine at 2400 rpm: then no params, loads, pairs or rpm)")
+
+    @model_validator(mode="after")
+    def book_table_alone(self):
+        given = sorted(self.model_fields_set & {"params", "loads", "pairs", "rpm", "n", "tolerance"})
+        if self.reactions == "table_4_3" and given:
+            raise ValueError(f"reactions 'table_4_3' are the book's engine at 2400 rpm: leave out {', '.join(given)}")
+        return self
 
 
 class ChainRequest(BaseModel):
