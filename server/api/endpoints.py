@@ -346,7 +346,9 @@ def wear(request: WearRequest, lang: str) -> Answer:
     result = wear_report(analysis, parts, cycles)
     stroke = float(np.ptp(analysis.points["B"][:, 0]))
     mean_r23 = result["mean_pressure_23"] * np.pi * parts["pin_length"] * parts["pin_diameter"] / 4      # (4.23)
-    k = {"piston": parts["I_piston"] / result["mean_pressure_34"], "cylinder": parts["I_cylinder"] / result["mean_pressure_34"]}
+    k = {name: parts[f"I_{name}"] / result[f"mean_pressure_{pair}"]                                # (4.24)
+         for name, pair in (("pin", 23), ("bush", 23), ("piston", 34), ("cylinder", 34))}
+    result["coefficients"] = k
     result["constant_load"] = constant_load_rows(mean_r23, parts, k, cycles, stroke)
     return answer(result, analysis.notices, lang)
 
