@@ -126,3 +126,14 @@ def test_the_api_answers_the_table_and_refuses_loads_beside_it():
     assert data["numerics"]["steps"] == 12 and "12" in data["numerics"]["message"]
     refused = client.post("/api/v1/wear", json={"reactions": "table_4_3", "rpm": 3000, "loads": {"m2": 1}})
     assert refused.status_code == 422 and "loads, rpm" in refused.json()["detail"][0]["msg"]
+
+
+def test_the_scenes_text_states_the_numbers_of_its_default_answer():
+    """The wear scene's text quotes the Table 4.3 variant's default answer: piston 71, bush and pin at β = 190°
+    about 133 and 76, cylinder at D₄ 91 µm (whole micrometres), the book's k giving 107…115."""
+    from server.lessons.scenes import scenes
+    text = scenes()["wear"].text["en"]
+    points = book_table_report(PARTS, CYCLES)["points"]
+    for key, quoted in (("piston", "71 µm"), ("bush_23", "133"), ("pin_23", "76 µm"), ("cylinder", "91 µm")):
+        assert f"{round(points[key])}" == quoted.split()[0] and quoted in text
+    assert "107…115 µm" in text
