@@ -1,8 +1,8 @@
-"""Expected wear of the pairs, Archard-type linear in p·V (seed 002 §4, (4.1)–(4.24)).
+"""Expected wear of the pairs, Archard-type linear in p·V (Chaika–Vasylenko §4, (4.1)–(4.24)).
 
 Revolute pair j/j+1 under a rotating reaction R (cosine pressure, |ψ| ≤ π/2 in contact):
     δ_j(β) = a_j ∫ R |u_j1 − u_{j+1,1}| cos ψ_j dφ,   ψ_j = φ_j + β − γ*,   a_j = 2·10⁶ k_j n_c/(π l_z)   (4.12), (4.13)
-    [(4.6)–(4.11) are lost in the print; reconstructed in notes 002 §2.7.2]
+    [(4.6)–(4.11) are lost in the print; reconstructed to agree with (4.12), (4.13) and the §4.3 example]
 Piston (cylindrical slider) and cylinder, the pressed side only:
     δ₃ = a₃ ∫ |R₃₄ V_qB| dφ,  a₃ = 10⁶ b k₃ n_c/(l_p d_p), b = 4/π                            (4.17), (4.19)
     δ₄(X) = a₄ ∫_{piston over X} |R₃₄ V_qB| dφ,  a₄ = 10⁶ d k₄ n_c/(l_p d_p), d = 4/π        (4.18)

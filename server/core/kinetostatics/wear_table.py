@@ -22,6 +22,7 @@ import time
 import numpy as np
 
 from ..numerics import Numerics
+from .report import BOOK_WEAR
 from .wear import mean_pressure, piston_wear, revolute_wear
 
 # Chaika–Vasylenko, Table 4.3 (computed by the authors' program DWS): the engine of §4.3 at 2400 rpm,
@@ -78,8 +79,9 @@ def point_wear(c: dict, k_pin: float, k_bush: float, cycles: float, pin_length: 
 
 def limited_cylinder_wear(c: dict, k: float, cycles: float, length: float, diameter: float,
                           limits=BOOK_CYLINDER_LIMITS, both_sides: bool = False) -> float:
-    """δ₄ (µm) at the book's point D₄ by its printed limits of integration (§4.3 (B) step 7), a₄ = 10⁶(4/π)k n_c/(l_p d_p)
-    (4.19); the right side's rows only, or (both_sides) |R₃₄V_qB| of every row as the printed sum takes it."""
+    """δ₄ (µm) at the book's point D₄ by its printed limits of integration (§4.3 (B) step 7),
+    a₄ = 10⁶(4/π)k n_c/(l_p d_p) (4.19); the right side's rows only, or (both_sides) |R₃₄V_qB| of every row as
+    the printed sum takes it."""
     phi = c["phi"]
     load = np.abs(c["R34"] * c["V_qB"]) if both_sides else np.where(c["R34"] > 0, np.abs(c["R34"] * c["V_qB"]), 0.0)
     total = 0.0
@@ -162,9 +164,6 @@ def tabulated_wear(table: dict, parts: dict, cycles: float, links: tuple[float, 
     }
 
 
-BOOK_WEAR = {"bush_23": 88.0, "pin_23": 36.0, "piston": 76.0, "cylinder": 43.0}   # §4.3, printed, µm
-
-
 def book_table_report(parts: dict, cycles: float) -> dict:
     """The §4.3 example from the reaction columns of Table 4.3: the distributions, the book's points beside its
     printed results, the constant-load estimates, and the misprints met on the way (printed beside corrected,
@@ -178,7 +177,8 @@ def book_table_report(parts: dict, cycles: float) -> dict:
     bush_printed_psi = float(point_wear(c, k["pin"], k["bush"], cycles, parts["pin_length"],
                                         np.radians([360.0 - BOOK_POINT - 10.0]))[1][0])
     geometry = (parts["piston_length"], parts["piston_diameter"])
-    result["comparison"] = [{"element": key, "printed": BOOK_WEAR[key], "table": points[key]} for key in BOOK_WEAR]
+    result["comparison"] = [{"element": key, "printed": BOOK_WEAR[key], "table": points[key]}
+                            for key in ("bush_23", "pin_23", "piston", "cylinder")]
     result["book"], result["allowed"] = BOOK_WEAR, [150.0, 180.0]
     result["constant_load"] = constant_load_rows(float(np.mean(c["R23_magnitude"])), parts, k, cycles,
                                                  float(piston_travel(np.pi, *BOOK_LINKS)))
