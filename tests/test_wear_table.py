@@ -137,3 +137,26 @@ def test_the_scenes_text_states_the_numbers_of_its_default_answer():
     for key, quoted in (("piston", "71 µm"), ("bush_23", "133"), ("pin_23", "76 µm"), ("cylinder", "91 µm")):
         assert f"{round(points[key])}" == quoted.split()[0] and quoted in text
     assert "107…115 µm" in text
+
+
+def test_a_table_sent_as_arrays_is_summed_as_the_books_and_bad_tables_are_refused_naming_why():
+    """Table 4.3 sent as arrays gives the book's table's distributions and points (the same sums); tables that
+    cannot be summed are refused with 422 and the reason."""
+    client = TestClient(create_app())
+    arrays = {**TABLE_4_3, "l1": 0.045, "l2": 0.18}
+    sent = client.post("/api/v1/wear", json={"reactions": arrays, "outputs": ["wear"]}).json()
+    book = client.post("/api/v1/wear", json={"reactions": "table_4_3", "outputs": ["wear"]}).json()
+    assert sent["points"] == book["points"] and sent["cylinder"] == book["cylinder"] and "errata" not in sent
+    assert sent["constant_load"] == book["constant_load"]
+    bad = [({"phi": TABLE_4_3["phi"][:-1]}, "one value per angle"),
+           ({key: value[:-2] for key, value in TABLE_4_3.items()}, "phi runs from 0 to 360"),
+           ({key: value[:-1] for key, value in TABLE_4_3.items()}, "odd number of rows"),
+           ({"R34": [0] * 13}, "wear needs a load"),
+           ({"l2": 0.04}, "longer than the crank")]
+    for change, reason in bad:
+        response = client.post("/api/v1/wear", json={"reactions": arrays | change})
+        assert response.status_code == 422 and reason in response.text, reason
+    nan = client.post("/api/v1/wear", content='{"reactions": {"phi": [NaN]}}', headers={"content-type": "application/json"})
+    assert nan.status_code == 422
+    with_loads = client.post("/api/v1/wear", json={"reactions": arrays, "loads": {"m2": 1}})
+    assert with_loads.status_code == 422 and "leave out loads" in with_loads.text

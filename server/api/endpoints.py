@@ -41,7 +41,7 @@ from ..core.kinetostatics.groups.analysis import analyse as analyse_groups
 from ..core.kinetostatics.groups.friction import PairFriction
 from ..core.kinetostatics.groups.report import group_forces_report
 from ..core.kinetostatics.report import crank_check, forces_report, wear_report
-from ..core.kinetostatics.wear_table import book_table_report, constant_load_rows
+from ..core.kinetostatics.wear_table import book_table_report, constant_load_rows, table_report
 from ..core.kinetostatics.virtual_work import reduced_moment
 from ..core.mechanisms import MECHANISMS, GeometryError, Notice
 from ..core.mechanisms.general import GENERAL_OUTPUTS, GeneralMechanism, compute_general
@@ -342,6 +342,9 @@ def wear(request: WearRequest, lang: str) -> Answer:
     cycles = 60 * request.rpm * request.hours
     if request.reactions == "table_4_3":
         return answer(book_table_report(parts, cycles), [], lang)
+    if request.reactions != "kinetostatics":
+        table = request.reactions
+        return answer(table_report(table.columns(), parts, cycles, (table.l1, table.l2)), [], lang)
     _, _, _, analysis = _force_analysis(request, omega=request.rpm * 2 * np.pi / 60, table=False)   # none read
     result = wear_report(analysis, parts, cycles)
     stroke = float(np.ptp(analysis.points["B"][:, 0]))

@@ -164,12 +164,23 @@ def tabulated_wear(table: dict, parts: dict, cycles: float, links: tuple[float, 
     }
 
 
+def table_report(table: dict, parts: dict, cycles: float, links: tuple[float, float]) -> dict:
+    """The wear from a table of reactions (tabulated_wear) with the constant-load models at its mean loads and
+    the allowed wear of an engine cylinder (150…180 µm, Chaika–Vasylenko §4.3 after Kragelsky)."""
+    result = tabulated_wear(table, parts, cycles, links)
+    mean_r23 = float(np.mean(np.abs(np.asarray(table["R23"], float))))
+    stroke = float(piston_travel(np.pi, *links))                   # axial: H_B = 2l₁ (4.22)
+    result["constant_load"] = constant_load_rows(mean_r23, parts, result["coefficients"], cycles, stroke)
+    result["allowed"] = [150.0, 180.0]
+    return result
+
+
 def book_table_report(parts: dict, cycles: float) -> dict:
     """The §4.3 example from the reaction columns of Table 4.3: the distributions, the book's points beside its
     printed results, the constant-load estimates, and the misprints met on the way (printed beside corrected,
     each with the value it gives for these parts and cycles)."""
     from .. import errata
-    result = tabulated_wear(TABLE_4_3, parts, cycles)
+    result = table_report(TABLE_4_3, parts, cycles, BOOK_LINKS)
     c, k, points = table_columns(TABLE_4_3), result["coefficients"], result["points"]
     a_piston = 1e6 * (4 / np.pi) * k["piston"] * cycles / (parts["piston_length"] * parts["piston_diameter"])
     printed_integrand = np.where(c["R34"] > 0, np.abs(c["R34"] * c["V_qB"]), 0.0)
@@ -179,9 +190,7 @@ def book_table_report(parts: dict, cycles: float) -> dict:
     geometry = (parts["piston_length"], parts["piston_diameter"])
     result["comparison"] = [{"element": key, "printed": BOOK_WEAR[key], "table": points[key]}
                             for key in ("bush_23", "pin_23", "piston", "cylinder")]
-    result["book"], result["allowed"] = BOOK_WEAR, [150.0, 180.0]
-    result["constant_load"] = constant_load_rows(float(np.mean(c["R23_magnitude"])), parts, k, cycles,
-                                                 float(piston_travel(np.pi, *BOOK_LINKS)))
+    result["book"] = BOOK_WEAR
     result["errata"] = [
         *errata.wear_example(*BOOK_LINKS),
         errata.row("wear_mean_reaction", "chaika_vasylenko", "(4.23), §4.3", PRINTED_MEAN_R23,
