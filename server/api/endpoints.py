@@ -42,6 +42,7 @@ from ..core.kinetostatics.groups.analysis import analyse as analyse_groups
 from ..core.kinetostatics.groups.friction import PairFriction
 from ..core.kinetostatics.groups.report import group_forces_report
 from ..core.kinetostatics.report import crank_check, forces_report, wear_report
+from ..core.kinetostatics.wear_table import book_table_report, constant_load_rows, table_report
 from ..core.kinetostatics.virtual_work import reduced_moment
 from ..core.mechanisms import MECHANISMS, GeometryError, Notice
 from ..core.mechanisms.general import GENERAL_OUTPUTS, GeneralMechanism, compute_general
@@ -337,11 +338,25 @@ def _general_forces(request: ForcesRequest, lang: str) -> Answer:
 
 
 def wear(request: WearRequest, lang: str) -> Answer:
-    """Wear at the request's speed over its service life (cycles = 60 · rpm · hours)."""
-    _, _, _, analysis = _force_analysis(request, omega=request.rpm * 2 * np.pi / 60, table=False)   # none read
+    """Wear at the request's speed over its service life (cycles = 60 · rpm · hours), from the kinetostatics or
+    from the book's Table 4.3; beside it the constant-load models (4.3), (4.4), (4.14), (4.15) at the mean loads."""
     parts = request.model_dump(include={"pin_diameter", "pin_length", "piston_diameter", "piston_length",
                                         "I_pin", "I_bush", "I_piston", "I_cylinder"})
-    return answer(wear_report(analysis, parts, 60 * request.rpm * request.hours), analysis.notices, lang)
+    cycles = 60 * request.rpm * request.hours
+    if request.reactions == "table_4_3":
+        return answer(book_table_report(parts, cycles), [], lang)
+    if request.reactions != "kinetostatics":
+        table = request.reactions
+        return answer(table_report(table.columns(), parts, cycles, (table.l1, table.l2)), [], lang)
+    _, _, _, analysis = _force_analysis(request, omega=request.rpm * 2 * np.pi / 60, table=False)   # none read
+    result = wear_report(analysis, parts, cycles)
+    stroke = float(np.ptp(analysis.points["B"][:, 0]))
+    mean_r23 = result["mean_pressure_23"] * np.pi * parts["pin_length"] * parts["pin_diameter"] / 4      # (4.23)
+    k = {name: parts[f"I_{name}"] / result[f"mean_pressure_{pair}"]                                # (4.24)
+         for name, pair in (("pin", 23), ("bush", 23), ("piston", 34), ("cylinder", 34))}
+    result["coefficients"] = k
+    result["constant_load"] = constant_load_rows(mean_r23, parts, k, cycles, stroke)
+    return answer(result, analysis.notices, lang)
 
 
 def efficiency_chain(request: ChainRequest, lang: str) -> Answer:

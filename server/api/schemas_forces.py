@@ -7,6 +7,7 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from .schemas import MAX_PARAMS, LinkageModel
 from .schemas_dynamics import MassInput, MotorInput
+from .schemas_wear import TabulatedReactions
 
 
 class PairsInput(BaseModel):
@@ -111,6 +112,18 @@ class WearRequest(ForcesRequest):
     I_cylinder: float = Field(3e-12, gt=0, le=1e-3, description="wear intensity of the cylinder liner")
     rpm: float = Field(2400, ge=1, le=1e5, description="crank speed, rev/min (one cycle per revolution)")
     hours: float = Field(1000, gt=0, le=1e6, description="service life, h")
+    reactions: Literal["kinetostatics", "table_4_3"] | TabulatedReactions = Field(
+        "kinetostatics", description="the loads: the kinetostatics of params and loads, the reaction columns of "
+        "Chaika–Vasylenko Table 4.3 (its engine at 2400 rpm) or a table of them; with a table no params, loads, "
+        "pairs, n or tolerance")
+
+    @model_validator(mode="after")
+    def table_alone(self):
+        fixed = {"rpm"} if self.reactions == "table_4_3" else set()       # Table 4.3 is at 2400 rpm
+        given = sorted(self.model_fields_set & {"params", "loads", "pairs", "n", "tolerance", *fixed})
+        if self.reactions != "kinetostatics" and given:
+            raise ValueError(f"reactions from a table take no kinetostatics: leave out {', '.join(given)}")
+        return self
 
 
 class ChainRequest(BaseModel):

@@ -29,9 +29,11 @@ class ContentError(ValueError):
     """A scene file that does not resolve; the message names the file, the variant and the slider."""
 
 
-def resolved_scene(raw: dict, where: str, shared: dict[str, dict], presets: dict[str, dict] | None = None) -> dict:
-    """The scene ``raw`` (read from the file ``where``) with every "extends", "use" and "preset" resolved
-    (``presets``: content/mechanisms/*.json by name)."""
+def resolved_scene(raw: dict, where: str, shared: dict[str, dict], presets: dict[str, dict] | None = None,
+                   tables: dict[str, dict] | None = None) -> dict:
+    """The scene ``raw`` (read from the file ``where``) with every "extends", "use", "preset" and table picker
+    resolved (``presets``: content/mechanisms/*.json by name; ``tables``: content/tables/*.json, tables.py)."""
+    from .tables import with_table_pickers
     variants = raw.get("variants", [])
     by_id = {}
     for index, variant in enumerate(variants):
@@ -40,8 +42,8 @@ def resolved_scene(raw: dict, where: str, shared: dict[str, dict], presets: dict
         if variant["id"] in by_id:
             raise ContentError(f"{where}: variant {variant['id']}: two variants with this id")
         by_id[variant["id"]] = variant
-    resolved = [copy.deepcopy(_with_preset(_with_shared_sliders(_inherited(v, by_id, where, ()), where, shared),
-                                           where, presets or {}))
+    resolved = [copy.deepcopy(with_table_pickers(_with_preset(_with_shared_sliders(
+        _inherited(v, by_id, where, ()), where, shared), where, presets or {}), where, tables or {}))
                 for v in variants]                   # each its own objects: inherited parts are not shared
     return copy.deepcopy(raw | {"variants": []}) | {"variants": resolved}
 

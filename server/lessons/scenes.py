@@ -50,6 +50,8 @@ class Toggle(BaseModel):
     default: float | str
     label: Text
     option_labels: list[Text]
+    display: Literal["radio", "select"] = Field("radio", description="radio buttons, or a drop-down list "
+                                                                      "(a table's rows)")
 
 
 class Variant(BaseModel):
@@ -182,13 +184,16 @@ def scene_documents() -> dict[str, dict]:
 
 def read_scene_documents(content: Path) -> dict[str, dict]:
     """The scene files of content/scenes with shared sliders (content/sliders.json), inheriting variants and
-    mechanism presets (content/mechanisms) resolved (scene_files.py), each slider checked with the file, the variant and the slider named."""
+    mechanism presets (content/mechanisms) and the pickers of content/tables resolved (scene_files.py), each slider
+    checked with the file, the variant and the slider named."""
     shared = json.loads((content / "sliders.json").read_text(encoding="utf-8"))
     presets = {path.stem: json.loads(path.read_text(encoding="utf-8"))
                for path in sorted((content / "mechanisms").glob("*.json"))}
+    tables = {path.stem: json.loads(path.read_text(encoding="utf-8"))
+              for path in sorted((content / "tables").glob("*.json"))}
     documents = {}
     for path in sorted((content / "scenes").glob("*.json")):
-        document = resolved_scene(json.loads(path.read_text(encoding="utf-8")), path.name, shared, presets)
+        document = resolved_scene(json.loads(path.read_text(encoding="utf-8")), path.name, shared, presets, tables)
         for variant in document["variants"]:
             for index, slider in enumerate([*variant.get("sliders", []), variant.get("overlay") or {}]):
                 if isinstance(slider, dict) and slider:

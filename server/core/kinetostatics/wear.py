@@ -8,6 +8,11 @@ Piston (cylindrical slider) and cylinder, the pressed side only:
     δ₄(X) = a₄ ∫_{piston over X} |R₃₄ V_qB| dφ,  a₄ = 10⁶ d k₄ n_c/(l_p d_p), d = 4/π        (4.18)
 Wear coefficients from the wear intensities: k = I_s/p_m, p_m = 4 R_m/(π l d) (4.23), (4.24).
 Wear in micrometres; integrals by the trapezoidal rule as in the book's program ISNKPKPM.
+
+Under a constant load (Chaika–Vasylenko §4.1, Figs 4.1 and 4.3), in SI (wear in metres):
+    δ₂ = δ₂,max cos ψ (4.1),  p = p_max cos ψ (4.2),  F_e = 2∫₀^{π/2} p_max l_z r cos²ψ dψ = p_max l_z r π/2 (4.3),
+    p_max = 2F_e/(π l_z r) (4.4),  p = 2F_e cos ψ/(π l_z r) (4.5),  zero where |ψ| > π/2 (out of contact);
+    δ₃,c = 2H_B k₃ p (4.14),  δ₄,c = S k₄ p (4.15) with the friction path S(X) of a guide point per cycle.
 """
 from __future__ import annotations
 
@@ -49,3 +54,42 @@ def cylinder_wear(phi: np.ndarray, normal: np.ndarray, velocity_analog: np.ndarr
     covered = (points[:, None] >= travel[None, :]) & (points[:, None] <= travel[None, :] + length)
     a = 1e6 * (4 / np.pi) * k * cycles / (length * diameter)
     return a * np.trapezoid(np.where(covered, pressed[None, :], 0.0), phi, axis=1)
+
+
+def cosine_law(peak, psi):
+    """δ₂(ψ) = δ₂,max cos ψ (4.1) and p(ψ) = p_max cos ψ (4.2) on the loaded half |ψ| ≤ π/2, zero beyond it."""
+    return np.asarray(peak) * np.maximum(np.cos(psi), 0.0)
+
+
+def peak_pressure(force, length, radius):
+    """p_max = 2F_e/(π l_z r) (4.4), Pa, for the force F_e (N) on a journal of radius r and length l_z (m)."""
+    return 2 * np.asarray(force) / (np.pi * length * radius)
+
+
+def cosine_pressure(force, length, radius, psi):
+    """p(ψ) = 2F_e cos ψ/(π l_z r) (4.5), Pa, zero out of contact (|ψ| > π/2)."""
+    return cosine_law(peak_pressure(force, length, radius), psi)
+
+
+def pressure_resultant(peak, length, radius):
+    """F_e = 2∫₀^{π/2} p_max l_z r cos²ψ dψ = p_max l_z r π/2 (4.3), N: the load the cosine pressure carries."""
+    return np.asarray(peak) * length * radius * np.pi / 2
+
+
+def slider_wear(k, pressure, stroke, cycles=1.0):
+    """δ₃ = n_c·2H_B k₃ p (4.14), m: a slider under a uniform pressure p slides 2H_B per cycle."""
+    return cycles * 2 * stroke * k * np.asarray(pressure)
+
+
+def guide_path(x, slider_length, stroke):
+    """The friction path S per cycle of a guide point X (m, from the guide's top-dead-centre end) under a slider
+    of length l_p with stroke H_B, reconstructed from Fig. 4.3 (the print reads S = 0 at the ends, l_p at D₄,
+    2l_p on K₄M₄): S = 2·(length of the travel over which the slider covers X)
+    = 2·(min(X, H_B) − max(X − l_p, 0)), zero outside [0, H_B + l_p]."""
+    x = np.asarray(x, float)
+    return 2 * np.clip(np.minimum(x, stroke) - np.maximum(x - slider_length, 0.0), 0.0, None)
+
+
+def guide_wear(k, pressure, path, cycles=1.0):
+    """δ₄ = n_c·S k₄ p (4.15), m: a guide point slid over a distance S per cycle under the pressure p."""
+    return cycles * np.asarray(path) * k * np.asarray(pressure)

@@ -9,6 +9,7 @@
  * thumb's position); a logarithmic one steps from the keyboard by a fraction of a decade (slider_scale.js).
  * On a phone or tablet the controls are a sheet at the bottom of the screen (controls_sheet.js).
  */
+import { choiceSelect } from "./choice_select.js";
 import { controlsSheet } from "./controls_sheet.js";
 import { element } from "./dom.js";
 import {
@@ -122,6 +123,7 @@ export class ControlsView {
   }
 
   #toggle(toggle) {
+    if (toggle.display === "select") return choiceSelect(toggle, this.model, this.lang);
     const name = `toggle-${toggle.id}`;
     const options = toggle.options.map((option, i) => {
       const radio = element("input", {

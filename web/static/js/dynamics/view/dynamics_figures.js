@@ -134,8 +134,9 @@ export function polarFigure(panel, data, texts) {
         bgcolor: "#ffffff",
         angularaxis: { direction: "counterclockwise", rotation: 0, dtick: 45, ticksuffix: "°", gridcolor: GRID,
           hoverformat: ".1f" },
-        radialaxis: { rangemode: "tozero", angle: 90, tickangle: 90, gridcolor: GRID, exponentformat: "power",
-          hoverformat: ".4g", title: { text: radius } },
+        // autorange said: under the graph's uirevision Plotly kept an earlier answer's radial range (curves clipped)
+        radialaxis: { autorange: true, rangemode: "tozero", angle: 90, tickangle: 90, gridcolor: GRID,
+          exponentformat: "power", hoverformat: ".4g", title: { text: radius } },
       },
     },
   };

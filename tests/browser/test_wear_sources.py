@@ -1,0 +1,79 @@
+"""The wear scene's sources in a real browser, one opening of the Russian page: a material picked from Table 1.1
+(a drop-down list) changes the bush's wear coefficient and its polar wear; the variant driven by the reaction
+columns of the book's Table 4.3 shows the book's printed results beside the sums from its table, its misprints
+and how it was summed; dragging the service life moves the distributions and the readouts. No English sentence
+of the app, no console error; screenshots in ru at desktop and phone width."""
+from __future__ import annotations
+
+import json
+import sys
+
+import pytest
+
+from conftest import REPO, drag_slider, read_scene, screenshot
+
+sys.path.insert(0, str(REPO / "tests"))
+from test_translations import english_in  # noqa: E402
+
+pytestmark = pytest.mark.browser
+
+SCENE = read_scene("wear")
+GRAPH = "document.querySelector(`#panel-${id} .graph`)"
+
+
+def series(page, panel: str, index: int, key: str) -> str:
+    return page.evaluate(f"([id, i, key]) => JSON.stringify({GRAPH}.data[i][key])", [panel, index, key])
+
+
+def changed(page, panel: str, index: int, key: str, before: str) -> None:
+    page.wait_for_function(f"([id, i, key, before]) => {GRAPH}?.data?.[i] && "
+                           f"JSON.stringify({GRAPH}.data[i][key]) !== before", arg=[panel, index, key, before])
+
+
+def text_changed(page, selector: str, before: str) -> None:
+    page.wait_for_function("([s, before]) => document.querySelector(s)?.innerText !== before", arg=[selector, before])
+
+
+def test_a_material_and_the_books_table_drive_the_wear(browser_page):
+    page = browser_page
+    page.goto("/scenes/wear?lang=ru")
+    engine, table = SCENE["variants"]
+    page.wait_for_function(f"id => {GRAPH}?.data?.length === 2", arg="joint")
+    page.wait_for_function("() => document.querySelector('#panel-coefficients')?.innerText.includes('·10')")
+    bush_before, k_before = series(page, "joint", 1, "r"), page.inner_text("#panel-coefficients")
+    options = page.locator("#toggle-bush option")
+    assert options.count() == 7 and "бронза" in options.nth(0).inner_text()
+    page.select_option("#toggle-bush", index=1)                # ICE bush, bronze: I_s ≈ 4·10⁻¹⁰ (was 1·10⁻¹⁰)
+    changed(page, "joint", 1, "r", bush_before)
+    text_changed(page, "#panel-coefficients", k_before)
+    peak = lambda r: max(v for v in json.loads(r) if v is not None)
+    assert peak(series(page, "joint", 1, "r")) == pytest.approx(4 * peak(bush_before), rel=1e-3)   # δ ∝ I_s
+
+    page.select_option("#variant", table["id"])
+    page.wait_for_function("() => document.querySelectorAll('#panel-comparison tbody tr').length === 4")
+    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="cylinder")
+    printed = page.locator("#panel-comparison tbody tr td:nth-child(2)").all_inner_texts()
+    assert [float(p.replace(",", ".")) for p in printed] == [88, 36, 76, 43]
+    assert page.locator("#panel-errata tbody tr").count() == 7
+    assert page.locator("#panel-numerics").inner_text().strip()
+    page.wait_for_function(f"id => {GRAPH}?.data?.length === 2", arg="joint")
+    cylinder_before, points_before = series(page, "cylinder", 0, "y"), page.inner_text("#panel-book_points")
+    joint_before = series(page, "joint", 1, "r")
+    drag_slider(page, "#slider-hours", 1.0)                    # 1000 h → 5000 h
+    changed(page, "cylinder", 0, "y", cylinder_before)
+    text_changed(page, "#panel-book_points", points_before)
+    hours = float(page.input_value("#slider-hours"))
+    assert hours > 4000
+    assert peak(series(page, "cylinder", 0, "y")) == pytest.approx(hours / 1000 * peak(cylinder_before), rel=1e-3)
+    page.locator("#panel-joint").scroll_into_view_if_needed()
+    changed(page, "joint", 1, "r", joint_before)
+    assert peak(series(page, "joint", 1, "r")) == pytest.approx(hours / 1000 * peak(joint_before), rel=1e-3)
+    radial = page.evaluate(f"id => {GRAPH}._fullLayout.polar.radialaxis.range[1]", "joint")
+    assert radial >= peak(series(page, "joint", 1, "r"))         # the whole distribution is drawn
+    body = page.inner_text("body")
+    assert "NaN" not in body and english_in(body, "ru") == []
+    screenshot(page, "wear_table_4_3_ru")
+    page.set_viewport_size({"width": 390, "height": 844})
+    page.wait_for_function(f"id => {GRAPH}?.data?.length === 2", arg="joint")
+    screenshot(page, "wear_table_4_3_ru_phone")
+    assert page.problems == []
