@@ -27,7 +27,7 @@ FORBIDDEN = {
     "a two-author key spelled otherwise than 'Chaika–Vasylenko' (an en dash)":
         re.compile(r"\b(?:Chaika|Drakunov|Kuleshova|Чайка|Дракунов|Кулешова)(?: ?&| and| и| і|,|-) ?(?=[A-ZА-ЯЄІ][a-zа-яєі])"),
 }
-WORD = r"[A-ZА-ЯЁЄІЇ][a-zа-яёєіїь]+(?:'[a-zа-яёєіїь]+)?"
+WORD = r"[A-ZА-ЯЁЄІЇ][a-zа-яёєіїь]+(?:'(?!s\b)[a-zа-яёєіїь]+)?"      # Єрем'янц; an English possessive 's is not part of it
 REFERENCE = r"(?:'s|')? (?:\(\d+(?:\.\d+)?\*?\)|§ ?\d|(?:Figs?\.|рис\.|Table|табл\.) ?\d)"
 # A name in the middle of a sentence followed by an equation, section, figure or table: a citation.  At the
 # start of a sentence a capital word is ordinary prose ("Check (3.2)"), so only joined names count there.
