@@ -61,7 +61,8 @@ def main() -> None:
              "| request | wall median ms | ratio | CPU median ms | ratio |", "|---|---|---|---|---|"]
     for label in cases:
         wall, cpu = statistics.median(walls[label]), statistics.median(cpus[label])
-        lines.append(f"| {label} | {1e3 * wall:.1f} | {wall / base_wall:.2f} | {1e3 * cpu:.1f} | {cpu / base_cpu:.2f} |")
+        lines.append(f"| {label} | {1e3 * wall:.1f} | {wall / base_wall:.2f} | {1e3 * cpu:.1f} "
+                     f"| {cpu / base_cpu:.2f} |")
     text = "\n".join(lines) + "\n"
     print(text)
     (ROOT / "bench" / "results" / "friction_influence.md").write_text(text, encoding="utf-8")

@@ -42,7 +42,8 @@ class FrictionInfluenceRequest(BaseModel):
     mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider of /forces")
     outputs: list[Literal[OUTPUTS]] = Field(list(OUTPUTS), min_length=1, max_length=2, description=(
         "sweep: each figure over f = 0 … f_max; cycle: the curves at f = 0 and at f overlaid, and the comparison"))
-    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="crank-slider lengths l1, l2, e (m) and a2")
+    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS,
+                                     description="crank-slider lengths l1, l2, e (m) and a2")
     loads: ForceLoadsInput = Field(default_factory=ForceLoadsInput, description=(
         "masses, J1 (the crank's own inertia, group I), the mean speed omega and the slider's load; a working "
         "machine in steady motion: no gas force, epsilon 0"))
@@ -51,9 +52,11 @@ class FrictionInfluenceRequest(BaseModel):
     f_max: float = Field(0.3, gt=0, le=2, description="the sweep's largest f")
     count: int = Field(13, ge=3, le=41, description="the sweep's number of f values, 0 … f_max")
     delta: float = Field(0.0125, ge=1e-3, le=0.5, description="[δ]: the coefficient of speed fluctuation allowed")
-    flywheel: float = Field(0.0, ge=0, le=1e4, description="a flywheel already on the crank, kg·m² (0: the machine as it is)")
+    flywheel: float = Field(0.0, ge=0, le=1e4,
+                            description="a flywheel already on the crank, kg·m² (0: the machine as it is)")
     wear: WearInput | None = Field(default_factory=WearInput, description="the wear's parts; null: no wear")
-    n: int = Field(181, ge=13, le=1441, description="points over one closed cycle, an odd number (the error estimate halves the grid)")
+    n: int = Field(181, ge=13, le=1441,
+                   description="points over one closed cycle, an odd number (the error estimate halves the grid)")
     tolerance: float = Field(1e-9, ge=1e-14, le=1e-2, description="ε_R of the friction equilibrium (as /forces)")
 
     @field_validator("n")

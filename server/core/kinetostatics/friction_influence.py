@@ -201,7 +201,10 @@ def speed_and_flywheel(machine: MachineSetup, flywheel: Flywheel, phi: np.ndarra
     omega = fw.periodic_speed(cycle, group_one + flywheel.inertia, omega_mean)
     runs = bool(np.isfinite(omega).all())
     delta = fw.achieved_delta(cycle, group_one + flywheel.inertia, omega_mean) if runs else None
-    needed = fw.exact(cycle, omega_mean, flywheel.delta, fw.merzalov(cycle, omega_mean, flywheel.delta).inertia)
+    guess = fw.merzalov(cycle, omega_mean, flywheel.delta).inertia
+    if guess <= 0:                                  # A and J constant: ω is, whatever the inertia
+        return (omega if runs else None), delta, 0.0
+    needed = fw.exact(cycle, omega_mean, flywheel.delta, guess)
     return (omega if runs else None), delta, max(needed.inertia - group_one, 0.0)
 
 
@@ -228,11 +231,17 @@ class Grid:
     reference: dict | None
 
 
-def relative_change(fine: float | None, coarse: float | None) -> float:
-    """|coarse − fine|/|fine|; 0 where either is missing or both are equal (no flywheel needed on either grid)."""
+def relative_change(fine: float | None, coarse: float | None, scale: float) -> float:
+    """|coarse − fine|/scale; 0 where either is missing or both are equal (no flywheel needed on either grid)."""
     if fine is None or coarse is None or fine == coarse:
         return 0.0
-    return abs(coarse - fine) / abs(fine) if fine != 0 else np.inf
+    return abs(coarse - fine) / scale if scale > 0 else np.inf
+
+
+def figure_scale(figures: dict, key: str) -> float:
+    """What a figure's change is relative to: itself, but M_ур's mean (zero in a machine without a useful load
+    or friction) to M_ур's peak."""
+    return abs(figures["balancing_peak" if key == "balancing_mean" else key])
 
 
 class Study:
@@ -308,10 +317,11 @@ class Study:
         error = 0.0
         if checked:
             coarse = self.figures(k, flywheel, self.grids[1])[0]
-            error = max(relative_change(fine[key], coarse.get(key)) for key in fine)
+            error = max(relative_change(fine[key], coarse.get(key), figure_scale(fine, key)) for key in fine)
         return Influence(f, analysis, locked, dict.fromkeys(FIGURES) | fine, lost, omega, error)
 
-    def report(self, f: float, flywheel: Flywheel, sweep: np.ndarray | None, show_cycle: bool) -> tuple[dict, list[Notice]]:
+    def report(self, f: float, flywheel: Flywheel, sweep: np.ndarray | None,
+               show_cycle: bool) -> tuple[dict, list[Notice]]:
         """The explorer's answer at f: the ``sweep`` (each figure over those f's) and, ``show_cycle``, the curves at
         f = 0 and f overlaid and the comparison of step 19; the onset of self-locking and the numerics.  The
         error estimate is the largest change on the grid of half as many angles at f = 0, at f and at the
