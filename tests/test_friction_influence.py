@@ -266,6 +266,16 @@ def test_a_machine_without_loads_needs_no_flywheel_and_says_why_it_has_no_wear()
     assert data["warnings"] == [interface_texts("ru")["warn_friction_influence_no_wear"]]
 
 
+def test_a_machine_that_stalls_says_so_and_still_gives_the_flywheel_it_needs():
+    """The fuzzing found it (a 500): J₁ = 0.5 kg·m² against the rod's J_S2 = 47 kg·m², δ above 1 already without
+    friction; at f = 0.3 the kinetic energy runs out within the cycle, no periodic motion keeps ω_m: δ is null
+    there, said in words, and the flywheel for [δ] is given."""
+    data = strict(client.post("/api/v1/friction-influence", json={"loads": {"J1": 0.5, "J_S2": 47.0}}))
+    assert data["sweep"]["delta"][-2] > 1 and data["sweep"]["delta"][-1] is None
+    assert data["sweep"]["flywheel"][-1] > data["sweep"]["flywheel"][-2] > 0
+    assert "From f = 0.3 on the machine" in data["warnings"][-1]
+
+
 def test_a_mechanism_that_cannot_turn_is_refused_naming_the_field():
     response = client.post("/api/v1/friction-influence", json=SCENE | {"params": {"l1": 0.1, "l2": 0.05}})
     assert response.status_code == 422 and "l2" in response.text

@@ -241,7 +241,8 @@ def relative_change(fine: float | None, coarse: float | None, scale: float) -> f
 def figure_scale(figures: dict, key: str) -> float:
     """What a figure's change is relative to: itself, but M_ур's mean (zero in a machine without a useful load
     or friction) to M_ур's peak."""
-    return abs(figures["balancing_peak" if key == "balancing_mean" else key])
+    value = figures["balancing_peak" if key == "balancing_mean" else key]
+    return 0.0 if value is None else abs(value)
 
 
 class Study:
