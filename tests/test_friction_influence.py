@@ -28,6 +28,7 @@ from server.core.dynamics.reduction import Inertias, reduced_inertia
 from server.core.kinetostatics.crank_slider import Loads, Pairs, analyse
 from server.core.kinetostatics.friction_influence import (FIGURES, Flywheel, MachineSetup, Study, WearParts,
                                                           figure_scale, friction_moment, load_moment, thinned)
+from server.core.kinetostatics.friction_influence_report import explorer_answer
 from server.core.kinetostatics.report import efficiency
 from server.core.kinetostatics.virtual_work import reduced_moment
 from server.core.mechanisms import MECHANISMS
@@ -108,7 +109,7 @@ def test_guide_friction_alone_against_the_closed_form_and_the_onset_of_self_lock
     expected = 1000 * np.abs(dx_b) / (1 - 0.3 * np.abs(s) / root)
     assert np.max(np.abs(study.analyses[1].balancing_moment - expected)) <= 1e-9 * expected.max()
     assert study.onset == pytest.approx(np.sqrt(1.5**2 - 1), rel=1e-8)
-    answer, notices = study.report(1.5, Flywheel(0.02), np.array([0.0, 0.3, 1.5]), True)
+    answer, notices = explorer_answer(study, 1.5, Flywheel(0.02), np.array([0.0, 0.3, 1.5]), True)
     assert answer["sweep"]["locked"] == [False, False, True]
     assert np.isnan(answer["sweep"]["efficiency"][2]) and answer["comparison"][6]["friction"] is None
     assert [n.code for n in notices] == ["friction_influence_self_locking"]
@@ -177,7 +178,7 @@ def test_the_error_estimate_holds_against_a_finer_grid(params, force):
     (figure_scale), the others to themselves."""
     setup = machine(params=MECHANISMS["slider_crank"].check(params), loads=Loads(**{**LOADS.__dict__, "force": force}))
     sweep = np.linspace(0.0, 0.3, 7)
-    answer, _ = Study(setup, np.unique([*sweep, 0.1])).report(0.1, Flywheel(0.02), sweep, True)
+    answer, _ = explorer_answer(Study(setup, np.unique([*sweep, 0.1])), 0.1, Flywheel(0.02), sweep, True)
     fine = Study(machine(2881, setup.params, setup.loads), sweep)
     estimate = answer["numerics"]["error_estimate"]
     for k in range(sweep.size):

@@ -511,6 +511,7 @@ def compute(endpoint: str, body: dict, lang: str = "en") -> dict:
 # POST /api/v1/friction-influence: friction swept in every pair of the crank-slider machine (Chaika–Vasylenko §3.4,
 # steps 18–19, and §4). Its imports are here, with its body, so that the endpoint is one block of this file.
 from ..core.kinetostatics.friction_influence import Flywheel, MachineSetup, Study, WearParts, sweep_values  # noqa: E402
+from ..core.kinetostatics.friction_influence_report import explorer_answer  # noqa: E402
 from .schemas_friction_influence import FrictionInfluenceRequest  # noqa: E402
 
 
@@ -530,12 +531,12 @@ def _friction_values(request: FrictionInfluenceRequest) -> tuple[np.ndarray | No
 
 
 def friction_influence(request: FrictionInfluenceRequest, lang: str, study: Study | None = None) -> Answer:
-    """The sweep over f and/or the cycle at f = 0 and f overlaid (core/kinetostatics/friction_influence.py);
+    """The sweep over f and/or the cycle at f = 0 and f overlaid (core/kinetostatics/friction_influence*.py);
     ``study``: the kinetostatics of the request's machine at its f's made already (a batch)."""
     sweep, values = _friction_values(request)
     study = study or Study(_friction_machine(request), np.unique(values))
-    result, notices = study.report(request.f, Flywheel(request.delta, request.flywheel), sweep,
-                                   "cycle" in request.outputs)
+    result, notices = explorer_answer(study, request.f, Flywheel(request.delta, request.flywheel), sweep,
+                                      "cycle" in request.outputs)
     return answer(result, notices, lang)
 
 
