@@ -21,6 +21,7 @@ from .security import SecurityMiddleware
 from .static_files import content_version, mount_versioned
 from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
+from .routers import friction_influence
 from ..classroom.variants import SpecError
 from .routers import (angular, assignment_pages, assignments, bearings, dynamics, editor_pages, elastic, family, motor,
                       forces, kinematics, mechanisms, pages, scenes)
@@ -70,6 +71,7 @@ def create_app() -> FastAPI:
     for module in (mechanisms, kinematics, dynamics, motor, elastic, forces, bearings, angular, family, scenes,
                    assignments):
         api.include_router(module.router)
+    api.include_router(friction_influence.router)   # POST /api/v1/friction-influence
     api.include_router(cache_stats.router)  # GET /api/v1/cache
     app.include_router(api)
     app.include_router(pages.router)

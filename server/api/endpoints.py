@@ -524,3 +524,56 @@ def compute(endpoint: str, body: dict, lang: str = "en") -> dict:
     """The JSON answer of POST /api/v1/<endpoint>?precision=full as Python data: lists and numbers,
     null (None) for every non-finite number, as a client parses it."""
     return orjson.loads(serialise(compute_answer(endpoint, body, lang).payload, digits=None))
+
+
+# POST /api/v1/friction-influence: friction swept in every pair of the crank-slider machine (Chaika–Vasylenko §3.4,
+# steps 18–19, and §4). Its imports are here, with its body, so that the endpoint is one block of this file.
+from ..core.kinetostatics.friction_influence import Flywheel, MachineSetup, Study, WearParts, sweep_values  # noqa: E402
+from ..core.kinetostatics.friction_influence_report import explorer_answer  # noqa: E402
+from .schemas_friction_influence import FrictionInfluenceRequest  # noqa: E402
+
+
+def _friction_machine(request: FrictionInfluenceRequest) -> MachineSetup:
+    """The request's machine, its geometry checked (GeometryError names the field)."""
+    params = MECHANISMS["slider_crank"].check(request.params)
+    loads = Loads(**request.loads.model_dump() | {"gas": None})
+    wear_parts = None if request.wear is None else WearParts(**request.wear.model_dump())
+    return MachineSetup(params, loads, Pairs(**request.pairs.model_dump()), np.linspace(0.0, 2 * np.pi, request.n),
+                        request.tolerance, wear_parts)
+
+
+def _friction_values(request: FrictionInfluenceRequest) -> tuple[np.ndarray | None, list[float]]:
+    """The request's sweep (None when not asked for) and every f its answer needs: 0, f and the sweep's."""
+    sweep = sweep_values(request.f_max, request.count) if "sweep" in request.outputs else None
+    return sweep, [0.0, request.f, *([] if sweep is None else sweep)]
+
+
+def friction_influence(request: FrictionInfluenceRequest, lang: str, study: Study | None = None) -> Answer:
+    """The sweep over f and/or the cycle at f = 0 and f overlaid (core/kinetostatics/friction_influence*.py);
+    ``study``: the kinetostatics of the request's machine at its f's made already (a batch)."""
+    sweep, values = _friction_values(request)
+    study = study or Study(_friction_machine(request), np.unique(values))
+    result, notices = explorer_answer(study, request.f, Flywheel(request.delta, request.flywheel), sweep,
+                                      "cycle" in request.outputs)
+    return answer(result, notices, lang)
+
+
+def friction_influence_batch(requests: list, lang: str, reads: Reads) -> list[Answer | GeometryError]:
+    """Members whose requests differ only in f, [δ] or the flywheel given (a family of those sliders) share one
+    Study: one stacked solve of the kinetostatics at all their f's, each f's forces and wear once."""
+    groups: dict[bytes, list[int]] = {}
+    for k, request in enumerate(requests):
+        key = orjson.dumps(request.model_dump(exclude={"f", "delta", "flywheel"}), option=orjson.OPT_SORT_KEYS)
+        groups.setdefault(key, []).append(k)
+    outcomes: list = [None] * len(requests)
+    for members in groups.values():
+        values = np.unique([value for k in members for value in _friction_values(requests[k])[1]])
+        study = refused_or(lambda: Study(_friction_machine(requests[members[0]]), values))
+        for k in members:
+            outcomes[k] = study if isinstance(study, GeometryError) else refused_or(
+                lambda: friction_influence(requests[k], lang, study))
+    return outcomes
+
+
+ENDPOINTS["friction-influence"] = (FrictionInfluenceRequest, friction_influence)
+BATCHES["friction-influence"] = friction_influence_batch

@@ -150,7 +150,7 @@ class Scene(BaseModel):
     kind: Literal["kinematics", "dynamics"] = "kinematics"
     endpoint: Literal["kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
                       "angular-acceleration", "bearings", "motor-characteristic",
-                      "flywheel-analysis"] = "kinematics"
+                      "flywheel-analysis", "friction-influence"] = "kinematics"
     source: Text
     title: Text
     summary: Text

@@ -1,0 +1,82 @@
+"""Request model of /friction-influence: the crank-slider machine of /forces with one f in every pair, swept
+(Chaika–Vasylenko §3.4, steps 18–19, and §4)."""
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+from .schemas import MAX_PARAMS
+from .schemas_forces import ForceLoadsInput
+
+OUTPUTS = ("sweep", "cycle")
+
+
+class RadiiInput(BaseModel):
+    """The journal radii of the revolute pairs (the friction circles are ρ = f·r)."""
+
+    model_config = ConfigDict(extra="forbid")
+    r14: float = Field(0.02, gt=0, le=1, description="journal radius at O (main bearing), m")
+    r12: float = Field(0.015, gt=0, le=1, description="journal radius at A (crank pin), m")
+    r23: float = Field(0.01, gt=0, le=1, description="journal radius at B (piston pin), m")
+
+
+class WearInput(BaseModel):
+    """The pin and piston, the wear intensities I_s (Table 1.1) and the service life: by default the two-stroke
+    engine of §4.3; the machine's mean speed gives the cycles (one per turn)."""
+
+    model_config = ConfigDict(extra="forbid")
+    pin_diameter: float = Field(0.02, ge=1e-3, le=1, description="piston pin diameter d₂₃, m")
+    pin_length: float = Field(0.025, ge=1e-3, le=1, description="pin bearing length l_z23, m")
+    piston_diameter: float = Field(0.075, ge=1e-3, le=2, description="piston diameter D_p, m")
+    piston_length: float = Field(0.076, ge=1e-3, le=2, description="piston length L_p, m")
+    I_pin: float = Field(0.6e-10, gt=0, le=1e-3, description="wear intensity of the pin")
+    I_bush: float = Field(1.0e-10, gt=0, le=1e-3, description="wear intensity of the bush")
+    I_piston: float = Field(2e-12, gt=0, le=1e-3, description="wear intensity of the piston")
+    I_cylinder: float = Field(3e-12, gt=0, le=1e-3, description="wear intensity of the cylinder liner")
+    hours: float = Field(1000, gt=0, le=1e6, description="service life, h")
+
+
+class FrictionInfluenceRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider of /forces")
+    outputs: list[Literal[OUTPUTS]] = Field(list(OUTPUTS), min_length=1, max_length=2, description=(
+        "sweep: each figure over f = 0 … f_max; cycle: the curves at f = 0 and at f overlaid, and the comparison"))
+    params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS,
+                                     description="crank-slider lengths l1, l2, e (m) and a2")
+    loads: ForceLoadsInput = Field(default_factory=ForceLoadsInput, description=(
+        "masses, J1 (the crank's own inertia, group I), the mean speed omega and the slider's load; a working "
+        "machine in steady motion: no gas force, epsilon 0"))
+    pairs: RadiiInput = Field(default_factory=RadiiInput)
+    f: float = Field(0.1, ge=0, le=2, description="the friction coefficient shown against f = 0, in every pair")
+    f_max: float = Field(0.3, gt=0, le=2, description="the sweep's largest f")
+    count: int = Field(13, ge=3, le=41, description="the sweep's number of f values, 0 … f_max")
+    delta: float = Field(0.0125, ge=1e-3, le=0.5, description="[δ]: the coefficient of speed fluctuation allowed")
+    flywheel: float = Field(0.0, ge=0, le=1e4,
+                            description="a flywheel already on the crank, kg·m² (0: the machine as it is)")
+    wear: WearInput | None = Field(default_factory=WearInput, description="the wear's parts; null: no wear")
+    n: int = Field(181, ge=13, le=1441,
+                   description="points over one closed cycle, an odd number (the error estimate halves the grid)")
+    tolerance: float = Field(1e-9, ge=1e-14, le=1e-2, description="ε_R of the friction equilibrium (as /forces)")
+
+    @field_validator("n")
+    @classmethod
+    def odd(cls, value: int) -> int:
+        if value % 2 == 0:
+            raise ValueError("an odd number of points: the error estimate takes every other one")
+        return value
+
+    @field_validator("loads")
+    @classmethod
+    def steady_working_machine(cls, loads: ForceLoadsInput) -> ForceLoadsInput:
+        if loads.gas is not None:
+            raise ValueError("gas: the explorer takes a working machine (the load on the slider), not an engine")
+        if loads.epsilon != 0:
+            raise ValueError("epsilon: the machine runs steadily about its mean speed (epsilon 0)")
+        return loads
+
+    @model_validator(mode="after")
+    def inertia(self):
+        if self.loads.J1 <= 0 and self.flywheel <= 0:
+            raise ValueError("loads.J1: the crank needs some inertia for the equation of motion (or give a flywheel)")
+        return self
