@@ -14,7 +14,7 @@ One coefficient f in every pair (f₁₄ = f₁₂ = f₂₃ = f₃₄ = f), for
       M_тр = f₃₄|R₃₄||V_qB| + f₁₂|R₁₂|r₁₂|1 − u₂₁| + f₂₃|R₂₃|r₂₃|u₂₁| + f₁₄|R₁₄|r₁₄        (3.30)
   from the kinetostatic reactions; a constant driving moment M_д = A_с/(2π), so A_д = A_с over the cycle
   (3.32): the mode of §3.4 for pumps and compressors.  A(φ) = ∫(M_д − M_с)dφ by the trapezoid rule;
-- δ = (ω_max − ω_min)/ω_m of the periodic solution with group I = J₁ + the flywheel given (Lecture 10 (10.4),
+- δ = (ω_max − ω_min)/ω_m of the periodic solution with group I = J₁ + the flywheel given (Lecture 10 §10.4,
   flywheel.achieved_delta), and the group-I inertia that [δ] needs, found exactly (flywheel.exact), less J₁:
   the flywheel J_м needed;
 - the wear of the pin, bush, piston and cylinder (§4, (4.12)–(4.21), report.wear_report) with the wear
