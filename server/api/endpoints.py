@@ -22,6 +22,7 @@ from ..core.angular_acceleration import CrankLaw, crank_slider, trammel
 from ..core.bearings.loads import pair_load
 from ..core.bearings.report import Design, bearings_report
 from ..core.dynamics import report
+from ..core.dynamics.cycle_moments import cycle_moments
 from ..core.dynamics.flywheel_analysis import flywheel_analysis
 from ..core.dynamics.general_machine import GeneralMachine, general_machine
 from ..core.dynamics.general_machine import reduction as general_reduction
@@ -152,7 +153,7 @@ def reduction(request: ReductionRequest, lang: str) -> Answer:
         result, notices = general_reduction(_general_machine(request, Motor()), request.n, request.omega,
                                             request.outputs)
         return answer(result, notices, lang)
-    outputs = [name for name in request.outputs if name != "errata"]
+    outputs = [name for name in request.outputs if name not in ("errata", "cycle_moments")]
     result, notices = report.reduction(
         request.mechanism, request.params, Inertias(**request.inertias.model_dump()),
         Load(**request.load.model_dump()), request.n, request.omega, outputs, request.iteration_phi) \
@@ -160,7 +161,10 @@ def reduction(request: ReductionRequest, lang: str) -> Answer:
     if "errata" in request.outputs:
         result["errata"] = errata.reduction(request.mechanism, MECHANISMS[request.mechanism].check(request.params),
                                             request.inertias.m3, request.omega)
-    return answer(result, notices, lang)
+    if "cycle_moments" in request.outputs:
+        result["cycle_moments"], more = reduced_cycle_moments(request)
+        notices = [*notices, *more]
+    return answer(nested_numerics(result, ("cycle_moments",), lang), notices, lang)
 
 
 def machine_key(request: MotionRequest | FlywheelRequest) -> bytes:
@@ -506,3 +510,14 @@ def compute(endpoint: str, body: dict, lang: str = "en") -> dict:
     """The JSON answer of POST /api/v1/<endpoint>?precision=full as Python data: lists and numbers,
     null (None) for every non-finite number, as a client parses it."""
     return orjson.loads(serialise(compute_answer(endpoint, body, lang).payload, digits=None))
+
+
+def reduced_cycle_moments(request: ReductionRequest) -> tuple[dict, list[Notice]]:
+    """Steps 8–10 of Chaika–Vasylenko's course project for the crank-slider: M_P, M_kO, M_G, M_Σ and their works
+    over the engine's or the compressor's cycle, the powers, and the graphical integration (Fig. 3.7)."""
+    if request.mechanism != "slider_crank" or request.cycle is None:
+        raise GeometryError("cycle", "the moments over a cylinder's cycle need the crank-slider and `cycle`",
+                            "cycle_needs_cylinder")
+    cycle = request.cycle
+    return cycle_moments(request.params, cycle.masses(request.inertias.m2, request.inertias.m3), cycle.cylinder(),
+                         request.omega, cycle.efficiency, cycle.drawing.core())
