@@ -14,7 +14,8 @@ with g⃗ = g(−sin α, −cos α) in the mechanism's frame (x along the guide,
         indicated power N_i = A_P|Φ ω₁/(τπ) (step 10); effective N_e = η_m N_i (printed "N_e = N_i/η_m")
     compressor or pump (Φ = 2π):
         M_kO = M₃ (the gas resists); M_O = M_kO + M_G; the motor's moment constant, M_P = −A_O|Φ /(2π)
-        N_e = A_P|Φ ω₁/(2π); the motor's power N_дв = N_e/η_Σ (η_Σ of the drive from motor to crank)
+        N_e = A_P|Φ ω₁/(2π) (without friction the gas's indicated power); the motor's N_дв = N_e/η_Σ (η_Σ of the
+        drive from the motor to the crank); a power that does not apply to the machine is None
 
 M_Σ = M_P + M_kO + M_G (3.25) without friction; A(φ) = ∫₀^φ M dφ (3.31); A_Σ = A_P + A_O + A_G.  Gravity does
 no work over whole turns, so A_Σ|Φ = 0: the steady state (3.32).
@@ -231,8 +232,9 @@ def cycle_moments(params: dict, masses: Masses, cylinder: Cylinder, omega: float
     moments["O"] = moments["kO"] + moments["G"]
     driving = cycle_work if engine else -cycle_work     # A_P|Φ = |A_O|Φ| (3.32)
     power = driving * omega / cycle
-    powers = ({"indicated": power, "effective": efficiency * power, "effective_printed": power / efficiency}
-              if engine else {"effective": power, "motor": power / efficiency})
+    powers = ({"indicated": power, "effective": efficiency * power, "effective_printed": power / efficiency,
+               "motor": None} if engine else
+              {"indicated": power, "effective": power, "effective_printed": None, "motor": power / efficiency})
     per_interval = 2 * r * stride                         # fine nodes per drawing interval
     node_index = np.arange(0, phi.size, per_interval)
     midpoints = node_index[:-1] + per_interval // 2
@@ -241,7 +243,8 @@ def cycle_moments(params: dict, masses: Masses, cylinder: Cylinder, omega: float
     graphical |= _comparison(graphical, fine["integrated"][node_index // 2], phi[node_index], phi[midpoints],
                              integrated[midpoints])
     index = np.arange(nodes.size) % (2 * r)
-    graphical |= {"integrated": "P" if engine else "O",
+    graphical |= {"integrated": "P" if engine else "O", "moment": integrated[::stride],
+                  "numeric_curve": shown["integrated"],
                   "chords": np.interp(nodes, phi[node_index], graphical["work"]),
                   "node_marks": np.where(index == 0, np.interp(nodes, phi[node_index], graphical["work"]), np.nan),
                   "midpoint_marks": np.where(index == r, integrated[::stride], np.nan)}
