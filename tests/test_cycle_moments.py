@@ -198,3 +198,14 @@ def test_the_endpoint_answers_the_variant_and_refuses_what_it_cannot_compute():
 def test_no_work_is_said_in_words():
     result, notices = run(engine(diagram=(tuple([0.0] * 11), tuple([0.0] * 11))))
     assert result["graphical"]["epsilon"] is None and [n.code for n in notices] == ["cycle_no_work"]
+
+
+def test_a_compressor_past_its_delivery_limit_is_said_in_words():
+    """π = p_d/p_s ≥ ((1 + c)/c)ⁿ = 21^1.3 ≈ 52.4 (c = 0.05, n = 1.3): the volumetric efficiency 1 − c(π^(1/n) − 1)
+    is zero there (checked here in its closed form), and the answer says the compressor delivers nothing."""
+    limit = Cylinder("compressor", 1e6, 0.075).delivery_limit
+    assert 1 - 0.05 * (limit ** (1 / 1.3) - 1) == pytest.approx(0.0, abs=1e-12)
+    below, quiet = run(Cylinder("compressor", (limit - 1.5) * 1e5, 0.075))
+    beyond, said = run(Cylinder("compressor", (limit - 0.5) * 1e5, 0.075))
+    assert quiet == [] and below["cycle_work"] > 0
+    assert [n.code for n in said] == ["compressor_no_delivery"]

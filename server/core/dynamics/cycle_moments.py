@@ -84,6 +84,12 @@ class Cylinder:
     exponent: float = 1.3
 
     @property
+    def delivery_limit(self) -> float:
+        """The compressor's largest pressure ratio p_d/p_s = ((1 + c)/c)ⁿ: beyond it the clearance gas re-expands
+        over the whole suction stroke and nothing is delivered (volumetric efficiency 1 − c(π^(1/n) − 1) ≤ 0)."""
+        return ((1 + self.clearance) / self.clearance) ** self.exponent
+
+    @property
     def strokes(self) -> int:
         return 4 if self.mode == "four_stroke" else 2
 
@@ -254,6 +260,13 @@ def cycle_moments(params: dict, masses: Masses, cylinder: Cylinder, omega: float
         notices.append(Notice("cycle_no_work", "The gas does no work over the cycle (p_max = 0): nothing to "
                               "balance, the powers are zero and the relative error ε of the graphical integration "
                               "is not defined."))
+    elif not engine and 1 + cylinder.p_max / cylinder.suction >= cylinder.delivery_limit:
+        ratio = 1 + cylinder.p_max / cylinder.suction
+        notices.append(Notice("compressor_no_delivery", f"The pressure ratio p_d/p_s = {ratio:.3g} is at least "
+                              f"((1 + c)/c)ⁿ = {cylinder.delivery_limit:.3g}: the clearance gas re-expands over the "
+                              "whole suction stroke, the compressor delivers nothing and its diagram (a polytrope "
+                              "there and back through 11 points) is no longer a working cycle.",
+                              {"ratio": ratio, "limit": cylinder.delivery_limit}))
     elif driving < 0:
         notices.append(Notice("cycle_work_reversed", f"Over the cycle the gas does {driving:.4g} J on the "
                               "driving side: the diagram takes more work on compression than it gives on "
