@@ -156,10 +156,7 @@ def drawing_scale(value_per_mm: float) -> float:
     if not value_per_mm > 0:
         return 1.0
     power = 10.0 ** math.floor(math.log10(value_per_mm))
-    for mantissa in (*DRAWING_SCALES, 10.0):
-        if mantissa * power >= value_per_mm * (1 - 1e-12):
-            return mantissa * power
-    return 10.0 * power
+    return next(m * power for m in (*DRAWING_SCALES, 10.0) if m * power >= value_per_mm * (1 - 1e-12))
 
 
 def graphical_integration(moment_mid: np.ndarray, peak: float, cycle: float, turns: int,
@@ -242,19 +239,8 @@ def cycle_moments(params: dict, masses: Masses, cylinder: Cylinder, omega: float
     powers = ({"indicated": power, "effective": efficiency * power, "effective_printed": power / efficiency,
                "motor": None} if engine else
               {"indicated": power, "effective": power, "effective_printed": None, "motor": power / efficiency})
-    per_interval = 2 * r * stride                         # fine nodes per drawing interval
-    node_index = np.arange(0, phi.size, per_interval)
-    midpoints = node_index[:-1] + per_interval // 2
-    graphical = graphical_integration(integrated[midpoints], float(np.max(np.abs(integrated))), cycle, turns,
-                                      drawing)
-    graphical |= _comparison(graphical, fine["integrated"][node_index // 2], phi[node_index], phi[midpoints],
-                             integrated[midpoints])
-    index = np.arange(nodes.size) % (2 * r)
-    graphical |= {"integrated": "P" if engine else "O", "moment": integrated[::stride],
-                  "numeric_curve": shown["integrated"],
-                  "chords": np.interp(nodes, phi[node_index], graphical["work"]),
-                  "node_marks": np.where(index == 0, np.interp(nodes, phi[node_index], graphical["work"]), np.nan),
-                  "midpoint_marks": np.where(index == r, integrated[::stride], np.nan)}
+    graphical = _drawing(phi, integrated, fine["integrated"], stride, r, cylinder, drawing)
+    graphical["integrated"] = "P" if engine else "O"
     notices = []
     if driving == 0:
         notices.append(Notice("cycle_no_work", "The gas does no work over the cycle (p_max = 0): nothing to "
@@ -281,6 +267,25 @@ def cycle_moments(params: dict, masses: Masses, cylinder: Cylinder, omega: float
               "moments": moments, "works": works, "cycle_work": driving, "balancing_moment": balancing,
               "powers": powers, "graphical": graphical, "numerics": numerics.as_dict()}
     return result, notices
+
+
+def _drawing(phi: np.ndarray, moment: np.ndarray, work: np.ndarray, stride: int, r: int, cylinder: Cylinder,
+             drawing: Drawing) -> dict:
+    """Fig. 3.7 on the cycle's grids (``_grids``): the moment integrated and its numeric work (at the fine grid's
+    step nodes) → the construction, its comparison, and what the plots draw on the shown grid (the moment, the
+    numeric curve, the chords, their ends and the midpoint ordinates; NaN between the marks)."""
+    per_interval = 2 * r * stride                         # fine nodes per drawing interval
+    node_index = np.arange(0, phi.size, per_interval)
+    midpoints = node_index[:-1] + per_interval // 2
+    graphical = graphical_integration(moment[midpoints], float(np.max(np.abs(moment))), cylinder.cycle,
+                                      cylinder.strokes // 2, drawing)
+    graphical |= _comparison(graphical, work[node_index // 2], phi[node_index], phi[midpoints], moment[midpoints])
+    nodes = phi[::stride]
+    chords = np.interp(nodes, phi[node_index], graphical["work"])
+    index = np.arange(nodes.size) % (2 * r)
+    return graphical | {"moment": moment[::stride], "numeric_curve": work[::stride // 2], "chords": chords,
+                        "node_marks": np.where(index == 0, chords, np.nan),
+                        "midpoint_marks": np.where(index == r, moment[::stride], np.nan)}
 
 
 def _comparison(graphical: dict, numeric: np.ndarray, nodes: np.ndarray, midpoints: np.ndarray,
