@@ -209,3 +209,22 @@ def test_a_compressor_past_its_delivery_limit_is_said_in_words():
     beyond, said = run(Cylinder("compressor", (limit - 0.5) * 1e5, 0.075))
     assert quiet == [] and below["cycle_work"] > 0
     assert [n.code for n in said] == ["compressor_no_delivery"]
+
+
+def test_on_the_sheet_each_chord_is_parallel_to_its_ray_and_starts_where_the_last_ended():
+    """Fig. 3.7 in mm: chord k (between the integral curve's nodes) has the slope of the ray from P(−K, 0) to
+    (0, y_k), and y_k is the diagram's ordinate at the interval's midpoint (read exactly). Tolerance 1e-12 mm."""
+    result, _ = run(engine(), drawing=Drawing(pole=55, reading=0))
+    sheet = result["graphical"]["sheet"]
+    x = sheet["x"]
+    rays = ~np.isnan(sheet["rays"])
+    ray_x, ray_y = x[rays].reshape(-1, 2), sheet["rays"][rays].reshape(-1, 2)
+    assert np.all(ray_x[:, 0] == -55) and np.all(ray_x[:, 1] == 0) and np.all(ray_y[:, 0] == 0)
+    slope = ray_y[:, 1] / 55
+    curve = ~np.isnan(sheet["integral"])
+    chord = np.diff(sheet["integral"][curve]) / np.diff(x[curve])
+    assert np.allclose(chord, slope, rtol=0, atol=1e-12)
+    diagram = ~np.isnan(sheet["diagram"])
+    carried = ~np.isnan(sheet["carried"])
+    mid_x = x[carried].reshape(-1, 2)[:, 0]
+    assert np.allclose(np.interp(mid_x, x[diagram], sheet["diagram"][diagram]), ray_y[:, 1], rtol=0, atol=1e-9)

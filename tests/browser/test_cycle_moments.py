@@ -1,6 +1,6 @@
 """The reduced moments over the cycle (resisting-moment scene, variant cycle_moments: Chaika–Vasylenko steps 8–10,
 Fig. 3.7) in a real browser, one opening of the Russian page: dragging p_max changes the moments, the works and
-the graphical integration; switching to the four-stroke engine doubles the cycle to 720°, to the compressor
+the graphical integration, the pole distance K moves the pole on the sheet; switching to the four-stroke engine doubles the cycle to 720°, to the compressor
 turns the gas moment into M_кО (the motor's power appears). No English sentence of the app, no NaN, no console
 error. Screenshots in ru at desktop and phone width (test-artifacts/)."""
 from __future__ import annotations
@@ -17,7 +17,7 @@ from test_translations import english_in  # noqa: E402
 pytestmark = pytest.mark.browser
 
 GRAPH = "document.querySelector(`#panel-${id} .graph`)"
-PLOTS = ("cycle_moments", "cycle_works", "graphical_moment", "graphical_work")
+PLOTS = ("cycle_moments", "cycle_works", "graphical_sheet", "graphical_work")
 
 
 def trace_y(page, panel: str, k: int) -> str:
@@ -31,6 +31,13 @@ def last_x(page, panel: str) -> float:
 def changed(page, panel: str, k: int, before: str) -> None:
     page.wait_for_function(f"([id, k, before]) => JSON.stringify({GRAPH}?.data?.[k]?.y) !== before",
                            arg=[panel, k, before])
+
+
+def families_arrived(page) -> None:
+    """Every slider family the page asked for has arrived (family_preview.js marks both): a family is a heavy
+    computation, and a client with two of them in flight is answered 429 (retried, but said on the console)."""
+    page.wait_for_function("() => performance.getEntriesByName('family-full-arrived').length >= "
+                           "performance.getEntriesByName('family-requested').length")
 
 
 def figure(page, index: int) -> str:
@@ -57,8 +64,14 @@ def test_the_cycle_moments_follow_the_pressure_and_the_machine(browser_page):
         changed(page, panel, 0, before[panel])
     page.wait_for_function("before => document.querySelector('#panel-cycle_figures dd:nth-of-type(3)')"
                            ".innerText !== before", arg=power)
+    families_arrived(page)
+    rays = page.evaluate(f"id => JSON.stringify({GRAPH}.data[2].x)", "graphical_sheet")
+    drag_slider(page, "#slider-pole", 0.9)                # a farther pole: the rays start farther left
+    page.wait_for_function(f"([id, before]) => JSON.stringify({GRAPH}?.data?.[2]?.x) !== before",
+                           arg=["graphical_sheet", rays])
     screenshot(page, "cycle_moments_ru")
 
+    families_arrived(page)
     moments = trace_y(page, "cycle_moments", 0)
     page.locator("#toggle-mode input[value='four_stroke']").check()
     page.wait_for_function(f"id => {GRAPH}?.data?.[0]?.x?.at(-1) > 700", arg="cycle_moments")
@@ -72,6 +85,7 @@ def test_the_cycle_moments_follow_the_pressure_and_the_machine(browser_page):
     drag_slider(page, "#slider-p_gas", 0.1)                       # about 1 MPa: a working compressor
     changed(page, "cycle_moments", 1, compressor)
     page.wait_for_function("() => !document.querySelector('#notices .warnings')")
+    families_arrived(page)
     assert figure(page, 5) != "—" and figure(page, 4) == "—"     # N_дв of the compressor; no printed N_e
     assert not figure(page, 5).startswith("−")
     body = page.inner_text("body")

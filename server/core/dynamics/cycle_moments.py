@@ -285,7 +285,32 @@ def _drawing(phi: np.ndarray, moment: np.ndarray, work: np.ndarray, stride: int,
     index = np.arange(nodes.size) % (2 * r)
     return graphical | {"moment": moment[::stride], "numeric_curve": work[::stride // 2], "chords": chords,
                         "node_marks": np.where(index == 0, chords, np.nan),
-                        "midpoint_marks": np.where(index == r, moment[::stride], np.nan)}
+                        "midpoint_marks": np.where(index == r, moment[::stride], np.nan),
+                        "sheet": _sheet(graphical, nodes, moment[::stride], phi[midpoints])}
+
+
+def _sheet(graphical: dict, phi: np.ndarray, moment: np.ndarray, midpoints: np.ndarray) -> dict:
+    """Fig. 3.7 on the drawing sheet, in mm, as one abscissa ``x`` and one ordinate per element, NaN outside its
+    own stretch (a plot draws every element against the same x): the moment diagram M/μ_M over φ/μ_φ; each
+    ordinate y_k carried from the interval's midpoint to the y-axis; the ray from the pole P(−K, 0) to (0, y_k);
+    the integral curve y_A, whose chord over interval k is parallel to ray k (rise y_k Δx/K over Δx)."""
+    mu_phi, pole, y = graphical["mu_phi"], graphical["pole"], graphical["ordinates"]
+    gap = np.full(y.size, np.nan)
+    carried = np.column_stack([midpoints / mu_phi, 0 * y, gap]).ravel()
+    rays = np.column_stack([np.full(y.size, -pole), 0 * y, gap]).ravel()
+    ends = np.column_stack([y, y, gap]).ravel()
+    ray_y = np.column_stack([0 * y, y, gap]).ravel()
+    nodes = np.arange(graphical["curve_mm"].size) * graphical["step"]
+    parts = [(phi / mu_phi, moment / graphical["mu_M"]), (carried, ends), (rays, ray_y), (nodes, graphical["curve_mm"])]
+    x = np.concatenate([part[0] for part in parts])
+    elements = {}
+    start = 0
+    for name, (xs, ys) in zip(("diagram", "carried", "rays", "integral"), parts):
+        column = np.full(x.size, np.nan)
+        column[start:start + xs.size] = ys
+        elements[name] = column
+        start += xs.size
+    return {"x": x} | elements
 
 
 def _comparison(graphical: dict, numeric: np.ndarray, nodes: np.ndarray, midpoints: np.ndarray,
