@@ -167,7 +167,8 @@ class ReductionRequest(MechanismChoice):
     inertias: InertiaInput = Field(default_factory=InertiaInput)
     load: LoadInput = Field(default_factory=LoadInput)
     n: int = Field(361, ge=3, le=10001, description="points over one closed cycle")
-    omega: float = Field(1.0, ge=0, le=1e4, description="crank speed for the viscous moment β ω Σu², rad/s")
+    omega: float = Field(1.0, ge=0, le=1e4, description="crank speed ω₁, rad/s: of the viscous moment β ω Σu² "
+                                                        "and of cycle_moments' powers")
     iteration_phi: float = Field(math.pi / 2, ge=-100, le=100, description="crank angle of the friction iteration, rad")
     cycle: CycleInput | None = Field(None, description="cycle_moments: the crank-slider's cylinder, gravity, "
                                                        "efficiency and drawing (Chaika–Vasylenko §3.4)")
