@@ -228,3 +228,15 @@ def test_on_the_sheet_each_chord_is_parallel_to_its_ray_and_starts_where_the_las
     carried = ~np.isnan(sheet["carried"])
     mid_x = x[carried].reshape(-1, 2)[:, 0]
     assert np.allclose(np.interp(mid_x, x[diagram], sheet["diagram"][diagram]), ray_y[:, 1], rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("field, value", [("p_max", 0.0), ("bore", 0.0), ("efficiency", 0.0), ("mode", "diesel")])
+def test_a_cylinder_that_cannot_be_drawn_is_refused_naming_its_field(field, value):
+    """p_max below 1 kPa or a bore below 1 mm would make the diagram's scale underflow; η = 0 divides N_e."""
+    from fastapi.testclient import TestClient
+    from server.api.app import app
+    cycle = {"mode": "two_stroke", "p_max": 3e6, "bore": 0.075, "efficiency": 0.85, field: value}
+    response = TestClient(app).post("/api/v1/reduction", json={
+        "mechanism": "slider_crank", "params": BOOK, "cycle": cycle, "outputs": ["cycle_moments"]})
+    assert response.status_code == 422
+    assert response.json()["detail"][0]["loc"][-2:] == ["cycle", field]

@@ -36,9 +36,9 @@ class CycleInput(BaseModel):
     mode: Literal[MODES] = Field(CYLINDER.mode, description=(
         "two_stroke, four_stroke: an engine (M_P from the gas, M_kO constant over the cycle 2π or 4π); "
         "compressor: M_kO from the gas, the motor's M_P constant over 2π"))
-    p_max: float = Field(gt=0, le=5e7, description="largest gas pressure over the crankcase's, Pa (engine: the "
+    p_max: float = Field(ge=1e3, le=5e7, description="largest gas pressure over the crankcase's, Pa (engine: the "
                                                    "indicator diagram's peak; compressor: discharge over suction)")
-    bore: float = Field(gt=0, le=2, description="cylinder bore D, m")
+    bore: float = Field(ge=1e-3, le=2, description="cylinder bore D, m")
     expansion: list[float] | None = Field(None, min_length=INDICATOR_POINTS, max_length=INDICATOR_POINTS,
                                           description="engine: p/p_max on expansion at x/H = 0, 0.1, …, 1 from "
                                                       "top dead centre (none: the assumed polytrope)")

@@ -156,7 +156,8 @@ def drawing_scale(value_per_mm: float) -> float:
     if not value_per_mm > 0:
         return 1.0
     power = 10.0 ** math.floor(math.log10(value_per_mm))
-    return next(m * power for m in (*DRAWING_SCALES, 10.0) if m * power >= value_per_mm * (1 - 1e-12))
+    mantissa = value_per_mm / power
+    return next((m for m in DRAWING_SCALES if m >= mantissa * (1 - 1e-12)), 10.0) * power
 
 
 def graphical_integration(moment_mid: np.ndarray, peak: float, cycle: float, turns: int,
