@@ -240,3 +240,11 @@ def test_a_cylinder_that_cannot_be_drawn_is_refused_naming_its_field(field, valu
         "mechanism": "slider_crank", "params": BOOK, "cycle": cycle, "outputs": ["cycle_moments"]})
     assert response.status_code == 422
     assert response.json()["detail"][0]["loc"][-2:] == ["cycle", field]
+
+
+
+def test_another_mechanism_asking_for_the_cycle_moments_is_refused_before_anything_is_computed():
+    """The check comes first in /reduction, before its general-mechanism branch (which would leave it out)."""
+    from server.core.mechanisms import GeometryError
+    with pytest.raises(GeometryError, match="crank-slider"):
+        compute("reduction", {"mechanism": "four_bar", "outputs": ["inertia", "cycle_moments"]})

@@ -149,6 +149,7 @@ def kinematics_batch(requests: list[KinematicsRequest], lang: str, reads: Reads)
 
 
 def reduction(request: ReductionRequest, lang: str) -> Answer:
+    cycle = reduced_cycle_moments(request) if "cycle_moments" in request.outputs else None    # 422 first
     if request.mechanism == "general":
         result, notices = general_reduction(_general_machine(request, Motor()), request.n, request.omega,
                                             request.outputs)
@@ -161,8 +162,8 @@ def reduction(request: ReductionRequest, lang: str) -> Answer:
     if "errata" in request.outputs:
         result["errata"] = errata.reduction(request.mechanism, MECHANISMS[request.mechanism].check(request.params),
                                             request.inertias.m3, request.omega)
-    if "cycle_moments" in request.outputs:
-        result["cycle_moments"], more = reduced_cycle_moments(request)
+    if cycle is not None:
+        result["cycle_moments"], more = cycle
         notices = [*notices, *more]
     return answer(nested_numerics(result, ("cycle_moments",), lang), notices, lang)
 
