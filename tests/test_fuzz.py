@@ -155,7 +155,7 @@ def leaves(node: dict, path: tuple = ()) -> list[tuple[tuple, st.SearchStrategy]
     return []
 
 
-OUTPUTS = {"reduction": ["inertia", "resisting", "friction_iteration"], "motion": ["steady", "startup"],
+OUTPUTS = {"reduction": ["inertia", "resisting", "friction_iteration", "cycle_moments"], "motion": ["steady", "startup"],
            "flywheel": ["flywheel"], "elastic": ["histories", "modal", "rigid", "bearings"],
            "forces": ["forces", "wear"], "wear": ["forces"], "angular-acceleration": ["angular"]}
 

@@ -22,6 +22,7 @@ from ..core.angular_acceleration import CrankLaw, crank_slider, trammel
 from ..core.bearings.loads import pair_load
 from ..core.bearings.report import Design, bearings_report
 from ..core.dynamics import report
+from ..core.dynamics.cycle_moments import cycle_moments
 from ..core.dynamics.flywheel_analysis import flywheel_analysis
 from ..core.dynamics.general_machine import GeneralMachine, general_machine
 from ..core.dynamics.general_machine import reduction as general_reduction
@@ -150,11 +151,12 @@ def kinematics_batch(requests: list[KinematicsRequest], lang: str, reads: Reads)
 
 
 def reduction(request: ReductionRequest, lang: str) -> Answer:
+    cycle = reduced_cycle_moments(request) if "cycle_moments" in request.outputs else None    # 422 first
     if request.mechanism == "general":
         result, notices = general_reduction(_general_machine(request, Motor()), request.n, request.omega,
                                             request.outputs)
         return answer(result, notices, lang)
-    outputs = [name for name in request.outputs if name != "errata"]
+    outputs = [name for name in request.outputs if name not in ("errata", "cycle_moments")]
     result, notices = report.reduction(
         request.mechanism, request.params, Inertias(**request.inertias.model_dump()),
         Load(**request.load.model_dump()), request.n, request.omega, outputs, request.iteration_phi) \
@@ -162,7 +164,10 @@ def reduction(request: ReductionRequest, lang: str) -> Answer:
     if "errata" in request.outputs:
         result["errata"] = errata.reduction(request.mechanism, MECHANISMS[request.mechanism].check(request.params),
                                             request.inertias.m3, request.omega)
-    return answer(result, notices, lang)
+    if cycle is not None:
+        result["cycle_moments"], more = cycle
+        notices = [*notices, *more]
+    return answer(nested_numerics(result, ("cycle_moments",), lang), notices, lang)
 
 
 def machine_key(request: MotionRequest | FlywheelRequest) -> bytes:
@@ -577,3 +582,12 @@ def friction_influence_batch(requests: list, lang: str, reads: Reads) -> list[An
 
 ENDPOINTS["friction-influence"] = (FrictionInfluenceRequest, friction_influence)
 BATCHES["friction-influence"] = friction_influence_batch
+def reduced_cycle_moments(request: ReductionRequest) -> tuple[dict, list[Notice]]:
+    """Steps 8–10 of Chaika–Vasylenko's course project for the crank-slider: M_P, M_kO, M_G, M_Σ and their works
+    over the engine's or the compressor's cycle, the powers, and the graphical integration (Fig. 3.7)."""
+    if request.mechanism != "slider_crank" or request.cycle is None:
+        raise GeometryError("cycle", "the moments over a cylinder's cycle need the crank-slider and `cycle`",
+                            "cycle_needs_cylinder")
+    cycle = request.cycle
+    return cycle_moments(request.params, cycle.masses(request.inertias.m2, request.inertias.m3), cycle.cylinder(),
+                         request.omega, cycle.efficiency, cycle.drawing.core())

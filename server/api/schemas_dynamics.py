@@ -10,6 +10,7 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 from ..core.dynamics.motors import INDICATOR_POINTS, polytropic_diagram
 from ..core.structure.masses import LinkMass, LinkMoment, MassModel, SliderForce
 from .schemas import MAX_PARAMS, LinkageModel, NumericsModel
+from .schemas_cycle import CycleInput
 
 Positive = Field(ge=0.0, le=1e6)
 DynamicsMechanism = Literal["sine", "slider_crank", "slotted_link", "four_bar", "general"]
@@ -166,12 +167,17 @@ class ReductionRequest(MechanismChoice):
     inertias: InertiaInput = Field(default_factory=InertiaInput)
     load: LoadInput = Field(default_factory=LoadInput)
     n: int = Field(361, ge=3, le=10001, description="points over one closed cycle")
-    omega: float = Field(1.0, ge=0, le=1e4, description="crank speed for the viscous moment β ω Σu², rad/s")
+    omega: float = Field(1.0, ge=0, le=1e4, description="crank speed ω₁, rad/s: of the viscous moment β ω Σu² "
+                                                        "and of cycle_moments' powers")
     iteration_phi: float = Field(math.pi / 2, ge=-100, le=100, description="crank angle of the friction iteration, rad")
-    outputs: list[Literal["inertia", "resisting", "friction_iteration", "errata"]] = Field(
-        min_length=1, max_length=4, description="errata: the source's misprints of the formulas used (Eremyants "
+    cycle: CycleInput | None = Field(None, description="cycle_moments: the crank-slider's cylinder, gravity, "
+                                                       "efficiency and drawing (Chaika–Vasylenko §3.4)")
+    outputs: list[Literal["inertia", "resisting", "friction_iteration", "errata", "cycle_moments"]] = Field(
+        min_length=1, max_length=5, description="errata: the source's misprints of the formulas used (Eremyants "
                                                 "(3.38)/(3.39) crank-slider, (3.50)/(3.53) slotted link), printed "
-                                                "beside corrected with the value each gives")
+                                                "beside corrected with the value each gives; cycle_moments: the "
+                                                "reduced moments and works over the cycle (Chaika–Vasylenko steps "
+                                                "8–10, Fig. 3.7)")
 
 
 class MotionRequest(MechanismChoice):
@@ -200,6 +206,9 @@ class ReductionResponse(BaseModel):
     friction_iteration: dict | None = Field(None, description="the successive approximations at iteration_phi: "
                                                               "forces of each step (N), ratio of the series, converged")
     numerics: NumericsModel | None = Field(None, description="how M_c and its mean M_c0 were computed")
+    cycle_moments: dict | None = Field(None, description="M_P, M_kO, M_G, M_O, M_Σ (N·m) and their works (J) over "
+                                                         "the cycle, the balancing moment, the powers (W), the "
+                                                         "graphical integration with its scales, and its numerics")
     warnings: list[str]
 
 
