@@ -170,7 +170,7 @@ def machine_key(request: MotionRequest | FlywheelRequest) -> bytes:
     return orjson.dumps(request.model_dump(include=MACHINE_FIELDS), option=orjson.OPT_SORT_KEYS)
 
 
-MACHINE_FIELDS = {"mechanism", "params", "inertias", "load", "motor", "linkage", "masses"}
+MACHINE_FIELDS = {"mechanism", "params", "inertias", "load", "motor", "linkage", "masses", "pair_friction"}
 
 
 def machine(request: MotionRequest | FlywheelRequest) -> Machine:
@@ -193,8 +193,9 @@ def machine(request: MotionRequest | FlywheelRequest) -> Machine:
 def _general_machine(request: ReductionRequest | MotionRequest | FlywheelRequest, motor: Motor) -> GeneralMachine:
     """A general mechanism's machine: its linkage, mass model and loads checked (GeometryError names the field)."""
     masses = request.masses.model() if request.masses is not None else MassModel()
+    pairs = {name: PairFriction(p.f, p.r) for name, p in request.pair_friction.items()}
     return general_machine(request.linkage.model_dump(exclude_none=True), masses,
-                           Inertias(**request.inertias.model_dump()), Load(**request.load.model_dump()), motor)
+                           Inertias(**request.inertias.model_dump()), Load(**request.load.model_dump()), motor, pairs)
 
 
 def _motor(motor) -> Motor:

@@ -3,7 +3,7 @@ every answer's numerics in the one declared form (NumericsModel)."""
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
@@ -137,6 +137,19 @@ class MassInput(BaseModel):
                          tuple(LinkMoment(**m.model_dump()) for m in self.moments), self.friction, self.pair_radius)
 
 
+class PairFrictionInput(BaseModel):
+    """f and the journal radius r of one pair of a general mechanism (Chaika–Vasylenko (3.3))."""
+
+    model_config = ConfigDict(extra="forbid")
+    f: float = Field(0.0, ge=0, le=2, description="friction coefficient")
+    r: float = Field(0.0, ge=0, le=1, description="journal radius of a revolute pair, m (unused for a prismatic one)")
+
+PairFrictionMap = dict[Annotated[str, Field(min_length=1, max_length=40)], PairFrictionInput]
+PairFrictionField = Field(default_factory=dict, max_length=64, description=(
+    "with mechanism 'general': f and r of single pairs by name (a joint, a guide, an RPR's slide, 'B/slot'), "
+    "instead of masses.friction and masses.pair_radius"))
+
+
 class MechanismChoice(BaseModel):
     """Which mechanism: one of the four with `params`, or 'general' with `linkage` and `masses`."""
 
@@ -144,7 +157,9 @@ class MechanismChoice(BaseModel):
     linkage: LinkageModel | None = Field(None, description=(
         "with mechanism 'general': the mechanism as data (GET /api/v1/mechanisms/general)"))
     masses: MassInput | None = Field(None, description=(
-        "with mechanism 'general': each link's mass, centre of mass and J_S, the loads on sliders and links, g"))
+        "with mechanism 'general': each link's mass, centre of mass and J_S, the loads on sliders and links, g, "
+        "and f, r of every pair"))
+    pair_friction: PairFrictionMap = PairFrictionField
     params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
 
     @model_validator(mode="after")
@@ -152,8 +167,9 @@ class MechanismChoice(BaseModel):
         general = self.mechanism == "general"
         if general != (self.linkage is not None):
             raise ValueError("`linkage` goes with mechanism 'general', and only with it")
-        if not general and self.masses is not None:
-            raise ValueError("`masses` goes with mechanism 'general' (the four mechanisms take `inertias`, `load`)")
+        if not general and (self.masses is not None or self.pair_friction):
+            raise ValueError("`masses` and `pair_friction` go with mechanism 'general' (the four mechanisms take "
+                             "`inertias`, `load`)")
         if general and self.params:
             raise ValueError("a general mechanism takes its lengths in `linkage`, not in `params`")
         return self

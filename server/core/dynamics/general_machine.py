@@ -4,7 +4,9 @@ transmission ratio i → the linkage with its mass model and loads (structure/ma
 It is a ``Machine``: the equation of motion, the steady cycle, the start-up, the flywheel and the live study
 ask it the same things (``tables``, ``switching``, ``kinks``, ``cycle``), answered from the composed linkage:
 J(φ), dJ/dφ by kinetic-energy equality and M_c(φ) by power equality (structure/reduction.py, Eremyants
-(1.1)–(1.5)), viscous friction β ω Σ s′² over every prismatic pair (Eremyants (3.15)–(3.17)).
+(1.1)–(1.5)), dry friction in the pairs as the friction moment of the static loads by the group kinetostatics
+(kinetostatics/groups/dry_moment.py: the crank-slider's (3.24)–(3.28) generalised), viscous friction β ω Σ s′²
+over every prismatic pair (Eremyants (3.15)–(3.17)).
 """
 from __future__ import annotations
 
@@ -16,6 +18,8 @@ import numpy as np
 from ..mechanisms import GeometryError, Notice
 from ..mechanisms.base import angle_ranges, ranges_text
 from ..mechanisms.general import CHECK_POINTS, GeneralMechanism, assembly_notices
+from ..kinetostatics.groups.dry_moment import dry_moment, rough
+from ..kinetostatics.groups.friction import PairFriction
 from ..numerics import Numerics
 from ..structure.compose import Composition, compose
 from ..structure.masses import MassModel, centre_points, check_model
@@ -33,6 +37,26 @@ MEAN_POINTS = 8192       # intervals of the cycle mean M_c0 (trapezoid; the kink
 class GeneralMachine(Machine):
     linkage: GeneralMechanism | None = field(default=None, compare=False, repr=False)
     masses: MassModel = field(default_factory=MassModel)
+    pairs: tuple[tuple[str, PairFriction], ...] = ()      # f and r of single pairs by name (else the model's)
+
+    @property
+    def rough(self) -> bool:
+        """Whether a pair has dry friction."""
+        return rough(self.masses, dict(self.pairs))
+
+    def dry(self, comp: Composition) -> tuple[np.ndarray, list[Notice], list[np.ndarray]]:
+        """M_T(φ) of the pairs' dry friction on ``comp``, the self-locking notice, M_T's switching functions."""
+        if not self.rough:
+            return np.zeros(comp.phi.shape), [], []
+        found = dry_moment(self.linkage, comp, self.masses, dict(self.pairs))
+        notices = []
+        if found.locked.any():
+            order = np.argsort(comp.phi)             # the integrator's nodes come with its kinks at the end
+            ranges = angle_ranges(comp.phi[order], found.locked[order])
+            notices.append(Notice("group_self_locking", f"Self-locking for φ in {ranges_text(ranges)}: the "
+                                  "equilibrium with friction ceases to exist there (the reactions it needs grow "
+                                  "without bound), so no driving moment moves the mechanism.", {"ranges": ranges}))
+        return found.moment, notices, found.switches
 
     def cycle(self) -> float:
         return max(TURN, self.motor.cycle())
@@ -41,10 +65,11 @@ class GeneralMachine(Machine):
         return []
 
     def kinks_key(self) -> tuple:
-        """The kinks are the zeros of the loaded sliders' and links' velocity analogs: they depend on the
-        linkage and the loads, not on the masses."""
-        return ("general", repr(self.linkage.linkage), self.masses.forces, self.masses.moments, self.load,
-                self.cycle())
+        """The kinks are the zeros of the loaded sliders' and links' velocity analogs, and with dry friction
+        those of the rough pairs' relative motion and normal forces: they depend on the linkage and the loads,
+        and with friction on the weights too."""
+        return ("general", repr(self.linkage.linkage), self.masses if self.rough else
+                (self.masses.forces, self.masses.moments), self.pairs, self.load, self.cycle())
 
     @property
     def constant_inertia(self) -> float:
@@ -58,12 +83,13 @@ class GeneralMachine(Machine):
         useful = reduced_loads(self.linkage, comp, self.masses, centres).total + self.load.crank_moment
         drive = np.full(comp.phi.shape, self.motor.M0 * self.inertias.gear_ratio) if self.motor.kind == "constant" \
             else np.zeros(comp.phi.shape)
-        return Tables(comp.phi, inertia.J, inertia.dJ, drive, useful, np.zeros(comp.phi.shape),
-                      sliding_squares(comp), assembly_notices(comp))
+        dry, locking, _ = self.dry(comp)
+        return Tables(comp.phi, inertia.J, inertia.dJ, drive, useful, dry, sliding_squares(comp),
+                      locking + assembly_notices(comp))
 
     def switching(self, phi: np.ndarray) -> np.ndarray:
         comp = compose(self.linkage.linkage, np.asarray(phi, float))
-        rows = reduced_loads(self.linkage, comp, self.masses).switches
+        rows = reduced_loads(self.linkage, comp, self.masses).switches + self.dry(comp)[2]
         return np.array(rows) if rows else np.zeros((0, comp.phi.size))
 
 
@@ -72,7 +98,8 @@ def sliding_squares(comp: Composition) -> np.ndarray:
     return sum((s.d1**2 for s in comp.slides.values()), np.zeros(comp.phi.shape))
 
 
-def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: Load, motor: Motor) -> GeneralMachine:
+def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: Load, motor: Motor,
+                    pairs: dict[str, PairFriction] | None = None) -> GeneralMachine:
     """The machine of a request, checked: the linkage assembles over the whole turn, the mass model names its
     links and sliders, the loads are the general mechanism's (GeometryError names the field)."""
     mech = GeneralMechanism(linkage)
@@ -88,18 +115,21 @@ def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: 
     if motor.kind == "indicator":
         raise GeometryError("motor.kind", "an indicator diagram drives a crank-slider (piston engine) only",
                             "indicator_needs_slider")
-    refused = {"load.force": load.force, "load.f": load.f, "masses.friction": masses.friction,
-               "inertias.m2": inertias.m2, "inertias.J_S2": inertias.J_S2, "inertias.m3": inertias.m3,
+    refused = {"load.force": load.force, "load.f": load.f, "inertias.m2": inertias.m2, "inertias.J_S2": inertias.J_S2, "inertias.m3": inertias.m3,
                "inertias.J3": inertias.J3}
     for where, value in refused.items():
         if value:
             raise GeometryError(where, "a general mechanism takes its link masses and loads in `masses` (links, "
-                                "forces, moments); dry friction of its pairs is the kinetostatics' (forces), the "
-                                "equation of motion takes viscous friction β", "general_masses")
+                                "forces, moments) and the dry friction of its pairs in `masses.friction`, "
+                                "`masses.pair_radius` and `pair_friction`", "general_masses")
     if load.convention != "consistent":
         raise GeometryError("load.convention", "the textbook's printed formulas are for the four fixed mechanisms",
                             "general_masses")
-    return GeneralMachine("general", {}, inertias, load, motor, linkage=mech, masses=masses)
+    machine = GeneralMachine("general", {}, inertias, load, motor, linkage=mech, masses=masses,
+                             pairs=tuple(sorted((pairs or {}).items())))
+    if machine.rough:
+        dry_moment(mech, compose(mech.linkage, np.zeros(1)), masses, pairs)    # an unknown pair's name: 422
+    return machine
 
 
 def reduction(machine: GeneralMachine, n: int, omega: float, outputs: list[str]) -> tuple[dict, list[Notice]]:
@@ -121,19 +151,26 @@ def reduction(machine: GeneralMachine, n: int, omega: float, outputs: list[str])
         loads = reduced_loads(machine.linkage, comp, machine.masses)
         useful = loads.total + machine.load.crank_moment
         viscous = machine.load.beta * omega * sliding_squares(comp)
+        dry, locking, _ = machine.dry(comp)
+        notices = locking + notices
         fine = compose(machine.linkage.linkage, np.linspace(0.0, TURN, MEAN_POINTS + 1))
         total = (reduced_loads(machine.linkage, fine, machine.masses).total + machine.load.crank_moment
-                 + machine.load.beta * omega * sliding_squares(fine))
-        mean = float(np.mean(total[:-1]))
-        error = abs(mean - float(np.mean(total[:-1:2])))
-        scale = float(np.mean(np.abs(total[:-1])))
+                 + machine.dry(fine)[0] + machine.load.beta * omega * sliding_squares(fine))
+        finite = bool(np.isfinite(total).all())
+        mean = float(np.mean(total[:-1])) if finite else None
+        error = abs(mean - float(np.mean(total[:-1:2]))) if finite else 0.0
+        scale = float(np.mean(np.abs(total[:-1]))) if finite else 0.0
         numerics = Numerics(method="closed-form analogs of every link, power equality at each angle; M_c0 by the "
                                    "trapezoid rule on a closed uniform grid, error estimated against the grid of half "
                                    "as many points, relative to the cycle mean of |M_c|", code="closed_forms",
                             steps=MEAN_POINTS, error_estimate=error / scale if scale > 0 else 0.0,
                             runtime_ms=1e3 * (time.perf_counter() - started))
+        if not finite:
+            numerics.message = "no M_c0: the moment is not finite at every angle (self-locking)"
+            numerics.message_code = "no_mean_moment"
         result["numerics"] = numerics.as_dict()
-        result["resisting"] = {"total": useful + viscous, "useful": useful, "dry": np.zeros_like(phi),
-                               "viscous": viscous, "parts": loads.parts, "mean": mean, "means": {"consistent": mean},
-                               "friction_angle": 0.0, "self_locking": None}
+        locked = ~np.isfinite(dry)
+        result["resisting"] = {"total": useful + dry + viscous, "useful": useful, "dry": dry, "viscous": viscous,
+                               "parts": loads.parts, "mean": mean, "means": {"consistent": mean}, "friction_angle": 0.0,
+                               "self_locking": phi[locked] if locked.any() else None}
     return result, notices
