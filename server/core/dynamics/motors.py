@@ -132,7 +132,7 @@ def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray, kinematic
 def indicator_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray,
                      kinematics=None) -> np.ndarray:
     """M_д = F·V_qC·cos(F, V) with F = p A_p on the piston (seed 004 (L17)); gas pushes towards the crank."""
-    if mechanism != "slider_crank":
+    if not MECHANISMS[mechanism].piston:
         raise ValueError("an indicator diagram drives a crank-slider (piston engine) only")
     kinematics = kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())
     return -gas_force(motor, params, phi, kinematics) * kinematics.values["u31"]
