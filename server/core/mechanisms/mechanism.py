@@ -111,6 +111,11 @@ class Mechanism(ABC):
         """Sentences for configurations close to a singular one (large but finite transfer functions)."""
         return []
 
+    def piston_travel(self, p: dict[str, float], phi: np.ndarray, ev: Evaluation | None = None) -> np.ndarray:
+        """x/H: a piston's travel from top dead centre over its stroke (``piston`` mechanisms only; ``ev``: the
+        mechanism already evaluated at phi)."""
+        raise ValueError(f"the {self.name} mechanism has no piston")
+
     def harmonic_claim(self, p: dict[str, float], spectrum: dict) -> dict | None:
         """The book's claim about the spectrum of u′₃₁, where it makes one (kinematics.py); none here."""
         return None

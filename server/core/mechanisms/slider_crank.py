@@ -20,6 +20,8 @@ The textbook prints −cos 4φ/(8λ³) and (λ²−1)/λ³ in (2.17); both signs
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from .base import Evaluation, GeometryError, Notice, OutputSpec, ParamSpec, SpecialPosition, point, wrap_angle
@@ -85,6 +87,12 @@ class SliderCrank(Mechanism):
                        f"Near the assembly limit: l₂ − l₁ − |e| = {margin:.3g} m. The rod swings up to "
                        f"{angle:.1f}°, u₂₁ and u′₃₁ grow large where the rod is nearly perpendicular to "
                        "the guide.", {"margin": margin, "angle": angle})]
+
+    def piston_travel(self, p, phi, ev=None):
+        """x/H: the piston's travel from top dead centre over its stroke H (the indicator diagram's abscissa)."""
+        values = (ev or self.evaluate(p, phi, set())).values
+        stroke = piston_stroke(p["l1"], p["l2"], p["e"])
+        return np.clip((stroke - values["s"]) / stroke, 0.0, 1.0)
 
     def harmonic_claim(self, p, spectrum):
         """The book's claim is for the central crank-slider."""
@@ -193,3 +201,10 @@ class SliderCrank(Mechanism):
         lam = p["l2"] / p["l1"]
         return {"lambda": lam, "r_over_l": 1 / lam,
                 "max_rod_angle": float(np.arcsin((p["l1"] + abs(p["e"])) / p["l2"]))}
+
+
+@lru_cache(maxsize=256)
+def piston_stroke(l1: float, l2: float, e: float) -> float:
+    """H: the piston's travel between the dead centres of the crank-slider (once per geometry)."""
+    positions = SliderCrank().special_positions({"l1": l1, "l2": l2, "e": e})
+    return next(sp.value for sp in positions if sp.kind == "dead_centre" and sp.value)
