@@ -99,6 +99,22 @@ class LinkMassInput(BaseModel):
         return centre
 
 
+class LoadDiagramInput(BaseModel):
+    """A useful-load diagram over the slider's stroke, as the indicator diagram: P/P_max at equally spaced
+    positions x/H = 0…1 from the start of the working stroke, for the working and the return stroke."""
+
+    model_config = ConfigDict(extra="forbid")
+    working_stroke: list[float] = Field(min_length=2, max_length=41, description="P/P_max on the working stroke")
+    return_stroke: list[float] = Field(min_length=2, max_length=41, description="P/P_max on the return stroke")
+
+    @field_validator("working_stroke", "return_stroke")
+    @classmethod
+    def ratios(cls, points):
+        if not all(math.isfinite(p) and 0 <= p <= 1 for p in points):
+            raise ValueError("each point is P/P_max, a number from 0 to 1")
+        return points
+
+
 class SliderForceInput(BaseModel):
     """A useful load on a slider along its guide, against the motion: P on the working stroke, k·P on the return."""
 
@@ -108,6 +124,19 @@ class SliderForceInput(BaseModel):
     working: float = Field(ge=0, le=1e7, description="P on the working stroke, N")
     k: float = Field(1.0, ge=0, le=1, description="k: return-stroke load / working-stroke load")
     sense: Literal[1, -1] = Field(1, description="+1: the working stroke moves along the guide's direction")
+    diagram: LoadDiagramInput | None = Field(None, description=(
+        "a useful-load diagram instead of the constant P: then `working` is P_max and `k` is not used"))
+
+    @model_validator(mode="after")
+    def diagram_or_k(self):
+        if self.diagram is not None and self.k != 1.0:
+            raise ValueError("with a load diagram the return stroke's load is its own row, not k·P")
+        return self
+
+    def force(self) -> SliderForce:
+        diagram = None if self.diagram is None else (tuple(self.diagram.working_stroke),
+                                                     tuple(self.diagram.return_stroke))
+        return SliderForce(self.joint, self.working, self.k, self.sense, diagram)
 
 
 class LinkMomentInput(BaseModel):
@@ -133,7 +162,7 @@ class MassInput(BaseModel):
 
     def model(self) -> MassModel:
         return MassModel(tuple(LinkMass(m.link, m.mass, tuple(m.centre), m.inertia) for m in self.links),
-                         self.gravity, tuple(SliderForce(**f.model_dump()) for f in self.forces),
+                         self.gravity, tuple(f.force() for f in self.forces),
                          tuple(LinkMoment(**m.model_dump()) for m in self.moments), self.friction, self.pair_radius)
 
 
@@ -143,6 +172,8 @@ class PairFrictionInput(BaseModel):
     model_config = ConfigDict(extra="forbid")
     f: float = Field(0.0, ge=0, le=2, description="friction coefficient")
     r: float = Field(0.0, ge=0, le=1, description="journal radius of a revolute pair, m (unused for a prismatic one)")
+    beta: float = Field(0.0, ge=0, le=1e6, description=(
+        "viscous friction β of the pair in the equation of motion: N·m·s (revolute), N·s/m (prismatic)"))
 
 PairFrictionMap = dict[Annotated[str, Field(min_length=1, max_length=40)], PairFrictionInput]
 PairFrictionField = Field(default_factory=dict, max_length=64, description=(

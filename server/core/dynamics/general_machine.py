@@ -4,14 +4,20 @@ transmission ratio i → the linkage with its mass model and loads (structure/ma
 It is a ``Machine``: the equation of motion, the steady cycle, the start-up, the flywheel and the live study
 ask it the same things (``tables``, ``switching``, ``kinks``, ``cycle``), answered from the composed linkage:
 J(φ), dJ/dφ by kinetic-energy equality and M_c(φ) by power equality (structure/reduction.py, Eremyants
-(1.1)–(1.5)), dry friction in the pairs as the friction moment of the static loads by the group kinetostatics
+(1.1)–(1.5)), load diagrams on sliders (structure/masses.py), dry friction in the pairs as the friction moment of the static loads by the group kinetostatics
 (kinetostatics/groups/dry_moment.py: the crank-slider's (3.24)–(3.28) generalised), viscous friction β ω Σ s′²
-over every prismatic pair (Eremyants (3.15)–(3.17)).
+over every prismatic pair (Eremyants (3.15)–(3.17)) and β_p of single pairs: the viscous moment is β ω S(φ) with
+
+    β S(φ) = β_P Σ_prismatic s′² + Σ_p β_p rel_p²,
+
+rel_p the pair's relative angular (revolute) or sliding (prismatic) velocity analog (kinetostatics/groups/
+pairs.py): the power β_p (rel_p ω)² the pair dissipates, reduced to the crank.  β is the request's β_P, or 1
+where only single pairs have one.
 """
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -20,9 +26,10 @@ from ..mechanisms.base import angle_ranges, ranges_text
 from ..mechanisms.general import CHECK_POINTS, GeneralMechanism, assembly_notices
 from ..kinetostatics.groups.dry_moment import dry_moment, rough
 from ..kinetostatics.groups.friction import PairFriction
+from ..kinetostatics.groups.pairs import crank_pair, group_pairs
 from ..numerics import Numerics
 from ..structure.compose import Composition, compose
-from ..structure.masses import MassModel, centre_points, check_model
+from ..structure.masses import MassModel, centre_points, check_model, with_strokes
 from ..structure.reduction import reduced_inertia, reduced_loads
 from .machine import Machine, Tables
 from .motors import Motor
@@ -38,6 +45,7 @@ class GeneralMachine(Machine):
     linkage: GeneralMechanism | None = field(default=None, compare=False, repr=False)
     masses: MassModel = field(default_factory=MassModel)
     pairs: tuple[tuple[str, PairFriction], ...] = ()      # f and r of single pairs by name (else the model's)
+    prismatic_beta: float = 0.0                            # β_P of every prismatic pair (load.beta is β)
 
     @property
     def rough(self) -> bool:
@@ -84,13 +92,32 @@ class GeneralMachine(Machine):
         drive = np.full(comp.phi.shape, self.motor.M0 * self.inertias.gear_ratio) if self.motor.kind == "constant" \
             else np.zeros(comp.phi.shape)
         dry, locking, _ = self.dry(comp)
-        return Tables(comp.phi, inertia.J, inertia.dJ, drive, useful, dry, sliding_squares(comp),
+        return Tables(comp.phi, inertia.J, inertia.dJ, drive, useful, dry, self.sliding(comp),
                       locking + assembly_notices(comp))
 
     def switching(self, phi: np.ndarray) -> np.ndarray:
         comp = compose(self.linkage.linkage, np.asarray(phi, float))
         rows = reduced_loads(self.linkage, comp, self.masses).switches + self.dry(comp)[2]
         return np.array(rows) if rows else np.zeros((0, comp.phi.size))
+
+
+    def sliding(self, comp: Composition) -> np.ndarray:
+        """S(φ) of the viscous moment β ω S(φ) (module docstring)."""
+        beta = self.load.beta
+        if not beta:
+            return np.zeros(comp.phi.shape)
+        total = (self.prismatic_beta / beta) * sliding_squares(comp)
+        viscous = [(name, p.beta) for name, p in self.pairs if p.beta > 0]
+        if viscous:
+            relative = pair_motions(self.linkage, comp)
+            total = total + sum((b / beta) * relative[name] ** 2 for name, b in viscous)
+        return total
+
+
+def pair_motions(mechanism: GeneralMechanism, comp: Composition) -> dict[str, np.ndarray]:
+    """Every pair's relative velocity analog by name: θ′_b − θ′_a (revolute), the sliding analog (prismatic)."""
+    pairs = [p for g in group_pairs(mechanism.linkage, comp) for p in g.pairs]
+    return {p.name: p.relative for p in pairs + [crank_pair(mechanism.linkage, comp)]}
 
 
 def sliding_squares(comp: Composition) -> np.ndarray:
@@ -111,11 +138,18 @@ def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: 
             raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at φ = {ranges}: "
                                 "the crank cannot turn fully, a machine needs the whole turn", "no_full_turn",
                                 group=k)
+    masses = with_strokes(mech, masses)
     check_model(turn, masses)
+    known = pair_motions(mech, compose(mech.linkage, np.zeros(1)))
+    for name in pairs or {}:
+        if name not in known:
+            raise GeometryError(f"pair_friction.{name}", f"no pair '{name}' in this linkage (pairs: "
+                                f"{', '.join(sorted(known))})", "unknown_pair", pair=name)
     if motor.kind == "indicator":
         raise GeometryError("motor.kind", "an indicator diagram drives a crank-slider (piston engine) only",
                             "indicator_needs_slider")
-    refused = {"load.force": load.force, "load.f": load.f, "inertias.m2": inertias.m2, "inertias.J_S2": inertias.J_S2, "inertias.m3": inertias.m3,
+    refused = {"load.force": load.force, "load.f": load.f, "inertias.m2": inertias.m2,
+               "inertias.J_S2": inertias.J_S2, "inertias.m3": inertias.m3,
                "inertias.J3": inertias.J3}
     for where, value in refused.items():
         if value:
@@ -125,11 +159,10 @@ def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: 
     if load.convention != "consistent":
         raise GeometryError("load.convention", "the textbook's printed formulas are for the four fixed mechanisms",
                             "general_masses")
-    machine = GeneralMachine("general", {}, inertias, load, motor, linkage=mech, masses=masses,
-                             pairs=tuple(sorted((pairs or {}).items())))
-    if machine.rough:
-        dry_moment(mech, compose(mech.linkage, np.zeros(1)), masses, pairs)    # an unknown pair's name: 422
-    return machine
+    single = any(p.beta > 0 for p in (pairs or {}).values())
+    beta = load.beta if load.beta > 0 or not single else 1.0
+    return GeneralMachine("general", {}, inertias, replace(load, beta=beta), motor, linkage=mech, masses=masses,
+                          pairs=tuple(sorted((pairs or {}).items())), prismatic_beta=load.beta)
 
 
 def reduction(machine: GeneralMachine, n: int, omega: float, outputs: list[str]) -> tuple[dict, list[Notice]]:
@@ -150,12 +183,12 @@ def reduction(machine: GeneralMachine, n: int, omega: float, outputs: list[str])
         started = time.perf_counter()
         loads = reduced_loads(machine.linkage, comp, machine.masses)
         useful = loads.total + machine.load.crank_moment
-        viscous = machine.load.beta * omega * sliding_squares(comp)
+        viscous = machine.load.beta * omega * machine.sliding(comp)
         dry, locking, _ = machine.dry(comp)
         notices = locking + notices
         fine = compose(machine.linkage.linkage, np.linspace(0.0, TURN, MEAN_POINTS + 1))
         total = (reduced_loads(machine.linkage, fine, machine.masses).total + machine.load.crank_moment
-                 + machine.dry(fine)[0] + machine.load.beta * omega * sliding_squares(fine))
+                 + machine.dry(fine)[0] + machine.load.beta * omega * machine.sliding(fine))
         finite = bool(np.isfinite(total).all())
         mean = float(np.mean(total[:-1])) if finite else None
         error = abs(mean - float(np.mean(total[:-1:2]))) if finite else 0.0

@@ -18,7 +18,7 @@ from ...mechanisms.base import GeometryError, Notice, angle_ranges, ranges_text
 from ..crank_slider import approximations_outcome
 from ...numerics import Numerics
 from ...structure.compose import Composition, compose
-from ...structure.masses import MassModel, check_model
+from ...structure.masses import MassModel, check_model, with_strokes
 from . import friction as fr
 from .equilibrium import Influence, solve_all
 from .loads import Load, link_loads, power_moment, resultants
@@ -144,6 +144,7 @@ def analyse(mechanism, model: MassModel, phi: np.ndarray, omega: float = 10.0, e
     linkage = mechanism.linkage
     comp = compose(linkage, phi)
     require_full_turn(comp)
+    model = with_strokes(mechanism, model)
     check_model(comp, model)
     s = setup(mechanism, comp, model, omega, epsilon, pairs)
     result = GroupForces(phi, comp, s.groups, s.pairs, s.coefficients, s.loads, s.influence, linkage.crank.link,
@@ -153,7 +154,7 @@ def analyse(mechanism, model: MassModel, phi: np.ndarray, omega: float = 10.0, e
     solved = fr.solve(fmap, tolerance, budget)
     result.locked = solved.locked
     result.approximations = textbook_approximations(result, fmap, tolerance, shown if result.rough else 1)
-    final = fmap.evaluate(solved.z)[0]                 # friction from the solved reactions (3.3), and the
+    final = fmap.apply(solved.z)                 # friction from the solved reactions (3.3), and the
     result.solution = approximation(result, final, None)   # reactions in equilibrium with it
     result.converged = solved.converged
     result.ratios = np.where(solved.locked, np.nan, solved.ratio)
@@ -185,7 +186,7 @@ def textbook_approximations(result: GroupForces, fmap: fr.FrictionMap, tolerance
             if row.change is not None and (row.change < tolerance or not row.change < 1e12):
                 break
             previous = now
-            z = fmap.evaluate(z)[0]
+            z = fmap.apply(z)
     return table
 
 

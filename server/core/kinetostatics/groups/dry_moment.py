@@ -52,7 +52,7 @@ def dry_moment(mechanism, comp: Composition, model: MassModel, pairs: dict[str, 
     """M_T(φ) at the angles of ``comp`` (module docstring); ``pairs``: f and r by pair name, else the model's."""
     s = setup(mechanism, comp, model, 0.0, 0.0, pairs)
     solved = fr.solve(s.fmap, tolerance)
-    z = s.fmap.evaluate(solved.z)[0]
+    z = s.fmap.apply(solved.z)
     _, _, balancing = s.influence.at(z)
     moment = mechanism.linkage.crank.sense * balancing - power_moment(s.loads)
     blank = solved.locked | s.influence.singular
