@@ -155,7 +155,7 @@ def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: 
         if value:
             raise GeometryError(where, "a general mechanism takes its link masses and loads in `masses` (links, "
                                 "forces, moments) and the dry friction of its pairs in `masses.friction`, "
-                                "`masses.pair_radius` and `pair_friction`", "general_masses")
+                                "`masses.pair_radius` and `pair_friction`", "general_loads")
     if load.convention != "consistent":
         raise GeometryError("load.convention", "the textbook's printed formulas are for the four fixed mechanisms",
                             "general_masses")
