@@ -16,6 +16,7 @@ where only single pairs have one.
 """
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field, replace
 
@@ -24,20 +25,22 @@ import numpy as np
 from ..mechanisms import GeometryError, Notice
 from ..mechanisms.base import angle_ranges, ranges_text
 from ..mechanisms.general import CHECK_POINTS, GeneralMechanism, assembly_notices
-from ..kinetostatics.groups.dry_moment import dry_moment, rough
+from ..kinetostatics.groups.dry_moment import DryMoment, dry_moment, rough
 from ..kinetostatics.groups.friction import PairFriction
 from ..kinetostatics.groups.pairs import crank_pair, group_pairs
 from ..numerics import Numerics
 from ..structure.compose import Composition, compose
 from ..structure.masses import MassModel, centre_points, check_model, with_strokes
 from ..structure.reduction import reduced_inertia, reduced_loads
-from .machine import Machine, Tables
+from .machine import KINK_ITERATIONS, KINK_MERGE, KINK_SCAN, Machine, Tables
 from .motors import Motor
 from .reduction import Inertias
 from .resistance import Load
 
 TURN = 2 * np.pi
 MEAN_POINTS = 8192       # intervals of the cycle mean M_c0 (trapezoid; the kinks make it second order)
+DRY_BUDGET_S = 5.0       # wall clock of one friction solve of the dry moment (the forces request's bound), said in
+                         # words where it runs out; a six-bar's 8193 angles take ~1 s
 
 
 @dataclass(frozen=True)
@@ -52,19 +55,28 @@ class GeneralMachine(Machine):
         """Whether a pair has dry friction."""
         return rough(self.masses, dict(self.pairs))
 
-    def dry(self, comp: Composition) -> tuple[np.ndarray, list[Notice], list[np.ndarray]]:
-        """M_T(φ) of the pairs' dry friction on ``comp``, the self-locking notice, M_T's switching functions."""
+    def dry(self, comp: Composition, corners: bool = False) -> tuple[np.ndarray, list[Notice], DryMoment | None]:
+        """M_T(φ) of the pairs' dry friction on ``comp``, the notices (self-locking; the work bound), and the
+        solve (None without friction); ``corners``: only its switching functions and normal forces are read (no
+        jam is looked for: where one locks the mechanism, the tables say so)."""
         if not self.rough:
-            return np.zeros(comp.phi.shape), [], []
-        found = dry_moment(self.linkage, comp, self.masses, dict(self.pairs))
+            return np.zeros(comp.phi.shape), [], None
+        found = dry_moment(self.linkage, comp, self.masses, dict(self.pairs), budget=DRY_BUDGET_S,
+                           jams=not corners)
+        order = np.argsort(comp.phi)             # the integrator's nodes come with its kinks at the end
         notices = []
         if found.locked.any():
-            order = np.argsort(comp.phi)             # the integrator's nodes come with its kinks at the end
             ranges = angle_ranges(comp.phi[order], found.locked[order])
             notices.append(Notice("group_self_locking", f"Self-locking for φ in {ranges_text(ranges)}: the "
                                   "equilibrium with friction ceases to exist there (the reactions it needs grow "
                                   "without bound), so no driving moment moves the mechanism.", {"ranges": ranges}))
-        return found.moment, notices, found.switches
+        if found.unsettled.any():
+            ranges = angle_ranges(comp.phi[order], found.unsettled[order])
+            notices.append(Notice("dry_friction_work_bound", f"The equilibrium with friction was not solved within "
+                                  f"the work bound ({DRY_BUDGET_S:g} s) for φ in {ranges_text(ranges)}: the "
+                                  "friction moment is unknown there, no motion is computed.",
+                                  {"budget": DRY_BUDGET_S, "ranges": ranges}))
+        return found.moment, notices, found
 
     def cycle(self) -> float:
         return max(TURN, self.motor.cycle())
@@ -96,9 +108,47 @@ class GeneralMachine(Machine):
                       locking + assembly_notices(comp))
 
     def switching(self, phi: np.ndarray) -> np.ndarray:
+        """The loads' switches and the rough pairs' relative motions: kinematics alone (the normal forces'
+        zeros, which need the friction solve, are found apart: ``find_kinks``)."""
         comp = compose(self.linkage.linkage, np.asarray(phi, float))
-        rows = reduced_loads(self.linkage, comp, self.masses).switches + self.dry(comp)[2]
+        rows = reduced_loads(self.linkage, comp, self.masses).switches + self.relative_motions(comp)
         return np.array(rows) if rows else np.zeros((0, comp.phi.size))
+
+    def relative_motions(self, comp: Composition) -> list[np.ndarray]:
+        """The relative velocity analog of every pair with dry friction."""
+        if not self.rough:
+            return []
+        named = dict(self.pairs)
+        default = self.masses.friction
+        return [relative for name, relative in pair_motions(self.linkage, comp).items()
+                if named.get(name, PairFriction(default)).f > 0]
+
+    def normals(self, phi: np.ndarray) -> np.ndarray:
+        """(R, N): the normal force of every rough prismatic pair at φ, NaN where there is no equilibrium."""
+        found = self.dry(compose(self.linkage.linkage, np.asarray(phi, float)), corners=True)[2]
+        return np.array(found.normals) if found is not None and found.normals else np.zeros((0, np.size(phi)))
+
+    def find_kinks(self) -> np.ndarray:
+        """The kinks of ``Machine.find_kinks`` (the kinematic switches), and the zeros of the rough prismatic
+        pairs' normal forces (|N| has a corner there): bracketed on the same scan and refined by the Illinois
+        method as there; a bracket that holds a kinematic kink is that kink (the normal force jumps there, with
+        the load's or a friction's sense: no zero of its own to refine)."""
+        kinks = super().find_kinks()
+        cycle = self.cycle()
+        phi = np.linspace(0.0, cycle, KINK_SCAN * math.ceil(cycle / TURN - 1e-9) + 1)
+        values = self.normals(phi)
+        with np.errstate(invalid="ignore"):
+            rows, cols = np.nonzero((values[:, :-1] * values[:, 1:] < 0) | (values[:, :-1] == 0))
+        low, high = phi[cols], phi[cols + 1]
+        holds = ((kinks[None, :] >= low[:, None] - KINK_MERGE) & (kinks[None, :] <= high[:, None] + KINK_MERGE)).any(1)
+        rows, cols, low, high = rows[~holds], cols[~holds], low[~holds], high[~holds]
+        if not rows.size:
+            return kinks
+        found = illinois(lambda guess: self.normals(guess)[rows, np.arange(rows.size)], low, high,
+                         values[rows, cols], values[rows, cols + 1])
+        found = np.where((found <= KINK_MERGE) | (found >= cycle - KINK_MERGE), 0.0, found)
+        found = np.sort(np.concatenate([kinks, found]))
+        return found[np.append(True, np.diff(found) > KINK_MERGE)]
 
 
     def sliding(self, comp: Composition) -> np.ndarray:
@@ -112,6 +162,34 @@ class GeneralMachine(Machine):
             relative = pair_motions(self.linkage, comp)
             total = total + sum((b / beta) * relative[name] ** 2 for name, b in viscous)
         return total
+
+
+def illinois(f, low: np.ndarray, high: np.ndarray, f_low: np.ndarray, f_high: np.ndarray) -> np.ndarray:
+    """Zeros of f, one per bracket [low, high] with f of opposite signs at its ends, all brackets at once: the
+    Illinois variant of regula falsi (Dahlquist & Björck, Numerical Methods, §6.2.3), as Machine.find_kinks,
+    until a bracket or the step between two guesses is a few doubles wide (at most KINK_ITERATIONS steps)."""
+    high = np.where(f_low == 0, low, high)
+    previous, moved = np.full(low.size, np.inf), np.zeros(low.size)
+    for _ in range(KINK_ITERATIONS):
+        ulps = 4 * np.spacing(np.maximum(np.abs(low), np.abs(high)))
+        open_ = (high - low > ulps) & (f_low != f_high) & np.isfinite(f_low) & np.isfinite(f_high)
+        if not open_.any():
+            break
+        guess = np.where(open_, (low * f_high - high * f_low) / np.where(open_, f_high - f_low, 1.0), low)
+        guess = np.where((guess > low) & (guess < high), guess, 0.5 * (low + high))
+        settled = open_ & (np.abs(guess - previous) <= ulps)
+        low, high = np.where(settled, guess, low), np.where(settled, guess, high)
+        open_ &= ~settled
+        previous = guess
+        f_guess = f(guess)
+        left = open_ & (np.sign(f_guess) == np.sign(f_low))
+        right = open_ & ~left
+        f_high = np.where(left & (moved > 0), 0.5 * f_high, f_high)
+        f_low = np.where(right & (moved < 0), 0.5 * f_low, f_low)
+        moved = np.where(left, 1.0, np.where(right, -1.0, moved))
+        low, f_low = np.where(left, guess, low), np.where(left, f_guess, f_low)
+        high, f_high = np.where(right, guess, high), np.where(right, f_guess, f_high)
+    return 0.5 * (low + high)
 
 
 def pair_motions(mechanism: GeneralMechanism, comp: Composition) -> dict[str, np.ndarray]:
@@ -167,7 +245,8 @@ def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: 
 
 def reduction(machine: GeneralMachine, n: int, omega: float, outputs: list[str]) -> tuple[dict, list[Notice]]:
     """J(φ), dJ/dφ and M_c(φ) over one turn (closed grid of n points), each link's and load's part apart; the
-    mean M_c0 by the trapezoid rule on MEAN_POINTS intervals, its error against half as many."""
+    mean M_c0 by the trapezoid rule on MEAN_POINTS intervals, its error against half as many (with dry friction
+    its jumps make the rule first order there: the estimate, the difference of the two, says so)."""
     if "friction_iteration" in outputs:
         raise GeometryError("outputs", "the textbook iterates friction forces for the sine mechanism and the "
                             "crank-slider only", "no_iteration")
@@ -199,7 +278,8 @@ def reduction(machine: GeneralMachine, n: int, omega: float, outputs: list[str])
                             steps=MEAN_POINTS, error_estimate=error / scale if scale > 0 else 0.0,
                             runtime_ms=1e3 * (time.perf_counter() - started))
         if not finite:
-            numerics.message = "no M_c0: the moment is not finite at every angle (self-locking)"
+            numerics.message = ("no M_c0: the moment is not finite at every angle (self-locking, or the friction "
+                                "solve's work bound)")
             numerics.message_code = "no_mean_moment"
         result["numerics"] = numerics.as_dict()
         locked = ~np.isfinite(dry)

@@ -16,7 +16,8 @@ tabulates what depends on φ alone.
 M_T has a corner where a rough pair's relative motion reverses (its friction changes sense) and where a rough
 prismatic pair's normal force changes sign (|N| has a corner): ``switches``.  Where the equilibrium with
 friction ceases to exist (self-locking, decided by the physics in friction.solve) or a group stands at a dead
-position, M_T is NaN and ``locked`` says where.
+position, M_T is NaN and ``locked`` says where; so it is where the solve's work bound (``budget``) ran out
+first (``unsettled``: said in words by the caller, never decided locked).
 """
 from __future__ import annotations
 
@@ -39,7 +40,9 @@ class DryMoment:
     locked: np.ndarray          # (N,) the equilibrium with friction does not exist (self-locking)
     singular: np.ndarray        # (N,) a group at a dead position
     error: np.ndarray           # (N,) relative error of the reactions the solve reached
-    switches: list[np.ndarray]  # functions whose sign changes are M_T's corners
+    unsettled: np.ndarray       # (N,) neither solved to the tolerance nor locked: the work bound ran out
+    switches: list[np.ndarray]  # the rough pairs' relative motions: M_T has a corner or a jump at their zeros
+    normals: list[np.ndarray]   # the rough prismatic pairs' normal forces (NaN where blank): a corner at a zero
 
 
 def rough(model: MassModel, pairs: dict[str, fr.PairFriction] | None) -> bool:
@@ -48,18 +51,19 @@ def rough(model: MassModel, pairs: dict[str, fr.PairFriction] | None) -> bool:
 
 
 def dry_moment(mechanism, comp: Composition, model: MassModel, pairs: dict[str, fr.PairFriction] | None = None,
-               tolerance: float = TOLERANCE) -> DryMoment:
-    """M_T(φ) at the angles of ``comp`` (module docstring); ``pairs``: f and r by pair name, else the model's."""
+               tolerance: float = TOLERANCE, budget: float | None = None, jams: bool = True) -> DryMoment:
+    """M_T(φ) at the angles of ``comp`` (module docstring); ``pairs``: f and r by pair name, else the model's;
+    ``budget``, ``jams``: as friction.solve's."""
     s = setup(mechanism, comp, model, 0.0, 0.0, pairs)
-    solved = fr.solve(s.fmap, tolerance)
+    solved = fr.solve(s.fmap, tolerance, budget, jams)
     z = s.fmap.apply(solved.z)
     _, _, balancing = s.influence.at(z)
     moment = mechanism.linkage.crank.sense * balancing - power_moment(s.loads)
-    blank = solved.locked | s.influence.singular
-    switches = []
-    for row, index in enumerate(s.rough):
-        pair = s.pairs[index]
-        switches.append(pair.relative)
-        if pair.kind == "P":
-            switches.append(s.fmap.reactions(solved.z)[row, :, 0])
-    return DryMoment(np.where(blank, np.nan, moment), solved.locked, s.influence.singular, solved.error, switches)
+    unsettled = ~solved.converged & ~solved.locked & ~s.influence.singular
+    blank = solved.locked | s.influence.singular | unsettled
+    reactions = s.fmap.reactions(solved.z)
+    switches = [s.pairs[index].relative for index in s.rough]
+    normals = [np.where(blank, np.nan, reactions[row, :, 0])     # none where there is no equilibrium
+               for row, index in enumerate(s.rough) if s.pairs[index].kind == "P"]
+    return DryMoment(np.where(blank, np.nan, moment), solved.locked, s.influence.singular, solved.error, unsettled,
+                     switches, normals)

@@ -155,9 +155,10 @@ def bound_ratio(fmap: FrictionMap) -> np.ndarray:
     return ratio
 
 
-def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None) -> Solved:
+def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None, jams: bool = True) -> Solved:
     """z = G(z) at every angle (module docstring); ``budget``: a wall-clock bound (s), the angles it leaves are
-    reported unconverged, never locked.
+    reported unconverged, never locked; ``jams``: look for jams (False: a caller that only locates the
+    equilibrium's corners, where a jam's angles are decided by another solve).
 
     The equilibrium is first solved directly.  Where that lands on a root with det(I − J) ≤ 0 or does not
     converge, the branch is followed from zero friction (continuation); where it folds or ends, the mechanism
@@ -237,7 +238,7 @@ def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None) -> S
         z = np.where(kept, followed, z)
         error, ratio = np.where(kept, f_error, error), np.where(kept, f_ratio, ratio)
         locked |= lost
-    suspect = todo & ~locked & (bound_ratio(fmap) >= 1)
+    suspect = todo & ~locked & (bound_ratio(fmap) >= 1) if jams else np.zeros(n, bool)
     if suspect.any():
         _, _, _, jammed, undecided = follow(FrictionMap(-fmap.base, fmap.slope, fmap.coefficient), suspect)
         locked |= jammed
