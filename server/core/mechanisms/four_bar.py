@@ -257,6 +257,10 @@ class FourBar(Mechanism):
         return sorted((phi, float(s)) for phi, ac, found, s, u31 in rows
                       if abs(found - ac) <= 1e-9 * scale and abs(u31) < 1e-6)
 
+    def resisting(self, p, load, phi, values, k):
+        from ..dynamics.resistance import four_bar_moment
+        return four_bar_moment(p, load, phi, values, k)
+
     def special_positions(self, p, extremes: list[tuple[float, float]] | None = None):
         """``extremes``: rocker_extremes(p) if found already (special_positions_many)."""
         cycle = self.cycle(p)

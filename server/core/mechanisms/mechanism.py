@@ -116,6 +116,11 @@ class Mechanism(ABC):
         mechanism already evaluated at phi)."""
         raise ValueError(f"the {self.name} mechanism has no piston")
 
+    def resisting(self, p: dict[str, float], load, phi: np.ndarray, values: dict, k: np.ndarray):
+        """M_c of the useful load and dry friction of this mechanism (dynamics/resistance.py builds it:
+        Eremyants ch. 3 for each mechanism); ``values`` its evaluation at phi, k the stroke factor."""
+        raise ValueError(f"no resisting-moment model for the {self.name} mechanism")
+
     def harmonic_claim(self, p: dict[str, float], spectrum: dict) -> dict | None:
         """The book's claim about the spectrum of u′₃₁, where it makes one (kinematics.py); none here."""
         return None

@@ -73,6 +73,10 @@ class Sine(Mechanism):
                          "yoke": point(-l1 * c, 0 * phi)}
         return ev
 
+    def resisting(self, p, load, phi, values, k):
+        from ..dynamics.resistance import sine_moment
+        return sine_moment(p, load, phi, values, k)
+
     def special_positions(self, p):
         l1 = p["l1"]
         return [SpecialPosition("dead_centre", 0.0, "yoke at its left extreme, u₃₁ = 0", 0.0),

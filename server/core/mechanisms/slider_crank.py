@@ -178,6 +178,10 @@ class SliderCrank(Mechanism):
             ev.warnings.append(Notice("approx_small_lambda", f"The approximations (2.16), (2.17*) assume λ > 3 "
                                       f"(λ² ≫ 1); here λ = {lam:.3g}.", {"lam": lam}))
 
+    def resisting(self, p, load, phi, values, k):
+        from ..dynamics.resistance import slider_crank_moment
+        return slider_crank_moment(p, load, phi, values, k)
+
     def special_positions(self, p):
         l1, l2, e = p["l1"], p["l2"], p["e"]
         # Crank and rod in line: outer (A on OB) and inner (A opposite OB) dead centres.

@@ -110,6 +110,10 @@ class SlottedLink(Mechanism):
             ratio = np.where(d2 > 0, 4 * lam**2 * np.cos(half) ** 2 / d2, lam)   # d2 = 0 only at λ = 1
         return p["l1"] ** 2 * np.sin(half) ** 2 * ratio
 
+    def resisting(self, p, load, phi, values, k):
+        from ..dynamics.resistance import slotted_link_moment
+        return slotted_link_moment(p, load, phi, values, k)
+
     def special_positions(self, p):
         lam = p["l0"] / p["l1"]
         if lam > 1:
