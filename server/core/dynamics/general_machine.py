@@ -120,7 +120,7 @@ class GeneralMachine(Machine):
             return []
         named = dict(self.pairs)
         default = self.masses.friction
-        return [relative for name, relative in pair_motions(self.linkage, comp).items()
+        return [relative for name, relative in pair_motions(self.linkage, comp)
                 if named.get(name, PairFriction(default)).f > 0]
 
     def normals(self, phi: np.ndarray) -> np.ndarray:
@@ -157,10 +157,10 @@ class GeneralMachine(Machine):
         if not beta:
             return np.zeros(comp.phi.shape)
         total = (self.prismatic_beta / beta) * sliding_squares(comp)
-        viscous = [(name, p.beta) for name, p in self.pairs if p.beta > 0]
+        viscous = {name: p.beta for name, p in self.pairs if p.beta > 0}
         if viscous:
-            relative = pair_motions(self.linkage, comp)
-            total = total + sum((b / beta) * relative[name] ** 2 for name, b in viscous)
+            total = total + sum((viscous[name] / beta) * relative**2
+                                for name, relative in pair_motions(self.linkage, comp) if name in viscous)
         return total
 
 
@@ -192,10 +192,11 @@ def illinois(f, low: np.ndarray, high: np.ndarray, f_low: np.ndarray, f_high: np
     return 0.5 * (low + high)
 
 
-def pair_motions(mechanism: GeneralMechanism, comp: Composition) -> dict[str, np.ndarray]:
-    """Every pair's relative velocity analog by name: θ′_b − θ′_a (revolute), the sliding analog (prismatic)."""
+def pair_motions(mechanism: GeneralMechanism, comp: Composition) -> list[tuple[str, np.ndarray]]:
+    """Every pair's name and relative velocity analog: θ′_b − θ′_a (revolute), the sliding analog (prismatic).
+    A joint that joins three links is two revolute pairs of one name (a pair's f, r, β by name are both's)."""
     pairs = [p for g in group_pairs(mechanism.linkage, comp) for p in g.pairs]
-    return {p.name: p.relative for p in pairs + [crank_pair(mechanism.linkage, comp)]}
+    return [(p.name, p.relative) for p in pairs + [crank_pair(mechanism.linkage, comp)]]
 
 
 def sliding_squares(comp: Composition) -> np.ndarray:
@@ -218,7 +219,7 @@ def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: 
                                 group=k)
     masses = with_strokes(mech, masses)
     check_model(turn, masses)
-    known = pair_motions(mech, compose(mech.linkage, np.zeros(1)))
+    known = {name for name, _ in pair_motions(mech, compose(mech.linkage, np.zeros(1)))}
     for name in pairs or {}:
         if name not in known:
             raise GeometryError(f"pair_friction.{name}", f"no pair '{name}' in this linkage (pairs: "
