@@ -177,7 +177,7 @@ def machine_key(request: MotionRequest | FlywheelRequest) -> bytes:
     return orjson.dumps(request.model_dump(include=MACHINE_FIELDS), option=orjson.OPT_SORT_KEYS)
 
 
-MACHINE_FIELDS = {"mechanism", "params", "inertias", "load", "motor", "linkage", "masses"}
+MACHINE_FIELDS = {"mechanism", "params", "inertias", "load", "motor", "linkage", "masses", "pair_friction"}
 
 
 def machine(request: MotionRequest | FlywheelRequest) -> Machine:
@@ -186,7 +186,7 @@ def machine(request: MotionRequest | FlywheelRequest) -> Machine:
         built = _general_machine(request, _motor(request.motor))
     else:
         params = MECHANISMS[request.mechanism].check(request.params)
-        if request.motor.kind == "indicator" and request.mechanism != "slider_crank":
+        if request.motor.kind == "indicator" and not MECHANISMS[request.mechanism].piston:
             raise GeometryError("motor.kind", "an indicator diagram drives a crank-slider (piston engine) only",
                                 "indicator_needs_slider")
         built = Machine(request.mechanism, params, Inertias(**request.inertias.model_dump()),
@@ -200,8 +200,9 @@ def machine(request: MotionRequest | FlywheelRequest) -> Machine:
 def _general_machine(request: ReductionRequest | MotionRequest | FlywheelRequest, motor: Motor) -> GeneralMachine:
     """A general mechanism's machine: its linkage, mass model and loads checked (GeometryError names the field)."""
     masses = request.masses.model() if request.masses is not None else MassModel()
+    pairs = {name: PairFriction(p.f, p.r, p.beta) for name, p in request.pair_friction.items()}
     return general_machine(request.linkage.model_dump(exclude_none=True), masses,
-                           Inertias(**request.inertias.model_dump()), Load(**request.load.model_dump()), motor)
+                           Inertias(**request.inertias.model_dump()), Load(**request.load.model_dump()), motor, pairs)
 
 
 def _motor(motor) -> Motor:
@@ -336,7 +337,7 @@ def _general_forces(request: ForcesRequest, lang: str) -> Answer:
     mechanism = GeneralMechanism(request.linkage.model_dump(exclude_none=True))
     mechanism.require_crank("the kinetostatics")
     masses = request.masses.model() if request.masses is not None else MassModel()
-    pairs = {name: PairFriction(p.f, p.r) for name, p in request.pair_friction.items()}
+    pairs = {name: PairFriction(p.f, p.r, p.beta) for name, p in request.pair_friction.items()}
     result = analyse_groups(mechanism, masses, np.linspace(0.0, 2 * np.pi, request.n), request.loads.omega,
                             request.loads.epsilon, request.tolerance, pairs, budget=FORCES_BUDGET_S)
     return answer(group_forces_report(result, request.free_body_phi), result.notices, lang)

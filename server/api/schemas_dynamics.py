@@ -3,7 +3,7 @@ every answer's numerics in the one declared form (NumericsModel)."""
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
@@ -100,6 +100,22 @@ class LinkMassInput(BaseModel):
         return centre
 
 
+class LoadDiagramInput(BaseModel):
+    """A useful-load diagram over the slider's stroke, as the indicator diagram: P/P_max at equally spaced
+    positions x/H = 0…1 from the start of the working stroke, for the working and the return stroke."""
+
+    model_config = ConfigDict(extra="forbid")
+    working_stroke: list[float] = Field(min_length=2, max_length=41, description="P/P_max on the working stroke")
+    return_stroke: list[float] = Field(min_length=2, max_length=41, description="P/P_max on the return stroke")
+
+    @field_validator("working_stroke", "return_stroke")
+    @classmethod
+    def ratios(cls, points):
+        if not all(math.isfinite(p) and 0 <= p <= 1 for p in points):
+            raise ValueError("each point is P/P_max, a number from 0 to 1")
+        return points
+
+
 class SliderForceInput(BaseModel):
     """A useful load on a slider along its guide, against the motion: P on the working stroke, k·P on the return."""
 
@@ -109,6 +125,19 @@ class SliderForceInput(BaseModel):
     working: float = Field(ge=0, le=1e7, description="P on the working stroke, N")
     k: float = Field(1.0, ge=0, le=1, description="k: return-stroke load / working-stroke load")
     sense: Literal[1, -1] = Field(1, description="+1: the working stroke moves along the guide's direction")
+    diagram: LoadDiagramInput | None = Field(None, description=(
+        "a useful-load diagram instead of the constant P: then `working` is P_max and `k` is not used"))
+
+    @model_validator(mode="after")
+    def diagram_or_k(self):
+        if self.diagram is not None and self.k != 1.0:
+            raise ValueError("with a load diagram the return stroke's load is its own row, not k·P")
+        return self
+
+    def force(self) -> SliderForce:
+        diagram = None if self.diagram is None else (tuple(self.diagram.working_stroke),
+                                                     tuple(self.diagram.return_stroke))
+        return SliderForce(self.joint, self.working, self.k, self.sense, diagram)
 
 
 class LinkMomentInput(BaseModel):
@@ -134,8 +163,23 @@ class MassInput(BaseModel):
 
     def model(self) -> MassModel:
         return MassModel(tuple(LinkMass(m.link, m.mass, tuple(m.centre), m.inertia) for m in self.links),
-                         self.gravity, tuple(SliderForce(**f.model_dump()) for f in self.forces),
+                         self.gravity, tuple(f.force() for f in self.forces),
                          tuple(LinkMoment(**m.model_dump()) for m in self.moments), self.friction, self.pair_radius)
+
+
+class PairFrictionInput(BaseModel):
+    """f and the journal radius r of one pair of a general mechanism (Chaika–Vasylenko (3.3))."""
+
+    model_config = ConfigDict(extra="forbid")
+    f: float = Field(0.0, ge=0, le=2, description="friction coefficient")
+    r: float = Field(0.0, ge=0, le=1, description="journal radius of a revolute pair, m (unused for a prismatic one)")
+    beta: float = Field(0.0, ge=0, le=1e6, description=(
+        "viscous friction β of the pair in the equation of motion: N·m·s (revolute), N·s/m (prismatic)"))
+
+PairFrictionMap = dict[Annotated[str, Field(min_length=1, max_length=40)], PairFrictionInput]
+PairFrictionField = Field(default_factory=dict, max_length=64, description=(
+    "with mechanism 'general': f and r of single pairs by name (a joint, a guide, an RPR's slide, 'B/slot'), "
+    "instead of masses.friction and masses.pair_radius"))
 
 
 class MechanismChoice(BaseModel):
@@ -145,7 +189,9 @@ class MechanismChoice(BaseModel):
     linkage: LinkageModel | None = Field(None, description=(
         "with mechanism 'general': the mechanism as data (GET /api/v1/mechanisms/general)"))
     masses: MassInput | None = Field(None, description=(
-        "with mechanism 'general': each link's mass, centre of mass and J_S, the loads on sliders and links, g"))
+        "with mechanism 'general': each link's mass, centre of mass and J_S, the loads on sliders and links, g, "
+        "and f, r of every pair"))
+    pair_friction: PairFrictionMap = PairFrictionField
     params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="lengths in metres, as for /kinematics")
 
     @model_validator(mode="after")
@@ -153,8 +199,9 @@ class MechanismChoice(BaseModel):
         general = self.mechanism == "general"
         if general != (self.linkage is not None):
             raise ValueError("`linkage` goes with mechanism 'general', and only with it")
-        if not general and self.masses is not None:
-            raise ValueError("`masses` goes with mechanism 'general' (the four mechanisms take `inertias`, `load`)")
+        if not general and (self.masses is not None or self.pair_friction):
+            raise ValueError("`masses` and `pair_friction` go with mechanism 'general' (the four mechanisms take "
+                             "`inertias`, `load`)")
         if general and self.params:
             raise ValueError("a general mechanism takes its lengths in `linkage`, not in `params`")
         return self

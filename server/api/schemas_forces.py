@@ -6,7 +6,7 @@ from typing import Annotated, Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from .schemas import MAX_PARAMS, LinkageModel
-from .schemas_dynamics import MassInput, MotorInput
+from .schemas_dynamics import MassInput, MotorInput, PairFrictionField, PairFrictionMap
 from .schemas_wear import TabulatedReactions
 
 
@@ -46,14 +46,6 @@ class ForceLoadsInput(BaseModel):
         return self
 
 
-class PairFrictionInput(BaseModel):
-    """f and the journal radius r of one pair of a general mechanism (Chaika–Vasylenko (3.3))."""
-
-    model_config = ConfigDict(extra="forbid")
-    f: float = Field(0.0, ge=0, le=2, description="friction coefficient")
-    r: float = Field(0.0, ge=0, le=1, description="journal radius of a revolute pair, m (unused for a prismatic one)")
-
-
 class ForcesRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     mechanism: Literal["slider_crank", "general"] = Field("slider_crank", description=(
@@ -62,10 +54,7 @@ class ForcesRequest(BaseModel):
         "with mechanism 'general': the mechanism as data (GET /api/v1/mechanisms/general)"))
     masses: MassInput | None = Field(None, description=(
         "with mechanism 'general': masses, centres, J_S, the useful loads, g, and f, r of every pair"))
-    pair_friction: dict[Annotated[str, Field(min_length=1, max_length=40)], PairFrictionInput] = Field(
-        default_factory=dict, max_length=64, description=(
-            "with mechanism 'general': f and r of single pairs by name (a joint, a guide, an RPR's slide, "
-            "'B/slot'), instead of masses.friction and masses.pair_radius"))
+    pair_friction: PairFrictionMap = PairFrictionField
     free_body_phi: float = Field(0.0, ge=-100, le=100, description=(
         "with mechanism 'general': the crank angle of the free-body diagrams and of the table, rad"))
     outputs: list[Literal["forces", "wear"]] = Field(["forces"], max_length=2, description="what the scene shows")

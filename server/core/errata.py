@@ -107,10 +107,7 @@ def piston_pressure(force: float, length: float, diameter: float) -> dict:
 
 
 def reduction(mechanism: str, params: dict, m3: float, omega: float) -> list[dict]:
-    """The misprints of the reduction formulas of the mechanism: Eremyants (3.38)/(3.39) for the crank-slider
-    (λ = l₂/l₁), (3.50)/(3.53) for the slotted link (λ = l₀/l₁); none for the others."""
-    if mechanism == "slider_crank":
-        return variable_inertia(m3, params["l1"], params["l2"] / params["l1"])
-    if mechanism == "slotted_link":
-        return slotted_viscous(omega, params["l1"], params["l0"] / params["l1"])
-    return []
+    """The misprints of the reduction formulas of the mechanism (Mechanism.reduction_errata): Eremyants
+    (3.38)/(3.39) for the crank-slider (λ = l₂/l₁), (3.50)/(3.53) for the slotted link (λ = l₀/l₁)."""
+    from .mechanisms import MECHANISMS          # errata is imported by the mechanisms' modules
+    return MECHANISMS[mechanism].reduction_errata(params, m3, omega)

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .harmonics import fourth_harmonic_claim, harmonic_grid, harmonics
+from .harmonics import harmonic_grid, harmonics
 from .mechanisms import MECHANISMS, GeometryError, Notice
 from .mechanisms.base import Evaluation
 
@@ -145,38 +145,12 @@ def _fill(mech, mechanism: str, result: KinematicsResult, ev: Evaluation, output
             result.outputs[name] = harmonics(mech, p, "u31", values=spectrum)
         elif name == "harmonics_du31":
             result.outputs[name] = harmonics(mech, p, "du31")
-            if mechanism == "slider_crank" and p["e"] == 0:   # the book's claim is for the central crank-slider
-                result.outputs[name]["claim"] = fourth_harmonic_claim(result.outputs[name], p["l2"] / p["l1"])
+            claim = mech.harmonic_claim(p, result.outputs[name])
+            if claim is not None:
+                result.outputs[name]["claim"] = claim
         elif name == "info":
             result.outputs[name] = mech.describe(p)
         else:
             result.outputs[name] = ev.values[name]
-    result.warnings.extend(proximity_warnings(mechanism, p, mech))
+    result.warnings.extend(mech.proximity_warnings(p))
 
-
-def proximity_warnings(mechanism: str, p: dict[str, float], mech) -> list[Notice]:
-    """Sentences for configurations close to a singular one (large but finite transfer functions)."""
-    notes = []
-    if mechanism == "slider_crank":
-        margin = p["l2"] - p["l1"] - abs(p["e"])
-        if margin < 0.1 * p["l1"]:
-            angle = np.degrees(np.arcsin((p["l1"] + abs(p["e"])) / p["l2"]))
-            notes.append(Notice("slider_crank_near_limit",
-                                f"Near the assembly limit: l₂ − l₁ − |e| = {margin:.3g} m. The rod swings up to "
-                                f"{angle:.1f}°, u₂₁ and u′₃₁ grow large where the rod is nearly perpendicular to "
-                                "the guide.", {"margin": margin, "angle": angle}))
-    elif mechanism == "slotted_link":
-        lam = p["l0"] / p["l1"]
-        if lam != 1 and abs(lam - 1) < 0.1:
-            notes.append(Notice("slotted_near_one",
-                                f"λ = {lam:.3g} is close to 1: near φ = 180° the block passes close to the lever "
-                                f"pivot, u₃₁ reaches {1 / abs(1 - lam):.3g} and u′₃₁ is very large.",
-                                {"lam": lam, "peak": 1 / abs(1 - lam)}))
-    elif mechanism == "four_bar":
-        mu = mech.describe(p)["min_transmission_angle"]
-        if mech.change_point(p) is None and mu < np.radians(10):
-            notes.append(Notice("four_bar_small_mu",
-                                f"The smallest transmission angle is {np.degrees(mu):.2f}°: the linkage is close to "
-                                "a change point, and the transfer functions are large there.",
-                                {"mu": float(np.degrees(mu))}))
-    return notes

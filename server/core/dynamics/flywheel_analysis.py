@@ -11,17 +11,52 @@ and the transfer functions (Fig. 10.5) of the crank-slider.
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..mechanisms import MECHANISMS, Notice
 from ..numerics import Numerics, cumulative_simpson, parabola_extremum
 from . import flywheel as fw
-from .machine import Machine
+from .machine import Machine, Tables
 from .motion import node_tables, steps_per_cycle
 
 STEPS = 2048                # Simpson steps per 2π (the flywheel study's grid)
 DISPLAY_POINTS = 360
+
+
+@dataclass
+class SteadyCycle:
+    """The flywheel study's cycle: the tables on the uniform nodes of ``steps`` Simpson steps per 2π, the work
+    A(φ) of all the φ-moments and the driving work A_д(φ) (Simpson), group I's inertia J₁ + J_rotor i² and the
+    cycle of group II (fw.Cycle) on the step nodes."""
+
+    tables: Tables
+    nodes: slice
+    phi: np.ndarray
+    work: np.ndarray
+    driving: np.ndarray
+    existing: float
+    cycle: fw.Cycle
+
+    @property
+    def closes(self) -> bool:
+        """A steady cycle exists: the work over a cycle is finite and zero (to 1e-9 of the driving work)."""
+        return bool(np.isfinite(self.work).all()) and \
+            abs(self.work[-1]) <= 1e-9 * max(abs(self.driving[-1]), 1e-300)
+
+
+def flywheel_cycle(machine: Machine, steps: int, balance: bool) -> SteadyCycle:
+    """The cycle of the machine on the flywheel study's grid (``SteadyCycle``): the analysis here, the flywheel
+    report (report.flywheel) and both their error estimates start from it."""
+    tables = node_tables(machine, steps_per_cycle(machine, steps), balance)
+    nodes = slice(0, None, 2)
+    h = float(tables.phi[2] - tables.phi[0])
+    phi = tables.phi[nodes]
+    work = cumulative_simpson(tables.net_phi, h)
+    existing = machine.inertias.J1 + machine.inertias.J_rotor * machine.inertias.gear_ratio**2
+    return SteadyCycle(tables, nodes, phi, work, cumulative_simpson(tables.drive_phi, h), existing,
+                       fw.Cycle(phi, work, tables.J[nodes] - existing))
 
 
 def merzalov_delta(cycle: fw.Cycle, inertia_i: float, omega_mean: float) -> float:
@@ -37,17 +72,12 @@ def flywheel_analysis(machine: Machine, omega_mean: float, flywheel: float, delt
     ΔT_I = A − I_II ω_ср²/2 (L10); beside it the exact δ (L3) of the periodic solution, the synthesis for [δ]
     (L6) and the diagrams of Figs. 10.5, 10.6 (module docstring)."""
     started = time.perf_counter()
-    tables = node_tables(machine, steps_per_cycle(machine, steps), balance)
-    nodes = slice(0, None, 2)
-    h = float(tables.phi[2] - tables.phi[0])
-    phi = tables.phi[nodes]
-    work = cumulative_simpson(tables.net_phi, h)
-    driving = cumulative_simpson(tables.drive_phi, h)
-    if not np.isfinite(work).all() or abs(work[-1]) > 1e-9 * max(abs(driving[-1]), 1e-300):
+    steady = flywheel_cycle(machine, steps, balance)
+    if not steady.closes:
         return {}, [Notice("no_steady_cycle_analysis", "No steady cycle: the work over a cycle is not zero, so "
                            "there is no δ to find (balance the cycle).", {})]
-    existing = machine.inertias.J1 + machine.inertias.J_rotor * machine.inertias.gear_ratio**2
-    cycle = fw.Cycle(phi, work, tables.J[nodes] - existing)
+    tables, nodes, phi, work, driving = steady.tables, steady.nodes, steady.phi, steady.work, steady.driving
+    existing, cycle = steady.existing, steady.cycle
     inertia_i = existing + flywheel
     shown = slice(0, None, max(1, (phi.size - 1) // DISPLAY_POINTS))
     result, notices = {"phi": phi[shown]}, []
@@ -87,9 +117,5 @@ def flywheel_analysis(machine: Machine, omega_mean: float, flywheel: float, delt
 
 def _error(machine: Machine, omega_mean: float, inertia_i: float, balance: bool, steps: int, delta: float) -> float:
     """|δ on half the grid / δ − 1|: the grid's error (Simpson on A, O(h⁴) on smooth pieces)."""
-    tables = node_tables(machine, steps_per_cycle(machine, steps // 2), balance)
-    nodes = slice(0, None, 2)
-    work = cumulative_simpson(tables.net_phi, float(tables.phi[2] - tables.phi[0]))
-    existing = machine.inertias.J1 + machine.inertias.J_rotor * machine.inertias.gear_ratio**2
-    coarse = fw.Cycle(tables.phi[nodes], work, tables.J[nodes] - existing)
+    coarse = flywheel_cycle(machine, steps // 2, balance).cycle
     return abs(fw.achieved_delta(coarse, inertia_i, omega_mean) / delta - 1)

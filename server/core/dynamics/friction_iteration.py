@@ -38,44 +38,8 @@ class IterationLog:
 def friction_iteration(mechanism: str, params: dict[str, float], phi: float, force: float, f: float,
                        tolerance: float = 1e-6, max_steps: int = 200) -> IterationLog:
     """The approximations at crank angle φ (rad), their ratio, and the limit in closed form where it exists."""
-    if mechanism == "sine":
-        ratio = f**2
-        log = IterationLog(ratio)
-        r23 = force
-        log.steps.append({"n": 0, "R23": r23, "F_T2": 0.0, "F_T3": 0.0, "R03": 0.0, "change": None})
-        for n in range(1, max_steps + 1):
-            f_t2 = f * r23
-            r03 = f_t2
-            f_t3 = f * r03
-            new = force + f_t3
-            change = abs(new - r23) / abs(new) if new else 0.0
-            r23 = new
-            log.steps.append({"n": n, "R23": r23, "F_T2": f_t2, "F_T3": f_t3, "R03": r03, "change": change})
-            if change < tolerance or r23 > DIVERGED * force:
-                break
-        if ratio < 1:
-            log.limit = {"R23": force / (1 - ratio)}
-    elif mechanism == "slider_crank":
-        values = MECHANISMS[mechanism].evaluate(params, np.array([phi]), set()).values
-        tan_psi = abs(float(np.tan(values["s2"][0])))
-        ratio = f * tan_psi
-        log = IterationLog(ratio)
-        f_t, r03 = 0.0, force * tan_psi
-        log.steps.append({"n": 0, "F_T": 0.0, "R03": r03, "R12": force * np.sqrt(1 + tan_psi**2), "change": None})
-        for n in range(1, max_steps + 1):
-            new = f * r03
-            change = abs(new - f_t) / abs(new) if new else 0.0
-            f_t = new
-            r03 = (force + f_t) * tan_psi
-            log.steps.append({"n": n, "F_T": f_t, "R03": r03, "R12": (force + f_t) * np.sqrt(1 + tan_psi**2),
-                              "change": change})
-            if change < tolerance or f_t > DIVERGED * force:
-                break
-        if ratio < 1:
-            log.limit = {"F_T": force * ratio / (1 - ratio)}
-    else:
-        raise ValueError(f"the textbook iterates friction forces only for the sine mechanism and the crank-slider, "
-                         f"not for {mechanism}")
+    ratio, steps, limit = MECHANISMS[mechanism].friction_steps(params, phi, force, f, tolerance, max_steps)
+    log = IterationLog(ratio, steps, limit=limit)
     last = log.steps[-1]["change"]
     log.converged = bool(ratio < 1)
     if log.converged:

@@ -115,7 +115,7 @@ class Machine:
         kinematics = MECHANISMS[self.mechanism].evaluate(self.params, phi, set())
         rows = resisting_moment(self.mechanism, self.params, self.load, phi, 1.0, kinematics).switches
         if self.motor.kind == "indicator":
-            rows = rows + indicator_switches(self.params, phi, kinematics)
+            rows = rows + indicator_switches(MECHANISMS[self.mechanism], self.params, phi, kinematics)
         return np.array(rows)
 
     def kinks(self) -> np.ndarray:

@@ -216,8 +216,10 @@ def cycle_figures(machine: Machine, tables: Tables, run: Run, fine: dict | None 
     drive = tables.drive_phi[nodes] + (machine.speed_moment(omega, np.zeros_like(omega))[0]
                                        if machine.motor.speed_dependent else 0.0)
     viscous = machine.load.beta * omega * tables.sliding[nodes]
-    works = {"driving": work(drive), "useful": work(tables.useful[nodes]), "dry_friction": work(tables.dry[nodes]),
-             "viscous_friction": work(viscous)}
+    def work_phi(values):          # a moment of φ alone, each step's own three nodes: a jump at a kink is kept
+        return float(step_integral(tables, values)[-1])
+    works = {"driving": work(drive) if machine.motor.speed_dependent else work_phi(tables.drive_phi),
+             "useful": work_phi(tables.useful), "dry_friction": work_phi(tables.dry), "viscous_friction": work(viscous)}
     works["net"] = works["driving"] - works["useful"] - works["dry_friction"] - works["viscous_friction"]
     k_max, k_min = int(np.argmax(omega)), int(np.argmin(omega))
     fine = {} if fine is None else fine

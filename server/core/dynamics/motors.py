@@ -107,24 +107,10 @@ def diagram_curve(ratios: tuple[float, ...]) -> PchipInterpolator:
     return PchipInterpolator(np.linspace(0.0, 1.0, INDICATOR_POINTS), ratios)
 
 
-@lru_cache(maxsize=256)
-def piston_stroke(l1: float, l2: float, e: float) -> float:
-    """H: the piston's travel between the dead centres of the crank-slider (once per geometry)."""
-    positions = MECHANISMS["slider_crank"].special_positions({"l1": l1, "l2": l2, "e": e})
-    return next(sp.value for sp in positions if sp.kind == "dead_centre" and sp.value)
-
-
-def piston_travel(params: dict[str, float], phi: np.ndarray, kinematics=None) -> np.ndarray:
-    """x/H: the piston's travel from top dead centre over its stroke H."""
-    values = (kinematics or MECHANISMS["slider_crank"].evaluate(params, phi, set())).values
-    stroke = piston_stroke(params["l1"], params["l2"], params["e"])
-    return np.clip((stroke - values["s"]) / stroke, 0.0, 1.0)
-
-
-def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray, kinematics=None) -> np.ndarray:
+def gas_force(motor: Motor, mechanism, params: dict[str, float], phi: np.ndarray, kinematics=None) -> np.ndarray:
     """Gas force on the crank-slider's piston, N, from the indicator diagram (Lecture 10 (L15)–(L16)):
     p/p_max interpolated over the piston travel from top dead centre; it pushes towards the crank."""
-    x = piston_travel(params, phi, kinematics)
+    x = mechanism.piston_travel(params, phi, kinematics)
     expansion = diagram_curve(motor.expansion)(x)
     compression = diagram_curve(motor.compression)(x)
     phase = np.mod(phi, motor.cycle()) / np.pi                  # stroke number 0, 1, (2, 3)
@@ -135,15 +121,16 @@ def gas_force(motor: Motor, params: dict[str, float], phi: np.ndarray, kinematic
 def indicator_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: np.ndarray,
                      kinematics=None) -> np.ndarray:
     """M_д = F·V_qC·cos(F, V) with F = p A_p on the piston (Lecture 10 (L17)); gas pushes towards the crank."""
-    if mechanism != "slider_crank":
+    mech = MECHANISMS[mechanism]
+    if not mech.piston:
         raise ValueError("an indicator diagram drives a crank-slider (piston engine) only")
-    kinematics = kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())
-    return -gas_force(motor, params, phi, kinematics) * kinematics.values["u31"]
+    kinematics = kinematics or mech.evaluate(params, phi, set())
+    return -gas_force(motor, mech, params, phi, kinematics) * kinematics.values["u31"]
 
 
-def indicator_switches(params: dict[str, float], phi: np.ndarray, kinematics=None) -> list[np.ndarray]:
+def indicator_switches(mechanism, params: dict[str, float], phi: np.ndarray, kinematics=None) -> list[np.ndarray]:
     """Functions whose sign changes are where the gas moment has a jump or a corner: a change of stroke
     (φ a multiple of π, sin φ = 0: the other branch of the diagram) and the diagram's inner points
     x/H = 0.1 … 0.9 (the monotone cubic is only once continuously differentiable there)."""
-    x = piston_travel(params, phi, kinematics)
+    x = mechanism.piston_travel(params, phi, kinematics)
     return [np.sin(phi)] + [x - j / (INDICATOR_POINTS - 1) for j in range(1, INDICATOR_POINTS - 1)]

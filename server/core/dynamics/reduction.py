@@ -54,12 +54,6 @@ class ReducedInertia:
         return float(np.mean(self.J[:-1])) if self.J.size > 1 else float(self.J[0])
 
 
-# link 2 rotates with u21, except the slotted link's block, which turns with the lever (ω₂ = ω₃)
-LINK2_ROTATION = {"sine": None, "slider_crank": "u21", "slotted_link": "u31", "four_bar": "u21"}
-LINK3_MOTION = {"sine": "translation", "slider_crank": "translation", "slotted_link": "rotation",
-                "four_bar": "rotation"}
-
-
 def reduced_inertia(mechanism: str, params: dict[str, float], inertias: Inertias,
                     phi: np.ndarray, kinematics=None) -> ReducedInertia:
     """J(φ) and dJ/dφ reduced to the crank by kinetic-energy equality (Eremyants (1.1)–(1.5)), from closed-form
@@ -71,12 +65,13 @@ def reduced_inertia(mechanism: str, params: dict[str, float], inertias: Inertias
     parts = {"constant": np.full_like(phi, constant),
              "link2_translation": inertias.m2 * np.sum(v * v, axis=1)}
     d_parts = {"link2_translation": 2 * inertias.m2 * np.sum(v * a, axis=1)}
-    rotation = LINK2_ROTATION[mechanism]
+    mech = MECHANISMS[mechanism]
+    rotation = mech.link2_rotation
     if rotation:
         u, du = values[rotation], values["d" + rotation]
         parts["link2_rotation"] = inertias.J_S2 * u**2
         d_parts["link2_rotation"] = 2 * inertias.J_S2 * u * du
-    link3 = inertias.m3 if LINK3_MOTION[mechanism] == "translation" else inertias.J3
+    link3 = inertias.m3 if mech.link3_translates else inertias.J3
     parts["link3"] = link3 * values["u31"] ** 2
     d_parts["link3"] = 2 * link3 * values["u31"] * values["du31"]
     return ReducedInertia(J=sum(parts.values()), dJ=sum(d_parts.values()), parts=parts)
@@ -86,14 +81,6 @@ def textbook_inertia_approximation(mechanism: str, params: dict[str, float], ine
                                    phi: np.ndarray) -> np.ndarray | None:
     """The textbook's closed forms where it gives them (crank-slider rod mass neglected).
 
-    Crank-slider, λ² ≫ 1 (3.36): J ≈ J₁ + m₃l₁² sin²φ (1 − cos φ/λ)²;
-    sine mechanism (3.18), exact: J = J₁ + m₂l₁² + m₃l₁² sin²φ.
-    """
-    l1 = params["l1"]
+    (Mechanism.textbook_inertia: the crank-slider's (3.36), the sine mechanism's (3.18)); None elsewhere."""
     constant = inertias.J1 + inertias.J_rotor * inertias.gear_ratio**2
-    if mechanism == "slider_crank":
-        lam = params["l2"] / l1
-        return constant + inertias.m3 * l1**2 * np.sin(phi) ** 2 * (1 - np.cos(phi) / lam) ** 2
-    if mechanism == "sine":
-        return constant + inertias.m2 * l1**2 + inertias.m3 * l1**2 * np.sin(phi) ** 2
-    return None
+    return MECHANISMS[mechanism].textbook_inertia(params, constant, inertias, phi)

@@ -8,10 +8,11 @@ import numpy as np
 from ..mechanisms import MECHANISMS, GeometryError, Notice
 from . import compiled
 from . import flywheel as fw
+from .flywheel_analysis import flywheel_cycle
 from .friction_iteration import friction_iteration
 from .machine import Machine
-from .motion import node_tables, startup, steady_cycle, steps_per_cycle
-from ..numerics import Numerics, cumulative_simpson
+from .motion import startup, steady_cycle
+from ..numerics import Numerics
 from .. import errata
 from .reduction import Inertias, reduced_inertia, textbook_inertia_approximation
 from .resistance import CONVENTIONS, Load, mean_over_cycle, resisting_moment
@@ -111,10 +112,7 @@ def _mean_numerics(total: np.ndarray, error: float, started: float) -> dict:
 
 def _flywheel_error(machine: Machine, omega_mean: float, delta: float, balance: bool, steps: int, inertia: float) -> float | None:
     """Relative change of the exact inertia when the grid is halved (Simpson: the error is ~1/16 of it)."""
-    half = node_tables(machine, steps_per_cycle(machine, steps // 2), balance)
-    work = cumulative_simpson(half.net_phi, float(half.phi[2] - half.phi[0]))
-    group_i = machine.inertias.J1 + machine.inertias.J_rotor * machine.inertias.gear_ratio**2
-    coarse = fw.exact(fw.Cycle(half.phi[::2], work, half.J[::2] - group_i), omega_mean, delta, inertia).inertia
+    coarse = fw.exact(flywheel_cycle(machine, steps // 2, balance).cycle, omega_mean, delta, inertia).inertia
     if inertia == 0:                     # group II alone keeps δ: nothing relative to compare unless both agree
         return 0.0 if coarse == 0 else None
     return abs(coarse / inertia - 1)
@@ -126,21 +124,16 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
     ``with_numerics``: also how it was computed, with the error estimate (the exact inertia again on half
     the grid), left out (no "numerics") for a caller that does not read it."""
     started = time.perf_counter()
-    tables = node_tables(machine, steps_per_cycle(machine, steps), balance)
-    nodes = slice(0, None, 2)
-    h = float(tables.phi[2] - tables.phi[0])
-    phi = tables.phi[nodes]
-    work = cumulative_simpson(tables.net_phi, h)
-    driving = cumulative_simpson(tables.drive_phi, h)
+    steady = flywheel_cycle(machine, steps, balance)
+    tables, nodes, phi, work, driving = steady.tables, steady.nodes, steady.phi, steady.work, steady.driving
     if not np.isfinite(work).all():
         return {}, tables.notices
     driving_cycle = max(abs(driving[-1]), 1e-300)
-    if abs(work[-1]) > 1e-9 * driving_cycle:
+    if not steady.closes:
         trend = "speeds up" if work[-1] > 0 else "slows down"
         return {}, [Notice(f"no_steady_cycle_{trend.split()[0]}", f"No steady cycle: the work over a cycle is "
                            f"{work[-1]:.4g} J, not zero, so the machine {trend} every cycle.", {"work": float(work[-1])})]
-    group_i_existing = machine.inertias.J1 + machine.inertias.J_rotor * machine.inertias.gear_ratio**2
-    cycle = fw.Cycle(phi, work, tables.J[nodes] - group_i_existing)
+    group_i_existing, cycle = steady.existing, steady.cycle
     methods = [fw.merzalov(cycle, omega_mean, delta), fw.gutyar(cycle, omega_mean, delta)]
     witt, diagram = fw.wittenbauer(cycle, omega_mean, delta)
     methods += [witt, fw.exact(cycle, omega_mean, delta, methods[0].inertia)]

@@ -83,11 +83,9 @@ def resisting_moment(mechanism: str, params: dict[str, float], load: Load, phi: 
     (``kinematics``: the mechanism already evaluated at phi, to share one evaluation)."""
     kinematics = kinematics or MECHANISMS[mechanism].evaluate(params, phi, set())
     values = kinematics.values
-    u31, u21 = values["u31"], values["u21"]
+    u31 = values["u31"]
     k = stroke_factor(u31, load.return_factor)
-    builder = {"sine": _sine, "slider_crank": _slider_crank, "slotted_link": _slotted_link,
-               "four_bar": _four_bar}[mechanism]
-    result = builder(params, load, phi, values, k)
+    result = MECHANISMS[mechanism].resisting(params, load, phi, values, k)     # the builder below of its kind
     result.notices = kinematics.warnings + result.notices     # singular positions of the linkage itself
     sliding = MECHANISMS[mechanism].sliding_squares(params, kinematics)     # finite at removable singularities
     result.viscous = load.beta * np.asarray(omega) * sliding
@@ -96,7 +94,7 @@ def resisting_moment(mechanism: str, params: dict[str, float], load: Load, phi: 
     return result
 
 
-def _sine(p, load, phi, values, k):
+def sine_moment(p, load, phi, values, k):
     f, P = load.f, load.force
     if load.convention == "textbook":
         useful = k * P * np.abs(values["u31"])
@@ -111,7 +109,7 @@ def _sine(p, load, phi, values, k):
     return ResistingMoment(useful, total - useful, 0 * phi, switches=[values["u21"]])
 
 
-def _slider_crank(p, load, phi, values, k):
+def slider_crank_moment(p, load, phi, values, k):
     f, P, l1 = load.f, load.force, p["l1"]
     lam = p["l2"] / l1
     u31 = values["u31"]
@@ -142,7 +140,7 @@ def _slider_crank(p, load, phi, values, k):
     return ResistingMoment(useful, total - useful, 0 * phi, switches=[np.tan(values["s2"])])
 
 
-def _slotted_link(p, load, phi, values, k):
+def slotted_link_moment(p, load, phi, values, k):
     f, M3 = load.f, load.force
     lam = p["l0"] / p["l1"]
     d2 = (1 - lam) ** 2 + 4 * lam * np.cos(phi / 2) ** 2
@@ -165,7 +163,7 @@ def _slotted_link(p, load, phi, values, k):
     return result
 
 
-def _four_bar(p, load, phi, values, k):
+def four_bar_moment(p, load, phi, values, k):
     useful = k * load.force * np.abs(values["u31"])
     return ResistingMoment(useful, 0 * phi, 0 * phi)
 

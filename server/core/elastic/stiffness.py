@@ -30,13 +30,7 @@ class Compliances:
 
 def link_angles(mechanism: str, values: dict) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """θ₁₂ = crank − rod angle and θ₂₃ = rod − rocker angle (CCW), with their derivatives in φ."""
-    phi = values["phi"]
-    if mechanism == "slider_crank":   # crank along (−cos φ, sin φ): angle π − φ; rod angle −ψ (ψ clockwise)
-        theta12 = np.pi - phi + values["s2"]
-        return theta12, values["u21"] - 1.0, np.zeros_like(phi), np.zeros_like(phi)
-    if mechanism == "four_bar":
-        return phi - values["s2"], 1.0 - values["u21"], values["s2"] - values["s"], values["u21"] - values["u31"]
-    raise ValueError(f"no elastic linkage model for {mechanism}")
+    return MECHANISMS[mechanism].elastic_angles(values)
 
 
 def linkage_stiffness(mechanism: str, params: dict, compliances: Compliances, phi: np.ndarray):

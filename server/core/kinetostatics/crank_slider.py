@@ -25,7 +25,7 @@ import numpy as np
 
 from ..numerics import Numerics
 from ..dynamics.motors import gas_force
-from ..mechanisms import MECHANISMS, Notice
+from ..mechanisms import SLIDER_CRANK, Notice
 from ..mechanisms.base import angle_ranges, ranges_text
 from . import equilibrium
 
@@ -100,7 +100,7 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def motion(params: dict, loads: Loads, phi: np.ndarray) -> tuple[dict, dict]:
     """Positions and the loads applied to each link: gravity, d'Alembert inertia, piston force."""
-    mech = MECHANISMS["slider_crank"]
+    mech = SLIDER_CRANK
     ev = mech.evaluate(params, phi, {"joints"})
     v = ev.values
     w, eps = loads.omega, loads.epsilon
@@ -113,7 +113,7 @@ def motion(params: dict, loads: Loads, phi: np.ndarray) -> tuple[dict, dict]:
     k = np.where(v["u31"] * w >= 0, 1.0, loads.return_factor)
     slider_velocity = v["u31"] * w
     if loads.gas is not None:                # the gas pushes the piston towards the crank (−x)
-        piston = np.stack([-gas_force(loads.gas, params, phi), 0 * phi], axis=1)
+        piston = np.stack([-gas_force(loads.gas, SLIDER_CRANK, params, phi), 0 * phi], axis=1)
     else:                                    # a working machine's load resists the slider's motion
         piston = np.stack([-np.sign(slider_velocity) * k * loads.force, 0 * phi], axis=1)
     applied = {

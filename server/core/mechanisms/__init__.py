@@ -6,6 +6,7 @@ from .sine import Sine
 from .slider_crank import SliderCrank
 from .slotted_link import SlottedLink
 
-MECHANISMS: dict[str, Mechanism] = {m.name: m for m in (Sine(), SliderCrank(), SlottedLink(), FourBar())}
+SLIDER_CRANK = SliderCrank()        # named by the modules that are by nature the crank-slider's
+MECHANISMS: dict[str, Mechanism] = {m.name: m for m in (Sine(), SLIDER_CRANK, SlottedLink(), FourBar())}
 
-__all__ = ["MECHANISMS", "GeometryError", "Mechanism", "Notice", "OutputSpec", "ParamSpec", "SpecialPosition"]
+__all__ = ["MECHANISMS", "SLIDER_CRANK", "GeometryError", "Mechanism", "Notice", "OutputSpec", "ParamSpec", "SpecialPosition"]

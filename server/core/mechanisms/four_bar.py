@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Evaluation, GeometryError, OutputSpec, ParamSpec, SpecialPosition, point, wrap_angle
+from .base import Evaluation, GeometryError, Notice, OutputSpec, ParamSpec, SpecialPosition, point, wrap_angle
 from .mechanism import Mechanism
 
 CHANGE_POINT_TOL = 1e-9
@@ -54,6 +54,19 @@ def grashof_class(l0: float, l1: float, l2: float, l3: float) -> str:
 
 
 class FourBar(Mechanism):
+    def elastic_angles(self, values):
+        """θ₁₂ = φ − θ₂, θ₂₃ = θ₂ − θ₃."""
+        return (values["phi"] - values["s2"], 1.0 - values["u21"], values["s2"] - values["s"],
+                values["u21"] - values["u31"])
+
+    def proximity_warnings(self, p):
+        mu = self.describe(p)["min_transmission_angle"]
+        if self.change_point(p) is not None or mu >= np.radians(10):
+            return []
+        return [Notice("four_bar_small_mu", f"The smallest transmission angle is {np.degrees(mu):.2f}°: the linkage "
+                       "is close to a change point, and the transfer functions are large there.",
+                       {"mu": float(np.degrees(mu))})]
+
     name = "four_bar"
     title = "Hinged four-bar"
     conventions = ("Crank pivot A at the origin, rocker pivot D at (l₀, 0). φ from AD, counter-clockwise. "
@@ -245,6 +258,10 @@ class FourBar(Mechanism):
         rows = zip(candidates, reach, ac_found, s, u31)
         return sorted((phi, float(s)) for phi, ac, found, s, u31 in rows
                       if abs(found - ac) <= 1e-9 * scale and abs(u31) < 1e-6)
+
+    def resisting(self, p, load, phi, values, k):
+        from ..dynamics.resistance import four_bar_moment
+        return four_bar_moment(p, load, phi, values, k)
 
     def special_positions(self, p, extremes: list[tuple[float, float]] | None = None):
         """``extremes``: rocker_extremes(p) if found already (special_positions_many)."""

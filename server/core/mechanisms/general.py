@@ -22,7 +22,7 @@ from .base import (Evaluation, GeometryError, Notice, OutputSpec, SpecialPositio
 from .mechanism import Mechanism
 
 CHECK_POINTS = 721               # the full turn checked for assembly at 0.5°
-SMALL_TRANSMISSION = np.sin(np.radians(10))    # as the four-bar's warning (kinematics.proximity_warnings)
+SMALL_TRANSMISSION = np.sin(np.radians(10))    # as the four-bar's warning (FourBar.proximity_warnings)
 
 GENERAL_OUTPUTS = (
     OutputSpec("joints", "m", "joint and point coordinates (x, y) over φ"),

@@ -22,6 +22,9 @@ class Mechanism(ABC):
     params: tuple[ParamSpec, ...]
     extra_outputs: tuple[OutputSpec, ...] = ()
     sliding_pairs: tuple[str, ...] = ()     # transfer functions of the prismatic pairs' sliding speeds
+    link2_rotation: str | None = "u21"      # the transfer function link 2 turns with (None: it translates)
+    link3_translates: bool = False          # link 3 slides (mass m₃) rather than turns (J₃)
+    piston: bool = False                    # a piston on link 3: an indicator diagram can drive it
 
     @property
     def outputs(self) -> tuple[OutputSpec, ...]:
@@ -83,6 +86,44 @@ class Mechanism(ABC):
         """S(φ) = Σ u² over the prismatic pairs, so that viscous friction gives M_T = β ω S(φ)
         (Eremyants (3.15)–(3.17), (3.33), (3.50*)); ``ev``: the mechanism evaluated at ev.phi."""
         return sum((ev.values[name] ** 2 for name in self.sliding_pairs), np.zeros_like(ev.phi, dtype=float))
+
+    def textbook_inertia(self, p: dict[str, float], constant: float, inertias, phi: np.ndarray) -> np.ndarray | None:
+        """The textbook's closed form of J(φ) where it gives one (``constant`` = J₁ + J_rotor i²); None here."""
+        return None
+
+    def friction_steps(self, p: dict[str, float], phi: float, force: float, f: float, tolerance: float,
+                       max_steps: int) -> tuple[float, list[dict], dict]:
+        """The textbook's successive approximations of the friction forces at φ: the series' ratio, the rows,
+        the limit in closed form (dynamics/friction_iteration.py); only where the textbook iterates."""
+        raise ValueError(f"the textbook iterates friction forces only for the sine mechanism and the "
+                         f"crank-slider, not for {self.name}")
+
+    def elastic_angles(self, values: dict) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """θ₁₂ = crank − rod angle and θ₂₃ = rod − rocker angle (CCW) with their derivatives in φ, for the
+        elastic linkage (elastic/stiffness.py); ``values``: the evaluation with "phi"."""
+        raise ValueError(f"no elastic linkage model for {self.name}")
+
+    def reduction_errata(self, p: dict[str, float], m3: float, omega: float) -> list[dict]:
+        """The misprints of the textbook's reduction formulas for this mechanism (errata.py); none here."""
+        return []
+
+    def proximity_warnings(self, p: dict[str, float]) -> list:
+        """Sentences for configurations close to a singular one (large but finite transfer functions)."""
+        return []
+
+    def piston_travel(self, p: dict[str, float], phi: np.ndarray, ev: Evaluation | None = None) -> np.ndarray:
+        """x/H: a piston's travel from top dead centre over its stroke (``piston`` mechanisms only; ``ev``: the
+        mechanism already evaluated at phi)."""
+        raise ValueError(f"the {self.name} mechanism has no piston")
+
+    def resisting(self, p: dict[str, float], load, phi: np.ndarray, values: dict, k: np.ndarray):
+        """M_c of the useful load and dry friction of this mechanism (dynamics/resistance.py builds it:
+        Eremyants ch. 3 for each mechanism); ``values`` its evaluation at phi, k the stroke factor."""
+        raise ValueError(f"no resisting-moment model for the {self.name} mechanism")
+
+    def harmonic_claim(self, p: dict[str, float], spectrum: dict) -> dict | None:
+        """The book's claim about the spectrum of u′₃₁, where it makes one (kinematics.py); none here."""
+        return None
 
     @abstractmethod
     def special_positions(self, p: dict[str, float]) -> list[SpecialPosition]:

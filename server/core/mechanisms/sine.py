@@ -26,6 +26,32 @@ class Sine(Mechanism):
                    "left extreme; φ grows clockwise. s = x = l₁(1 − cos φ) is the yoke travel (m); "
                    "s2 = y = l₁ sin φ is the block's travel along the slot (m).")
     sliding_pairs = ("u21", "u31")
+    link2_rotation = None                   # the block translates with the crank pin
+    link3_translates = True
+
+    def textbook_inertia(self, p, constant, inertias, phi):
+        """Eremyants (3.18), exact: J = J₁ + m₂l₁² + m₃l₁² sin²φ."""
+        l1 = p["l1"]
+        return constant + inertias.m2 * l1**2 + inertias.m3 * l1**2 * np.sin(phi) ** 2
+
+    def friction_steps(self, p, phi, force, f, tolerance, max_steps):
+        """Yoke 3 (Eremyants Fig. 3.1): (R₂₃)₀ = P_c; F_T2 = f R₂₃, R₀₃ = F_T2, F_T3 = f R₀₃, R₂₃ = P_c + F_T3;
+        the ratio f², the limit P_c/(1 − f²)."""
+        from ..dynamics.friction_iteration import DIVERGED
+        ratio = f**2
+        r23 = force
+        steps = [{"n": 0, "R23": r23, "F_T2": 0.0, "F_T3": 0.0, "R03": 0.0, "change": None}]
+        for n in range(1, max_steps + 1):
+            f_t2 = f * r23
+            r03 = f_t2
+            f_t3 = f * r03
+            new = force + f_t3
+            change = abs(new - r23) / abs(new) if new else 0.0
+            r23 = new
+            steps.append({"n": n, "R23": r23, "F_T2": f_t2, "F_T3": f_t3, "R03": r03, "change": change})
+            if change < tolerance or r23 > DIVERGED * force:
+                break
+        return ratio, steps, ({"R23": force / (1 - ratio)} if ratio < 1 else {})
     params = (ParamSpec("l1", "m", "crank length OA", 0.1, 0.01, 1.0),)
 
     def check_geometry(self, p):
@@ -47,6 +73,10 @@ class Sine(Mechanism):
             ev.joints = {"O": point(0 * phi, 0 * phi), "A": point(-l1 * c, l1 * s),
                          "yoke": point(-l1 * c, 0 * phi)}
         return ev
+
+    def resisting(self, p, load, phi, values, k):
+        from ..dynamics.resistance import sine_moment
+        return sine_moment(p, load, phi, values, k)
 
     def special_positions(self, p):
         """Dead centres at φ = 0 and π, where u₃₁ = l₁ sin φ = 0 (Eremyants (2.3)); the stroke is 2l₁."""

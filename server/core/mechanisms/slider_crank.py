@@ -20,6 +20,8 @@ The textbook prints −cos 4φ/(8λ³) and (λ²−1)/λ³ in (2.17); both signs
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from .base import Evaluation, GeometryError, Notice, OutputSpec, ParamSpec, SpecialPosition, point, wrap_angle
@@ -36,6 +38,68 @@ class SliderCrank(Mechanism):
                    "s2 = rod angle ψ, clockwise, sin ψ = (l₁ sin φ − e)/l₂ (rad). λ = l₂/l₁ (textbook), "
                    "r/l = l₁/l₂ = 1/λ (English texts).")
     sliding_pairs = ("u31",)
+    link3_translates = True
+    piston = True
+
+    def textbook_inertia(self, p, constant, inertias, phi):
+        """Eremyants (3.36), λ² ≫ 1, the rod's mass neglected: J ≈ J₁ + m₃l₁² sin²φ (1 − cos φ/λ)²."""
+        l1 = p["l1"]
+        lam = p["l2"] / l1
+        return constant + inertias.m3 * l1**2 * np.sin(phi) ** 2 * (1 - np.cos(phi) / lam) ** 2
+
+    def friction_steps(self, p, phi, force, f, tolerance, max_steps):
+        """Group 2–3 (Eremyants Fig. 3.3): (R₀₃)₀ = P_c tan ψ; F_T = f R₀₃, R₀₃ = (P_c + F_T) tan ψ (3.24);
+        the ratio f|tan ψ|, the limit P_c f tan ψ/(1 − f tan ψ)."""
+        from ..dynamics.friction_iteration import DIVERGED
+        values = self.evaluate(p, np.array([phi]), set()).values
+        tan_psi = abs(float(np.tan(values["s2"][0])))
+        ratio = f * tan_psi
+        f_t, r03 = 0.0, force * tan_psi
+        steps = [{"n": 0, "F_T": 0.0, "R03": r03, "R12": force * np.sqrt(1 + tan_psi**2), "change": None}]
+        for n in range(1, max_steps + 1):
+            new = f * r03
+            change = abs(new - f_t) / abs(new) if new else 0.0
+            f_t = new
+            r03 = (force + f_t) * tan_psi
+            steps.append({"n": n, "F_T": f_t, "R03": r03, "R12": (force + f_t) * np.sqrt(1 + tan_psi**2),
+                          "change": change})
+            if change < tolerance or f_t > DIVERGED * force:
+                break
+        return ratio, steps, ({"F_T": force * ratio / (1 - ratio)} if ratio < 1 else {})
+
+    def elastic_angles(self, values):
+        """The crank along (−cos φ, sin φ): angle π − φ; the rod's angle −ψ (ψ clockwise)."""
+        phi = values["phi"]
+        theta12 = np.pi - phi + values["s2"]
+        return theta12, values["u21"] - 1.0, np.zeros_like(phi), np.zeros_like(phi)
+
+    def reduction_errata(self, p, m3, omega):
+        """Eremyants (3.38)/(3.39), λ = l₂/l₁."""
+        from ..errata import variable_inertia
+        return variable_inertia(m3, p["l1"], p["l2"] / p["l1"])
+
+    def proximity_warnings(self, p):
+        margin = p["l2"] - p["l1"] - abs(p["e"])
+        if margin >= 0.1 * p["l1"]:
+            return []
+        angle = np.degrees(np.arcsin((p["l1"] + abs(p["e"])) / p["l2"]))
+        return [Notice("slider_crank_near_limit",
+                       f"Near the assembly limit: l₂ − l₁ − |e| = {margin:.3g} m. The rod swings up to "
+                       f"{angle:.1f}°, u₂₁ and u′₃₁ grow large where the rod is nearly perpendicular to "
+                       "the guide.", {"margin": margin, "angle": angle})]
+
+    def piston_travel(self, p, phi, ev=None):
+        """x/H: the piston's travel from top dead centre over its stroke H (the indicator diagram's abscissa)."""
+        values = (ev or self.evaluate(p, phi, set())).values
+        stroke = piston_stroke(p["l1"], p["l2"], p["e"])
+        return np.clip((stroke - values["s"]) / stroke, 0.0, 1.0)
+
+    def harmonic_claim(self, p, spectrum):
+        """The book's claim is for the central crank-slider."""
+        if p["e"] != 0:
+            return None
+        from ..harmonics import fourth_harmonic_claim
+        return fourth_harmonic_claim(spectrum, p["l2"] / p["l1"])
     params = (
         ParamSpec("l1", "m", "crank length OA", 0.1, 0.01, 1.0),
         ParamSpec("l2", "m", "connecting-rod length AB", 0.3, 0.01, 10.0),
@@ -116,6 +180,10 @@ class SliderCrank(Mechanism):
             ev.warnings.append(Notice("approx_small_lambda", f"The approximations (2.16), (2.17*) assume λ > 3 "
                                       f"(λ² ≫ 1); here λ = {lam:.3g}.", {"lam": lam}))
 
+    def resisting(self, p, load, phi, values, k):
+        from ..dynamics.resistance import slider_crank_moment
+        return slider_crank_moment(p, load, phi, values, k)
+
     def special_positions(self, p):
         """Dead centres, crank and rod in line (u₃₁ = 0): x_out = √((l₁ + l₂)² − e²), x_in = √((l₂ − l₁)² − e²),
         stroke x_out − x_in (2l₁ for e = 0, Eremyants §2.3); an offset makes the strokes' crank angles unequal."""
@@ -141,3 +209,10 @@ class SliderCrank(Mechanism):
         lam = p["l2"] / p["l1"]
         return {"lambda": lam, "r_over_l": 1 / lam,
                 "max_rod_angle": float(np.arcsin((p["l1"] + abs(p["e"])) / p["l2"]))}
+
+
+@lru_cache(maxsize=256)
+def piston_stroke(l1: float, l2: float, e: float) -> float:
+    """H: the piston's travel between the dead centres of the crank-slider (once per geometry)."""
+    positions = SliderCrank().special_positions({"l1": l1, "l2": l2, "e": e})
+    return next(sp.value for sp in positions if sp.kind == "dead_centre" and sp.value)

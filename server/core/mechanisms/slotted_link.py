@@ -32,6 +32,20 @@ class SlottedLink(Mechanism):
                    "the lever from φ = 0 (m). λ = l₀/l₁: λ < 1 rotating lever, λ > 1 oscillating "
                    "(quick-return) lever.")
     sliding_pairs = ("u21",)
+    link2_rotation = "u31"                  # the block turns with the lever (ω₂ = ω₃)
+
+    def reduction_errata(self, p, m3, omega):
+        """Eremyants (3.50)/(3.53), λ = l₀/l₁."""
+        from ..errata import slotted_viscous
+        return slotted_viscous(omega, p["l1"], p["l0"] / p["l1"])
+
+    def proximity_warnings(self, p):
+        lam = p["l0"] / p["l1"]
+        if lam == 1 or abs(lam - 1) >= 0.1:
+            return []
+        return [Notice("slotted_near_one", f"λ = {lam:.3g} is close to 1: near φ = 180° the block passes close to the "
+                       f"lever pivot, u₃₁ reaches {1 / abs(1 - lam):.3g} and u′₃₁ is very large.",
+                       {"lam": lam, "peak": 1 / abs(1 - lam)})]
     params = (
         ParamSpec("l0", "m", "distance AC between the crank and lever pivots", 0.05, 0.001, 10.0),
         ParamSpec("l1", "m", "crank length AB", 0.1, 0.01, 1.0),
@@ -96,6 +110,10 @@ class SlottedLink(Mechanism):
         with np.errstate(divide="ignore", invalid="ignore"):
             ratio = np.where(d2 > 0, 4 * lam**2 * np.cos(half) ** 2 / d2, lam)   # d2 = 0 only at λ = 1
         return p["l1"] ** 2 * np.sin(half) ** 2 * ratio
+
+    def resisting(self, p, load, phi, values, k):
+        from ..dynamics.resistance import slotted_link_moment
+        return slotted_link_moment(p, load, phi, values, k)
 
     def special_positions(self, p):
         """λ > 1: the lever's extremes ±ψ_max, ψ_max = arcsin(1/λ); λ < 1: u₃₁ from 1/(1 + λ) at φ = 0 to

@@ -9,6 +9,10 @@ left), and its moment of inertia J_Sk about S_k.  Rigid-body kinematics (Eremyan
 Loads (Eremyants ch. 3: the useful load resists the motion, k on the return stroke):
     a force on a slider, along its guide: F = −k(φ) P sign(w) e^{iθ_g} at the slider's joint, w = Re(z′ e^{−iθ_g})
         the velocity analog along the guide; k = 1 on the working stroke (σ w ≥ 0), k on the return;
+    or a useful-load diagram, as the indicator diagram of a piston (Lecture 10 (L15)–(L16)): P(x) = P_max p(x)
+        with p given at equally spaced positions x = 0…1 of the slider's stroke H (x from the start of the
+        working stroke), one row for the working and one for the return stroke, between them by monotone
+        (PCHIP) interpolation; F = −P(x) sign(w) e^{iθ_g};
     a moment on a link: M = −k(φ) M₀ sign(θ′), k = 1 on the working stroke (σ θ′ ≥ 0);
     gravity: G_k = −m_k g i at S_k;
 friction f and pair radius r of the revolute pairs (the friction moment f·R·r, Chaika–Vasylenko §3.1) for the
@@ -16,9 +20,11 @@ kinetostatics by groups.  Their reduced moments (power equality) are in ``reduct
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
+from scipy.interpolate import PchipInterpolator
 
 from ..mechanisms.base import GeometryError
 from .compose import Composition, compose
@@ -47,6 +53,8 @@ class SliderForce:
     working: float
     k: float = 1.0
     sense: int = 1
+    diagram: tuple[tuple[float, ...], tuple[float, ...]] | None = None   # p(x) of the working, the return stroke
+    stroke: tuple[float, float] | None = None      # the slide's extremes s_min, s_max (with_strokes fills it)
 
 
 @dataclass(frozen=True)
@@ -96,16 +104,39 @@ class SliderLoad:
     point: np.ndarray        # complex z of the application point over φ
     unit: np.ndarray         # complex e^{iθ_g} over φ
     along: np.ndarray        # w, m (velocity analog along the guide)
+    travel: np.ndarray       # x: the slide's position over its stroke from the working stroke's start, 0…1
 
     @property
-    def stroke(self) -> np.ndarray:
-        """k(φ): 1 on the working stroke (σw ≥ 0), k on the return stroke."""
-        return np.where(self.force.sense * self.along >= 0, 1.0, self.force.k)
+    def working_stroke(self) -> np.ndarray:
+        """Whether the slider is on its working stroke (σw ≥ 0)."""
+        return self.force.sense * self.along >= 0
+
+    @property
+    def magnitude(self) -> np.ndarray:
+        """|F|, N: k(φ)P (k = 1 on the working stroke), or P_max p(x) of the stroke's diagram."""
+        if self.force.diagram is None:
+            return np.where(self.working_stroke, 1.0, self.force.k) * self.force.working
+        working, back = (diagram_curve(points)(self.travel) for points in self.force.diagram)
+        return self.force.working * np.where(self.working_stroke, working, back)
 
     @property
     def vector(self) -> np.ndarray:
-        """The force on the slider, complex F_x + iF_y, N: −k P sign(w) e^{iθ_g}."""
-        return -self.stroke * self.force.working * np.sign(self.along) * self.unit
+        """The force on the slider, complex F_x + iF_y, N: −|F| sign(w) e^{iθ_g}."""
+        return -self.magnitude * np.sign(self.along) * self.unit
+
+    def switches(self) -> list[np.ndarray]:
+        """Where the reduced moment has a corner: the reversal (w = 0), and a diagram's inner points (the
+        monotone cubic is only once continuously differentiable there)."""
+        if self.force.diagram is None:
+            return [self.along]
+        inner = [self.travel - j / (len(points) - 1) for points in self.force.diagram for j in range(1, len(points) - 1)]
+        return [self.along] + inner
+
+
+@lru_cache(maxsize=64)
+def diagram_curve(points: tuple[float, ...]) -> PchipInterpolator:
+    """p(x) over x = 0…1 through a diagram's equally spaced points (built once per diagram)."""
+    return PchipInterpolator(np.linspace(0.0, 1.0, len(points)), points)
 
 
 def slider_link(comp: Composition, pair: str) -> int:
@@ -150,6 +181,30 @@ def check_model(comp: Composition, model: MassModel) -> None:
                                 f"(links: {sorted(comp.links)})", "unknown_link", link=item.link)
     for i, item in enumerate(model.forces):
         pair_of(comp, item.joint, f"masses.forces.{i}.joint")
+        if item.diagram is not None and item.stroke is None:
+            raise ValueError("a load diagram's stroke is resolved by with_strokes first")
+
+
+def with_strokes(mechanism, model: MassModel) -> MassModel:
+    """The model with every load diagram's slide extremes s_min, s_max (the slide's output reversals over the
+    turn, refined by Newton's method: mechanisms/general.reversals); GeometryError where that slide does not
+    move (no stroke to spread the diagram over)."""
+    if all(force.diagram is None or force.stroke is not None for force in model.forces):
+        return model
+    from ..mechanisms.general import reversals
+    turn = compose(mechanism.linkage, mechanism.turn())
+    extremes = reversals(mechanism.linkage, turn)
+    forces = []
+    for i, force in enumerate(model.forces):
+        if force.diagram is not None and force.stroke is None:
+            pair = pair_of(turn, force.joint, f"masses.forces.{i}.joint")
+            values = [sp.value for sp in extremes if sp.slide == pair]
+            if len(values) < 2 or max(values) - min(values) <= 1e-12 * max(1.0, max(np.abs(values))):
+                raise GeometryError(f"masses.forces.{i}.diagram", f"the slide {pair} has no stroke to spread the "
+                                    "load diagram over (it does not reverse)", "diagram_no_stroke", joint=pair)
+            force = replace(force, stroke=(float(min(values)), float(max(values))))
+        forces.append(force)
+    return replace(model, forces=tuple(forces))
 
 
 def centre_points(comp: Composition, model: MassModel) -> list[tuple[Point, Angle]]:
@@ -183,7 +238,12 @@ def slider_loads(comp: Composition, model: MassModel) -> list[SliderLoad]:
         link = slider_link(comp, pair)
         origin, angle = comp.links[link]
         unit = angle.unit()
-        out.append(SliderLoad(force, link, origin.z, unit, (origin.d1 * np.conj(unit)).real))
+        travel = np.zeros(comp.phi.shape)
+        if force.diagram is not None:
+            low, high = force.stroke
+            s = comp.slides[pair].s
+            travel = np.clip(((s - low) if force.sense > 0 else (high - s)) / (high - low), 0.0, 1.0)
+        out.append(SliderLoad(force, link, origin.z, unit, (origin.d1 * np.conj(unit)).real, travel))
     return out
 
 

@@ -71,7 +71,7 @@ def reduced_loads(mechanism, comp: Composition, model: MassModel, centres: list 
         name = f"force {load.force.joint}"
         velocity = comp.links[load.link][0].d1
         parts[name] = parts.get(name, np.zeros(n)) - (np.conj(load.vector) * velocity).real
-        switches.append(load.along)
+        switches += load.switches()
     for item, d1, moment in moment_strokes(comp, model):     # −M θ′ = k M₀ |θ′|
         name = f"moment {item.link}"
         parts[name] = parts.get(name, np.zeros(n)) - moment * d1

@@ -18,7 +18,7 @@ from ...mechanisms.base import GeometryError, Notice, angle_ranges, ranges_text
 from ..crank_slider import approximations_outcome
 from ...numerics import Numerics
 from ...structure.compose import Composition, compose
-from ...structure.masses import MassModel, check_model
+from ...structure.masses import MassModel, check_model, with_strokes
 from . import friction as fr
 from .equilibrium import Influence, solve_all
 from .loads import Load, link_loads, power_moment, resultants
@@ -80,6 +80,56 @@ def reaction_vector(row: Approximation) -> np.ndarray:
     return np.concatenate([*row.unknowns, np.stack([row.R01.real, row.R01.imag], -1)], axis=1)
 
 
+@dataclass
+class Setup:
+    """The friction equilibrium of a composed linkage: its groups and pairs, each pair's f and r, the loads,
+    the reactions as affine functions of the friction loads, and the friction map of the rough pairs."""
+
+    comp: Composition
+    groups: list[GroupPairs]
+    pairs: list[KinematicPair]
+    locate: list[tuple[int, int] | None]
+    coefficients: list[fr.PairFriction]
+    loads: list[Load]
+    influence: Influence
+    rough: list[int]
+    fmap: fr.FrictionMap
+
+
+def setup(mechanism, comp: Composition, model: MassModel, omega: float, epsilon: float,
+          pairs: dict[str, fr.PairFriction] | None = None) -> Setup:
+    """Everything the friction solve needs on ``comp`` (GeometryError names an unknown pair of ``pairs``)."""
+    linkage = mechanism.linkage
+    groups = group_pairs(linkage, comp)
+    pivot = crank_pair(linkage, comp)
+    friction_pairs = [p for g in groups for p in g.pairs] + [pivot]
+    for name in pairs or {}:
+        if name not in {p.name for p in friction_pairs}:
+            known = ", ".join(sorted({p.name for p in friction_pairs}))
+            raise GeometryError(f"pair_friction.{name}", f"no pair '{name}' in this linkage (pairs: {known})",
+                                "unknown_pair", pair=name)
+    locate = [(g.index, k) for g in groups for k in range(3)] + [None]
+    default = fr.PairFriction(model.friction, model.pair_radius)
+    coefficients = [(pairs or {}).get(p.name, default) for p in friction_pairs]
+    loads = link_loads(mechanism, comp, model, omega, epsilon)
+    force, moment = resultants(loads, comp.links, comp.phi.size)
+    rough = [k for k, c in enumerate(coefficients) if c.f > 0]
+    influence = solve_all(groups, linkage.crank.link, pivot, force, moment, [friction_pairs[k] for k in rough])
+    fmap = fr.friction_map(influence, [locate[k] for k in rough], [friction_pairs[k] for k in rough],
+                           [coefficients[k] for k in rough])
+    return Setup(comp, groups, friction_pairs, locate, coefficients, loads, influence, rough, fmap)
+
+
+def require_full_turn(comp: Composition) -> None:
+    """Refuse a linkage one of whose groups does not close at every angle of ``comp``."""
+    for k, group in enumerate(comp.groups):
+        if not group.closes.all():
+            ranges = ranges_text(angle_ranges(comp.phi, ~group.closes))
+            raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at φ = {ranges}: "
+                                "the crank cannot turn fully; the forces are computed over the whole turn",
+                                "group_forces_no_full_turn", group=k)
+
+
 def analyse(mechanism, model: MassModel, phi: np.ndarray, omega: float = 10.0, epsilon: float = 0.0,
             tolerance: float = 1e-9, pairs: dict[str, fr.PairFriction] | None = None,
             shown: int = SHOWN_APPROXIMATIONS, budget: float | None = None) -> GroupForces:
@@ -93,43 +143,24 @@ def analyse(mechanism, model: MassModel, phi: np.ndarray, omega: float = 10.0, e
     phi = np.asarray(phi, float)
     linkage = mechanism.linkage
     comp = compose(linkage, phi)
-    for k, group in enumerate(comp.groups):
-        if not group.closes.all():
-            ranges = ranges_text(angle_ranges(phi, ~group.closes))
-            raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at φ = {ranges}: "
-                                "the crank cannot turn fully; the forces are computed over the whole turn",
-                                "group_forces_no_full_turn", group=k)
+    require_full_turn(comp)
+    model = with_strokes(mechanism, model)
     check_model(comp, model)
-    groups = group_pairs(linkage, comp)
-    pivot = crank_pair(linkage, comp)
-    friction_pairs = [p for g in groups for p in g.pairs] + [pivot]
-    for name in pairs or {}:
-        if name not in {p.name for p in friction_pairs}:
-            known = ", ".join(sorted({p.name for p in friction_pairs}))
-            raise GeometryError(f"pair_friction.{name}", f"no pair '{name}' in this linkage (pairs: {known})",
-                                "unknown_pair", pair=name)
-    locate = [(g.index, k) for g in groups for k in range(3)] + [None]
-    default = fr.PairFriction(model.friction, model.pair_radius)
-    coefficients = [(pairs or {}).get(p.name, default) for p in friction_pairs]
-    loads = link_loads(mechanism, comp, model, omega, epsilon)
-    force, moment = resultants(loads, comp.links, phi.size)
-    rough = [k for k, c in enumerate(coefficients) if c.f > 0]
-    influence = solve_all(groups, linkage.crank.link, pivot, force, moment, [friction_pairs[k] for k in rough])
-    result = GroupForces(phi, comp, groups, friction_pairs, coefficients, loads, influence, linkage.crank.link,
-                         linkage.crank.sense, rough)
-    result.reduced_moment = power_moment(loads)
-    fmap = fr.friction_map(influence, [locate[k] for k in rough], [friction_pairs[k] for k in rough],
-                           [coefficients[k] for k in rough])
+    s = setup(mechanism, comp, model, omega, epsilon, pairs)
+    result = GroupForces(phi, comp, s.groups, s.pairs, s.coefficients, s.loads, s.influence, linkage.crank.link,
+                         linkage.crank.sense, s.rough)
+    result.reduced_moment = power_moment(s.loads)
+    fmap = s.fmap
     solved = fr.solve(fmap, tolerance, budget)
     result.locked = solved.locked
     result.approximations = textbook_approximations(result, fmap, tolerance, shown if result.rough else 1)
-    final = fmap.evaluate(solved.z)[0]                 # friction from the solved reactions (3.3), and the
+    final = fmap.apply(solved.z)                 # friction from the solved reactions (3.3), and the
     result.solution = approximation(result, final, None)   # reactions in equilibrium with it
     result.converged = solved.converged
     result.ratios = np.where(solved.locked, np.nan, solved.ratio)
     free = ~solved.locked & np.isfinite(solved.ratio)
     result.ratio = float(np.max(solved.ratio[free])) if result.rough and free.any() else None
-    blank(result, solved.locked | influence.singular)
+    blank(result, solved.locked | s.influence.singular)
     say(result, solved, tolerance)
     result.numerics = numerics(result, solved, tolerance, time.perf_counter() - clock)
     return result
@@ -155,7 +186,7 @@ def textbook_approximations(result: GroupForces, fmap: fr.FrictionMap, tolerance
             if row.change is not None and (row.change < tolerance or not row.change < 1e12):
                 break
             previous = now
-            z = fmap.evaluate(z)[0]
+            z = fmap.apply(z)
     return table
 
 

@@ -113,7 +113,7 @@ def solve_all(groups: list[GroupPairs], crank_link: int, pivot: KinematicPair, f
         bad = ~(np.abs(det) > 1e-12 * scale)
         singular |= bad
         A_safe = np.where(bad[:, None, None], np.eye(6), A)
-        x = np.linalg.solve(A_safe[None], rhs[..., None])[..., 0]
+        x = np.linalg.solve(A_safe, np.moveaxis(rhs, 0, -1)).transpose(2, 0, 1)     # one LU per angle, C sides
         x[:, bad] = np.nan
         unknowns[group.index] = x
         for p, pair in enumerate(group.pairs):

@@ -42,10 +42,12 @@ CONTINUATION = 32         # shares of the friction switched on from zero where t
 
 @dataclass(frozen=True)
 class PairFriction:
-    """f and the journal radius r (m) of one pair (r unused for a prismatic pair)."""
+    """f and the journal radius r (m) of one pair (r unused for a prismatic pair); β, its viscous friction
+    (N·m·s revolute, N·s/m prismatic), enters the equation of motion (dynamics/general_machine.py)."""
 
     f: float = 0.0
     r: float = 0.0
+    beta: float = 0.0
 
 
 @dataclass
@@ -68,6 +70,11 @@ class FrictionMap:
     def reactions(self, z: np.ndarray) -> np.ndarray:
         """r_p(z) = r_p(0) + Σ_q (∂r_p/∂z_q) z_q: the reactions are linear in the friction loads z."""
         return self.base + np.einsum("pqnk,qn->pnk", self.slope, z)
+
+    def apply(self, z: np.ndarray) -> np.ndarray:
+        """G(z): the friction loads (3.3) from the reactions the friction loads z give."""
+        r = self.reactions(z)
+        return self.coefficient * np.hypot(r[..., 0], r[..., 1])
 
     def evaluate(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """G(z), J = ∂G/∂z (K, K, N) and the reactions r_p(z)."""
@@ -138,14 +145,22 @@ def determinant(J: np.ndarray) -> np.ndarray:
 
 def bound_ratio(fmap: FrictionMap) -> np.ndarray:
     """ρ(A), A_pq = |c_p|·‖∂r_p/∂z_q‖: |G(z) − G(0)| ≤ A|z| entrywise, so where ρ(A) < 1 no nonzero friction
-    loads sustain themselves without a load (z = tH(z), t ≤ 1, needs ρ(A) ≥ 1, Collatz–Wielandt): no jam."""
+    loads sustain themselves without a load (z = tH(z), t ≤ 1, needs ρ(A) ≥ 1, Collatz–Wielandt): no jam.
+    Where the bound ρ(A) ≤ min(‖A‖∞, ‖A‖₁) is below 1 that bound is returned instead (the decision ≥ 1 is
+    the same; the eigenvalues are computed only where it is not)."""
     A = np.abs(fmap.coefficient)[:, None] * np.hypot(fmap.slope[..., 0], fmap.slope[..., 1])
-    return spectral_radius(A)
+    bound = np.minimum(A.sum(axis=1).max(axis=0), A.sum(axis=0).max(axis=0))
+    ratio = bound.copy()
+    where = ~(bound < 1)
+    if where.any():
+        ratio[where] = spectral_radius(A[:, :, where])
+    return ratio
 
 
-def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None) -> Solved:
+def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None, jams: bool = True) -> Solved:
     """z = G(z) at every angle (module docstring); ``budget``: a wall-clock bound (s), the angles it leaves are
-    reported unconverged, never locked.
+    reported unconverged, never locked; ``jams``: look for jams (False: a caller that only locates the
+    equilibrium's corners, where a jam's angles are decided by another solve).
 
     The equilibrium is first solved directly.  Where that lands on a root with det(I − J) ≤ 0 or does not
     converge, the branch is followed from zero friction (continuation); where it folds or ends, the mechanism
@@ -188,7 +203,7 @@ def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None) -> S
                 step = newton_step(J, G - za)
                 usable = np.isfinite(step).all(0)
                 candidates = [za + np.where(usable, step, 0.0), G]
-                left = [here.change(share * here.evaluate(c)[0] - c) for c in candidates]
+                left = [here.change(share * here.apply(c) - c) for c in candidates]
                 better = usable & (left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf))
                 chosen = np.where(better, candidates[0], candidates[1])
                 q = np.zeros(better.size)              # the series' ratio, needed where the textbook's step was taken
@@ -225,7 +240,7 @@ def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None) -> S
         z = np.where(kept, followed, z)
         error, ratio = np.where(kept, f_error, error), np.where(kept, f_ratio, ratio)
         locked |= lost
-    suspect = todo & ~locked & (bound_ratio(fmap) >= 1)
+    suspect = todo & ~locked & (bound_ratio(fmap) >= 1) if jams else np.zeros(n, bool)
     if suspect.any():
         _, _, _, jammed, undecided = follow(FrictionMap(-fmap.base, fmap.slope, fmap.coefficient), suspect)
         locked |= jammed
