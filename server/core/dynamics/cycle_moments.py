@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..mechanisms import MECHANISMS, Notice
+from ..mechanisms import SLIDER_CRANK, Notice
 from ..numerics import Numerics, cumulative_simpson
 from .motors import INDICATOR_POINTS, Motor, gas_force, polytropic_diagram
 
@@ -212,12 +212,12 @@ def cycle_moments(params: dict, masses: Masses, cylinder: Cylinder, omega: float
     ω₁ (rad/s): the moments and works over the cycle (shown grid), the constant moment that balances the cycle,
     the powers, the graphical integration beside the numeric one, and the numerics."""
     started = time.perf_counter()
-    mechanism = MECHANISMS["slider_crank"]
+    mechanism = SLIDER_CRANK
     p = mechanism.check(params)
     cycle, turns = cylinder.cycle, cylinder.strokes // 2
     phi, stride, r = _grids(cycle, turns, drawing)
     kinematics = mechanism.evaluate(p, phi, set())
-    gas = piston_moment(gas_force(cylinder.indicator(), p, phi, kinematics), kinematics.values["u31"])
+    gas = piston_moment(gas_force(cylinder.indicator(), mechanism, p, phi, kinematics), kinematics.values["u31"])
     gravity = gravity_moment(p, masses, kinematics)
     engine = cylinder.mode != "compressor"
     integrated = gas if engine else gas + gravity          # A_P of the engine (step 9), A_O of the compressor
