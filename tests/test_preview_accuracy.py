@@ -19,7 +19,8 @@ as the family checks them (family.checked_leaves):
 
 Where the endpoint takes no preview (closed forms: kinematics, reduction, the flywheel, wear, the angular
 acceleration), the preview is the exact answer, compared bit for bit. The tolerance is the preview's own
-declaration, and the estimates behind it hold with a factor 2 to spare (motion.preview_goal asks for PREVIEW/2).
+declaration; the estimates behind it are asked for PREVIEW/2 (motion.span_difference, motion.preview_goal), a
+factor 2 for an estimate's measured spread (true/estimate up to 1.14 on the equation of motion).
 """
 from __future__ import annotations
 
