@@ -8,10 +8,7 @@ page draws (its ``fields``, test_family_bound.page_fields; the whole answer wher
 as the family checks them (family.checked_leaves):
 
 - an array: |preview − exact| ≤ PREVIEW × the exact array's span (max − min), elementwise, NaN (null: a locked
-  or singular angle) in the same places. A preview's steady cycle or start-up may end at a coarser level of the
-  same nested grids (every other node of the next level): compared at the nodes the two share, found by φ (a
-  start-up's cycles are joined with their common node twice and thinned to ~4000 points, so a coarser run's
-  nodes are only partly on the exact grid: at least a third of them are asked to be);
+  or singular angle) in the same places, the same shape;
 - a number: |preview − exact| ≤ PREVIEW × |exact|: one member does not know the number's span over a family
   (the members' own error relative to the value is what the preview declares for a number);
 - the answer's shape otherwise the same: the same keys, the same notices' codes (a stall, self-locking), the
@@ -19,8 +16,8 @@ as the family checks them (family.checked_leaves):
 
 Where the endpoint takes no preview (closed forms: kinematics, reduction, the flywheel, wear, the angular
 acceleration), the preview is the exact answer, compared bit for bit. The tolerance is the preview's own
-declaration; the estimates behind it are asked for PREVIEW/2 (motion.span_difference, motion.preview_goal), a
-factor 2 for an estimate's measured spread (true/estimate up to 1.14 on the equation of motion).
+declaration (the shooting's Newton and the friction equilibrium converge quadratically: what they leave is far
+below it).
 """
 from __future__ import annotations
 
@@ -74,37 +71,18 @@ def codes(answer) -> list:
     return sorted(answer.payload.get("warnings", []))
 
 
-def shared_nodes(exact_phi: np.ndarray, preview_phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Indices (into exact, into preview) of the nodes both grids hold (φ equal to round-off)."""
-    scale = max(float(np.max(np.abs(exact_phi))), 1.0)
-    where = np.searchsorted(exact_phi, preview_phi).clip(0, exact_phi.size - 1)
-    before = (where - 1).clip(0)
-    nearest = np.where(np.abs(exact_phi[before] - preview_phi) < np.abs(exact_phi[where] - preview_phi), before, where)
-    same = np.abs(exact_phi[nearest] - preview_phi) <= 1e-9 * scale
-    return nearest[same], np.flatnonzero(same)
-
-
 def compare(exact: dict, preview: dict, where: str) -> int:
     """Every checked leaf of the drawn answers within PREVIEW (see the module); the number of leaves compared."""
     exact_leaves = dict(family.checked_leaves(family.as_tree(exact, sent=False)))
     preview_leaves = dict(family.checked_leaves(family.as_tree(preview, sent=False)))
     assert exact_leaves.keys() == preview_leaves.keys(), (where, exact_leaves.keys() ^ preview_leaves.keys())
-    grids = {}              # the object holding a φ grid → (exact indices, preview indices) of the shared nodes
-    for path, leaf in exact_leaves.items():
-        if path[-1] == "phi" and np.ndim(leaf) == 1 and np.shape(preview_leaves[path]) != np.shape(leaf):
-            grids[path[:-1]] = shared_nodes(np.asarray(leaf), np.asarray(preview_leaves[path]))
     for path, leaf in exact_leaves.items():
         guess = np.asarray(preview_leaves[path], float)
         leaf = np.asarray(leaf, float)
         if leaf.ndim == 0:
             bound = family.PREVIEW * abs(float(leaf)) + ROUND_OFF
         else:
-            if leaf.shape != guess.shape:
-                indices = grids.get(path[:-1])
-                assert indices is not None, (where, path, leaf.shape, guess.shape)
-                e, p = indices
-                assert 3 * p.size >= guess.shape[0], (where, path, "few preview nodes on the exact grid")
-                leaf, guess = leaf[e], guess[p]
+            assert leaf.shape == guess.shape, (where, family.quantity(path), leaf.shape, guess.shape)
             finite = leaf[np.isfinite(leaf)]
             span = float(finite.max() - finite.min()) if finite.size else 0.0
             bound = family.PREVIEW * span + ROUND_OFF * max(float(np.max(np.abs(finite), initial=0.0)), 1e-300)
@@ -179,3 +157,4 @@ def test_exact_answers_are_the_same_whether_computed_alone_or_in_a_batch_without
 def test_the_declared_fraction_is_a_small_part_of_the_familys_tolerance():
     assert family.PREVIEW == pytest.approx(family.PREVIEW_FRACTION * family.TOLERANCE)
     assert family.PREVIEW_FRACTION <= 1 / 50 and math.isfinite(family.PREVIEW)
+

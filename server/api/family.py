@@ -84,10 +84,10 @@ are a few digits each, where its decimals took eight or nine, and they compress 
 
 Preview accuracy. A member is drawn only while the slider moves and is never read as a number, so it is
 computed to PREVIEW = PREVIEW_FRACTION × TOLERANCE of each drawn quantity's span (endpoints.Preview), not to
-its endpoint's own tolerance, where that is far tighter: the equation of motion's steady cycle is refined
-until the Richardson estimate of ω, t and ε, each relative to its span, is PREVIEW/2 (motion.span_difference),
-its start-up until its estimate is PREVIEW/2 of ω's spread (motion.preview_goal), instead of rtol; the friction
-equilibrium is solved to PREVIEW_FRICTION × PREVIEW (endpoints.preview_friction_tolerance). Decisions (stall, self-locking) are made as for the exact answer. The member's
+its endpoint's own tolerance, where that is far tighter and the answer's shape does not change with it: the
+steady cycle's shooting stops earlier (its Richardson levels and the start-up's stay the exact answer's:
+motion.steady_cycle says why), the friction equilibrium is solved to PREVIEW_FRICTION × PREVIEW
+(endpoints.preview_friction_tolerance). Decisions (stall, self-locking) are made as for the exact answer. The member's
 error then adds at most PREVIEW_FRACTION of the tolerance to the interpolation's (tests/
 test_preview_accuracy.py checks each endpoint kind against exact answers on random parameters).
 

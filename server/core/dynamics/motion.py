@@ -210,7 +210,9 @@ def cycle_figures(machine: Machine, tables: Tables, run: Run, fine: dict | None 
     """δ, mean speeds, ε(φ) and the cycle works of the steady solution (``fine``: see extreme_speed)."""
     nodes = tables.step_nodes
     omega = run.omega
-    epsilon = node_epsilon(machine, tables, run)
+    J, dJ = tables.J[nodes], tables.dJ[nodes]
+    moment = tables.net_phi[nodes] + machine.speed_moment(omega, tables.sliding[nodes])[0]
+    epsilon = (moment - 0.5 * dJ * omega**2) / J
     def work(values):
         return pair_simpson(values, run.phi)
     drive = tables.drive_phi[nodes] + (machine.speed_moment(omega, np.zeros_like(omega))[0]
@@ -226,13 +228,6 @@ def cycle_figures(machine: Machine, tables: Tables, run: Run, fine: dict | None 
     mean = 0.5 * (w_max + w_min)
     return Steady(run.phi, omega, run.t - run.t[0], epsilon, mean, float((run.phi[-1] - run.phi[0]) / (run.t[-1] - run.t[0])),
                   (w_max - w_min) / mean, efficiency(machine, works), works)
-
-
-def node_epsilon(machine: Machine, tables: Tables, run: Run) -> np.ndarray:
-    """ε = (M(φ, ω) − ½J′ω²)/J at the run's step nodes (seed 000 (1.12))."""
-    nodes = tables.step_nodes
-    moment = tables.net_phi[nodes] + machine.speed_moment(run.omega, tables.sliding[nodes])[0]
-    return (moment - 0.5 * tables.dJ[nodes] * run.omega**2) / tables.J[nodes]
 
 
 def extreme_speed(machine: Machine, tables: Tables, run: Run, k: int, sign: int, substeps: int = SUBSTEPS,
@@ -289,10 +284,12 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
     """The periodic solution T(φ₀ + Φ) = T(φ₀), refined until the Richardson estimate meets rtol: the
     estimate (``richardson``) of three levels at least, so that the order they show is known.
 
-    ``preview`` (a family member drawn only while a slider moves, never read as a number): refined until the
-    Richardson estimate of the drawn curves, ω, t and ε, each relative to its span (``span_difference``), is
-    preview/2, or the exact estimate meets rtol, whichever comes first; the shooting's Newton stops at
-    PREVIEW_SHOOTING × preview of T₀ (None: the exact answer, bit for bit as without it)."""
+    ``preview`` (a family member drawn only while a slider moves, never read as a number): the shooting's
+    Newton stops at PREVIEW_SHOOTING × preview of T₀ (None: the exact answer, bit for bit as without it). The
+    levels stay the exact answer's: a member at a coarser level than its neighbours' is interpolated node by
+    node with them, and where the kinks move with the slider, node k is another angle in each member; the
+    family's estimate does not see that (bench/family_grid_check.py: previews at coarser levels put 3 more of
+    the scene's 33 families off by 0.9–4.4 % of a span where they claimed 0.1 %)."""
     started = time.perf_counter()
     method = ("Newton shooting on the cycle map of dT/dφ = M(φ, ω), RK4 in φ" if machine.speed_dependent
               else "energy integral (1.9)–(1.10) by Simpson's rule, mean speed given")
@@ -300,7 +297,7 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
                         code="newton_shooting" if machine.speed_dependent else "energy_integral")
     motion = Motion(numerics=numerics)
     kinks = machine.kinks()
-    per_2pi, previous, T0, differences, drawn = STEPS_START, None, None, [], []
+    per_2pi, previous, T0, differences = STEPS_START, None, None, []
     while per_2pi <= STEPS_MAX:
         tables = cycle_tables(machine, kinks, per_2pi, balance)
         steps = tables.starts.size
@@ -320,24 +317,17 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
             numerics.tell(stop.notice)
             break
         numerics.steps = steps
-        curves = None if preview is None else (run.omega, run.t - run.t[0], node_epsilon(machine, tables, run))
         if previous is not None:
             differences.append(level_difference(run, previous))
             numerics.error_estimate = richardson(differences)
-            if preview is not None:
-                drawn.append(span_difference(curves, previous_curves))
-            if len(differences) > 1 and (numerics.error_estimate <= rtol or (
-                    preview is not None and richardson(drawn) <= 0.5 * preview)):
-                if preview is not None and numerics.error_estimate > rtol:
-                    numerics.error_estimate, numerics.rtol = richardson(drawn), 0.5 * preview
-                    numerics.message = PREVIEW_MESSAGE
+            if len(differences) > 1 and numerics.error_estimate <= rtol:
                 motion.steady = cycle_figures(machine, tables, run, fine)
                 motion.steady.works["balancing_moment"] = tables.balancing_moment
                 motion.transient = None
                 numerics.energy_residual = energy_residual(motion.steady.works)
                 motion.notices += no_efficiency(motion.steady)
                 break
-        previous, previous_curves = run, curves
+        previous = run
         per_2pi *= 2
         if time.perf_counter() > deadline:
             motion.steady = cycle_figures(machine, tables, run, fine)   # one level only: no estimate (None)
@@ -352,32 +342,6 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
         numerics.error_estimate = None              # no result, nothing estimated
     numerics.runtime_ms = 1e3 * (time.perf_counter() - started)
     return motion
-
-
-PREVIEW_MESSAGE = ("a preview: the error estimate is relative to the span of each drawn curve (ω, t, ε), "
-                   "refined until it is half the preview's tolerance")
-
-
-def span_difference(fine: tuple, coarse: tuple) -> float:
-    """The largest difference between two levels of the drawn curves (ω, t, ε at the step nodes), each
-    relative to its span on the finer level, at the coarser level's nodes."""
-    found = 0.0
-    for f, c in zip(fine, coarse):
-        span = float(f.max() - f.min())
-        if span > 0:
-            found = max(found, float(np.max(np.abs(f[::2] - c))) / span)
-    return found
-
-
-def preview_goal(run: Run, rtol: float, preview: float) -> float:
-    """The error a preview's start-up is refined to (never tighter than rtol): ``preview`` × the spread of ω
-    over the run, (ω_max − ω_min)/ω_max, halved. The start-up's Richardson estimate is the larger of the errors
-    of ω relative to ω_max and of t relative to the run's duration, so ω's error is then ≤ preview/2 of ω's
-    span and t's ≤ preview/2 of t's (the spread is ≤ 1), the drawn curves of a start-up. The half covers the
-    estimate's measured spread (true/estimate up to 1.14)."""
-    top = float(run.omega.max())
-    spread = float((top - run.omega.min()) / top) if top > 0 else 0.0
-    return max(rtol, 0.5 * preview * spread)
 
 
 def _shoot(machine: Machine, tables: Tables, steps: int, T0: float | None, numerics: Numerics,
@@ -443,12 +407,10 @@ def _level(machine: Machine, tables: Tables, steps: int, omega_mean: float | Non
 
 
 def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycles: int = 60,
-            balance: bool = False, deadline: float = math.inf, preview: float | None = None) -> Motion:
+            balance: bool = False, deadline: float = math.inf) -> Motion:
     """From ω₀ at φ = 0 until the cycle-start energy settles to rtol (phase portrait spiralling onto the cycle);
     the error estimate covers the whole run (``startup_error``), and the step is halved until it meets rtol
-    (rtol = 0: never settles, one run of max_cycles at STARTUP_PER_2PI). ``preview``: the step halved until
-    the estimate meets preview_goal instead (the run settles to rtol all the same: as many cycles; a coarser
-    first level would take the start from rest over twice the angle, where its table may no longer hold)."""
+    (rtol = 0: never settles, one run of max_cycles at STARTUP_PER_2PI)."""
     started = time.perf_counter()
     numerics = Numerics(method="RK4 in φ on dT/dφ = M(φ, ω) from the given start", rtol=rtol, code="startup_rk4")
     motion = Motion(numerics=numerics)
@@ -479,17 +441,12 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
             break
         done = pieces, settled, startup_error(machine, kinks, pieces, balance, per_2pi), per_2pi
         estimate = done[2]
-        goal = rtol if preview is None else preview_goal(_joined(pieces), rtol, preview)
-        if (rtol <= 0 or estimate is None or estimate <= goal or 2 * per_2pi > STARTUP_MAX_PER_2PI
+        if (rtol <= 0 or estimate is None or estimate <= rtol or 2 * per_2pi > STARTUP_MAX_PER_2PI
                 or time.perf_counter() > deadline):
             break
         per_2pi *= 2
         tables = cycle_tables(machine, kinks, per_2pi, balance)
     pieces, settled, estimate, per_2pi = done
-    if preview is not None and rtol > 0:
-        numerics.rtol = goal = preview_goal(_joined(pieces), rtol, preview)
-    else:
-        goal = rtol
     numerics.cycles = len(pieces)
     if pieces[-1].stall_phi is not None:
         where = float(np.degrees(pieces[-1].stall_phi))
@@ -513,19 +470,14 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
                            pieces[-1].sensitivity, pieces[-1].stall_phi)
     numerics.steps = sum(p.phi.size - 1 for p in pieces)
     numerics.error_estimate = estimate
-    if rtol > 0 and estimate is not None and estimate > goal:
-        numerics.message += (f"; the error estimate {estimate:.2g} is above rtol = {goal:g} at {per_2pi} steps per "
+    if rtol > 0 and estimate is not None and estimate > rtol:
+        numerics.message += (f"; the error estimate {estimate:.2g} is above rtol = {rtol:g} at {per_2pi} steps per "
                              "2π (the finest level, or the time budget)")
         numerics.message_code += "_above_rtol"          # the same ending, and the estimate said with it
-        numerics.message_context = {**numerics.message_context, "estimate": estimate, "rtol": goal,
+        numerics.message_context = {**numerics.message_context, "estimate": estimate, "rtol": rtol,
                                     "per_2pi": per_2pi}
     numerics.runtime_ms = 1e3 * (time.perf_counter() - started)
     return motion
-
-
-def _joined(pieces: list[Run]) -> Run:
-    """The start-up's runs as one (its ω is all preview_goal reads)."""
-    return Run(pieces[0].phi, pieces[0].T, np.concatenate([p.omega for p in pieces]), pieces[0].t, 1.0)
 
 
 def _cycles(machine: Machine, tables: Tables, T0: float, max_cycles: int, rtol: float | None,

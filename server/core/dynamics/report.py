@@ -71,7 +71,7 @@ def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: i
 def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, omega_mean: float | None,
            balance: bool, max_cycles: int, preview: float | None = None) -> tuple[dict, list[Notice]]:
     """The steady cycle and/or the start-up transient, each with its numerics; ``preview``: a family member's
-    accuracy, a fraction of each drawn curve's span (motion.preview_goal; None: the exact answer)."""
+    accuracy, a fraction of each drawn curve's span (motion.steady_cycle; None: the exact answer)."""
     result, notices = {}, []
     compiled.warm_up()                      # compiled before the clock starts (once per process)
     deadline = time.perf_counter() + TIME_BUDGET_S
@@ -85,7 +85,7 @@ def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, ome
                        "omega_time_mean": s.omega_time_mean, "delta": s.delta, "efficiency": s.efficiency,
                        "works": s.works}
     if "startup" in outputs:
-        start = startup(machine, omega0, max(rtol, 1e-9), max_cycles, balance, deadline, preview)
+        start = startup(machine, omega0, max(rtol, 1e-9), max_cycles, balance, deadline)
         notices += start.notices
         run = start.transient
         result["startup"] = {"numerics": start.numerics.as_dict()}
