@@ -59,6 +59,10 @@ from .schemas_motor import FlywheelAnalysisRequest, MotorCharacteristicRequest
 from .serialise import Answer, serialise
 
 Reads = Collection[str] | None      # the answer's top-level keys a caller reads; None: every one
+# A family member's accuracy (server/api/family.py, PREVIEW): the error allowed as a fraction of each drawn
+# curve's span, where the endpoint's own tolerance would be far tighter than a preview needs; None: the exact
+# answer, computed exactly as without it. Only the family asks for it, and only for PREVIEW_AWARE endpoints.
+Preview = float | None
 
 # The core's words when a bound stopped a computation with a partial result (server/core/dynamics/motion.py:
 # "stopped at the time budget …"; server/core/elastic/simulate.py and the start from rest: "… the work bound").
@@ -135,14 +139,15 @@ def kinematics_answer(result, outputs, lang: str) -> Answer:
     return Answer(dict(body.__dict__))
 
 
-def kinematics_batch(requests: list[KinematicsRequest], lang: str, reads: Reads) -> list[Answer | GeometryError]:
+def kinematics_batch(requests: list[KinematicsRequest], lang: str, reads: Reads,
+                     preview: Preview = None) -> list[Answer | GeometryError]:
     """Members of one mechanism of the four (not "general") with the same outputs and angles: one
     compute_kinematics_many over their parameters (a (member, φ) grid); otherwise one by one."""
     first = requests[0] if requests else None
     shared = first is not None and first.mechanism != "general" and all(
         (r.mechanism, r.outputs, r.phi, r.n) == (first.mechanism, first.outputs, first.phi, first.n) for r in requests)
     if not shared:
-        return one_by_one("kinematics")(requests, lang, reads)
+        return one_by_one("kinematics")(requests, lang, reads)      # closed forms: exact in any case
     phi = None if first.phi is None else np.asarray(first.phi, float)
     results = compute_kinematics_many(first.mechanism, [r.params for r in requests], first.outputs, phi, first.n)
     outputs = MECHANISMS[first.mechanism].outputs
@@ -209,10 +214,11 @@ def _motor(motor) -> Motor:
     return Motor(**{**motor.model_dump(), "expansion": tuple(motor.expansion), "compression": tuple(motor.compression)})
 
 
-def motion(request: MotionRequest, lang: str, built: Machine | None = None) -> Answer:
-    """The steady cycle and/or the start-up; ``built``: the request's machine made already (a batch)."""
+def motion(request: MotionRequest, lang: str, built: Machine | None = None, preview: Preview = None) -> Answer:
+    """The steady cycle and/or the start-up; ``built``: the request's machine made already (a batch);
+    ``preview``: a family member's accuracy (see Preview)."""
     result, notices = report.motion(built or machine(request), request.outputs, request.omega0, request.rtol,
-                                    request.omega_mean, request.balance, request.max_cycles)
+                                    request.omega_mean, request.balance, request.max_cycles, preview)
     return answer(result, notices, lang)
 
 
@@ -302,7 +308,8 @@ def elastic_work_precision(request: ElasticRequest, lang: str) -> Answer:
     return answer({"study": study}, work_precision.study_notices(study), lang)
 
 
-def _force_analysis(request: ForcesRequest, omega: float | None = None, table: bool = True):
+def _force_analysis(request: ForcesRequest, omega: float | None = None, table: bool = True,
+                    tolerance: float | None = None):
     params = MECHANISMS["slider_crank"].check(request.params)
     fields = request.loads.model_dump()
     fields["gas"] = None if request.loads.gas is None else _motor(request.loads.gas)
@@ -310,18 +317,20 @@ def _force_analysis(request: ForcesRequest, omega: float | None = None, table: b
         fields["omega"] = omega
     loads, pairs = Loads(**fields), Pairs(**request.pairs.model_dump())
     phi = np.linspace(0.0, 2 * np.pi, request.n)
-    return params, loads, pairs, analyse(params, loads, pairs, phi, request.tolerance, table=table)
+    return params, loads, pairs, analyse(params, loads, pairs, phi, tolerance or request.tolerance, table=table)
 
 
-def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
+def forces(request: ForcesRequest, lang: str, reads: Reads = None, preview: Preview = None) -> Answer:
     """The force report and the check (3.2) of the balancing moment against virtual work, with and without
     friction (without friction in the pairs, the analysis is already the frictionless one); the check, and the
     textbook's approximations with the numerics describing them, only when read (``reads``: a caller that
-    reads only part of the answer)."""
+    reads only part of the answer). ``preview``: the friction equilibrium to preview_friction_tolerance (see
+    Preview)."""
     if request.mechanism == "general":
-        return _general_forces(request, lang)
+        return _general_forces(request, lang, reads, preview)
     table = reads is None or "iteration" in reads or "numerics" in reads
-    params, loads, pairs, analysis = _force_analysis(request, table=table)
+    tolerance = None if preview is None else preview_friction_tolerance(request.tolerance, preview)
+    params, loads, pairs, analysis = _force_analysis(request, table=table, tolerance=tolerance)
     result = forces_report(analysis, pairs)
     if reads is None or "crank_check" in reads:
         rough = any((pairs.f12, pairs.f23, pairs.f34, pairs.f14))
@@ -331,15 +340,30 @@ def forces(request: ForcesRequest, lang: str, reads: Reads = None) -> Answer:
     return answer(result, analysis.notices, lang)
 
 
-def _general_forces(request: ForcesRequest, lang: str) -> Answer:
+def preview_friction_tolerance(tolerance: float, preview: float) -> float:
+    """ε_R of a preview's friction equilibrium: PREVIEW_FRICTION × the preview's fraction, never tighter than
+    the request's. ε_R bounds each reaction's error relative to the largest reaction at its angle, so a
+    reaction whose span is a hundredth of that largest one is still within the preview's fraction of its
+    span; Newton converges quadratically, so the error left is far below the last step that ε_R measures."""
+    return max(tolerance, PREVIEW_FRICTION * preview)
+
+
+PREVIEW_FRICTION = 1e-2
+
+
+def _general_forces(request: ForcesRequest, lang: str, reads: Reads = None, preview: Preview = None) -> Answer:
     """A general mechanism by structural groups over one turn (core/kinetostatics/groups), its free bodies at
-    ``free_body_phi``; the crank check (3.2) against the reduced moment by power equality is always in it."""
+    ``free_body_phi``; the crank check (3.2) against the reduced moment by power equality is always in it. The
+    textbook's approximations beyond the first only when their table or the numerics are read (``reads``)."""
     mechanism = GeneralMechanism(request.linkage.model_dump(exclude_none=True))
     mechanism.require_crank("the kinetostatics")
     masses = request.masses.model() if request.masses is not None else MassModel()
     pairs = {name: PairFriction(p.f, p.r, p.beta) for name, p in request.pair_friction.items()}
+    table = reads is None or "iteration" in reads or "numerics" in reads
+    tolerance = request.tolerance if preview is None else preview_friction_tolerance(request.tolerance, preview)
     result = analyse_groups(mechanism, masses, np.linspace(0.0, 2 * np.pi, request.n), request.loads.omega,
-                            request.loads.epsilon, request.tolerance, pairs, budget=FORCES_BUDGET_S)
+                            request.loads.epsilon, tolerance, pairs, **({} if table else {"shown": 1}),
+                            budget=FORCES_BUDGET_S)
     return answer(group_forces_report(result, request.free_body_phi), result.notices, lang)
 
 
@@ -446,27 +470,31 @@ ENDPOINTS = {
 
 # Endpoints whose body skips work whose results a caller will not read (a family pruned to its fields):
 READ_AWARE = frozenset({"elastic", "forces", "flywheel"})
+# ... and whose body computes a family member to the preview's accuracy when asked (Preview):
+PREVIEW_AWARE = frozenset({"motion", "forces"})
 
 
-def compute_answer(endpoint: str, body: dict, lang: str = "en", reads: Reads = None) -> Answer:
+def compute_answer(endpoint: str, body: dict, lang: str = "en", reads: Reads = None,
+                   preview: Preview = None) -> Answer:
     """POST /api/v1/<endpoint> in-process: validates body with the endpoint's model (pydantic's
     ValidationError) and computes (the core's GeometryError) exactly where the route would answer 422.
     ``reads``: the top-level keys of the answer the caller reads (None: all); an endpoint of READ_AWARE then
-    leaves out what only the others need (every key read is the same as in the whole answer)."""
+    leaves out what only the others need (every key read is the same as in the whole answer); ``preview``: a
+    family member's accuracy (Preview; None: the exact answer)."""
     model, body_function = ENDPOINTS[endpoint]
-    if reads is not None and endpoint in READ_AWARE:
-        return body_function(model.model_validate(body), lang, reads)
-    return body_function(model.model_validate(body), lang)
+    return body_function(model.model_validate(body), lang, **options(endpoint, reads, preview))
 
 
 Outcome = Answer | ValidationError | GeometryError     # one body's answer, or its refusal (HTTP 422)
 
 
-def compute_answers(endpoint: str, bodies: list[dict], lang: str = "en", reads: Reads = None) -> list[Outcome]:
+def compute_answers(endpoint: str, bodies: list[dict], lang: str = "en", reads: Reads = None,
+                    preview: Preview = None) -> list[Outcome]:
     """compute_answer over several bodies at once (a family's members: one request with its varied numbers
     changed), each entry the body's Answer or its refusal, exactly as compute_answer answers or raises it.
     Every body is validated by itself (its refusal names its own field); the valid ones go to the
-    endpoint's batch body (BATCHES), which computes what they share once, or one by one."""
+    endpoint's batch body (BATCHES), which computes what they share once, or one by one. ``preview``: each
+    member to that accuracy (Preview), where the endpoint is PREVIEW_AWARE."""
     model, _ = ENDPOINTS[endpoint]
     outcomes: list = []
     for body in bodies:
@@ -476,7 +504,8 @@ def compute_answers(endpoint: str, bodies: list[dict], lang: str = "en", reads: 
             outcomes.append(error)
     valid = [k for k, outcome in enumerate(outcomes) if not isinstance(outcome, ValidationError)]
     batch = BATCHES.get(endpoint, one_by_one(endpoint))
-    for k, answer_or_refusal in zip(valid, batch([outcomes[k] for k in valid], lang, reads)):
+    for k, answer_or_refusal in zip(valid, batch([outcomes[k] for k in valid], lang, reads,
+                                                 preview if endpoint in PREVIEW_AWARE else None)):
         outcomes[k] = answer_or_refusal
     return outcomes
 
@@ -492,13 +521,18 @@ def refused_or(compute_one) -> Answer | GeometryError:
 def one_by_one(endpoint: str):
     """The batch body of an endpoint without one of its own: each request by itself."""
     _, body_function = ENDPOINTS[endpoint]
-    aware = endpoint in READ_AWARE
 
-    def batch(requests: list, lang: str, reads: Reads) -> list[Answer | GeometryError]:
-        if reads is not None and aware:
-            return [refused_or(lambda: body_function(request, lang, reads)) for request in requests]
-        return [refused_or(lambda: body_function(request, lang)) for request in requests]
+    def batch(requests: list, lang: str, reads: Reads, preview: Preview = None) -> list[Answer | GeometryError]:
+        extra = options(endpoint, reads, preview)
+        return [refused_or(lambda: body_function(request, lang, **extra)) for request in requests]
     return batch
+
+
+def options(endpoint: str, reads: Reads, preview: Preview) -> dict:
+    """The keyword arguments of an endpoint's body for what a family reads and the preview's accuracy, those
+    it takes (READ_AWARE, PREVIEW_AWARE); none for an exact answer."""
+    return ({"reads": reads} if reads is not None and endpoint in READ_AWARE else {}) | \
+        ({"preview": preview} if preview is not None and endpoint in PREVIEW_AWARE else {})
 
 
 def machine_batch(endpoint: str):
@@ -508,8 +542,8 @@ def machine_batch(endpoint: str):
     the machine's check; each member's own answer is then computed as compute_answer computes it."""
     _, body_function = ENDPOINTS[endpoint]
 
-    def batch(requests: list, lang: str, reads: Reads) -> list[Answer | GeometryError]:
-        extra = {"reads": reads} if reads is not None and endpoint in READ_AWARE else {}
+    def batch(requests: list, lang: str, reads: Reads, preview: Preview = None) -> list[Answer | GeometryError]:
+        extra = options(endpoint, reads, preview)
         machines: dict[bytes, Machine | GeometryError] = {}
         outcomes = []
         for request in requests:

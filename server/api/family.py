@@ -82,6 +82,15 @@ the family (but ≥ 10^−12 of its largest magnitude), so packing moves a value
 PACK_QUANTUM/2 = 0.005 % of its span, added to the interpolation error reported. A smooth curve's steps
 are a few digits each, where its decimals took eight or nine, and they compress better.
 
+Preview accuracy. A member is drawn only while the slider moves and is never read as a number, so it is
+computed to PREVIEW = PREVIEW_FRACTION × TOLERANCE of each drawn quantity's span (endpoints.Preview), not to
+its endpoint's own tolerance, where that is far tighter and the answer's shape does not change with it: the
+steady cycle's shooting stops earlier (its Richardson levels and the start-up's stay the exact answer's:
+motion.steady_cycle says why), the friction equilibrium is solved to PREVIEW_FRICTION × PREVIEW
+(endpoints.preview_friction_tolerance). Decisions (stall, self-locking) are made as for the exact answer. The member's
+error then adds at most PREVIEW_FRACTION of the tolerance to the interpolation's (tests/
+test_preview_accuracy.py checks each endpoint kind against exact answers on random parameters).
+
 The comparison uses the members as sent: every float rounded to SIGNIFICANT digits (NaN and ±inf → null), so
 the reported interpolation error includes the rounding the page sees.
 """
@@ -102,6 +111,8 @@ from .messages import CommaFloat, DECIMAL_COMMA, ReadableFloat
 from ..lessons.scenes import interface_texts
 
 TOLERANCE = 0.005               # 0.5 % of a plotted quantity's span: below a plot's resolution
+PREVIEW_FRACTION = 1 / 50       # a member's own error, at most this fraction of TOLERANCE (see Preview accuracy)
+PREVIEW = PREVIEW_FRACTION * TOLERANCE   # … as a fraction of a drawn quantity's span: 1e-4
 START_MEMBERS = 9
 MAX_MEMBERS = 65                # 8 intervals halved three times over the whole range, at most
 FINEST_FRACTION = 1 / 1024      # an interval this narrow (of the range) is not halved: no slider resolves it

@@ -14,6 +14,8 @@ Members are pruned to the request's ``fields`` (family.pruned) as they are made,
 the fields too: the same body asked with other fields is another member. The endpoint is told which top-level
 keys are read (endpoints.compute_answers ``reads``), so that it skips what no field reads (an elastic member's
 check run at rtol/10, which only estimates the error of numerics no preview draws; the forces' crank check).
+Each member is computed to the preview's accuracy (family.PREVIEW, endpoints.Preview): where an endpoint's own
+tolerance is far tighter than a drawn curve needs, to a small declared fraction of the family's tolerance.
 
 The memo is a least-recently-used store per heavy process, bounded both in members (MEMO_MEMBERS) and in the
 bytes their arrays hold (MEMO_BYTES); a member cut short by a bound is not kept (a quieter moment gives it whole).
@@ -82,7 +84,8 @@ def member_batch(endpoint: str, request: dict, vary: list[family.Vary], lang: st
             if time.perf_counter() > deadline:
                 break
             chunk = missing[start:start + size]
-            for k, outcome in zip(chunk, compute_answers(endpoint, [bodies[k] for k in chunk], lang, reads)):
+            outcomes = compute_answers(endpoint, [bodies[k] for k in chunk], lang, reads, family.PREVIEW)
+            for k, outcome in zip(chunk, outcomes):
                 made[k] = family.Member.of(values[k], outcome, trie)
                 MEMO.put(keys[k], made[k])             # not if a bound cut it short
                 counts["computed"] = counts.get("computed", 0) + 1

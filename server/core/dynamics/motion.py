@@ -32,6 +32,8 @@ STEPS_MAX = 1 << 15        # per 2π: bounds the work of one request
 NEWTON_MAX = 30
 SUBSTEPS = 64              # sub-steps per step where extreme_speed integrates again around an extreme
 MAX_CYCLES = 200
+SHOOTING_STEP = 1e-13      # the shooting's Newton stops at a step this fraction of T₀ (exact answers)
+PREVIEW_SHOOTING = 1e-4    # … and a preview's at this fraction of its preview tolerance (T ∝ ω²: far below)
 STARTUP_PER_2PI = 256      # RK4 steps per 2π of the start-up, halved until its estimate meets rtol …
 STARTUP_MAX_PER_2PI = 4096  # … down to this
 
@@ -207,8 +209,8 @@ def energy_residual(works: dict[str, float]) -> float:
 def cycle_figures(machine: Machine, tables: Tables, run: Run, fine: dict | None = None) -> Steady:
     """δ, mean speeds, ε(φ) and the cycle works of the steady solution (``fine``: see extreme_speed)."""
     nodes = tables.step_nodes
-    J, dJ = tables.J[nodes], tables.dJ[nodes]
     omega = run.omega
+    J, dJ = tables.J[nodes], tables.dJ[nodes]
     moment = tables.net_phi[nodes] + machine.speed_moment(omega, tables.sliding[nodes])[0]
     epsilon = (moment - 0.5 * dJ * omega**2) / J
     def work(values):
@@ -280,9 +282,16 @@ def level_difference(fine: Run, coarse: Run) -> float:
 
 
 def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None = None,
-                 balance: bool = False, deadline: float = math.inf) -> Motion:
+                 balance: bool = False, deadline: float = math.inf, preview: float | None = None) -> Motion:
     """The periodic solution T(φ₀ + Φ) = T(φ₀), refined until the Richardson estimate meets rtol: the
-    estimate (``richardson``) of three levels at least, so that the order they show is known."""
+    estimate (``richardson``) of three levels at least, so that the order they show is known.
+
+    ``preview`` (a family member drawn only while a slider moves, never read as a number): the shooting's
+    Newton stops at PREVIEW_SHOOTING × preview of T₀ (None: the exact answer, bit for bit as without it). The
+    levels stay the exact answer's: a member at a coarser level than its neighbours' is interpolated node by
+    node with them, and where the kinks move with the slider, node k is another angle in each member; the
+    family's estimate does not see that (bench/family_grid_check.py: previews at coarser levels put 3 more of
+    the scene's 33 families off by 0.9–4.4 % of a span where they claimed 0.1 %)."""
     started = time.perf_counter()
     method = ("Newton shooting on the cycle map of dT/dφ = M(φ, ω), RK4 in φ" if machine.speed_dependent
               else "energy integral (1.9)–(1.10) by Simpson's rule, mean speed given")
@@ -301,7 +310,8 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
         fine = {}                          # sub-step tables of extreme_speed on these nodes
         try:
             if machine.speed_dependent:
-                run, T0 = _shoot(machine, tables, steps, T0, numerics)
+                run, T0 = _shoot(machine, tables, steps, T0, numerics,
+                                 SHOOTING_STEP if preview is None else max(SHOOTING_STEP, PREVIEW_SHOOTING * preview))
             else:
                 run = _level(machine, tables, steps, omega_mean, fine)
         except NoMotion as stop:
@@ -336,8 +346,10 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
     return motion
 
 
-def _shoot(machine: Machine, tables: Tables, steps: int, T0: float | None, numerics: Numerics):
-    """Newton on g(T₀) = T(Φ) − T₀ with g′ = S − 1 from the variational equation."""
+def _shoot(machine: Machine, tables: Tables, steps: int, T0: float | None, numerics: Numerics,
+           tolerance: float = 1e-13):
+    """Newton on g(T₀) = T(Φ) − T₀ with g′ = S − 1 from the variational equation, until a step is below
+    ``tolerance`` × T₀ (quadratic convergence: the next step's error is far below that)."""
     if T0 is None:
         omega = mean_speed_balance(machine, tables)
         if omega is None:
@@ -354,7 +366,7 @@ def _shoot(machine: Machine, tables: Tables, steps: int, T0: float | None, numer
         slope = run.sensitivity - 1.0
         step = (run.T[-1] - T0) / slope if slope != 0.0 else math.copysign(math.inf, T0 - run.T[-1])
         T0 = min(max(T0 - step, 0.25 * T0), 4.0 * T0)      # a step by a factor 4 at most either way
-        if abs(step) <= 1e-13 * T0:
+        if abs(step) <= tolerance * T0:
             return integrate(machine, tables, T0, steps), T0
     raise NoMotion("newton_failed", "Newton's method did not converge on the cycle map.")
 

@@ -70,13 +70,14 @@ def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: i
 
 
 def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, omega_mean: float | None,
-           balance: bool, max_cycles: int) -> tuple[dict, list[Notice]]:
-    """The steady cycle and/or the start-up transient, each with its numerics."""
+           balance: bool, max_cycles: int, preview: float | None = None) -> tuple[dict, list[Notice]]:
+    """The steady cycle and/or the start-up transient, each with its numerics; ``preview``: a family member's
+    accuracy, a fraction of each drawn curve's span (motion.steady_cycle; None: the exact answer)."""
     result, notices = {}, []
     compiled.warm_up()                      # compiled before the clock starts (once per process)
     deadline = time.perf_counter() + TIME_BUDGET_S
     if "steady" in outputs:
-        steady = steady_cycle(machine, rtol, omega_mean, balance, deadline)
+        steady = steady_cycle(machine, rtol, omega_mean, balance, deadline, preview)
         notices += steady.notices
         result["numerics"] = steady.numerics.as_dict()
         if steady.steady is not None:
