@@ -598,9 +598,11 @@ def friction_influence(request: FrictionInfluenceRequest, lang: str, study: Stud
     return answer(result, notices, lang)
 
 
-def friction_influence_batch(requests: list, lang: str, reads: Reads) -> list[Answer | GeometryError]:
+def friction_influence_batch(requests: list, lang: str, reads: Reads,
+                             preview: Preview = None) -> list[Answer | GeometryError]:
     """Members whose requests differ only in f, [δ] or the flywheel given (a family of those sliders) share one
-    Study: one stacked solve of the kinetostatics at all their f's, each f's forces and wear once."""
+    Study: one stacked solve of the kinetostatics at all their f's, each f's forces and wear once (``preview`` is
+    always None: the explorer is not PREVIEW_AWARE, its members are exact)."""
     groups: dict[bytes, list[int]] = {}
     for k, request in enumerate(requests):
         key = orjson.dumps(request.model_dump(exclude={"f", "delta", "flywheel"}), option=orjson.OPT_SORT_KEYS)
