@@ -21,7 +21,7 @@ import httpx
 import numpy as np
 import pytest
 
-from conftest import interface_texts, screenshot
+from conftest import PHONE, interface_texts, screenshot
 
 pytestmark = pytest.mark.browser
 
@@ -284,6 +284,11 @@ def test_equation_of_motion_lambda_drag_is_drawn_from_the_family(family_page):
     page.wait_for_function("y => { const shown = document.querySelector('#panel-omega_phi .graph').data[0].y;"
                            " return shown.length === y.length && shown.every((v, i) => v === y[i]); }", arg=answer["omega"])
     assert page.inner_text("#panel-figures") != figures
+
+    page.set_viewport_size(PHONE)          # the window made narrow after a drag: every plot keeps its height
+    page.wait_for_function("""() => [...document.querySelectorAll('.panel:not([hidden]) .graph')].filter((g) => g._fullLayout)
+        .every((g) => g.layout.autosize === true && g._fullLayout.height > 100
+                      && Math.round(g.getBoundingClientRect().height) === g._fullLayout.height)""")
     assert page.problems == []
 
 

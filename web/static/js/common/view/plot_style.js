@@ -70,3 +70,15 @@ export function traceDashes(requested) {
     return free;
   });
 }
+
+const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
+
+/**
+ * Draw a figure into its graph (Plotly.react, resizing with the window). The graph's box gets the figure's
+ * height: on a window resize Plotly forgets layout.height and takes the box's, which without a height of
+ * its own would be 0 px once a redraw has made the plot fill the box.
+ */
+export function drawFigure(graph, { data, layout }) {
+  if (Number.isFinite(layout.height)) graph.style.height = `${layout.height}px`;
+  return Plotly.react(graph, data, layout, PLOTLY_CONFIG);
+}

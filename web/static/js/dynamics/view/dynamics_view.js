@@ -19,6 +19,7 @@
  * A panel view's module is loaded (import()) only when a variant has such a panel: a scene fetches the
  * code it shows and no more. Its panel stays hidden until the view has arrived, then takes the latest answer.
  */
+import { drawFigure } from "../../common/view/plot_style.js";
 import { element } from "../../common/view/dom.js";
 import { pathValue } from "../../common/model/dotted_paths.js";
 import { heldCurves, heldSeries, holds, plotFigure, polarFigure } from "./dynamics_figures.js";
@@ -32,7 +33,6 @@ import { explorable } from "../../common/view/plot_explore.js";
 import { plotToolbar } from "../../common/view/plot_tools.js";
 import { holdsReadings, readings } from "./readings_view.js";
 
-const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
 const GRAPH_KINDS = ["plot", "polar"];
 const READING_KINDS = ["figures", "table", "numerics"];
 
@@ -247,6 +247,6 @@ export class DynamicsView {
       if (moveCurves(panel.graph, figure.data)) return Promise.resolve();
       figure = roomy(figure);
     }
-    return Plotly.react(panel.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => panel.cursor?.follow(panel.graph));
+    return drawFigure(panel.graph, figure).then(() => panel.cursor?.follow(panel.graph));
   }
 }

@@ -8,13 +8,13 @@
  * changes, the chart is greyed and said to belong to the earlier values until the study runs again; a
  * refused study says why.
  */
+import { drawFigure } from "../../common/view/plot_style.js";
 import { element } from "../../common/view/dom.js";
 import { refusalMessage } from "../../common/view/messages.js";
 import { richText } from "../../common/view/notation.js";
 import { plottedRows, workPrecisionFigure } from "./work_precision_figure.js";
 import { WorkPrecisionStudy } from "../model/work_precision_study.js";
 
-const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
 
 export class WorkPrecisionView {
   constructor(body, spec, { t, lang }, model) {
@@ -64,7 +64,7 @@ export class WorkPrecisionView {
       if (this.graph.hidden) Plotly.purge(this.graph);
       else {
         const figure = workPrecisionFigure(study.rows, { t, lang: this.lang });
-        Plotly.react(this.graph, figure.data, figure.layout, PLOTLY_CONFIG);
+        drawFigure(this.graph, figure);
       }
       this.details.replaceChildren(...this.#details(study, warnings));
     }

@@ -5,6 +5,7 @@
  * The point is a positioned element moved with a CSS transform, placed through Plotly's axis maps
  * measured after every redraw, so animation frames never ask Plotly to lay out again.
  */
+import { drawFigure } from "../../common/view/plot_style.js";
 import { pathValue } from "../../common/model/dotted_paths.js";
 import { element } from "../../common/view/dom.js";
 import { degrees, formatNumber, formatQuantity, setRichText, unitText } from "../../common/view/notation.js";
@@ -12,7 +13,6 @@ import { sampleAt } from "../../common/model/phi_samples.js";
 import { moveCurves } from "../../common/view/family_plot.js";
 import { energyMass, originInView, wittenbauerFigure } from "./wittenbauer_figure.js";
 
-const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
 
 export class WittenbauerView {
   constructor(body, spec, { t, lang }) {
@@ -40,7 +40,7 @@ export class WittenbauerView {
     this.drawn = this.diagram;
     const figure = wittenbauerFigure(this.spec, data, { t: this.t, lang: this.lang });
     setRichText(this.caption, this.#caption(data));
-    Plotly.react(this.graph, figure.data, figure.layout, PLOTLY_CONFIG).then(() => {
+    drawFigure(this.graph, figure).then(() => {
       if (!this.listening) {
         this.listening = true;
         this.graph.on("plotly_afterplot", () => this.#measure());
@@ -61,7 +61,7 @@ export class WittenbauerView {
       this.drawAt(this.phi);
       return Promise.resolve();
     }
-    return Plotly.react(this.graph, figure.data, figure.layout, PLOTLY_CONFIG);    // afterplot places the point
+    return drawFigure(this.graph, figure);    // afterplot places the point
   }
 
   /** Put the point at the drawn curve's place for crank angle phi (rad); the readout from the answer shown. */

@@ -8,6 +8,7 @@
  * Every plot has its toolbar (plot_tools.js: zoom, export) and is drawn explorable (plot_explore.js: hover
  * readouts with units, zoom, the pinned ghost curves of ghost_curves.js under its own).
  */
+import { drawFigure } from "../../common/view/plot_style.js";
 import { element } from "../../common/view/dom.js";
 import { moveCurves, roomy } from "../../common/view/family_plot.js";
 import { approximationErrors, exactOutputs, harmonicClaim, isSpectrum, panelFigure } from "./figures.js";
@@ -19,7 +20,6 @@ import { explorable } from "../../common/view/plot_explore.js";
 import { plotToolbar } from "../../common/view/plot_tools.js";
 import { valueAt } from "../../common/model/positions_table.js";
 
-const PLOTLY_CONFIG = { displayModeBar: false, responsive: true };
 
 export class PlotsView {
   /** ghosts: the pinned curves (GhostCurves), drawn under each plot's own. */
@@ -124,7 +124,7 @@ export class PlotsView {
       if (moveCurves(panel.graph, data)) return Promise.resolve();
       ({ layout } = roomy({ data, layout }));
     }
-    return Plotly.react(panel.graph, data, layout, PLOTLY_CONFIG).then(() => {
+    return drawFigure(panel.graph, { data, layout }).then(() => {
       if (panel.hasCursor) panel.cursor.follow(panel.graph);
     });
   }
