@@ -247,6 +247,19 @@ def test_a_slider_driven_mechanism(browser_page):
     page.dispatch_event("#editor-phi", "input")
     page.wait_for_function("html => document.querySelector('#editor-drawing .links').innerHTML !== html", arg=frame)
     screenshot(page, "editor_slider_input")
+    # played, the slider runs its travel out and back: near the end of its travel it turns back, no jump to the start
+    page.fill("#editor-phi", "350")
+    page.dispatch_event("#editor-phi", "input")
+    page.click("#editor-play")
+    shown = page.evaluate("""() => new Promise((done) => {
+        const seen = [], start = performance.now();
+        const look = () => {
+          seen.push(Number(document.querySelector('#editor-phi').value));
+          if (seen.at(-1) < 340 || performance.now() - start > 20000) done(seen); else requestAnimationFrame(look);
+        };
+        look(); })""")
+    page.click("#editor-play")
+    assert shown[-1] < 340 and min(shown) > 200, shown          # a jump to the start would show rows near 0
 
     before = answers(page)
     page.select_option("#editor-preset", "slider_driven_crank")

@@ -15,6 +15,7 @@ import { mechanismQuery, readMechanism } from "./model/address.js";
 import { guideShapes, linkShapes, stateAt } from "./model/geometry.js";
 import { PICKS, addFrameGuide, addFrameJoint, addGroup, addLinkGuide, addPoint, emptyLinkage, guides, joints, links,
   normalised, requestLinkage, setCrank, setSlider } from "./model/linkage.js";
+import { animationRow } from "./model/animation.js";
 import { UndoHistory } from "./model/history.js";
 import { LatestRequest, refusalText, refusedGroup } from "./model/service.js";
 import { frameOf, planRequest, quantities, specialRequest, tableRequest } from "./model/table.js";
@@ -353,7 +354,7 @@ let started = null;
 function frame(now) {
   if (!state.playing) return;
   started ??= now - (state.k / SPIN) * 1000;
-  setAngle(Math.floor(((now - started) / 1000) * SPIN));
+  setAngle(animationRow(Math.floor(((now - started) / 1000) * SPIN), TURN_DEGREES, sliderInput()));
   requestAnimationFrame(frame);
 }
 
