@@ -155,3 +155,28 @@ def test_a_self_locking_mechanism_is_said_in_words_never_nan(client):
     answer = response.json()
     assert "checks" not in answer
     assert any("подшипник" in text for text in answer["warnings"])
+
+
+def test_the_errata_are_rows_of_the_common_format_with_the_printed_values_by_hand():
+    """The misprints of §2 in the rows every scene's errata panel shows (server/core/errata.py): (2.4) as
+    printed, l_z = √(F_e·l_z/[p_m]), solves to F_e/[p_m] = l_z²/l̄_z of the corrected l_z (an area); (2.16)
+    without the arm gives the film power over r; (2.13) is there for a dry bearing.  Words in three languages.
+    Only rounding differs: rel 1e-12."""
+    import json
+    from pathlib import Path
+    from server.core.errata import row
+    d, ratio = 0.03, 1.2
+    answer = compute("bearings", {**bearing(), "bearing": {"kind": "dry", "diameter": d, "length_ratio": ratio}})
+    rows = {r["key"]: r for r in answer["errata"]}
+    assert list(rows) == ["bearing_size", "bearing_shaft_heat", "bearing_film_arm"]
+    assert all(set(r) == set(row("k", "s", "e", 0, 0, "u")) and r["source"] == "chaika_vasylenko" for r in rows.values())
+    size, film = rows["bearing_size"], rows["bearing_film_arm"]
+    assert size["printed_value"] == pytest.approx(size["corrected_value"] ** 2 / ratio, rel=1e-12)
+    assert (size["printed_unit"], size["unit"]) == ("m2_area", "m")
+    assert film["printed_value"] * d / 2 == pytest.approx(film["corrected_value"], rel=1e-12)
+    texts = {lang: json.loads((Path(__file__).parents[1] / "content" / "i18n" / f"{lang}.json").read_text("utf-8"))
+             for lang in ("ru", "uk", "en")}
+    for lang, t in texts.items():
+        for r in rows.values():
+            assert {f"erratum_why_{r['key']}", f"erratum_printed_{r['key']}", f"erratum_corrected_{r['key']}",
+                    f"erratum_unit_{r['unit']}", f"erratum_unit_{r['printed_unit']}", f"source_{r['source']}"} <= set(t)

@@ -10,7 +10,7 @@ from server.core.mechanisms import MECHANISMS
 from server.lessons.requests import scene_request
 from server.lessons.scenes import scenes
 
-ROW_KEYS = {"key", "source", "equation", "printed_value", "corrected_value", "unit"}
+ROW_KEYS = {"key", "source", "equation", "printed_value", "printed_unit", "corrected_value", "unit"}
 
 
 @pytest.mark.parametrize("lam", [2.0, 3.0, 6.0])

@@ -2,6 +2,8 @@
 import copy
 import json
 import math
+import re
+from pathlib import Path
 
 import pytest
 from fastapi.testclient import TestClient
@@ -92,3 +94,22 @@ def test_slider_defaults_lie_in_their_ranges():
         for variant in scene.variants:
             for slider in variant.sliders:
                 assert slider.min <= slider.default <= slider.max and math.isfinite(slider.step)
+
+
+SOURCES = json.loads((Path(__file__).resolve().parents[1] / "content" / "sources.json").read_text(encoding="utf-8"))
+REFERENCE = re.compile(r"\(L?\d+(?:\.\d+)?\*?\)|§ ?\d|(?:Figs?\.|рис\.|Tables?|табл\.) ?\d")
+
+
+def test_every_scene_cites_its_sources_equations_in_each_language():
+    """Each part of a scene's `source` (split at ';') that names a source (a key of content/sources.json or its
+    ru/uk form) also gives an equation, section, figure or table number of it: "Eremyants (2.42*)",
+    "Lecture 10 §10.9", "Table 4.3".  Exact text check: nothing to tolerate."""
+    missing = []
+    for scene in scenes().values():
+        for lang in LANGUAGES:
+            names = [name for record in SOURCES.values() for name in record["names"][lang]]
+            parts = [part for part in scene.source[lang].split(";") if any(name in part for name in names)]
+            missing += [f"{scene.id} [{lang}]: {part.strip()}" for part in parts if not REFERENCE.search(part)]
+            if not parts:
+                missing.append(f"{scene.id} [{lang}]: names no source")
+    assert missing == []

@@ -160,3 +160,23 @@ def test_a_table_sent_as_arrays_is_summed_as_the_books_and_bad_tables_are_refuse
     assert nan.status_code == 422
     with_loads = client.post("/api/v1/wear", json={"reactions": arrays, "loads": {"m2": 1}})
     assert with_loads.status_code == 422 and "leave out loads" in with_loads.text
+
+
+def test_the_constant_load_panel_is_the_books_formulas_at_the_tables_mean_loads_by_hand():
+    """The panel of §4.1's constant-load models for Table 4.3, by hand from the table's columns: p_max =
+    2F_e/(π l_z r) (4.4) at the mean |R₂₃|, and the cosine pressure carries that load back (4.3); the piston
+    under its mean pressure slides 2H_B = 4l₁ per cycle (4.14); the cylinder's middle point under the piston's
+    whole length l_p going up and again coming down (K₄M₄ of Fig. 4.3, l_p ≤ X ≤ H_B) slides S = 2l_p (4.15).  Only floating-point rounding differs: rel 1e-12."""
+    report = book_table_report(PARTS, CYCLES)
+    rows = {row["quantity"]: row for row in report["constant_load"]}
+    mean_r23, radius = float(np.mean(np.abs(TABLE_4_3["R23"]))), PARTS["pin_diameter"] / 2
+    assert rows["peak_pressure"]["value"] == pytest.approx(2 * mean_r23 / (np.pi * PARTS["pin_length"] * radius),
+                                                           rel=1e-12)
+    assert rows["carried_load"]["value"] == pytest.approx(mean_r23, rel=1e-12)
+    pressure = report["mean_pressure_34"]
+    assert PARTS["I_piston"] / report["coefficients"]["piston"] == pytest.approx(pressure, rel=1e-12)
+    assert rows["piston_constant"]["value"] == pytest.approx(
+        1e6 * CYCLES * 4 * BOOK_LINKS[0] * PARTS["I_piston"], rel=1e-12)          # k·p = I_s, µm
+    assert rows["cylinder_constant"]["value"] == pytest.approx(
+        1e6 * CYCLES * 2 * PARTS["piston_length"] * report["coefficients"]["cylinder"] * pressure, rel=1e-12)
+    assert [row["equation"] for row in report["constant_load"]] == ["(4.4)", "(4.3)", "(4.14)", "(4.15)"]

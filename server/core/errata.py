@@ -1,23 +1,26 @@
 """The sources' misprints that change a number, each printed beside corrected with the value each gives for
-the scene's own data (one row format for every scene, as the bearings' (2.4), (2.13), (2.16)):
+the scene's own data (one row format for every scene, the bearings' (2.4), (2.13), (2.16) among them):
 
-    {"key", "source", "equation", "printed_value", "corrected_value", "unit"}
+    {"key", "source", "equation", "printed_value", "printed_unit", "corrected_value", "unit"}
 
 ``key`` names the formulas and the reason (the interface texts erratum_printed_<key>, erratum_corrected_<key>,
 erratum_why_<key>), ``source`` the source (source_<source>),
-``unit`` the unit (erratum_unit_<unit>).  The computations use the corrected forms; these rows only show
-what the printed ones would give.
+``unit`` the unit (erratum_unit_<unit>), ``printed_unit`` the printed value's: the same but where the printed
+formula gives another quantity than the corrected one (the bearings' (2.4): an area for a length).  The
+computations use the corrected forms; these rows only show what the printed ones would give.
 """
 from __future__ import annotations
 
 import numpy as np
 
 
-def row(key: str, source: str, equation: str, printed_value: float, corrected_value: float, unit: str) -> dict:
+def row(key: str, source: str, equation: str, printed_value: float, corrected_value: float, unit: str,
+        printed_unit: str | None = None) -> dict:
     """One erratum: the value of the printed formula and of the corrected one (the formulas themselves are
-    interface texts, erratum_printed_<key> and erratum_corrected_<key>, read in the page's language)."""
-    return {"key": key, "source": source, "equation": equation,
-            "printed_value": float(printed_value), "corrected_value": float(corrected_value), "unit": unit}
+    interface texts, erratum_printed_<key> and erratum_corrected_<key>, read in the page's language); the
+    printed value's own unit where it differs from the corrected one's."""
+    return {"key": key, "source": source, "equation": equation, "printed_value": float(printed_value),
+            "printed_unit": printed_unit or unit, "corrected_value": float(corrected_value), "unit": unit}
 
 
 ROUNDING = 1e-12   # a mean below this fraction of the function's largest value is rounding: shown as 0

@@ -66,6 +66,8 @@ def test_dragging_the_speed_moves_the_curves_and_the_verdicts(browser_page):
     names = page.evaluate(f"id => {GRAPH}.data.map(t => t.name)", "stribeck")
     assert len(names) == 4                                  # three zones and the operating point's level
     assert page.locator("#panel-errata tbody tr").count() == 2      # (2.4) and (2.16): (2.13) needs a dry f
+    errata_rows = page.inner_text("#panel-errata tbody")    # the rows of every scene's errata panel: source first
+    assert errata_rows.count(RU["source_chaika_vasylenko"]) == 2 and RU["erratum_unit_m2_area"] in errata_rows
     assert english_in(page.inner_text("body"), "ru") == []
     screenshot(page, "bearings_fluid_ru")
     page.set_viewport_size({"width": 390, "height": 844})

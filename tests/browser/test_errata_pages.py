@@ -44,9 +44,12 @@ def test_the_errata_show_in_russian_and_follow_the_slider(browser_page, scene, v
     if scene == "angular-acceleration":
         names = page.evaluate("() => document.querySelector('#panel-components .graph').data.map(t => t.name)")
         assert any("(а)" in name for name in names)             # method (a)'s curve beside ε* + ε**
+    parts = page.inner_text("#panel-parts") if scene == "elastic-linkage" else None    # compliances from dimensions
     drag_slider(page, f"#slider-{slider}", fraction)
     page.wait_for_function("([sel, before]) => document.querySelector(sel)?.innerText !== before",
                            arg=[holder, before])
+    if parts is not None:       # the motor shaft's e_D reduced to the crank by the gear ratio's square (1.16)
+        page.wait_for_function("before => document.querySelector('#panel-parts')?.innerText !== before", arg=parts)
     assert "NaN" not in page.inner_text("body")
     assert english_in(page.inner_text("body"), "ru") == []
     screenshot(page, f"errata_{scene}_ru")

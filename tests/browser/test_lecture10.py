@@ -71,10 +71,20 @@ def test_the_flywheels_inertia_sets_the_delta(browser_page):
     page.goto("/scenes/flywheel_analysis?lang=ru")
     wait_for_graphs(page, scene, scene["variants"][0])
     before = trace_y(page, "speed", 0)
+    figures = {panel: trace_y(page, panel, 0) for panel in ("moment", "transfer")}     # Fig. 10.6, Fig. 10.5
     spread = lambda y: (lambda v: max(v) - min(v))(list(map(float, y.strip("[]").split(","))))
     drag_slider(page, "#slider-inertia", 0.1)               # a lighter flywheel
     changed(page, "speed", 0, before)
     assert spread(trace_y(page, "speed", 0)) > spread(before)      # less inertia: a larger swing of ω
+    # the driving moment of the indicator diagram and the crank-slider's transfer functions are functions of φ
+    # alone: the flywheel does not change them (to 1e-3 of the curve's largest value: a family member is drawn
+    # at its preview rounding, 3-4 significant digits, until the exact answer replaces it)
+    values = lambda y: list(map(float, y.strip("[]").split(",")))
+    for panel, shown in figures.items():
+        then = values(shown)
+        page.wait_for_function(f"([id, n]) => {GRAPH}.data[0].y.length === n", arg=[panel, len(then)])
+        now = values(trace_y(page, panel, 0))
+        assert max(abs(a - b) for a, b in zip(now, then)) <= 1e-3 * max(map(abs, then)), panel
     body = page.inner_text("body")
     assert "NaN" not in body and english_in(body, "ru") == []
     screenshot(page, "lecture10_flywheel_analysis_ru")

@@ -59,9 +59,12 @@ def test_a_material_and_the_books_table_drive_the_wear(browser_page):
     page.wait_for_function(f"id => {GRAPH}?.data?.length === 2", arg="joint")
     cylinder_before, points_before = series(page, "cylinder", 0, "y"), page.inner_text("#panel-book_points")
     joint_before = series(page, "joint", 1, "r")
+    constant_before = page.inner_text("#panel-constant")        # the constant-load models (4.3)–(4.4), (4.14)–(4.15)
+    assert constant_before.count("(4.") == 4
     drag_slider(page, "#slider-hours", 1.0)                    # 1000 h → 5000 h
     changed(page, "cylinder", 0, "y", cylinder_before)
     text_changed(page, "#panel-book_points", points_before)
+    text_changed(page, "#panel-constant", constant_before)     # the wear of (4.14), (4.15) grows with the hours
     hours = float(page.input_value("#slider-hours"))
     assert hours > 4000
     assert peak(series(page, "cylinder", 0, "y")) == pytest.approx(hours / 1000 * peak(cylinder_before), rel=1e-3)

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import errata
 from ..mechanisms import GeometryError, Notice
 from . import dry, film
 from .loads import PairLoad
@@ -229,24 +230,22 @@ def _film(load: PairLoad, power: np.ndarray, reynolds: np.ndarray) -> dict:
 
 
 def _errata(load: PairLoad, design: Design, allowable: dict, length: float, friction: float | None) -> list[dict]:
-    """The misprints of §2 that change a number, each printed beside corrected with the value each gives."""
+    """The misprints of §2 that change a number, each printed beside corrected with the value each gives (the
+    rows of errata.row): (2.4) read as printed solves to l_z = F_e/[p_m], an area; (2.13) without p_m·V_s;
+    (2.16) without the arm r, a power per metre."""
     sized = dry.size(load.peak, allowable["pressure"], design.length_ratio)
-    rows = [{"key": "size", "equation": "(2.4)", "printed": "l_z = √(F_e·l_z/[p_m])",
-             "corrected": "l_z = √(F_e·l̄_z/[p_m])", "printed_value": None, "printed_unit": "m2", "corrected_value": sized["length"],
-             "unit": "m"}]
+    rows = [errata.row("bearing_size", "chaika_vasylenko", "(2.4)", load.peak / allowable["pressure"],
+                       sized["length"], "m", printed_unit="m2_area")]
     part = dry.shaft(design.diameter, design.shaft_length)
     if friction is not None:
         args = (design.ambient, design.transfer, part["mass"], part["area"], design.hours)
         power = load.cycle_mean(dry.friction_power(friction, load.force, dry.sliding_speed(load.omega, design.diameter)))
-        rows.append({"key": "shaft_heat", "equation": "(2.13)",
-                     "printed": "T_n = T_B + 8,43·l_z·d·f·t_z/(G·c′ + 0,5·A_k·k′·t_z)",
-                     "corrected": "T_n = T_B + 8,43·l_z·d·f·p_m·V_s·t_z/(G·c′ + 0,5·A_k·k′·t_z)",
-                     "printed_value": dry.shaft_temperature_as_printed(length, design.diameter, friction, *args),
-                     "printed_unit": "degC", "corrected_value": dry.shaft_temperature(power, *args), "unit": "degC"})
+        rows.append(errata.row("bearing_shaft_heat", "chaika_vasylenko", "(2.13)",
+                               dry.shaft_temperature_as_printed(length, design.diameter, friction, *args),
+                               dry.shaft_temperature(power, *args), "degC"))
     radius, h0 = design.diameter / 2, design.clearance_ratio * design.diameter
     power, _ = film.film_power(load.omega, radius, length, h0, design.viscosity, design.wrap,
                                design.viscosity / design.density)
-    rows.append({"key": "film_arm", "equation": "(2.16)", "printed": "P_f = ω∫τ dA", "corrected": "P_f = ω∫τ·r dA",
-                 "printed_value": load.cycle_mean(power) / radius, "printed_unit": "W_m",
-                 "corrected_value": load.cycle_mean(power), "unit": "W"})
+    rows.append(errata.row("bearing_film_arm", "chaika_vasylenko", "(2.16)", load.cycle_mean(power) / radius,
+                           load.cycle_mean(power), "W", printed_unit="W_m"))
     return rows
