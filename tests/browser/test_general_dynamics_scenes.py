@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import drag_slider, interface_texts, read_scene, screenshot
+from conftest import drag_slider, interface_texts, read_scene, screenshot, shown
 from test_dynamics import figure_value, open_scene, trace, wait_for_new_trace
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -35,14 +35,14 @@ def test_shaping_machine_equation_of_motion(browser_page):
     before = trace(page, "omega_phi")
     drag_slider(page, "#slider-P", 0.8)                     # a larger cutting force: another steady cycle
     wait_for_new_trace(page, "omega_phi", before)
-    driving = MOTION["panels"]["figures"]["items"][0]["label"]["ru"]
-    slower, before = number(figure_value(page, driving)), trace(page, "omega_phi")
+    mean_speed = shown(MOTION["panels"]["figures"]["items"][0]["label"]["ru"])   # ω_ср: the page shows ωср
+    slower, before = number(figure_value(page, mean_speed)), trace(page, "omega_phi")
     drag_slider(page, "#slider-M0", 0.9)                    # a stronger motor: a faster steady cycle
     wait_for_new_trace(page, "omega_phi", before)
     page.wait_for_function("""([label, before]) => [...document.querySelectorAll('.figures-list dt')]
         .find(dt => dt.textContent === label)?.nextElementSibling.textContent !== before""",
-                           arg=[driving, figure_value(page, driving)])
-    assert number(figure_value(page, driving)) > slower
+                           arg=[mean_speed, figure_value(page, mean_speed)])
+    assert number(figure_value(page, mean_speed)) > slower
     assert english_words(page) == []
     assert "NaN" not in page.inner_html("#panels")
     screenshot(page, "general_motion_shaping_ru")
@@ -58,7 +58,7 @@ def test_shaping_machine_flywheel(browser_page):
     page.wait_for_function("""([label, before]) => [...document.querySelectorAll('.figures-list dt')]
         .find(dt => dt.textContent === label)?.nextElementSibling.textContent !== before""", arg=[label, before])
     assert number(figure_value(page, label)) > number(before)
-    balancing = FLYWHEEL["panels"]["figures"]["items"][-1]["label"]["ru"]
+    balancing = shown(FLYWHEEL["panels"]["figures"]["items"][-1]["label"]["ru"])
     before = figure_value(page, balancing)
     drag_slider(page, "#slider-f", 0.9)                     # dry friction in every pair: a larger M_с to balance
     page.wait_for_function("""([label, before]) => [...document.querySelectorAll('.figures-list dt')]
