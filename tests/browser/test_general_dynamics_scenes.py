@@ -36,13 +36,12 @@ def test_shaping_machine_equation_of_motion(browser_page):
     drag_slider(page, "#slider-P", 0.8)                     # a larger cutting force: another steady cycle
     wait_for_new_trace(page, "omega_phi", before)
     mean_speed = shown(MOTION["panels"]["figures"]["items"][0]["label"]["ru"])   # ω_ср: the page shows ωср
-    slower, before = number(figure_value(page, mean_speed)), trace(page, "omega_phi")
+    slower, before = figure_value(page, mean_speed), trace(page, "omega_phi")
     drag_slider(page, "#slider-M0", 0.9)                    # a stronger motor: a faster steady cycle
     wait_for_new_trace(page, "omega_phi", before)
     page.wait_for_function("""([label, before]) => [...document.querySelectorAll('.figures-list dt')]
-        .find(dt => dt.textContent === label)?.nextElementSibling.textContent !== before""",
-                           arg=[mean_speed, figure_value(page, mean_speed)])
-    assert number(figure_value(page, mean_speed)) > slower
+        .find(dt => dt.textContent === label)?.nextElementSibling.textContent !== before""", arg=[mean_speed, slower])
+    assert number(figure_value(page, mean_speed)) > number(slower)
     assert english_words(page) == []
     assert "NaN" not in page.inner_html("#panels")
     screenshot(page, "general_motion_shaping_ru")
