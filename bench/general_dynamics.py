@@ -6,7 +6,9 @@ the general pipeline: every dynamics request of a six-bar ≤ 20 ms of server co
   * reduction: J, dJ/dφ, M_c over 361 angles and the mean M_c0 on 8192 intervals;
   * motion: the steady cycle with a linear motor (rtol 1e-8), and the steady cycle with the start-up;
   * flywheel: Merzalov, Gutyar, Wittenbauer and the exact inertia with a constant motor, balanced.
-Six-bars: the presets' own masses, loads, motors and [δ] (content/mechanisms/*.json "dynamics").
+Six-bars: the presets' own masses, loads, motors and [δ] (content/mechanisms/*.json "dynamics"); and the shaping
+machine with dry friction f = 0.1 in every pair (r = 20 mm), f moved by 1e-9 at every repeat so that each
+request finds its kinks anew, as a dragged f slider does (the kinks are kept per machine otherwise).
 
     python bench/general_dynamics.py [--repeats 15]
 
@@ -44,11 +46,14 @@ def requests(base: dict, motor: dict, flywheel: dict) -> dict[str, tuple[str, di
             "flywheel": ("flywheel", base | flywheel)}
 
 
-def general(name: str) -> dict[str, tuple[str, dict]]:
+ROUGH = "shaping_machine, f = 0.1"
+
+
+def general(name: str, friction: float = 0.0) -> dict[str, tuple[str, dict]]:
     preset = presets()[name]
     dynamics = preset["dynamics"]
-    base = {"mechanism": "general", "linkage": preset["linkage"], "masses": dynamics["masses"],
-            "inertias": dynamics["inertias"]}
+    masses = dynamics["masses"] | ({"friction": friction, "pair_radius": 0.02} if friction else {})
+    base = {"mechanism": "general", "linkage": preset["linkage"], "masses": masses, "inertias": dynamics["inertias"]}
     return requests(base, dynamics["motor"], dynamics["flywheel"])
 
 
@@ -64,11 +69,13 @@ def main() -> None:
     args = parser.parse_args()
     compiled.warm_up()
     cases = {"slider_crank": requests(BASELINE, LINEAR, FLYWHEEL)} | {name: general(name) for name in SIX_BARS}
+    cases[ROUGH] = general("shaping_machine", 0.1)
     times = {(mech, kind): [] for mech, reqs in cases.items() for kind in reqs}
     for mech, reqs in cases.items():                      # warm-up
         for endpoint, body in reqs.values():
             compute_answer(endpoint, body)
-    for _ in range(args.repeats):                         # interleaved: the same load for every case
+    for repeat in range(args.repeats):                    # interleaved: the same load for every case
+        cases[ROUGH] = general("shaping_machine", 0.1 + 1e-9 * (repeat + 1))
         for mech, reqs in cases.items():
             for kind, (endpoint, body) in reqs.items():
                 times[mech, kind].append(timed(endpoint, body))

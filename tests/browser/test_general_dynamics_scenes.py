@@ -1,7 +1,8 @@
 """The shaping machine (a six-bar of content/mechanisms, named by the scenes' variants) in the equation-of-motion,
 flywheel and forces scenes in a real browser, one page load each: a dragged slider changes the plots, [δ] the
-flywheel, f the reactions and the free bodies of the Assur groups, which follow the cursor's angle. No console
-errors; the ru page shows no English words."""
+flywheel, the motor's starting moment the steady cycle's mean speed, f (dry friction in every pair) the flywheel's
+balancing moment, the reactions and the free bodies of the Assur groups, which follow the cursor's angle. No
+console errors; the ru page shows no English words."""
 from __future__ import annotations
 
 import sys
@@ -9,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import drag_slider, interface_texts, read_scene, screenshot
+from conftest import drag_slider, interface_texts, read_scene, screenshot, shown
 from test_dynamics import figure_value, open_scene, trace, wait_for_new_trace
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -34,7 +35,15 @@ def test_shaping_machine_equation_of_motion(browser_page):
     before = trace(page, "omega_phi")
     drag_slider(page, "#slider-P", 0.8)                     # a larger cutting force: another steady cycle
     wait_for_new_trace(page, "omega_phi", before)
+    mean_speed = shown(MOTION["panels"]["figures"]["items"][0]["label"]["ru"])   # ω_ср: the page shows ωср
+    slower, before = figure_value(page, mean_speed), trace(page, "omega_phi")
+    drag_slider(page, "#slider-M0", 0.9)                    # a stronger motor: a faster steady cycle
+    wait_for_new_trace(page, "omega_phi", before)
+    page.wait_for_function("""([label, before]) => [...document.querySelectorAll('.figures-list dt')]
+        .find(dt => dt.textContent === label)?.nextElementSibling.textContent !== before""", arg=[mean_speed, slower])
+    assert number(figure_value(page, mean_speed)) > number(slower)
     assert english_words(page) == []
+    assert "NaN" not in page.inner_html("#panels")
     screenshot(page, "general_motion_shaping_ru")
     assert page.problems == []
 
@@ -47,9 +56,16 @@ def test_shaping_machine_flywheel(browser_page):
     drag_slider(page, "#slider-delta", 0.2)                 # a smaller [δ]: a larger flywheel
     page.wait_for_function("""([label, before]) => [...document.querySelectorAll('.figures-list dt')]
         .find(dt => dt.textContent === label)?.nextElementSibling.textContent !== before""", arg=[label, before])
-    assert float(figure_value(page, label).split()[0].replace(",", ".").replace("\u2212", "-")) > \
-        float(before.split()[0].replace(",", ".").replace("\u2212", "-"))
+    assert number(figure_value(page, label)) > number(before)
+    balancing = shown(FLYWHEEL["panels"]["figures"]["items"][-1]["label"]["ru"])
+    before = figure_value(page, balancing)
+    drag_slider(page, "#slider-f", 0.9)                     # dry friction in every pair: a larger M_с to balance
+    page.wait_for_function("""([label, before]) => [...document.querySelectorAll('.figures-list dt')]
+        .find(dt => dt.textContent === label)?.nextElementSibling.textContent !== before""", arg=[balancing, before])
+    assert abs(number(figure_value(page, balancing))) > abs(number(before))     # the pairs' work added
     assert english_words(page) == []
+    assert "NaN" not in page.inner_html("#panels")
+    screenshot(page, "general_flywheel_shaping_ru")
     assert page.problems == []
 
 
@@ -87,6 +103,11 @@ def test_shaping_machine_forces_and_free_bodies(browser_page):
     page.locator("#panel-group_free_body").scroll_into_view_if_needed()
     screenshot(page, "general_forces_shaping_ru_phone")
     assert page.problems == []
+
+
+def number(shown: str) -> float:
+    """The number a figure shows ("0,873", "−1,2 Н·м": decimal comma, the minus sign)."""
+    return float(shown.split()[0].replace(",", ".").replace("\u2212", "-"))
 
 
 def shown_symbol(text: str) -> str:

@@ -25,7 +25,7 @@ import numpy as np
 from ..mechanisms import GeometryError, Notice
 from ..mechanisms.base import angle_ranges, ranges_text
 from ..mechanisms.general import CHECK_POINTS, GeneralMechanism, assembly_notices
-from ..kinetostatics.groups.dry_moment import DryMoment, dry_moment, rough
+from ..kinetostatics.groups.dry_moment import dry_moment, rough
 from ..kinetostatics.groups.friction import PairFriction
 from ..kinetostatics.groups.pairs import crank_pair, group_pairs
 from ..numerics import Numerics
@@ -55,28 +55,43 @@ class GeneralMachine(Machine):
         """Whether a pair has dry friction."""
         return rough(self.masses, dict(self.pairs))
 
-    def dry(self, comp: Composition, corners: bool = False) -> tuple[np.ndarray, list[Notice], DryMoment | None]:
+    def dry(self, comp: Composition) -> tuple[np.ndarray, list[Notice], np.ndarray]:
         """M_T(φ) of the pairs' dry friction on ``comp``, the notices (self-locking; the work bound), and the
-        solve (None without friction); ``corners``: only its switching functions and normal forces are read (no
-        jam is looked for: where one locks the mechanism, the tables say so)."""
+        rough prismatic pairs' normal forces (R, N) (NaN where there is no equilibrium).  Each angle is solved
+        once in the machine's life (``memo``: the friction equilibrium at an angle does not depend on the
+        other angles solved with it; the steady cycle's levels are nested, the flywheel's nodes lie on the
+        kinks' scan)."""
         if not self.rough:
-            return np.zeros(comp.phi.shape), [], None
-        found = dry_moment(self.linkage, comp, self.masses, dict(self.pairs), budget=DRY_BUDGET_S,
-                           jams=not corners)
+            return np.zeros(comp.phi.shape), [], np.zeros((0, comp.phi.size))
+        known = self.memo.setdefault("dry_by_angle", {}) if np.isfinite(comp.phi).all() else {}
+        angles = comp.phi.tolist()
+        missing = np.array([phi not in known for phi in angles], bool)
+        rows = []
+        if missing.any():
+            sub = comp if missing.all() else compose(self.linkage.linkage, comp.phi[missing])
+            found = dry_moment(self.linkage, sub, self.masses, dict(self.pairs), budget=DRY_BUDGET_S)
+            normals = np.array(found.normals).T if found.normals else np.zeros((sub.phi.size, 0))
+            rows = list(zip(found.moment.tolist(), found.locked.tolist(), found.unsettled.tolist(), normals))
+            known.update(zip(sub.phi.tolist(), rows))
+        if not missing.all():
+            rows = [known[phi] for phi in angles]
+        moment = np.array([row[0] for row in rows])
+        locked, unsettled = np.array([row[1] for row in rows]), np.array([row[2] for row in rows])
+        normals = np.array([row[3] for row in rows]).reshape(len(rows), -1).T
         order = np.argsort(comp.phi)             # the integrator's nodes come with its kinks at the end
         notices = []
-        if found.locked.any():
-            ranges = angle_ranges(comp.phi[order], found.locked[order])
+        if locked.any():
+            ranges = angle_ranges(comp.phi[order], locked[order])
             notices.append(Notice("group_self_locking", f"Self-locking for φ in {ranges_text(ranges)}: the "
                                   "equilibrium with friction ceases to exist there (the reactions it needs grow "
                                   "without bound), so no driving moment moves the mechanism.", {"ranges": ranges}))
-        if found.unsettled.any():
-            ranges = angle_ranges(comp.phi[order], found.unsettled[order])
+        if unsettled.any():
+            ranges = angle_ranges(comp.phi[order], unsettled[order])
             notices.append(Notice("dry_friction_work_bound", f"The equilibrium with friction was not solved within "
                                   f"the work bound ({DRY_BUDGET_S:g} s) for φ in {ranges_text(ranges)}: the "
                                   "friction moment is unknown there, no motion is computed.",
                                   {"budget": DRY_BUDGET_S, "ranges": ranges}))
-        return found.moment, notices, found
+        return moment, notices, normals
 
     def cycle(self) -> float:
         return max(TURN, self.motor.cycle())
@@ -125,8 +140,7 @@ class GeneralMachine(Machine):
 
     def normals(self, phi: np.ndarray) -> np.ndarray:
         """(R, N): the normal force of every rough prismatic pair at φ, NaN where there is no equilibrium."""
-        found = self.dry(compose(self.linkage.linkage, np.asarray(phi, float)), corners=True)[2]
-        return np.array(found.normals) if found is not None and found.normals else np.zeros((0, np.size(phi)))
+        return self.dry(compose(self.linkage.linkage, np.asarray(phi, float)))[2]
 
     def find_kinks(self) -> np.ndarray:
         """The kinks of ``Machine.find_kinks`` (the kinematic switches), and the zeros of the rough prismatic

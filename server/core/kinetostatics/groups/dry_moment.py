@@ -55,7 +55,7 @@ def dry_moment(mechanism, comp: Composition, model: MassModel, pairs: dict[str, 
     """M_T(φ) at the angles of ``comp`` (module docstring); ``pairs``: f and r by pair name, else the model's;
     ``budget``, ``jams``: as friction.solve's."""
     s = setup(mechanism, comp, model, 0.0, 0.0, pairs)
-    solved = fr.solve(s.fmap, tolerance, budget, jams)
+    solved = fr.solve(s.fmap, tolerance, budget, jams, ratios=False)
     z = s.fmap.apply(solved.z)
     _, _, balancing = s.influence.at(z)
     moment = mechanism.linkage.crank.sense * balancing - power_moment(s.loads)

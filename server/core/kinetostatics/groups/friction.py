@@ -52,24 +52,37 @@ class PairFriction:
 
 @dataclass
 class FrictionMap:
-    """Per friction pair p: the reaction coordinates affine in z, r_p(z) = base_p + Σ_q z_q slope_pq
-    (R: (R_x, R_y); P: (N, 0)), and the coefficient −sgn(relative) f_p ρ_p."""
+    """Per friction pair p: the reaction coordinates affine in z, r_p(z) = base_p + Σ_q z_q ∂r_p/∂z_q
+    (R: (R_x, R_y); P: (N, 0)), and the coefficient −sgn(relative) f_p ρ_p.  The slopes are kept angle first,
+    ``lever[n, p, k, q]`` = ∂(r_p)_k/∂z_q at angle n, so that r(z) is one batched matrix product per angle."""
 
     base: np.ndarray          # (K, N, 2)
-    slope: np.ndarray         # (K, K, N, 2): [p, q]
+    lever: np.ndarray         # (N, K, 2, K)
     coefficient: np.ndarray   # (K, N)
+
+    @property
+    def slope(self) -> np.ndarray:
+        """(K, K, N, 2): [p, q, n, k] = ∂(r_p)_k/∂z_q (a view of ``lever``)."""
+        return self.lever.transpose(1, 3, 0, 2)
 
     def take(self, where: np.ndarray) -> "FrictionMap":
         """The map at the angles ``where`` only."""
-        return FrictionMap(self.base[:, where], self.slope[:, :, where], self.coefficient[:, where])
+        return FrictionMap(self.base[:, where], self.lever[where], self.coefficient[:, where])
+
+    def moved(self, dz: np.ndarray) -> np.ndarray:
+        """(K, N, 2): the change Σ_q (∂r_p/∂z_q) dz_q of the reactions that a change dz of the friction loads
+        makes."""
+        n, K = self.lever.shape[:2]
+        product = np.matmul(self.lever.reshape(n, 2 * K, K), dz.T[:, :, None])
+        return product.reshape(n, K, 2).transpose(1, 0, 2)
 
     def change(self, dz: np.ndarray) -> np.ndarray:
         """The largest change of a reaction that a change dz of the friction loads makes, per angle."""
-        return np.abs(np.einsum("pqnk,qn->pnk", self.slope, dz)).max(axis=(0, 2))
+        return np.abs(self.moved(dz)).max(axis=(0, 2))
 
     def reactions(self, z: np.ndarray) -> np.ndarray:
         """r_p(z) = r_p(0) + Σ_q (∂r_p/∂z_q) z_q: the reactions are linear in the friction loads z."""
-        return self.base + np.einsum("pqnk,qn->pnk", self.slope, z)
+        return self.base + self.moved(z)
 
     def apply(self, z: np.ndarray) -> np.ndarray:
         """G(z): the friction loads (3.3) from the reactions the friction loads z give."""
@@ -82,7 +95,8 @@ class FrictionMap:
         norm = np.hypot(r[..., 0], r[..., 1])
         unit = np.where(norm[..., None] > 0, r / np.where(norm > 0, norm, 1.0)[..., None], 0.0)
         G = self.coefficient * norm
-        J = self.coefficient[:, None] * np.einsum("pnk,pqnk->pqn", unit, self.slope)
+        J = self.coefficient[:, None] * np.matmul(unit.transpose(1, 0, 2)[:, :, None, :],
+                                                  self.lever)[:, :, 0, :].transpose(1, 2, 0)
         return G, J, r
 
 
@@ -102,18 +116,18 @@ def friction_map(influence: Influence, locate: list[tuple[int, int] | None], pai
     K = len(pairs)
     if K == 0:                                 # no friction anywhere
         n = influence.crank.shape[1]
-        return FrictionMap(np.zeros((0, n, 2)), np.zeros((0, 0, n, 2)), np.zeros((0, n)))
+        return FrictionMap(np.zeros((0, n, 2)), np.zeros((n, 0, 2, 0)), np.zeros((0, n)))
     base = coordinates(0)
-    slope = np.stack([coordinates(q + 1) for q in range(K)], axis=1)
+    lever = np.stack([coordinates(q + 1) for q in range(K)], axis=-1).transpose(1, 0, 2, 3).copy()
     coefficient = np.stack([-np.sign(pair.relative) * c.f * (c.r if pair.kind == "R" else 1.0)
                             for pair, c in zip(pairs, coefficients)])
-    return FrictionMap(base, slope, coefficient)
+    return FrictionMap(base, lever, coefficient)
 
 
 @dataclass
 class Solved:
     z: np.ndarray                 # (K, N)
-    ratio: np.ndarray             # q: spectral radius of J at z (the textbook series' ratio)
+    ratio: np.ndarray             # q: spectral radius of J at z (the textbook series' ratio); NaN if not asked
     locked: np.ndarray
     converged: np.ndarray
     error: np.ndarray
@@ -157,10 +171,12 @@ def bound_ratio(fmap: FrictionMap) -> np.ndarray:
     return ratio
 
 
-def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None, jams: bool = True) -> Solved:
+def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None, jams: bool = True,
+          ratios: bool = True) -> Solved:
     """z = G(z) at every angle (module docstring); ``budget``: a wall-clock bound (s), the angles it leaves are
     reported unconverged, never locked; ``jams``: look for jams (False: a caller that only locates the
-    equilibrium's corners, where a jam's angles are decided by another solve).
+    equilibrium's corners, where a jam's angles are decided by another solve); ``ratios``: the series' ratio q
+    at the answer (False: a caller that reads only z, the decisions and the error; ``ratio`` is NaN then).
 
     The equilibrium is first solved directly.  Where that lands on a root with det(I − J) ≤ 0 or does not
     converge, the branch is followed from zero friction (continuation); where it folds or ends, the mechanism
@@ -215,7 +231,8 @@ def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None, jams
                 estimate = np.where(better, moved, np.where(q < 1, moved * q / (1 - q), np.inf))
                 error[active] = np.where(np.isfinite(estimate), estimate, np.inf)
         G, J, _ = m.evaluate(z)
-        return z, error, determinant(share * J), spectral_radius(share * J), steps
+        return z, error, determinant(share * J), spectral_radius(share * J) if ratios else np.full(n_sub, np.nan), \
+            steps
 
     def follow(m, todo):
         """The branch from zero friction in CONTINUATION shares; where it is lost (folds or ends)."""
@@ -230,7 +247,7 @@ def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None, jams
             lost |= todo & ~((error <= tolerance) & (det > 0))
         return z, error, ratio, lost, np.zeros(n, bool)
 
-    todo = np.isfinite(fmap.base).all(axis=(0, 2)) & np.isfinite(fmap.slope).all(axis=(0, 1, 3))
+    todo = np.isfinite(fmap.base).all(axis=(0, 2)) & np.isfinite(fmap.lever).all(axis=(1, 2, 3))
     z, error, det, ratio, iterations = iterate(fmap, np.zeros((K, n)), 1.0, todo)
     astray = todo & ~((error <= tolerance) & (det > 0))
     locked = np.zeros(n, bool)
@@ -242,7 +259,7 @@ def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None, jams
         locked |= lost
     suspect = todo & ~locked & (bound_ratio(fmap) >= 1) if jams else np.zeros(n, bool)
     if suspect.any():
-        _, _, _, jammed, undecided = follow(FrictionMap(-fmap.base, fmap.slope, fmap.coefficient), suspect)
+        _, _, _, jammed, undecided = follow(FrictionMap(-fmap.base, fmap.lever, fmap.coefficient), suspect)
         locked |= jammed
         error = np.where(undecided, np.inf, error)         # out of time before the jam was decided
     converged = todo & ~locked & (error <= tolerance)
