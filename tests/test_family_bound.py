@@ -93,15 +93,59 @@ def check(client, body: dict, rng: random.Random) -> int:
         preview = family.interpolate_family(values, members, value, log, answer["orders"])
         for path, leaf in family.checked_leaves(exact):
             guess = family._leaf(preview, path)
-            ends = [family._leaf(members[k], path), family._leaf(members[k + 1], path)]
-            shapes = {np.shape(x) for x in (guess, leaf, *ends)}
-            if guess is None or any(end is None for end in ends) or len(shapes) > 1:
-                continue            # the nearer member's leaf (the contract): another grid, or one end lacks it
-            bound = (TOLERANCE + family.PACK_QUANTUM / 2) * width[path] + SENT * np.abs(leaf)
-            off = np.abs(np.asarray(guess, float) - leaf)
-            assert np.all(~(off > bound)), (body["endpoint"], value, answer["orders"][k], family.quantity(path),
-                                            float(np.nanmax(off) / width[path]))
+            if guess is None:
+                continue            # nothing drawn (the nearer member lacks the quantity)
+            bound = (TOLERANCE + family.PACK_QUANTUM / 2) * width[path]
+            off = drawn_error(np.asarray(guess, float), np.asarray(leaf, float), preview, exact, path, bound)
+            assert off <= bound, (body["endpoint"], value, answer["orders"][k], family.quantity(path),
+                                  off / width[path])
     return min(CHECKS, len(intervals))
+
+
+def drawn_error(guess: np.ndarray, leaf: np.ndarray, preview, exact, path: tuple, allowed: float) -> float:
+    """How far the drawn leaf is from the exact one, beyond the 5 digits sent (SENT × |value|), as the student
+    sees it (``allowed``: the bound it is checked against). The same shape: element by element, unless a curve is drawn at other abscissae than the exact
+    answer's (a start-up whose steps move with the value: node k is another φ in each), in which case, and
+    wherever the shapes differ (the page draws the nearer member's curve on its own grid), the curve is read on
+    a common abscissa: at each of the drawn curve's x (every sibling array of its length that increases:
+    φ, t), the exact curve read there by linear interpolation on its own grid (its reading error, 1/8 of its
+    largest second difference, allowed for), inside the range both cover; and the ends of what is drawn, its
+    smallest and largest value, against the exact ones (a curve that stops short, or runs on, is off there)."""
+    direct = None
+    if guess.shape == leaf.shape:
+        direct = float(np.nanmax(np.abs(guess - leaf) - SENT * np.abs(leaf), initial=0.0))
+        if direct <= allowed or guess.ndim != 1:
+            return max(direct, 0.0)
+    pairs = list(abscissae(family._leaf(preview, path[:-1]), family._leaf(exact, path[:-1]), path[-1],
+                           guess.size, leaf.size)) if guess.ndim == 1 else []
+    if direct is not None and not pairs:
+        return direct
+    found = 0.0
+    if np.isfinite(guess).any() and np.isfinite(leaf).any():
+        found = max(abs(np.nanmin(guess) - np.nanmin(leaf)), abs(np.nanmax(guess) - np.nanmax(leaf))) \
+            - SENT * float(np.nanmax(np.abs(leaf)))
+    for x_drawn, x_exact in pairs:
+        inside = (x_drawn >= x_exact[0]) & (x_drawn <= x_exact[-1]) & np.isfinite(guess)
+        reading = np.interp(x_drawn[inside], x_exact, leaf)
+        finite = leaf[np.isfinite(leaf)]
+        own = float(np.max(np.abs(np.diff(finite, 2)), initial=0.0)) / 8
+        off = np.abs(guess[inside] - reading) - SENT * np.abs(reading) - own
+        found = max(found, float(np.nanmax(off, initial=0.0)))
+    return max(found, 0.0)
+
+
+def abscissae(drawn, exact, key: str, drawn_size: int, exact_size: int):
+    """(x drawn, x exact) of every sibling of ``key`` that is a curve's abscissa in both: an array of the
+    leaf's length in each that increases, with no null."""
+    if not (isinstance(drawn, dict) and isinstance(exact, dict)):
+        return
+    for name, x in drawn.items():
+        other = exact.get(name)
+        if name == key or not (isinstance(x, np.ndarray) and isinstance(other, np.ndarray)):
+            continue
+        if x.shape == (drawn_size,) and other.shape == (exact_size,) and all(
+                np.all(np.isfinite(a)) and np.all(np.diff(a) > 0) for a in (x, other)):
+            yield x, other
 
 
 def random_values(variant, rng: random.Random) -> dict:
