@@ -3,7 +3,10 @@ every slider of every variant, at the defaults and with the other sliders at ran
 asks for (its drawn ``fields``, packed) is interpolated by the contract's rule (linear or cubic by interval)
 at random values between members, and every drawn quantity is within TOLERANCE of its span of the endpoint's
 exact answer there, plus the 5 digits sent (SENT × |value|) and what packing may move a value (PACK_QUANTUM / 2
-of the span). Checked where the family claims the bound: families whose interpolation_error is within the
+of the span). Every leaf the preview draws is checked as the page draws it (family_model.js): element by
+element where it has the exact answer's shape, and where its grid differs from the exact answer's (the
+nearer member's curve where the two members' lengths differ, a start-up whose steps move with the value) on a
+common abscissa, the exact curve read at the drawn curve's φ or t (drawn_error). Checked where the family claims the bound: families whose interpolation_error is within the
 tolerance (plus packing's), in every interval wider than a slider resolves. A family above it says where in
 numerics.message (a jump, a corner, the cap) and claims nothing: there the estimates of single intervals are
 not a bound either (on the elastic transmission's speed and the angular acceleration's amplitude, intervals
@@ -110,7 +113,9 @@ def drawn_error(guess: np.ndarray, leaf: np.ndarray, preview, exact, path: tuple
     a common abscissa: at each of the drawn curve's x (every sibling array of its length that increases:
     φ, t), the exact curve read there by linear interpolation on its own grid (its reading error, 1/8 of its
     largest second difference, allowed for), inside the range both cover; and the ends of what is drawn, its
-    smallest and largest value, against the exact ones (a curve that stops short, or runs on, is off there)."""
+    smallest and largest value, against the exact ones (a start-up that stalls where the exact one runs), but
+    for an abscissa itself (φ, t of a start-up, which stops at the whole revolution where its convergence test
+    is met): that is compared against the other abscissae where both curves are drawn."""
     direct = None
     if guess.shape == leaf.shape:
         direct = float(np.nanmax(np.abs(guess - leaf) - SENT * np.abs(leaf), initial=0.0))
@@ -121,7 +126,8 @@ def drawn_error(guess: np.ndarray, leaf: np.ndarray, preview, exact, path: tuple
     if direct is not None and not pairs:
         return direct
     found = 0.0
-    if np.isfinite(guess).any() and np.isfinite(leaf).any():
+    if np.isfinite(guess).any() and np.isfinite(leaf).any() and not (family._increasing(guess)
+                                                                      and family._increasing(leaf)):
         found = max(abs(np.nanmin(guess) - np.nanmin(leaf)), abs(np.nanmax(guess) - np.nanmax(leaf))) \
             - SENT * float(np.nanmax(np.abs(leaf)))
     for x_drawn, x_exact in pairs:
@@ -136,15 +142,15 @@ def drawn_error(guess: np.ndarray, leaf: np.ndarray, preview, exact, path: tuple
 
 def abscissae(drawn, exact, key: str, drawn_size: int, exact_size: int):
     """(x drawn, x exact) of every sibling of ``key`` that is a curve's abscissa in both: an array of the
-    leaf's length in each that increases, with no null."""
+    leaf's length in each that increases, with no null (family._increasing)."""
     if not (isinstance(drawn, dict) and isinstance(exact, dict)):
         return
     for name, x in drawn.items():
         other = exact.get(name)
         if name == key or not (isinstance(x, np.ndarray) and isinstance(other, np.ndarray)):
             continue
-        if x.shape == (drawn_size,) and other.shape == (exact_size,) and all(
-                np.all(np.isfinite(a)) and np.all(np.diff(a) > 0) for a in (x, other)):
+        if x.shape == (drawn_size,) and other.shape == (exact_size,) and family._increasing(x) \
+                and family._increasing(other):
             yield x, other
 
 

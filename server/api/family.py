@@ -47,7 +47,7 @@ is drawn linearly (a bound wherever f is monotone inside; second differences rea
 Arrays on other grids. An array the two members of an interval hold in different shapes (a start-up whose
 number of steps moves with the value) has no divided differences there: the page draws the nearer member's
 array, on that member's own grid. Its error is then bounded, wherever f is monotone in the value at a fixed
-abscissa, by its change across the interval read on a common abscissa (``regridded``: each member's curve
+abscissa, by its change across the interval read on a common abscissa (``regridded``: the denser member's curve
 read at the other's nodes against every sibling array that increases, φ or t, and the change of its smallest
 and largest element); this joins both rules' estimates as it is, without a safety factor, and is halved for
 like any other (a start-up that stalls at one value and runs at the next is found as a jump).
@@ -1043,11 +1043,13 @@ def regridded(a: Member, b: Member, span: dict[tuple, float]) -> tuple[float, tu
     """The largest change across an interval, relative to its span, of the arrays its two members hold in
     different shapes, and where ((0, ()) if none). The page draws the nearer member's array there, on its own
     grid (a start-up whose length moves with the value), so the change is a bound of what is drawn wherever f
-    is monotone in the value at a fixed abscissa, as for a jump (see change): the change of its smallest and
-    largest element (a curve that stops short or runs on), and, on a common abscissa, |f_b(x) − f_a(x)| at
-    each member's nodes inside the range both cover, the other member's curve read there linearly, for every
-    sibling array (the same object) of the array's length in both that increases (φ, t: what it is plotted
-    against)."""
+    is monotone in the value at a fixed abscissa, as for a jump (see change): on a common abscissa,
+    |f_b(x) − f_a(x)| at the sparser member's nodes inside the range both cover, the denser member's curve
+    read there linearly, for every sibling array (the same object) of the array's length in both that increases (φ, t:
+    what it is plotted against); and, for an array that is not itself an abscissa, the change of its smallest
+    and largest element (a start-up that stalls at one value and runs at the other). Where an abscissa ends
+    (a start-up stops at the whole revolution where its convergence test is met, one revolution more or less
+    from value to value) is not compared: its curve against the others' abscissae is, where both are drawn."""
     if a.answer is None or b.answer is None:
         return 0.0, ()
     worst = (0.0, ())
@@ -1055,12 +1057,13 @@ def regridded(a: Member, b: Member, span: dict[tuple, float]) -> tuple[float, tu
         g = b.leaves.get(path)
         if g is None or g.shape == f.shape or not (np.isfinite(f).any() and np.isfinite(g).any()):
             continue
-        found = max(abs(np.nanmin(f) - np.nanmin(g)), abs(np.nanmax(f) - np.nanmax(g)))
+        found = 0.0 if _increasing(f) and _increasing(g) else max(abs(np.nanmin(f) - np.nanmin(g)),
+                                                                  abs(np.nanmax(f) - np.nanmax(g)))
         if f.ndim == 1 and g.ndim == 1:
             theirs = dict(abscissae(b.leaves, path, g.size))
             for name, x in abscissae(a.leaves, path, f.size):
                 if name in theirs:
-                    found = max(found, _apart(x, f, theirs[name], g), _apart(theirs[name], g, x, f))
+                    found = max(found, _apart(*sorted([(x, f), (theirs[name], g)], key=_density)))
         width = span.get(path, 0.0)
         share = found / width if width > 0 else (1.0 if found > 0 else 0.0)
         if share > worst[0]:
@@ -1071,16 +1074,28 @@ def regridded(a: Member, b: Member, span: dict[tuple, float]) -> tuple[float, tu
 def abscissae(leaves: dict[tuple, np.ndarray], path: tuple, size: int) -> list[tuple[str, np.ndarray]]:
     """(name, x) of every sibling of the leaf at ``path`` that can be its abscissa: an array of ``size``
     elements, no null, increasing; by name (the same names in two members pair up)."""
-    found = []
-    for other, x in leaves.items():
-        if (other[:-1] == path[:-1] and other != path and x.shape == (size,) and np.all(np.isfinite(x))
-                and np.all(np.diff(x) > 0)):
-            found.append((other[-1], x))
-    return found
+    return [(other[-1], x) for other, x in leaves.items()
+            if other[:-1] == path[:-1] and other != path and x.shape == (size,) and _increasing(x)]
 
 
-def _apart(x: np.ndarray, f: np.ndarray, grid: np.ndarray, g: np.ndarray) -> float:
-    """The largest |g(x) − f(x)| at the nodes x inside g's grid, g read there linearly; 0 if none."""
+def _increasing(x: np.ndarray) -> bool:
+    """Whether x is a 1-d array without null that increases (an abscissa; a node may come twice: the
+    integrator's grids hold each kink of the moments at both of its sides)."""
+    return (x.ndim == 1 and x.size > 1 and bool(np.all(np.isfinite(x))) and bool(np.all(np.diff(x) >= 0))
+            and x[-1] > x[0])
+
+
+def _density(curve: tuple[np.ndarray, np.ndarray]) -> float:
+    """Nodes per unit of a curve's abscissa."""
+    x = curve[0]
+    return x.size / (x[-1] - x[0])
+
+
+def _apart(sparse: tuple[np.ndarray, np.ndarray], dense: tuple[np.ndarray, np.ndarray]) -> float:
+    """The largest |g(x) − f(x)| at the nodes x of the sparser curve (x, f) inside the denser one's grid, the
+    denser curve g read there linearly (the sparser one read between its nodes would add its own chord's
+    error, not a change with the value); 0 if none."""
+    (x, f), (grid, g) = sparse, dense
     inside = (x >= grid[0]) & (x <= grid[-1])
     if not inside.any():
         return 0.0
