@@ -1,7 +1,8 @@
 """The equation of motion's families against exact answers where the grids differ (a finding, not a test).
 
-tests/test_family_bound.py compares an interpolated family with the exact answer leaf by leaf only where the
-shapes agree. A motion member's steady cycle and start-up are on the nodes of the level its Richardson estimate
+tests/test_family_bound.py compared an interpolated family with the exact answer leaf by leaf only where the
+shapes agreed (it now reads every drawn curve on a common abscissa where the grids differ; this script stays as
+the record of the finding, and runs on an old tree). A motion member's steady cycle and start-up are on the nodes of the level its Richardson estimate
 stopped at, with every kink of the moments on a node, so a member next to the exact answer at the random value
 may hold another grid (a coarser level: half the nodes), and where the kinks move with the slider, node k is
 another angle in each member. Here the family (in-process, the page's body, time budgets lifted) is interpolated

@@ -3,7 +3,10 @@ every slider of every variant, at the defaults and with the other sliders at ran
 asks for (its drawn ``fields``, packed) is interpolated by the contract's rule (linear or cubic by interval)
 at random values between members, and every drawn quantity is within TOLERANCE of its span of the endpoint's
 exact answer there, plus the 5 digits sent (SENT × |value|) and what packing may move a value (PACK_QUANTUM / 2
-of the span). Checked where the family claims the bound: families whose interpolation_error is within the
+of the span). Every leaf the preview draws is checked as the page draws it (family_model.js): element by
+element where it has the exact answer's shape, and where its grid differs from the exact answer's (the
+nearer member's curve where the two members' lengths differ, a start-up whose steps move with the value) on a
+common abscissa, the exact curve read at the drawn curve's φ or t (drawn_error). Checked where the family claims the bound: families whose interpolation_error is within the
 tolerance (plus packing's), in every interval wider than a slider resolves. A family above it says where in
 numerics.message (a jump, a corner, the cap) and claims nothing: there the estimates of single intervals are
 not a bound either (on the elastic transmission's speed and the angular acceleration's amplitude, intervals
@@ -93,15 +96,62 @@ def check(client, body: dict, rng: random.Random) -> int:
         preview = family.interpolate_family(values, members, value, log, answer["orders"])
         for path, leaf in family.checked_leaves(exact):
             guess = family._leaf(preview, path)
-            ends = [family._leaf(members[k], path), family._leaf(members[k + 1], path)]
-            shapes = {np.shape(x) for x in (guess, leaf, *ends)}
-            if guess is None or any(end is None for end in ends) or len(shapes) > 1:
-                continue            # the nearer member's leaf (the contract): another grid, or one end lacks it
-            bound = (TOLERANCE + family.PACK_QUANTUM / 2) * width[path] + SENT * np.abs(leaf)
-            off = np.abs(np.asarray(guess, float) - leaf)
-            assert np.all(~(off > bound)), (body["endpoint"], value, answer["orders"][k], family.quantity(path),
-                                            float(np.nanmax(off) / width[path]))
+            if guess is None:
+                continue            # nothing drawn (the nearer member lacks the quantity)
+            bound = (TOLERANCE + family.PACK_QUANTUM / 2) * width[path]
+            off = drawn_error(np.asarray(guess, float), np.asarray(leaf, float), preview, exact, path, bound)
+            assert off <= bound, (body["endpoint"], value, answer["orders"][k], family.quantity(path),
+                                  off / width[path])
     return min(CHECKS, len(intervals))
+
+
+def drawn_error(guess: np.ndarray, leaf: np.ndarray, preview, exact, path: tuple, allowed: float) -> float:
+    """How far the drawn leaf is from the exact one, beyond the 5 digits sent (SENT × |value|), as the student
+    sees it (``allowed``: the bound it is checked against). The same shape: element by element, unless a curve is drawn at other abscissae than the exact
+    answer's (a start-up whose steps move with the value: node k is another φ in each), in which case, and
+    wherever the shapes differ (the page draws the nearer member's curve on its own grid), the curve is read on
+    a common abscissa: at each of the drawn curve's x (every sibling array of its length that increases:
+    φ, t), the exact curve read there by linear interpolation on its own grid (its reading error, 1/8 of its
+    largest second difference, allowed for), inside the range both cover; and the ends of what is drawn, its
+    smallest and largest value, against the exact ones (a start-up that stalls where the exact one runs), but
+    for an abscissa itself (φ, t of a start-up, which stops at the whole revolution where its convergence test
+    is met): that is compared against the other abscissae where both curves are drawn."""
+    direct = None
+    if guess.shape == leaf.shape:
+        direct = float(np.nanmax(np.abs(guess - leaf) - SENT * np.abs(leaf), initial=0.0))
+        if direct <= allowed or guess.ndim != 1:
+            return max(direct, 0.0)
+    pairs = list(abscissae(family._leaf(preview, path[:-1]), family._leaf(exact, path[:-1]), path[-1],
+                           guess.size, leaf.size)) if guess.ndim == 1 else []
+    if direct is not None and not pairs:
+        return direct
+    found = 0.0
+    if np.isfinite(guess).any() and np.isfinite(leaf).any() and not (family._increasing(guess)
+                                                                      and family._increasing(leaf)):
+        found = max(abs(np.nanmin(guess) - np.nanmin(leaf)), abs(np.nanmax(guess) - np.nanmax(leaf))) \
+            - SENT * float(np.nanmax(np.abs(leaf)))
+    for x_drawn, x_exact in pairs:
+        inside = (x_drawn >= x_exact[0]) & (x_drawn <= x_exact[-1]) & np.isfinite(guess)
+        reading = np.interp(x_drawn[inside], x_exact, leaf)
+        finite = leaf[np.isfinite(leaf)]
+        own = float(np.max(np.abs(np.diff(finite, 2)), initial=0.0)) / 8
+        off = np.abs(guess[inside] - reading) - SENT * np.abs(reading) - own
+        found = max(found, float(np.nanmax(off, initial=0.0)))
+    return max(found, 0.0)
+
+
+def abscissae(drawn, exact, key: str, drawn_size: int, exact_size: int):
+    """(x drawn, x exact) of every sibling of ``key`` that is a curve's abscissa in both: an array of the
+    leaf's length in each that increases, with no null (family._increasing)."""
+    if not (isinstance(drawn, dict) and isinstance(exact, dict)):
+        return
+    for name, x in drawn.items():
+        other = exact.get(name)
+        if name == key or not (isinstance(x, np.ndarray) and isinstance(other, np.ndarray)):
+            continue
+        if x.shape == (drawn_size,) and other.shape == (exact_size,) and family._increasing(x) \
+                and family._increasing(other):
+            yield x, other
 
 
 def random_values(variant, rng: random.Random) -> dict:

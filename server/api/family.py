@@ -44,6 +44,13 @@ instead of taking every member. Where the cap or a jump leaves an interval above
 numerics.message says between which values and for which quantity; for an interval too narrow to halve the
 error given is the change across it, |f(b) − f(a)| / span, if larger than the linear estimate, and the interval
 is drawn linearly (a bound wherever f is monotone inside; second differences read a step of height J as J/8).
+Arrays on other grids. An array the two members of an interval hold in different shapes (a start-up whose
+number of steps moves with the value) has no divided differences there: the page draws the nearer member's
+array, on that member's own grid. Its error is then bounded, wherever f is monotone in the value at a fixed
+abscissa, by its change across the interval read on a common abscissa (``regridded``: the denser member's curve
+read at the other's nodes against every sibling array that increases, φ or t, and the change of its smallest
+and largest element); this joins both rules' estimates as it is, without a safety factor, and is halved for
+like any other (a start-up that stalls at one value and runs at the next is found as a jump).
 
 The estimates are computed over all members at once: the members' leaves stacked as rows of one array
 (``Stack``: NaN where a member lacks a leaf), the divided differences of every window of 3 and 5 members as
@@ -946,7 +953,7 @@ class Assessment:
     linear: list[tuple[float, tuple]]       # the linear rule's estimate and its leaf, whichever rule is chosen
 
 
-def assess(stack: Stack, span: dict[tuple, float], kept: dict) -> Assessment:
+def assess(stack: Stack, span: dict[tuple, float], kept: dict, drawn: list | None = None) -> Assessment:
     """Every interval at once (see the module, Refinement): the linear estimate h²/8 times the smaller of the
     ends' |f''|, the cubic one from the fourth divided differences, and the rule whose bound is smaller.
     Between an answered and a refused member: 1 (the limit is to be found), between two refused: 0; where
@@ -985,8 +992,13 @@ def assess(stack: Stack, span: dict[tuple, float], kept: dict) -> Assessment:
             cub = (float(cubic[k, cub_worst[k]]), stack.paths[cub_worst[k]])
             if cub[0] * CUBIC_SAFETY < lin[0] * SAFETY:
                 order, (score, path), safety = 3, cub, CUBIC_SAFETY
+        bound = score * safety
+        if drawn is not None and drawn[k][0] > score:     # a leaf drawn from the nearer member: its change
+            score, path = drawn[k]
+        if drawn is not None and drawn[k][0] > lin[0]:
+            linears[-1] = drawn[k]
         orders.append(order), scores.append(score), where.append(path if score > 0 else ())
-        bounds.append(score * safety)
+        bounds.append(max(bound, score))
     return Assessment(orders, scores, where, bounds, linears)
 
 
@@ -1001,6 +1013,7 @@ class Family:
     members: list[Member] = field(default_factory=list)
     extent: dict[tuple, list[float]] = field(default_factory=dict)
     kept: dict = field(default_factory=dict)        # divided differences by layout and members (divided)
+    drawn: dict = field(default_factory=dict)       # (value, value) → regridded of the interval between them
 
     def add(self, member: Member) -> None:
         extend_member(self.extent, member)
@@ -1019,7 +1032,75 @@ class Family:
 
     def assess(self) -> tuple[Stack, dict[tuple, float], Assessment]:
         stack, span = Stack.of(self.members, self.log), widths(self.extent)
-        return stack, span, assess(stack, span, self.kept)
+        pairs = list(zip(self.members[:-1], self.members[1:]))
+        for a, b in pairs:
+            if (a.value, b.value) not in self.drawn:
+                self.drawn[a.value, b.value] = regridded(a, b, span)
+        return stack, span, assess(stack, span, self.kept, [self.drawn[a.value, b.value] for a, b in pairs])
+
+
+def regridded(a: Member, b: Member, span: dict[tuple, float]) -> tuple[float, tuple]:
+    """The largest change across an interval, relative to its span, of the arrays its two members hold in
+    different shapes, and where ((0, ()) if none). The page draws the nearer member's array there, on its own
+    grid (a start-up whose length moves with the value), so the change is a bound of what is drawn wherever f
+    is monotone in the value at a fixed abscissa, as for a jump (see change): on a common abscissa,
+    |f_b(x) − f_a(x)| at the sparser member's nodes inside the range both cover, the denser member's curve
+    read there linearly, for every sibling array (the same object) of the array's length in both that increases (φ, t:
+    what it is plotted against); and, for an array that is not itself an abscissa, the change of its smallest
+    and largest element (a start-up that stalls at one value and runs at the other). Where an abscissa ends
+    (a start-up stops at the whole revolution where its convergence test is met, one revolution more or less
+    from value to value) is not compared: its curve against the others' abscissae is, where both are drawn."""
+    if a.answer is None or b.answer is None:
+        return 0.0, ()
+    worst = (0.0, ())
+    for path, f in a.leaves.items():
+        g = b.leaves.get(path)
+        if g is None or g.shape == f.shape or not (np.isfinite(f).any() and np.isfinite(g).any()):
+            continue
+        found = 0.0 if _increasing(f) and _increasing(g) else max(abs(np.nanmin(f) - np.nanmin(g)),
+                                                                  abs(np.nanmax(f) - np.nanmax(g)))
+        if f.ndim == 1 and g.ndim == 1:
+            theirs = dict(abscissae(b.leaves, path, g.size))
+            for name, x in abscissae(a.leaves, path, f.size):
+                if name in theirs:
+                    found = max(found, _apart(*sorted([(x, f), (theirs[name], g)], key=_density)))
+        width = span.get(path, 0.0)
+        share = found / width if width > 0 else (1.0 if found > 0 else 0.0)
+        if share > worst[0]:
+            worst = (float(share), path)
+    return worst
+
+
+def abscissae(leaves: dict[tuple, np.ndarray], path: tuple, size: int) -> list[tuple[str, np.ndarray]]:
+    """(name, x) of every sibling of the leaf at ``path`` that can be its abscissa: an array of ``size``
+    elements, no null, increasing; by name (the same names in two members pair up)."""
+    return [(other[-1], x) for other, x in leaves.items()
+            if other[:-1] == path[:-1] and other != path and x.shape == (size,) and _increasing(x)]
+
+
+def _increasing(x: np.ndarray) -> bool:
+    """Whether x is a 1-d array without null that increases (an abscissa; a node may come twice: the
+    integrator's grids hold each kink of the moments at both of its sides)."""
+    return (x.ndim == 1 and x.size > 1 and bool(np.all(np.isfinite(x))) and bool(np.all(np.diff(x) >= 0))
+            and x[-1] > x[0])
+
+
+def _density(curve: tuple[np.ndarray, np.ndarray]) -> float:
+    """Nodes per unit of a curve's abscissa."""
+    x = curve[0]
+    return x.size / (x[-1] - x[0])
+
+
+def _apart(sparse: tuple[np.ndarray, np.ndarray], dense: tuple[np.ndarray, np.ndarray]) -> float:
+    """The largest |g(x) − f(x)| at the nodes x of the sparser curve (x, f) inside the denser one's grid, the
+    denser curve g read there linearly (the sparser one read between its nodes would add its own chord's
+    error, not a change with the value); 0 if none."""
+    (x, f), (grid, g) = sparse, dense
+    inside = (x >= grid[0]) & (x <= grid[-1])
+    if not inside.any():
+        return 0.0
+    off = np.abs(np.interp(x[inside], grid, g) - f[inside])
+    return float(np.nanmax(off)) if np.isfinite(off).any() else 0.0
 
 
 def change(stack: Stack, span: dict[tuple, float], k: int) -> tuple[float, tuple]:
