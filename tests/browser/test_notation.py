@@ -37,6 +37,9 @@ SCREEN_TEXT = """() => document.body.innerText + "\\n" +
 TICKS = """() => [...document.querySelectorAll(
   ".main-svg g.xtick text, .main-svg g.ytick text, .main-svg g.x2tick text, .main-svg g.y2tick text, " +
   ".main-svg g.radialaxistick text, .main-svg g.angularaxistick text")].map((node) => node.textContent)"""
+# the scenes whose Russian texts write a subscript ("_"); transfer functions use ₁₂₃ glyphs only
+WITH_SUBSCRIPTS = {scene["id"] for name, scene in zip(SCENE_FILES, SCENES)
+                   if any(where.startswith(f"{name}.") and lang == "ru" and "_" in text for where, lang, text in STRINGS)}
 NUMBER_CELLS = """() => [...document.querySelectorAll("dd, td, output, .readout, .caption")]
   .map((node) => node.innerText)"""
 
@@ -72,57 +75,60 @@ def english_on_the_page_after_its_studies(page, lang: str) -> list[str]:
     return english_in(page.evaluate(SCREEN_TEXT), lang)
 
 
-def test_no_english_sentence_of_the_app_on_any_ukrainian_scene(browser_page):
-    """(The Russian pages are checked in the same way by the next test, on the same loads.)"""
+@pytest.mark.parametrize("name", SCENE_FILES)
+def test_no_english_sentence_of_the_app_on_the_ukrainian_scene(browser_page, name):
+    """(The Russian pages are checked in the same way by the next test, on the same loads.) One test per scene, so
+    that the suite's workers share the scenes."""
     page = browser_page
-    shown = {}
-    for scene in SCENES:
-        open_scene(page, scene, "uk")
-        leaks = english_on_the_page_after_its_studies(page, "uk")
-        if leaks:
-            shown[scene["id"]] = leaks
-    assert shown == {}
+    scene = read_scene(name)
+    open_scene(page, scene, "uk")
+    assert english_on_the_page_after_its_studies(page, "uk") == []
     assert page.problems == []
 
 
-def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_every_scene_and_variant(browser_page):
-    """Every scene and variant opened once in ru: no "_" on the screen and the subscripts as <sub>; numbers with
-    a true minus, a decimal comma (plots' tick labels included) and no signed zero. On each scene's default
+def test_the_russian_texts_write_subscripts_on_most_scenes():
+    """The check below that subscripts show as <sub> has something to check: most scenes' Russian texts write one."""
+    assert len(WITH_SUBSCRIPTS) >= 8
+
+
+@pytest.mark.parametrize("name", SCENE_FILES)
+def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_every_variant(browser_page, name):
+    """Every variant of the scene opened once in ru: no "_" on the screen and the subscripts as <sub>; numbers
+    with a true minus, a decimal comma (plots' tick labels included) and no signed zero. On the scene's default
     (first) variant its live studies are then run, and no English sentence of the app may show."""
     page = browser_page
-    underscores, subscripts, problems, english = {}, {}, {}, {}
-    checked_ticks = 0
-    for scene in SCENES:
-        for variant in scene["variants"]:
-            open_scene(page, scene, "ru", variant["id"])
-            where = f"{scene['id']}/{variant['id']}"
-            text = page.evaluate(SCREEN_TEXT)
-            found = sorted(set(re.findall(r"\S*_\S*", text)))
-            if found:
-                underscores[where] = found
-            subscripts[scene["id"]] = subscripts.get(scene["id"], 0) + page.locator("sub").count()
-            ticks = page.evaluate(TICKS)
-            checked_ticks += len(ticks)
-            cells = page.evaluate(NUMBER_CELLS)
-            found = ([f"tick {tick!r}" for tick in ticks if "-" in tick or POINT_NUMBER.search(tick)]
-                     + [f"cell {cell!r}" for cell in cells if DECIMAL_POINT.search(cell)]
-                     + [f"hyphen {m.group(0)!r}" for m in HYPHEN_NUMBER.finditer(text)]
-                     + [f"zero {m.group(0)!r}" for m in SIGNED_ZERO.finditer(text)])
-            if found:
-                problems[where] = found[:6]
-            if variant is scene["variants"][0] and (leaks := english_on_the_page_after_its_studies(page, "ru")):
-                english[scene["id"]] = leaks
-    assert english == {}
+    scene = read_scene(name)
+    underscores, problems, english = {}, {}, []
+    subscripts = plots = checked_ticks = 0
+    for variant in scene["variants"]:
+        open_scene(page, scene, "ru", variant["id"])
+        where = variant["id"]
+        text = page.evaluate(SCREEN_TEXT)
+        found = sorted(set(re.findall(r"\S*_\S*", text)))
+        if found:
+            underscores[where] = found
+        subscripts += page.locator("sub").count()
+        plots += page.locator(".js-plotly-plot").count()
+        ticks = page.evaluate(TICKS)
+        checked_ticks += len(ticks)
+        cells = page.evaluate(NUMBER_CELLS)
+        found = ([f"tick {tick!r}" for tick in ticks if "-" in tick or POINT_NUMBER.search(tick)]
+                 + [f"cell {cell!r}" for cell in cells if DECIMAL_POINT.search(cell)]
+                 + [f"hyphen {m.group(0)!r}" for m in HYPHEN_NUMBER.finditer(text)]
+                 + [f"zero {m.group(0)!r}" for m in SIGNED_ZERO.finditer(text)])
+        if found:
+            problems[where] = found[:6]
+        if variant is scene["variants"][0]:
+            english = english_on_the_page_after_its_studies(page, "ru")
+    assert english == []
     assert underscores == {}
-    # every scene whose Russian texts write a subscript shows it as <sub>; transfer functions use ₁₂₃ glyphs only
-    with_markup = {scene["id"] for name, scene in zip(SCENE_FILES, SCENES)
-                   if any(where.startswith(f"{name}.") and lang == "ru" and "_" in text for where, lang, text in STRINGS)}
-    assert len(with_markup) >= 8 and {scene_id for scene_id in with_markup if not subscripts[scene_id]} == set()
+    if scene["id"] in WITH_SUBSCRIPTS:               # its Russian texts write a subscript: shown as <sub>
+        assert subscripts > 0
     assert problems == {}
-    assert checked_ticks > 100
-    # negative ticks exist and are written with U+2212 (the flywheel's work A_Σ dips below zero)
-    open_scene(page, read_scene("flywheel"), "ru")
-    assert any(tick.startswith("−") for tick in page.evaluate(TICKS))
+    assert checked_ticks > 0 or plots == 0           # the ticks of every plot drawn were read
+    if name == "flywheel":      # negative ticks exist and are written with U+2212 (the work A_Σ dips below zero)
+        open_scene(page, scene, "ru")
+        assert any(tick.startswith("−") for tick in page.evaluate(TICKS))
     assert page.problems == []
 
 
