@@ -30,6 +30,14 @@ def changed(page, panel: str, index: int, key: str, before: str) -> None:
                            f"JSON.stringify({GRAPH}.data[i][key]) !== before", arg=[panel, index, key, before])
 
 
+def peak_reaches(page, panel: str, index: int, key: str, expected: float) -> None:
+    """Wait until the trace's largest value is expected (rel 1e-3): the exact answer for the slider's final value,
+    not a preview or the answer to a value the drag passed through."""
+    page.wait_for_function(f"([id, i, key, expected]) => {{ const v = ({GRAPH}?.data?.[i]?.[key] ?? []).filter((x) => x !== null);"
+                           " return v.length > 0 && Math.abs(Math.max(...v) - expected) <= 1e-3 * expected; }",
+                           arg=[panel, index, key, expected])
+
+
 def text_changed(page, selector: str, before: str) -> None:
     page.wait_for_function("([s, before]) => document.querySelector(s)?.innerText !== before", arg=[selector, before])
 
@@ -47,7 +55,7 @@ def test_a_material_and_the_books_table_drive_the_wear(browser_page):
     changed(page, "joint", 1, "r", bush_before)
     text_changed(page, "#panel-coefficients", k_before)
     peak = lambda r: max(v for v in json.loads(r) if v is not None)
-    assert peak(series(page, "joint", 1, "r")) == pytest.approx(4 * peak(bush_before), rel=1e-3)   # δ ∝ I_s
+    peak_reaches(page, "joint", 1, "r", 4 * peak(bush_before))        # δ ∝ I_s
 
     page.select_option("#variant", table["id"])
     page.wait_for_function("() => document.querySelectorAll('#panel-comparison tbody tr').length === 4")
@@ -67,10 +75,10 @@ def test_a_material_and_the_books_table_drive_the_wear(browser_page):
     text_changed(page, "#panel-constant", constant_before)     # the wear of (4.14), (4.15) grows with the hours
     hours = float(page.input_value("#slider-hours"))
     assert hours > 4000
-    assert peak(series(page, "cylinder", 0, "y")) == pytest.approx(hours / 1000 * peak(cylinder_before), rel=1e-3)
+    peak_reaches(page, "cylinder", 0, "y", hours / 1000 * peak(cylinder_before))           # δ ∝ hours
     page.locator("#panel-joint").scroll_into_view_if_needed()
     changed(page, "joint", 1, "r", joint_before)
-    assert peak(series(page, "joint", 1, "r")) == pytest.approx(hours / 1000 * peak(joint_before), rel=1e-3)
+    peak_reaches(page, "joint", 1, "r", hours / 1000 * peak(joint_before))
     radial = page.evaluate(f"id => {GRAPH}._fullLayout.polar.radialaxis.range[1]", "joint")
     assert radial >= peak(series(page, "joint", 1, "r"))         # the whole distribution is drawn
     body = page.inner_text("body")
