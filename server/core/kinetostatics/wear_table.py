@@ -214,7 +214,9 @@ def constant_load_rows(mean_r23: float, parts: dict, k: dict, cycles: float, str
     from .wear import guide_path, guide_wear, peak_pressure, pressure_resultant, slider_wear
     radius = parts["pin_diameter"] / 2
     peak = float(peak_pressure(mean_r23, parts["pin_length"], radius))
-    p34 = parts["I_piston"] / k["piston"]                    # the mean pressure of (4.23) back from k = I_s/p_m
+    # the mean pressure of (4.23) back from k = I_s/p_m; a k that underflows to 0 (I_s near the smallest float)
+    # leaves p_m unknown, and the wear k·p_m·S·n = I_s·S·n is 0 to the float's precision whatever p_m is
+    p34 = parts["I_piston"] / k["piston"] if k["piston"] > 0 else 0.0
     plateau = float(guide_path(stroke / 2 + parts["piston_length"] / 2, parts["piston_length"], stroke))
     return [
         {"quantity": "peak_pressure", "equation": "(4.4)", "value": peak, "unit": "Pa"},
