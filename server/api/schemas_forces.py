@@ -86,11 +86,11 @@ class ForcesRequest(BaseModel):
         return self
 
 
-class WearRequest(ForcesRequest):
-    """The wear of Chaika–Vasylenko §4 for a crank-slider (by default the two-stroke engine of §4.3)."""
+class WearPartsInput(BaseModel):
+    """The pin and piston, the wear intensities I_s (Table 1.1) and the service life: by default the two-stroke
+    engine of Chaika–Vasylenko §4.3."""
 
-    mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider (Chaika–Vasylenko §4)")
-
+    model_config = ConfigDict(extra="forbid")
     pin_diameter: float = Field(0.02, ge=1e-3, le=1, description="piston pin diameter d₂₃, m")
     pin_length: float = Field(0.025, ge=1e-3, le=1, description="pin bearing length l_z23, m")
     piston_diameter: float = Field(0.075, ge=1e-3, le=2, description="piston diameter D_p, m")
@@ -99,8 +99,15 @@ class WearRequest(ForcesRequest):
     I_bush: float = Field(1.0e-10, gt=0, le=1e-3, description="wear intensity of the bush")
     I_piston: float = Field(2e-12, gt=0, le=1e-3, description="wear intensity of the piston")
     I_cylinder: float = Field(3e-12, gt=0, le=1e-3, description="wear intensity of the cylinder liner")
-    rpm: float = Field(2400, ge=1, le=1e5, description="crank speed, rev/min (one cycle per revolution)")
     hours: float = Field(1000, gt=0, le=1e6, description="service life, h")
+
+
+class WearRequest(ForcesRequest, WearPartsInput):
+    """The wear of Chaika–Vasylenko §4 for a crank-slider (by default the two-stroke engine of §4.3)."""
+
+    mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider (Chaika–Vasylenko §4)")
+
+    rpm: float = Field(2400, ge=1, le=1e5, description="crank speed, rev/min (one cycle per revolution)")
     reactions: Literal["kinetostatics", "table_4_3"] | TabulatedReactions = Field(
         "kinetostatics", description="the loads: the kinetostatics of params and loads, the reaction columns of "
         "Chaika–Vasylenko Table 4.3 (its engine at 2400 rpm) or a table of them; with a table no params, loads, "

@@ -7,7 +7,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from .schemas import MAX_PARAMS
-from .schemas_forces import ForceLoadsInput
+from .schemas_forces import ForceLoadsInput, WearPartsInput
 
 OUTPUTS = ("sweep", "cycle")
 
@@ -19,22 +19,6 @@ class RadiiInput(BaseModel):
     r14: float = Field(0.02, gt=0, le=1, description="journal radius at O (main bearing), m")
     r12: float = Field(0.015, gt=0, le=1, description="journal radius at A (crank pin), m")
     r23: float = Field(0.01, gt=0, le=1, description="journal radius at B (piston pin), m")
-
-
-class WearInput(BaseModel):
-    """The pin and piston, the wear intensities I_s (Table 1.1) and the service life: by default the two-stroke
-    engine of §4.3; the machine's mean speed gives the cycles (one per turn)."""
-
-    model_config = ConfigDict(extra="forbid")
-    pin_diameter: float = Field(0.02, ge=1e-3, le=1, description="piston pin diameter d₂₃, m")
-    pin_length: float = Field(0.025, ge=1e-3, le=1, description="pin bearing length l_z23, m")
-    piston_diameter: float = Field(0.075, ge=1e-3, le=2, description="piston diameter D_p, m")
-    piston_length: float = Field(0.076, ge=1e-3, le=2, description="piston length L_p, m")
-    I_pin: float = Field(0.6e-10, gt=0, le=1e-3, description="wear intensity of the pin")
-    I_bush: float = Field(1.0e-10, gt=0, le=1e-3, description="wear intensity of the bush")
-    I_piston: float = Field(2e-12, gt=0, le=1e-3, description="wear intensity of the piston")
-    I_cylinder: float = Field(3e-12, gt=0, le=1e-3, description="wear intensity of the cylinder liner")
-    hours: float = Field(1000, gt=0, le=1e6, description="service life, h")
 
 
 class FrictionInfluenceRequest(BaseModel):
@@ -54,7 +38,7 @@ class FrictionInfluenceRequest(BaseModel):
     delta: float = Field(0.0125, ge=1e-3, le=0.5, description="[δ]: the coefficient of speed fluctuation allowed")
     flywheel: float = Field(0.0, ge=0, le=1e4,
                             description="a flywheel already on the crank, kg·m² (0: the machine as it is)")
-    wear: WearInput | None = Field(default_factory=WearInput, description="the wear's parts; null: no wear")
+    wear: WearPartsInput | None = Field(default_factory=WearPartsInput, description="the wear's parts; null: no wear")
     n: int = Field(181, ge=13, le=1441,
                    description="points over one closed cycle, an odd number (the error estimate halves the grid)")
     tolerance: float = Field(1e-9, ge=1e-14, le=1e-2, description="ε_R of the friction equilibrium (as /forces)")
