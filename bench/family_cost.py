@@ -22,6 +22,7 @@ Results: printed and written to bench/results/family_cost.md.
 
     python3 bench/family_cost.py                       # every scene (several minutes on 2 CPUs)
     python3 bench/family_cost.py --scenes wear flywheel
+    python3 bench/family_cost.py --scenes equation-of-motion --old /tmp/mdl-eom-old --out /tmp/eom.md
 """
 from __future__ import annotations
 
@@ -50,20 +51,11 @@ def worker(tree: str) -> None:
     os.chdir(tree)
     from server.core.warm_up import warm_up
     warm_up()
-    from server.api import endpoints
     from server.api import family_batch as batch
     from server.api.routers import family as route
     from server.api.serialise import serialise
-    original, count = endpoints.compute_answer, [0]
-
-    def counted(*args, **kwargs):
-        count[0] += 1
-        return original(*args, **kwargs)
-
-    batch.compute_answer = counted
 
     def timed(body: dict) -> dict:
-        count[0] = 0
         started = time.perf_counter()
         answer, partial = route.family_answer(json.loads(json.dumps(body)), "en")
         built = time.perf_counter()
@@ -71,7 +63,7 @@ def worker(tree: str) -> None:
         packed = gzip.compress(text, GZIP_LEVEL)
         done = time.perf_counter()
         return {"ms": 1e3 * (done - started), "build_ms": 1e3 * (built - started), "members": len(answer["values"]),
-                "computed": count[0], "error": answer["interpolation_error"], "partial": partial,
+                "computed": answer["numerics"].get("computed", 0), "error": answer["interpolation_error"], "partial": partial,
                 "json": len(text), "gzip": len(packed), "message": answer["numerics"]["message"]}
 
     def fastest(runs: list[dict]) -> dict:
@@ -134,6 +126,8 @@ def main() -> None:
     parser.add_argument("--worker")
     parser.add_argument("--old", type=Path, default=DEFAULT_OLD)
     parser.add_argument("--scenes", nargs="*", default=[])
+    parser.add_argument("--out", type=Path, default=ROOT / "bench" / "results" / "family_cost.md",
+                        help="where the tables go (default bench/results/family_cost.md, overwritten)")
     args = parser.parse_args()
     if args.worker:
         worker(args.worker)
@@ -157,14 +151,14 @@ def main() -> None:
         process.wait()
     commit = subprocess.run(["git", "-C", str(old_path), "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
-    write(rows, f"{old_path} at {commit or OLD_COMMIT}")
+    write(rows, f"{old_path} at {commit or OLD_COMMIT}", args.out)
 
 
 def ratio(a: float, b: float) -> str:
     return f"{a / b:.1f}×" if b else "—"
 
 
-def write(rows, old_label: str) -> None:
+def write(rows, old_label: str, out: Path) -> None:
     lines = [f"# Family cost, old ({old_label}) beside new (this tree), each with its own page's request",
              "", f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, Python {platform.python_version()}, "
              f"{os.cpu_count()} CPUs shared with other work (compare the ratios, not the figures). `python3 "
@@ -219,7 +213,6 @@ def write(rows, old_label: str) -> None:
               f"old {statistics.median(r[3]['warm']['build_ms'] / r[3]['full']['members'] for r in rows):.2f} ms, new "
               f"{statistics.median(r[4]['warm']['build_ms'] / r[4]['full']['members'] for r in rows):.2f} ms; members "
               f"{sum(r[3]['full']['members'] for r in rows)} → {sum(r[4]['full']['members'] for r in rows)}."]
-    out = ROOT / "bench" / "results" / "family_cost.md"
     out.write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 

@@ -91,6 +91,30 @@ def test_a_curve_whose_grid_changes_with_the_value_claims_no_less_than_the_neare
     assert worst <= answer["interpolation_error"] + SENT
 
 
+def test_a_quantity_null_at_every_member_has_a_span_of_zero_and_is_drawn_as_null():
+    """A curve that is null wherever it is held (the flywheel's ω without the flywheel, at a mean speed where
+    the machine alone would stall, for every value of the slider) is a leaf of every member all the same: the
+    family, sent packed and rebuilt as the page rebuilds it, gives it a span (0: nothing of it is drawn), so
+    that the bound is checked on every leaf the preview holds (tests/test_family_bound.py looks each one's
+    span up), and the preview draws it null. The other leaf, y = v², meets the bound as usual."""
+    from test_family_fields import whole_members
+
+    def members(values, deadline):
+        return [family.Member.of(v, Answer({"curves": {"y": np.array([v * v, v]), "stalled": np.full(3, np.nan)}}))
+                for v in values]
+    answer, _ = family.build(members, 0.0, 1.0, False, pack=True)
+    rebuilt = whole_members(answer)
+    width = family.spans(rebuilt)
+    assert width[("curves", "stalled")] == 0.0 and width[("curves", "y")] == pytest.approx(1.0)
+    for v in np.random.default_rng(9).uniform(0, 1, 20):
+        drawn = family.interpolate_family(answer["values"], rebuilt, v, False, answer["orders"])
+        exact = {"curves": {"y": np.array([v * v, v]), "stalled": np.full(3, np.nan)}}
+        for path, leaf in family.checked_leaves(exact):
+            bound = (TOLERANCE + family.PACK_QUANTUM / 2) * width[path] + SENT * np.abs(leaf)
+            assert not np.any(np.abs(family._leaf(drawn, path) - leaf) > bound), (v, path)
+        assert np.isnan(drawn["curves"]["stalled"]).all()
+
+
 def test_the_cubic_estimate_of_a_quartic_is_its_exact_interpolation_error():
     """For f = x⁴ the fourth divided difference is exactly 1 on any 5 members, and the cubic through 4 of
     them is off by exactly Π (x − xᵢ) at x (f − p = ω(x)·f[x₀ … x₃, x], and that is 1): the estimate, max|ω|

@@ -29,19 +29,37 @@ Linear: the error over an interval of width h (in the slider's coordinate) is h�
     f''_k ≈ 2·[(f_k+1 − f_k)/h_+ − (f_k − f_k−1)/h_−] / (h_+ + h_−),
 largest over each quantity's elements (nulls aside), and an interval's estimate takes the smaller of its two
 ends' (an interval beside a jump is not halved for its neighbour's jump; a member at the range's end has no
-second difference, its interval takes its other end's); its bound is SAFETY × the estimate.
+second difference, its interval takes its other end's); its bound is SAFETY × the estimate. Second
+differences read a step of height J between members as J/8 on an even spacing (J/12 beside an interval twice
+as wide) and a corner at t from an end as Δs·min(t, h − t)/8 and less, where the chord is off by up to J and
+Δs·t(h − t)/h, and halving does not make a step's estimate smaller (an angle found as the argmin on a grid
+moves node by node with the value: a staircase). Two terms join the linear estimate and its bound as they
+are, without a safety factor (``irregular``): the step the neighbours' slopes leave unexplained,
+    u_k = h_k · min |s_k − ŝ_k|,   s_i = (f_i+1 − f_i)/h_i,
+ŝ_k the slope of interval k on the line through two other intervals' (midpoint, slope) within 3 of it (the
+smallest of these predictions: an interval beside a jump is not blamed for it; zero for a parabola,
+O(f‴h³) for a smooth f, J for a step); and, in the bound only, the chord's error were the slope to turn at
+one point inside, h_k·a·b/(a + b) with a = s_k − s_k−1, b = s_k+1 − s_k of one sign (exact for a corner
+between straight neighbours on any spacing; SAFETY × h²|f''|/8 for a parabola on an even spacing). A
+staircase whose steps line up with the members (the same number in every interval) looks like the line
+through them: nothing computed from the members sees it.
 Cubic: f − p = ω(v)·f[v_0, …, v_3, v] with ω(v) = Π (v − v_i) over the stencil, so the estimate is
 max |ω| over the interval times |f[5 members]|, the fourth divided difference (f⁗/24), largest over each
 quantity's elements, from the larger of the two 5-member windows holding the stencil (the one at the range's
 ends); its bound is CUBIC_SAFETY × the estimate. A jump or a corner near the interval makes the fourth
-differences large, and the linear rule wins there. Every computed value is a member: a round computes the
+differences large, but no larger than a smooth bend of the same size does, and a window wider than the
+stencil reads a corner inside it diluted (twice as wide: 8× smaller): the cubic overshoots a step by about
+its height. So an interval with a step above TOLERANCE / CUBIC_SAFETY that sets a leaf's linear bound, or a
+corner (|f''| at its ends over CONCENTRATED × that at the members beyond) whose linear bound is above it, is
+drawn linearly, whatever the cubic's estimate. Every computed value is a member: a round computes the
 midpoints of every interval whose bound, relative to the quantity's span (see ``widths``), exceeds
 TOLERANCE, as one batch, until none does or the family has MAX_MEMBERS members (worst first). An
 interval between an answered and a refused value is halved too (the limit is found). No interval narrower
 than FINEST_FRACTION of the range is halved: no slider resolves it, and an answer that jumps (an efficiency
 that is 0 at zero load and 0.97 just above) or bends at a corner too steep to resolve is named in the message
 instead of taking every member. Where the cap or a jump leaves an interval above the tolerance,
-numerics.message says between which values and for which quantity; for an interval too narrow to halve the
+numerics.message says between which values and for which quantity, and the error given for an interval the
+cap or the time budget left with a bound above the tolerance is that bound, not the estimate; for an interval too narrow to halve the
 error given is the change across it, |f(b) − f(a)| / span, if larger than the linear estimate, and the interval
 is drawn linearly (a bound wherever f is monotone inside; second differences read a step of height J as J/8).
 Arrays on other grids. An array the two members of an interval hold in different shapes (a start-up whose
@@ -50,7 +68,9 @@ array, on that member's own grid. Its error is then bounded, wherever f is monot
 abscissa, by its change across the interval read on a common abscissa (``regridded``: the denser member's curve
 read at the other's nodes against every sibling array that increases, φ or t, and the change of its smallest
 and largest element); this joins both rules' estimates as it is, without a safety factor, and is halved for
-like any other (a start-up that stalls at one value and runs at the next is found as a jump).
+like any other (a start-up that stalls at one value and runs at the next is found as a jump). An array that
+one member holds and the other lacks, or holds empty, is drawn from one of them only: it appears (or vanishes)
+inside the interval, which is taken as a jump (1 of the span) and halved down to FINEST_FRACTION.
 
 The estimates are computed over all members at once: the members' leaves stacked as rows of one array
 (``Stack``: NaN where a member lacks a leaf), the divided differences of every window of 3 and 5 members as
@@ -104,6 +124,7 @@ the reported interpolation error includes the rounding the page sees.
 from __future__ import annotations
 
 import math
+import os
 import re
 import time
 from bisect import bisect_right
@@ -123,7 +144,8 @@ PREVIEW = PREVIEW_FRACTION * TOLERANCE   # … as a fraction of a drawn quantity
 START_MEMBERS = 9
 MAX_MEMBERS = 65                # 8 intervals halved three times over the whole range, at most
 FINEST_FRACTION = 1 / 1024      # an interval this narrow (of the range) is not halved: no slider resolves it
-TIME_BUDGET_S = 5.0             # wall-clock bound of one family (each member keeps its endpoint's own budget)
+TIME_BUDGET_S = float(os.environ.get("MDL_FAMILY_BUDGET_S", "5"))   # wall-clock bound of one family (each
+                                # member keeps its endpoint's own budget); a slow or shared host may give more
 SIGNIFICANT = 5                 # significant digits of every float in the family's answer
 ROUNDOFF = 1e-12                # below this fraction of its siblings' size a quantity's span is round-off
 SAME_KIND = 1e-4                # ... or, inside one object, invisible beside its siblings (see spans)
@@ -605,18 +627,15 @@ def quantity(path: tuple) -> str:
     return ".".join(str(part[0] if isinstance(part, tuple) else part) for part in path)
 
 
+NO_NUMBER = (math.inf, -math.inf)   # the extent of a leaf without a number (null wherever held): no span
+
+
 def extend(extent: dict[tuple, list[float]], leaves: dict[tuple, np.ndarray]) -> dict[tuple, list[float]]:
-    """Merge [min, max] of every element of each leaf (nulls aside) into ``extent``."""
+    """Merge [min, max] of every element of each leaf (nulls aside) into ``extent``; a leaf with no number
+    (a flywheel's speed without the flywheel where the machine would stall) is held as NO_NUMBER."""
     for path, leaf in leaves.items():
-        if leaf.ndim == 0:
-            if not math.isfinite(leaf):
-                continue
-            low = high = float(leaf)
-        else:
-            finite = leaf[np.isfinite(leaf)]
-            if not finite.size:
-                continue
-            low, high = float(finite.min()), float(finite.max())
+        finite = np.atleast_1d(leaf)[np.isfinite(np.atleast_1d(leaf))]
+        low, high = (float(finite.min()), float(finite.max())) if finite.size else NO_NUMBER
         known = extent.setdefault(path, [low, high])
         known[0], known[1] = min(known[0], low), max(known[1], high)
     return extent
@@ -630,7 +649,7 @@ def extend_member(extent: dict[tuple, list[float]], member: "Member") -> dict[tu
     lows, highs = np.fmin.reduceat(flat.vector, flat.starts).tolist(), np.fmax.reduceat(flat.vector, flat.starts).tolist()
     for path, low, high in zip(flat.paths, lows, highs):
         if low != low:                                  # NaN: no element of the leaf is a number
-            continue
+            low, high = NO_NUMBER
         known = extent.setdefault(path, [low, high])
         known[0], known[1] = min(known[0], low), max(known[1], high)
     return extent
@@ -648,12 +667,15 @@ def widths(extent: dict[tuple, list[float]]) -> dict[tuple, float]:
     series: quantities of one kind, drawn side by side) the fraction is SAME_KIND: the net work of a steady
     cycle, zero but for the solver's residual (~1e-7 of the driving work), is invisible beside the driving
     work and is not a curve to resolve. At the answer's top level (quantities of different units side by
-    side) it is ROUNDOFF: only what is zero but for round-off (~1e-17) is left out."""
+    side) it is ROUNDOFF: only what is zero but for round-off (~1e-17) is left out. A leaf that is null
+    wherever a member holds it has width 0: nothing of it is drawn, but it is a leaf of the family all the
+    same (every checked leaf of every member has a width)."""
     magnitude: dict[tuple, float] = {}
     for path, (low, high) in extent.items():
-        magnitude[path[:-1]] = max(magnitude.get(path[:-1], 0.0), abs(low), abs(high))
+        if low <= high:
+            magnitude[path[:-1]] = max(magnitude.get(path[:-1], 0.0), abs(low), abs(high))
     return {path: max(high - low, (SAME_KIND if len(path) > 1 else ROUNDOFF) * magnitude[path[:-1]])
-            for path, (low, high) in extent.items()}
+            if low <= high else 0.0 for path, (low, high) in extent.items()}
 
 
 def spans(answers: list) -> dict[tuple, float]:
@@ -749,9 +771,13 @@ MemberBatch = Callable[[list[float], float], list[Member]]
 @dataclass(frozen=True)
 class Stack:
     """The members' checked leaves stacked, one row per member (M × E): the columns are the elements of every
-    (path, shape) an answered member holds, in the order first met; NaN where a member lacks that leaf (or
-    holds it in another shape: another quantity), where it is null, and in a refused member's row. ``starts``
-    says where each leaf's columns begin, ``paths`` names them (a path may come twice, in two shapes)."""
+    (path, shape) that two neighbouring answered members hold, in the order first met; NaN where a member
+    lacks that leaf (or holds it in another shape: another quantity), where it is null, and in a refused
+    member's row. ``starts`` says where each leaf's columns begin, ``paths`` names them (a path may come
+    twice, in two shapes). A (path, shape) that no two neighbours hold has no difference of any order across
+    members (every one takes two neighbours at least): it has no columns (a start-up curve whose length
+    moves with the value would otherwise bring as many columns as it has lengths, all but NaN; ``regridded``
+    bounds it)."""
 
     x: np.ndarray               # (M,) the members' coordinates (value, or its log)
     answered: np.ndarray        # (M,) bool
@@ -773,11 +799,14 @@ class Stack:
                 if member.answer is not None:
                     rows[index] = member.flat.vector
             return cls(x, answered, paths, starts, rows, layout)
+        kinds = [{(path, leaf.shape) for path, leaf in m.leaves.items() if leaf.size} if m.answer is not None
+                 else set() for m in members]
+        paired = set().union(*(a & b for a, b in zip(kinds[:-1], kinds[1:])))
         columns: dict[tuple, int] = {}                      # (path, shape) → its first column
         width = 0
         for member in members:
             for path, leaf in member.leaves.items():
-                if leaf.size and (path, leaf.shape) not in columns:
+                if (path, leaf.shape) in paired and (path, leaf.shape) not in columns:
                     columns[path, leaf.shape] = width
                     width += leaf.size
         rows = np.full((len(members), width), np.nan)
@@ -786,7 +815,7 @@ class Stack:
         for index, member in enumerate(members):
             mine = []
             for path, leaf in member.leaves.items():
-                if leaf.size:
+                if (path, leaf.shape) in columns:
                     first = columns[path, leaf.shape]
                     rows[index, first:first + leaf.size] = leaf.ravel()
                     mine.append(order[path, leaf.shape])
@@ -860,7 +889,8 @@ def divided(stack: Stack, order: int, kept: dict) -> np.ndarray:
         columns, starts = stack.columns(leaves)
         found_rows = np.full((len(new), len(stack.paths)), np.nan)
         if starts.size:
-            pick = (lambda i: stack.rows[first + i]) if columns is None else (lambda i: stack.rows[first + i][:, columns])
+            pick = (lambda i: stack.rows[first + i]) if columns is None else \
+                (lambda i: stack.rows[(first + i)[:, None], columns])        # one gather, not rows then columns
             with np.errstate(invalid="ignore", over="ignore"):
                 total = weights[:, 0, None] * pick(0)
                 for i in range(1, width):
@@ -877,14 +907,15 @@ def divided(stack: Stack, order: int, kept: dict) -> np.ndarray:
 
 
 def _moved(row: np.ndarray, before: tuple, after: tuple, kept: dict) -> np.ndarray:
-    """A window's values per leaf of the layout ``before`` in the layout ``after`` (a union that grew as members
-    were added): NaN for a leaf new to it, which none of the window's members holds."""
+    """A window's values per leaf of the layout ``before`` in the layout ``after`` (the leaves neighbours hold,
+    which change as members are added): NaN for a leaf new to it, which not all of the window's members hold;
+    a leaf ``after`` lacks is one they do not all hold either (they are still neighbours), NaN in ``row``."""
     where = kept.get((before, after))
     if where is None:
         index = {leaf: i for i, leaf in enumerate(after)}
-        where = kept[before, after] = np.array([index[leaf] for leaf in before], int)
+        where = kept[before, after] = np.array([index.get(leaf, -1) for leaf in before], int)
     moved = np.full(len(after), np.nan)
-    moved[where] = row
+    moved[where[where >= 0]] = row[where >= 0]
     return moved
 
 
@@ -941,6 +972,76 @@ def cubic_errors(stack: Stack, kept: dict) -> np.ndarray:
     return found
 
 
+# The slope of interval k predicted from two other intervals i, j: the line through their (midpoint, slope),
+# read at interval k's midpoint (exact for a parabola, whose chord's slope is f′ at the chord's midpoint).
+# Offsets (i − k, j − k): every pair within 3 intervals of k and 3 of each other, so that a pair clear of
+# one other step is there even beside the range's end (an interval two from the end beside a step).
+CONCENTRATED = 4                # |f″| at an interval's ends this many times that beyond them: a corner there
+PREDICTORS = tuple((i, j) for i in (-3, -2, -1, 1, 2) for j in (-2, -1, 1, 2, 3) if i < j and j - i <= 3)
+
+
+@dataclass(frozen=True)
+class Irregular:
+    """(M − 1, L) each, by interval and leaf (the largest of the leaf's elements): what the second differences
+    at an interval's ends do not see (see ``irregular``)."""
+
+    steps: np.ndarray       # u_k: the step the neighbours' slopes do not explain
+    corners: np.ndarray     # the chord's error were the slope to change at one point inside
+    kinked: np.ndarray      # the linear bound of elements whose curvature sits at the interval alone
+
+
+def irregular(stack: Stack) -> Irregular:
+    """Interval k's departures from a smooth f at the members' spacing, from the slopes s_i = (f_i+1 − f_i)/h_i
+    of it and its neighbours, element by element, then the largest of each leaf's elements:
+    steps     u_k = h_k · min |s_k − ŝ_k|, ŝ_k the slope predicted from two other intervals (PREDICTORS), the
+              smallest of the predictions there are (an interval beside a jump predicts from the side away
+              from it: it is not blamed for its neighbour's step). Zero for a parabola and O(f‴h³) for a smooth
+              f; for a step of height J between members inside smooth neighbours it is J whatever the spacing,
+              where h²|f″|/8 reads J·h/(4(h + h₋)) (J/8 on an even spacing, J/12 beside an interval twice as
+              wide) and halving does not make it smaller (an argmin on a grid: a touching point moving node by
+              node as the value changes);
+    corners   h_k·a·b/(a + b), a = s_k − s_k−1, b = s_k+1 − s_k of one sign: the chord's largest error were f
+              two straight lines meeting inside the interval (slopes s_k−1 and s_k+1, at the point that makes
+              the chord's slope s_k), on any spacing; for a parabola on an even spacing (a = b = f″h) it is
+              f″h²/2, SAFETY × h²f″/8. The ends' second differences read a corner at t from an end as
+              Δs·min(t, h − t)/8 on an even spacing and less beside wider neighbours: up to 8× and more below
+              the corner's Δs·t(h − t)/h;
+    kinked    SAFETY·h²/8 × the larger |f″| at the interval's ends, for the elements where that is more than
+              CONCENTRATED × the larger |f″| at the members beyond (k − 1 and k + 2): a bend at the interval
+              alone, a corner, which the cubic's fourth differences over 5 members read diluted (a window
+              twice as wide as the cubic's 4 members reads a corner 8× smaller), not a smooth curvature, which
+              is the same at neighbouring members.
+    NaN where the members are not there (fewer than 4, refusals, the range's ends for the corners)."""
+    x, count = stack.x, len(stack.x)
+    empty = np.full((count - 1, len(stack.paths)), np.nan)
+    if count < 4 or not stack.paths:
+        return Irregular(empty, empty, empty)
+    h = np.diff(x)
+    middle = (x[:-1] + x[1:]) / 2
+    intervals = np.arange(count - 1)
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+        slope = np.diff(stack.rows, axis=0) / h[:, None]
+        least = np.full(slope.shape, np.nan)
+        for a, b in PREDICTORS:
+            k = intervals[(intervals + min(a, b) >= 0) & (intervals + max(a, b) <= count - 2)]
+            i, j = k + a, k + b
+            t = ((middle[k] - middle[i]) / (middle[j] - middle[i]))[:, None]
+            off = np.abs(slope[k] - (slope[i] + (slope[j] - slope[i]) * t)) * h[k, None]
+            least[k] = np.fmin(least[k], off)
+        turn = np.diff(slope, axis=0)                         # (M − 2): s_m − s_m−1 at members 1 … M − 2
+        a, b = turn[:-1], turn[1:]                            # intervals 1 … M − 3
+        corners = np.full(slope.shape, np.nan)
+        corners[1:-1] = np.where(a * b > 0, h[1:-1, None] * a * b / (a + b), 0.0)
+        bend = np.full((count, slope.shape[1]), np.nan)       # |f″| at each member
+        bend[1:-1] = np.abs(2 * turn / (h[:-1] + h[1:])[:, None])
+        inner = np.fmax(bend[:-1], bend[1:])                  # (M − 1): the interval's ends
+        beyond = np.full(slope.shape, np.nan)
+        beyond[1:-1] = np.fmax(bend[:-3], bend[3:])
+        alone = inner > CONCENTRATED * np.nan_to_num(beyond, nan=np.inf)
+        kinked = np.where(alone, SAFETY * inner * (h ** 2 / 8)[:, None], np.nan)
+        return Irregular(stack.largest(least), stack.largest(corners), stack.largest(kinked))
+
+
 @dataclass
 class Assessment:
     """Each interval's rule (1 linear, 3 cubic), its estimated error relative to the spans, the leaf where it
@@ -967,7 +1068,15 @@ def assess(stack: Stack, span: dict[tuple, float], kept: dict, drawn: list | Non
         steps = stack.largest(np.abs(np.diff(stack.rows, axis=0)))
     # a leaf both ends hold but neither has a second difference for (its neighbours hold it in another shape,
     # a start-up curve whose length changes with the value): the change across, a bound where f is monotone
-    linear = relative(np.where(np.isnan(ends), steps, ends), widths_)
+    bent_only = relative(np.where(np.isnan(ends), steps, ends), widths_)
+    odd = irregular(stack)
+    jumps = relative(odd.steps, widths_)                # a step the neighbours' slopes do not explain, as it is
+    corners = relative(odd.corners, widths_)            # a corner inside, as it is
+    # the linear rule's estimate (the ends' curvature, exact for a parabola on any spacing; a step as it is)
+    # and its bound: the safety factor on the curvature, none on a step or a corner measured as it is (on a
+    # spacing that grows, the corner term reads a parabola up to (h₋ + h)/2h times its SAFETY × estimate)
+    linear = np.maximum(bent_only, jumps)
+    linear_bound = np.maximum(np.maximum(SAFETY * bent_only, jumps), corners)
     fourth = cubic_errors(stack, kept)
     has_cubic = ~np.isnan(fourth).all(axis=1)
     cubic = np.where(np.isnan(fourth), linear, relative(fourth, widths_))   # a leaf the stencil lacks: linear
@@ -975,7 +1084,17 @@ def assess(stack: Stack, span: dict[tuple, float], kept: dict, drawn: list | Non
     bent[1:-1] = stack.answered[:-2] & stack.answered[1:-1] & stack.answered[2:]
     known = bent[:-1] | bent[1:]
     orders, scores, where, bounds, linears = [], [], [], [], []
-    lin_worst, cub_worst = linear.argmax(axis=1) if linear.size else None, cubic.argmax(axis=1) if cubic.size else None
+    # a step (or a corner) sets the linear bound of a leaf in the interval: a cubic through a step overshoots
+    # by about the step (0.87 of it measured), and its fourth differences read a step as they read a smooth
+    # bend (the ratio u_k / (f[5 members]·max|ω|) is ~14 for both), so the interval is drawn linearly, where
+    # the step bounds the chord's error; a step below TOLERANCE / CUBIC_SAFETY (a smooth curve's inflection,
+    # where f″ and so the second differences vanish) is left to the cubic, whose overshoot is as small. A
+    # corner (odd.kinked) above that size is drawn linearly too: the cubic's estimate reads it diluted.
+    kinked = relative(odd.kinked, widths_)
+    stepped = (((jumps > SAFETY * bent_only) & (jumps > TOLERANCE / CUBIC_SAFETY))
+               | (kinked > TOLERANCE / CUBIC_SAFETY)).any(axis=1) if linear.size else np.zeros(count - 1, bool)
+    lin_worst = linear_bound.argmax(axis=1) if linear.size else None
+    cub_worst = cubic.argmax(axis=1) if cubic.size else None
     for k in range(count - 1):
         a, b = stack.answered[k], stack.answered[k + 1]
         if not (a and b):
@@ -984,15 +1103,15 @@ def assess(stack: Stack, span: dict[tuple, float], kept: dict, drawn: list | Non
             linears.append((score, ()))
             continue
         lin = (float(linear[k, lin_worst[k]]), stack.paths[lin_worst[k]]) if linear.size else (0.0, ())
+        lin_bound = float(linear_bound[k, lin_worst[k]]) if linear.size else 0.0
         if not known[k]:
-            lin = (math.inf, ())
+            lin, lin_bound = (math.inf, ()), math.inf
         linears.append(lin)
-        order, (score, path), safety = 1, lin, SAFETY
-        if has_cubic[k] and cubic.size:
+        order, (score, path), bound = 1, lin, lin_bound
+        if has_cubic[k] and cubic.size and not stepped[k]:
             cub = (float(cubic[k, cub_worst[k]]), stack.paths[cub_worst[k]])
-            if cub[0] * CUBIC_SAFETY < lin[0] * SAFETY:
-                order, (score, path), safety = 3, cub, CUBIC_SAFETY
-        bound = score * safety
+            if cub[0] * CUBIC_SAFETY < lin_bound:
+                order, (score, path), bound = 3, cub, cub[0] * CUBIC_SAFETY
         if drawn is not None and drawn[k][0] > score:     # a leaf drawn from the nearer member: its change
             score, path = drawn[k]
         if drawn is not None and drawn[k][0] > lin[0]:
@@ -1049,13 +1168,20 @@ def regridded(a: Member, b: Member, span: dict[tuple, float]) -> tuple[float, tu
     what it is plotted against); and, for an array that is not itself an abscissa, the change of its smallest
     and largest element (a start-up that stalls at one value and runs at the other). Where an abscissa ends
     (a start-up stops at the whole revolution where its convergence test is met, one revolution more or less
-    from value to value) is not compared: its curve against the others' abscissae is, where both are drawn."""
+    from value to value) is not compared: its curve against the others' abscissae is, where both are drawn.
+    An array one member holds (a number in it) and the other does not, or holds empty (the motor's operating
+    point that exists from some value on), appears inside the interval: 1, a jump, found by halving."""
     if a.answer is None or b.answer is None:
         return 0.0, ()
     worst = (0.0, ())
-    for path, f in a.leaves.items():
-        g = b.leaves.get(path)
-        if g is None or g.shape == f.shape or not (np.isfinite(f).any() and np.isfinite(g).any()):
+    for path in [*a.leaves, *(p for p in b.leaves if p not in a.leaves)]:
+        f, g = a.leaves.get(path), b.leaves.get(path)
+        held = [x is not None and bool(np.isfinite(x).any()) for x in (f, g)]
+        if held[0] != held[1] and (f is None or g is None or f.shape != g.shape):
+            if worst[0] < 1.0:          # drawn from one member only, it appears (or vanishes) inside: a jump
+                worst = (1.0, path)
+            continue
+        if not held[0] or g.shape == f.shape:
             continue
         found = 0.0 if _increasing(f) and _increasing(g) else max(abs(np.nanmin(f) - np.nanmin(g)),
                                                                   abs(np.nanmax(f) - np.nanmax(g)))
@@ -1153,9 +1279,13 @@ def _answer(family: Family, assessed: tuple, lang: str, cut: bool, started: floa
     answered = [k for k in range(len(members) - 1)
                 if members[k].answer is not None and members[k + 1].answer is not None and math.isfinite(scores[k])]
     for k in answered:
-        if stage == "full" and not family.halvable(k) and scores[k] > TOLERANCE:
+        if stage != "full" or assessment.bounds[k] <= TOLERANCE:
+            continue
+        if not family.halvable(k):
             orders[k] = 1                                     # a jump: drawn linearly, and said how large
             scores[k], where[k] = max(assessment.linear[k], change(stack, span, k))
+        else:                                                 # left above the tolerance (the cap, the time
+            scores[k] = max(scores[k], assessment.bounds[k])  # budget): its bound, not the estimate, holds
     error = max((scores[k] for k in answered), default=None)
     if pack and error is not None:
         error += PACK_QUANTUM / 2                             # packing moves a value by at most this / span
@@ -1187,6 +1317,7 @@ def _answer(family: Family, assessed: tuple, lang: str, cut: bool, started: floa
     method = texts[f"family_method_{stage}_{'log' if family.log else 'linear'}"].format(
         start=START_MEMBERS, tolerance=number(100 * TOLERANCE), safety=SAFETY, cap=MAX_MEMBERS)
     method += texts["family_method_cubic"].format(safety=CUBIC_SAFETY, tolerance=number(100 * TOLERANCE))
+    method += texts["family_method_steps"] + (texts["family_method_left"] if stage == "full" else "")
     answers = [m.answer for m in members]
     if pack:
         common, answers = shared_arrays(answers)

@@ -108,7 +108,9 @@ class FamilyResponse(BaseModel):
     errors: list[dict | None] = Field(description="{code, message} of a refused value, else null")
     interpolation_error: float | None = Field(description="largest estimated |interpolation − exact| / span "
                                                           "over the intervals (linear: h²·|f''|/8, f'' from "
-                                                          "neighbours; cubic: max|Π(v − vᵢ)|·|f[5 members]|; "
+                                                          "neighbours, or a step the neighbours' slopes do not "
+                                                          "explain; cubic: max|Π(v − vᵢ)|·|f[5 members]|; an "
+                                                          "interval left above the tolerance: its bound; "
                                                           "packed: plus 5e-5, what packing may move a value)")
     tolerance: float = Field(description="the target: 0.5 % of each plotted quantity's span over the family")
     numerics: FamilyNumerics
