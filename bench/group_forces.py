@@ -14,17 +14,12 @@ Prints a Markdown table and writes it to bench/results/group_forces.md.
 """
 from __future__ import annotations
 
-import argparse
-import json
 import os
 import platform
 import statistics
-import subprocess
-import sys
 import time
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+import side_by_side
 SIX_BARS = ("shaping_machine", "jaw_crusher", "lever_ram", "whitworth", "knuckle_press")
 BASELINE_LABEL = "crank-slider, dedicated (baseline)"
 BASELINE = {"n": 361, "loads": {"m2": 2.0, "J_S2": 0.03, "m3": 1.5, "omega": 10.0, "force": 800.0},
@@ -47,24 +42,15 @@ def cases() -> dict[str, dict]:
     return out
 
 
-def one_round(bodies: dict[str, dict]) -> dict[str, float]:
+def one_round(_repeat: int) -> dict[str, float]:
+    """Seconds of each request, in order, by label (every round the same requests)."""
     from server.api.endpoints import compute_answer
     times = {}
-    for label, body in bodies.items():
+    for label, body in cases().items():
         start = time.perf_counter()
         compute_answer("forces", body, "en")
         times[label] = time.perf_counter() - start
     return times
-
-
-def serve(root: str) -> None:
-    """A worker: import the server of ``root``, warm up, then one round per line read, its times as JSON."""
-    sys.path.insert(0, root)
-    bodies = cases()
-    one_round(bodies)
-    print("ready", flush=True)
-    for _ in sys.stdin:
-        print(json.dumps(one_round(bodies)), flush=True)
 
 
 def header() -> str:
@@ -72,22 +58,8 @@ def header() -> str:
             f"{os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f})")
 
 
-def compare(old: str, repeats: int) -> str:
-    workers = {}
-    for tag, root in (("old", old), ("new", str(ROOT))):
-        workers[tag] = subprocess.Popen([sys.executable, __file__, "--serve", root], stdin=subprocess.PIPE,
-                                        stdout=subprocess.PIPE, text=True)
-        assert workers[tag].stdout.readline().strip() == "ready"
-    times = {tag: {} for tag in workers}
-    for _ in range(repeats):
-        for tag, worker in workers.items():
-            worker.stdin.write("round\n")
-            worker.stdin.flush()
-            for label, seconds in json.loads(worker.stdout.readline()).items():
-                times[tag].setdefault(label, []).append(seconds)
-    for worker in workers.values():
-        worker.stdin.close()
-        worker.wait()
+def compared(old: str, repeats: int) -> str:
+    times = side_by_side.in_turn(__file__, old, repeats)
     base = statistics.median(times["new"][BASELINE_LABEL])
     lines = [header(), "", f"Old: {old}; new: this tree; {repeats} rounds each, in turn.", "",
              "| request (361 angles) | old median ms | new median ms | new/old | new ratio to baseline |",
@@ -98,14 +70,8 @@ def compare(old: str, repeats: int) -> str:
     return "\n".join(lines) + "\n"
 
 
-def alone(repeats: int) -> str:
-    sys.path.insert(0, str(ROOT))
-    bodies = cases()
-    one_round(bodies)                                       # warm up
-    times = {label: [] for label in bodies}
-    for _ in range(repeats):
-        for label, seconds in one_round(bodies).items():
-            times[label].append(seconds)
+def single(repeats: int) -> str:
+    times = side_by_side.alone(one_round, repeats)
     base = statistics.median(times[BASELINE_LABEL])
     lines = [header(), "", "| request (361 angles) | median ms | ratio to baseline |", "|---|---|---|"]
     for label, values in times.items():
@@ -114,19 +80,5 @@ def alone(repeats: int) -> str:
     return "\n".join(lines) + "\n"
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--repeats", type=int, default=30)
-    parser.add_argument("--old", help="another checkout to compare with, side by side")
-    parser.add_argument("--serve", help=argparse.SUPPRESS)
-    args = parser.parse_args()
-    if args.serve:
-        serve(args.serve)
-        return
-    text = compare(args.old, args.repeats) if args.old else alone(args.repeats)
-    print(text)
-    (ROOT / "bench" / "results" / "group_forces.md").write_text(text, encoding="utf-8")
-
-
 if __name__ == "__main__":
-    main()
+    side_by_side.main(__doc__, 30, "group_forces.md", one_round, compared, single)

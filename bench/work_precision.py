@@ -25,7 +25,8 @@ import elastic as elastic_bench                                          # noqa:
 import steady_cycle as steady_bench                                       # noqa: E402
 from server.core.dynamics import flywheel as fw                           # noqa: E402
 from server.core.dynamics.machine import Machine                          # noqa: E402
-from server.core.dynamics.motion import cumulative_simpson, node_tables   # noqa: E402
+from server.core.dynamics.motion import node_tables   # noqa: E402
+from server.core.numerics import cumulative_simpson   # noqa: E402
 from server.core.dynamics.motors import Motor                             # noqa: E402
 from server.core.dynamics.reduction import Inertias                       # noqa: E402
 from server.core.dynamics.resistance import Load                          # noqa: E402

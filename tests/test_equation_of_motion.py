@@ -52,7 +52,8 @@ def test_steady_cycle_by_shooting_matches_many_cycles_of_a_time_domain_solver():
     period = steady.t[-1]
     crossing = lambda t, y: np.sin(y[0] / 2)          # φ = 2πk
     crossing.direction = 0
-    sol = time_domain(machine, steady.omega[0] * 0.8, 40 * period, events=crossing)
+    # from 10 % below, the cycle-start speed settles by a factor ~7 a cycle: 0.1 / 7¹¹ ≈ 5e-11 by cycle 12
+    sol = time_domain(machine, steady.omega[0] * 0.9, 12 * period, events=crossing)
     starts = sol.y_events[0][:, 1]
     times = sol.t_events[0]
     assert abs(starts[-1] - starts[-2]) < 1e-9 * starts[-1]          # the time-domain run has settled
@@ -149,3 +150,37 @@ def test_leaving_rest_with_the_table_agrees_with_direct_evaluation(monkeypatch):
     direct = leave_rest(machine, nodes, 0.0)
     assert len(tabulated[0]) == len(direct[0]) == 16
     assert np.asarray(tabulated) == pytest.approx(np.asarray(direct), rel=1e-10)   # DOP853 runs at rtol 1e-11
+
+
+def test_a_piston_engine_at_a_given_mean_speed_stalls_exactly_where_the_energy_runs_out():
+    """The two-stroke engine of Lecture 10's flywheel example (balanced, φ-only moments, the mean speed given):
+    a periodic motion exists iff some T₀ keeps T₀ + A(φ) > 0 with (ω_max + ω_min)/2 = ω_m, i.e. iff ω_m is above
+    the mean of the extremes at T₀ = max(−A). That critical speed from A(φ) on 2,000,001 angles (trapezoid,
+    the balancing moment as the cycle's mean moment) is 13.720 rad/s. 0.1 % below it: a stall in words. 0.2 %
+    above it and beyond: a steady cycle within rtol (ω_min is small there and the levels go up to 24,576 steps).
+    Between (0.1 % above, 13.7354): no crash, and either a steady cycle within rtol or, with no result, the
+    words that rtol was not reached within STEPS_MAX steps. (A coarse level's RK4 stage that overshot the dip
+    at 14.5 rad/s used to be taken for a stall, and a level stalling where the one before had not crashed the
+    Richardson differences at 13.7354 rad/s.)"""
+    from scipy.integrate import cumulative_trapezoid
+    params = MECHANISMS["slider_crank"].check({"l1": 0.12, "l2": 0.528, "a2": 0.169 / 0.528})
+    engine = Machine("slider_crank", params, Inertias(J1=2.72, m2=24.2, J_S2=1.21, m3=36.2), Load(),
+                     Motor("indicator", p_max=4.4e6, piston_diameter=0.1))
+    phi = np.linspace(0, 2 * np.pi, 2_000_001)
+    tables = engine.tables(phi)
+    work = cumulative_trapezoid(tables.net_phi, phi, initial=0.0)
+    work -= work[-1] * phi / phi[-1]
+    lowest = np.max(-work)
+    speed = np.sqrt(np.maximum(2 * (lowest + work) / tables.J, 0.0))
+    critical = 0.5 * (speed.max() + speed.min())
+    assert critical == pytest.approx(13.720, abs=1e-3)
+    below = steady_cycle(engine, 1e-8, critical * 0.999, balance=True)
+    assert below.steady is None and "Stall" in below.numerics.message
+    edge = steady_cycle(engine, 1e-8, 13.7353515625, balance=True)
+    assert (edge.steady is not None and edge.numerics.error_estimate <= 1e-8) or \
+        (edge.steady is None and "was not reached within" in edge.numerics.message)
+    for omega_mean in (critical * 1.002, 14.5):
+        result = steady_cycle(engine, 1e-8, omega_mean, balance=True)
+        assert result.steady is not None, (omega_mean, result.numerics.message)
+        assert result.steady.omega_mean == pytest.approx(omega_mean, rel=1e-8)
+        assert result.numerics.error_estimate <= 1e-8

@@ -1,7 +1,8 @@
 """API fuzzing: no request the OpenAPI schema can describe — valid or not — makes the server answer 5xx.
 
 Two layers, both in-process (no server, no network), with a fixed seed so CI is reproducible
-(MDL_FUZZ_SEED=<n> explores other inputs, MDL_FUZZ_EXAMPLES=<n> scales the number of examples):
+(MDL_FUZZ_SEED=<n> explores other inputs; MDL_FUZZ_EXAMPLES=<n> sets the examples per operation, 12 by default in
+the suite, scaled alike for the set-ups' budgets below; a deeper run: MDL_FUZZ_EXAMPLES=100):
 
 1. Schemathesis reads /api/v1/openapi.json, generates requests for every operation, conforming to the schema
    and deliberately breaking it, and checks `not_a_server_error`.
@@ -36,7 +37,7 @@ from server.lessons.scenes import scenes
 from server.core.mechanisms import MECHANISMS
 
 SEED = int(os.environ.get("MDL_FUZZ_SEED", "20269"))
-SCALE = float(os.environ.get("MDL_FUZZ_EXAMPLES", "30")) / 30
+SCALE = float(os.environ.get("MDL_FUZZ_EXAMPLES", "12")) / 30       # the budgets below are written for 30
 API = "/api/v1"
 QUIET = [HealthCheck.too_slow, HealthCheck.filter_too_much, HealthCheck.data_too_large,
          HealthCheck.function_scoped_fixture]
@@ -76,7 +77,9 @@ def client(fuzz_app):
 @schema.parametrize()
 @settings(max_examples=examples(30), deadline=None, database=None, suppress_health_check=QUIET)
 def test_no_request_makes_the_server_fail(case, fuzz_app):
-    case.call_and_validate(app=fuzz_app, base_url="http://testserver", checks=[not_a_server_error])
+    # a heavy study on a loaded machine may take longer than the client's default 10 s: slow is not a failure
+    # (the watchdog above ends a request that never returns)
+    case.call_and_validate(app=fuzz_app, base_url="http://testserver", checks=[not_a_server_error], timeout=300)
 
 
 # --- 2. the scenes' set-ups, moved within their bounds -------------------------------------------------------

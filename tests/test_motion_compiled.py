@@ -166,6 +166,27 @@ def test_steady_cycle_and_start_up_agree_between_the_paths(monkeypatch, seed):
         assert fast_start.transient.t == pytest.approx(slow_start.transient.t, rel=1e-8)
 
 
+@pytest.mark.parametrize("seed", RNG_SEEDS[:6])
+def test_cycles_run_at_once_are_the_cycles_run_one_by_one_bit_for_bit(seed):
+    """integrator.cycles (compiled.rk4_cycles: whole cycles in one compiled call, the start-up's motion._cycles)
+    against integrate called cycle after cycle from each cycle's end, as the start-up did before: the same
+    floating-point operations in the same order, so every node's T, ω, t, the sensitivity, the stall and where
+    the cycle-start energy settles are equal exactly."""
+    machine = random_machine(seed)
+    tables = cycle_tables(machine, machine.kinks(), 256)
+    steps, T0 = tables.starts.size, 0.5 * float(tables.J[0]) * 40.0 ** 2
+    runs = integrator.cycles(machine, tables, T0, 0.0, steps, 12, 1e-6)
+    T, t = T0, 0.0
+    for run in runs:
+        one = integrator.integrate(machine, tables, T, steps, t)
+        for a, b in ((run.phi, one.phi), (run.T, one.T), (run.omega, one.omega), (run.t, one.t)):
+            assert np.array_equal(a, b)
+        assert (run.sensitivity, run.stall_phi) == (one.sensitivity, one.stall_phi)
+        T, t = one.T[-1], one.t[-1]
+    last = runs[-1]
+    assert len(runs) == 12 or last.stall_phi is not None or abs(last.T[-1] - last.T[0]) <= 1e-6 * last.T[-1]
+
+
 def test_the_compiled_mean_of_the_extremes_is_the_numpy_one_exactly():
     """flywheel.periodic_speed's equation (ω_max + ω_min)/2 = ω_m, compiled without arrays, against
     numerics.parabola_extremum on the numpy array: the same divisions, square roots and parabola in the same order, and the

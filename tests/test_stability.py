@@ -147,7 +147,8 @@ def test_motion_error_estimate_does_not_underestimate_the_true_error():
 def test_flywheel_error_estimate_does_not_underestimate_the_true_error():
     from server.core.dynamics import flywheel as fw
     from server.core.dynamics.machine import Machine
-    from server.core.dynamics.motion import cumulative_simpson, node_tables
+    from server.core.dynamics.motion import node_tables
+    from server.core.numerics import cumulative_simpson
     from server.core.dynamics.motors import Motor
     from server.core.dynamics.reduction import Inertias
     from server.core.dynamics.resistance import Load

@@ -94,6 +94,14 @@ def parabola_extremum(values: np.ndarray, sign: int = 1, periodic: bool = True,
     where a neighbour lies outside it the node's value is kept.  A curvature of the wrong sign (a kink,
     a plateau) keeps the node's value too.
     """
+    return parabola_vertex(values, sign, periodic, allowed)[0]
+
+
+def parabola_vertex(values: np.ndarray, sign: int = 1, periodic: bool = True,
+                    allowed: np.ndarray | None = None) -> tuple[float, float]:
+    """parabola_extremum's value and where it lies: the node index of the vertex, k + (y₋ − y₊)/(2(y₋ − 2y₀ + y₊)),
+    within half a node of the best node k (y₀ is the largest of the three); k itself wherever the value is the
+    node's. On a periodic grid the position lies in [−½, n − ½) for the n distinct nodes."""
     y = sign * np.asarray(values, float)
     if periodic:
         y = y[:-1]
@@ -102,14 +110,16 @@ def parabola_extremum(values: np.ndarray, sign: int = 1, periodic: bool = True,
     n = y.size
     k = int(np.argmax(y if allowed is None else np.where(allowed, y, -np.inf)))
     if not periodic and k in (0, n - 1):
-        return float(sign * y[k])
+        return float(sign * y[k]), float(k)
     before, after = (k - 1) % n, (k + 1) % n
     if allowed is not None and not (allowed[before] and allowed[after]):
-        return float(sign * y[k])
+        return float(sign * y[k]), float(k)
     left, mid, right = y[before], y[k], y[after]
     curvature = left - 2 * mid + right
-    best = mid - (right - left) ** 2 / (8 * curvature) if curvature < 0 else mid
-    return float(sign * best)
+    if not curvature < 0:
+        return float(sign * mid), float(k)
+    best = mid - (right - left) ** 2 / (8 * curvature)
+    return float(sign * best), k + float((left - right) / (2 * curvature))
 
 
 def simpson(values: np.ndarray, h: float) -> float:

@@ -110,6 +110,28 @@ def rk4_steps(phi, J, base, sliding, starts, speed, kind, p, T_nodes, t_nodes, f
     return count, S, stall
 
 
+@njit(cache=True)
+def rk4_cycles(phi, J, base, sliding, starts, speed, kind, p, T0, t0, steps, cycles, rtol, settle, T_out, t_out,
+               counts, S_out, stalls):
+    """Whole cycles of rk4_steps one after another, each from the last one's end (row n of T_out, t_out, counts,
+    S_out, stalls: cycle n's nodes, nodes filled, S and stall node), until a stall, until the cycle-start energy
+    settles (``settle``: |T_end − T_start| ≤ rtol·T_end, motion._cycles' test) or ``cycles`` cycles; returns the
+    cycles run. The start-up's cycles without a Python call each (motion._cycles)."""
+    T, t = T0, t0
+    for n in range(cycles):
+        T_out[n, 0] = T
+        t_out[n, 0] = t
+        count, S, stall = rk4_steps(phi, J, base, sliding, starts, speed, kind, p, T_out[n], t_out[n], 0, steps)
+        counts[n], S_out[n], stalls[n] = count, S, stall
+        if stall >= 0:
+            return n + 1
+        T_end = T_out[n, count - 1]
+        if settle and abs(T_end - T) <= rtol * T_end:
+            return n + 1
+        T, t = T_end, t_out[n, count - 1]
+    return cycles
+
+
 @njit(cache=True, error_model="numpy")
 def _periodic_omega(work, total, T0):
     """ω = √(2(T₀ + A)/I) with numpy's rules: x/0 = ±inf, √(negative) = NaN."""
@@ -273,6 +295,8 @@ def warm_up() -> float:
         T_nodes[0] = 1.0
         for speed in (False, True):
             rk4_steps(nodes, nodes, nodes, nodes, starts, speed, kind, params, T_nodes, t_nodes, 0, 4)
+    rk4_cycles(nodes, nodes, nodes, nodes, starts, True, LINEAR, params, 1.0, 0.0, 4, 2, 1e-6, True,
+               np.zeros((2, 5)), np.zeros((2, 5)), np.zeros(2, np.int64), np.zeros(2), np.zeros(2, np.int64))
     mean_of_extremes(nodes, nodes, 1.0)
     periodic_level(nodes, nodes, 1.0, 0.0, 1.0, 1e-12, 1e-12, 100)
     speed_extremes(nodes)

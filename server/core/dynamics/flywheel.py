@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..numerics import parabola_extremum
+from ..numerics import parabola_extremum, parabola_vertex
 from .compiled import mean_of_extremes, periodic_level, speed_extremes
 
 GUTYAR_WINDOW = np.pi / 4      # half-width of the curve pieces Gutyar draws around the extremes, rad
@@ -57,7 +57,9 @@ def merzalov(cycle: Cycle, omega_mean: float, delta: float) -> Method:
 
 def tangent_intercepts(cycle: Cycle, omega_mean: float, delta: float, window: float | None = None):
     """b_up = max(A − I_II ω_max²/2), b_low = min(A − I_II ω_min²/2), optionally within ±window of the
-    extremes of Merzalov's ΔT_I; returns the intercepts and the angles where the tangents touch."""
+    extremes of Merzalov's ΔT_I; returns the intercepts and the angles where the tangents touch, each at the
+    vertex of the parabola that refines its intercept (numerics.parabola_vertex: it moves smoothly with the
+    machine's parameters, where the best node alone would move in steps of the grid)."""
     w_max, w_min = (1 + delta / 2) * omega_mean, (1 - delta / 2) * omega_mean
     upper = cycle.work - 0.5 * cycle.inertia_ii * w_max**2
     lower = cycle.work - 0.5 * cycle.inertia_ii * w_min**2
@@ -67,10 +69,11 @@ def tangent_intercepts(cycle: Cycle, omega_mean: float, delta: float, window: fl
         def near(k):
             return np.abs(np.angle(np.exp(1j * (cycle.phi - cycle.phi[k])))) <= window
         near_top, near_bottom = near(int(np.argmax(group_one))), near(int(np.argmin(group_one)))
-    k_up = int(np.argmax(np.where(near_top, upper, -np.inf)))
-    k_low = int(np.argmin(np.where(near_bottom, lower, np.inf)))
-    return (parabola_extremum(upper, +1, allowed=near_top), parabola_extremum(lower, -1, allowed=near_bottom),
-            float(cycle.phi[k_up]), float(cycle.phi[k_low]))
+    b_up, at_up = parabola_vertex(upper, +1, allowed=near_top)
+    b_low, at_low = parabola_vertex(lower, -1, allowed=near_bottom)
+    step, start = cycle.phi[1] - cycle.phi[0], cycle.phi[0]
+    angle = lambda at: float(start + (at * step) % (cycle.phi[-1] - start))     # the closed grid's period
+    return b_up, b_low, angle(at_up), angle(at_low)
 
 
 def gutyar(cycle: Cycle, omega_mean: float, delta: float) -> Method:

@@ -202,8 +202,8 @@ def integrate(machine: Machine, tables: Tables, T0: float, steps: int, t0: float
     compiled: the numba loop of compiled.py (default, ``COMPILED``) or the plain Python loop below, the
     reference the compiled one is tested against (tests/test_motion_compiled.py)."""
     phi = tables.phi
-    index = tables.step_nodes
-    starts = np.ascontiguousarray(index[:-1], dtype=np.int64)
+    kernel = loop_tables(tables)
+    index, starts = kernel[0], kernel[1]
     T_nodes, t_nodes = np.empty(steps + 1), np.empty(steps + 1)
     T_nodes[first], t_nodes[first] = T0, t0
     stall, count, S, start = None, first + 1, 1.0, first
@@ -224,13 +224,65 @@ def integrate(machine: Machine, tables: Tables, T0: float, steps: int, t0: float
                t=t_nodes[start:count].copy(), sensitivity=S, stall_phi=stall)
 
 
+def loop_tables(tables: Tables) -> tuple:
+    """(step node indices, step starts, φ, J, M_φ, S) as the loops take them (contiguous float64, int64), made
+    once per Tables: a start-up integrates the same tables cycle after cycle, the shooting iteration after
+    iteration. Kept on the Tables with the arrays they were made from, and made again if one of those was
+    replaced since (a balancing moment added to ``useful`` after the tables were made)."""
+    sources = (tables.phi, tables.J, tables.drive_phi, tables.useful, tables.dry, tables.sliding, tables.starts)
+    held = tables.__dict__.get("_loop_tables")
+    if held is None or any(a is not b for a, b in zip(held[0], sources)):
+        index = tables.step_nodes
+        held = (sources, (index, np.ascontiguousarray(index[:-1], dtype=np.int64),
+                          np.ascontiguousarray(tables.phi, dtype=np.float64),
+                          np.ascontiguousarray(tables.J, dtype=np.float64),
+                          np.ascontiguousarray(tables.net_phi, dtype=np.float64),
+                          np.ascontiguousarray(tables.sliding, dtype=np.float64)))
+        tables.__dict__["_loop_tables"] = held
+    return held[1]
+
+
 def _steps_compiled(machine: Machine, tables: Tables, starts, T_nodes, t_nodes, first: int, steps: int):
-    speed, kind, params = motor_kernel.speed_parameters(machine)
-    return motor_kernel.rk4_steps(np.ascontiguousarray(tables.phi, dtype=np.float64),
-                                  np.ascontiguousarray(tables.J, dtype=np.float64),
-                                  np.ascontiguousarray(tables.net_phi, dtype=np.float64),
-                                  np.ascontiguousarray(tables.sliding, dtype=np.float64),
-                                  starts, speed, kind, params, T_nodes, t_nodes, first, steps)
+    if "speed_parameters" not in machine.memo:
+        machine.memo["speed_parameters"] = motor_kernel.speed_parameters(machine)
+    speed, kind, params = machine.memo["speed_parameters"]
+    _, _, phi, J, net_phi, sliding = loop_tables(tables)
+    return motor_kernel.rk4_steps(phi, J, net_phi, sliding, starts, speed, kind, params, T_nodes, t_nodes, first,
+                                  steps)
+
+
+def cycles(machine: Machine, tables: Tables, T0: float, t0: float, steps: int, count: int,
+           rtol: float | None) -> list[Run]:
+    """Up to ``count`` whole cycles of ``tables`` from T₀ > 0, t₀ at the first node, each from the last one's end,
+    stopping after a stall or the cycle whose start energy settles to rtol (None: never), as that many
+    ``integrate`` calls give them (φ of each from the tables' first node): the compiled loop runs them at once
+    (compiled.rk4_cycles), the reference one by one."""
+    if not COMPILED:
+        runs = []
+        for _ in range(count):
+            run = integrate(machine, tables, T0, steps, t0)
+            runs.append(run)
+            if run.stall_phi is not None or (rtol is not None and abs(run.T[-1] - run.T[0]) <= rtol * run.T[-1]):
+                break
+            T0, t0 = run.T[-1], run.t[-1]
+        return runs
+    if "speed_parameters" not in machine.memo:
+        machine.memo["speed_parameters"] = motor_kernel.speed_parameters(machine)
+    speed, kind, params = machine.memo["speed_parameters"]
+    index, starts, phi, J, net_phi, sliding = loop_tables(tables)
+    T_out, t_out = np.empty((count, steps + 1)), np.empty((count, steps + 1))
+    counts, S, stalls = np.zeros(count, np.int64), np.zeros(count), np.zeros(count, np.int64)
+    done = motor_kernel.rk4_cycles(phi, J, net_phi, sliding, starts, speed, kind, params, float(T0), float(t0), steps,
+                                   count, 0.0 if rtol is None else float(rtol), rtol is not None, T_out, t_out, counts,
+                                   S, stalls)
+    runs = []
+    for n in range(done):
+        filled = int(counts[n])
+        T_arr = T_out[n, :filled]
+        runs.append(Run(phi=tables.phi[index[:filled]], T=T_arr, omega=np.sqrt(2 * T_arr / tables.J[index[:filled]]),
+                        t=t_out[n, :filled].copy(), sensitivity=float(S[n]),
+                        stall_phi=float(tables.phi[stalls[n]]) if stalls[n] >= 0 else None))
+    return runs
 
 
 def _steps_python(machine: Machine, tables: Tables, starts, T_nodes, t_nodes, first: int, steps: int):

@@ -23,8 +23,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..mechanisms import Notice
-from ..numerics import Numerics, cumulative_simpson, simpson
-from .integrator import REST_STEPS, RestBudget, Run, integrate, kinked_tables
+from ..numerics import Numerics, simpson
+from .integrator import REST_STEPS, RestBudget, Run, cycles, integrate, kinked_tables
 from .machine import Machine, Tables
 
 STEPS_START = 32           # RK4 steps per 2π at the coarsest level
@@ -36,6 +36,11 @@ SHOOTING_STEP = 1e-13      # the shooting's Newton stops at a step this fraction
 PREVIEW_SHOOTING = 1e-4    # … and a preview's at this fraction of its preview tolerance (T ∝ ω²: far below)
 STARTUP_PER_2PI = 256      # RK4 steps per 2π of the start-up, halved until its estimate meets rtol …
 STARTUP_MAX_PER_2PI = 4096  # … down to this
+CYCLES_AT_ONCE = 8         # start-up cycles run by one call of the compiled loop (the deadline is checked after each)
+
+
+class Unresolved(Exception):
+    """A level's steps are too long for the motion it follows (see _level); the next level is tried."""
 
 
 class NoMotion(Exception):
@@ -318,6 +323,10 @@ def steady_cycle(machine: Machine, rtol: float = 1e-8, omega_mean: float | None 
             motion.notices.append(stop.notice)
             numerics.tell(stop.notice)
             break
+        except Unresolved:              # the levels' differences start again from the next, finer one
+            previous, differences = None, []
+            per_2pi *= 2
+            continue
         numerics.steps = steps
         if previous is not None:
             differences.append(level_difference(run, previous))
@@ -388,15 +397,26 @@ def _level(machine: Machine, tables: Tables, steps: int, omega_mean: float | Non
     def mean_of(T0):
         omega = np.sqrt(2 * (T0 + work) / J)
         return 0.5 * (omega.max() + omega.min()) - omega_mean
+    def stall(phi: float) -> NoMotion:
+        at = float(np.degrees(phi))
+        return NoMotion("stall_in_cycle", f"Stall at φ = {at:.1f}°: the kinetic energy runs out within the cycle; "
+                                          f"there is no steady motion at ω_m = {omega_mean:g} rad/s.", phi=at)
+
+    def run_from(T0: float) -> Run:
+        """The run over the cycle. One whose energy runs out inside a step, where the nodes' A(φ) kept T₀ + A above
+        zero, is a step too long for the slowest point of the cycle (an RK4 stage overshooting the dip), not a
+        stall: the next level decides, and at STEPS_MAX it is the stall."""
+        run = integrate(machine, tables, T0, steps)
+        if run.stall_phi is not None:
+            raise (stall(run.stall_phi) if 2 * steps > STEPS_MAX else Unresolved())
+        return run
     lowest = float(np.max(-work))                    # T₀ must keep T = T₀ + A > 0 everywhere
     high = lowest + 0.5 * J.max() * (2 * omega_mean) ** 2 + 1.0
     if mean_of(lowest + 1e-12 * high) > 0:           # even as ω_min → 0 the mean exceeds ω_m: no periodic motion
-        stall = float(np.degrees(tables.phi[nodes[int(np.argmin(work))]]))
-        raise NoMotion("stall_in_cycle", f"Stall at φ = {stall:.1f}°: the kinetic energy runs out within the cycle; "
-                                         f"there is no steady motion at ω_m = {omega_mean:g} rad/s.", phi=stall)
+        raise stall(tables.phi[nodes[int(np.argmin(work))]])
     T0 = brentq(mean_of, lowest + 1e-12 * high, high, xtol=1e-14 * high)
     for _ in range(4):      # the same condition on the refined extremes: Newton with dω/dT₀ = 1/(Jω)
-        run = integrate(machine, tables, T0, steps)
+        run = run_from(T0)
         k_max, k_min = int(np.argmax(run.omega)), int(np.argmin(run.omega))
         w_max = extreme_speed(machine, tables, run, k_max, +1, fine=fine)
         w_min = extreme_speed(machine, tables, run, k_min, -1, fine=fine)
@@ -405,7 +425,7 @@ def _level(machine: Machine, tables: Tables, steps: int, omega_mean: float | Non
         T0 += correction
         if abs(correction) <= 1e-14 * T0:
             break
-    return integrate(machine, tables, T0, steps)
+    return run_from(T0)
 
 
 def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycles: int = 60,
@@ -487,9 +507,15 @@ def _cycles(machine: Machine, tables: Tables, T0: float, max_cycles: int, rtol: 
     """Cycle after cycle from T₀, t₀ at step node ``first`` of the first cycle until a stall, the cycle-start
     energy settling to rtol (None: run all max_cycles), max_cycles or the deadline; the runs with φ and t
     continued, and whether it settled."""
-    pieces, cycle, steps = [], machine.cycle(), tables.starts.size
-    for n in range(min(max_cycles, MAX_CYCLES)):
-        run = integrate(machine, tables, T0, steps, t0, first=first if n == 0 else 0)
+    pieces, cycle, steps, total = [], machine.cycle(), tables.starts.size, min(max_cycles, MAX_CYCLES)
+    ahead: list[Run] = []                  # cycles run already (integrator.cycles: CYCLES_AT_ONCE at a time)
+    for n in range(total):
+        if n == 0:                         # from rest, or from node ``first``
+            run = integrate(machine, tables, T0, steps, t0, first=first)
+        else:
+            if not ahead:
+                ahead = cycles(machine, tables, T0, t0, steps, min(CYCLES_AT_ONCE, total - n), rtol)
+            run = ahead.pop(0)
         run.phi = run.phi + n * cycle
         if run.stall_phi is not None:
             run.stall_phi += n * cycle

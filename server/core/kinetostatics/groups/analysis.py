@@ -10,7 +10,7 @@ internally; the balancing moment is reported along ω₁ (the crank's sense of r
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -118,6 +118,28 @@ def setup(mechanism, comp: Composition, model: MassModel, omega: float, epsilon:
     fmap = fr.friction_map(influence, [locate[k] for k in rough], [friction_pairs[k] for k in rough],
                            [coefficients[k] for k in rough])
     return Setup(comp, groups, friction_pairs, locate, coefficients, loads, influence, rough, fmap)
+
+
+def rough_pairs(pairs: list[KinematicPair], model: MassModel,
+                pairs_friction: dict[str, fr.PairFriction] | None = None) -> tuple[bool, ...]:
+    """Which of the friction pairs ``pairs`` have f > 0 (the friction loads the solve carries)."""
+    default = fr.PairFriction(model.friction, model.pair_radius)
+    return tuple((pairs_friction or {}).get(p.name, default).f > 0 for p in pairs)
+
+
+def with_friction(s: Setup, model: MassModel, pairs: dict[str, fr.PairFriction] | None = None) -> Setup:
+    """``s`` with the f and r of ``model`` and ``pairs``, the same pairs rough (rough_pairs): the loads and the
+    reactions as affine functions of the friction loads do not depend on f or r, only the coefficients
+    −sgn(relative) f ρ of (3.3) do (friction.friction_coefficients)."""
+    default = fr.PairFriction(model.friction, model.pair_radius)
+    coefficients = [(pairs or {}).get(p.name, default) for p in s.pairs]
+    if [k for k, c in enumerate(coefficients) if c.f > 0] != s.rough:
+        raise ValueError("with_friction keeps the rough pairs: set up anew where they change")
+    if not s.rough:
+        return replace(s, coefficients=coefficients)
+    fmap = fr.FrictionMap(s.fmap.base, s.fmap.lever, fr.friction_coefficients([s.pairs[k] for k in s.rough],
+                                                                              [coefficients[k] for k in s.rough]))
+    return replace(s, coefficients=coefficients, fmap=fmap)
 
 
 def require_full_turn(comp: Composition) -> None:

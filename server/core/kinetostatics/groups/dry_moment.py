@@ -17,7 +17,8 @@ M_T has a corner where a rough pair's relative motion reverses (its friction cha
 prismatic pair's normal force changes sign (|N| has a corner): ``switches``.  Where the equilibrium with
 friction ceases to exist (self-locking, decided by the physics in friction.solve) or a group stands at a dead
 position, M_T is NaN and ``locked`` says where; so it is where the solve's work bound (``budget``) ran out
-first (``unsettled``: said in words by the caller, never decided locked).
+first (``unsettled``: said in words by the caller, never decided locked).  Where the normal forces' signs are
+proved without solving (``normal_signs``), their zeros are bracketed without the solve.
 """
 from __future__ import annotations
 
@@ -28,7 +29,8 @@ import numpy as np
 from ...structure.compose import Composition
 from ...structure.masses import MassModel
 from . import friction as fr
-from .analysis import setup
+from .analysis import Setup, setup
+from .compiled import certified_normals
 from .loads import power_moment
 
 TOLERANCE = 1e-12        # ε_R of the friction solve: far below any integrator tolerance the dynamics offers
@@ -67,3 +69,23 @@ def dry_moment(mechanism, comp: Composition, model: MassModel, pairs: dict[str, 
                for row, index in enumerate(s.rough) if s.pairs[index].kind == "P"]
     return DryMoment(np.where(blank, np.nan, moment), solved.locked, s.influence.singular, solved.error, unsettled,
                      switches, normals)
+
+
+def normal_signs(mechanism, comp: Composition, model: MassModel,
+                 pairs: dict[str, fr.PairFriction] | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The rough prismatic pairs' normal forces without friction (R, N) and where each has, proved without the
+    friction solve, the sign of the normal force with friction (N,) (compiled.certified_normals: there the
+    equilibrium with friction exists, is unique and does not lock).  The corners of M_T at the normal forces'
+    zeros are bracketed from these signs, solving only where they are not proved."""
+    return proved_signs(setup(mechanism, comp, model, 0.0, 0.0, pairs))
+
+
+def proved_signs(s: Setup) -> tuple[np.ndarray, np.ndarray]:
+    """``normal_signs`` of a setup (analysis.with_friction gives a kept one new coefficients)."""
+    rows = [row for row, index in enumerate(s.rough) if s.pairs[index].kind == "P"]
+    normals = s.fmap.base[rows, :, 0]
+    if not rows:
+        return normals, np.ones(s.comp.phi.size, bool)
+    proved = certified_normals(np.ascontiguousarray(s.fmap.base.transpose(1, 0, 2)), s.fmap.lever,
+                               np.ascontiguousarray(s.fmap.coefficient.T), np.array(rows, np.int64))
+    return normals, proved

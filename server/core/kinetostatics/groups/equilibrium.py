@@ -3,8 +3,9 @@
 A class-II group has two links and three pairs; each pair's reaction has two unknowns (R: R_x, R_y at the
 joint; P: the normal force N ⊥ the line and the couple M of the normal pressure), so six unknowns against the
 six equations of the two links: ΣF_x = ΣF_y = ΣM_O = 0 for each (moments about the origin of the frame).
-The 6 × 6 system is solved at every angle at once (numpy's batched LU); its determinant vanishes only at the
-group's dead positions (its links or guides in line), where the reactions are NaN, said in words by the caller.
+The 6 × 6 system is solved at every angle by one LU for all its right-hand sides (influence.influence_pass); its
+determinant vanishes only at the group's dead positions (its links or guides in line), where the reactions are
+NaN, said in words by the caller.
 
 The groups are taken in reverse order of attachment: a later group's reactions on earlier links are loads
 (−R, Newton's third law) when the earlier group is solved; then the crank: R₀₁ = −ΣF, and the balancing
@@ -23,7 +24,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...structure.state import cross
+from .influence import influence_pass
 from .pairs import GroupPairs, KinematicPair
+
+DEAD_POSITION = 1e-12     # |det| of a group's 6 × 6 system below this share of Hadamard's bound: a dead position
 
 
 @dataclass
@@ -89,40 +93,29 @@ def solve_all(groups: list[GroupPairs], crank_link: int, pivot: KinematicPair, f
     friction_pairs: the K pairs whose friction is a load (the crank's pivot among them)."""
     n = pivot.z.size
     C = len(friction_pairs) + 1
-    F = {k: np.zeros((C, n), complex) for k in force}
-    M = {k: np.zeros((C, n)) for k in force}
-    F.setdefault(0, np.zeros((C, n), complex))
-    M.setdefault(0, np.zeros((C, n)))
+    row = {link: r for r, link in enumerate(sorted(set(force) | {0}))}
+    Fx, Fy, Mo = (np.zeros((len(row), n, C)) for _ in range(3))    # each link's loads, angle first, C columns
     for k in force:
-        F[k][0] += force[k]
-        M[k][0] += moment[k]
+        Fx[row[k], :, 0] += force[k].real
+        Fy[row[k], :, 0] += force[k].imag
+        Mo[row[k], :, 0] += moment[k]
     for c, pair in enumerate(friction_pairs, start=1):
         f, m = friction_unit(pair)
         for link, sign in ((pair.b, 1.0), (pair.a, -1.0)):
-            if link in F:
-                F[link][c] += sign * f
-                M[link][c] += sign * m
+            if link in row:
+                Fx[row[link], :, c] += sign * f.real
+                Fy[row[link], :, c] += sign * f.imag
+                Mo[row[link], :, c] += sign * m
+    order = list(reversed(groups))
+    A = np.stack([group_matrix(group) for group in order])
+    blocks = np.stack([np.stack([columns(pair) for pair in group.pairs]) for group in order])
+    links = np.array([[row[link] for link in group.links] for group in order])
+    outer = np.array([[-1 if pair.a in group.links else row[pair.a] for pair in group.pairs] for group in order])
+    x, singular = influence_pass(A, blocks, links, outer, Fx, Fy, Mo, DEAD_POSITION)
     unknowns: list[np.ndarray] = [None] * len(groups)
-    singular = np.zeros(n, bool)
-    for group in reversed(groups):
-        A = group_matrix(group)
-        i, j = group.links
-        rhs = -np.stack([F[i].real, F[i].imag, M[i], F[j].real, F[j].imag, M[j]], axis=-1)    # (C, N, 6)
-        det = np.linalg.det(A)
-        scale = np.prod(np.linalg.norm(A, axis=1), axis=1)
-        bad = ~(np.abs(det) > 1e-12 * scale)
-        singular |= bad
-        A_safe = np.where(bad[:, None, None], np.eye(6), A)
-        x = np.linalg.solve(A_safe, np.moveaxis(rhs, 0, -1)).transpose(2, 0, 1)     # one LU per angle, C sides
-        x[:, bad] = np.nan
-        unknowns[group.index] = x
-        for p, pair in enumerate(group.pairs):
-            if pair.a in (i, j):
-                continue
-            block = columns(pair)                                     # (N, 3, 2)
-            load = np.einsum("nrk,cnk->cnr", block, x[..., 2 * p:2 * p + 2])
-            F[pair.a] -= load[..., 0] + 1j * load[..., 1]
-            M[pair.a] -= load[..., 2]
-    R01 = -F[crank_link]
-    balancing = -(M[crank_link] + cross(pivot.z[None], R01))
+    for g, group in enumerate(order):
+        unknowns[group.index] = x[g].transpose(2, 0, 1)                 # (C, N, 6)
+    R01 = np.empty((C, n), complex)
+    R01.real, R01.imag = -Fx[row[crank_link]].T, -Fy[row[crank_link]].T
+    balancing = -(Mo[row[crank_link]].T + cross(pivot.z[None], R01))
     return Influence(unknowns, R01, balancing, singular)

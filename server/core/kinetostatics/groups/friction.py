@@ -10,7 +10,9 @@ without friction), stopped when the relative change of the reactions is below ε
 
 As for the crank-slider (kinetostatics/equilibrium.py), the answer is the fixed point solved directly by
 Newton's method with the generalised Jacobian J = ∂G/∂z (|N| and |R| are piecewise smooth), each step taking
-the Newton point or the textbook's step, whichever leaves the smaller change of the reactions; the error left
+the Newton point or the textbook's step, whichever leaves the smaller change of the reactions (the Newton point
+wherever the change it leaves is within ε_R of its reactions: there the two differ by rounding alone, and a
+textbook step taken on rounding would bound its error by q/(1 − q), infinite where q ≥ 1); the error left
 after a Newton correction is bounded by that correction, after a textbook step by q/(1 − q) of it (q the
 spectral radius of J, the series' ratio).  Self-locking is decided as the crank-slider's solve decides it
 where its direct solve goes astray: the equilibrium the mechanism reaches as its friction grows from zero
@@ -24,7 +26,8 @@ rod inside the guide's friction angle (f₃₄|tan ψ′| ≥ 1) — is found as
 the loads reversed; it is looked for only where the bound ρ(A) ≥ 1 (``bound_ratio``) allows one.  For the
 crank-slider this gives exactly the dedicated solve's locked angles (tests/test_group_forces_crank_slider.py).
 The time budget is a work bound only: the angles it leaves are reported unconverged, in words, never decided
-locked by it.
+locked by it.  ``solve`` runs these decisions angle by angle in compiled code (compiled.py); ``solve_reference``,
+all angles at once in numpy, is the reference it is tested against (tests/test_group_friction_compiled.py).
 """
 from __future__ import annotations
 
@@ -33,11 +36,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import compiled
+from .compiled import CONTINUATION, NEWTON_CAP       # shares of the continuation; Newton steps per solve
 from .equilibrium import Influence
 from .pairs import KinematicPair
 
-NEWTON_CAP = 40           # Newton steps per solve (module docstring); where a root exists it takes ≲ 10
-CONTINUATION = 32         # shares of the friction switched on from zero where the direct solve went astray
 
 
 @dataclass(frozen=True)
@@ -103,25 +106,26 @@ class FrictionMap:
 def friction_map(influence: Influence, locate: list[tuple[int, int] | None], pairs: list[KinematicPair],
                  coefficients: list[PairFriction]) -> FrictionMap:
     """``locate[p]``: (group, pair index) of friction pair p, None for the crank's pivot."""
-    def coordinates(c):
-        out = []
-        for p, where in enumerate(locate):
-            if where is None:
-                R = influence.crank[c]
-                out.append(np.stack([R.real, R.imag], -1))
-            else:
-                x = influence.group_unknowns[where[0]][c][:, 2 * where[1]:2 * where[1] + 2]
-                out.append(x if pairs[p].kind == "R" else np.stack([x[:, 0], 0 * x[:, 0]], -1))
-        return np.stack(out)
+    n = influence.crank.shape[1]
     K = len(pairs)
     if K == 0:                                 # no friction anywhere
-        n = influence.crank.shape[1]
         return FrictionMap(np.zeros((0, n, 2)), np.zeros((n, 0, 2, 0)), np.zeros((0, n)))
-    base = coordinates(0)
-    lever = np.stack([coordinates(q + 1) for q in range(K)], axis=-1).transpose(1, 0, 2, 3).copy()
-    coefficient = np.stack([-np.sign(pair.relative) * c.f * (c.r if pair.kind == "R" else 1.0)
-                            for pair, c in zip(pairs, coefficients)])
-    return FrictionMap(base, lever, coefficient)
+    base, lever = np.zeros((K, n, 2)), np.zeros((n, K, 2, K))
+    for p, where in enumerate(locate):
+        if where is None:                      # the crank's pivot: R₀₁
+            for k, part in enumerate((influence.crank.real, influence.crank.imag)):
+                base[p, :, k], lever[:, p, k] = part[0], part[1:].T
+            continue
+        x = influence.group_unknowns[where[0]].transpose(1, 2, 0)[:, 2 * where[1]:2 * where[1] + 2]   # (N, 2, C)
+        used = 2 if pairs[p].kind == "R" else 1                          # P: (N, 0)
+        base[p, :, :used], lever[:, p, :used] = x[:, :used, 0], x[:, :used, 1:]
+    return FrictionMap(base, lever, friction_coefficients(pairs, coefficients))
+
+
+def friction_coefficients(pairs: list[KinematicPair], coefficients: list[PairFriction]) -> np.ndarray:
+    """(K, N): −sgn(relative) f_p ρ_p of every friction pair, ρ_p = r_p (revolute) or 1 (prismatic) (3.3)."""
+    return np.stack([-np.sign(pair.relative) * c.f * (c.r if pair.kind == "R" else 1.0)
+                     for pair, c in zip(pairs, coefficients)])
 
 
 @dataclass
@@ -173,7 +177,28 @@ def bound_ratio(fmap: FrictionMap) -> np.ndarray:
 
 def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None, jams: bool = True,
           ratios: bool = True) -> Solved:
-    """z = G(z) at every angle (module docstring); ``budget``: a wall-clock bound (s), the angles it leaves are
+    """z = G(z) at every angle, compiled (groups/compiled.py): the decisions of ``solve_reference``, angle by
+    angle, equal to it to rounding; ``budget`` is looked at between blocks of angles.  The series' ratio q at
+    the answer is computed afterwards for all the angles that do not lock at once (NaN where they lock)."""
+    K, n = fmap.coefficient.shape
+    if K == 0:                                 # without friction the first approximation is the equilibrium
+        none = np.zeros(n, bool)
+        return Solved(np.zeros((0, n)), np.zeros(n), none, np.ones(n, bool), np.zeros(n), 0)
+    deadline = time.perf_counter() + (budget if budget is not None else np.inf)
+    z, locked, converged, error, iterations = compiled.solve(fmap.base, fmap.lever, fmap.coefficient, tolerance,
+                                                             deadline, jams)
+    todo = np.isfinite(fmap.base).all(axis=(0, 2)) & np.isfinite(fmap.lever).all(axis=(1, 2, 3))
+    ratio = np.where(todo, np.nan, 0.0)
+    if ratios and (todo & ~locked).any():     # q at the answer, all angles at once (as the reference's)
+        free = todo & ~locked
+        _, J, _ = fmap.take(free).evaluate(z[:, free])
+        ratio[free] = spectral_radius(J)
+    return Solved(z, ratio, locked, converged, error, iterations)
+
+
+def solve_reference(fmap: FrictionMap, tolerance: float, budget: float | None = None, jams: bool = True,
+                    ratios: bool = True) -> Solved:
+    """The reference: z = G(z) at every angle at once in numpy (module docstring); ``budget``: a wall-clock bound (s), the angles it leaves are
     reported unconverged, never locked; ``jams``: look for jams (False: a caller that only locates the
     equilibrium's corners, where a jam's angles are decided by another solve); ``ratios``: the series' ratio q
     at the answer (False: a caller that reads only z, the decisions and the error; ``ratio`` is NaN then).
@@ -220,7 +245,8 @@ def solve(fmap: FrictionMap, tolerance: float, budget: float | None = None, jams
                 usable = np.isfinite(step).all(0)
                 candidates = [za + np.where(usable, step, 0.0), G]
                 left = [here.change(share * here.apply(c) - c) for c in candidates]
-                better = usable & (left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf))
+                settled = left[0] <= tolerance * np.abs(here.reactions(candidates[0])).max(axis=(0, 2))
+                better = usable & ((left[0] <= np.where(np.isfinite(left[1]), left[1], np.inf)) | settled)
                 chosen = np.where(better, candidates[0], candidates[1])
                 q = np.zeros(better.size)              # the series' ratio, needed where the textbook's step was taken
                 if (~better).any():

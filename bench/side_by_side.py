@@ -1,0 +1,81 @@
+"""What the in-process side-by-side benchmarks share (bench/general_dynamics.py, bench/group_forces.py): a worker
+process per tree, importing that tree's ``server`` (the tree first on sys.path), warmed up, that times one round
+of requests per line it reads; two such workers, old and new, given the same round in turn so that both see the
+same machine and load; and the command line: ``--repeats``, ``--old PATH`` (side by side; without it, this tree
+alone), the result written to bench/results/.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+from pathlib import Path
+from typing import Callable
+
+ROOT = Path(__file__).resolve().parents[1]
+
+Round = Callable[[int], dict[str, float]]       # round number → seconds by label
+
+
+def serve(root: str, one_round: Round) -> None:
+    """A worker: import the server of ``root``, warm up (the compiled kernels, then one untimed round), say
+    "ready", then one round per line read (its number), its times as a JSON line."""
+    sys.path.insert(0, root)
+    from server.core.warm_up import warm_up
+    warm_up()
+    one_round(0)
+    print("ready", flush=True)
+    for line in sys.stdin:
+        print(json.dumps(one_round(int(line))), flush=True)
+
+
+def in_turn(script: str, old: str, repeats: int) -> dict[str, dict[str, list[float]]]:
+    """{"old"|"new": {label: [seconds, ...]}}: ``repeats`` rounds of ``script``'s workers for the tree ``old``
+    and this one, in turn."""
+    workers = {}
+    for tag, root in (("old", old), ("new", str(ROOT))):
+        workers[tag] = subprocess.Popen([sys.executable, script, "--serve", root], stdin=subprocess.PIPE,
+                                        stdout=subprocess.PIPE, text=True)
+        assert workers[tag].stdout.readline().strip() == "ready"
+    times: dict[str, dict[str, list[float]]] = {tag: {} for tag in workers}
+    for repeat in range(1, repeats + 1):
+        for tag, worker in workers.items():
+            worker.stdin.write(f"{repeat}\n")
+            worker.stdin.flush()
+            for label, seconds in json.loads(worker.stdout.readline()).items():
+                times[tag].setdefault(label, []).append(seconds)
+    for worker in workers.values():
+        worker.stdin.close()
+        worker.wait()
+    return times
+
+
+def alone(one_round: Round, repeats: int) -> dict[str, list[float]]:
+    """{label: [seconds, ...]}: ``repeats`` rounds of this tree, in this process, after the same warm-up."""
+    sys.path.insert(0, str(ROOT))
+    from server.core.warm_up import warm_up
+    warm_up()
+    one_round(0)
+    times: dict[str, list[float]] = {}
+    for repeat in range(1, repeats + 1):
+        for label, seconds in one_round(repeat).items():
+            times.setdefault(label, []).append(seconds)
+    return times
+
+
+def main(doc: str, repeats: int, result: str, one_round: Round,
+         compared: Callable[[str, int], str], single: Callable[[int], str]) -> None:
+    """The command line: a worker (``--serve``), side by side (``--old``) or this tree alone; the table printed
+    and written to bench/results/``result``."""
+    parser = argparse.ArgumentParser(description=doc.split("\n")[0])
+    parser.add_argument("--repeats", type=int, default=repeats)
+    parser.add_argument("--old", help="another checkout to compare with, side by side")
+    parser.add_argument("--serve", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.serve:
+        serve(args.serve, one_round)
+        return
+    text = compared(args.old, args.repeats) if args.old else single(args.repeats)
+    print(text)
+    (ROOT / "bench" / "results" / result).write_text(text, encoding="utf-8")
