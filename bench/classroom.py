@@ -40,6 +40,7 @@ import asyncio
 import gzip
 import http.client
 import json
+import math
 import os
 import platform
 import random
@@ -302,9 +303,18 @@ async def drive_asyncio(port: int, students: list[Student], start: float, end: f
     await asyncio.gather(*(one(student) for student in students))
 
 
-def old_page(port: int, student: Student, start: float, end: float, record: Record) -> None:
-    connection = Connection(port, student, record, end)
-    connection.get(f"/scenes/{student.scene.id}")
+def open_pages(port: int, students: list[Student], record: Record) -> list[Connection]:
+    """Each student's connection, its scene's page opened (its cookies kept; not recorded) before the clock
+    starts, as a class opens its pages before it drags: on a loaded machine a slow page load does not eat the
+    run's window."""
+    connections = [Connection(port, student, record, math.inf) for student in students]
+    for connection in connections:
+        connection.get(f"/scenes/{connection.student.scene.id}")
+    return connections
+
+
+def old_page(connection: Connection, start: float, end: float) -> None:
+    student = connection.student
     for command in page_script(student, start, end):
         if isinstance(command, float):
             time.sleep(command)
@@ -350,12 +360,11 @@ class FamilyFetcher:
         self.connection.close()
 
 
-def new_page(port: int, student: Student, start: float, end: float, record: Record) -> None:
+def new_page(exact: Connection, start: float, end: float) -> None:
     """Grab → family (asynchronous) → drag 1–3 s (exact requests only while the family is missing) → release:
     one exact request → look 1–2 s → grab again."""
-    exact = Connection(port, student, record, end)
-    exact.get(f"/scenes/{student.scene.id}")
-    families = FamilyFetcher(port, student, record, end)
+    student = exact.student
+    families = FamilyFetcher(exact.port, student, exact.record, end)
     time.sleep(max(0.0, start + student.rng.uniform(0, TICK_S) - time.monotonic()))
     grab = 0
     while time.monotonic() < end:
@@ -387,19 +396,19 @@ def new_page(port: int, student: Student, start: float, end: float, record: Reco
 PAGES = {"old": old_page, "new": new_page}
 
 
-def drive_threads(port: int, students: list[Student], start: float, end: float, record: Record,
-                  pattern: str = "old") -> None:
+def drive_threads(connections: list[Connection], start: float, end: float, pattern: str = "old") -> None:
     """One thread and one keep-alive http.client connection per student (and per family fetcher)."""
-    threads = [threading.Thread(target=PAGES[pattern], args=(port, student, start, end, record), daemon=True)
-               for student in students]
+    for connection in connections:
+        connection.end = end
+    threads = [threading.Thread(target=PAGES[pattern], args=(connection, start, end), daemon=True)
+               for connection in connections]
     for thread in threads:
         thread.start()
     for thread in threads:
         thread.join()
 
 
-CLIENTS = {"asyncio": ("asyncio + httpx.AsyncClient", lambda *a: asyncio.run(drive_asyncio(*a[:5]))),
-           "threads": ("threads + http.client", drive_threads)}
+CLIENTS = {"asyncio": "asyncio + httpx.AsyncClient", "threads": "threads + http.client"}
 
 
 def cache_counters_at_exit(log: str) -> list[dict]:
@@ -433,13 +442,14 @@ def run(workers: int, client: str, students: int, seconds: float, seed: int, pat
     # loopback every simulated student shares 127.0.0.1, so the per-address cap is off and each student's own
     # per-client limit (its mdl_client cookie) applies.
     with running_server(workers, tree=tree, env={"MDL_ADDRESS_CONCURRENCY": "0"}) as (port, process):
+        connections = open_pages(port, class_, record) if client == "threads" else []
         server_cpu, client_cpu, busy = server_cpu_s(process), time.process_time(), machine_busy_cpu_s()
         start = time.monotonic() + 0.2
         wall = time.perf_counter()
         if client == "threads":
-            drive_threads(port, class_, start, start + seconds, record, pattern)
+            drive_threads(connections, start, start + seconds, pattern)
         else:
-            CLIENTS[client][1](port, class_, start, start + seconds, record)
+            asyncio.run(drive_asyncio(port, class_, start, start + seconds, record))
         wall = time.perf_counter() - wall
         server_cpu, client_cpu = server_cpu_s(process) - server_cpu, time.process_time() - client_cpu
         busy = machine_busy_cpu_s() - busy
@@ -516,7 +526,7 @@ def markdown_run(result: dict, title: str) -> list[str]:
     requests = len(result["rows"])
     cache = result["cache"]
     looked_up = cache["hits"] + cache["misses"]
-    lines = [f"## {title}", "", f"`{result['command']}`; client: {CLIENTS[result['client']][0]}; "
+    lines = [f"## {title}", "", f"`{result['command']}`; client: {CLIENTS[result['client']]}; "
              f"{result['pattern']} page pattern.", "",
              "| endpoint | requests | req/s | p50 (ms) | p95 (ms) | p99 (ms) | errors (4xx / 5xx / network) | 429s "
              "| cache hits | cut short by a budget |", "|---|---:|---:|---:|---:|---:|---|---:|---:|---:|"]
@@ -568,7 +578,7 @@ def markdown(results: list[dict], comparison: list[dict], args) -> str:
         f"{args.students} --seconds {args.seconds:g} --pattern {' '.join(args.pattern)}`, seed {args.seed}; "
         f"server tree `{args.tree}` ({commit_of(args.tree)}).",
         "",
-        f"Each student keeps to one scene (share of the class, students): {mix}. *Old page pattern*: a student "
+        f"Each student keeps to one scene (share of the class, students): {mix}. Every student opens its scene's page before the clock starts (threads client). *Old page pattern*: a student "
         "drags one slider of one variant for 3–8 s, then another: a random walk over the slider's values, 1–3 "
         "positions every 100 ms, no pauses; the page's request (`scene_request`) with at most one in flight, the "
         "latest values sent when the answer arrives (`web/static/js/common/model/api.js`). *New page pattern*: grab a slider → "
@@ -594,7 +604,7 @@ def markdown(results: list[dict], comparison: list[dict], args) -> str:
                   "|---|---:|---:|---:|---:|"]
         for result in comparison:
             requests = max(len(result["rows"]), 1)
-            lines.append(f"| {CLIENTS[result['client']][0]} | {len(result['rows'])} | {result['client_cpu']:.1f} | "
+            lines.append(f"| {CLIENTS[result['client']]} | {len(result['rows'])} | {result['client_cpu']:.1f} | "
                          f"{1000 * result['client_cpu'] / requests:.2f} | "
                          f"{100 * result['client_cpu'] / result['wall'] / (os.cpu_count() or 1):.0f} % |")
         lines.append("")

@@ -44,6 +44,18 @@ def test_the_heavy_process_yields_the_cpu_to_the_worker():
     assert heavy.LANES["answers"] < heavy.LANES["families"]
 
 
+def test_without_nice_the_lanes_keep_the_workers_priority(monkeypatch):
+    """MDL_HEAVY_NICE=0 (the browser tests' server, whose CPUs the other test processes keep busy): the lanes'
+    new processes run at the worker's own priority."""
+    heavy.shutdown()                                     # new pools, started with the switch off
+    monkeypatch.setattr(heavy, "NICE", False)
+    try:
+        for lane in heavy.LANES:
+            assert heavy.run(os.nice, 0, lane=lane) == os.nice(0)
+    finally:
+        heavy.shutdown()                                 # the next test's pools start with the default
+
+
 def test_elastic_answers_and_refusals_through_the_process():
     client = TestClient(app)
     scene = scenes()["elastic-transmission"]

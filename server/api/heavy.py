@@ -32,7 +32,10 @@ HEAVY_PROCESSES = int(os.environ.get("MDL_HEAVY_PROCESSES", "1"))
 # Lanes of heavy work, each in processes of its own, and their scheduling priority below the workers' (man 2 nice):
 # the answers a student waits for (an elastic machine, a live study) before the slider families, which only
 # make dragging smoother and so take the CPU that is left.
+# MDL_HEAVY_NICE=0 keeps them at the worker's own priority: on a host whose CPUs other processes keep busy (a test
+# run of several processes) a lane at nice 15 gets almost no CPU and its families never arrive.
 LANES = {"answers": 5, "families": 15}
+NICE = os.environ.get("MDL_HEAVY_NICE", "1") != "0"
 T = TypeVar("T")
 _pools: dict[str, ProcessPoolExecutor] = {}
 _stopped: weakref.WeakSet = weakref.WeakSet()   # pools ended by shutdown(): what broke there is not retried
@@ -44,7 +47,7 @@ def _current_pool(lane: str) -> ProcessPoolExecutor:
     with _lock:
         if lane not in _pools:                # forkserver: no fork of a process that runs threads
             _pools[lane] = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"),
-                                               initializer=_start_heavy_process, initargs=(LANES[lane],))
+                                               initializer=_start_heavy_process, initargs=(LANES[lane] if NICE else 0,))
         return _pools[lane]
 
 

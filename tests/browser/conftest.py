@@ -81,7 +81,12 @@ def app_url(tmp_path_factory):
     """Base address of the app, started with uvicorn in a subprocess for the whole session; its
     assignments database lives in a temporary directory."""
     port = _free_port()
-    env = os.environ | {"MDL_DATA_DIR": str(tmp_path_factory.mktemp("data"))}
+    # the heavy lanes at the server's own priority (the other test processes keep the CPUs busy, and a family at
+    # nice 15 would wait for idle CPU that never comes) and a family's wall-clock bound (5 s) raised: on a
+    # loaded machine a family cut short would fail what the tests compare with its contract, which holds for
+    # the complete family
+    env = os.environ | {"MDL_DATA_DIR": str(tmp_path_factory.mktemp("data")), "MDL_FAMILY_BUDGET_S": "60",
+                        "MDL_HEAVY_NICE": "0"}
     server = subprocess.Popen(
         [sys.executable, "-m", "uvicorn", "server.api.app:app", "--host", "127.0.0.1", "--port", str(port)],
         cwd=REPO, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

@@ -49,14 +49,15 @@ def test_dragging_the_speed_moves_the_curves_and_the_verdicts(browser_page):
     drag_slider(page, "#slider-rpm", 1.0)                   # up to 600 rpm
     page.wait_for_function("() => [...document.querySelectorAll('#panel-verdicts tbody tr td:last-child')]"
                            f".some(td => td.textContent === {not_met!r})")
-    page.wait_for_function(f"([id, before]) => JSON.stringify({GRAPH}.data[0].y) !== before", arg=["pv", before_pv])
     rpm = float(page.input_value("#slider-rpm"))
     assert rpm > 500
     assert not_met in verdicts(page)
     peak = lambda y: max(map(float, y.strip("[]").split(",")))
-    assert peak(graph_y(page, "pv")) > 10 * peak(before_pv)        # p·V grows faster than the speed
-    page.wait_for_function(f"([id, before]) => JSON.stringify({GRAPH}.data[0].y) !== before", arg=["load", before_load])
-    assert peak(graph_y(page, "load")) > peak(before_load)        # the inertia loads grow as ω²
+    # under load the first redraw may answer a speed the drag passed through: wait for the final speed's curves
+    # (10× the p·V peak of 60 rpm: p·V grows faster than the speed; the load, whose inertia part grows as ω²)
+    grown = f"([id, least]) => Math.max(...{GRAPH}.data[0].y.map(Number)) > least"
+    page.wait_for_function(grown, arg=["pv", 10 * peak(before_pv)])
+    page.wait_for_function(grown, arg=["load", peak(before_load)])
     assert "NaN" not in page.inner_text("body")
     assert english_in(page.inner_text("body"), "ru") == []
     screenshot(page, "bearings_dry_ru")

@@ -84,13 +84,24 @@ class SlowEndpoint:
                 return
             self.page.wait_for_timeout(20)
 
-    def settle(self, quiet: float = 0.6, limit: float = 30) -> None:
-        """Pump until nothing unheld is pending and no request has come for `quiet` seconds."""
+    def pump_until(self, condition, what: str, limit: float = 60) -> None:
+        """Pump until condition() holds: a loaded machine may take long to send, never forever."""
+        deadline = time.monotonic() + limit
+        while not condition():
+            if time.monotonic() > deadline:
+                raise AssertionError(f"{what}: not within {limit:g} s; requests {self.timeline()}")
+            self.pump(0.05)
+
+    def settle(self, quiet: float = 0.6, limit: float = 60) -> None:
+        """Pump until the page's clients are idle (no element marked busy: ApiClient's onBusy), nothing unheld is
+        pending and no request has come for `quiet` seconds. The page may take long to send the next request
+        after an answer on a loaded machine, but it stays busy meanwhile."""
         deadline = time.monotonic() + limit
         while time.monotonic() < deadline:
             count = len(self.requests)
             self.pump(quiet)
-            if len(self.requests) == count and not [r for r in self.pending() if not r["held"]]:
+            idle = self.page.evaluate("() => document.querySelector('.busy') === null")
+            if idle and len(self.requests) == count and not [r for r in self.pending() if not r["held"]]:
                 return
         raise AssertionError("the page kept sending requests")
 
@@ -198,13 +209,13 @@ def test_kinematics_answer_overtaken_while_awaited_is_dropped_when_it_arrives(br
     slow.holding.add("main")
     page.focus("#slider-lambda")
     page.keyboard.press("ArrowRight")                 # λ 3.00 → 3.01: asked, its answer held
-    slow.pump(0.2)
+    slow.pump_until(lambda: slow.pending("main"), "3.01 asked")
     page.keyboard.press("ArrowRight")                 # 3.02: waits, since 3.01 is still in flight
     slow.pump(0.3)
     first, = slow.pending("main")
     assert first["body"]["params"]["l2"] == pytest.approx(0.301)
     slow.answer(first)                                # 3.01's answer arrives late: 3.02 was asked meanwhile
-    slow.pump(0.5)
+    slow.pump_until(lambda: slow.pending("main"), "3.02 asked")
     second, = slow.pending("main")
     assert second["body"]["params"]["l2"] == pytest.approx(0.302)
     assert plotted(page, "u31") == shown_before       # the overtaken answer is not shown
@@ -257,12 +268,12 @@ def test_dynamics_answer_overtaken_while_awaited_is_dropped_when_it_arrives(brow
     slow.holding.add("main")
     page.focus("#slider-M0")
     page.keyboard.press("ArrowRight")                 # M₀ 60 → 61 N·m, held
-    slow.pump(0.2)
+    slow.pump_until(lambda: slow.pending(), "61 asked")
     page.keyboard.press("ArrowRight")                 # 62 waits
     slow.pump(0.3)
     first, = slow.pending()
     slow.answer(first)
-    slow.pump(0.5)
+    slow.pump_until(lambda: slow.pending(), "62 asked")
     second, = slow.pending()
     assert (first["body"]["motor"]["M0"], second["body"]["motor"]["M0"]) == (61, 62)
     assert plotted(page, "omega_phi") == shown_before

@@ -168,9 +168,10 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
     assert page.inner_text("#editor-elements") == elements
     assert page.inner_text("#editor-formula") == "I(0,1) → II₃(2,3) → II₂(4,5)"
 
-    page.click('a[data-lang="ru"]')
-    page.wait_for_function("() => document.documentElement.lang === 'ru' "
-                           "&& document.querySelector('#editor-drawing').dataset.state === 'ready'")
+    with page.expect_navigation():
+        page.click('a[data-lang="ru"]')
+    page.wait_for_function("() => document.documentElement?.lang === 'ru' "     # (null while the page is replaced)
+                           "&& document.querySelector('#editor-drawing')?.dataset.state === 'ready'")
     plans_ready(page)
     assert page.inner_text("#editor-formula") == "I(0,1) → II₃(2,3) → II₂(4,5)"
     text = page.evaluate("""() => {      // the page's visible words, without notation (translate="no") and drawings

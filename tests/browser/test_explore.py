@@ -95,12 +95,16 @@ def test_kinematics_scene_exports_hovers_pins_turns_and_marks_stale(browser_page
     page.wait_for_function(f"id => {{ const r = ({x_range})(id); return r[0] === 0 && r[1] === 360; }}", arg="u31")
 
     # Compare runs: pin, change λ, both drawn; clear: the ghosts gone. Nothing is asked for the ghosts.
+    # the page at rest first (under load a redraw could still come between reading the curve and pinning it)
+    page.wait_for_function("() => !document.querySelector('.scene-layout.preview, .stage.busy')")
+    page.wait_for_load_state("networkidle")
     asked = []
     page.on("request", lambda request: "/api/" in request.url and asked.append(request.url))
     before = traces(page, "u31")[0]["y"]
     page.click("#pin-curves")
     page.wait_for_function(f"id => {GRAPH}.data.some(t => t.meta?.ghost)", arg="u31")
     assert asked == []
+    assert [t["y"] for t in traces(page, "u31") if t["ghost"]] == [before]     # the ghost is the curve pinned
     page.focus("#slider-lambda")
     for _ in range(5):
         page.keyboard.press("ArrowRight")
