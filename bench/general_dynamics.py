@@ -120,14 +120,17 @@ def single(repeats: int) -> str:
 
 def compared(old: str, repeats: int) -> str:
     times = side_by_side.in_turn(__file__, old, repeats)
-    rows = ["| mechanism | request | old, ms | new, ms | new/old | new ratio to slider_crank |",
-            "|---|---|---:|---:|---:|---:|"]
+    rows = ["| mechanism | request | old, ms | new, ms | new/old | new p95, ms | new ratio to slider_crank |",
+            "|---|---|---:|---:|---:|---:|---:|"]
     for label, values in times["new"].items():
         mech, kind = label.split("|")
         old_ms, new_ms = 1e3 * statistics.median(times["old"][label]), 1e3 * statistics.median(values)
+        p95 = 1e3 * statistics.quantiles(values, n=20)[-1]
         base = 1e3 * statistics.median(times["new"][f"slider_crank|{kind}"])
-        rows.append(f"| {mech} | {kind} | {old_ms:.1f} | {new_ms:.1f} | {new_ms / old_ms:.2f} | {new_ms / base:.2f} |")
-    return head(repeats, f", old ({old}) and new (this tree) in two processes in turn") + "\n".join(rows) + "\n"
+        rows.append(f"| {mech} | {kind} | {old_ms:.1f} | {new_ms:.1f} | {new_ms / old_ms:.2f} | {p95:.1f} | "
+                    f"{new_ms / base:.2f} |")
+    return (head(repeats, f", old ({old}) and new (this tree) in two processes in turn") + "\n".join(rows)
+            + "\n")
 
 
 if __name__ == "__main__":

@@ -144,3 +144,43 @@ def test_chop_drops_a_tail_no_larger_than_allowed():
     assert dropped == pytest.approx(np.abs(c[kept.size:]).sum()) and dropped <= 1e-6
     assert np.abs(c[kept.size - 1:]).sum() > 1e-6                        # the longest such tail
     assert kink_table.chop(np.zeros(9), 0.0)[0].size == 1                 # c₀ stays
+
+
+def plain_at(table: kink_table.KinkTable, phi: np.ndarray) -> np.ndarray:
+    """KinkTable.at in plain numpy (the reference of the compiled ``evaluate``): numpy's chebval on each angle's
+    segment, NaN within KINK_SIDE / 2 of an inner kink around the turn (off the kink) or on a segment without
+    interpolants, the kept values on a given kink."""
+    turn = 2 * np.pi
+    out = np.full((table.kink_values.shape[0], phi.size), np.nan)
+    inner = table.edges[table.sided]
+    for i, angle in enumerate(phi):
+        psi = angle % turn
+        k = min(max(int(np.searchsorted(table.edges, psi, side="right")) - 1, 0), len(table.coefficients) - 1)
+        gaps = np.abs(psi - inner)
+        near = bool((np.minimum(gaps, turn - gaps) < 0.5 * KINK_SIDE).any())
+        if not near and table.coefficients[k] is not None:
+            t = (2 * psi - table.low[k] - table.high[k]) / (table.high[k] - table.low[k])
+            out[:, i] = [np.polynomial.chebyshev.chebval(t, c) for c in table.coefficients[k]]
+        if angle in table.kinks:
+            out[:, i] = table.kink_values[:, list(table.kinks).index(angle)]
+    return out
+
+
+def test_compiled_evaluation_equals_the_plain_reference():
+    """Random angles over three turns (negative ones too), the kinks ± KINK_SIDE·{0.25, 0.5, 1} and a kink near
+    0 (its neighbourhood across the turn's end): the compiled evaluation equals numpy's chebval to 1e-14 of each
+    function's scale (Clenshaw's and chebval's roundings differ), NaN exactly where the reference has NaN."""
+    def functions(phi):
+        psi = np.mod(phi, 2 * np.pi)
+        return np.stack([np.sin(3 * psi) + (psi > 2.0), np.exp(np.cos(psi)), np.abs(psi - 4.5)])
+
+    kinks = np.array([1e-4, 2.0, 4.0, 5.0])
+    table = kink_table.build(functions, kinks, 1e-13, (32, 64, 128))
+    offsets = KINK_SIDE * np.array([-1, -0.5, -0.25, 0, 0.25, 0.5, 1])
+    phi = np.concatenate([np.random.default_rng(7).uniform(-2 * np.pi, 4 * np.pi, 3000),
+                          (kinks[:, None] + offsets).ravel(), kinks, [0.0, 2 * np.pi - 1e-9]])
+    values, direct = table.at(phi)
+    reference = plain_at(table, phi)
+    assert np.array_equal(np.isnan(values), np.isnan(reference)) and np.array_equal(direct, np.isnan(reference).any(0))
+    finite = ~np.isnan(reference)
+    assert (np.abs(values - reference)[finite] <= 1e-14 * np.repeat(table.scale[:, None], phi.size, 1)[finite]).all()

@@ -54,7 +54,7 @@ class KinkTable:
     error: np.ndarray            # per function: the largest error estimate of an interpolated segment
     scale: np.ndarray            # per function: its largest magnitude over the nodes
     evaluated: int               # angles evaluated to build it
-    flat: np.ndarray = field(init=False, repr=False)     # the coefficients one after another, for ``clenshaw``:
+    flat: np.ndarray = field(init=False, repr=False)     # the coefficients one after another, for ``evaluate``:
     start: np.ndarray = field(init=False, repr=False)    # (segments, m) where each interpolant's begin, and
     degree: np.ndarray = field(init=False, repr=False)   # its degree (−1: evaluated directly)
 
@@ -70,48 +70,54 @@ class KinkTable:
 
     def at(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The functions at ``phi`` ((m, N): from the interpolants by Clenshaw's recurrence, compiled:
-        ``clenshaw``; at a kink given, its kept values), and where they are to be evaluated directly (those
+        ``evaluate``; at a kink given, its kept values), and where they are to be evaluated directly (those
         values NaN): on a segment not interpolated, and within KINK_SIDE / 2 of a kink but not on it (the
         integrator's sided nodes, KINK_SIDE inside, are interpolated: they are the segments' ends)."""
         phi = np.asarray(phi, float)
-        psi = np.mod(phi, TURN)
-        segment = np.clip(np.searchsorted(self.edges, psi, side="right") - 1, 0, len(self.coefficients) - 1)
-        near = np.zeros(psi.shape, bool)
-        inner = self.edges[self.sided]
-        if inner.size:                                    # the kinks on either side, around the turn
-            index = np.searchsorted(inner, psi)
-            for side in (index - 1, index % inner.size):
-                gap = np.abs(psi - inner[side])
-                near |= np.minimum(gap, TURN - gap) < 0.5 * KINK_SIDE
-        segment = np.where(near, -1, segment).astype(np.int64)
-        out = clenshaw(psi, segment, self.low, self.high, self.flat, self.start, self.degree)
-        if self.kinks.size:
-            place = np.minimum(np.searchsorted(self.kinks, phi), self.kinks.size - 1)
-            exact = self.kinks[place] == phi
-            out[:, exact] = self.kink_values[:, place[exact]]
+        out = evaluate(phi.ravel(), self.edges, self.edges[self.sided], self.kinks, self.kink_values, self.low,
+                       self.high, self.flat, self.start, self.degree, 0.5 * KINK_SIDE)
+        out = out.reshape((out.shape[0],) + phi.shape)
         return out, np.isnan(out).any(axis=0)
 
 
 @njit(cache=True)
-def clenshaw(phi, segment, low, high, flat, start, degree):
-    """Σ_k c_k T_k(t) of each of segment[i]'s interpolants at each phi[i] by Clenshaw's recurrence (Trefethen,
-    ATAP, ch. 3): (functions, N); NaN where segment[i] < 0 or has none (degree −1)."""
+def evaluate(phi, edges, inner, kinks, kink_values, low, high, flat, start, degree, near):
+    """KinkTable.at, compiled: (functions, N) from each angle's segment by Clenshaw's recurrence; NaN within
+    ``near`` of an inner kink (either side, around the turn) off the kink itself and on a segment without
+    interpolants; a given kink's kept values on the kink."""
     count = degree.shape[1]
+    last = low.size - 1
     out = np.empty((count, phi.size))
     for i in range(phi.size):
-        k = segment[i]
-        if k < 0 or degree[k, 0] < 0:
+        psi = phi[i] % TURN
+        segment = min(max(np.searchsorted(edges, psi, side="right") - 1, 0), last)
+        if inner.size:
+            index = np.searchsorted(inner, psi)
+            for side in (index - 1 if index > 0 else inner.size - 1, index % inner.size):
+                gap = abs(psi - inner[side])
+                if min(gap, TURN - gap) < near:
+                    segment = -1
+        if segment < 0 or degree[segment, 0] < 0:
             out[:, i] = np.nan
-            continue
-        t = (2.0 * phi[i] - (low[k] + high[k])) / (high[k] - low[k])
-        for f in range(count):
-            first = start[k, f]
-            b1 = 0.0
-            b2 = 0.0
-            for j in range(degree[k, f], 0, -1):
-                b1, b2 = 2.0 * t * b1 - b2 + flat[first + j], b1
-            out[f, i] = t * b1 - b2 + flat[first]
+        else:
+            t = (2.0 * psi - (low[segment] + high[segment])) / (high[segment] - low[segment])
+            for f in range(count):
+                out[f, i] = clenshaw(t, flat, start[segment, f], degree[segment, f])
+        if kinks.size:
+            place = min(np.searchsorted(kinks, phi[i]), kinks.size - 1)
+            if kinks[place] == phi[i]:
+                out[:, i] = kink_values[:, place]
     return out
+
+
+@njit(cache=True)
+def clenshaw(t, flat, first, degree):
+    """Σ_k c_k T_k(t), c = flat[first:first + degree + 1], by Clenshaw's recurrence (Trefethen, ATAP, ch. 3)."""
+    b1 = 0.0
+    b2 = 0.0
+    for j in range(degree, 0, -1):
+        b1, b2 = 2.0 * t * b1 - b2 + flat[first + j], b1
+    return t * b1 - b2 + flat[first]
 
 
 def chebyshev_coefficients(values: np.ndarray) -> np.ndarray:
@@ -134,10 +140,10 @@ def chop(c: np.ndarray, allowed: float) -> tuple[np.ndarray, float]:
 
 
 def warm_up() -> float:
-    """Compile (or load from the disk cache) ``clenshaw``; seconds."""
+    """Compile (or load from the disk cache) ``evaluate`` and its ``clenshaw``; seconds."""
     started = time.perf_counter()
-    clenshaw(np.zeros(1), np.zeros(1, np.int64), np.zeros(1), np.ones(1), np.ones(2), np.zeros((1, 1), np.int64),
-             np.ones((1, 1), np.int64))
+    evaluate(np.zeros(1), np.array([0.0, 1.0, TURN]), np.array([1.0]), np.array([1.0]), np.zeros((1, 1)),
+             np.zeros(2), np.ones(2), np.ones(4), np.array([[0], [2]], np.int64), np.ones((2, 1), np.int64), 0.1)
     return time.perf_counter() - started
 
 
