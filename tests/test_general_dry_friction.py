@@ -116,6 +116,10 @@ def test_preset_steady_cycle_with_friction(name):
     assert works["dry_friction"] > 0
     balance = works["driving"] - works["useful"] - works["dry_friction"] - works["viscous_friction"]
     assert abs(balance) <= 1e-8 * works["driving"], works
+    # η = A_useful/A_driving (Chaika–Vasylenko (3.38)) against the motor's work integrated on its own: equal to the
+    # energy balance's residual (1e-8); below 1 with friction in the pairs (it read 1 when only the load's f counted)
+    assert steady["efficiency"] < 1
+    assert steady["efficiency"] == pytest.approx(works["useful"] / works["driving"], rel=1e-8)
 
 
 def test_unknown_pair_and_self_locking():

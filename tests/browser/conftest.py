@@ -53,6 +53,13 @@ def plot_text(text: str) -> str:
     return str(notation(text))
 
 
+def families_arrived(page) -> None:
+    """Every slider family the page asked for has arrived (family_preview.js marks both): a family is a heavy
+    computation, and a client with two of them in flight is answered 429 (retried, but said on the console)."""
+    page.wait_for_function("() => performance.getEntriesByName('family-full-arrived').length >= "
+                           "performance.getEntriesByName('family-requested').length")
+
+
 def drag_slider(page, selector: str, fraction: float) -> None:
     """Press the mouse on the range input's thumb and drag it to `fraction` of the track."""
     page.locator(selector).scroll_into_view_if_needed()

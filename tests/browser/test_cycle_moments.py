@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-from conftest import REPO, drag_slider, read_scene, screenshot
+from conftest import REPO, drag_slider, families_arrived, read_scene, screenshot
 
 sys.path.insert(0, str(REPO / "tests"))
 from test_translations import english_in  # noqa: E402
@@ -31,13 +31,6 @@ def last_x(page, panel: str) -> float:
 def changed(page, panel: str, k: int, before: str) -> None:
     page.wait_for_function(f"([id, k, before]) => JSON.stringify({GRAPH}?.data?.[k]?.y) !== before",
                            arg=[panel, k, before])
-
-
-def families_arrived(page) -> None:
-    """Every slider family the page asked for has arrived (family_preview.js marks both): a family is a heavy
-    computation, and a client with two of them in flight is answered 429 (retried, but said on the console)."""
-    page.wait_for_function("() => performance.getEntriesByName('family-full-arrived').length >= "
-                           "performance.getEntriesByName('family-requested').length")
 
 
 def figure(page, index: int) -> str:

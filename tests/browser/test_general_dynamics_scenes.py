@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import drag_slider, interface_texts, read_scene, screenshot, shown
+from conftest import drag_slider, families_arrived, interface_texts, read_scene, screenshot, shown
 from test_dynamics import figure_value, open_scene, trace, wait_for_new_trace
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -42,6 +42,19 @@ def test_shaping_machine_equation_of_motion(browser_page):
     page.wait_for_function("""([label, before]) => [...document.querySelectorAll('.figures-list dt')]
         .find(dt => dt.textContent === label)?.nextElementSibling.textContent !== before""", arg=[mean_speed, slower])
     assert number(figure_value(page, mean_speed)) > number(slower)
+    faster, before = figure_value(page, mean_speed), trace(page, "omega_phi")
+    families_arrived(page)                                  # two heavy families in flight: a third is told 429
+    drag_slider(page, "#slider-f", 0.9)                     # dry friction in every pair: the pairs' work slows it
+    wait_for_new_trace(page, "omega_phi", before)
+    page.wait_for_function("""([label, before]) => [...document.querySelectorAll('.figures-list dt')]
+        .find(dt => dt.textContent === label)?.nextElementSibling.textContent !== before""", arg=[mean_speed, faster])
+    assert number(figure_value(page, mean_speed)) < number(faster)
+    items = MOTION["panels"]["figures"]["items"]
+    efficiency, driving, useful = (shown(next(i for i in items if i["path"] == path)["label"]["ru"])
+                                   for path in ("efficiency", "works.driving", "works.useful"))
+    eta = number(figure_value(page, efficiency))                 # the pairs' work: η = A_useful/A_driving < 1
+    assert 0 < eta < 1
+    assert eta == pytest.approx(number(figure_value(page, useful)) / number(figure_value(page, driving)), rel=2e-3)
     assert english_words(page) == []
     assert "NaN" not in page.inner_html("#panels")
     screenshot(page, "general_motion_shaping_ru")

@@ -85,6 +85,11 @@ class GeneralMachine(Machine):
         """Whether a pair has dry friction."""
         return rough(self.masses, dict(self.pairs))
 
+    @property
+    def lossless(self) -> bool:
+        """No friction: none in the load, none viscous, and no pair with dry friction."""
+        return super().lossless and not self.rough
+
     def dry(self, comp: Composition) -> tuple[np.ndarray, list[Notice], np.ndarray]:
         """M_T(φ) of the pairs' dry friction on ``comp``, the notices (self-locking; the work bound), and the
         rough prismatic pairs' normal forces (R, N) (NaN where there is no equilibrium), solved at every angle

@@ -90,6 +90,12 @@ class Machine:
         """True when a moment depends on ω: then the ODE path; otherwise the energy integral."""
         return self.motor.speed_dependent or self.load.beta > 0
 
+    @property
+    def lossless(self) -> bool:
+        """No friction of any kind (the load's f and β zero, its friction terms the consistent ones): the driving
+        work over a steady cycle is the useful work, η = 1 by construction."""
+        return self.load.f == 0 and self.load.beta == 0 and self.load.convention == "consistent"
+
     def cycle(self) -> float:
         return max(MECHANISMS[self.mechanism].cycle(self.params), self.motor.cycle())
 

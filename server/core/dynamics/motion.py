@@ -185,8 +185,7 @@ def efficiency(machine: Machine, works: dict[str, float]) -> float | None:
     by construction; with friction the losses are ≥ 0 and η ≤ 1. None where η has no meaning: a useful
     work below zero (a balancing moment that drives) or losses below zero (the textbook's printed formulas,
     with which friction helps on the return stroke)."""
-    load = machine.load
-    if load.f == 0 and load.beta == 0 and load.convention == "consistent":
+    if machine.lossless:
         return 1.0
     losses = works["dry_friction"] + works["viscous_friction"]
     if works["useful"] < 0 or losses < 0:
