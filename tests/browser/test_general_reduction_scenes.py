@@ -72,6 +72,13 @@ def test_shaping_machine_reduced_inertia_link_by_link(browser_page):
     words = INERTIA["panels"]["link_parts"]["series_each"]["words"]
     assert names(page, "link_parts") == [plot_text(words["constant"]["ru"])] + LINKS
     assert names(page, "link_slopes") == [INERTIA["panels"]["link_slopes"]["series_each"]["words"]["constant"]["ru"]] + LINKS
+    said = page.evaluate("""async (panel) => {      // the same keys said in uk and en by the page's own module
+      const entry = document.querySelector('script[type="module"][src*="_scene.js"]').src;
+      const { heldSeries } = await import(new URL("../dynamics/view/dynamics_figures.js", entry));
+      const data = { inertia: { parts: { constant: [1], "link 2": [1], "link 5": [1] } } };
+      return heldSeries(panel, data).map((series) => [series.label.uk, series.label.en]);
+    }""", INERTIA["panels"]["link_parts"])
+    assert said == [[words["constant"]["uk"], words["constant"]["en"]], ["ланка 2", "link 2"], ["ланка 5", "link 5"]]
     exact = shown(INERTIA["panels"]["general_inertia"]["series"][0]["label"]["ru"])
     mean_label = shown(INERTIA["panels"]["figures"]["items"][0]["label"]["ru"])
     J, parts, mean = trace(page, "general_inertia", exact), traces(page, "link_parts"), figure_value(page, mean_label)
