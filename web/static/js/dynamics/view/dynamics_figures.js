@@ -6,8 +6,10 @@
  *          gaps where the answer's values there are null (ζ where the compliance is infinite); x_unit ""
  *          plots against another series (a phase portrait of the twist), and the nearest point is read;
  *          `series_each: {path, label}` adds one series per key of the answer's object at path (the reactions
- *          of a general mechanism by pair, "magnitudes": {R12, R23, …}), labelled by the template with {key}
- *          written as a symbol with its subscript (R12 → R₁₂);
+ *          of a general mechanism by pair, "magnitudes": {R12, R23, …}), labelled by the template (one for
+ *          every language, or {ru, uk, en}) with {key} written as a symbol with its subscript (R12 → R₁₂);
+ *          with `words: {word: {ru, uk, en}}` a key that is a word, or whose space-separated words are, is
+ *          said in the reader's language word by word ("link 3" → "звено 3", "force E/ram" → "сила E/ram");
  *          style "markers" draws the defined points alone (an operating point on a characteristic)
  *   polar  the phase portrait ω(φ): radius r against angle θ (rad, drawn in degrees), so the start-up
  *          winds round and round onto the closed steady cycle (style "bold"); panel.r_title names the
@@ -43,14 +45,26 @@ function seriesColor(panel, series) {
 /** "R12" → "R_{12}", "R05" → "R_{05}": a key of the answer as notation markup. */
 const keySymbol = (key) => key.replace(/^([^\d]+)(\d+)$/, "$1_{$2}");
 
+const LANGUAGES = ["ru", "uk", "en"];
+
+/** A key of the answer as said in lang: the key itself, or its words in series_each.words, or a symbol. */
+function keyText(key, words, lang) {
+  if (words?.[key]) return words[key][lang];
+  const parts = key.split(" ");
+  if (!words || !parts.some((part) => words[part])) return keySymbol(key);
+  return parts.map((part) => words[part]?.[lang] ?? part).join(" ");
+}
+
 /** The panel's series with those its series_each makes from the answer's keys. */
 function panelSeries(panel, data) {
   const each = panel.series_each;
   const object = each ? pathValue(data, each.path) : null;
   if (!object || typeof object !== "object") return panel.series;
+  const template = (lang) => (typeof each.label === "string" ? each.label : each.label[lang]);
   const made = Object.keys(object).map((key, i) => {
-    const text = each.label.replaceAll("{key}", keySymbol(key));
-    return { y: `${each.path}.${key}`, each: i, label: { ru: text, uk: text, en: text } };
+    const label = Object.fromEntries(LANGUAGES.map((lang) =>
+      [lang, template(lang).replaceAll("{key}", keyText(key, each.words, lang))]));
+    return { y: `${each.path}.${key}`, each: i, label };
   });
   return [...panel.series, ...made];
 }
