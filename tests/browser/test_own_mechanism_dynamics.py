@@ -1,0 +1,106 @@
+"""A student's own mechanism carried from the editor into the dynamics scenes, in a real browser: a preset loaded
+and changed (a rod's length), one mass edited in "Masses and loads", the equation of motion opened from the
+editor draws the steady cycle and follows M₀; the link keeps the mechanism and the edited mass; the flywheel and
+forces scenes open and draw; without a mechanism in the address the variant says how to get one. No console
+problems; screenshots in ru and at phone size."""
+from __future__ import annotations
+
+import base64
+import json
+
+import pytest
+
+from conftest import PHONE, REPO, drag_slider, interface_texts, read_scene, screenshot
+from test_dynamics import open_scene, trace, wait_for_new_trace, wait_for_panels
+from test_editor import act, number
+
+pytestmark = pytest.mark.browser
+
+MOTION = read_scene("equation_of_motion")
+FLYWHEEL = read_scene("flywheel")
+FORCES = read_scene("forces_friction")
+SHAPING = json.loads((REPO / "content" / "mechanisms" / "shaping_machine.json").read_text(encoding="utf-8"))
+ROD = '[data-group="1"] > label.field input[type="text"]'      # the RRP group's rod length
+MASS = 'input[data-path="masses.links.1.mass"]'                 # the rocker's mass (link 3)
+
+
+def own(scene: dict) -> dict:
+    return next(v for v in scene["variants"] if v["id"] == "own")
+
+
+def masses_ready(page) -> None:
+    page.wait_for_function("() => document.querySelector('#editor-open-dynamics a[data-scene]') !== null",
+                           timeout=30_000)
+
+
+def open_from_editor(page, scene: dict) -> None:
+    with page.expect_navigation():
+        page.click(f'#editor-open-dynamics a[data-scene="{scene["id"]}"]')
+    wait_for_panels(page, scene, own(scene))
+
+
+def test_own_mechanism_from_the_editor_into_the_dynamics_scenes(browser_page):
+    page = browser_page
+    page.goto("/editor?lang=ru")
+    page.wait_for_function("() => document.querySelector('#editor-drawing').dataset.state !== undefined")
+    act(page, lambda: page.select_option("#editor-preset", "shaping_machine"))
+    masses_ready(page)
+    assert number(page.input_value(MASS)) == 11.0                       # the preset's, not the estimate
+    act(page, lambda: (page.fill(ROD, "0,2"), page.press(ROD, "Enter")))   # the student's own: a longer rod
+    masses_ready(page)
+    page.fill(MASS, "15,5")
+    page.press(MASS, "Tab")
+    page.wait_for_function("""() => { const d = new URLSearchParams(location.search).get('d');
+        return d && JSON.parse(atob(d.replace(/-/g, '+').replace(/_/g, '/'))).masses.links[1].mass === 15.5; }""")
+    page.locator("#editor-dynamics").scroll_into_view_if_needed()
+    screenshot(page, "own_mechanism_editor_masses_ru")
+    editor = page.url
+
+    open_from_editor(page, MOTION)                                      # the steady cycle of the student's machine
+    assert page.inner_text("#notices") == ""
+    sent = page.evaluate("() => new URLSearchParams(location.search).get('variant')")
+    assert sent == "own"
+    before = trace(page, "omega_phi")
+    drag_slider(page, "#slider-M0", 0.9)                                # a stronger motor: another steady cycle
+    wait_for_new_trace(page, "omega_phi", before)
+    assert "NaN" not in page.inner_html("#panels")
+    screenshot(page, "own_mechanism_motion_ru")
+
+    page.goto(editor)                                                   # the link is the document
+    masses_ready(page)
+    assert number(page.input_value(MASS)) == 15.5
+    assert number(page.input_value(ROD)) == 0.2
+    open_from_editor(page, FLYWHEEL)
+    assert page.inner_text("#notices") == ""
+    page.go_back()
+    masses_ready(page)
+    open_from_editor(page, FORCES)
+    assert "NaN" not in page.inner_html("#panels")
+    screenshot(page, "own_mechanism_forces_ru")
+    assert page.problems == []
+
+
+def test_own_variant_without_a_mechanism_says_how_to_get_one(browser_page):
+    page = browser_page
+    page.goto(f"/scenes/{MOTION['id']}?lang=uk&variant=own")
+    page.wait_for_selector(".own-mechanism-missing")
+    texts = interface_texts("uk")
+    assert texts["own_mechanism_open_editor"] in page.inner_text("#notices")
+    assert page.get_attribute(".own-mechanism-missing a", "href") == "/editor?lang=uk"
+    assert page.problems == []
+
+
+def test_own_mechanism_on_a_phone(phone):
+    linkage = base64.urlsafe_b64encode(json.dumps(SHAPING["linkage"]).encode()).decode().rstrip("=")
+    phone.goto(f"/editor?lang=ru&m={linkage}")                          # a shared mechanism without masses
+    masses_ready(phone)
+    assert number(phone.input_value(MASS)) == pytest.approx(5.5)        # the estimate: 10 kg/m × 0.55 m
+    phone.locator("#editor-dynamics").scroll_into_view_if_needed()
+    width = phone.evaluate("() => document.documentElement.scrollWidth")
+    assert width <= PHONE["width"], f"the editor is {width} px wide on a 390 px screen"
+    screenshot(phone, "own_mechanism_editor_phone_ru")
+    open_from_editor(phone, MOTION)
+    width = phone.evaluate("() => document.documentElement.scrollWidth")
+    assert width <= PHONE["width"], f"the scene is {width} px wide on a 390 px screen"
+    screenshot(phone, "own_mechanism_motion_phone_ru")
+    assert phone.problems == []
