@@ -104,3 +104,38 @@ def test_own_mechanism_on_a_phone(phone):
     assert width <= PHONE["width"], f"the scene is {width} px wide on a 390 px screen"
     screenshot(phone, "own_mechanism_motion_phone_ru")
     assert phone.problems == []
+
+
+ADDRESSED_JS = """async ({ scenes, documents }) => {
+  const entry = document.querySelector('script[type="module"][src*="_scene.js"]').src;
+  const { resolveAddressVariants } = await import(new URL("../common/model/address_mechanism.js", entry));
+  const { DynamicsModel } = await import(new URL("../dynamics/model/dynamics_model.js", entry));
+  return Object.fromEntries(Object.entries(scenes).map(([id, scene]) => {
+    resolveAddressVariants(scene, documents);
+    const model = new DynamicsModel(scene, { variant: "own", values: {} });
+    return [id, { sliders: model.variant.sliders, body: model.request() }];
+  }));
+}"""
+
+
+def test_the_page_and_the_server_resolve_the_address_alike(browser_page):
+    """address_mechanism.js against server/lessons (scene_files.addressed, requests.scene_request) on a hand-built
+    six-bar and its estimate: the same sliders and the same request body, exactly."""
+    from server.core.structure.estimate import estimated_dynamics
+    from server.lessons.requests import address_variant, scene_request
+    from server.lessons.scenes import scenes
+    from test_dynamics_estimate import HAND_BUILT
+
+    documents = {"m": HAND_BUILT, "d": estimated_dynamics(HAND_BUILT)}
+    chosen = {s.id: s for s in scenes().values() if any(v.address for v in s.variants)}
+    page = browser_page
+    page.goto(f"/scenes/{MOTION['id']}?lang=en")
+    page.locator(".main-svg").first.wait_for(state="visible")
+    built = page.evaluate(ADDRESSED_JS, {"scenes": {i: json.loads(s.model_dump_json()) for i, s in chosen.items()},
+                                         "documents": documents})
+    for scene_id, scene in chosen.items():
+        variant = address_variant(next(v for v in scene.variants if v.address), documents)
+        assert built[scene_id]["body"] == scene_request(scene, variant), scene_id
+        assert [(s["min"], s["max"], s["step"], s["default"]) for s in built[scene_id]["sliders"]] == \
+            [(s.min, s.max, s.step, s.default) for s in variant.sliders], scene_id
+    assert page.problems == []
