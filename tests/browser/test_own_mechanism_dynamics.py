@@ -12,7 +12,7 @@ import pytest
 
 from conftest import PHONE, REPO, drag_slider, interface_texts, read_scene, screenshot
 from test_dynamics import open_scene, trace, wait_for_new_trace, wait_for_panels
-from test_editor import act, number
+from test_editor import REFUSED, act, number
 
 pytestmark = pytest.mark.browser
 
@@ -88,6 +88,26 @@ def test_own_variant_without_a_mechanism_says_how_to_get_one(browser_page):
     assert texts["own_mechanism_open_editor"] in page.inner_text("#notices")
     assert page.get_attribute(".own-mechanism-missing a", "href") == "/editor?lang=uk"
     assert page.problems == []
+
+
+def encoded(document: dict) -> str:
+    return base64.urlsafe_b64encode(json.dumps(document).encode()).decode().rstrip("=")
+
+
+def test_a_mechanism_the_machine_refuses_is_said_in_words(browser_page):
+    """A rod too short for the crank's whole turn: the motion endpoint's 422 is shown as every dynamics page shows
+    one (the reason in the reader's language), and nothing else goes wrong."""
+    from server.core.structure.estimate import estimated_dynamics
+    short = json.loads(json.dumps(SHAPING["linkage"]))
+    short["groups"][1]["length"] = 0.01
+    page = browser_page
+    page.goto(f"/scenes/{MOTION['id']}?lang=ru&variant=own&m={encoded(short)}"
+              f"&d={encoded(estimated_dynamics(SHAPING['linkage']))}")
+    page.wait_for_selector("#notices .refusal")
+    texts = interface_texts("ru")
+    assert texts["computation_refused"] in page.inner_text("#notices")
+    assert texts["err_no_full_turn"].split("{")[0].strip() in page.inner_text("#notices")
+    assert [p for p in page.problems if not REFUSED.search(p)] == []
 
 
 def test_own_mechanism_on_a_phone(phone):
