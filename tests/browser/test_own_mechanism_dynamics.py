@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import base64
 import json
+from pathlib import Path
 
 import pytest
 
@@ -33,6 +34,11 @@ def masses_ready(page) -> None:
                            timeout=30_000)
 
 
+def estimated(page) -> int:
+    """How many estimates the editor's masses table has taken."""
+    return int(page.get_attribute("#editor-masses", "data-estimates") or 0)
+
+
 def open_from_editor(page, scene: dict) -> None:
     with page.expect_navigation():
         page.click(f'#editor-open-dynamics a[data-scene="{scene["id"]}"]')
@@ -46,10 +52,14 @@ def test_own_mechanism_from_the_editor_into_the_dynamics_scenes(browser_page):
     act(page, lambda: page.select_option("#editor-preset", "shaping_machine"))
     masses_ready(page)
     assert number(page.input_value(MASS)) == 11.0                       # the preset's, not the estimate
-    act(page, lambda: (page.fill(ROD, "0,2"), page.press(ROD, "Enter")))   # the student's own: a longer rod
-    masses_ready(page)
-    page.fill(MASS, "15,5")
+    page.fill(MASS, "15,5")                                             # one mass edited
     page.press(MASS, "Tab")
+    estimates = estimated(page)
+    act(page, lambda: (page.fill(ROD, "0,2"), page.press(ROD, "Enter")))   # the student's own: a longer rod
+    page.wait_for_function("n => Number(document.querySelector('#editor-masses').dataset.estimates) > n",
+                           arg=estimates)
+    assert number(page.input_value(MASS)) == 15.5                       # kept on the changed mechanism
+    assert number(page.input_value('input[data-path="masses.links.2.mass"]')) == 3.0   # the preset's rod, kept
     page.wait_for_function("""() => { const d = new URLSearchParams(location.search).get('d');
         return d && JSON.parse(atob(d.replace(/-/g, '+').replace(/_/g, '/'))).masses.links[1].mass === 15.5; }""")
     page.locator("#editor-dynamics").scroll_into_view_if_needed()
@@ -87,6 +97,8 @@ def test_own_variant_without_a_mechanism_says_how_to_get_one(browser_page):
     texts = interface_texts("uk")
     assert texts["own_mechanism_open_editor"] in page.inner_text("#notices")
     assert page.get_attribute(".own-mechanism-missing a", "href") == "/editor?lang=uk"
+    assert page.locator("#controls label.slider").first.is_hidden()         # sliders that would move nothing
+    screenshot(page, "own_mechanism_missing_uk")
     assert page.problems == []
 
 
@@ -110,7 +122,7 @@ def test_a_mechanism_the_machine_refuses_is_said_in_words(browser_page):
     assert [p for p in page.problems if not REFUSED.search(p)] == []
 
 
-def test_own_mechanism_on_a_phone(phone):
+def test_own_mechanism_on_a_phone(phone, tmp_path):
     linkage = base64.urlsafe_b64encode(json.dumps(SHAPING["linkage"]).encode()).decode().rstrip("=")
     phone.goto(f"/editor?lang=ru&m={linkage}")                          # a shared mechanism without masses
     masses_ready(phone)
@@ -119,6 +131,15 @@ def test_own_mechanism_on_a_phone(phone):
     width = phone.evaluate("() => document.documentElement.scrollWidth")
     assert width <= PHONE["width"], f"the editor is {width} px wide on a 390 px screen"
     screenshot(phone, "own_mechanism_editor_phone_ru")
+    with phone.expect_download() as download:                          # a file keeps the masses as the link does
+        phone.click("#editor-export")
+    saved = json.loads(Path(download.value.path()).read_text(encoding="utf-8"))
+    assert saved["dynamics"]["masses"]["links"][1]["mass"] == pytest.approx(5.5)
+    saved["dynamics"]["masses"]["links"][1]["mass"] = 7.25
+    path = tmp_path / "own.json"
+    path.write_text(json.dumps(saved), encoding="utf-8")
+    phone.set_input_files("#editor-import", str(path))
+    phone.wait_for_function(f"() => document.querySelector('{MASS}')?.value === '7,25'")
     open_from_editor(phone, MOTION)
     width = phone.evaluate("() => document.documentElement.scrollWidth")
     assert width <= PHONE["width"], f"the scene is {width} px wide on a 390 px screen"

@@ -58,6 +58,7 @@ new AnimationControls(animationBar, animation, texts);
 
 model.on("variant", (variant) => {
   view.build(variant);
+  byId("controls").classList.toggle("no-mechanism", Boolean(variant.addressMissing));   // its sliders move nothing
   if (view.animated) {
     byId("controls").before(animationBar);
   } else {

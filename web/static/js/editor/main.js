@@ -258,6 +258,8 @@ function askEstimate(linkage) {
     }
     showMasses();
     writeAddress();
+    const shown = $("editor-masses");
+    shown.dataset.estimates = String(Number(shown.dataset.estimates ?? 0) + 1);    // answers taken (tests wait on it)
   });
 }
 
@@ -463,7 +465,8 @@ $("editor-estimate").addEventListener("click", () => {
   if (linkage) askEstimate(linkage);
 });
 $("editor-export").addEventListener("click", () => {
-  const text = JSON.stringify({ mechanism: "general", linkage: state.linkage }, null, 1);
+  const text = JSON.stringify({ mechanism: "general", linkage: state.linkage,
+    ...(state.dynamics ? { dynamics: state.dynamics } : {}) }, null, 1);
   const link = document.createElement("a");
   link.href = URL.createObjectURL(new Blob([text], { type: "application/json" }));
   link.download = "mechanism.json";
@@ -475,7 +478,7 @@ $("editor-import").addEventListener("change", async (event) => {
   if (!file) return;
   try {
     const data = JSON.parse(await file.text());
-    load(data.linkage ?? data, `${t.editor_imported}: ${file.name}`);
+    load(data.linkage ?? data, `${t.editor_imported}: ${file.name}`, data.linkage && data.dynamics?.masses ? data.dynamics : null);
   } catch {
     $("editor-file-status").textContent = t.editor_import_failed;
   }
