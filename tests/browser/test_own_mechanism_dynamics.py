@@ -11,9 +11,10 @@ from pathlib import Path
 
 import pytest
 
-from conftest import PHONE, REPO, drag_slider, interface_texts, read_scene, screenshot
+from conftest import ARTIFACTS, PHONE, REPO, drag_slider, interface_texts, read_scene, screenshot
 from test_dynamics import open_scene, trace, wait_for_new_trace, wait_for_panels
 from test_editor import REFUSED, act, number
+from test_general_dynamics_scenes import english_words
 
 pytestmark = pytest.mark.browser
 
@@ -62,7 +63,7 @@ def test_own_mechanism_from_the_editor_into_the_dynamics_scenes(browser_page):
     assert number(page.input_value('input[data-path="masses.links.2.mass"]')) == 3.0   # the preset's rod, kept
     page.wait_for_function("""() => { const d = new URLSearchParams(location.search).get('d');
         return d && JSON.parse(atob(d.replace(/-/g, '+').replace(/_/g, '/'))).masses.links[1].mass === 15.5; }""")
-    page.locator("#editor-dynamics").scroll_into_view_if_needed()
+    page.locator("#editor-dynamics").screenshot(path=ARTIFACTS / "own_mechanism_masses_table_ru.png")
     screenshot(page, "own_mechanism_editor_masses_ru")
     editor = page.url
 
@@ -74,6 +75,7 @@ def test_own_mechanism_from_the_editor_into_the_dynamics_scenes(browser_page):
     drag_slider(page, "#slider-M0", 0.9)                                # a stronger motor: another steady cycle
     wait_for_new_trace(page, "omega_phi", before)
     assert "NaN" not in page.inner_html("#panels")
+    assert english_words(page) == []
     screenshot(page, "own_mechanism_motion_ru")
 
     page.goto(editor)                                                   # the link is the document
