@@ -48,11 +48,12 @@ from ..core.kinetostatics.virtual_work import reduced_moment
 from ..core.mechanisms import MECHANISMS, GeometryError, Notice
 from ..core.mechanisms.general import GENERAL_OUTPUTS, GeneralMechanism, compute_general
 from ..core.structure.masses import MassModel
+from ..core.structure.estimate import estimated_dynamics
 from .messages import localise_numerics, localise_study, special_text, translate
 from .schemas import KinematicsRequest, KinematicsResponse
 from .schemas_angular import AngularRequest
 from .schemas_bearings import BearingsRequest
-from .schemas_dynamics import FlywheelRequest, MotionRequest, ReductionRequest
+from .schemas_dynamics import EstimateRequest, FlywheelRequest, MotionRequest, ReductionRequest
 from .schemas_elastic import ElasticRequest
 from .schemas_forces import ChainRequest, ForcesRequest, WearRequest
 from .schemas_motor import FlywheelAnalysisRequest, MotorCharacteristicRequest
@@ -212,6 +213,11 @@ def _general_machine(request: ReductionRequest | MotionRequest | FlywheelRequest
 
 def _motor(motor) -> Motor:
     return Motor(**{**motor.model_dump(), "expansion": tuple(motor.expansion), "compression": tuple(motor.compression)})
+
+
+def dynamics_estimate(request: EstimateRequest, lang: str) -> Answer:
+    """A first estimate of a crank-driven general mechanism's masses, loads and motor (estimate.py)."""
+    return answer(estimated_dynamics(request.linkage.model_dump(exclude_none=True)), [], lang)
 
 
 def motion(request: MotionRequest, lang: str, built: Machine | None = None, preview: Preview = None) -> Answer:

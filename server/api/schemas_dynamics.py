@@ -311,3 +311,30 @@ class FlywheelResponse(BaseModel):
     disk: dict | None = Field(None, description="solid disk: diameter, width (m), mass (kg)")
     numerics: NumericsModel | None = Field(None, description="how the flywheel was computed")
     warnings: list[str]
+
+
+class EstimateRequest(BaseModel):
+    """A general mechanism (crank-driven) whose masses, loads and motor are to be estimated."""
+
+    model_config = ConfigDict(extra="forbid")
+    linkage: LinkageModel
+
+
+class FlywheelEstimate(BaseModel):
+    """The flywheel request's part of the estimate: a constant motor moment, the mean speed and [δ]."""
+
+    motor: MotorInput
+    omega_mean: float = Field(description="mean crank speed ω_ср the flywheel is sized at, rad/s")
+    delta: float = Field(description="permissible coefficient of speed fluctuation [δ]")
+    balance: bool = Field(description="the motor moment balances the work per cycle")
+
+
+class EstimateResponse(BaseModel):
+    """A first estimate for a student's own mechanism (server/core/structure/estimate.py: uniform bars of 10 kg/m,
+    J_S = ml²/12, a 1000 N load on the last frame slider's slow stroke with k = 0.1, a linear motor through a gear
+    i = 10 that carries the load from rest); the same keys as a preset's "dynamics"."""
+
+    masses: MassInput
+    inertias: InertiaInput
+    motor: MotorInput
+    flywheel: FlywheelEstimate

@@ -69,6 +69,9 @@ def plan(spec: AssignmentSpec, scenes: dict[str, Scene]) -> Plan:
     variant = next((v for v in scene.variants if v.id == spec.variant), None)
     if variant is None:
         raise SpecError("variant", f"scene '{scene.id}' has no variant '{spec.variant}'")
+    if variant.address is not None:
+        raise SpecError("variant", f"variant '{variant.id}' computes the reader's own mechanism from the page "
+                                   "address; an assignment needs a mechanism of the scene")
     sliders = {s.id: s for s in variant.sliders}
     for name in spec.sliders:
         if name not in sliders:

@@ -12,6 +12,7 @@ from __future__ import annotations
 import copy
 import math
 
+from .scene_files import addressed
 from .scenes import Scene, Slider, Variant
 
 TURN = 2 * math.pi
@@ -73,6 +74,14 @@ def dynamics_body(variant: Variant, values: dict) -> dict:
         for path in (slider.param, *slider.also):
             set_path(body, path, values[slider.id] * slider.to_si * scale)
     return body
+
+
+def address_variant(variant: Variant, documents: dict) -> Variant:
+    """The variant as a page whose address holds the documents {"m": linkage, "d": dynamics} shows it (a variant
+    without ``address`` is itself); KeyError names a path the documents lack."""
+    if variant.address is None:
+        return variant
+    return Variant.model_validate(addressed(variant.model_dump(), documents))
 
 
 def page_outputs(scene: Scene, variant: Variant) -> list[str]:

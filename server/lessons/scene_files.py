@@ -15,6 +15,16 @@ Three kinds of reference keep content/scenes/*.json free of copies (adding a les
   ``"masses": {"friction": 0.1}`` adds to the preset's masses). The scene names the preset; the linkage and the
   masses stay written once, in the preset.
 
+- **A mechanism from the page address**, ``"address": {"request": {"linkage": "m", "masses": "d.masses", …},
+  "example": "shaping_machine"}``: the variant computes the reader's own mechanism, carried in the address by
+  the editor (``m``: the linkage, ``d``: its masses, loads and motor, as a preset's "dynamics"). Each named key of
+  the request is the value at that dotted path of the address's documents {"m": …, "d": …}, the variant's own
+  ``request`` merged over it as for a preset (``addressed``); a slider with ``"relative": {"min", "max", "step",
+  "default"}`` takes those as multiples of the request's value at its ``param`` (a motor's M₀ from 0.5 to 2 times
+  the mechanism's own). The page does the same with the documents in its address (dynamics_scene.js) and says in
+  words how to get a mechanism where there is none; the server, which has no address, resolves the variant with
+  the preset named ``example`` (assignments do not offer such a variant).
+
 A reference to nothing, a loop of variants or a variant without an id is refused with the scene file, the
 variant and the slider named (``ContentError``).
 """
@@ -42,9 +52,9 @@ def resolved_scene(raw: dict, where: str, shared: dict[str, dict], presets: dict
         if variant["id"] in by_id:
             raise ContentError(f"{where}: variant {variant['id']}: two variants with this id")
         by_id[variant["id"]] = variant
-    resolved = [copy.deepcopy(with_table_pickers(_with_preset(_with_shared_sliders(
-        _inherited(v, by_id, where, ()), where, shared), where, presets or {}), where, tables or {}))
-                for v in variants]                   # each its own objects: inherited parts are not shared
+    resolved = [copy.deepcopy(with_table_pickers(_with_example(_with_preset(_with_shared_sliders(
+        _inherited(v, by_id, where, ()), where, shared), where, presets or {}), where, presets or {}), where,
+        tables or {})) for v in variants]                   # each its own objects: inherited parts are not shared
     return copy.deepcopy(raw | {"variants": []}) | {"variants": resolved}
 
 
@@ -97,6 +107,55 @@ def _with_preset(variant: dict, where: str, presets: dict[str, dict]) -> dict:
             value = value[step]
         taken[key] = copy.deepcopy(value)
     return variant | {"request": _merged(taken, variant.get("request", {}))}
+
+
+def _with_example(variant: dict, where: str, presets: dict[str, dict]) -> dict:
+    """A variant that takes its mechanism from the page address, resolved with its example preset's documents."""
+    reference = variant.get("address")
+    if reference is None:
+        return variant
+    name = reference.get("example") if isinstance(reference, dict) else None
+    if name not in presets or "dynamics" not in presets[name]:
+        raise ContentError(f"{where}: variant {variant['id']}: address example {name!r} is no preset of "
+                           f"content/mechanisms with dynamics")
+    try:
+        return addressed(variant, example_documents(presets[name]))
+    except KeyError as missing:
+        raise ContentError(f"{where}: variant {variant['id']}: the address has no {missing}") from None
+
+
+def example_documents(preset: dict) -> dict:
+    """The address's documents as the editor writes them for a preset: m the linkage, d its dynamics."""
+    return {"m": preset["linkage"], "d": preset["dynamics"]}
+
+
+def addressed(variant: dict, documents: dict) -> dict:
+    """The variant with its request's keys taken from the address's documents (``address.request``: key → dotted
+    path), its own ``address.own`` request (kept from the file) merged over them, and its relative sliders'
+    ranges as multiples of the request's values. KeyError names a path the documents lack."""
+    reference = variant["address"]
+    own = reference.get("own", variant.get("request", {}))
+    taken = {}
+    for key, path in reference.get("request", {}).items():
+        value = documents
+        for step in str(path).split("."):
+            if not isinstance(value, dict) or step not in value:
+                raise KeyError(path)
+            value = value[step]
+        taken[key] = copy.deepcopy(value)
+    request = _merged(taken, own)
+    sliders = [_relative(slider, request) for slider in variant.get("sliders", [])]
+    return variant | {"address": reference | {"own": own}, "request": request, "sliders": sliders}
+
+
+def _relative(slider, request: dict):
+    """A slider whose range is relative to the request's value at its path, as absolute numbers."""
+    if not isinstance(slider, dict) or not isinstance(slider.get("relative"), dict):
+        return slider
+    value = request
+    for step in slider["param"].split("."):
+        value = value[int(step) if isinstance(value, list) else step]
+    return slider | {key: float(f"{factor * value:.6g}") for key, factor in slider["relative"].items()}
 
 
 def _merged(base: dict, own: dict) -> dict:

@@ -41,6 +41,8 @@ class Slider(BaseModel):
     english: Text | None = Field(default=None, description="the other convention shown beside the slider")
     log: bool = False
     locked: bool = Field(False, description="an assignment fixed this value: the student cannot move it")
+    relative: dict[str, float] | None = Field(None, description="min, max, step, default as multiples of the "
+                                                                "request's value at param (a mechanism from the address)")
 
 
 class Toggle(BaseModel):
@@ -68,6 +70,8 @@ class Variant(BaseModel):
     overlay_values: list[float] = []
     panels: list[str]
     request: dict = Field(default_factory=dict, description="dynamics scenes: the request body before the sliders")
+    address: dict | None = Field(None, description="the mechanism comes from the page address: request keys → "
+                                                   "dotted paths in its documents m, d (scene_files.py)")
 
 
 class AngleGrid(BaseModel):

@@ -32,7 +32,8 @@ def builder(request: Request, scene_id: str, lang: str | None = None, variant: s
     if scene is None or not scene.questions:
         raise HTTPException(404, f"no scene '{scene_id}' with questions")
     chosen = next((v for v in scene.variants if v.id == variant), None)
-    offered = [v for v in scene.variants if any(not q.variants or v.id in q.variants for q in scene.questions)]
+    offered = [v for v in scene.variants if v.address is None     # an own mechanism (the address) is no assignment
+               and any(not q.variants or v.id in q.variants for q in scene.questions)]
     chosen = chosen if chosen in offered else offered[0]
     values = {}
     for control in [*chosen.sliders, *chosen.toggles]:

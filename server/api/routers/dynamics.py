@@ -1,9 +1,9 @@
-"""POST /api/v1/reduction, /motion, /flywheel, /work-precision/motion: the one-mass dynamic model of the machine."""
+"""POST /api/v1/reduction, /motion, /flywheel, /work-precision/motion: the one-mass dynamic model of the machine;\n/dynamics-estimate: a first mass model for a mechanism that has none."""
 from fastapi import APIRouter
 
 from .. import endpoints, heavy
 from ..schemas import Language
-from ..schemas_dynamics import (FlywheelRequest, FlywheelResponse, MotionRequest, MotionResponse, ReductionRequest,
+from ..schemas_dynamics import (EstimateRequest, EstimateResponse, FlywheelRequest, FlywheelResponse, MotionRequest, MotionResponse, ReductionRequest,
                                 ReductionResponse)
 from ..serialise import Precision, respond
 from .query import LANG, PRECISION
@@ -28,6 +28,13 @@ def motion(request: MotionRequest, lang: Language = LANG, precision: Precision =
              summary="Flywheel inertia for a permissible δ by Merzalov, Gutyar, Wittenbauer and exactly; sizing")
 def flywheel(request: FlywheelRequest, lang: Language = LANG, precision: Precision = PRECISION):
     return respond(endpoints.flywheel(request, lang), precision)
+
+
+@router.post("/dynamics-estimate", response_model=EstimateResponse, responses=INVALID,
+             summary="A first estimate of a general mechanism's masses, loads and motor (uniform bars, a load on "
+                     "the last slider, a motor that carries it), as a preset's \"dynamics\"")
+def dynamics_estimate(request: EstimateRequest, lang: Language = LANG, precision: Precision = PRECISION):
+    return respond(endpoints.dynamics_estimate(request, lang), precision)
 
 
 @router.post("/work-precision/motion", responses=INVALID,

@@ -1,6 +1,6 @@
 """The mechanism editor's page (/editor): build a mechanism from class-II structural groups in the browser,
 see its structural analysis, animate it and draw its velocity and acceleration plans.  The page computes
-through POST /api/v1/kinematics (mechanism "general"); here it only gets its texts and the presets."""
+through POST /api/v1/kinematics (mechanism "general"); here it only gets its texts and the presets (with their masses, loads and motor where they have them)."""
 import json
 
 from fastapi import APIRouter, Request
@@ -16,6 +16,6 @@ router = APIRouter(include_in_schema=False)
 def editor_page(request: Request, lang: str | None = None):
     context = _context(request, lang)
     choices = [{"name": name, "title": p["title"][context["lang"]], "source": p["source"][context["lang"]],
-                "linkage": p["linkage"]} for name, p in presets().items()]
+                "linkage": p["linkage"], "dynamics": p.get("dynamics")} for name, p in presets().items()]
     return templates.TemplateResponse(request, "editor.html", context | {"presets_json": json.dumps(
         choices, ensure_ascii=False)})

@@ -9,6 +9,9 @@
  * the family (a preview, marked and with the numbers of the last exact answer dimmed) and nothing is asked;
  * the exact answer is asked for when the slider comes to rest.
  *
+ * A variant that computes the reader's own mechanism takes it from the address (address_mechanism.js); without
+ * one it asks for nothing and says how to get one (a link to the editor).
+ *
  * Performance marks (bench/browser.py): plots-drawn after a preview's redraw, exact-requested when an
  * exact answer is asked for, exact-drawn once it is plotted.
  */
@@ -27,6 +30,7 @@ import { PresetsView } from "./view/presets_view.js";
 import { sceneTools } from "../common/view/scene_tools.js";
 import { StaleFeedback } from "../common/view/stale_feedback.js";
 import { readState, writeState } from "../common/model/url_state.js";
+import { resolveAddressVariants } from "../common/model/address_mechanism.js";
 import { byId, lang, scene, t, texts } from "../common/view/page_data.js";
 
 const TURN = 2 * Math.PI;
@@ -34,6 +38,7 @@ const TURN = 2 * Math.PI;
 const wholeTurns = (phi) => Math.max(1, Math.round(phi / TURN)) * TURN;
 
 
+resolveAddressVariants(scene);      // a reader's own mechanism from the address (m, d), before the model reads them
 const model = new DynamicsModel(scene, readState());
 const results = document.querySelector(".results");
 const stale = new StaleFeedback([results], t.recomputing);
@@ -53,6 +58,7 @@ new AnimationControls(animationBar, animation, texts);
 
 model.on("variant", (variant) => {
   view.build(variant);
+  byId("controls").classList.toggle("no-mechanism", Boolean(variant.addressMissing));   // its sliders move nothing
   if (view.animated) {
     byId("controls").before(animationBar);
   } else {
@@ -64,6 +70,11 @@ const previews = new FamilyPreview(scene.endpoint, lang, model);
 const markPreview = previewMark(results, texts);
 
 function requestExact() {
+  if (model.variant.addressMissing) {          // an own-mechanism variant with no mechanism in the address
+    client.forget("main");
+    view.showMissingMechanism();
+    return;
+  }
   performance.mark("exact-requested");
   const body = model.request();
   if (body.outputs.length) client.submit("main", body, (answer) => model.receive(answer));
@@ -73,7 +84,7 @@ function requestExact() {
 model.on("preset", () => writeState(model, lang));
 model.on("params", () => {
   writeState(model, lang);
-  if (previews.preview()) client.forget("main");     // drawn from the family: an answer on its way is old
+  if (!model.variant.addressMissing && previews.preview()) client.forget("main");     // drawn from the family: an answer on its way is old
   else requestExact();
 });
 model.on("rest", () => {

@@ -10,6 +10,9 @@ import { QuantityPlot } from "./view/plot.js";
 import { renderGroupsApart } from "./view/groups_apart.js";
 import { renderPlans } from "./view/plans.js";
 import { renderSpecial } from "./view/special.js";
+import { renderMasses, renderOpenLinks } from "./view/masses.js";
+import { DYNAMICS_SCENES, dynamicsOf, dynamicsParameter, keptOn, readDynamics, sceneAddress } from "./model/dynamics.js";
+import { setPath } from "../common/model/dotted_paths.js";
 import { renderStructure } from "./view/structure.js";
 import { mechanismQuery, readMechanism } from "./model/address.js";
 import { guideShapes, linkShapes, stateAt } from "./model/geometry.js";
@@ -42,10 +45,12 @@ const SPIN = 60;                               // degrees of crank per second of
 const state = {
   linkage: emptyLinkage(), mode: "select", picked: [], table: null, refusal: null, k: 0, playing: false,
   traced: new Set(), plan: null, special: [], quantities: [], fitPending: false,
+  dynamics: null, dynamicsKept: false,
 };
 const tables = new LatestRequest(lang);
 const planner = new LatestRequest(lang);
 const specials = new LatestRequest(lang);
+const estimates = new LatestRequest(lang, "dynamics-estimate");
 const undoHistory = new UndoHistory();
 const stage = $("editor-drawing");
 
@@ -180,7 +185,12 @@ function afterPick() {
 
 function writeAddress() {
   const query = mechanismQuery(state.linkage, lang);
+  if (state.dynamics) query.set("d", dynamicsParameter(state.dynamics));
   history.replaceState(null, "", `?${query}`);
+  const hrefs = state.dynamics && state.table && !state.refusal
+    ? Object.fromEntries(DYNAMICS_SCENES.map(({ scene }) => [scene, sceneAddress(scene, query.get("m"), state.dynamics, lang)]))
+    : null;
+  renderOpenLinks($("editor-open-dynamics"), hrefs, DYNAMICS_SCENES, t);
   for (const link of document.querySelectorAll("a[data-lang]")) {
     query.set("lang", link.dataset.lang);
     link.href = `?${query}`;
@@ -225,6 +235,42 @@ function changed(structural) {
       state.refusal = answer.error;
     }
     showAnswer();
+    writeAddress();
+  });
+  askEstimate(linkage);
+}
+
+/* ---- masses and loads ---- */
+
+/** The estimate for the mechanism as it is now: the whole table, or (kept values) rows for new links only. */
+function askEstimate(linkage) {
+  if (sliderInput()) {
+    showMasses();
+    return;
+  }
+  estimates.submit({ linkage }, (answer) => {
+    if (answer.ok) {
+      const estimate = dynamicsOf(answer.data);
+      state.dynamics = state.dynamics && state.dynamicsKept ? keptOn(state.dynamics, estimate) : estimate;
+      $("editor-masses-status").textContent = state.dynamicsKept ? "" : t.editor_masses_estimated;
+    } else {
+      $("editor-masses-status").textContent = refusalText(answer.error, t);
+    }
+    showMasses();
+    writeAddress();
+    const shown = $("editor-masses");
+    shown.dataset.estimates = String(Number(shown.dataset.estimates ?? 0) + 1);    // answers taken (tests wait on it)
+  });
+}
+
+function showMasses() {
+  renderMasses($("editor-masses"), sliderInput() ? null : state.dynamics, {
+    t, lang, onEdit: (path, value) => {
+      setPath(state.dynamics, path, value);
+      state.dynamicsKept = true;
+      $("editor-masses-status").textContent = "";
+      writeAddress();
+    },
   });
 }
 
@@ -375,8 +421,11 @@ function fit() {
   drawing.fit(points);
 }
 
-function load(linkage, status = "") {
+function load(linkage, status = "", dynamics = null) {
   state.linkage = normalised(linkage);
+  state.dynamics = dynamicsOf(dynamics);
+  state.dynamicsKept = Boolean(dynamics);
+  $("editor-masses-status").textContent = dynamics ? t.editor_masses_from_preset : "";
   state.traced = new Set(Object.keys(state.linkage.groups.at(-1)?.points ?? {}).slice(0, 1));
   state.fitPending = true;
   $("editor-file-status").textContent = status;
@@ -403,15 +452,21 @@ const presetSelect = $("editor-preset");
 presetSelect.append(...presets.map((p) => new Option(p.title, p.name)));
 presetSelect.addEventListener("change", () => {
   const preset = presets.find((p) => p.name === presetSelect.value);
-  if (preset) load(preset.linkage, preset.source);
+  if (preset) load(preset.linkage, preset.source, preset.dynamics);
 });
 $("editor-new").addEventListener("click", () => {
   presetSelect.value = "";
   load(emptyLinkage());
 });
 $("editor-undo").addEventListener("click", undo);
+$("editor-estimate").addEventListener("click", () => {
+  state.dynamicsKept = false;
+  const linkage = requestLinkage(state.linkage);
+  if (linkage) askEstimate(linkage);
+});
 $("editor-export").addEventListener("click", () => {
-  const text = JSON.stringify({ mechanism: "general", linkage: state.linkage }, null, 1);
+  const text = JSON.stringify({ mechanism: "general", linkage: state.linkage,
+    ...(state.dynamics ? { dynamics: state.dynamics } : {}) }, null, 1);
   const link = document.createElement("a");
   link.href = URL.createObjectURL(new Blob([text], { type: "application/json" }));
   link.download = "mechanism.json";
@@ -423,7 +478,7 @@ $("editor-import").addEventListener("change", async (event) => {
   if (!file) return;
   try {
     const data = JSON.parse(await file.text());
-    load(data.linkage ?? data, `${t.editor_imported}: ${file.name}`);
+    load(data.linkage ?? data, `${t.editor_imported}: ${file.name}`, data.linkage && data.dynamics?.masses ? data.dynamics : null);
   } catch {
     $("editor-file-status").textContent = t.editor_import_failed;
   }
@@ -448,7 +503,8 @@ document.addEventListener("keydown", (event) => {
 const fromAddress = readMechanism();
 if (fromAddress) {
   try {
-    load(fromAddress);
+    load(fromAddress, "", readDynamics());
+    $("editor-masses-status").textContent = "";
   } catch {
     load(emptyLinkage());
   }

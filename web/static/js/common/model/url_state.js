@@ -3,9 +3,11 @@
  * …&convention=textbook for a toggle with words for options), so that a link or a reload shows the same
  * set-up, and the language switch keeps the scene as it is. The whole state: a list edited in a panel (the
  * indicator diagram's points) as edit.<its dotted path in the request>=0.1,0.25,… and the chosen preset of
- * a slider (the [δ] table's row) as preset=<its index in the scene's presets>.
+ * a slider (the [δ] table's row) as preset=<its index in the scene's presets>. A reader's own mechanism (m, d:
+ * address_mechanism.js) is the address's and stays in it as it is.
  */
 const EDIT = "edit.";
+const DOCUMENTS = ["m", "d"];       // the reader's own mechanism, written by the editor
 
 /** A value as written in the address: a number ("3.2", "-1"), or a toggle's word ("textbook"). */
 function parseValue(text) {
@@ -20,7 +22,7 @@ export function readState(search = location.search) {
   const edits = new Map();
   for (const [key, text] of query) {
     if (key.startsWith(EDIT)) edits.set(key.slice(EDIT.length), text.split(",").map(Number));
-    else if (!["lang", "variant", "overlay", "student", "preset"].includes(key)) values[key] = parseValue(text);
+    else if (!["lang", "variant", "overlay", "student", "preset", ...DOCUMENTS].includes(key)) values[key] = parseValue(text);
   }
   const preset = query.has("preset") ? Number(query.get("preset")) : null;
   return { variant: query.get("variant"), values, overlay: query.get("overlay") === "1", edits, preset };
@@ -33,6 +35,8 @@ export function stateQuery(model, lang) {
   if (model.overlay) query.set("overlay", "1");
   for (const [path, values] of model.edits ?? []) query.set(`${EDIT}${path}`, values.join(","));
   if (Number.isInteger(model.preset)) query.set("preset", String(model.preset));
+  const address = new URLSearchParams(location.search);
+  for (const key of DOCUMENTS) if (address.has(key)) query.set(key, address.get(key));
   return query;
 }
 

@@ -123,6 +123,18 @@ export class DynamicsView {
     this.scheduler.track(this.panels.filter((panel) => panel.graph));
   }
 
+  /** No mechanism in the address for an own-mechanism variant: say how to get one, draw nothing. */
+  showMissingMechanism() {
+    const { t, lang } = this.texts;
+    for (const panel of this.panels) this.#fill(panel, null);
+    this.notices.replaceChildren(element("section", { className: "warnings own-mechanism-missing" },
+      element("h2", { textContent: t.own_mechanism_missing_title }),
+      element("p", { rich: t.own_mechanism_missing }),
+      element("p", {}, element("a", { className: "button secondary", href: `/editor?lang=${lang}`,
+        textContent: t.own_mechanism_open_editor }))));
+    this.data = this.plotted = null;
+  }
+
   /** Show the answer: the panels it holds data for, its warnings; or why the request was refused. */
   show(answer) {
     const { t } = this.texts;

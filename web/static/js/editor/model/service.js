@@ -1,5 +1,5 @@
 /**
- * POST /api/v1/kinematics for the editor, the latest question only: a question asked while another is in
+ * POST /api/v1/kinematics (or another endpoint: the dynamics estimate) for the editor, the latest question only: a question asked while another is in
  * flight replaces the waiting one, and an answer to a superseded question is dropped. A refusal (422) keeps
  * the field it names (loc) so that the page can show the reason beside the group it concerns.
  * An answer is {ok: true, data} or {ok: false, error: {code, message, loc, ctx}}.
@@ -9,8 +9,8 @@ export class LatestRequest {
   #waiting = null;
   #serial = 0;
 
-  constructor(lang) {
-    this.url = `/api/v1/kinematics?lang=${encodeURIComponent(lang)}`;
+  constructor(lang, endpoint = "kinematics") {
+    this.url = `/api/v1/${endpoint}?lang=${encodeURIComponent(lang)}`;
   }
 
   submit(body, onAnswer) {
