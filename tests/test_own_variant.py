@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 
 from server.api.endpoints import compute
-from server.api.schemas_dynamics import FlywheelRequest, MotionRequest
+from server.api.schemas_dynamics import FlywheelRequest, MotionRequest, ReductionRequest
 from server.api.schemas_forces import ForcesRequest
 from server.classroom.spec import AssignmentSpec
 from server.classroom.variants import SpecError, plan
@@ -17,13 +17,16 @@ from server.lessons.requests import address_variant, path_value, scene_request
 from server.lessons.scenes import scenes
 from test_dynamics_estimate import HAND_BUILT
 
-REQUEST_MODELS = {"motion": MotionRequest, "flywheel": FlywheelRequest, "forces": ForcesRequest}
+REQUEST_MODELS = {"motion": MotionRequest, "flywheel": FlywheelRequest, "forces": ForcesRequest,
+                  "reduction": ReductionRequest}
 OWN = [(scene.id, variant.id) for scene in scenes().values() for variant in scene.variants if variant.address]
 DOCUMENTS = {"m": HAND_BUILT, "d": estimated_dynamics(HAND_BUILT)}
 
 
-def test_the_three_dynamics_scenes_offer_the_own_mechanism():
-    assert sorted(scene for scene, _ in OWN) == ["equation-of-motion", "flywheel", "forces-friction"]
+def test_the_dynamics_scenes_offer_the_own_mechanism():
+    """Every scene that offers a six-bar preset offers the student's own mechanism too."""
+    assert sorted(scene for scene, _ in OWN) == ["equation-of-motion", "flywheel", "forces-friction",
+                                                 "reduced-inertia", "resisting-moment"]
 
 
 @pytest.mark.parametrize("scene_id, variant_id", OWN)
@@ -33,14 +36,17 @@ def test_own_variant_request_from_the_address_is_accepted_and_computes(scene_id,
     body = scene_request(scene, variant)
     assert body["linkage"] == HAND_BUILT
     assert body["masses"]["links"] == DOCUMENTS["d"]["masses"]["links"]       # the address's, the scene's merged over
-    assert body["masses"]["pair_radius"] == 0.02
+    if "pair_radius" in variant.address["own"].get("masses", {}):                # the scene's own, merged over
+        assert body["masses"]["pair_radius"] == 0.02
     REQUEST_MODELS[scene.endpoint].model_validate(body)
     for slider in variant.sliders:
         for path in (slider.param, *slider.also):
             path_value(body, path)                                          # KeyError: a path the request lacks
-        if slider.relative:                                                  # M₀, b: half to twice the address's
+        if slider.relative:                                                  # M₀, b, J₁: multiples of the address's
             own = path_value(DOCUMENTS["d"], f"{slider.param}")
-            assert (slider.min, slider.default, slider.max) == pytest.approx((0.5 * own, own, 2 * own), rel=1e-6)
+            factors = slider.relative
+            assert (slider.min, slider.default, slider.max) == pytest.approx(
+                (factors["min"] * own, factors["default"] * own, factors["max"] * own), rel=1e-5)
     answer = compute(scene.endpoint, body)
     assert not any("cannot" in w for w in answer["warnings"]), answer["warnings"]
     if scene.endpoint == "motion":

@@ -21,6 +21,8 @@ pytestmark = pytest.mark.browser
 MOTION = read_scene("equation_of_motion")
 FLYWHEEL = read_scene("flywheel")
 FORCES = read_scene("forces_friction")
+INERTIA = read_scene("reduced_inertia")
+MOMENT = read_scene("resisting_moment")
 SHAPING = json.loads((REPO / "content" / "mechanisms" / "shaping_machine.json").read_text(encoding="utf-8"))
 ROD = '[data-group="1"] > label.field input[type="text"]'      # the RRP group's rod length
 MASS = 'input[data-path="masses.links.1.mass"]'                 # the rocker's mass (link 3)
@@ -89,6 +91,19 @@ def test_own_mechanism_from_the_editor_into_the_dynamics_scenes(browser_page):
     open_from_editor(page, FORCES)
     assert "NaN" not in page.inner_html("#panels")
     screenshot(page, "own_mechanism_forces_ru")
+    page.go_back()
+    masses_ready(page)
+    offered = page.eval_on_selector_all("#editor-open-dynamics a[data-scene]", "as => as.map((a) => a.dataset.scene)")
+    assert sorted(offered) == sorted(scene["id"] for scene in (MOTION, FLYWHEEL, FORCES, INERTIA, MOMENT))
+    for scene in (INERTIA, MOMENT):                                     # the reduced model, link by link
+        open_from_editor(page, scene)
+        assert page.inner_text("#notices") == ""
+        assert "NaN" not in page.inner_html("#panels") and english_words(page) == []
+        parts = "link_parts" if scene is INERTIA else "load_parts"
+        page.wait_for_function("id => document.querySelector(`#panel-${id} .graph`)?.data?.length > 1", arg=parts)
+        screenshot(page, f"own_mechanism_{scene['id'].replace('-', '_')}_ru")
+        page.go_back()
+        masses_ready(page)
     assert page.problems == []
 
 

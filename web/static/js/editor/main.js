@@ -11,7 +11,7 @@ import { renderGroupsApart } from "./view/groups_apart.js";
 import { renderPlans } from "./view/plans.js";
 import { renderSpecial } from "./view/special.js";
 import { renderMasses, renderOpenLinks } from "./view/masses.js";
-import { DYNAMICS_SCENES, dynamicsOf, dynamicsParameter, keptOn, readDynamics, sceneAddress } from "./model/dynamics.js";
+import { dynamicsOf, dynamicsParameter, keptOn, readDynamics, sceneAddress } from "./model/dynamics.js";
 import { setPath } from "../common/model/dotted_paths.js";
 import { renderStructure } from "./view/structure.js";
 import { mechanismQuery, readMechanism } from "./model/address.js";
@@ -28,6 +28,7 @@ import { parseDecimal } from "../common/model/decimal_input.js";
 const lang = document.documentElement.lang;
 const t = JSON.parse(document.getElementById("interface-texts").textContent);
 const presets = JSON.parse(document.getElementById("editor-presets").textContent);
+const ownScenes = JSON.parse(document.getElementById("editor-own-scenes").textContent);   // [{scene, variant, title}]
 const $ = (id) => document.getElementById(id);
 /** The crank's words as the page was served (notation with real subscripts), to put back after a slider. */
 const CRANK_LABELS = Object.fromEntries(["editor-phi-label", "editor-omega1-label", "editor-epsilon1-label"]
@@ -188,9 +189,9 @@ function writeAddress() {
   if (state.dynamics) query.set("d", dynamicsParameter(state.dynamics));
   history.replaceState(null, "", `?${query}`);
   const hrefs = state.dynamics && state.table && !state.refusal
-    ? Object.fromEntries(DYNAMICS_SCENES.map(({ scene }) => [scene, sceneAddress(scene, query.get("m"), state.dynamics, lang)]))
+    ? Object.fromEntries(ownScenes.map((own) => [own.scene, sceneAddress(own, query.get("m"), state.dynamics, lang)]))
     : null;
-  renderOpenLinks($("editor-open-dynamics"), hrefs, DYNAMICS_SCENES, t);
+  renderOpenLinks($("editor-open-dynamics"), hrefs, ownScenes);
   for (const link of document.querySelectorAll("a[data-lang]")) {
     query.set("lang", link.dataset.lang);
     link.href = `?${query}`;

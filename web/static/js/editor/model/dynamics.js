@@ -1,21 +1,14 @@
 /**
  * The student's mechanism's masses, loads and motor (the "dynamics" of a preset: masses {links, gravity, forces,
  * moments}, inertias {J1, J_rotor, gear_ratio}, motor, flywheel), kept in the address beside the linkage as
- * d=<base64url of its JSON> (the link is the document), and the links that open the dynamics scenes with both.
+ * d=<base64url of its JSON> (the link is the document), and the addresses that open the dynamics scenes with both
+ * (the scenes with a variant that takes the mechanism from the address: the page's "editor-own-scenes").
  * A mechanism without any starts from the server's estimate (POST /api/v1/dynamics-estimate,
  * server/core/structure/estimate.py); one from a preset with dynamics starts from the preset's. No DOM.
  */
 import { readJsonParameter, toBase64Url } from "../../common/model/base64url.js";
 
 export const DYNAMICS_KEYS = ["masses", "inertias", "motor", "flywheel"];
-
-/** The scenes the editor opens the mechanism in: their ids and the own-mechanism variant. */
-export const DYNAMICS_SCENES = [
-  { scene: "equation-of-motion", text: "editor_open_motion" },
-  { scene: "flywheel", text: "editor_open_flywheel" },
-  { scene: "forces-friction", text: "editor_open_forces" },
-];
-export const OWN_VARIANT = "own";
 
 /** Only the keys a scene takes (an estimate's answer also has warnings). */
 export function dynamicsOf(data) {
@@ -47,9 +40,9 @@ export function keptOn(kept, estimate) {
   return { ...kept, masses: { ...kept.masses, links: rows, ...loads } };
 }
 
-/** The address of a dynamics scene opened on the own variant with this linkage and its dynamics. */
-export function sceneAddress(scene, linkageParameter, dynamics, lang) {
-  const query = new URLSearchParams({ lang, variant: OWN_VARIANT });
+/** The address of a dynamics scene opened on its variant ``variant`` with this linkage and its dynamics. */
+export function sceneAddress({ scene, variant }, linkageParameter, dynamics, lang) {
+  const query = new URLSearchParams({ lang, variant });
   query.set("m", linkageParameter);
   query.set("d", dynamicsParameter(dynamics));
   return `/scenes/${scene}?${query}`;

@@ -69,8 +69,8 @@ export function renderMasses(container, dynamics, options) {
 }
 
 /** The links to the dynamics scenes (hrefs: scene id → address, or null while there is nothing to open). */
-export function renderOpenLinks(container, hrefs, scenes, t) {
-  container.replaceChildren(...scenes.map(({ scene, text }) => hrefs
-    ? element("a", { className: "button secondary", href: hrefs[scene], "data-scene": scene, textContent: t[text] })
-    : element("span", { className: "button secondary disabled", "aria-disabled": "true", textContent: t[text] })));
+export function renderOpenLinks(container, hrefs, scenes) {
+  container.replaceChildren(...scenes.map(({ scene, title }) => hrefs
+    ? element("a", { className: "button secondary", href: hrefs[scene], "data-scene": scene, textContent: title })
+    : element("span", { className: "button secondary disabled", "aria-disabled": "true", textContent: title })));
 }
