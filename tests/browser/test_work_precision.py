@@ -143,3 +143,17 @@ def test_panels_of_unknown_kinds_are_left_out_without_breaking_the_page(browser_
     assert page.locator("#panel-future, #panel-inherited, #panel-not_in_panels").count() == 0
     assert page.locator(".refusal").count() == 0
     assert page.problems == []
+
+
+def test_six_bar_study_runs_on_a_general_mechanism(browser_page):
+    """The shaping machine (a general mechanism of Assur groups) has the same live study as the crank-slider."""
+    page = browser_page
+    texts = interface_texts("ru")
+    studies = open_study(page, MOTION, "ru", variant="shaping")
+    study, traces = run_study(page, texts)
+    assert len(studies) == 1 and "work-precision/motion?lang=ru" in studies[0]
+    check_chart(page, study, traces, texts)
+    assert len(traces) >= 1 and len(traces) + len(study["skipped"]) >= 3
+    assert sum(trace["bold"] for trace in traces) == 1                   # ours among them, bold
+    picture(page, "work_precision_motion_shaping")
+    assert page.problems == []
