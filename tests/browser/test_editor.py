@@ -89,7 +89,7 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
     page = browser_page
     page.goto("/?lang=en")
     page.click('a[href="/editor?lang=en"] >> nth=0')
-    page.wait_for_function("() => document.querySelector('#editor-drawing').dataset.answers !== undefined")
+    page.wait_for_function("() => document.querySelector('#editor-drawing')?.dataset.answers !== undefined")
 
     def place(mode, *clicks):
         page.click(f'[data-mode="{mode}"]')
@@ -164,7 +164,7 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
     link, elements = page.url, page.inner_text("#editor-elements")
     page.goto("about:blank")
     page.goto(link)
-    page.wait_for_function("() => document.querySelector('#editor-drawing').dataset.state === 'ready'")
+    page.wait_for_function("() => document.querySelector('#editor-drawing')?.dataset.state === 'ready'")
     assert page.inner_text("#editor-elements") == elements
     assert page.inner_text("#editor-formula") == "I(0,1) → II₃(2,3) → II₂(4,5)"
 
@@ -193,7 +193,7 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
 def test_a_shared_mechanism_on_a_phone(phone, tmp_path):
     encoded = base64.urlsafe_b64encode(json.dumps(SHAPING["linkage"]).encode()).decode().rstrip("=")
     phone.goto(f"/editor?lang=ru&m={encoded}")
-    phone.wait_for_function("() => document.querySelector('#editor-drawing').dataset.state === 'ready'")
+    phone.wait_for_function("() => document.querySelector('#editor-drawing')?.dataset.state === 'ready'")
     plans_ready(phone)
     assert phone.inner_text("#editor-formula") == "I(0,1) → II₃(2,3) → II₂(4,5)"
     width = phone.evaluate("() => document.documentElement.scrollWidth")
@@ -222,7 +222,7 @@ def test_a_shared_mechanism_on_a_phone(phone, tmp_path):
 def test_a_slider_driven_mechanism(browser_page):
     page = browser_page
     page.goto("/editor?lang=en")
-    page.wait_for_function("() => document.querySelector('#editor-drawing').dataset.answers !== undefined")
+    page.wait_for_function("() => document.querySelector('#editor-drawing')?.dataset.answers !== undefined")
 
     def place(mode, *clicks):
         page.click(f'[data-mode="{mode}"]')

@@ -51,7 +51,7 @@ def open_from_editor(page, scene: dict) -> None:
 def test_own_mechanism_from_the_editor_into_the_dynamics_scenes(browser_page):
     page = browser_page
     page.goto("/editor?lang=ru")
-    page.wait_for_function("() => document.querySelector('#editor-drawing').dataset.state !== undefined")
+    page.wait_for_function("() => document.querySelector('#editor-drawing')?.dataset.state !== undefined")
     act(page, lambda: page.select_option("#editor-preset", "shaping_machine"))
     masses_ready(page)
     assert number(page.input_value(MASS)) == 11.0                       # the preset's, not the estimate
