@@ -165,8 +165,8 @@ def test_the_student_places_the_loads_and_the_equation_of_motion_takes_them(brow
     page.keyboard.type("12,3")
     while not held:
         page.wait_for_timeout(50)
-    page.unroute("**/api/v1/dynamics-estimate*")
     held[0].continue_()
+    page.unroute("**/api/v1/dynamics-estimate*")
     page.wait_for_function("n => Number(document.querySelector('#editor-masses').dataset.estimates) > n",
                            arg=estimates)
     assert page.input_value(MASS) == "12,3"
