@@ -15,6 +15,7 @@ from server.api.app import app
 from server.api.endpoints import compute
 from server.api.schemas_dynamics import MotionRequest
 from server.core.structure.compose import compose
+from server.core.structure.masses import check_model
 from server.core.structure.estimate import BAR_DENSITY, BLOCK_MASS, OMEGA_TARGET, estimated_dynamics
 from server.core.structure.presets import presets
 from server.core.structure.spec import parse
@@ -111,12 +112,45 @@ def test_flywheel_of_the_estimate():
     assert answer["warnings"] == [] and answer["flywheel_inertia"] >= 0
 
 
+@pytest.mark.parametrize("name", [*CRANK_DRIVEN, "hand built"])
+def test_a_load_may_stand_on_every_sliding_pair_and_every_moving_link(name):
+    """The places the editor offers for a load are the kinematics' `slides` (as masses.forces.joint names them)
+    and every moving link, the crank included; the estimate's own load is one of them, as offered."""
+    linkage = HAND_BUILT if name == "hand built" else presets()[name]["linkage"]
+    comp = compose(parse(linkage), np.zeros(1))
+    estimate = estimated_dynamics(linkage)
+    places = estimate["load_places"]
+    assert [f["joint"] for f in places["forces"]] == list(comp.slides)
+    assert [m["link"] for m in places["moments"]] == sorted(comp.links)
+    for load in estimate["masses"]["forces"]:
+        assert load in places["forces"]
+    for load in estimate["masses"]["moments"]:
+        assert load in places["moments"]
+    body = machine(linkage, {**estimate, "masses": estimate["masses"] | places})
+    check_model(comp, MotionRequest.model_validate(body | {"outputs": ["steady"]}).masses.model())   # the API's check
+
+
+def test_a_moment_on_the_shaping_machines_rocker_does_its_work_over_the_swing():
+    """The rocker (link 3) of the shaping machine swings through 2·asin(l₁/OC) each way (the crank 0.1 m, the
+    rocker's pivot C 0.3 m below O, its slot through the crank pin): a load moment M on it, k·M on the return, does
+    M·2·asin(1/3)·(1 + k) of useful work per cycle, whichever stroke is the working one."""
+    linkage = presets()["shaping_machine"]["linkage"]
+    estimate = estimated_dynamics(linkage)
+    offered = next(m for m in estimate["load_places"]["moments"] if m["link"] == 3)
+    for sense in (1, -1):
+        load = offered | {"working": 400.0, "k": 0.25, "sense": sense}
+        masses = estimate["masses"] | {"forces": [], "moments": [load]}
+        answer = compute("motion", machine(linkage, {**estimate, "masses": masses}, outputs=["steady"]))
+        assert answer["works"]["useful"] == pytest.approx(400.0 * 2 * math.asin(1 / 3) * 1.25, rel=1e-6)
+
+
 def test_endpoint_answers_the_estimate_and_refuses_a_slider_input():
     client = TestClient(app)
     linkage = copy.deepcopy(HAND_BUILT)
     answer = client.post("/api/v1/dynamics-estimate", json={"linkage": linkage})
     assert answer.status_code == 200
     assert by_link(answer.json()) == by_link(estimated_dynamics(linkage))
+    assert answer.json()["load_places"] == estimated_dynamics(linkage)["load_places"]
     refused = client.post("/api/v1/dynamics-estimate?lang=uk",
                           json={"linkage": presets()["slider_driven_crank"]["linkage"]})
     assert refused.status_code == 422

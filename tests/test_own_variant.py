@@ -42,15 +42,26 @@ def test_own_variant_request_from_the_address_is_accepted_and_computes(scene_id,
     for slider in variant.sliders:
         for path in (slider.param, *slider.also):
             path_value(body, path)                                          # KeyError: a path the request lacks
-        if slider.relative:                                                  # M₀, b, J₁: multiples of the address's
-            own = path_value(DOCUMENTS["d"], f"{slider.param}")
-            factors = slider.relative
-            assert (slider.min, slider.default, slider.max) == pytest.approx(
-                (factors["min"] * own, factors["default"] * own, factors["max"] * own), rel=1e-5)
+        if slider.relative:                                                  # M₀, b, ω_ср: multiples of the address's
+            own = path_value(variant.request, slider.param)
+            for key, factor in slider.relative.items():
+                assert getattr(slider, key) == pytest.approx(factor * own, rel=1e-5), (slider.id, key)
     answer = compute(scene.endpoint, body)
     assert not any("cannot" in w for w in answer["warnings"]), answer["warnings"]
     if scene.endpoint == "motion":
         assert answer["numerics"]["message"] == "" and answer["delta"] > 0
+
+
+def test_the_flywheel_of_an_address_starts_from_its_delta_and_mean_speed():
+    """The own flywheel's [δ] and ω_ср sliders start at the address's d.flywheel values, not the scene's."""
+    scene = scenes()["flywheel"]
+    documents = {"m": HAND_BUILT, "d": DOCUMENTS["d"] | {"flywheel": DOCUMENTS["d"]["flywheel"] | {
+        "omega_mean": 17.0, "delta": 0.02}}}
+    variant = address_variant(next(v for v in scene.variants if v.address), documents)
+    body = scene_request(scene, variant)
+    assert (body["omega_mean"], body["delta"]) == (17.0, 0.02)
+    speed = next(s for s in variant.sliders if s.param == "omega_mean")
+    assert (speed.min, speed.default, speed.max) == pytest.approx((0.2 * 17, 17, 3 * 17))
 
 
 def test_an_address_without_the_dynamics_is_refused_by_name():

@@ -329,6 +329,15 @@ class FlywheelEstimate(BaseModel):
     balance: bool = Field(description="the motor moment balances the work per cycle")
 
 
+class LoadPlaces(BaseModel):
+    """Where a useful load may stand on the mechanism, each place with a first load on its slow stroke."""
+
+    forces: list[SliderForceInput] = Field(description=(
+        "one per sliding pair, named as in the kinematics' `slides` (masses.forces.joint): P = 1000 N, k = 0.1"))
+    moments: list[LinkMomentInput] = Field(description=(
+        "one per moving link, the crank included: M = P·l/2 with P = 1000 N and l the link's length, k = 0.1"))
+
+
 class EstimateResponse(BaseModel):
     """A first estimate for a student's own mechanism (server/core/structure/estimate.py: uniform bars of 10 kg/m,
     J_S = ml²/12, a 1000 N load on the last frame slider's slow stroke with k = 0.1, a linear motor through a gear
@@ -338,3 +347,4 @@ class EstimateResponse(BaseModel):
     inertias: InertiaInput
     motor: MotorInput
     flywheel: FlywheelEstimate
+    load_places: LoadPlaces

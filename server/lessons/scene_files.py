@@ -21,7 +21,7 @@ Three kinds of reference keep content/scenes/*.json free of copies (adding a les
   the request is the value at that dotted path of the address's documents {"m": …, "d": …}, the variant's own
   ``request`` merged over it as for a preset (``addressed``); a slider with ``"relative": {"min", "max", "step",
   "default"}`` takes those as multiples of the request's value at its ``param`` (a motor's M₀ from 0.5 to 2 times
-  the mechanism's own). The page does the same with the documents in its address (dynamics_scene.js) and says in
+  the mechanism's own; only "default": the flywheel's [δ] from the address, its range the scene's). The page does the same with the documents in its address (dynamics_scene.js) and says in
   words how to get a mechanism where there is none; the server, which has no address, resolves the variant with
   the preset named ``example`` (assignments do not offer such a variant).
 

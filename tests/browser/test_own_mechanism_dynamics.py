@@ -7,12 +7,13 @@ from __future__ import annotations
 
 import base64
 import json
+import math
 from pathlib import Path
 
 import pytest
 
 from conftest import ARTIFACTS, PHONE, REPO, drag_slider, interface_texts, read_scene, screenshot
-from test_dynamics import open_scene, trace, wait_for_new_trace, wait_for_panels
+from test_dynamics import figure_value, open_scene, trace, wait_for_new_trace, wait_for_panels
 from test_editor import REFUSED, act, number
 from test_general_dynamics_scenes import english_words
 
@@ -107,6 +108,103 @@ def test_own_mechanism_from_the_editor_into_the_dynamics_scenes(browser_page):
     assert page.problems == []
 
 
+def address_dynamics(page) -> dict:
+    return page.evaluate("""() => JSON.parse(atob(new URLSearchParams(location.search).get('d')
+        .replace(/-/g, '+').replace(/_/g, '/')))""")
+
+
+def sent_body(request) -> dict:
+    return json.loads(request.post_data)
+
+
+ROCKER_LOAD = {"link": 3, "working": 400.0, "k": 0.25, "sense": -1}
+# the shaping machine's rocker swings through 2·asin(l₁/OC) = 2·asin(0.1/0.3) each way: the useful work per cycle of
+# a moment M on it, k·M on the return, is M·2·asin(1/3)·(1 + k), whichever stroke is the working one
+ROCKER_WORK = 400.0 * 2 * math.asin(1 / 3) * 1.25
+
+
+def test_the_student_places_the_loads_and_the_equation_of_motion_takes_them(browser_page):
+    """The preset's force on the ram removed, a moment on the rocker added and set (M, k, the working stroke, no
+    gravity); a cell typed into keeps its text while an estimate arrives; the equation of motion computes with the
+    table's loads (its request carries them, its useful work is M·2·asin(1/3)·(1 + k) and what /motion answers for
+    the same body); the link keeps them; the flywheel starts from the address's [δ]."""
+    page = browser_page
+    page.goto("/editor?lang=ru")
+    page.wait_for_function("() => document.querySelector('#editor-drawing').dataset.state !== undefined")
+    act(page, lambda: page.select_option("#editor-preset", "shaping_machine"))
+    masses_ready(page)
+    texts = interface_texts("ru")
+    assert address_dynamics(page)["masses"]["forces"] == SHAPING["dynamics"]["masses"]["forces"]   # the preset's
+    page.click('[data-remove="forces.0"]')
+    page.wait_for_selector("#editor-masses-loads td.hint")                                # no loads now
+    assert address_dynamics(page)["masses"]["forces"] == []
+    offered = page.eval_on_selector_all("#editor-load-place option", "os => os.map((o) => o.value)")
+    assert offered == ["force:s23", "force:E/ram", *(f"moment:{k}" for k in range(1, 6))]   # every pair and link
+    page.select_option("#editor-load-place", "moment:3")
+    page.click("#editor-load-add")
+    page.fill('input[data-path="masses.moments.0.working"]', "400")
+    page.press('input[data-path="masses.moments.0.working"]', "Tab")
+    page.fill('input[data-path="masses.moments.0.k"]', "0,25")
+    page.press('input[data-path="masses.moments.0.k"]', "Tab")
+    sense = 'select[data-path="masses.moments.0.sense"]'
+    assert page.eval_on_selector_all(f"{sense} option", "os => os.map((o) => o.textContent)") == [
+        texts["editor_sense_link_plus"], texts["editor_sense_link_minus"]]
+    page.select_option(sense, "-1")
+    page.uncheck("#editor-gravity")
+    assert "moment:3" not in page.eval_on_selector_all("#editor-load-place option", "os => os.map((o) => o.value)")
+    masses = address_dynamics(page)["masses"]
+    assert (masses["forces"], masses["moments"], masses["gravity"]) == ([], [ROCKER_LOAD], 0)
+    page.locator("#editor-dynamics").screenshot(path=ARTIFACTS / "own_mechanism_loads_ru.png")
+
+    held = []                                          # an estimate held back while a cell is typed into
+    page.route("**/api/v1/dynamics-estimate*", lambda route: held.append(route))
+    estimates = estimated(page)
+    act(page, lambda: (page.fill(ROD, "0,2"), page.press(ROD, "Enter")))
+    page.click(MASS)
+    page.keyboard.press("Control+A")
+    page.keyboard.type("12,3")
+    while not held:
+        page.wait_for_timeout(50)
+    held[0].continue_()
+    page.unroute("**/api/v1/dynamics-estimate*")
+    page.wait_for_function("n => Number(document.querySelector('#editor-masses').dataset.estimates) > n",
+                           arg=estimates)
+    assert page.input_value(MASS) == "12,3"
+    assert page.evaluate("() => document.activeElement.dataset.path") == "masses.links.1.mass"
+    page.keyboard.press("Tab")                                       # taken when the student leaves the cell
+    masses = address_dynamics(page)["masses"]
+    assert masses["links"][1]["mass"] == 12.3 and masses["moments"] == [ROCKER_LOAD]   # the loads kept, too
+    screenshot(page, "own_mechanism_editor_loads_ru")
+    editor = page.url
+
+    with page.expect_request(lambda r: r.url.split("?")[0].endswith("/api/v1/motion") and r.method == "POST") as asked:
+        open_from_editor(page, MOTION)
+    body = sent_body(asked.value)
+    assert (body["masses"]["forces"], body["masses"]["moments"], body["masses"]["gravity"]) == ([], [ROCKER_LOAD], 0)
+    assert page.inner_text("#notices") == ""
+    useful = number(figure_value(page, "полезная работа за цикл").split()[0])
+    assert useful == pytest.approx(ROCKER_WORK, rel=1e-4)            # 5 digits shown
+    direct = page.request.post("/api/v1/motion?lang=ru", data=body)
+    assert useful == pytest.approx(direct.json()["works"]["useful"], rel=1e-4)
+    preset = page.request.post("/api/v1/motion?lang=ru", data=body | {"masses": body["masses"] | {
+        "forces": SHAPING["dynamics"]["masses"]["forces"], "moments": []}})
+    assert preset.json()["works"]["useful"] > 2 * useful             # the preset's ram load did far more
+    assert english_words(page) == []
+    screenshot(page, "own_mechanism_motion_loads_ru")
+
+    page.goto(editor)                                                # the link keeps the loads
+    masses_ready(page)
+    assert number(page.input_value('input[data-path="masses.moments.0.working"]')) == 400
+    assert page.input_value(sense) == "-1" and not page.is_checked("#editor-gravity")
+    with page.expect_request(lambda r: r.url.split("?")[0].endswith("/api/v1/flywheel") and r.method == "POST") as asked:
+        open_from_editor(page, FLYWHEEL)
+    flywheel = sent_body(asked.value)
+    assert (flywheel["delta"], flywheel["omega_mean"]) == pytest.approx(      # d.flywheel's, not the scene's 0.05
+        (SHAPING["dynamics"]["flywheel"]["delta"], SHAPING["dynamics"]["flywheel"]["omega_mean"]))
+    assert flywheel["masses"]["moments"] == [ROCKER_LOAD]
+    assert page.problems == []
+
+
 def test_own_variant_without_a_mechanism_says_how_to_get_one(browser_page):
     page = browser_page
     page.goto(f"/scenes/{MOTION['id']}?lang=uk&variant=own")
@@ -148,6 +246,7 @@ def test_own_mechanism_on_a_phone(phone, tmp_path):
     width = phone.evaluate("() => document.documentElement.scrollWidth")
     assert width <= PHONE["width"], f"the editor is {width} px wide on a 390 px screen"
     screenshot(phone, "own_mechanism_editor_phone_ru")
+    phone.locator("#editor-dynamics").screenshot(path=ARTIFACTS / "own_mechanism_loads_phone_ru.png")
     with phone.expect_download() as download:                          # a file keeps the masses as the link does
         phone.click("#editor-export")
     saved = json.loads(Path(download.value.path()).read_text(encoding="utf-8"))

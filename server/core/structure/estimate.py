@@ -22,6 +22,9 @@ Assumptions, stated on the page (content/i18n: editor_masses_note):
   (the flywheel scene then sizes a flywheel for a smaller [δ]);
 - the flywheel's request: a constant motor moment M_mean/i (the work per turn balanced), ω_mean = ω_target and
   [δ] = 0.05 (machine tools, Lecture 10).
+
+Beside them, ``load_places``: every sliding pair and moving link where the student may put a useful load, each
+with a first load as above on its own slow stroke (the editor's "add a load").
 """
 from __future__ import annotations
 
@@ -31,6 +34,7 @@ import numpy as np
 
 from ..mechanisms.general import GeneralMechanism
 from .compose import compose
+from .masses import MassModel, SliderForce, slider_loads
 from .spec import Linkage
 
 BAR_DENSITY = 10.0        # q, kg per metre of a link's length
@@ -88,22 +92,19 @@ def estimated_dynamics(raw_linkage: dict) -> dict:
     bars = link_bars(linkage)
     phi = np.linspace(0.0, 2 * math.pi, POINTS)
     comp = compose(linkage, phi)
+    places = load_places(linkage, comp, bars)
     forces, moments, useful = [], [], np.zeros(POINTS)
     frame_slides = [name for name in comp.slides if name.split("/")[-1] in linkage.guides]
     if frame_slides:
-        name = frame_slides[-1]
-        s1 = np.nan_to_num(comp.slides[name].d1)
-        sense = _slow_sense(s1)
-        forces.append({"joint": name, "working": WORKING_FORCE, "k": RETURN_FACTOR, "sense": sense})
-        useful += np.where(sense * s1 >= 0, 1.0, RETURN_FACTOR) * WORKING_FORCE * np.abs(s1)
+        force = next(f for f in places["forces"] if f["joint"] == frame_slides[-1])
+        forces.append(force)
+        s1 = np.nan_to_num(comp.slides[force["joint"]].d1)
+        useful += np.where(force["sense"] * s1 >= 0, 1.0, RETURN_FACTOR) * WORKING_FORCE * np.abs(s1)
     elif bars:
-        last = bars[-1]
-        length = 2 * abs(complex(*last["centre"])) or 0.1
-        theta1 = np.nan_to_num(comp.links[last["link"]][1].d1)
-        sense = _slow_sense(theta1)
-        working = _nice(WORKING_FORCE * length / 2)
-        moments.append({"link": last["link"], "working": working, "k": RETURN_FACTOR, "sense": sense})
-        useful += np.where(sense * theta1 >= 0, 1.0, RETURN_FACTOR) * working * np.abs(theta1)
+        moment = next(m for m in places["moments"] if m["link"] == bars[-1]["link"])
+        moments.append(moment)
+        theta1 = np.nan_to_num(comp.links[moment["link"]][1].d1)
+        useful += np.where(moment["sense"] * theta1 >= 0, 1.0, RETURN_FACTOR) * moment["working"] * np.abs(theta1)
     mean_moment = float(np.trapezoid(useful, phi) / (2 * math.pi))
     resisting = useful.copy()
     links_inertia = np.zeros(POINTS)
@@ -124,7 +125,25 @@ def estimated_dynamics(raw_linkage: dict) -> dict:
         "motor": {"kind": "linear", "M0": _nice(m0 / GEAR_RATIO), "b": _nice(b / GEAR_RATIO ** 2)},
         "flywheel": {"motor": {"kind": "constant", "M0": _nice(max(mean_moment, 0.0) / GEAR_RATIO)},
                      "omega_mean": OMEGA_TARGET, "delta": FLYWHEEL_DELTA, "balance": True},
+        "load_places": places,
     }
+
+
+def load_places(linkage: Linkage, comp, bars: list[dict]) -> dict:
+    """Where a useful load may stand, each place with a first load the student may add and change: every sliding
+    pair (named as in ``slides``, as masses.forces.joint takes it) with P = 1000 N, and every moving link (the crank
+    too) with M = P·l/2 (l its bar's length, the crank's l₁, 0.1 m for a block), both with k = 0.1 and the sense
+    of the slow stroke: the one the pair's velocity analog along its guide w (as masses.py loads it) or the
+    link's θ′ keeps over more of the turn."""
+    mechanism_loads = slider_loads(comp, MassModel(forces=tuple(SliderForce(name, WORKING_FORCE)
+                                                                for name in comp.slides)))
+    forces = [{"joint": load.force.joint, "working": WORKING_FORCE, "k": RETURN_FACTOR,
+               "sense": _slow_sense(np.nan_to_num(load.along))} for load in mechanism_loads]
+    lengths = {row["link"]: 2 * abs(complex(*row["centre"])) for row in bars}
+    lengths[linkage.crank.link] = float(linkage.crank.length)
+    moments = [{"link": link, "working": _nice(WORKING_FORCE * (lengths.get(link) or 0.1) / 2), "k": RETURN_FACTOR,
+                "sense": _slow_sense(np.nan_to_num(comp.links[link][1].d1))} for link in sorted(comp.links)]
+    return {"forces": forces, "moments": moments}
 
 
 def _slow_sense(rate: np.ndarray) -> int:

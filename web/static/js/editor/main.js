@@ -11,7 +11,7 @@ import { renderGroupsApart } from "./view/groups_apart.js";
 import { renderPlans } from "./view/plans.js";
 import { renderSpecial } from "./view/special.js";
 import { renderMasses, renderOpenLinks } from "./view/masses.js";
-import { dynamicsOf, dynamicsParameter, keptOn, readDynamics, sceneAddress } from "./model/dynamics.js";
+import { addLoad, dynamicsOf, dynamicsParameter, keptOn, readDynamics, removeLoad, sceneAddress } from "./model/dynamics.js";
 import { setPath } from "../common/model/dotted_paths.js";
 import { renderStructure } from "./view/structure.js";
 import { mechanismQuery, readMechanism } from "./model/address.js";
@@ -46,7 +46,7 @@ const SPIN = 60;                               // degrees of crank per second of
 const state = {
   linkage: emptyLinkage(), mode: "select", picked: [], table: null, refusal: null, k: 0, playing: false,
   traced: new Set(), plan: null, special: [], quantities: [], fitPending: false,
-  dynamics: null, dynamicsKept: false,
+  dynamics: null, dynamicsKept: false, places: null,
 };
 const tables = new LatestRequest(lang);
 const planner = new LatestRequest(lang);
@@ -252,9 +252,11 @@ function askEstimate(linkage) {
   estimates.submit({ linkage }, (answer) => {
     if (answer.ok) {
       const estimate = dynamicsOf(answer.data);
-      state.dynamics = state.dynamics && state.dynamicsKept ? keptOn(state.dynamics, estimate) : estimate;
+      state.places = answer.data.load_places;
+      state.dynamics = state.dynamics && state.dynamicsKept ? keptOn(state.dynamics, estimate, state.places) : estimate;
       $("editor-masses-status").textContent = state.dynamicsKept ? "" : t.editor_masses_estimated;
     } else {
+      state.places = null;
       $("editor-masses-status").textContent = refusalText(answer.error, t);
     }
     showMasses();
@@ -265,12 +267,25 @@ function askEstimate(linkage) {
 }
 
 function showMasses() {
+  const edited = (redraw) => {
+    state.dynamicsKept = true;
+    $("editor-masses-status").textContent = "";
+    if (redraw) showMasses();
+    writeAddress();
+  };
   renderMasses($("editor-masses"), sliderInput() ? null : state.dynamics, {
-    t, lang, onEdit: (path, value) => {
+    t, lang, places: state.places,
+    onEdit: (path, value) => {
       setPath(state.dynamics, path, value);
-      state.dynamicsKept = true;
-      $("editor-masses-status").textContent = "";
-      writeAddress();
+      edited(false);
+    },
+    onAddLoad: (key) => {
+      addLoad(state.dynamics, state.places, key);
+      edited(true);
+    },
+    onRemoveLoad: (list, index) => {
+      removeLoad(state.dynamics, list, index);
+      edited(true);
     },
   });
 }

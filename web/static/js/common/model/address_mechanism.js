@@ -3,8 +3,8 @@
  * server/lessons/scene_files.py `addressed`): the editor writes the linkage as m=<base64url of its JSON> and its
  * masses, loads and motor as d=<base64url of {masses, inertias, motor, flywheel}> into the page address; each key
  * of the variant's request named in address.request is the value at that dotted path of {m, d}, the variant's own
- * request (address.own) merged over them, and a slider with "relative" {min, max, step, default} takes those as
- * multiples of the request's value at its param. No DOM.
+ * request (address.own) merged over them, and a slider with "relative" {min, max, step, default} (any of them) takes
+ * those as multiples of the request's value at its param. No DOM.
  */
 import { readJsonParameter } from "./base64url.js";
 import { pathValue } from "./dotted_paths.js";

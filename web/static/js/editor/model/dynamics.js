@@ -25,20 +25,55 @@ export const dynamicsParameter = (dynamics) => toBase64Url(JSON.stringify(dynami
 
 /**
  * Kept values on a changed mechanism: each link's row the student (or the preset) gave, while the link still
- * moves; the estimate's row for a new link; loads on pairs and links that still exist (the estimate's
- * otherwise); the machine's inertias and motor as they were.
+ * moves; the estimate's row for a new link; loads on pairs and links that still exist (places: the estimate's
+ * load_places, every sliding pair and moving link), the estimate's where every kept load is gone, none where the
+ * student kept none; g, the machine's inertias and motor as they were.
  */
-export function keptOn(kept, estimate) {
+export function keptOn(kept, estimate, places) {
   const links = new Map(kept.masses.links.map((row) => [row.link, row]));
   const rows = estimate.masses.links.map((row) => links.get(row.link) ?? row);
-  const movingLinks = new Set(estimate.masses.links.map((row) => row.link));
-  const pairs = new Set(estimate.masses.forces.map((f) => f.joint));
+  const pairs = new Set(places.forces.map((f) => f.joint));
+  const movingLinks = new Set(places.moments.map((m) => m.link));
+  const had = (kept.masses.forces ?? []).length + (kept.masses.moments ?? []).length;
   const forces = (kept.masses.forces ?? []).filter((f) => pairs.has(f.joint));
   const moments = (kept.masses.moments ?? []).filter((m) => movingLinks.has(m.link));
-  const loads = forces.length || moments.length ? { forces, moments }
+  const loads = forces.length || moments.length || !had ? { forces, moments }
     : { forces: estimate.masses.forces, moments: estimate.masses.moments ?? [] };
   return { ...kept, masses: { ...kept.masses, links: rows, ...loads } };
 }
+
+/** A place's key in the "add a load" choice: "force:E/ram" (a sliding pair) or "moment:3" (a link). */
+export const placeKey = (kind, where) => `${kind}:${where}`;
+
+/**
+ * The places a load may still be added to: [{key, kind: "force"|"moment", joint | link}] of places (the estimate's
+ * load_places) that carry none of dynamics' loads yet.
+ */
+export function freePlaces(dynamics, places) {
+  if (!places) return [];
+  const taken = new Set([...(dynamics.masses.forces ?? []).map((f) => placeKey("force", f.joint)),
+    ...(dynamics.masses.moments ?? []).map((m) => placeKey("moment", m.link))]);
+  return [...places.forces.map((f) => ({ key: placeKey("force", f.joint), kind: "force", joint: f.joint })),
+    ...places.moments.map((m) => ({ key: placeKey("moment", m.link), kind: "moment", link: m.link }))]
+    .filter((place) => !taken.has(place.key));
+}
+
+/** The load offered at the place key (its first P or M, k and the slow stroke's sense) added to dynamics. */
+export function addLoad(dynamics, places, key) {
+  const [kind, where] = [key.slice(0, key.indexOf(":")), key.slice(key.indexOf(":") + 1)];
+  const offered = kind === "force" ? places.forces.find((f) => f.joint === where)
+    : places.moments.find((m) => String(m.link) === where);
+  if (!offered) return;
+  const list = kind === "force" ? "forces" : "moments";
+  dynamics.masses[list] = [...(dynamics.masses[list] ?? []), structuredClone(offered)];
+}
+
+/** The load at index of masses[list] ("forces" or "moments") taken away. */
+export function removeLoad(dynamics, list, index) {
+  dynamics.masses[list] = (dynamics.masses[list] ?? []).filter((_, k) => k !== index);
+}
+
+export const GRAVITY = 9.81;                   // g, m/s², along −y: the table's "gravity" on
 
 /** The address of a dynamics scene opened on its variant ``variant`` with this linkage and its dynamics. */
 export function sceneAddress({ scene, variant }, linkageParameter, dynamics, lang) {

@@ -1,32 +1,130 @@
 /**
  * The editor's "Masses and loads" table: per moving link its mass, centre S (along, across its line) and J_S;
- * the useful loads on pairs (P, k) and links (M, k); the crank's J₁, the rotor's J, the gear ratio i and the
+ * the useful loads on sliding pairs (P, k, the working stroke's sense) and links (M, k, sense), added on the
+ * places the mechanism has and removed; gravity on or off; the crank's J₁, the rotor's J, the gear ratio i and the
  * linear motor M₀, b at the motor shaft. Every cell is a decimal input (comma or point); a value typed that is
  * no number is refused beside the cell and not taken. onEdit(path, value) puts a value at its dotted path of
  * the dynamics; the links open the dynamics scenes with the mechanism (hrefs given by the page).
  */
 import { element } from "../../common/view/dom.js";
-import { formatQuantity } from "../../common/view/notation.js";
+import { formatQuantity, plainText } from "../../common/view/notation.js";
 import { decimalMessage, parseDecimal } from "../../common/model/decimal_input.js";
+import { GRAVITY, freePlaces } from "../model/dynamics.js";
 
+/**
+ * A decimal cell. Its text is taken on "change" and again on leaving it (a cell redrawn while typed into gets
+ * the typed text back, and the browser's "change" would not see it as changed): the text taken last is kept
+ * in data-taken, so each text is taken once.
+ */
 function cell(value, path, label, { lang, t, onEdit }) {
-  const input = element("input", { type: "text", inputMode: "decimal", size: 7, value: formatQuantity(value, lang, 6),
-    "aria-label": label, "data-path": path });
-  input.addEventListener("change", () => {
+  const shown = formatQuantity(value, lang, 6);
+  const input = element("input", { type: "text", inputMode: "decimal", size: 7, value: shown,
+    "aria-label": label, "data-path": path, "data-taken": shown });
+  const take = () => {
+    if (input.value === input.dataset.taken) return;
+    input.dataset.taken = input.value;
     const read = parseDecimal(input.value, lang);
     input.setCustomValidity(read.error ? decimalMessage(read.error, input.value, t) : "");
     input.title = read.error ? decimalMessage(read.error, input.value, t) : "";
     if (read.error || read.value < 0) return;
     onEdit(path, read.value);
-  });
+  };
+  input.addEventListener("change", take);
+  input.addEventListener("blur", take);
   return element("td", {}, input);
+}
+
+/** The working stroke's sense (+1, −1) of a load as a choice said in words. */
+function senseCell(sense, path, label, words, { onEdit }) {
+  const select = element("select", { "aria-label": label, "data-path": path },
+    ...[[1, words[0]], [-1, words[1]]].map(([value, text]) => new Option(plainText(text), String(value))));
+  select.value = String(sense === -1 ? -1 : 1);
+  select.addEventListener("change", () => onEdit(path, Number(select.value)));
+  return element("td", {}, select);
+}
+
+function removeCell(list, index, label, { t, onRemoveLoad }) {
+  const button = element("button", { type: "button", className: "secondary", textContent: t.editor_load_remove,
+    "aria-label": `${t.editor_load_remove}: ${label}`, "data-remove": `${list}.${index}` });
+  button.addEventListener("click", () => onRemoveLoad(list, index));
+  return element("td", {}, button);
 }
 
 const header = (...cells) => element("thead", {}, element("tr", {}, ...cells.map((text) => element("th", { rich: text }))));
 
-/** Render the table of dynamics (null: none yet) into container. */
+/** The loads' rows: per force and moment its place, P or M, k, the working stroke's sense and "remove". */
+function loadRows(masses, options) {
+  const { t } = options;
+  const slideWords = [t.editor_sense_slide_plus, t.editor_sense_slide_minus];
+  const linkWords = [t.editor_sense_link_plus, t.editor_sense_link_minus];
+  return [
+    ...(masses.forces ?? []).map((f, k) => {
+      const place = `${t.editor_slide} ${f.joint}`;
+      return element("tr", {}, element("th", { scope: "row", textContent: place }),
+        cell(f.working, `masses.forces.${k}.working`, `${place}: P`, options),
+        cell(f.k ?? 1, `masses.forces.${k}.k`, `${place}: k`, options),
+        senseCell(f.sense, `masses.forces.${k}.sense`, `${place}: ${t.editor_masses_sense}`, slideWords, options),
+        removeCell("forces", k, place, options));
+    }),
+    ...(masses.moments ?? []).map((m, k) => {
+      const place = `${t.editor_link} ${m.link}`;
+      return element("tr", {}, element("th", { scope: "row", textContent: place }),
+        cell(m.working, `masses.moments.${k}.working`, `${place}: M`, options),
+        cell(m.k ?? 1, `masses.moments.${k}.k`, `${place}: k`, options),
+        senseCell(m.sense, `masses.moments.${k}.sense`, `${place}: ${t.editor_masses_sense}`, linkWords, options),
+        removeCell("moments", k, place, options));
+    }),
+  ];
+}
+
+/** "Add a load": a choice of the places without one (a slider's pair, a link) and its button. */
+function addLoadTools(dynamics, { t, places, onAddLoad }) {
+  const free = freePlaces(dynamics, places);
+  const select = element("select", { id: "editor-load-place", "aria-label": t.editor_load_place },
+    ...free.map((place) => new Option(place.kind === "force"
+      ? t.editor_load_on_slide.replace("{pair}", place.joint) : t.editor_load_on_link.replace("{link}", String(place.link)),
+    place.key)));
+  const button = element("button", { type: "button", id: "editor-load-add", textContent: t.editor_load_add,
+    disabled: !free.length });
+  button.addEventListener("click", () => select.value && onAddLoad(select.value));
+  return element("p", { className: "editor-load-tools" },
+    element("label", {}, `${t.editor_load_place} `, select), " ", button);
+}
+
+function gravityTool(masses, { t, onEdit }) {
+  const box = element("input", { type: "checkbox", id: "editor-gravity", checked: (masses.gravity ?? GRAVITY) > 0 });
+  box.addEventListener("change", () => onEdit("masses.gravity", box.checked ? GRAVITY : 0));
+  return element("p", { className: "editor-gravity" }, element("label", {}, box, " ", element("span", { rich: t.editor_gravity })));
+}
+
+/**
+ * The input being typed into (its label, text, caret) if it is in container, to be given back after a redraw;
+ * null otherwise.
+ */
+function typing(container) {
+  const active = document.activeElement;
+  if (!(active instanceof HTMLInputElement) || active.type !== "text" || !container.contains(active)) return null;
+  return { label: active.getAttribute("aria-label"), text: active.value, typed: active.value !== active.dataset.taken,
+    start: active.selectionStart, end: active.selectionEnd };
+}
+
+function giveBack(container, was) {
+  if (!was) return;
+  const input = [...container.querySelectorAll("input[type=text]")].find((i) => i.getAttribute("aria-label") === was.label);
+  if (!input) return;
+  if (was.typed) input.value = was.text;
+  input.focus();
+  input.setSelectionRange(Math.min(was.start, input.value.length), Math.min(was.end, input.value.length));
+}
+
+/**
+ * Render the table of dynamics (null: none yet) into container; a cell being typed into keeps its text, caret
+ * and focus. Options: t, lang; places (the estimate's load_places, or null); onEdit(path, value);
+ * onAddLoad(placeKey); onRemoveLoad(list, index).
+ */
 export function renderMasses(container, dynamics, options) {
   const { t } = options;
+  const was = typing(container);
   if (!dynamics) {
     container.replaceChildren(element("p", { className: "hint", textContent: t.editor_masses_none }));
     return;
@@ -38,16 +136,7 @@ export function renderMasses(container, dynamics, options) {
     cell(row.centre?.[0] ?? 0, `masses.links.${k}.centre.0`, `${t.editor_link} ${row.link}: ${t.editor_along}`, options),
     cell(row.centre?.[1] ?? 0, `masses.links.${k}.centre.1`, `${t.editor_link} ${row.link}: ${t.editor_across}`, options),
     cell(row.inertia ?? 0, `masses.links.${k}.inertia`, `${t.editor_link} ${row.link}: J_S`, options)));
-  const loads = [
-    ...(masses.forces ?? []).map((f, k) => element("tr", {},
-      element("th", { scope: "row", textContent: `${t.editor_slide} ${f.joint}` }),
-      cell(f.working, `masses.forces.${k}.working`, `${f.joint}: P`, options),
-      cell(f.k ?? 1, `masses.forces.${k}.k`, `${f.joint}: k`, options))),
-    ...(masses.moments ?? []).map((m, k) => element("tr", {},
-      element("th", { scope: "row", textContent: `${t.editor_link} ${m.link}` }),
-      cell(m.working, `masses.moments.${k}.working`, `${t.editor_link} ${m.link}: M`, options),
-      cell(m.k ?? 1, `masses.moments.${k}.k`, `${t.editor_link} ${m.link}: k`, options))),
-  ];
+  const loads = loadRows(masses, options);
   const machine = [
     ["J1", "inertias.J1", inertias.J1 ?? 0, t.editor_masses_J1],
     ["J_rotor", "inertias.J_rotor", inertias.J_rotor ?? 0, t.editor_masses_rotor],
@@ -61,11 +150,17 @@ export function renderMasses(container, dynamics, options) {
       element("caption", { textContent: t.editor_masses_links }),
       header("", t.editor_masses_m, t.editor_masses_along, t.editor_masses_across, t.editor_masses_JS),
       element("tbody", {}, ...links))),
-    loads.length ? element("div", { className: "table-scroll" }, element("table", { className: "editor-masses" },
+    gravityTool(masses, options),
+    element("div", { className: "table-scroll" }, element("table", { className: "editor-masses", id: "editor-masses-loads" },
       element("caption", { textContent: t.editor_masses_loads }),
-      header("", t.editor_masses_P, "k"), element("tbody", {}, ...loads))) : "",
+      header("", t.editor_masses_P, "k", t.editor_masses_sense, ""),
+      element("tbody", {}, ...(loads.length ? loads
+        : [element("tr", {}, element("td", { colSpan: 5, className: "hint", textContent: t.editor_loads_none }))])))),
+    element("p", { className: "hint", rich: t.editor_loads_note }),
+    addLoadTools(dynamics, options),
     element("div", { className: "table-scroll" }, element("table", { className: "editor-masses" },
       element("caption", { textContent: t.editor_masses_machine }), element("tbody", {}, ...machine))));
+  giveBack(container, was);
 }
 
 /** The links to the dynamics scenes (hrefs: scene id → address, or null while there is nothing to open). */
