@@ -23,9 +23,7 @@ per node; /reduction shows and integrates the composed and solved moments themse
 from __future__ import annotations
 
 import math
-import threading
 import time
-from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -42,7 +40,8 @@ from ..structure.compose import Composition, compose
 from ..structure.masses import MassModel, centre_points, check_model, with_strokes
 from ..structure.reduction import reduced_inertia, reduced_loads
 from .kink_table import KinkTable, build as build_table
-from .machine import KINK_ITERATIONS, KINK_MERGE, KINK_SCAN, KINKS_KEPT, Machine, Tables
+from .kept import Kept
+from .machine import KINK_ITERATIONS, KINK_MERGE, KINK_SCAN, KINKS_KEPT, Machine, Tables, read_only
 from .motors import Motor
 from .reduction import Inertias
 from .resistance import Load
@@ -56,21 +55,17 @@ MEAN_ANGLES = 16384      # or once the rule has used this many angles (the work 
                          # self-locking halves many segments), the segments left bounded so
 DRY_BUDGET_S = 5.0       # wall clock of one friction solve of the dry moment (the forces request's bound), said in
                          # words where it runs out; a six-bar's 8193 angles take ~0.1 s
-_switches_found: OrderedDict = OrderedDict()        # GeneralMachine.kinematic_kinks, by what they depend on
+_switches_found = Kept(KINKS_KEPT)                  # GeneralMachine.kinematic_kinks, by what they depend on
 DRY_KEPT = 16            # machines whose dry-friction solves are kept (GeneralMachine.dry; ≲ 0.5 MB each)
-_dry_solved: OrderedDict = OrderedDict()            # (linkage, masses, pairs) → (sorted angles, their rows)
-_dry_tables: OrderedDict = OrderedDict()            # (linkage, masses, pairs, kinks) → KinkTable of M_T
+_dry_solved = Kept(DRY_KEPT)                        # (linkage, masses, pairs) → (sorted angles, their rows)
+_dry_tables = Kept(DRY_KEPT)                        # (linkage, masses, pairs, kinks) → KinkTable of M_T
 DRY_ORDERS = (32, 64, 128)  # degrees tried on each segment of M_T's table
 SMOOTH_TOLERANCE = 1e-13    # of each function's largest magnitude: the estimate of J, J′, M_useful, S's table
 SMOOTH_ORDERS = (32, 64, 128, 256)   # degrees tried on each segment of their table
 SMOOTH_KEPT = 64            # machines whose table of J, J′, M_useful, S is kept (≲ 40 kB each)
-_smooth_tables: OrderedDict = OrderedDict()         # (linkage, masses but f and r, inertias, loads, β) → KinkTable
-_smooth_lock = threading.Lock()
-_dry_lock = threading.Lock()
+_smooth_tables = Kept(SMOOTH_KEPT)                  # (linkage, masses but f and r, inertias, loads, β) → KinkTable
 SCAN_KEPT = 4            # setups of the normal forces' kink scan kept (GeneralMachine.scan_normals; ~12 MB each)
-_scan_setups: OrderedDict = OrderedDict()           # (linkage, masses but f and r, rough pairs, scan) → Setup
-_scan_lock = threading.Lock()
-_switches_lock = threading.Lock()
+_scan_setups = Kept(SCAN_KEPT)                      # (linkage, masses but f and r, rough pairs, scan) → Setup
 
 
 @dataclass(frozen=True)
@@ -111,8 +106,7 @@ class GeneralMachine(Machine):
             return np.zeros(phi.shape), empty, empty, np.zeros((0, phi.size))
         finite = bool(np.isfinite(phi).all())
         key = (repr(self.linkage.linkage), self.masses, self.pairs)
-        with _dry_lock:
-            known_phi, known = _dry_solved.get(key, (np.zeros(0), None)) if finite else (np.zeros(0), None)
+        known_phi, known = _dry_solved.get(key, (np.zeros(0), None)) if finite else (np.zeros(0), None)
         at = np.minimum(np.searchsorted(known_phi, phi), max(known_phi.size - 1, 0))
         hit = (known_phi[at] == phi) if known_phi.size else np.zeros(phi.size, bool)
         table = None
@@ -126,11 +120,7 @@ class GeneralMachine(Machine):
             if finite and settled.any():          # the angles solved so far, sorted, one row each
                 angles, first = np.unique(np.concatenate([known_phi, sub.phi[settled]]), return_index=True)
                 both = rows[settled] if known is None else np.concatenate([known, rows[settled]])
-                with _dry_lock:
-                    _dry_solved[key] = (angles, both[first])
-                    _dry_solved.move_to_end(key)
-                    while len(_dry_solved) > DRY_KEPT:
-                        _dry_solved.popitem(last=False)
+                _dry_solved.put(key, (angles, both[first]))
         if hit.any():
             table = known[at] if hit.all() else np.where(hit[:, None], known[at], table)
         return table[:, 0], table[:, 1] > 0, table[:, 2] > 0, table[:, 3:].T
@@ -141,17 +131,8 @@ class GeneralMachine(Machine):
         it)."""
         kinks = np.asarray(self.kinks())
         key = (repr(self.linkage.linkage), self.masses, self.pairs, kinks.tobytes())
-        with _dry_lock:
-            found = _dry_tables.get(key)
-            if found is not None:
-                _dry_tables.move_to_end(key)
-                return found
-        found = build_table(lambda phi: self.solved(phi)[0][None], kinks, DRY_TOLERANCE, DRY_ORDERS)
-        with _dry_lock:
-            _dry_tables[key] = found
-            while len(_dry_tables) > DRY_KEPT:
-                _dry_tables.popitem(last=False)
-        return found
+        return _dry_tables.kept(key, lambda: build_table(lambda phi: self.solved(phi)[0][None], kinks,
+                                                         DRY_TOLERANCE, DRY_ORDERS))
 
     def smooth_table(self) -> tuple[KinkTable, list[Notice]]:
         """J, J′, M_useful and S (``smooth_columns``) between the kinematic kinks (the loads' reversals and diagram
@@ -164,18 +145,9 @@ class GeneralMachine(Machine):
         key = (repr(self.linkage.linkage), replace(self.masses, friction=0.0, pair_radius=0.0), self.inertias,
                self.load, self.prismatic_beta, tuple((name, p.beta) for name, p in self.pairs), self.cycle(),
                self.rough_flags())
-        with _smooth_lock:
-            found = _smooth_tables.get(key)
-            if found is not None:
-                _smooth_tables.move_to_end(key)
-        if found is None:
-            table = build_table(self.smooth_columns, self.kinematic_kinks(), SMOOTH_TOLERANCE, SMOOTH_ORDERS)
-            notices = assembly_notices(compose(self.linkage.linkage, np.linspace(0.0, TURN, KINK_SCAN + 1)))
-            found = (table, notices)
-            with _smooth_lock:
-                _smooth_tables[key] = found
-                while len(_smooth_tables) > SMOOTH_KEPT:
-                    _smooth_tables.popitem(last=False)
+        found = _smooth_tables.kept(key, lambda: (
+            build_table(self.smooth_columns, self.kinematic_kinks(), SMOOTH_TOLERANCE, SMOOTH_ORDERS),
+            assembly_notices(compose(self.linkage.linkage, np.linspace(0.0, TURN, KINK_SCAN + 1)))))
         self.memo["smooth_table"] = found
         return found
 
@@ -261,16 +233,8 @@ class GeneralMachine(Machine):
         phi = np.asarray(phi, float)
         key = (repr(self.linkage.linkage), replace(self.masses, friction=0.0, pair_radius=0.0), self.rough_flags(),
                phi.tobytes())
-        with _scan_lock:
-            kept = _scan_setups.get(key)
-            if kept is not None:
-                _scan_setups.move_to_end(key)
-        if kept is None:
-            kept = setup(self.linkage, compose(self.linkage.linkage, phi), self.masses, 0.0, 0.0, dict(self.pairs))
-            with _scan_lock:
-                _scan_setups[key] = kept
-                while len(_scan_setups) > SCAN_KEPT:
-                    _scan_setups.popitem(last=False)
+        kept = _scan_setups.kept(key, lambda: setup(self.linkage, compose(self.linkage.linkage, phi), self.masses,
+                                                    0.0, 0.0, dict(self.pairs)))
         comp = kept.comp
         values, proved = proved_signs(with_friction(kept, self.masses, dict(self.pairs)))
         if not proved.all():
@@ -292,18 +256,8 @@ class GeneralMachine(Machine):
         (the last KINKS_KEPT, as Machine.kinks keeps a machine's)."""
         key = (repr(self.linkage.linkage), self.masses.forces, self.masses.moments, self.load, self.cycle(),
                self.rough_flags())
-        with _switches_lock:
-            found = _switches_found.get(key)
-            if found is not None:
-                _switches_found.move_to_end(key)
-                return found
-        found = super().find_kinks()
-        found.flags.writeable = False
-        with _switches_lock:
-            _switches_found[key] = found
-            while len(_switches_found) > KINKS_KEPT:
-                _switches_found.popitem(last=False)
-        return found
+        switches = super().find_kinks
+        return _switches_found.kept(key, lambda: read_only(switches()))
 
     def find_kinks(self) -> np.ndarray:
         """The kinks of ``Machine.find_kinks`` (the kinematic switches, ``kinematic_kinks``), and the zeros of the

@@ -19,13 +19,12 @@ every one on a node.
 from __future__ import annotations
 
 import math
-import threading
-from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..mechanisms import MECHANISMS, Notice
+from .kept import Kept
 from .motors import Motor, driving_moment, indicator_switches
 from .reduction import Inertias, reduced_inertia
 from .resistance import Load, resisting_moment
@@ -35,8 +34,13 @@ KINK_SCAN = 4096      # samples per turn on which the switching functions are sc
 KINK_MERGE = 1e-12    # rad: kinks closer than this are one (the refinement leaves them ~1e-15 apart)
 KINK_ITERATIONS = 100  # of the refinement at most: Illinois converges superlinearly, ~10 are used
 KINKS_KEPT = 512       # machines' kinks kept per process (a slider's family shares them: see Machine.kinks)
-_kinks_found: OrderedDict = OrderedDict()
-_kinks_lock = threading.Lock()
+_kinks_found = Kept(KINKS_KEPT)
+
+
+def read_only(array: np.ndarray) -> np.ndarray:
+    """The array, made read-only (it is kept and shared across requests)."""
+    array.flags.writeable = False
+    return array
 
 
 @dataclass
@@ -128,19 +132,7 @@ class Machine:
         """The kinks in [0, Φ), sorted (``find_kinks``; read-only). They depend on the mechanism, the load and
         whether an indicator diagram drives it, not on the masses or the motor's speeds: machines that differ
         only there (a slider's family over J, ω or a motor's torque) share them, the last KINKS_KEPT kept."""
-        key = self.kinks_key()
-        with _kinks_lock:
-            found = _kinks_found.get(key)
-            if found is not None:
-                _kinks_found.move_to_end(key)
-                return found
-        found = self.find_kinks()
-        found.flags.writeable = False
-        with _kinks_lock:
-            _kinks_found[key] = found
-            while len(_kinks_found) > KINKS_KEPT:
-                _kinks_found.popitem(last=False)
-        return found
+        return _kinks_found.kept(self.kinks_key(), lambda: read_only(self.find_kinks()))
 
     def kinks_key(self) -> tuple:
         """What the kinks depend on (``kinks``)."""
