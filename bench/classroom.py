@@ -44,10 +44,11 @@ import math
 import os
 import platform
 import random
+import socket
 import sys
 import threading
 import time
-from collections import defaultdict
+from collections import Counter, defaultdict
 from http.cookies import SimpleCookie
 from pathlib import Path
 
@@ -210,6 +211,7 @@ class Record:
         self.rows: list[tuple] = []
         self.throttled: list[tuple[str, str, str]] = []  # (kind, light, endpoint) of every 429 received
         self.abandoned = 0
+        self.given_up: list[tuple[str, str]] = []       # (kind, light) of every family given up by a new grab
 
     def add(self, endpoint: str, seconds: float, status: int, cache: str, partial: bool = False,
             kind: str = "exact", light: str = "light") -> None:
@@ -229,6 +231,9 @@ class Connection:
     def __init__(self, port: int, student: Student, record: Record, end: float):
         self.port, self.student, self.record, self.end = port, student, record, end
         self.connection = http.client.HTTPConnection("127.0.0.1", port, timeout=REQUEST_TIMEOUT_S)
+        self.aborted = False          # the request in flight was given up (abort): not an error
+        self.in_flight = False
+        self.flight = threading.Lock()
 
     def _reopen(self) -> None:
         self.connection.close()
@@ -250,10 +255,24 @@ class Connection:
         student, sent = self.student, time.perf_counter()
         while True:
             try:
+                with self.flight:
+                    self.in_flight = True
                 self.connection.request("POST", path, body=body, headers={**HEADERS, **student.cookie_header()})
                 answer = self.connection.getresponse()
                 raw = answer.read()
+                with self.flight:
+                    self.in_flight = False
+                    if self.aborted:             # given up just as its answer had come: the socket is shut
+                        self.aborted = False
+                        self._reopen()
             except (OSError, http.client.HTTPException):
+                with self.flight:
+                    self.in_flight = False
+                if self.aborted:
+                    self.record.given_up.append((kind, student.light))
+                    self.aborted = False
+                    self._reopen()
+                    return -2
                 self.record.add(student.scene.endpoint, time.perf_counter() - sent, 0, "", False, kind, student.light)
                 self._reopen()
                 return 0
@@ -272,6 +291,18 @@ class Connection:
                                   answer.getheader("x-partial")), kind,
                         student.light)
         return answer.status
+
+    def abort(self) -> None:
+        """Give up the request in flight, as a page's fetch abort does: its connection is shut (the server sees
+        the client gone); the posting thread records it as given up, not as an error."""
+        with self.flight:
+            sock = self.connection.sock
+            if self.in_flight and sock is not None:
+                self.aborted = True
+                try:
+                    sock.shutdown(socket.SHUT_RDWR)
+                except OSError:
+                    pass
 
     def close(self) -> None:
         self.connection.close()
@@ -325,8 +356,8 @@ def old_page(connection: Connection, start: float, end: float) -> None:
 
 class FamilyFetcher:
     """The new page's family requests: a thread and a connection of their own, one family in flight; a grab
-    while one is in flight asks for its own family once that has come back (the latest grab only). Each grab
-    asks for the coarse family (the first preview) and, once it has come back, the full one, as
+    while one is in flight gives that one up (its request aborted) and asks for its own. Each grab asks for the
+    coarse family (the first preview) and, once it has come back, the full one, as
     web/static/js/common/view/family_preview.js does."""
 
     def __init__(self, port: int, student: Student, record: Record, end: float):
@@ -342,6 +373,7 @@ class FamilyFetcher:
         with self.changed:
             self.wanted = (grab, student.family("coarse"), student.family("full"))
             self.changed.notify()
+        self.connection.abort()
 
     def arrived(self, grab: int) -> bool:
         return self.arrived_grab == grab
@@ -456,6 +488,7 @@ def run(workers: int, client: str, students: int, seconds: float, seed: int, pat
     after = cache_counters_at_exit(process.log_text)   # the caches start empty: their counters at exit are the run's
     return {"workers": workers, "client": client, "pattern": pattern, "students": students, "seconds": seconds,
             "wall": wall, "rows": record.rows, "throttled": record.throttled, "abandoned": record.abandoned,
+            "given_up": record.given_up,
             "moves": sum(s.moves for s in class_), "server_cpu": server_cpu,
             "client_cpu": client_cpu, "outlived": process.outlived,
             "other_cpu": max(0.0, busy - server_cpu - client_cpu),
@@ -513,6 +546,15 @@ def errors(result: dict) -> int:
     return sum(1 for r in result["rows"] if not 200 <= r[2] < 300)
 
 
+def given_up(result: dict) -> str:
+    counts = Counter(result.get("given_up", []))
+    if not counts:
+        return "none"
+    names = {"coarse": "coarse", "family": "full"}
+    return ", ".join(f"{counts[key]} {names[key[0]]} ({'elastic' if key[1] == ELASTIC else 'light'} scenes)"
+                     for key in sorted(counts))
+
+
 def percent(value: float | None) -> str:
     return "–" if value is None else f"{100 * value:.0f} %"
 
@@ -549,6 +591,8 @@ def markdown_run(result: dict, title: str) -> list[str]:
                   "into a later request while an answer was awaited, or previewed from a family).",
               f"* 429 answers waited out: {len(result['throttled'])}; requests still waiting one out when the run "
               f"ended: {result['abandoned']}.",
+              f"* Families given up by the student's next grab (aborted in flight, as the page does; not in the "
+              f"latencies above): {given_up(result)}.",
               f"* Cache, the counters each worker process logs as it stops ({cache['workers']} of "
               f"{result['workers']}): "
               f"{cache['hits']} hits, {cache['misses']} misses (hit rate {percent(cache['hits'] / looked_up if looked_up else None)}), "

@@ -222,3 +222,23 @@ def test_members_past_the_deadline_are_not_computed_and_the_known_ones_come_in_o
     for kept, again in zip(first, later):
         assert again.answer is kept.answer
     assert members([2.25], -math.inf) == []
+
+
+def test_a_family_given_up_by_its_client_computes_no_further_chunk(monkeypatch):
+    """family_batch: once heavy.stopped() says the client has given the family up (the page aborted it), no
+    further chunk is computed; the members before it come back, in order, and stay in the memo."""
+    from server.api import heavy
+    family_batch.MEMO.store.clear()
+    family_batch.MEMO.held = 0
+    _, _, request, vary = request_and_vary("transfer-functions", "slider_crank", "lambda")
+    counts: dict = {}
+    members = family_batch.member_batch("kinematics", request, vary, "en", counts)
+    asked = []
+    monkeypatch.setattr(heavy, "stopped", lambda: asked.append(counts.get("computed", 0)) or len(asked) > 1)
+    values = [2.0 + 0.25 * k for k in range(2 * family_batch.CHUNK_MEMBERS + 1)]      # three chunks
+    first = members(values, math.inf)
+    assert asked == [0, family_batch.CHUNK_MEMBERS]          # asked before each chunk; the second was not computed
+    assert [m.value for m in first] == values[:family_batch.CHUNK_MEMBERS]
+    assert counts == {"computed": family_batch.CHUNK_MEMBERS}
+    monkeypatch.setattr(heavy, "stopped", lambda: False)
+    assert [m.value for m in members(values, math.inf)] == values and counts["computed"] == len(values)

@@ -9,6 +9,7 @@ import time
 from concurrent.futures import CancelledError
 from concurrent.futures.process import BrokenProcessPool
 
+import pytest
 from fastapi.testclient import TestClient
 
 from server.api import heavy
@@ -163,3 +164,97 @@ def test_with_no_heavy_processes_submit_runs_in_a_thread_of_its_own(monkeypatch)
 
     worker, loop_thread = run_to_end(scenario())
     assert worker is not loop_thread and worker.name.startswith("mdl-heavy")
+
+
+def _append(path, text):
+    with open(path, "a") as file:
+        file.write(text)
+
+
+def _until_stopped(started, limit_s):
+    """A family's stand-in in the families' lane: works in chunks (here: waits) until `heavy.stopped` says its
+    client has given it up, or `limit_s` has passed; says which, and writes it after `started` in its file."""
+    with open(started, "a") as file:
+        file.write("started ")
+    end, outcome = time.monotonic() + limit_s, "not stopped"
+    while time.monotonic() < end:
+        if heavy.stopped():
+            outcome = "stopped"
+            break
+        time.sleep(0.01)
+    with open(started, "a") as file:
+        file.write(outcome + "; ")
+    return outcome
+
+
+def _lane_scenario(lane, first, then):
+    """`lane` held by `first` (a job already handed to the pool); `then` submitted while it runs."""
+    async def scenario():
+        holding = asyncio.ensure_future(heavy.submit(*first, lane=lane))
+        await asyncio.sleep(0)
+        queued = [asyncio.ensure_future(heavy.submit(*job, lane=lane)) for job in then]
+        return await asyncio.gather(holding, *queued)
+    return scenario()
+
+
+@pytest.mark.parametrize("lane, order", [("families", "cba"), ("answers", "abc")])
+def test_the_newest_family_waiting_goes_first_and_the_oldest_answer(lane, order):
+    """Order, not timing: while a job holds the lane's one process, the jobs asked meanwhile wait in the worker;
+    the newest family goes next (in a class past its CPUs the newest is the slider still held), the oldest
+    answer."""
+    log = f"/tmp/mdl-heavy-order-{os.getpid()}-{time.monotonic_ns()}"
+    heavy.run(os.getpid, lane=lane)                       # the process is up
+    try:
+        run_to_end(_lane_scenario(lane, (time.sleep, 0.3), [(_append, log, text) for text in "abc"]))
+        with open(log) as file:
+            assert file.read() == order
+    finally:
+        if os.path.exists(log):
+            os.remove(log)
+    assert not heavy._queues[lane].waiting and heavy._queues[lane].running == 0
+
+
+@pytest.mark.parametrize("lane", heavy.LANES)
+def test_a_running_family_given_up_by_its_client_stops(lane):
+    """A family (full, or coarse in the answers' lane) whose client goes away while it runs sees heavy.stopped()
+    turn true (between its chunks of members) and ends, so that the lane's process is free for the next; one not
+    given up never sees it."""
+    started = f"/tmp/mdl-heavy-started-{os.getpid()}-{time.monotonic_ns()}"
+
+    async def scenario():
+        running = asyncio.ensure_future(heavy.submit(_until_stopped, started, 120, lane=lane))
+        while not os.path.exists(started):
+            await asyncio.sleep(0.01)
+        running.cancel()
+        after = await heavy.submit(_until_stopped, started, 0.2, lane=lane)   # runs once the first has ended
+        return running.cancelled(), after
+
+    try:
+        assert run_to_end(scenario()) == (True, "not stopped")
+        with open(started) as file:             # the first job saw its stop; the second ran after it had ended
+            assert file.read() == "started stopped; started not stopped; "
+    finally:
+        os.remove(started)
+    assert heavy.run(os.getpid, lane=lane) != os.getpid()
+
+
+def test_a_family_stops_in_the_workers_own_thread_too(monkeypatch):
+    """MDL_HEAVY_PROCESSES=0: the families' lane runs in the worker's heavy thread, and a given-up family stops
+    there as it does in a process."""
+    monkeypatch.setattr(heavy, "HEAVY_PROCESSES", 0)
+    started = f"/tmp/mdl-heavy-started-{os.getpid()}-{time.monotonic_ns()}"
+
+    async def scenario():
+        running = asyncio.ensure_future(heavy.submit(_until_stopped, started, 120, lane="families"))
+        while not os.path.exists(started):
+            await asyncio.sleep(0.01)
+        running.cancel()
+        return running, await heavy.submit(_until_stopped, started, 0.2, lane="families")
+
+    try:
+        running, after = run_to_end(scenario())
+        assert running.cancelled() and after == "not stopped"
+        with open(started) as file:
+            assert file.read() == "started stopped; started not stopped; "
+    finally:
+        os.remove(started)

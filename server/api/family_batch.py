@@ -6,7 +6,8 @@ this process (a neighbouring family sharing a member; the coarse stage's members
 family, where both stages run in one process: with heavy processes the coarse stage runs in the lane of
 answers, routers/family.py), else computed: the members the memo lacks, in chunks of CHUNK_MEMBERS (of one
 member for an endpoint without a batch body), each chunk one call of endpoints.compute_answers (what the
-members share, a machine's tables, computed once for the chunk), the deadline checked before each chunk. A member is the same whether computed alone or in a chunk
+members share, a machine's tables, computed once for the chunk), the deadline checked before each chunk, and whether the
+client has given the family up (heavy.stopped: the page asked for another, or left). A member is the same whether computed alone or in a chunk
 (tests/test_family_members.py); the members returned are the values' first ones, in order, up to the first
 one not computed by the deadline.
 
@@ -28,7 +29,7 @@ from dataclasses import replace
 
 import orjson
 
-from . import family
+from . import family, heavy
 from .endpoints import BATCHES, compute_answers
 
 MEMO_MEMBERS = 4096
@@ -81,7 +82,7 @@ def member_batch(endpoint: str, request: dict, vary: list[family.Vary], lang: st
         missing = [k for k, member in enumerate(known) if member is None]
         made: dict[int, family.Member] = {}
         for start in range(0, len(missing), size):
-            if time.perf_counter() > deadline:
+            if time.perf_counter() > deadline or heavy.stopped():     # the budget, or the client gone
                 break
             chunk = missing[start:start + size]
             outcomes = compute_answers(endpoint, [bodies[k] for k in chunk], lang, reads, family.PREVIEW)

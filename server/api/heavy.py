@@ -6,8 +6,16 @@ other student's 5-ms kinematics request behind it for the lock. In a separate pr
 other CPU and the worker stays free. Two lanes (LANES), each ``MDL_HEAVY_PROCESSES`` processes per worker
 (default 1; 0 runs them in the worker itself, in one thread of their own): the answers a student waits for,
 and the slider families at a lower priority still, so that a family never delays an answer (a family's coarse
-stage, the 9-member preview a student waits for, runs in the answers' lane). A child that dies is replaced and the computation is
-tried once more.
+stage, the 9-member preview a student waits for, runs in the answers' lane). A child that dies is replaced and
+the computation is tried once more.
+
+Each lane's queue is kept in the worker (LaneQueue): at most one job per heavy process is handed to the pool, so
+that a job given up while it waits always leaves the queue. The answers go oldest first, the families newest
+first: in a class that asks for families faster than the CPUs make them, the newest is the one a student still
+holds a slider for, the oldest the ones most likely given up. A family whose client goes away (the page aborts
+it when the student grabs another slider, or leaves) leaves the queue, and one already running stops before its
+next chunk of members (``stopped``, read by family_batch.member_batch), so that its CPU goes to the families
+still wanted.
 
 A route awaits ``submit``: the wait holds no thread, so heavy requests never take the tokens of the thread
 pool that runs the light (sync) routes — 64 waiting elastic requests cost 64 suspended coroutines, not 64 of
@@ -16,14 +24,16 @@ anyio's 40 threads. ``run`` is the blocking form for code that is not async.
 from __future__ import annotations
 
 import asyncio
+import itertools
 import multiprocessing
 import multiprocessing.forkserver
 import os
 import signal
 import threading
 import weakref
-from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+from concurrent.futures import Future, ProcessPoolExecutor, ThreadPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass, field
 from typing import Callable, TypeVar
 
 from ..core.warm_up import warm_up
@@ -41,21 +51,46 @@ _pools: dict[str, ProcessPoolExecutor] = {}
 _stopped: weakref.WeakSet = weakref.WeakSet()   # pools ended by shutdown(): what broke there is not retried
 _lock = threading.Lock()
 _in_worker: ThreadPoolExecutor | None = None   # MDL_HEAVY_PROCESSES=0: one thread, not the light routes' pool
+STOP_SLOTS = 1024              # a stop is written to slot ticket % STOP_SLOTS, holding the ticket it stops
+_tickets = itertools.count(1)
+_stops = multiprocessing.RawArray("q", STOP_SLOTS)   # the worker's: what it has stopped; a heavy process gets it
+_stop_flags = _stops           # read by `stopped`: in a heavy process, the array its worker writes
+_running_ticket = 0            # in a heavy process (or the worker's heavy thread): the ticket of the job it runs
 
 
 def _current_pool(lane: str) -> ProcessPoolExecutor:
     with _lock:
         if lane not in _pools:                # forkserver: no fork of a process that runs threads
             _pools[lane] = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"),
-                                               initializer=_start_heavy_process, initargs=(LANES[lane] if NICE else 0,))
+                                               initializer=_start_heavy_process,
+                                               initargs=(LANES[lane] if NICE else 0, _stops))
         return _pools[lane]
 
 
-def _start_heavy_process(niceness: int) -> None:
+def _start_heavy_process(niceness: int, stops) -> None:
     """A new heavy process yields the CPU (nice `niceness`) and loads the compiled kernels: a student's 5-ms
-    answer is not made to wait behind seconds of an elastic run, nor an elastic answer behind a family."""
+    answer is not made to wait behind seconds of an elastic run, nor an elastic answer behind a family. It reads
+    its worker's stops from `stops` (shared memory)."""
+    global _stop_flags
+    _stop_flags = stops
     os.nice(niceness)
     warm_up()
+
+
+def _run_ticketed(ticket: int, function: Callable[..., T], args: tuple) -> T:
+    """function(*args) as job `ticket`, so that `stopped` can tell whether its client has given it up."""
+    global _running_ticket
+    _running_ticket = ticket
+    try:
+        return function(*args)
+    finally:
+        _running_ticket = 0
+
+
+def stopped() -> bool:
+    """Whether the job running here has been given up by its client (read between chunks of work; always False
+    outside a job of the families' lane)."""
+    return _running_ticket != 0 and _stop_flags[_running_ticket % STOP_SLOTS] == _running_ticket
 
 
 def start() -> None:
@@ -125,17 +160,9 @@ def run(function: Callable[..., T], *args, lane: str = "answers") -> T:
 async def submit(function: Callable[..., T], *args, lane: str = "answers") -> T:
     """function(*args) in a heavy process of `lane` (LANES), awaited without holding a thread; its exceptions
     come back.
-    Cancelled while it waits (its client gone), it leaves the queue; one already running finishes unseen."""
-    if HEAVY_PROCESSES == 0:
-        return await asyncio.wrap_future(_local_threads().submit(function, *args))
-    for attempt in range(2):
-        pool = _current_pool(lane)
-        try:
-            return await asyncio.wrap_future(pool.submit(function, *args))
-        except BrokenProcessPool:
-            if not _replaced(pool, attempt):
-                raise
-    raise AssertionError("unreachable")
+    Cancelled while it waits (its client gone), it leaves the lane's queue (LaneQueue); one already running is
+    told so by `stopped` (a family reads it between chunks of members; other work finishes unseen)."""
+    return await _queues[lane].submit(function, args)
 
 
 def _replaced(pool: ProcessPoolExecutor, attempt: int) -> bool:
@@ -145,3 +172,105 @@ def _replaced(pool: ProcessPoolExecutor, attempt: int) -> bool:
         return False
     _discard(pool)
     return attempt == 0
+
+
+@dataclass(eq=False)
+class _Job:
+    function: Callable
+    args: tuple
+    loop: asyncio.AbstractEventLoop
+    done: asyncio.Future
+    ticket: int = field(default_factory=lambda: next(_tickets))
+    tries: int = 0
+    running: bool = False
+
+
+class LaneQueue:
+    """A lane's queue in the worker: at most `capacity()` jobs handed to the lane's pool (one per process, so that
+    none waits in the pool's own queue, out of reach), then the oldest waiting job next, or the newest
+    (`newest_first`). A job whose awaiting coroutine is cancelled leaves the queue, or, running, has its stop
+    written for `stopped` to read."""
+
+    def __init__(self, lane: str, newest_first: bool):
+        self.lane, self.newest_first = lane, newest_first
+        self.waiting: list[_Job] = []
+        self.running = 0
+        self.lock = threading.Lock()
+
+    @staticmethod
+    def capacity() -> int:
+        return max(HEAVY_PROCESSES, 1)
+
+    async def submit(self, function: Callable[..., T], args: tuple) -> T:
+        loop = asyncio.get_running_loop()
+        job = _Job(function, args, loop, loop.create_future())
+        with self.lock:
+            self.waiting.append(job)
+        self._dispatch()
+        try:
+            return await job.done
+        except asyncio.CancelledError:
+            with self.lock:
+                if job in self.waiting:
+                    self.waiting.remove(job)
+                elif job.running:
+                    _stops[job.ticket % STOP_SLOTS] = job.ticket
+            raise
+
+    def _dispatch(self) -> None:
+        """Hand the newest waiting jobs to the pool while it has a process free (any thread)."""
+        while True:
+            with self.lock:
+                if self.running >= self.capacity() or not self.waiting:
+                    return
+                job = self.waiting.pop(-1 if self.newest_first else 0)
+                self.running += 1
+                job.running = True
+            pool = None
+            try:
+                if HEAVY_PROCESSES == 0:
+                    future = _local_threads().submit(_run_ticketed, job.ticket, job.function, job.args)
+                else:
+                    pool = _current_pool(self.lane)
+                    future = pool.submit(_run_ticketed, job.ticket, job.function, job.args)
+            except Exception as error:        # the pool is shut down or broken: the job fails, the lane goes on
+                self._finished(job, None, error)
+                continue
+            future.add_done_callback(lambda done, job=job, pool=pool: self._finished(job, pool, done))
+
+    def _finished(self, job: _Job, pool: ProcessPoolExecutor | None, outcome: Future | Exception) -> None:
+        """A job's pool call ended (any thread): a broken pool is replaced and the job tried once more; else its
+        outcome goes to its coroutine (cancelled when shutdown() cancelled the call); then the next job goes."""
+        cancelled = isinstance(outcome, Future) and outcome.cancelled()
+        error = outcome if isinstance(outcome, Exception) else None if cancelled else outcome.exception()
+        retry = (isinstance(error, BrokenProcessPool) and pool is not None and not job.done.cancelled()
+                 and _replaced(pool, job.tries))        # outside the lock: replacing ends calls, whose callbacks lock
+        with self.lock:
+            self.running -= 1
+            job.running = False
+            if retry:                         # next, whatever the order
+                job.tries += 1
+                self.waiting.insert(len(self.waiting) if self.newest_first else 0, job)
+        if not retry:
+            _settle(job, cancelled, error, None if cancelled or error is not None else outcome.result())
+        self._dispatch()
+
+
+def _settle(job: _Job, cancelled: bool, error: BaseException | None, result) -> None:
+    """Resolve the job's future in its event loop (a closed loop: nobody waits for it)."""
+    def settle():
+        if job.done.done():
+            return
+        if cancelled:
+            job.done.cancel()
+        elif error is not None:
+            job.done.set_exception(error)
+        else:
+            job.done.set_result(result)
+    try:
+        job.loop.call_soon_threadsafe(settle)
+    except RuntimeError:
+        pass
+
+
+_queues = {lane: LaneQueue(lane, newest_first=lane == "families") for lane in LANES}

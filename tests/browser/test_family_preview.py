@@ -230,6 +230,45 @@ def test_a_second_grab_with_the_same_other_values_reuses_the_family(family_page)
     assert page.problems == []
 
 
+def test_grabbing_another_slider_aborts_the_family_on_its_way_and_keeps_the_coarse_one(family_page):
+    """The full family of λ is held on its way (HeldFull); grabbing the offset slider aborts it (the server, seeing
+    the request gone, stops computing it: server/api/heavy.py), with nothing on the console; grabbing λ again
+    previews from the coarse family kept and asks for λ's full family anew (not the coarse one)."""
+    page = family_page
+    held = HeldFull(page)
+    failed = []
+    page.on("requestfailed", lambda r: "/api/v1/family" in r.url and failed.append(
+        (json.loads(r.post_data).get("stage"), r.failure)))
+    page.goto("/scenes/transfer-functions?lang=ru&variant=slider_crank")
+    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="u31")
+    page.wait_for_load_state("networkidle")
+    x, y = grab(page, "#slider-lambda")                          # the coarse family has arrived
+    page.wait_for_function("() => performance.getEntriesByName('family-requested').length === 1")
+    page.wait_for_timeout(100)
+    assert len(held.held) == 1                                    # λ's full family, on its way
+    page.mouse.up()
+    before = len(page.sent)
+    grab(page, "#slider-offset")
+    page.wait_for_function("() => performance.getEntriesByName('family-requested').length === 2")
+    page.wait_for_timeout(200)
+    assert failed == [(None, "net::ERR_ABORTED")]                 # λ's full family given up
+    assert [body["vary"][0]["path"] for body in sent(page, "family", before)][:1] == ["params.e"]
+    page.mouse.up()
+    held.release()                                                # the aborted route and the offset's full one
+
+    before = len(page.sent)
+    x, y = thumb(page, "#slider-lambda")                          # where it is now
+    page.mouse.move(x(fraction(page, "#slider-lambda")), y)
+    page.mouse.down()
+    drag_through(page, x, y, [0.45])                              # drawn from the coarse family kept
+    assert preview_shown(page)
+    again = sent(page, "family", before)
+    assert len(again) == 1 and again[0].get("stage") is None      # the full one, asked anew
+    assert again[0]["vary"][0]["path"] == "params.l2"
+    release_and_wait_for_exact(page, "kinematics")
+    assert page.problems == []
+
+
 def test_keyboard_focus_asks_for_the_family_and_each_key_press_ends_exact(family_page):
     page = family_page
     page.goto("/scenes/transfer-functions?lang=uk&variant=slider_crank")

@@ -72,13 +72,24 @@ export class ApiClient {
     if (slot) slot.latest = slot.waiting = null;
   }
 
+  /**
+   * Drop whatever is waiting under key and abort its request in flight: the server, seeing the request
+   * gone, stops computing it (a slider's family the student no longer holds).
+   */
+  cancel(key) {
+    this.forget(key);
+    this.#slots.get(key)?.controller?.abort();
+  }
+
   async #drain(slot) {
     slot.busy = true;
     if (this.#active++ === 0) this.onBusy(true);
     while (slot.waiting) {
       const request = slot.waiting;
       slot.waiting = null;
-      const answer = await this.#post(request.text);
+      slot.controller = new AbortController();
+      const answer = await this.#post(request.text, slot.controller.signal);
+      slot.controller = null;
       if (answer.retryAfter !== undefined) {
         if (!slot.waiting && slot.latest === request) slot.waiting = request;   // else a newer one goes
         if (slot.waiting) {
@@ -95,10 +106,10 @@ export class ApiClient {
   }
 
   /** The answer to one POST; {retryAfter: ms} when the server is busy with this browser's requests. */
-  async #post(text) {
+  async #post(text, signal) {
     try {
       const response = await fetch(this.url, {
-        method: "POST", headers: { "Content-Type": "application/json" }, body: text });
+        method: "POST", headers: { "Content-Type": "application/json" }, body: text, signal });
       if (response.status === 429) return { retryAfter: retryDelay(response) };
       const payload = await response.json().catch(() => null);
       if (response.ok && payload) return { ok: true, data: payload };

@@ -12,6 +12,11 @@
  * when it arrives (and redraws a preview on the screen). A server that refuses "stage" (an older one, 422)
  * gets one request without it, the full family, for the rest of the page's life.
  *
+ * A grab of another slider (or of the same one at other values) gives up the families still on their way:
+ * their requests are aborted, so that the server stops computing them (server/api/heavy.py, LaneQueue) and
+ * its CPU goes to the family now held. A coarse family already there is kept; grabbing its slider again asks
+ * for the full one anew.
+ *
  * The request names the answer's leaves the variant's panels draw in a preview ("fields", family_fields.js):
  * the server sends only those, packed ("packed": true: the arrays equal in every member once, in "shared",
  * every array as integer steps in a quantum of at most 0.01 % of its span), unpacked and merged on arrival
@@ -44,6 +49,7 @@ export class FamilyPreview extends Emitter {
   #due = null;               // the family and value of the next frame's preview
   #frameRequested = false;
   #staged = true;            // the server takes "stage" (until it refuses it)
+  #pending = new Set();      // keys whose full family is on its way (its coarse or full stage in flight)
 
   /** showing: a preview is on the screen (or due) and no exact answer has replaced it yet. */
   showing = false;
@@ -95,20 +101,34 @@ export class FamilyPreview extends Emitter {
   #ask(slider) {
     if (slider.locked) return;
     const { body, key } = this.#question(slider);
-    if (this.#families.has(key) || body.request.outputs?.length === 0) return;     // there, or on its way
-    this.#families.set(key, null);
-    for (const old of [...this.#families.keys()].slice(0, -KEPT)) {
-      this.#families.delete(old);
-      for (const stage of STAGES) this.client.forget(`${stage} ${old}`);
+    if (body.request.outputs?.length === 0) return;
+    this.#giveUpAllBut(key);
+    const held = this.#families.get(key);
+    if (this.#pending.has(key) || held?.coarse === false) return;       // on its way, or there in full
+    if (!held) {
+      this.#families.set(key, null);
+      for (const old of [...this.#families.keys()].slice(0, -KEPT)) this.#families.delete(old);
     }
     performance.mark("family-requested");
-    this.#send(key, body, this.#staged ? "coarse" : "full");
+    this.#pending.add(key);
+    this.#send(key, body, held || !this.#staged ? "full" : "coarse");   // a coarse one held: the full one
+  }
+
+  /** Abort the families on their way but the one under key; keep the coarse ones that have arrived. */
+  #giveUpAllBut(key) {
+    for (const other of [...this.#pending]) {
+      if (other === key) continue;
+      for (const stage of STAGES) this.client.cancel(`${stage} ${other}`);
+      this.#pending.delete(other);
+      if (!this.#families.get(other)) this.#families.delete(other);
+    }
   }
 
   /** Ask for one stage of the family under key (body without "stage"); a coarse one asks next for the full one. */
   #send(key, body, stage) {
     const asked = stage === "coarse" ? { ...body, stage } : body;      // "full" is the server's default
     this.client.submit(`${stage} ${key}`, asked, (answer) => {
+      if (stage === "full") this.#pending.delete(key);
       if (!this.#families.has(key)) return;                         // dropped meanwhile
       const coarse = answer.ok && answer.data.numerics?.stage === "coarse";
       if (stage === "coarse" && !answer.ok && !NOT_REFUSED.has(answer.error.code)) this.#staged = false;   // a 422
