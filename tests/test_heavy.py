@@ -188,24 +188,27 @@ def _until_stopped(started, limit_s):
 
 
 def _lane_scenario(lane, first, then):
-    """`lane` held by `first` (a job already handed to the pool); `then` submitted while it runs."""
+    """`lane` held by `first` (a job already handed to the pool); `then`, pairs of (job, newest_first), submitted
+    while it runs."""
     async def scenario():
         holding = asyncio.ensure_future(heavy.submit(*first, lane=lane))
         await asyncio.sleep(0)
-        queued = [asyncio.ensure_future(heavy.submit(*job, lane=lane)) for job in then]
+        queued = [asyncio.ensure_future(heavy.submit(*job, lane=lane, newest_first=newest)) for job, newest in then]
         return await asyncio.gather(holding, *queued)
     return scenario()
 
 
-@pytest.mark.parametrize("lane, order", [("families", "cba"), ("answers", "abc")])
-def test_the_newest_family_waiting_goes_first_and_the_oldest_answer(lane, order):
-    """Order, not timing: while a job holds the lane's one process, the jobs asked meanwhile wait in the worker;
-    the newest family goes next (in a class past its CPUs the newest is the slider still held), the oldest
-    answer."""
+@pytest.mark.parametrize("lane, previews, order", [("families", "abcd", "dcba"), ("answers", "bd", "acdb"),
+                                                   ("answers", "", "abcd")])
+def test_the_answers_waiting_go_first_oldest_first_then_the_newest_preview(lane, previews, order):
+    """Order, not timing: while a job holds the lane's one process, the jobs asked meanwhile wait in the worker.
+    Next goes the oldest answer a student waits for, else the newest preview (a slider's family submitted
+    newest_first): in a class past its CPUs the newest family is the slider still held."""
     log = f"/tmp/mdl-heavy-order-{os.getpid()}-{time.monotonic_ns()}"
     heavy.run(os.getpid, lane=lane)                       # the process is up
     try:
-        run_to_end(_lane_scenario(lane, (time.sleep, 0.3), [(_append, log, text) for text in "abc"]))
+        run_to_end(_lane_scenario(lane, (time.sleep, 0.3),
+                                  [((_append, log, text), text in previews) for text in "abcd"]))
         with open(log) as file:
             assert file.read() == order
     finally:

@@ -10,9 +10,10 @@ stage, the 9-member preview a student waits for, runs in the answers' lane). A c
 the computation is tried once more.
 
 Each lane's queue is kept in the worker (LaneQueue): at most one job per heavy process is handed to the pool, so
-that a job given up while it waits always leaves the queue. The answers go oldest first, the families newest
-first: in a class that asks for families faster than the CPUs make them, the newest is the one a student still
-holds a slider for, the oldest the ones most likely given up. A family whose client goes away (the page aborts
+that a job given up while it waits always leaves the queue. The answers a student waits for go first, oldest
+first; then the slider families (their coarse stage in the answers' lane, the full one in the families'),
+newest first: in a class that asks for families faster than the CPUs make them, the newest is the one a student
+still holds a slider for, the oldest the ones most likely given up. A family whose client goes away (the page aborts
 it when the student grabs another slider, or leaves) leaves the queue, and one already running stops before its
 next chunk of members (``stopped``, read by family_batch.member_batch), so that its CPU goes to the families
 still wanted.
@@ -157,12 +158,13 @@ def run(function: Callable[..., T], *args, lane: str = "answers") -> T:
     raise AssertionError("unreachable")
 
 
-async def submit(function: Callable[..., T], *args, lane: str = "answers") -> T:
+async def submit(function: Callable[..., T], *args, lane: str = "answers", newest_first: bool = False) -> T:
     """function(*args) in a heavy process of `lane` (LANES), awaited without holding a thread; its exceptions
-    come back.
+    come back. `newest_first`: a preview (a slider's family) that waits behind the lane's answers and before the
+    previews asked before it (LaneQueue).
     Cancelled while it waits (its client gone), it leaves the lane's queue (LaneQueue); one already running is
     told so by `stopped` (a family reads it between chunks of members; other work finishes unseen)."""
-    return await _queues[lane].submit(function, args)
+    return await _queues[lane].submit(function, args, newest_first)
 
 
 def _replaced(pool: ProcessPoolExecutor, attempt: int) -> bool:
@@ -180,6 +182,7 @@ class _Job:
     args: tuple
     loop: asyncio.AbstractEventLoop
     done: asyncio.Future
+    newest_first: bool
     ticket: int = field(default_factory=lambda: next(_tickets))
     tries: int = 0
     running: bool = False
@@ -187,12 +190,12 @@ class _Job:
 
 class LaneQueue:
     """A lane's queue in the worker: at most `capacity()` jobs handed to the lane's pool (one per process, so that
-    none waits in the pool's own queue, out of reach), then the oldest waiting job next, or the newest
-    (`newest_first`). A job whose awaiting coroutine is cancelled leaves the queue, or, running, has its stop
-    written for `stopped` to read."""
+    none waits in the pool's own queue, out of reach). Next goes the oldest answer waiting, else the newest
+    preview (a job submitted `newest_first`). A job whose awaiting coroutine is cancelled leaves the queue, or,
+    running, has its stop written for `stopped` to read."""
 
-    def __init__(self, lane: str, newest_first: bool):
-        self.lane, self.newest_first = lane, newest_first
+    def __init__(self, lane: str):
+        self.lane = lane
         self.waiting: list[_Job] = []
         self.running = 0
         self.lock = threading.Lock()
@@ -201,9 +204,9 @@ class LaneQueue:
     def capacity() -> int:
         return max(HEAVY_PROCESSES, 1)
 
-    async def submit(self, function: Callable[..., T], args: tuple) -> T:
+    async def submit(self, function: Callable[..., T], args: tuple, newest_first: bool = False) -> T:
         loop = asyncio.get_running_loop()
-        job = _Job(function, args, loop, loop.create_future())
+        job = _Job(function, args, loop, loop.create_future(), newest_first)
         with self.lock:
             self.waiting.append(job)
         self._dispatch()
@@ -217,13 +220,17 @@ class LaneQueue:
                     _stops[job.ticket % STOP_SLOTS] = job.ticket
             raise
 
+    def _next(self) -> int:
+        """The index of the job to run next: the oldest answer, else the newest preview (under the lock)."""
+        return next((k for k, job in enumerate(self.waiting) if not job.newest_first), len(self.waiting) - 1)
+
     def _dispatch(self) -> None:
         """Hand the newest waiting jobs to the pool while it has a process free (any thread)."""
         while True:
             with self.lock:
                 if self.running >= self.capacity() or not self.waiting:
                     return
-                job = self.waiting.pop(-1 if self.newest_first else 0)
+                job = self.waiting.pop(self._next())
                 self.running += 1
                 job.running = True
             pool = None
@@ -250,7 +257,7 @@ class LaneQueue:
             job.running = False
             if retry:                         # next, whatever the order
                 job.tries += 1
-                self.waiting.insert(len(self.waiting) if self.newest_first else 0, job)
+                self.waiting.insert(len(self.waiting) if job.newest_first else 0, job)
         if not retry:
             _settle(job, cancelled, error, None if cancelled or error is not None else outcome.result())
         self._dispatch()
@@ -273,4 +280,4 @@ def _settle(job: _Job, cancelled: bool, error: BaseException | None, result) -> 
         pass
 
 
-_queues = {lane: LaneQueue(lane, newest_first=lane == "families") for lane in LANES}
+_queues = {lane: LaneQueue(lane) for lane in LANES}

@@ -125,9 +125,11 @@ class FamilyResponse(BaseModel):
 async def family_route(request: FamilyRequest, lang: Language = LANG) -> Response:
     # the family rounds its floats to family.SIGNIFICANT digits itself: sent as they are. The coarse stage is
     # the preview a student is waiting for while dragging (9 members): it runs in the answers' lane, ahead of
-    # the full families queued in theirs (which then compute those 9 again: their memo is in another process)
+    # the full families queued in theirs (which then compute those 9 again: their memo is in another process).
+    # In either lane a family goes after the answers waiting there, and the newest family first (heavy.LaneQueue)
     lane = "answers" if request.stage == "coarse" else "families"
-    return respond(Answer(*await heavy.submit(family_answer, request.model_dump(), lang, lane=lane)), "full")
+    answer = await heavy.submit(family_answer, request.model_dump(), lang, lane=lane, newest_first=True)
+    return respond(Answer(*answer), "full")
 
 
 def family_answer(body: dict, lang: str) -> tuple[dict, bool]:
