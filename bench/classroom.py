@@ -15,7 +15,8 @@ remainders), and behaves like a scene page in one of two request patterns (``--p
   ``POST /api/v1/family``, bench/family_request.py, on a connection of its own); drags it 1–3 s with the same
   random walk; while the family has not arrived the page sends the old pattern's coalesced exact requests,
   once it is there no request at all; on release one exact request for the final value (unless that very
-  request was the last one sent); looks 1–2 s; grabs again.
+  request was the last one sent); looks 1–2 s; grabs again. A grab while the last grab's family is still on its
+  way aborts it (its connection shut, as the page's fetch abort does): counted as given up, not as an error.
 
 Only the main panel is simulated (the kinematics page's λ overlay is off by default). Accept-Encoding: gzip,
 like a browser; each student keeps its cookies (a client id such as ``mdl_client``), got first from its scene's

@@ -395,3 +395,28 @@ def test_a_file_made_by_main_migrates_forward(tmp_path, schema):
     assert reopened.submissions("a1")[1].correct_value == 2.51 and reopened.variant_answers("a1", 0) == {"q": 2.51}
     assert sqlite3.connect(path).execute("PRAGMA integrity_check").fetchone()[0] == "ok"
 
+
+
+OPEN_AND_CHECK = """
+import sys
+from pathlib import Path
+from server.classroom.store import SQLiteStore
+store = SQLiteStore(Path(sys.argv[1]))
+store.check()
+print(store.schema_version())
+"""
+
+
+def test_the_workers_of_a_server_started_on_a_new_file_all_open_it(tmp_path):
+    """Several processes open one new file at once (the workers of `python3 -m server --workers N` on a fresh
+    data folder): each migrates or finds it migrated and can write; none fails with "database is locked"
+    (switching a new file to WAL can be refused at once while another connection does the same:
+    SQLiteStore._open tries again)."""
+    repo = Path(__file__).resolve().parents[1]
+    for round_ in range(3):
+        path = tmp_path / f"round{round_}" / "classroom.sqlite3"
+        processes = [subprocess.Popen([sys.executable, "-c", OPEN_AND_CHECK, str(path)], cwd=repo,
+                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for _ in range(6)]
+        outcomes = [process.communicate(timeout=120) for process in processes]
+        assert [process.returncode for process in processes] == [0] * 6, [err[-500:] for _, err in outcomes]
+        assert {out.strip() for out, _ in outcomes} == {str(SQLiteStore(path).schema_version())}

@@ -225,7 +225,7 @@ class LaneQueue:
         return next((k for k, job in enumerate(self.waiting) if not job.newest_first), len(self.waiting) - 1)
 
     def _dispatch(self) -> None:
-        """Hand the newest waiting jobs to the pool while it has a process free (any thread)."""
+        """Hand the next waiting jobs (_next) to the pool while it has a process free (any thread)."""
         while True:
             with self.lock:
                 if self.running >= self.capacity() or not self.waiting:

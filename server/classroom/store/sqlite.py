@@ -32,11 +32,29 @@ class SQLiteStore:
         self._local = threading.local()
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
-            self._migrate()
+            self._open()
         except (OSError, sqlite3.Error) as error:
             raise StoreUnavailable(f"cannot open the database {self.path} for writing: {error}") from error
         except SchemaTooNew as error:
             raise StoreUnavailable(f"cannot use the database {self.path}: {error}") from error
+
+    def _open(self) -> None:
+        """Migrate, trying again for up to BUSY_TIMEOUT_S while the file is locked: the workers of a server started
+        on a new file open it at once, and switching a new file to WAL can be refused at once ("database is
+        locked", without the busy handler) while another connection is doing the same."""
+        deadline = time.monotonic() + BUSY_TIMEOUT_S
+        while True:
+            try:
+                self._migrate()
+                return
+            except sqlite3.OperationalError as error:
+                if "locked" not in str(error) or time.monotonic() > deadline:
+                    raise
+                connection = getattr(self._local, "connection", None)
+                if connection is not None:
+                    connection.close()
+                    self._local.connection = None
+                time.sleep(0.05)
 
     def _connection(self) -> sqlite3.Connection:
         connection = getattr(self._local, "connection", None)
