@@ -344,3 +344,34 @@ def test_the_statistics_are_documented_in_openapi(client):
     fields = schema["components"]["schemas"]["CacheStats"]["properties"]
     assert {"hits", "misses", "entries", "bytes", "max_bytes"} <= set(fields)
     assert all(field.get("description") for field in fields.values())
+
+
+def test_a_family_compressed_in_the_heavy_process_is_kept_and_served_in_either_encoding(monkeypatch):
+    """A family comes from the heavy process gzip-compressed when the client takes gzip (routers/family.py: its
+    serialising and compressing stay off the worker's event loop). The cache keeps it as it came and serves a
+    client without gzip the same JSON decompressed, and a client with gzip the very bytes computed; a family
+    asked first without gzip is compressed by the cache as any answer."""
+    client = app_client(monkeypatch)
+    scene = scenes()["transfer-functions"]
+    variant = next(v for v in scene.variants if v.id == "slider_crank")
+    request = scene_request(scene, variant, {})
+    body = {"endpoint": "kinematics", "request": request, "min": 1.05, "max": 8, "stage": "coarse",
+            "vary": [{"path": "params.l2", "factor": request["params"]["l1"]}]}
+    raw_headers = {"Accept-Encoding": "gzip"}
+    with client.stream("POST", f"{API}/family", json=body, headers=raw_headers) as first:
+        compressed_bytes = b"".join(first.iter_raw())
+    assert (first.status_code, first.headers["content-encoding"], first.headers["x-cache"]) == (200, "gzip", "miss")
+    plain = gzip.decompress(compressed_bytes)
+    assert json.loads(plain)["numerics"]["stage"] == "coarse" and len(json.loads(plain)["values"]) == 9
+    second = client.post(f"{API}/family", json=body, headers={"Accept-Encoding": "identity"})
+    assert second.headers["x-cache"] == "hit" and "content-encoding" not in second.headers
+    assert second.content == plain and int(second.headers["content-length"]) == len(plain)
+    with client.stream("POST", f"{API}/family", json=body, headers=raw_headers) as third:
+        assert b"".join(third.iter_raw()) == compressed_bytes and third.headers["x-cache"] == "hit"
+
+    other = body | {"min": 1.1}                                  # another family, asked first without gzip
+    plain_first = client.post(f"{API}/family", json=other, headers={"Accept-Encoding": "identity"})
+    assert "content-encoding" not in plain_first.headers and plain_first.headers["x-cache"] == "miss"
+    with client.stream("POST", f"{API}/family", json=other, headers=raw_headers) as again:
+        assert gzip.decompress(b"".join(again.iter_raw())) == plain_first.content
+        assert again.headers["content-encoding"] == "gzip" and again.headers["x-cache"] == "hit"

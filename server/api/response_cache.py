@@ -109,9 +109,14 @@ class CachedAnswer:
 
     @classmethod
     def of(cls, headers, body: bytes) -> "CachedAnswer":
-        """The answer with its compressed body made once (mtime 0: the same bytes for the same body)."""
-        small = len(body) < GZIP_MINIMUM_SIZE
-        return cls(tuple(headers), body, None if small else gzip.compress(body, GZIP_LEVEL, mtime=0))
+        """The answer with its compressed body made once (mtime 0: the same bytes for the same body). An answer
+        the route sent gzip-compressed already (a family, compressed in the heavy process: routers/family.py) is
+        kept as it came, with its plain body (for a client without gzip) decompressed from it."""
+        if _header(headers, b"content-encoding") == b"gzip":
+            plain = gzip.decompress(body)
+            kept = [(n, v) for n, v in headers if n.lower() not in (b"content-encoding", b"content-length", b"vary")]
+            return cls((*kept, (b"content-length", str(len(plain)).encode())), plain, body)
+        return cls(tuple(headers), body, compressed(body))
 
     @property
     def size(self) -> int:
@@ -194,6 +199,11 @@ class ResponseCache:
                     "entries": len(self._entries), "hits": self.hits, "misses": self.misses,
                     "hit_rate": self.hits / looked_up if looked_up else None, "bypassed": self.bypassed,
                     "evictions": self.evictions, "pid": os.getpid()}
+
+
+def compressed(body: bytes) -> bytes | None:
+    """body gzip-compressed as the cache keeps it (GZIP_LEVEL, mtime 0), or None when too small to gain."""
+    return None if len(body) < GZIP_MINIMUM_SIZE else gzip.compress(body, GZIP_LEVEL, mtime=0)
 
 
 def _header(headers, name: bytes) -> bytes:

@@ -4,15 +4,16 @@ from __future__ import annotations
 import math
 from typing import Any, Literal
 
-from fastapi import APIRouter
+from fastapi import APIRouter, Request
 from fastapi.responses import Response
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator
 
 from .. import family, heavy
 from ..endpoints import ENDPOINTS
 from ..family_batch import member_batch
+from ..response_cache import compressed
 from ..schemas import Language
-from ..serialise import Answer, respond
+from ..serialise import PARTIAL_HEADER, serialise
 from .query import LANG
 
 router = APIRouter(tags=["family"])
@@ -122,14 +123,29 @@ class FamilyResponse(BaseModel):
              responses={200: {"model": FamilyResponse,
                               "description": "the family; header X-Partial: 1 when cut short by a work bound"},
                         422: {"description": "invalid input: the field and the reason"}})
-async def family_route(request: FamilyRequest, lang: Language = LANG) -> Response:
-    # the family rounds its floats to family.SIGNIFICANT digits itself: sent as they are. The coarse stage is
-    # the preview a student is waiting for while dragging (9 members): it runs in the answers' lane, ahead of
-    # the full families queued in theirs (which then compute those 9 again: their memo is in another process).
-    # In either lane a family goes after the answers waiting there, and the newest family first (heavy.LaneQueue)
+async def family_route(request: FamilyRequest, http: Request, lang: Language = LANG) -> Response:
+    # The coarse stage is the preview a student is waiting for while dragging (9 members): it runs in the
+    # answers' lane, ahead of the full families queued in theirs (which then compute those 9 again: their memo is
+    # in another process). In either lane a family goes after the answers waiting there, and the newest family
+    # first (heavy.LaneQueue). It comes back as bytes, gzip-compressed when the client takes it: a family is up
+    # to 2 MB of JSON, whose serialising and compressing (tens of ms) would hold the worker's event loop.
     lane = "answers" if request.stage == "coarse" else "families"
-    answer = await heavy.submit(family_answer, request.model_dump(), lang, lane=lane, newest_first=True)
-    return respond(Answer(*answer), "full")
+    gzip_accepted = "gzip" in http.headers.get("accept-encoding", "")
+    body, encoded, partial = await heavy.submit(family_body, request.model_dump(), lang, gzip_accepted, lane=lane,
+                                                newest_first=True)
+    headers = ({PARTIAL_HEADER: "1"} if partial else {}) | (
+        {"Content-Encoding": "gzip", "Vary": "Accept-Encoding"} if encoded else {})
+    return Response(body, media_type="application/json", headers=headers)
+
+
+def family_body(body: dict, lang: str, gzip_accepted: bool) -> tuple[bytes, bool, bool]:
+    """The family's answer as sent (run in the heavy process): its JSON (the family rounds its floats to
+    family.SIGNIFICANT digits itself: serialised as they are), gzip-compressed when the client takes it and it
+    gains (response_cache.compressed, as the cache would keep it); whether compressed; whether partial."""
+    answer, partial = family_answer(body, lang)
+    raw = serialise(answer, None)
+    packed = compressed(raw) if gzip_accepted else None
+    return (raw, False, partial) if packed is None else (packed, True, partial)
 
 
 def family_answer(body: dict, lang: str) -> tuple[dict, bool]:
