@@ -54,9 +54,11 @@ def plot_text(text: str) -> str:
 
 
 def families_arrived(page) -> None:
-    """Every slider family the page asked for has arrived (family_preview.js marks both): a family is a heavy
-    computation, and a client with two of them in flight is answered 429 (retried, but said on the console)."""
-    page.wait_for_function("() => performance.getEntriesByName('family-full-arrived').length >= "
+    """Every slider family the page asked for has arrived or been given up by a later grab (family_preview.js
+    marks each): a family is a heavy computation, and a client with two of them in flight is answered 429
+    (retried, but said on the console)."""
+    page.wait_for_function("() => performance.getEntriesByName('family-full-arrived').length + "
+                           "performance.getEntriesByName('family-given-up').length >= "
                            "performance.getEntriesByName('family-requested').length")
 
 

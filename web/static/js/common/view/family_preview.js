@@ -31,8 +31,8 @@
  *              numbers in tables and readouts stay those of the last exact answer
  *
  * Performance marks (bench/browser.py): family-requested (the grab), family-arrived (the first family the
- * preview can draw from), family-coarse-arrived, family-full-arrived; preview-coarse or preview-full for each
- * preview frame, by the family it is drawn from.
+ * preview can draw from), family-coarse-arrived, family-full-arrived, family-given-up (aborted by the next
+ * grab); preview-coarse or preview-full for each preview frame, by the family it is drawn from.
  */
 import { ApiClient } from "../model/api.js";
 import { element } from "./dom.js";
@@ -120,6 +120,7 @@ export class FamilyPreview extends Emitter {
       if (other === key) continue;
       for (const stage of STAGES) this.client.cancel(`${stage} ${other}`);
       this.#pending.delete(other);
+      performance.mark("family-given-up");
       if (!this.#families.get(other)) this.#families.delete(other);
     }
   }
