@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import asyncio
+import json
 import os
 import signal
 import threading
@@ -261,3 +262,61 @@ def test_a_family_stops_in_the_workers_own_thread_too(monkeypatch):
             assert file.read() == "started stopped; started not stopped; "
     finally:
         os.remove(started)
+
+
+def test_a_family_whose_client_disconnects_stops_before_its_next_chunk(monkeypatch):
+    """End to end through the app (admission, cache, route, lane, member batches; MDL_HEAVY_PROCESSES=0 so that
+    the chunks can be counted here): the client of a full family disconnects while its first chunk of members
+    is computed; the route is cancelled, and the family computes no further chunk (a whole family takes several:
+    the 2 end members, then the 7 others, then its refinements)."""
+    from server.api import family_batch
+    from server.api.app import create_app
+
+    monkeypatch.setattr(heavy, "HEAVY_PROCESSES", 0)
+    family_batch.MEMO.store.clear()
+    family_batch.MEMO.held = 0
+    computing, go_on, chunks = threading.Event(), threading.Event(), []
+    real = family_batch.compute_answers
+
+    def held_chunk(*args):
+        chunks.append(len(args[1]))
+        computing.set()
+        go_on.wait(120)
+        return real(*args)
+
+    monkeypatch.setattr(family_batch, "compute_answers", held_chunk)
+    scene = scenes()["transfer-functions"]
+    variant = next(v for v in scene.variants if v.id == "slider_crank")
+    request = scene_request(scene, variant, {})
+    body = json.dumps({"endpoint": "kinematics", "request": request, "min": 1.05, "max": 8,
+                       "vary": [{"path": "params.l2", "factor": request["params"]["l1"]}]}).encode()
+    scope = {"type": "http", "asgi": {"version": "3.0"}, "http_version": "1.1", "method": "POST", "scheme": "http",
+             "path": "/api/v1/family", "raw_path": b"/api/v1/family", "query_string": b"lang=en", "root_path": "",
+             "headers": [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())],
+             "client": ("127.0.0.1", 50000), "server": ("127.0.0.1", 8000)}
+    sent = []
+
+    async def scenario():
+        gone = asyncio.Event()
+        messages = [{"type": "http.request", "body": body, "more_body": False}]
+
+        async def receive():
+            if messages:
+                return messages.pop(0)
+            await gone.wait()
+            return {"type": "http.disconnect"}
+
+        async def send(message):
+            sent.append(message)
+
+        answering = asyncio.ensure_future(create_app()(scope, receive, send))
+        while not computing.is_set():
+            await asyncio.sleep(0.01)
+        gone.set()                                         # the client goes while the first chunk is computed
+        await answering
+        go_on.set()
+        while heavy._queues["families"].running:           # the family ends in the worker's heavy thread
+            await asyncio.sleep(0.01)
+
+    run_to_end(scenario())
+    assert chunks == [2] and not [m for m in sent if m["type"] == "http.response.start"]
