@@ -53,6 +53,18 @@ def test_a_preset_reference_to_nothing_is_refused_naming_the_file_and_variant(re
         resolved_scene(raw, "s.json", {}, {"shaping_machine": PRESET})
 
 
+@pytest.mark.parametrize("address, reason", [
+    ({"request": {"masses": "d.mass"}, "example": "shaping_machine"}, "the address has no 'd.mass'"),
+    ({"request": {"linkage": "m"}, "example": "no_such_mechanism"}, "address example 'no_such_mechanism'"),
+])
+def test_an_address_reference_to_nothing_is_refused_naming_the_file_and_variant(address, reason):
+    """A variant that takes its mechanism from the page address is resolved with its example preset's documents
+    (m: the linkage, d: its dynamics): a path they lack, or an example that is no preset, is refused."""
+    raw = {"variants": [{"id": "own", "address": address, "request": {}}]}
+    with pytest.raises(ContentError, match=rf"s\.json: variant own: {reason}"):
+        resolved_scene(raw, "s.json", {}, {"shaping_machine": PRESET})
+
+
 def test_a_dotted_path_indexes_a_list():
     body = {"masses": {"forces": [{"working": 1.0}, {"working": 2.0}]}}
     set_path(body, "masses.forces.1.working", 5.0)

@@ -6,10 +6,10 @@ this process (a neighbouring family sharing a member; the coarse stage's members
 family, where both stages run in one process: with heavy processes the coarse stage runs in the lane of
 answers, routers/family.py), else computed: the members the memo lacks, in chunks of CHUNK_MEMBERS (of one
 member for an endpoint without a batch body), each chunk one call of endpoints.compute_answers (what the
-members share, a machine's tables, computed once for the chunk), the deadline checked before each chunk, and whether the
-client has given the family up (heavy.stopped: the page asked for another, or left). A member is the same whether computed alone or in a chunk
-(tests/test_family_members.py); the members returned are the values' first ones, in order, up to the first
-one not computed by the deadline.
+members share, a machine's tables, computed once for the chunk). Before each chunk the deadline is checked, and
+whether the client has given the family up (heavy.stopped: the page asked for another, or left). A member is
+the same whether computed alone or in a chunk (tests/test_family_members.py); the members returned are the
+values' first ones, in order, up to the first one not computed by the deadline.
 
 Members are pruned to the request's ``fields`` (family.pruned) as they are made, so the memo keys them by
 the fields too: the same body asked with other fields is another member. The endpoint is told which top-level

@@ -98,15 +98,26 @@ def _with_preset(variant: dict, where: str, presets: dict[str, dict]) -> dict:
     if name not in presets:
         raise ContentError(f"{where}: variant {variant['id']}: preset {name!r} is no file of content/mechanisms "
                            f"({', '.join(sorted(presets))})")
+    try:
+        taken = _taken(presets[name], reference.get("request", {}))
+    except KeyError as missing:
+        path, key = missing.args
+        raise ContentError(f"{where}: variant {variant['id']}: preset {name} has no {path!r} (for {key})") from None
+    return variant | {"request": _merged(taken, variant.get("request", {}))}
+
+
+def _taken(documents: dict, paths: dict) -> dict:
+    """Each request key's value (a copy) at its dotted path of documents; KeyError(path, key) where one is
+    missing."""
     taken = {}
-    for key, path in reference.get("request", {}).items():
-        value = presets[name]
+    for key, path in paths.items():
+        value = documents
         for step in str(path).split("."):
             if not isinstance(value, dict) or step not in value:
-                raise ContentError(f"{where}: variant {variant['id']}: preset {name} has no {path!r} (for {key})")
+                raise KeyError(path, key)
             value = value[step]
         taken[key] = copy.deepcopy(value)
-    return variant | {"request": _merged(taken, variant.get("request", {}))}
+    return taken
 
 
 def _with_example(variant: dict, where: str, presets: dict[str, dict]) -> dict:
@@ -121,7 +132,7 @@ def _with_example(variant: dict, where: str, presets: dict[str, dict]) -> dict:
     try:
         return addressed(variant, example_documents(presets[name]))
     except KeyError as missing:
-        raise ContentError(f"{where}: variant {variant['id']}: the address has no {missing}") from None
+        raise ContentError(f"{where}: variant {variant['id']}: the address has no {missing.args[0]!r}") from None
 
 
 def example_documents(preset: dict) -> dict:
@@ -132,18 +143,10 @@ def example_documents(preset: dict) -> dict:
 def addressed(variant: dict, documents: dict) -> dict:
     """The variant with its request's keys taken from the address's documents (``address.request``: key → dotted
     path), its own ``address.own`` request (kept from the file) merged over them, and its relative sliders'
-    ranges as multiples of the request's values. KeyError names a path the documents lack."""
+    ranges as multiples of the request's values. KeyError(path, key) names a path the documents lack."""
     reference = variant["address"]
     own = reference.get("own", variant.get("request", {}))
-    taken = {}
-    for key, path in reference.get("request", {}).items():
-        value = documents
-        for step in str(path).split("."):
-            if not isinstance(value, dict) or step not in value:
-                raise KeyError(path)
-            value = value[step]
-        taken[key] = copy.deepcopy(value)
-    request = _merged(taken, own)
+    request = _merged(_taken(documents, reference.get("request", {})), own)
     sliders = [_relative(slider, request) for slider in variant.get("sliders", [])]
     return variant | {"address": reference | {"own": own}, "request": request, "sliders": sliders}
 

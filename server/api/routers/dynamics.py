@@ -1,10 +1,11 @@
-"""POST /api/v1/reduction, /motion, /flywheel, /work-precision/motion: the one-mass dynamic model of the machine;\n/dynamics-estimate: a first mass model for a mechanism that has none."""
+"""POST /api/v1/reduction, /motion, /flywheel, /work-precision/motion: the one-mass dynamic model of the machine;
+/dynamics-estimate: a first mass model for a mechanism that has none."""
 from fastapi import APIRouter
 
 from .. import endpoints, heavy
 from ..schemas import Language
-from ..schemas_dynamics import (EstimateRequest, EstimateResponse, FlywheelRequest, FlywheelResponse, MotionRequest, MotionResponse, ReductionRequest,
-                                ReductionResponse)
+from ..schemas_dynamics import (EstimateRequest, EstimateResponse, FlywheelRequest, FlywheelResponse, MotionRequest,
+                                MotionResponse, ReductionRequest, ReductionResponse)
 from ..serialise import Precision, respond
 from .query import LANG, PRECISION
 

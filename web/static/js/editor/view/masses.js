@@ -52,28 +52,24 @@ function removeCell(list, index, label, { t, onRemoveLoad }) {
 
 const header = (...cells) => element("thead", {}, element("tr", {}, ...cells.map((text) => element("th", { rich: text }))));
 
-/** The loads' rows: per force and moment its place, P or M, k, the working stroke's sense and "remove". */
+/** One load's row: its place, P or M (symbol), k, the working stroke's sense (words: + and −) and "remove". */
+function loadRow(list, load, k, place, symbol, words, options) {
+  const path = `masses.${list}.${k}`;
+  return element("tr", {}, element("th", { scope: "row", textContent: place }),
+    cell(load.working, `${path}.working`, `${place}: ${symbol}`, options),
+    cell(load.k ?? 1, `${path}.k`, `${place}: k`, options),
+    senseCell(load.sense, `${path}.sense`, `${place}: ${options.t.editor_masses_sense}`, words, options),
+    removeCell(list, k, place, options));
+}
+
+/** The loads' rows: the forces on sliding pairs, then the moments on links. */
 function loadRows(masses, options) {
   const { t } = options;
   const slideWords = [t.editor_sense_slide_plus, t.editor_sense_slide_minus];
   const linkWords = [t.editor_sense_link_plus, t.editor_sense_link_minus];
   return [
-    ...(masses.forces ?? []).map((f, k) => {
-      const place = `${t.editor_slide} ${f.joint}`;
-      return element("tr", {}, element("th", { scope: "row", textContent: place }),
-        cell(f.working, `masses.forces.${k}.working`, `${place}: P`, options),
-        cell(f.k ?? 1, `masses.forces.${k}.k`, `${place}: k`, options),
-        senseCell(f.sense, `masses.forces.${k}.sense`, `${place}: ${t.editor_masses_sense}`, slideWords, options),
-        removeCell("forces", k, place, options));
-    }),
-    ...(masses.moments ?? []).map((m, k) => {
-      const place = `${t.editor_link} ${m.link}`;
-      return element("tr", {}, element("th", { scope: "row", textContent: place }),
-        cell(m.working, `masses.moments.${k}.working`, `${place}: M`, options),
-        cell(m.k ?? 1, `masses.moments.${k}.k`, `${place}: k`, options),
-        senseCell(m.sense, `masses.moments.${k}.sense`, `${place}: ${t.editor_masses_sense}`, linkWords, options),
-        removeCell("moments", k, place, options));
-    }),
+    ...(masses.forces ?? []).map((f, k) => loadRow("forces", f, k, `${t.editor_slide} ${f.joint}`, "P", slideWords, options)),
+    ...(masses.moments ?? []).map((m, k) => loadRow("moments", m, k, `${t.editor_link} ${m.link}`, "M", linkWords, options)),
   ];
 }
 
@@ -138,12 +134,12 @@ export function renderMasses(container, dynamics, options) {
     cell(row.inertia ?? 0, `masses.links.${k}.inertia`, `${t.editor_link} ${row.link}: J_S`, options)));
   const loads = loadRows(masses, options);
   const machine = [
-    ["J1", "inertias.J1", inertias.J1 ?? 0, t.editor_masses_J1],
-    ["J_rotor", "inertias.J_rotor", inertias.J_rotor ?? 0, t.editor_masses_rotor],
-    ["i", "inertias.gear_ratio", inertias.gear_ratio ?? 1, t.editor_masses_ratio],
-    ["M0", "motor.M0", motor.M0 ?? 0, t.editor_masses_M0],
-    ["b", "motor.b", motor.b ?? 0, t.editor_masses_b],
-  ].map(([, path, value, label]) => element("tr", {}, element("th", { scope: "row", rich: label }),
+    ["inertias.J1", inertias.J1 ?? 0, t.editor_masses_J1],
+    ["inertias.J_rotor", inertias.J_rotor ?? 0, t.editor_masses_rotor],
+    ["inertias.gear_ratio", inertias.gear_ratio ?? 1, t.editor_masses_ratio],
+    ["motor.M0", motor.M0 ?? 0, t.editor_masses_M0],
+    ["motor.b", motor.b ?? 0, t.editor_masses_b],
+  ].map(([path, value, label]) => element("tr", {}, element("th", { scope: "row", rich: label }),
     cell(value, path, label.replace(/_/g, ""), options)));
   container.replaceChildren(
     element("div", { className: "table-scroll" }, element("table", { className: "editor-masses", id: "editor-masses-links" },
