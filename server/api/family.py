@@ -133,6 +133,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..core.interpolation_error import CONCENTRATED, PREDICTORS, irregularities
 from ..core.mechanisms import GeometryError
 from .serialise import Answer, significant
 from .messages import CommaFloat, DECIMAL_COMMA, ReadableFloat
@@ -972,14 +973,6 @@ def cubic_errors(stack: Stack, kept: dict) -> np.ndarray:
     return found
 
 
-# The slope of interval k predicted from two other intervals i, j: the line through their (midpoint, slope),
-# read at interval k's midpoint (exact for a parabola, whose chord's slope is f′ at the chord's midpoint).
-# Offsets (i − k, j − k): every pair within 3 intervals of k and 3 of each other, so that a pair clear of
-# one other step is there even beside the range's end (an interval two from the end beside a step).
-CONCENTRATED = 4                # |f″| at an interval's ends this many times that beyond them: a corner there
-PREDICTORS = tuple((i, j) for i in (-3, -2, -1, 1, 2) for j in (-2, -1, 1, 2, 3) if i < j and j - i <= 3)
-
-
 @dataclass(frozen=True)
 class Irregular:
     """(M − 1, L) each, by interval and leaf (the largest of the leaf's elements): what the second differences
@@ -1011,35 +1004,14 @@ def irregular(stack: Stack) -> Irregular:
               alone, a corner, which the cubic's fourth differences over 5 members read diluted (a window
               twice as wide as the cubic's 4 members reads a corner 8× smaller), not a smooth curvature, which
               is the same at neighbouring members.
-    NaN where the members are not there (fewer than 4, refusals, the range's ends for the corners)."""
-    x, count = stack.x, len(stack.x)
-    empty = np.full((count - 1, len(stack.paths)), np.nan)
+    NaN where the members are not there (fewer than 4, refusals, the range's ends for the corners). Computed
+    element by element in one compiled loop (server/core/interpolation_error.py)."""
+    count = len(stack.x)
     if count < 4 or not stack.paths:
+        empty = np.full((count - 1, len(stack.paths)), np.nan)
         return Irregular(empty, empty, empty)
-    h = np.diff(x)
-    middle = (x[:-1] + x[1:]) / 2
-    intervals = np.arange(count - 1)
-    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
-        slope = np.diff(stack.rows, axis=0) / h[:, None]
-        least = np.full(slope.shape, np.nan)
-        for a, b in PREDICTORS:
-            k = intervals[(intervals + min(a, b) >= 0) & (intervals + max(a, b) <= count - 2)]
-            i, j = k + a, k + b
-            t = ((middle[k] - middle[i]) / (middle[j] - middle[i]))[:, None]
-            off = np.abs(slope[k] - (slope[i] + (slope[j] - slope[i]) * t)) * h[k, None]
-            least[k] = np.fmin(least[k], off)
-        turn = np.diff(slope, axis=0)                         # (M − 2): s_m − s_m−1 at members 1 … M − 2
-        a, b = turn[:-1], turn[1:]                            # intervals 1 … M − 3
-        corners = np.full(slope.shape, np.nan)
-        corners[1:-1] = np.where(a * b > 0, h[1:-1, None] * a * b / (a + b), 0.0)
-        bend = np.full((count, slope.shape[1]), np.nan)       # |f″| at each member
-        bend[1:-1] = np.abs(2 * turn / (h[:-1] + h[1:])[:, None])
-        inner = np.fmax(bend[:-1], bend[1:])                  # (M − 1): the interval's ends
-        beyond = np.full(slope.shape, np.nan)
-        beyond[1:-1] = np.fmax(bend[:-3], bend[3:])
-        alone = inner > CONCENTRATED * np.nan_to_num(beyond, nan=np.inf)
-        kinked = np.where(alone, SAFETY * inner * (h ** 2 / 8)[:, None], np.nan)
-        return Irregular(stack.largest(least), stack.largest(corners), stack.largest(kinked))
+    return Irregular(*irregularities(np.ascontiguousarray(stack.x, float), np.ascontiguousarray(stack.rows, float),
+                                     np.asarray(stack.starts, np.int64), PREDICTORS, CONCENTRATED, float(SAFETY)))
 
 
 @dataclass
