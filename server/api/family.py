@@ -133,7 +133,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..core.interpolation_error import CONCENTRATED, PREDICTORS, irregularities
+from ..core.interpolation_error import CONCENTRATED, PREDICTORS, divided_differences, irregularities
 from ..core.mechanisms import GeometryError
 from .serialise import Answer, significant
 from .messages import CommaFloat, DECIMAL_COMMA, ReadableFloat
@@ -832,16 +832,6 @@ class Stack:
         return tuple(sorted(set().union(*(frozenset.intersection(*(self.held[m] for m in window))
                                            for window in windows))))
 
-    def columns(self, leaves: tuple | None) -> tuple[np.ndarray | None, np.ndarray]:
-        """(the columns of these leaves, None for all; where each leaf starts among them)."""
-        if leaves is None:
-            return None, self.starts
-        ends = np.append(self.starts[1:], self.rows.shape[1])
-        sizes = [ends[leaf] - self.starts[leaf] for leaf in leaves]
-        columns = np.concatenate([np.arange(self.starts[leaf], ends[leaf]) for leaf in leaves]) if leaves else \
-            np.zeros(0, int)
-        return columns, np.cumsum([0, *sizes[:-1]]).astype(int) if leaves else np.zeros(0, int)
-
     def largest(self, values: np.ndarray) -> np.ndarray:
         """(K, L): the largest of each leaf's elements of values (K, E), nulls aside; NaN where it has none."""
         if not self.paths:
@@ -887,17 +877,13 @@ def divided(stack: Stack, order: int, kept: dict) -> np.ndarray:
         # only the leaves that all members of some window hold: elsewhere the difference is NaN anyway (a
         # start-up curve whose length changes with the value would fill most columns with NaN)
         leaves = stack.common_to_any([range(j, j + width) for j in new])
-        columns, starts = stack.columns(leaves)
+        chosen = np.arange(len(stack.paths)) if leaves is None else np.array(leaves, np.int64)
         found_rows = np.full((len(new), len(stack.paths)), np.nan)
-        if starts.size:
-            pick = (lambda i: stack.rows[first + i]) if columns is None else \
-                (lambda i: stack.rows[(first + i)[:, None], columns])        # one gather, not rows then columns
-            with np.errstate(invalid="ignore", over="ignore"):
-                total = weights[:, 0, None] * pick(0)
-                for i in range(1, width):
-                    total += weights[:, i, None] * pick(i)
-                found_rows[:, list(leaves) if columns is not None else slice(None)] = np.fmax.reduceat(
-                    np.abs(total, out=total), starts, axis=1)
+        if chosen.size:                 # one compiled loop over the windows' elements, leaf by leaf
+            ends = np.append(stack.starts[1:], stack.rows.shape[1]).astype(np.int64)
+            found_rows[:, chosen] = divided_differences(
+                np.ascontiguousarray(stack.rows, float), first.astype(np.int64), weights,
+                stack.starts[chosen].astype(np.int64), ends[chosen])
         for j, row in zip(new, found_rows):
             kept[keys[j]] = (stack.layout, row)
     for j in range(count - order):
@@ -978,6 +964,7 @@ class Irregular:
     """(M − 1, L) each, by interval and leaf (the largest of the leaf's elements): what the second differences
     at an interval's ends do not see (see ``irregular``)."""
 
+    changes: np.ndarray     # |f(b) − f(a)| across the interval
     steps: np.ndarray       # u_k: the step the neighbours' slopes do not explain
     corners: np.ndarray     # the chord's error were the slope to change at one point inside
     kinked: np.ndarray      # the linear bound of elements whose curvature sits at the interval alone
@@ -1004,12 +991,15 @@ def irregular(stack: Stack) -> Irregular:
               alone, a corner, which the cubic's fourth differences over 5 members read diluted (a window
               twice as wide as the cubic's 4 members reads a corner 8× smaller), not a smooth curvature, which
               is the same at neighbouring members.
-    NaN where the members are not there (fewer than 4, refusals, the range's ends for the corners). Computed
-    element by element in one compiled loop (server/core/interpolation_error.py)."""
+    NaN where the members are not there (fewer than 4, refusals, the range's ends for the corners); and the
+    change |f(b) − f(a)| across each interval. Computed element by element in one compiled loop
+    (server/core/interpolation_error.py)."""
     count = len(stack.x)
     if count < 4 or not stack.paths:
         empty = np.full((count - 1, len(stack.paths)), np.nan)
-        return Irregular(empty, empty, empty)
+        with np.errstate(invalid="ignore"):
+            changes = stack.largest(np.abs(np.diff(stack.rows, axis=0)))
+        return Irregular(changes, empty, empty, empty)
     return Irregular(*irregularities(np.ascontiguousarray(stack.x, float), np.ascontiguousarray(stack.rows, float),
                                      np.asarray(stack.starts, np.int64), PREDICTORS, CONCENTRATED, float(SAFETY)))
 
@@ -1036,12 +1026,11 @@ def assess(stack: Stack, span: dict[tuple, float], kept: dict, drawn: list | Non
     bends = curvatures(stack, kept)
     h = np.diff(stack.x)
     ends = np.fmin(bends[:-1], bends[1:]) * (h ** 2 / 8)[:, None]
-    with np.errstate(invalid="ignore"):                 # |f(b) − f(a)| of every leaf over every interval
-        steps = stack.largest(np.abs(np.diff(stack.rows, axis=0)))
+    odd = irregular(stack)
+    steps = odd.changes                                 # |f(b) − f(a)| of every leaf over every interval
     # a leaf both ends hold but neither has a second difference for (its neighbours hold it in another shape,
     # a start-up curve whose length changes with the value): the change across, a bound where f is monotone
     bent_only = relative(np.where(np.isnan(ends), steps, ends), widths_)
-    odd = irregular(stack)
     jumps = relative(odd.steps, widths_)                # a step the neighbours' slopes do not explain, as it is
     corners = relative(odd.corners, widths_)            # a corner inside, as it is
     # the linear rule's estimate (the ends' curvature, exact for a parabola on any spacing; a step as it is)

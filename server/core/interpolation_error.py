@@ -5,6 +5,7 @@ the members' stacked answers in one loop, each element's measures reduced at onc
 The members are x_0 < … < x_M−1 with rows f_m (one column per element of every leaf), h_k = x_k+1 − x_k and
 s_k = (f_k+1 − f_k)/h_k the slope over interval k. For interval k and every element:
 
+    changes   |f_k+1 − f_k|;
     steps     h_k · min over the predictor pairs (i, j) of |s_k − (s_i + (s_j − s_i)(c_k − c_i)/(c_j − c_i))|,
               c the intervals' midpoints, the pairs PREDICTORS within the range;
     corners   h_k·a·b/(a + b) where a = s_k − s_k−1 and b = s_k+1 − s_k have one sign, else 0 (inner intervals);
@@ -50,11 +51,12 @@ def _bend(slope, h, m, e):
 
 @njit(cache=True)
 def irregularities(x, rows, starts, predictors, concentrated, safety):
-    """(steps, corners, kinked), each (M − 1, L): interval by leaf, the largest of the leaf's elements (the
+    """(changes, steps, corners, kinked), each (M − 1, L): interval by leaf, the largest of the leaf's elements (the
     leaf of columns starts[l] … starts[l+1] − 1). ``rows`` (M, E) with M ≥ 4 and L ≥ 1; ``safety`` the linear
     rule's factor on a curvature (family.SAFETY)."""
     count, width = rows.shape
     leaves = starts.size
+    changes = np.full((count - 1, leaves), np.nan)
     steps = np.full((count - 1, leaves), np.nan)
     corners = np.full((count - 1, leaves), np.nan)
     kinked = np.full((count - 1, leaves), np.nan)
@@ -81,11 +83,13 @@ def irregularities(x, rows, starts, predictors, concentrated, safety):
                 weight[p] = (middle[k] - middle[k + a]) / (middle[k + b] - middle[k + a])
         inside = 1 <= k <= count - 3
         for leaf in range(leaves):
+            change = np.nan
             step = np.nan
             corner = np.nan
             kink = np.nan
             for e in range(ends[leaf], ends[leaf + 1]):
                 s = slope[k, e]
+                change = _fmax(change, abs(rows[k + 1, e] - rows[k, e]))
                 if s != s:              # an element a member of the interval lacks: no step, no kink, corner 0
                     if inside:
                         corner = _fmax(corner, 0.0)
@@ -110,14 +114,38 @@ def irregularities(x, rows, starts, predictors, concentrated, safety):
                 inner = _fmax(_bend(slope, h, k, e), _bend(slope, h, k + 1, e))
                 if inner > limit:
                     kink = _fmax(kink, safety * inner * (h[k] * h[k] / 8))
+            changes[k, leaf] = change
             steps[k, leaf] = step
             corners[k, leaf] = corner
             kinked[k, leaf] = kink
-    return steps, corners, kinked
+    return changes, steps, corners, kinked
+
+
+@njit(cache=True)
+def divided_differences(rows, first, weights, starts, ends):
+    """(K, L): for window j (members first[j] … first[j] + n) and leaf l (columns starts[l] … ends[l] − 1), the
+    largest over the leaf's elements of |Σ_i weights[j, i]·f_first[j]+i|, the divided difference of order n
+    when weights[j, i] = 1/Π_{m≠i}(x_i − x_m) (family.divided); NaN elements passed over as numpy's fmax does,
+    NaN where the leaf has no number in the window. The sum in the order i = 0 … n, as numpy summed rows."""
+    windows, width = weights.shape
+    leaves = starts.size
+    found = np.full((windows, leaves), np.nan)
+    for j in range(windows):
+        for leaf in range(leaves):
+            largest = np.nan
+            for e in range(starts[leaf], ends[leaf]):
+                total = weights[j, 0] * rows[first[j], e]
+                for i in range(1, width):
+                    total += weights[j, i] * rows[first[j] + i, e]
+                largest = _fmax(largest, abs(total))
+            found[j, leaf] = largest
+    return found
 
 
 def warm_up() -> float:
-    """Compile (or load from the disk cache) ``irregularities``; seconds."""
+    """Compile (or load from the disk cache) ``irregularities`` and ``divided_differences``; seconds."""
     started = time.perf_counter()
     irregularities(np.arange(5.0), np.zeros((5, 2)), np.array([0, 1], np.int64), PREDICTORS, CONCENTRATED, 4.0)
+    divided_differences(np.zeros((5, 2)), np.array([0, 1], np.int64), np.ones((2, 3)), np.array([0, 1], np.int64),
+                        np.array([1, 2], np.int64))
     return time.perf_counter() - started
