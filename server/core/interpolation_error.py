@@ -35,25 +35,30 @@ PREDICTORS = np.array([(a, b) for a in (-3, -2, -1, 1, 2) for b in (-2, -1, 1, 2
 CONCENTRATED = 4.0      # |f″| at an interval's ends this many times that beyond them: a corner there
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _fmax(held, new):
     """np.fmax: the larger, NaN passed over (NaN only when both are)."""
     return new if held != held or new > held else held
 
 
-@njit(cache=True)
-def _bend(slope, h, m, e):
-    """|f″| at member m, 2|s_m − s_m−1|/(h_m−1 + h_m); NaN at the range's ends."""
-    if m < 1 or m > h.size - 1:
-        return np.nan
-    return abs(2 * (slope[m, e] - slope[m - 1, e]) / (h[m - 1] + h[m]))
+@njit(cache=True, error_model="numpy")
+def _held(rows, m, low, high):
+    """Whether member m has a number among columns low … high − 1 (a leaf it holds)."""
+    for e in range(low, high):
+        if rows[m, e] == rows[m, e]:
+            return True
+    return False
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def irregularities(x, rows, starts, predictors, concentrated, safety):
-    """(changes, steps, corners, kinked), each (M − 1, L): interval by leaf, the largest of the leaf's elements (the
-    leaf of columns starts[l] … starts[l+1] − 1). ``rows`` (M, E) with M ≥ 4 and L ≥ 1; ``safety`` the linear
-    rule's factor on a curvature (family.SAFETY)."""
+    """(changes, steps, corners, kinked), each (M − 1, L): interval by leaf, the largest of the leaf's elements
+    (the leaf of columns starts[l] … starts[l+1] − 1). ``rows`` (M, E) with M ≥ 4 and L ≥ 1; ``safety`` the
+    linear rule's factor on a curvature (family.SAFETY).
+
+    Interval by interval: the steps over the columns of the leaves both members hold (runs of adjacent leaves), one
+    pass per predictor pair, which the compiler vectorises; then leaf by leaf, a leaf one of the interval's
+    members lacks (every slope NaN) answered at once."""
     count, width = rows.shape
     leaves = starts.size
     changes = np.full((count - 1, leaves), np.nan)
@@ -69,59 +74,95 @@ def irregularities(x, rows, starts, predictors, concentrated, safety):
     for k in range(count - 1):
         for e in range(width):
             slope[k, e] = (rows[k + 1, e] - rows[k, e]) / h[k]
+    bend = np.full((count, width), np.nan)                  # |f″| at each member
+    for m in range(1, count - 1):
+        sum_h = h[m - 1] + h[m]
+        for e in range(width):
+            bend[m, e] = abs(2 * (slope[m, e] - slope[m - 1, e]) / sum_h)
     ends = np.empty(leaves + 1, np.int64)
     ends[:leaves] = starts
     ends[leaves] = width
+    held = np.empty((count, leaves), np.bool_)
+    for m in range(count):
+        for leaf in range(leaves):
+            held[m, leaf] = _held(rows, m, ends[leaf], ends[leaf + 1])
     pairs = predictors.shape[0]
-    valid = np.zeros(pairs, np.bool_)
-    weight = np.zeros(pairs)
+    first = np.empty(pairs, np.int64)
+    second = np.empty(pairs, np.int64)
+    weight = np.empty(pairs)
+    least = np.empty(width)
+    seen = np.empty(width, np.bool_)
+    run_start = np.empty(leaves, np.int64)
+    run_end = np.empty(leaves, np.int64)
     for k in range(count - 1):
+        valid = 0                                           # the predictor pairs inside the range
         for p in range(pairs):
             a, b = predictors[p, 0], predictors[p, 1]
-            valid[p] = k + a >= 0 and k + b <= count - 2
-            if valid[p]:
-                weight[p] = (middle[k] - middle[k + a]) / (middle[k + b] - middle[k + a])
+            if k + a >= 0 and k + b <= count - 2:
+                first[valid], second[valid] = k + a, k + b
+                weight[valid] = (middle[k] - middle[k + a]) / (middle[k + b] - middle[k + a])
+                valid += 1
         inside = 1 <= k <= count - 3
+        h_k = h[k]
+        runs = 0                                            # the columns of the leaves both members hold, as
+        for leaf in range(leaves):                          # runs of adjacent leaves
+            if held[k, leaf] and held[k + 1, leaf]:
+                if runs > 0 and run_end[runs - 1] == ends[leaf]:
+                    run_end[runs - 1] = ends[leaf + 1]
+                else:
+                    run_start[runs], run_end[runs] = ends[leaf], ends[leaf + 1]
+                    runs += 1
+        for r in range(runs):           # slices from 0: indices the compiler knows are not negative vectorise
+            low, high = run_start[r], run_end[r]
+            mine, lows, found = slope[k, low:high], least[low:high], seen[low:high]
+            lows[:] = np.inf
+            found[:] = False
+            for q in range(valid):
+                w = weight[q]
+                s_i, s_j = slope[first[q], low:high], slope[second[q], low:high]
+                for e in range(high - low):
+                    off = abs(mine[e] - (s_i[e] + (s_j[e] - s_i[e]) * w)) * h_k
+                    number = off == off                     # numpy's fmin: NaN passed over
+                    found[e] = found[e] or number
+                    lows[e] = min(lows[e], off) if number else lows[e]
         for leaf in range(leaves):
+            low, high = ends[leaf], ends[leaf + 1]
+            if not (held[k, leaf] and held[k + 1, leaf]):   # every slope NaN: no change, step or kink; corner 0
+                if inside:
+                    corners[k, leaf] = 0.0
+                continue
+            before, after, mine = rows[k, low:high], rows[k + 1, low:high], slope[k, low:high]
             change = np.nan
             step = np.nan
-            corner = np.nan
-            kink = np.nan
-            for e in range(ends[leaf], ends[leaf + 1]):
-                s = slope[k, e]
-                change = _fmax(change, abs(rows[k + 1, e] - rows[k, e]))
-                if s != s:              # an element a member of the interval lacks: no step, no kink, corner 0
-                    if inside:
-                        corner = _fmax(corner, 0.0)
-                    continue
-                least = np.nan
-                for p in range(pairs):
-                    if valid[p]:
-                        si = slope[k + predictors[p, 0], e]
-                        off = abs(s - (si + (slope[k + predictors[p, 1], e] - si) * weight[p])) * h[k]
-                        if least != least or off < least:
-                            least = off
-                step = _fmax(step, least)
-                if inside:
-                    a = s - slope[k - 1, e]
-                    b = slope[k + 1, e] - s
-                    corner = _fmax(corner, h[k] * a * b / (a + b) if a * b > 0 else 0.0)
-                    beyond = _fmax(_bend(slope, h, k - 1, e), _bend(slope, h, k + 2, e))
-                    # numpy's nan_to_num(beyond, nan=inf) × CONCENTRATED: no bound where beyond is NaN or inf
-                    limit = concentrated * beyond if beyond == beyond and beyond != np.inf else np.inf
-                else:
-                    limit = np.inf
-                inner = _fmax(_bend(slope, h, k, e), _bend(slope, h, k + 1, e))
-                if inner > limit:
-                    kink = _fmax(kink, safety * inner * (h[k] * h[k] / 8))
+            lows, found = least[low:high], seen[low:high]
+            for e in range(high - low):
+                change = _fmax(change, abs(after[e] - before[e]))
+                if found[e]:
+                    step = _fmax(step, lows[e])
             changes[k, leaf] = change
             steps[k, leaf] = step
+            if not inside:              # no corner, and no kink: nothing beyond to compare the ends' bends with
+                continue
+            left, right = slope[k - 1, low:high], slope[k + 1, low:high]
+            ends_0, ends_1 = bend[k, low:high], bend[k + 1, low:high]
+            beyond_0, beyond_1 = bend[k - 1, low:high], bend[k + 2, low:high]
+            corner = np.nan
+            kink = np.nan
+            for e in range(high - low):
+                a = mine[e] - left[e]
+                b = right[e] - mine[e]
+                corner = _fmax(corner, h_k * a * b / (a + b) if a * b > 0 else 0.0)
+                inner = _fmax(ends_0[e], ends_1[e])
+                beyond = _fmax(beyond_0[e], beyond_1[e])
+                # numpy's nan_to_num(beyond, nan=inf) × CONCENTRATED: no bound where beyond is NaN or inf
+                if beyond == beyond and beyond != np.inf and inner > concentrated * beyond:
+                    kink = _fmax(kink, safety * inner * (h_k * h_k / 8))
             corners[k, leaf] = corner
             kinked[k, leaf] = kink
     return changes, steps, corners, kinked
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def divided_differences(rows, first, weights, starts, ends):
     """(K, L): for window j (members first[j] … first[j] + n) and leaf l (columns starts[l] … ends[l] − 1), the
     largest over the leaf's elements of |Σ_i weights[j, i]·f_first[j]+i|, the divided difference of order n
@@ -130,14 +171,22 @@ def divided_differences(rows, first, weights, starts, ends):
     windows, width = weights.shape
     leaves = starts.size
     found = np.full((windows, leaves), np.nan)
+    total = np.empty(max(ends.max() - starts.min(), 0) if leaves else 0)
     for j in range(windows):
         for leaf in range(leaves):
+            low, high = starts[leaf], ends[leaf]
+            sums = total[:high - low]
+            row = rows[first[j], low:high]
+            for e in range(high - low):
+                sums[e] = weights[j, 0] * row[e]
+            for i in range(1, width):
+                row = rows[first[j] + i, low:high]
+                w = weights[j, i]
+                for e in range(high - low):
+                    sums[e] += w * row[e]
             largest = np.nan
-            for e in range(starts[leaf], ends[leaf]):
-                total = weights[j, 0] * rows[first[j], e]
-                for i in range(1, width):
-                    total += weights[j, i] * rows[first[j] + i, e]
-                largest = _fmax(largest, abs(total))
+            for e in range(high - low):
+                largest = _fmax(largest, abs(sums[e]))
             found[j, leaf] = largest
     return found
 
