@@ -1137,12 +1137,14 @@ def regridded(a: Member, b: Member, span: dict[tuple, float]) -> tuple[float, tu
     worst = (0.0, ())
     for path in [*a.leaves, *(p for p in b.leaves if p not in a.leaves)]:
         f, g = a.leaves.get(path), b.leaves.get(path)
+        if f is not None and g is not None and f.shape == g.shape:
+            continue            # one shape in both: the stack compares it element by element
         held = [x is not None and bool(np.isfinite(x).any()) for x in (f, g)]
-        if held[0] != held[1] and (f is None or g is None or f.shape != g.shape):
+        if held[0] != held[1]:
             if worst[0] < 1.0:          # drawn from one member only, it appears (or vanishes) inside: a jump
                 worst = (1.0, path)
             continue
-        if not held[0] or g.shape == f.shape:
+        if not held[0]:                 # in neither
             continue
         found = 0.0 if _increasing(f) and _increasing(g) else max(abs(np.nanmin(f) - np.nanmin(g)),
                                                                   abs(np.nanmax(f) - np.nanmax(g)))

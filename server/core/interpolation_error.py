@@ -1,6 +1,7 @@
 """What the second differences of a sampled curve do not see, compiled with numba: the family engine's
-``irregular`` (server/api/family.py, where the three measures and their reasons are given) over every element of
-the members' stacked answers in one loop, each element's measures reduced at once to the largest of its leaf.
+``irregular`` (server/api/family.py, where the measures and their reasons are given) over every element of the
+members' stacked answers, each element's measures reduced at once to the largest of its leaf; and the divided
+differences of ``family.divided`` likewise.
 
 The members are x_0 < … < x_M−1 with rows f_m (one column per element of every leaf), h_k = x_k+1 − x_k and
 s_k = (f_k+1 − f_k)/h_k the slope over interval k. For interval k and every element:
@@ -14,10 +15,10 @@ s_k = (f_k+1 − f_k)/h_k the slope over interval k. For interval k and every el
 
 NaN (an element a member lacks, a refused member's row) is passed over as numpy's fmin and fmax pass it: a
 leaf with no number anywhere in an interval reads NaN. The numpy reference of the same arithmetic, operation for
-operation, is in tests/test_interpolation_error.py; the two agree to rounding. The loop visits each element once
-per interval with its seven neighbouring slopes in cache, where numpy made a temporary of the whole stack for
-each of the nine predictor pairs: for an equation-of-motion family of 65 members × 83 000 elements (start-up
-curves), 1.5 s became a few tens of milliseconds (bench/results/family_engine.md).
+operation, is in tests/test_interpolation_error.py; the two agree to rounding. numpy made a temporary of the
+whole stack for each of the nine predictor pairs: for an equation-of-motion family of 65 members × 83 000
+elements (start-up curves) 1.5 s, here about 50 ms; a transfer-function stack of 30 × 6 200, 4.6 → 2.3 ms
+(bench/results/family_engine.md).
 """
 from __future__ import annotations
 
@@ -171,7 +172,7 @@ def divided_differences(rows, first, weights, starts, ends):
     windows, width = weights.shape
     leaves = starts.size
     found = np.full((windows, leaves), np.nan)
-    total = np.empty(max(ends.max() - starts.min(), 0) if leaves else 0)
+    total = np.empty((ends - starts).max() if leaves else 0)
     for j in range(windows):
         for leaf in range(leaves):
             low, high = starts[leaf], ends[leaf]
