@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import asyncio
+import gc
 import json
 import os
 import signal
@@ -44,6 +45,19 @@ def test_the_heavy_process_yields_the_cpu_to_the_worker():
     for lane, niceness in heavy.LANES.items():           # 19: the lowest priority there is
         assert heavy.run(os.nice, 0, lane=lane) == min(os.nice(0) + niceness, 19)
     assert heavy.LANES["answers"] < heavy.LANES["families"]
+
+
+def test_a_heavy_process_freezes_what_it_holds_once_started():
+    """gc.freeze after the warm-up: its modules and compiled kernels are out of every later full collection."""
+    for lane in heavy.LANES:
+        assert heavy.run(gc.get_freeze_count, lane=lane) > 10_000
+
+
+def test_a_worker_freezes_what_it_holds_once_started():
+    gc.unfreeze()
+    assert gc.get_freeze_count() == 0
+    with TestClient(app):
+        assert gc.get_freeze_count() > 10_000
 
 
 def test_without_nice_the_lanes_keep_the_workers_priority(monkeypatch):

@@ -39,6 +39,7 @@ async def lifespan(app: FastAPI):
     parts = warm_up()
     logging.getLogger("uvicorn.error").info("compiled code ready in %.2f s (%s)", time.perf_counter() - started,
                                             ", ".join(f"{part} {seconds:.2f} s" for part, seconds in parts.items()))
+    heavy.frozen_after_start()
     yield
     heavy.shutdown()                   # the heavy processes end with the worker
     cache = getattr(app.state, "response_cache", None)

@@ -129,6 +129,7 @@ import re
 import time
 from bisect import bisect_right
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Callable
 
 import numpy as np
@@ -758,6 +759,22 @@ class Member:
         if self.flat is None and self.leaves:
             self.flat = Flat.of(self.leaves)
 
+    @cached_property
+    def kinds(self) -> frozenset:
+        """The (path, shape) of each leaf that has elements."""
+        return frozenset((path, leaf.shape) for path, leaf in self.leaves.items() if leaf.size)
+
+    @cached_property
+    def placed(self) -> tuple[np.ndarray, list[tuple[tuple, int, int]]]:
+        """The leaves end to end (the flat vector, where there is one) and each leaf's ((path, shape), where it
+        starts, size) in it."""
+        sizes = [leaf.size for leaf in self.leaves.values()]
+        starts = np.cumsum([0, *sizes[:-1]]).tolist() if sizes else []
+        vector = self.flat.vector if self.flat is not None else \
+            np.concatenate([leaf.ravel() for leaf in self.leaves.values()]) if sizes else np.zeros(0)
+        return vector, [((path, leaf.shape), start, leaf.size)
+                        for (path, leaf), start in zip(self.leaves.items(), starts)]
+
     def size(self) -> int:
         """Bytes the member holds, roughly (its arrays, twice: as leaves and flat, and a little per leaf): the
         memo's measure."""
@@ -800,8 +817,7 @@ class Stack:
                 if member.answer is not None:
                     rows[index] = member.flat.vector
             return cls(x, answered, paths, starts, rows, layout)
-        kinds = [{(path, leaf.shape) for path, leaf in m.leaves.items() if leaf.size} if m.answer is not None
-                 else set() for m in members]
+        kinds = [m.kinds if m.answer is not None else frozenset() for m in members]
         paired = set().union(*(a & b for a, b in zip(kinds[:-1], kinds[1:])))
         columns: dict[tuple, int] = {}                      # (path, shape) → its first column
         width = 0
@@ -815,11 +831,19 @@ class Stack:
         held = []
         for index, member in enumerate(members):
             mine = []
-            for path, leaf in member.leaves.items():
-                if (path, leaf.shape) in columns:
-                    first = columns[path, leaf.shape]
-                    rows[index, first:first + leaf.size] = leaf.ravel()
-                    mine.append(order[path, leaf.shape])
+            runs: list[list[int]] = []      # [from, to, size]: leaves adjacent both in the member and in the columns
+            vector, places = member.placed
+            for key, position, size in places:
+                first = columns.get(key)
+                if first is None:
+                    continue
+                mine.append(order[key])
+                if runs and runs[-1][0] + runs[-1][2] == position and runs[-1][1] + runs[-1][2] == first:
+                    runs[-1][2] += size
+                else:
+                    runs.append([position, first, size])
+            for position, first, size in runs:
+                rows[index, first:first + size] = vector[position:position + size]
             held.append(frozenset(mine))
         return cls(x, answered, tuple(path for path, _ in columns), np.array(list(columns.values()), int), rows,
                    tuple(columns), tuple(held))

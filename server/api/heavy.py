@@ -25,6 +25,7 @@ anyio's 40 threads. ``run`` is the blocking form for code that is not async.
 from __future__ import annotations
 
 import asyncio
+import gc
 import itertools
 import multiprocessing
 import multiprocessing.forkserver
@@ -71,11 +72,22 @@ def _current_pool(lane: str) -> ProcessPoolExecutor:
 def _start_heavy_process(niceness: int, stops) -> None:
     """A new heavy process yields the CPU (nice `niceness`) and loads the compiled kernels: a student's 5-ms
     answer is not made to wait behind seconds of an elastic run, nor an elastic answer behind a family. It reads
-    its worker's stops from `stops` (shared memory)."""
+    its worker's stops from `stops` (shared memory). What it holds then (modules, compiled code: ~185 000
+    objects) is frozen out of the garbage collector's reach (``frozen_after_start``)."""
     global _stop_flags
     _stop_flags = stops
     os.nice(niceness)
     warm_up()
+    frozen_after_start()
+
+
+def frozen_after_start() -> None:
+    """gc.freeze(): the objects a process holds once started (its modules, the compiled kernels, the lessons)
+    live as long as it does, and a full collection no longer walks them. The family engine's members and the memo
+    make many long-lived objects, and each full collection walked all of them: 59–71 ms each, 5–9 ms frozen
+    (bench/results/family_engine.md)."""
+    gc.collect()
+    gc.freeze()
 
 
 def _run_ticketed(ticket: int, function: Callable[..., T], args: tuple) -> T:
