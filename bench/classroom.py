@@ -213,10 +213,15 @@ class Record:
         self.throttled: list[tuple[str, str, str]] = []  # (kind, light, endpoint) of every 429 received
         self.abandoned = 0
         self.given_up: list[tuple[str, str]] = []       # (kind, light) of every family given up by a new grab
+        self.resent = 0         # requests sent again on a new connection: the idle one had been closed
 
     def add(self, endpoint: str, seconds: float, status: int, cache: str, partial: bool = False,
             kind: str = "exact", light: str = "light") -> None:
         self.rows.append((endpoint, seconds, status, cache, partial, kind, light))  # list.append is atomic
+
+
+# What a request on a keep-alive connection the server closed while it was idle fails with, before any answer
+STALE = (http.client.RemoteDisconnected, ConnectionResetError, BrokenPipeError)
 
 
 def retry_after_s(value: str | None) -> float:
@@ -234,9 +239,11 @@ class Connection:
         self.connection = http.client.HTTPConnection("127.0.0.1", port, timeout=REQUEST_TIMEOUT_S)
         self.aborted = False          # the request in flight was given up (abort): not an error
         self.in_flight = False
+        self.reused = False           # an answer has come on this connection (it may since have been closed idle)
         self.flight = threading.Lock()
 
     def _reopen(self) -> None:
+        self.reused = False
         self.connection.close()
         self.connection = http.client.HTTPConnection("127.0.0.1", self.port, timeout=REQUEST_TIMEOUT_S)
 
@@ -266,7 +273,7 @@ class Connection:
                     if self.aborted:             # given up just as its answer had come: the socket is shut
                         self.aborted = False
                         self._reopen()
-            except (OSError, http.client.HTTPException):
+            except (OSError, http.client.HTTPException) as error:
                 with self.flight:
                     self.in_flight = False
                 if self.aborted:
@@ -274,9 +281,14 @@ class Connection:
                     self.aborted = False
                     self._reopen()
                     return -2
+                if self.reused and isinstance(error, STALE):    # the server closed it while idle (keep-alive
+                    self.record.resent += 1                       # timeout, 5 s): sent again on a new one, as
+                    self._reopen()                                # browsers do
+                    continue
                 self.record.add(student.scene.endpoint, time.perf_counter() - sent, 0, "", False, kind, student.light)
                 self._reopen()
                 return 0
+            self.reused = True
             student.keep_cookies(answer.getheaders())
             if answer.status != 429:
                 break
@@ -489,7 +501,7 @@ def run(workers: int, client: str, students: int, seconds: float, seed: int, pat
     after = cache_counters_at_exit(process.log_text)   # the caches start empty: their counters at exit are the run's
     return {"workers": workers, "client": client, "pattern": pattern, "students": students, "seconds": seconds,
             "wall": wall, "rows": record.rows, "throttled": record.throttled, "abandoned": record.abandoned,
-            "given_up": record.given_up,
+            "given_up": record.given_up, "resent": record.resent,
             "moves": sum(s.moves for s in class_), "server_cpu": server_cpu,
             "client_cpu": client_cpu, "outlived": process.outlived,
             "other_cpu": max(0.0, busy - server_cpu - client_cpu),
@@ -592,6 +604,8 @@ def markdown_run(result: dict, title: str) -> list[str]:
                   "into a later request while an answer was awaited, or previewed from a family).",
               f"* 429 answers waited out: {len(result['throttled'])}; requests still waiting one out when the run "
               f"ended: {result['abandoned']}.",
+              f"* Requests sent again on a new connection because the server had closed the idle keep-alive one "
+              f"(uvicorn's 5-s timeout; a browser does the same): {result.get('resent', 0)}.",
               f"* Families given up by the student's next grab (aborted in flight, as the page does; not in the "
               f"latencies above): {given_up(result)}.",
               f"* Cache, the counters each worker process logs as it stops ({cache['workers']} of "

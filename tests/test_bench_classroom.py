@@ -145,3 +145,46 @@ def test_the_new_page_pattern_reports_a_family_the_server_cannot_give_as_errors(
         assert all(e == 0 for _, e, _ in families), text
     else:
         assert all(e == n == c for n, e, c in families), text             # every family a 4xx, counted
+
+
+def test_a_request_on_a_connection_the_server_closed_while_idle_is_sent_again_once(tmp_path):
+    """uvicorn closes a keep-alive connection idle for 5 s; a browser then sends the request again on a new
+    one, and so does the benchmark (counted as resent, not as a network error). A request that fails on the new
+    connection too is a network error: it is sent again only once."""
+    import http.server
+    import threading
+
+    answered = []
+
+    class ClosingAfterEachAnswer(http.server.BaseHTTPRequestHandler):
+        protocol_version = "HTTP/1.1"
+
+        def do_POST(self):
+            self.rfile.read(int(self.headers["Content-Length"]))
+            if self.path == "/drop":            # no answer at all
+                self.close_connection = True
+                return
+            answered.append(self.path)
+            body = b"{}"
+            self.send_response(200)
+            self.send_header("Content-Length", str(len(body)))
+            self.end_headers()
+            self.wfile.write(body)
+            self.close_connection = True        # as an idle keep-alive connection timed out after the answer
+
+        def log_message(self, *args):
+            pass
+
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), ClosingAfterEachAnswer)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        student = classroom.Student(classroom.scenes()["transfer-functions"], random.Random(1))
+        record = classroom.Record()
+        connection = classroom.Connection(server.server_address[1], student, record, math.inf)
+        assert [connection.post("/x", b"{}") for _ in range(3)] == [200, 200, 200]
+        assert record.resent == 2 and len(answered) == 3
+        assert [row[2] for row in record.rows] == [200, 200, 200]
+        assert connection.post("/drop", b"{}") == 0 and record.resent == 3          # once more, then the error
+    finally:
+        server.shutdown()
+        server.server_close()
