@@ -447,6 +447,9 @@ def test_preview_on_a_phone(family_page, scene, variant, slider, panel, ready):
     assert page.inner_text(".preview-note") == interface_texts("ru")["preview"]
     box = page.locator(".preview-note").bounding_box()               # the mark is in view beside the slider
     assert 0 <= box["x"] and box["x"] + box["width"] <= 390 and 0 <= box["y"] and box["y"] + box["height"] <= 844
+    sheet, title = page.locator(".controls-sheet").bounding_box(), page.locator(".site-header").bounding_box()
+    assert box["y"] + box["height"] <= sheet["y"]                    # above the controls sheet, not under it
+    assert box["y"] >= title["y"] + title["height"]                  # and not over the site's title
     page.screenshot(path=f"test-artifacts/family_preview_{scene}_phone_ru.png")
     page.locator(f"#panel-{panel}").scroll_into_view_if_needed()
     page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg=panel)
