@@ -72,12 +72,15 @@ def _current_pool(lane: str) -> ProcessPoolExecutor:
 def _start_heavy_process(niceness: int, stops) -> None:
     """A new heavy process yields the CPU (nice `niceness`) and loads the compiled kernels: a student's 5-ms
     answer is not made to wait behind seconds of an elastic run, nor an elastic answer behind a family. It reads
-    its worker's stops from `stops` (shared memory). What it holds then (modules, compiled code: ~185 000
-    objects) is frozen out of the garbage collector's reach (``frozen_after_start``)."""
+    its worker's stops from `stops` (shared memory), and imports the modules of the work it will be given. What it
+    holds then (modules, compiled code: ~185 000 objects) is frozen out of the garbage collector's reach
+    (``frozen_after_start``)."""
     global _stop_flags
     _stop_flags = stops
     os.nice(niceness)
     warm_up()
+    from . import assignment_answers, endpoints  # noqa: F401  the modules of the work the lanes are given: unpickling
+    from .routers import family  # noqa: F401   a job imports its function's module, ~0.4 s on the first family
     frozen_after_start()
 
 
