@@ -57,7 +57,7 @@ def compiled(x, rows, starts):
 def random_stack(rng: np.random.Generator):
     """Members unevenly spaced; leaves of smooth curves, steps, corners and noise; NaN in refused rows, in
     elements some members lack, and whole leaves missing from some members."""
-    count = int(rng.integers(4, 40))
+    count = int(rng.integers(2, 40))                  # fewer than 4: only the changes are numbers
     x = np.sort(rng.uniform(-3, 5, count))
     x = x[np.concatenate([[True], np.diff(x) > 1e-6])]
     count = len(x)
@@ -90,6 +90,11 @@ def test_the_compiled_irregularities_agree_with_the_numpy_reference(seed):
         assert mine.shape == theirs.shape, name
         assert np.array_equal(np.isnan(mine), np.isnan(theirs)), name
         np.testing.assert_allclose(mine, theirs, rtol=1e-12, atol=0, err_msg=name)
+
+
+def test_a_stack_without_leaves_has_an_interval_by_nothing():
+    for got in compiled(np.arange(5.0), np.zeros((5, 0)), np.zeros(0, np.int64)):
+        assert got.shape == (4, 0)
 
 
 def test_a_stack_of_a_real_family_agrees_with_the_reference():

@@ -1018,12 +1018,6 @@ def irregular(stack: Stack) -> Irregular:
     NaN where the members are not there (fewer than 4, refusals, the range's ends for the corners); and the
     change |f(b) − f(a)| across each interval. Computed element by element in one compiled loop
     (server/core/interpolation_error.py)."""
-    count = len(stack.x)
-    if count < 4 or not stack.paths:
-        empty = np.full((count - 1, len(stack.paths)), np.nan)
-        with np.errstate(invalid="ignore"):
-            changes = stack.largest(np.abs(np.diff(stack.rows, axis=0)))
-        return Irregular(changes, empty, empty, empty)
     return Irregular(*irregularities(np.ascontiguousarray(stack.x, float), np.ascontiguousarray(stack.rows, float),
                                      np.asarray(stack.starts, np.int64), PREDICTORS, CONCENTRATED, float(SAFETY)))
 

@@ -54,7 +54,8 @@ def _held(rows, m, low, high):
 @njit(cache=True, error_model="numpy")
 def irregularities(x, rows, starts, predictors, concentrated, safety):
     """(changes, steps, corners, kinked), each (M − 1, L): interval by leaf, the largest of the leaf's elements
-    (the leaf of columns starts[l] … starts[l+1] − 1). ``rows`` (M, E) with M ≥ 4 and L ≥ 1; ``safety`` the
+    (the leaf of columns starts[l] … starts[l+1] − 1). ``rows`` (M, E), M ≥ 2: with fewer than 4 members no
+    predictor pair, inner interval or member beyond is there, and only the changes are numbers; ``safety`` the
     linear rule's factor on a curvature (family.SAFETY).
 
     Interval by interval: the steps over the columns of the leaves both members hold (runs of adjacent leaves), one

@@ -3,14 +3,14 @@ first request, so that no student waits for the JIT: the equation of motion's RK
 solution and DOP853 leaving rest (server.core.dynamics.compiled), and the elastic models' right-hand sides,
 DOP853 and Radau IIA (server.core.elastic.compiled), the friction equilibrium of a general mechanism
 (server.core.kinetostatics.groups.compiled), its tables between the kinks (server.core.dynamics.kink_table) and
-what a slider family's second differences do not see (server.core.interpolation_error). The first compile on a fresh machine takes tens of seconds
-(tests/run.sh and the Dockerfile do it once, `python3 -m server.core.warm_up`); a process that finds the cache
-loads it in about a second.
+what a slider family's second differences do not see (server.core.interpolation_error). The first compile on a
+fresh machine takes tens of seconds (tests/run.sh and the Dockerfile do it once, `python3 -m
+server.core.warm_up`); a process that finds the cache loads it in about a second.
 """
 from __future__ import annotations
 
-from .dynamics import compiled as dynamics
 from . import interpolation_error
+from .dynamics import compiled as dynamics
 from .dynamics import kink_table
 from .elastic import compiled as elastic
 from .kinetostatics.groups import compiled as group_friction
