@@ -96,10 +96,12 @@ def app_url(tmp_path_factory):
     # the complete family
     env = os.environ | {"MDL_DATA_DIR": str(tmp_path_factory.mktemp("data")), "MDL_FAMILY_BUDGET_S": "60",
                         "MDL_HEAVY_NICE": "0"}
+    ARTIFACTS.mkdir(exist_ok=True)
+    url = f"http://127.0.0.1:{port}"
+    log = server_log(url).open("w", encoding="utf-8")     # its access log and errors, for a failure to quote
     server = subprocess.Popen(
         [sys.executable, "-m", "uvicorn", "server.api.app:app", "--host", "127.0.0.1", "--port", str(port)],
-        cwd=REPO, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    url = f"http://127.0.0.1:{port}"
+        cwd=REPO, env=env, stdout=log, stderr=subprocess.STDOUT)
     deadline = time.monotonic() + START_SECONDS
     while True:
         try:
@@ -114,6 +116,17 @@ def app_url(tmp_path_factory):
     yield url
     server.terminate()
     server.wait(timeout=10)
+    log.close()
+
+
+def server_log(app_url: str) -> Path:
+    """The file the app at `app_url` writes its log to (uvicorn's access lines and any traceback)."""
+    return ARTIFACTS / f"server-{app_url.rsplit(':', 1)[1]}.log"
+
+
+def server_log_tail(app_url: str, lines: int = 40) -> str:
+    """The last `lines` lines of that log, for a failure message: what the server answered while a page waited."""
+    return "\n".join(server_log(app_url).read_text(encoding="utf-8", errors="replace").splitlines()[-lines:])
 
 
 @pytest.fixture(scope="session")

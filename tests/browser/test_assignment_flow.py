@@ -15,6 +15,7 @@ import re
 import httpx
 import numpy as np
 import pytest
+from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
 from server.lessons.scenes import scenes
 from server.lessons.requests import scene_request
@@ -22,7 +23,7 @@ from server.classroom.spec import AssignmentSpec
 from server.classroom.names import normalise
 from server.classroom.variants import plan
 
-from conftest import drag_slider, screenshot
+from conftest import drag_slider, screenshot, server_log_tail
 
 pytestmark = pytest.mark.browser
 NUMBER = re.compile(r"-?\d+(?:[.,]\d+)?(?:[eE][-+]?\d+)?")
@@ -121,10 +122,20 @@ def two_names_with_different_variants(assignment_id: str, spec: AssignmentSpec) 
 
 
 def answer(page, value: str) -> str:
+    """Type `value`, check it, and return the feedback once it says right or wrong; if it never does, fail with
+    what the page showed instead, the submissions' statuses and the end of the server's log."""
     page.fill("#answer-flywheel_inertia", value)
     page.click("#question-flywheel_inertia button")
-    page.locator("#feedback-flywheel_inertia").filter(has_text=re.compile("✓|✗")).wait_for()
-    return page.locator("#feedback-flywheel_inertia").inner_text()
+    feedback = page.locator("#feedback-flywheel_inertia")
+    try:
+        feedback.filter(has_text=re.compile("✓|✗")).wait_for()
+    except PlaywrightTimeout:
+        statuses = [r.status for r in page.bodies if r.url.endswith("/submissions")]
+        origin = re.match(r"https?://[^/]+", page.url).group(0)
+        raise AssertionError(f"no ✓ or ✗ for the answer {value}: the feedback reads {feedback.inner_text()!r}, "
+                             f"the submissions were answered {statuses}, the page's problems {page.problems}; "
+                             f"the server's log ends:\n{server_log_tail(origin)}") from None
+    return feedback.inner_text()
 
 
 def test_assignment_from_making_to_results(chromium, app_url, browser_page):
