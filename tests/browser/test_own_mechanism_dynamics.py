@@ -245,6 +245,11 @@ def test_own_mechanism_on_a_phone(phone, tmp_path):
     phone.locator("#editor-dynamics").scroll_into_view_if_needed()
     width = phone.evaluate("() => document.documentElement.scrollWidth")
     assert width <= PHONE["width"], f"the editor is {width} px wide on a 390 px screen"
+    sideways = phone.evaluate("() => [...document.querySelectorAll('#editor-dynamics .table-scroll')]"
+                              ".filter((box) => box.scrollWidth > box.clientWidth).map((box) => box.innerText.slice(0, 40))")
+    assert sideways == [], f"tables that scroll sideways at 390 px: {sideways}"       # rows as cards there
+    assert phone.locator("#editor-masses-links tbody tr").first.locator(".cell-label").all_inner_texts() == [
+        "m, кг", "S вдоль, м", "S поперёк, м", "JS, кг·м²"]                          # each input under its header
     screenshot(phone, "own_mechanism_editor_phone_ru")
     phone.locator("#editor-dynamics").screenshot(path=ARTIFACTS / "own_mechanism_loads_phone_ru.png")
     with phone.expect_download() as download:                          # a file keeps the masses as the link does

@@ -50,7 +50,24 @@ function removeCell(list, index, label, { t, onRemoveLoad }) {
   return element("td", {}, button);
 }
 
-const header = (...cells) => element("thead", {}, element("tr", {}, ...cells.map((text) => element("th", { rich: text }))));
+/**
+ * A table of rows under column headers. Each data cell also carries its column's header as a label of its own
+ * (hidden from assistive technology: the inputs are labelled), which a phone shows when the rows are laid out
+ * as cards instead of columns (editor.css): five columns of inputs do not fit 390 px.
+ */
+function columnTable(id, caption, headers, rows) {
+  for (const row of rows) {
+    [...row.children].forEach((child, column) => {
+      if (child.tagName === "TD" && headers[column] && child.colSpan === 1) {
+        child.prepend(element("span", { className: "cell-label", "aria-hidden": "true", rich: headers[column] }));
+      }
+    });
+  }
+  return element("div", { className: "table-scroll" }, element("table", { className: "editor-masses by-column", id },
+    element("caption", { textContent: caption }),
+    element("thead", {}, element("tr", {}, ...headers.map((text) => element("th", { rich: text })))),
+    element("tbody", {}, ...rows)));
+}
 
 /** One load's row: its place, P or M (symbol), k, the working stroke's sense (words: + and −) and "remove". */
 function loadRow(list, load, k, place, symbol, words, options) {
@@ -142,16 +159,12 @@ export function renderMasses(container, dynamics, options) {
   ].map(([path, value, label]) => element("tr", {}, element("th", { scope: "row", rich: label }),
     cell(value, path, label.replace(/_/g, ""), options)));
   container.replaceChildren(
-    element("div", { className: "table-scroll" }, element("table", { className: "editor-masses", id: "editor-masses-links" },
-      element("caption", { textContent: t.editor_masses_links }),
-      header("", t.editor_masses_m, t.editor_masses_along, t.editor_masses_across, t.editor_masses_JS),
-      element("tbody", {}, ...links))),
+    columnTable("editor-masses-links", t.editor_masses_links,
+      ["", t.editor_masses_m, t.editor_masses_along, t.editor_masses_across, t.editor_masses_JS], links),
     gravityTool(masses, options),
-    element("div", { className: "table-scroll" }, element("table", { className: "editor-masses", id: "editor-masses-loads" },
-      element("caption", { textContent: t.editor_masses_loads }),
-      header("", t.editor_masses_P, "k", t.editor_masses_sense, ""),
-      element("tbody", {}, ...(loads.length ? loads
-        : [element("tr", {}, element("td", { colSpan: 5, className: "hint", textContent: t.editor_loads_none }))])))),
+    columnTable("editor-masses-loads", t.editor_masses_loads, ["", t.editor_masses_P, "k", t.editor_masses_sense, ""],
+      loads.length ? loads
+        : [element("tr", {}, element("td", { colSpan: 5, className: "hint", textContent: t.editor_loads_none }))]),
     element("p", { className: "hint", rich: t.editor_loads_note }),
     addLoadTools(dynamics, options),
     element("div", { className: "table-scroll" }, element("table", { className: "editor-masses" },
