@@ -15,7 +15,8 @@ from ..core.numerics import parabola_extremum
 from .endpoints import compute_answer
 from .serialise import serialise
 from ..lessons.scenes import AngleGrid, Question, Readout, Scene, Slider, Toggle, scenes
-from ..lessons.requests import path_value, scene_request
+from ..lessons.dotted_paths import path_value
+from ..lessons.requests import scene_request
 
 ANSWER_POINTS_PER_TURN = 3600    # kinematics answers: 0.1° grid, extremum refined by a parabola (error ~h³)
 

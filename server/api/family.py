@@ -138,6 +138,7 @@ from ..core.interpolation_error import CONCENTRATED, PREDICTORS, divided_differe
 from ..core.mechanisms import GeometryError
 from .serialise import Answer, significant
 from .messages import CommaFloat, DECIMAL_COMMA, ReadableFloat
+from ..lessons.dotted_paths import path_key
 from ..lessons.scenes import interface_texts
 
 TOLERANCE = 0.005               # 0.5 % of a plotted quantity's span: below a plot's resolution
@@ -189,15 +190,10 @@ def member_body(request: dict, vary: list[Vary], value: float) -> dict:
         *keys, last = item.path.split(".")
         holder = body
         for key in keys:
-            step = _step(holder, key)
+            step = path_key(holder, key)
             holder[step] = holder = (list if isinstance(holder[step], list) else dict)(holder[step])
-        holder[_step(holder, last)] = value * item.factor
+        holder[path_key(holder, last)] = value * item.factor
     return body
-
-
-def _step(holder, key: str):
-    """A dotted path's key as its holder takes it: a list's item by its index ("masses.forces.0.working")."""
-    return int(key) if isinstance(holder, list) and key.isdigit() else key
 
 
 def shared(body):

@@ -12,6 +12,7 @@ from __future__ import annotations
 import copy
 import math
 
+from .dotted_paths import path_value, set_path
 from .scene_files import addressed
 from .scenes import Scene, Slider, Variant
 
@@ -34,26 +35,6 @@ def slider_values(slider: Slider) -> list[float]:
 
 def defaults(variant: Variant) -> dict[str, float | str]:
     return {c.id: c.default for c in [*variant.sliders, *variant.toggles]}
-
-
-def _step(holder, key: str):
-    """The key of a dotted path as its holder takes it: a list's item by its index ("forces.0"), else the name."""
-    return int(key) if isinstance(holder, list) and key.isdigit() else key
-
-
-def path_value(body: dict, path: str):
-    """The value at a dotted path; a number in the path indexes a list ("masses.forces.0.working")."""
-    for key in path.split("."):
-        body = body[_step(body, key)]
-    return body
-
-
-def set_path(body: dict, path: str, value) -> None:
-    """Put value at a dotted path, making the objects on the way (a list on the way must hold the index)."""
-    *keys, last = path.split(".")
-    for key in keys:
-        body = body[_step(body, key)] if isinstance(body, list) else body.setdefault(key, {})
-    body[_step(body, last)] = value
 
 
 def kinematics_params(variant: Variant, values: dict) -> dict:

@@ -32,6 +32,8 @@ from __future__ import annotations
 
 import copy
 
+from .dotted_paths import path_value
+
 MERGED_KEYS = ("request",)   # merged key by key under "extends"; every other key is replaced whole
 
 
@@ -155,9 +157,7 @@ def _relative(slider, request: dict):
     """A slider whose range is relative to the request's value at its path, as absolute numbers."""
     if not isinstance(slider, dict) or not isinstance(slider.get("relative"), dict):
         return slider
-    value = request
-    for step in slider["param"].split("."):
-        value = value[int(step) if isinstance(value, list) else step]
+    value = path_value(request, slider["param"])
     return slider | {key: float(f"{factor * value:.6g}") for key, factor in slider["relative"].items()}
 
 
