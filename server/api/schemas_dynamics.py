@@ -134,10 +134,11 @@ class SliderForceInput(BaseModel):
             raise ValueError("with a load diagram the return stroke's load is its own row, not k·P")
         return self
 
-    def force(self) -> SliderForce:
+    def force(self, factor: float = 1.0) -> SliderForce:
+        """The core's force, its P (or P_max) times ``factor``."""
         diagram = None if self.diagram is None else (tuple(self.diagram.working_stroke),
                                                      tuple(self.diagram.return_stroke))
-        return SliderForce(self.joint, self.working, self.k, self.sense, diagram)
+        return SliderForce(self.joint, self.working * factor, self.k, self.sense, diagram)
 
 
 class LinkMomentInput(BaseModel):
@@ -160,11 +161,16 @@ class MassInput(BaseModel):
     moments: list[LinkMomentInput] = Field(default_factory=list, max_length=40)
     friction: float = Field(0.0, ge=0, le=2, description="f in the pairs (kinetostatics by groups)")
     pair_radius: float = Field(0.0, ge=0, le=1, description="radius r of the revolute pairs' journals, m")
+    load_factor: float = Field(1.0, ge=0, le=10, description=(
+        "every useful load (each force's P or P_max, each moment's M₀) times this: the scenes' slider on the "
+        "student's own mechanism scales the loads of its table"))
 
     def model(self) -> MassModel:
+        """The core's mass model, each useful load's working value times ``load_factor``."""
+        moments = tuple(LinkMoment(m.link, m.working * self.load_factor, m.k, m.sense) for m in self.moments)
         return MassModel(tuple(LinkMass(m.link, m.mass, tuple(m.centre), m.inertia) for m in self.links),
-                         self.gravity, tuple(f.force() for f in self.forces),
-                         tuple(LinkMoment(**m.model_dump()) for m in self.moments), self.friction, self.pair_radius)
+                         self.gravity, tuple(f.force(self.load_factor) for f in self.forces), moments, self.friction,
+                         self.pair_radius)
 
 
 class PairFrictionInput(BaseModel):

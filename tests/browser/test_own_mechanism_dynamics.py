@@ -102,6 +102,11 @@ def test_own_mechanism_from_the_editor_into_the_dynamics_scenes(browser_page):
         assert "NaN" not in page.inner_html("#panels") and english_words(page) == []
         parts = "link_parts" if scene is INERTIA else "load_parts"
         page.wait_for_function("id => document.querySelector(`#panel-${id} .graph`)?.data?.length > 1", arg=parts)
+        if scene is MOMENT:                                             # the table's loads × 2.7: another M_c
+            before = trace(page, "general_moment")
+            drag_slider(page, "#slider-load_factor", 0.9)
+            wait_for_new_trace(page, "general_moment", before)
+            page.wait_for_function("() => new URLSearchParams(location.search).get('load_factor') === '2.7'")
         screenshot(page, f"own_mechanism_{scene['id'].replace('-', '_')}_ru")
         page.go_back()
         masses_ready(page)
