@@ -93,3 +93,19 @@ def test_a_factor_out_of_range_is_refused_naming_it(value):
         answer = client.post(f"/api/v1/{endpoint}", json=body | {"masses": body["masses"] | {"load_factor": value}})
     assert answer.status_code == 422
     assert any(item["loc"][-2:] == ["masses", "load_factor"] for item in answer.json()["detail"])
+
+
+def test_without_useful_loads_the_machine_runs_at_the_motors_no_load_speed_on_average():
+    """Factor 0, no friction: the weights' work over a cycle is zero, so the linear motor's must be too,
+    ∮ i(M₀ − b·i·ω) dφ = 0, and the crank's φ-mean speed is the no-load speed M₀/(b·i) (it used to be called a
+    stall: the balance was searched for only below the no-load speed, where the weights' mean moment, 1e-16 of
+    round-off, left no root). Tolerance 1e-7: the steady cycle's rtol 1e-8 and the trapezoid over its nodes
+    (2.8e-9 here)."""
+    endpoint, body = own_body("equation-of-motion", load_factor=0.0, f=0.0)
+    answer = compute(endpoint, body | {"outputs": ["steady"]})
+    assert answer["warnings"] == []
+    phi, omega = np.asarray(answer["phi"], float), np.asarray(answer["omega"], float)
+    motor, gear = body["motor"], body["inertias"]["gear_ratio"]
+    assert motor["kind"] == "linear"
+    mean = np.trapezoid(omega, phi) / (phi[-1] - phi[0])
+    assert mean == pytest.approx(motor["M0"] / (motor["b"] * gear), rel=1e-7)

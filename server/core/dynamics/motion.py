@@ -159,7 +159,10 @@ def steps_per_cycle(machine: Machine, per_2pi: int) -> int:
 
 
 def mean_speed_balance(machine: Machine, tables: Tables) -> float | None:
-    """ω̄ where the cycle-mean moment vanishes: a start for Newton, None when the motor cannot carry the load."""
+    """ω̄ where the cycle-mean moment vanishes: a start for Newton, None when the motor cannot carry the load.
+    Searched from twice the no-load speed down: where the static moments' mean does not resist (no useful load,
+    the weights' mean zero up to round-off, or loads that drive), the balance lies at or above the no-load speed,
+    where the motor brakes; the first root met going down is the stable one."""
     cycle = float(tables.phi[-1] - tables.phi[0])
     base = float(step_integral(tables, tables.net_phi)[-1]) / cycle
     sliding = float(step_integral(tables, tables.sliding)[-1]) / cycle
@@ -169,7 +172,7 @@ def mean_speed_balance(machine: Machine, tables: Tables) -> float | None:
     if top is None:                       # linear motor: no-load speed M₀/b, or viscous only
         top = (machine.motor.M0 / machine.motor.b / machine.inertias.gear_ratio if machine.motor.b
                else 1e4)
-    grid = np.linspace(top, 1e-9 * top, 400)   # from no-load speed down: the first root is the stable one
+    grid = np.linspace(2 * top, 1e-9 * top, 800)
     values = mean_moment(grid).tolist()
     for a, b, va, vb in zip(grid[:-1], grid[1:], values[:-1], values[1:]):
         if va <= 0.0 <= vb or vb <= 0.0 <= va:
