@@ -22,6 +22,7 @@ from .static_files import content_version, mount_versioned
 from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
 from .routers import friction_influence
+from .routers import project as course_project
 from ..classroom.variants import SpecError
 from .routers import (angular, assignment_pages, assignments, bearings, dynamics, editor_pages, elastic, family, motor,
                       forces, kinematics, mechanisms, pages, scenes)
@@ -73,6 +74,7 @@ def create_app() -> FastAPI:
                    assignments):
         api.include_router(module.router)
     api.include_router(friction_influence.router)   # POST /api/v1/friction-influence
+    api.include_router(course_project.router)   # POST /api/v1/course-project
     api.include_router(cache_stats.router)  # GET /api/v1/cache
     app.include_router(api)
     app.include_router(pages.router)

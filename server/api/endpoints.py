@@ -634,3 +634,10 @@ def reduced_cycle_moments(request: ReductionRequest) -> tuple[dict, list[Notice]
     cycle = request.cycle
     return cycle_moments(request.params, cycle.masses(request.inertias.m2, request.inertias.m3), cycle.cylinder(),
                          request.omega, cycle.efficiency, cycle.drawing.core())
+
+
+# POST /api/v1/course-project: the whole course project of a linkage (server/api/course_project.py, its body).
+from .course_project import course_project  # noqa: E402
+from .schemas_project import CourseProjectRequest  # noqa: E402
+
+ENDPOINTS["course-project"] = (CourseProjectRequest, course_project)
