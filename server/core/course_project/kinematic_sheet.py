@@ -1,8 +1,8 @@
 """The kinematics sheet of the course project (Chaika–Vasylenko §3.4): the plan of positions, the velocity and
 acceleration plans at every position, and the output's diagrams, as plain dicts for JSON.
 
-At position i the crank turns at ω₁(φ_i) with ε₁(φ_i) (the real motion's values, or ω₁ₘ and 0).  Every point's
-velocity and acceleration come from the closed-form analogs (Eremyants §2.1):
+At position i the crank turns at ω₁(φ_i) with ε₁(φ_i) (the real motion's values, or ω₁ₘ and 0).  Every
+point's velocity and acceleration come from the closed-form analogs (Eremyants §2.1):
 
     v = z′ω₁,   a = z″ω₁² + z′ε₁,   a link's ω = θ′ω₁,  ε = θ″ω₁² + θ′ε₁
 
@@ -57,8 +57,9 @@ def vector(z: complex, scale: float | None) -> dict:
 
 def marked_points(comp: Composition, model: MassModel | None) -> dict[str, Point]:
     """The centres of mass S_k of the model's links and the points of its loads that are no joint: a slider
-    force acts at its slider's origin, a point force at its point (a joint's name, or (along, across) on its
-    link).  A centre keeps the name S_k unless a joint of that name stands elsewhere (then "S_k (centre)")."""
+    force acts at its slider's origin, a point force at its point (along, across) on its link, named by its name
+    or F1, F2 … in order.  A centre keeps the name S_k unless a joint of that name stands elsewhere (then
+    "S_k (centre)")."""
     if model is None:
         return {}
     marked = {}
@@ -73,9 +74,7 @@ def marked_points(comp: Composition, model: MassModel | None) -> dict[str, Point
         if not any(origin is point for point in comp.joints.values()):
             marked[f"load {pair}"] = origin
     for i, force in enumerate(getattr(model, "point_forces", ())):
-        point = getattr(force, "point", None)
-        if not isinstance(point, str) and point is not None:
-            marked[f"F{i + 1}"] = on_link(*comp.links[force.link], complex(*point))
+        marked[getattr(force, "name", None) or f"F{i + 1}"] = on_link(*comp.links[force.link], complex(*force.point))
     return marked
 
 
@@ -83,14 +82,10 @@ def trajectories(mechanism: GeneralMechanism, model: MassModel | None) -> dict[s
     """The centres' and the load points' paths over the turn at 1° ([[x, y], …], the loads at joints too)."""
     comp = compose(mechanism.linkage, np.linspace(0.0, TWO_PI, TRAJECTORY_POINTS))
     paths = {name: p.z for name, p in marked_points(comp, model).items()}
-    if model is not None:
-        for i, force in enumerate(model.forces):
-            joint = pair_of(comp, force.joint, f"masses.forces.{i}.joint").split("/")[0]
-            if joint in comp.joints:
-                paths[joint] = comp.joints[joint].z
-        for force in getattr(model, "point_forces", ()):
-            if isinstance(getattr(force, "point", None), str) and force.point in comp.joints:
-                paths[force.point] = comp.joints[force.point].z
+    for i, force in enumerate(model.forces if model is not None else ()):
+        joint = pair_of(comp, force.joint, f"masses.forces.{i}.joint").split("/")[0]
+        if joint in comp.joints:
+            paths[joint] = comp.joints[joint].z
     return {name: xy_list(z) for name, z in paths.items()}
 
 
@@ -98,10 +93,11 @@ def xy_list(z: np.ndarray) -> list[list[float]]:
     return np.stack([z.real, z.imag], axis=-1).tolist()
 
 
-def plan_of_positions(mechanism: GeneralMechanism, comp: Composition, model: MassModel | None) -> dict:
-    """The joints and centres at every position, the links' lines (joint names), every guide (its point and
-    angle at every position, the link that carries it), the trajectories over the turn."""
-    marked = marked_points(comp, model)
+def plan_of_positions(mechanism: GeneralMechanism, comp: Composition, marked: dict[str, Point],
+                      model: MassModel | None) -> dict:
+    """The joints and the ``marked`` points (centres, loads) at every position, the links' lines (joint names),
+    every guide (its point and angle at every position, the link that carries it), the trajectories over the
+    turn."""
     slides = {}
     for pair in comp.slides:
         slides.setdefault(slider_link(comp, pair), []).append(pair)
@@ -187,7 +183,7 @@ def kinematic_sheet(mechanism: GeneralMechanism, positions: StrokePositions, ome
     epsilon1 = np.broadcast_to(np.asarray(epsilon1, float), positions.phi.shape)
     comp = compose(mechanism.linkage, positions.phi)
     marked = marked_points(comp, model)
-    drawing = plan_of_positions(mechanism, comp, model)
+    drawing = plan_of_positions(mechanism, comp, marked, model)
     everything = [xy for table in ("joints", "marked", "trajectories") for path in drawing[table].values()
                   for xy in path]
     rows, mu_v, mu_a = position_rows(comp, marked, positions, omega1, epsilon1)
