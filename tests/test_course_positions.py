@@ -25,7 +25,7 @@ import math
 import numpy as np
 import pytest
 
-from server.core.course_project.kinematic_sheet import kinematic_sheet
+from server.core.course_project.kinematic_sheet import finite, kinematic_sheet
 from server.core.course_project.positions import POSITION_COUNTS, stroke_positions
 from server.core.course_project.scales import (FORCE_PLAN_MM, PLAN_MM, POSITIONS_MM, STANDARD_MANTISSAS, extent,
                                                standard_scale)
@@ -407,3 +407,10 @@ def test_the_sheet_is_plain_json_with_the_output_diagrams():
     lines = {line["link"]: line for line in drawing["links"]}
     assert lines[1]["joints"] == ["O", "A"] and lines[5]["slides"] == ["E/ram"]
     assert drawing["guides"]["ram"]["angle"] == [0.0] * 12
+
+
+def test_undefined_values_become_null_with_their_places_listed():
+    missing = []
+    tree = finite({"a": [1.0, math.nan], "b": {"c": np.float64(math.inf), "d": "text", "e": None}}, "", missing)
+    assert tree == {"a": [1.0, None], "b": {"c": None, "d": "text", "e": None}}
+    assert missing == [".a.1", ".b.c"]

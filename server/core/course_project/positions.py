@@ -288,7 +288,7 @@ def stroke_positions(mechanism: GeneralMechanism, model: MassModel | None = None
     """The sheet's N positions (module docstring): ``start`` None puts position 1 at the working stroke's start,
     a number puts it at φ₀ = start (rad).  GeometryError naming ``positions``, ``start``, ``output`` or the group
     that keeps the crank from turning fully."""
-    if count not in POSITION_COUNTS or isinstance(count, bool):
+    if count not in POSITION_COUNTS:
         raise GeometryError("positions", "the kinematics sheet takes 8, 12 or 24 positions of the crank",
                             "position_count", count=str(count))
     if start is not None and not (isinstance(start, (int, float)) and math.isfinite(start)):
