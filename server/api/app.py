@@ -25,7 +25,7 @@ from .routers import friction_influence
 from .routers import project as course_project
 from ..classroom.variants import SpecError
 from .routers import (angular, assignment_pages, assignments, bearings, dynamics, editor_pages, elastic, family, motor,
-                      forces, kinematics, mechanisms, pages, scenes)
+                      forces, kinematics, mechanisms, pages, project_pages, scenes)
 
 API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
@@ -80,6 +80,7 @@ def create_app() -> FastAPI:
     app.include_router(pages.router)
     app.include_router(assignment_pages.router)
     app.include_router(editor_pages.router)     # /editor: the mechanism editor
+    app.include_router(project_pages.router)    # /project: the course project and its report
     app.add_exception_handler(RequestValidationError, validation_error)  # never echo NaN back
     app.add_exception_handler(GeometryError, geometry_error)
     app.add_exception_handler(SpecError, assignments.spec_error)

@@ -192,10 +192,30 @@ function writeAddress() {
     ? Object.fromEntries(ownScenes.map((own) => [own.scene, sceneAddress(own, query.get("m"), state.dynamics, lang)]))
     : null;
   renderOpenLinks($("editor-open-dynamics"), hrefs, ownScenes);
+  writeProjectLink(query);
   for (const link of document.querySelectorAll("a[data-lang]")) {
     query.set("lang", link.dataset.lang);
     link.href = `?${query}`;
   }
+}
+
+/**
+ * The course project's link (/project with the same m and d), disabled with the reason while the mechanism has
+ * no crank, cannot turn fully (a joint undefined somewhere over the turn) or has no masses and loads yet.
+ */
+function writeProjectLink(query) {
+  const link = $("editor-course-project");
+  const turns = state.table && !state.refusal && Object.values(state.table.outputs.joints)
+    .every((rows) => rows.every(([x]) => x !== null));
+  const reason = !state.linkage.input || sliderInput() ? t.editor_project_needs_crank
+    : !turns ? t.editor_project_needs_turn : !state.dynamics ? t.editor_project_needs_dynamics : "";
+  const project = new URLSearchParams({ lang, m: query.get("m") });
+  if (state.dynamics) project.set("d", dynamicsParameter(state.dynamics));
+  if (reason) link.removeAttribute("href");
+  else link.href = `/project?${project}`;
+  link.setAttribute("aria-disabled", String(Boolean(reason)));
+  link.classList.toggle("disabled", Boolean(reason));
+  $("editor-course-project-reason").textContent = reason;
 }
 
 /** Keep the mechanism before this change for "Undo". */
