@@ -104,6 +104,10 @@ def test_the_levers_rows_are_the_turned_plans_geometry(case, request):
             assert row["arm"] * size == pytest.approx(row["moment"], rel=1e-12, abs=1e-9)
         total += row["moment"]
     assert total * zhukovsky["mu_v"] / omega == pytest.approx(sheet["balancing_moment"], rel=1e-12)
+    force = zhukovsky["balancing_force"]               # F_b ⊥ OA at A: its moment about O is M_b (σ = +1 here)
+    (ax, ay), (fx, fy) = force["at"], force["force"]
+    assert ax * fy - ay * fx == pytest.approx(sheet["balancing_moment"], rel=1e-12)
+    assert force["moment"] + total == pytest.approx(0.0, abs=1e-9 * abs(total))        # the lever in equilibrium
     assert zhukovsky["difference_percent"] <= 1e-7
 
 

@@ -10,10 +10,10 @@ The driving moment is constant and balances the cycle (the steady regime's step 
 dry friction of the static loads, as the machine's equation of motion takes it, dynamics/general_machine.py).
 With group I's inertia I_I = J₁ + J_rotor i² + I_fly and J(φ) = I_I + J_II(φ) (Eremyants (1.3)):
 
-    ω₁(φ)² = 2(T₀ + A(φ))/J(φ)                           Lecture 10 (L3), the energy integral
+    ω₁(φ)² = 2(T₀ + A(φ))/J(φ)                           Eremyants (1.10), the energy integral
     ε₁(φ) = (M_д − M_c(φ) − ½ J′(φ) ω₁²)/J(φ)            Eremyants (1.13)
 
-with T₀ such that (ω_max + ω_min)/2 = ω₁ₘ (Lecture 10 (L4)), the extremes found where ω₁′ = 0 exactly
+with T₀ such that (ω_max + ω_min)/2 = ω₁ₘ (Lecture 10 (L3)), the extremes found where ω₁′ = 0 exactly
 (Brent's method on M J − (T₀ + A) J′, the numerator of d(ω²)/dφ), T₀ by Newton's method: by the envelope
 theorem d(ω²(φ*))/dT₀ = 2/J(φ*) at an extreme φ*.
 
@@ -47,12 +47,14 @@ _fine = np.polynomial.legendre.leggauss(2 * ORDER)
 @dataclass(frozen=True)
 class Resistance:
     """∫₀^φ M_useful dφ and ∫₀^φ M_T dφ at the ends of the quadrature's pieces over one turn (``cumulative``,
-    (2, P + 1), N·m·rad), the pieces' ends (``edges``) and the error bound of both integrals (``error``)."""
+    (2, P + 1), N·m·rad), the pieces' ends (``edges``), the error bound of both integrals (``error``) and the sum
+    of the pieces' |integrals| (``magnitude``, J: ∫|M_c| dφ where no piece holds a change of sign)."""
 
     machine: GeneralMachine
     edges: np.ndarray
     cumulative: np.ndarray
     error: float
+    magnitude: float
 
     @property
     def driving_moment(self) -> float:
@@ -100,7 +102,7 @@ def resistance(machine: GeneralMachine) -> Resistance:
     somewhere (self-locking with the friction given: no motion)."""
     kinks = np.asarray(machine.kinks())
     edges = np.unique(np.concatenate([np.linspace(0.0, TURN, PIECES + 1), kinks[(kinks > 0) & (kinks < TURN)]]))
-    probe = Resistance(machine, edges, np.zeros((2, edges.size)), 0.0)
+    probe = Resistance(machine, edges, np.zeros((2, edges.size)), 0.0, 0.0)
     fine, difference = partial_rules(lambda x: probe.moments(x)[:2], edges[:-1], edges[1:])
     if not np.isfinite(fine).all():
         raise GeometryError("masses.friction", "the mechanism locks itself somewhere in the turn with this "
@@ -109,7 +111,7 @@ def resistance(machine: GeneralMachine) -> Resistance:
     cumulative = np.concatenate([np.zeros((2, 1)), np.cumsum(fine, axis=1)], axis=1)
     scale = np.abs(fine).sum()
     error = float(np.abs(difference).sum()) + 64 * np.finfo(float).eps * scale
-    return Resistance(machine, edges, cumulative, error)
+    return Resistance(machine, edges, cumulative, error, float(scale))
 
 
 @dataclass(frozen=True)

@@ -45,7 +45,7 @@ DENSITY = 7800.0           # steel, kg/m³
 TOLERANCE = 1e-9           # ε_R of the friction equilibrium
 BUDGET_S = 5.0             # wall clock of the friction solve (the forces request's bound)
 EFFICIENCY_POINTS = 360    # the fine grid over the turn of the kinetostatics' efficiency (a closed grid's points)
-DRIVING_FLOOR = 1e-9       # M_д below this share of the mean |M_c|: no useful load to drive against
+USEFUL_FLOOR = 1e-9        # the useful loads' work over the turn below this share of ∫|M_c|: no useful load
 
 
 def course_project(linkage: dict, masses: MassModel | None, inertias: Inertias, pairs: dict[str, PairFriction],
@@ -59,10 +59,11 @@ def course_project(linkage: dict, masses: MassModel | None, inertias: Inertias, 
     if masses is None or not any(item.mass > 0 or item.inertia > 0 for item in masses.links):
         raise GeometryError("masses.links", "the dynamics and the kinetostatics need the links' masses: give at "
                             "least one moving link a mass or a moment of inertia", "project_needs_masses")
-    machine = general_machine(linkage, masses, inertias, Load(), Motor("constant", 0.0), pairs)
-    resisting = resistance(machine)
-    scale = abs(resisting.useful_work) + abs(resisting.friction_work)
-    if not resisting.driving_moment > DRIVING_FLOOR * scale / TWO_PI or scale == 0:
+    loaded = any(f.working > 0 for f in masses.forces) or any(m.working > 0 for m in masses.moments) or \
+        any(p.magnitude > 0 for p in getattr(masses, "point_forces", ()))
+    machine = general_machine(linkage, masses, inertias, Load(), Motor("constant", 0.0), pairs) if loaded else None
+    resisting = resistance(machine) if loaded else None
+    if not loaded or not resisting.useful_work > USEFUL_FLOOR * resisting.magnitude:
         raise GeometryError("masses.forces", "the useful loads do no work over the turn: the course project's "
                             "machine needs a useful load (a force on a slider or at a point, a moment on a link) for "
                             "its motor to drive against", "project_needs_load")
@@ -91,7 +92,7 @@ def course_project(linkage: dict, masses: MassModel | None, inertias: Inertias, 
         "output_diagrams": sheet["output_diagrams"],
         "dynamics": dynamic_sheet(machine, flywheel, motion),
         "kinetostatics": at_chosen,
-        "table": table(kinetics, positions.count),
+        "table": table(kinetics, positions.working),
     }, notices + kinetics["result"].notices
 
 
@@ -131,7 +132,8 @@ def kinetostatics(mechanism: GeneralMechanism, masses: MassModel, pairs: dict[st
     linkage_part = reduced_inertia(mechanism, result.comp, masses, 0.0)
     loads = reduced_loads(mechanism, result.comp, masses)
     reduced = linkage_part.J * epsilon + 0.5 * linkage_part.dJ * omega**2 + loads.total
-    return {"result": result, "omega": omega, "epsilon": epsilon, "count": phi.size, "mu_v": mu_v,
+    return {"result": result, "crank": mechanism.linkage.crank, "omega": omega, "epsilon": epsilon,
+            "count": phi.size, "mu_v": mu_v,
             "useful": useful_moment(result)[:phi.size], "reduced": reduced,
             "frictionless": lever(result, omega, mu_v),
             "friction": lever(result, omega, mu_v, result.solution) if result.rough else None,
@@ -153,7 +155,8 @@ def cycle_efficiency(result, first: int) -> dict:
     eta, coarse = ratio(useful, lost), ratio(useful[::2], lost[::2])
     numerics = Numerics(method="the trapezoid rule over the turn on a closed uniform grid of the kinetostatics with "
                                "friction at the real motion; error against the rule on every other point",
-                        code="project_efficiency", steps=int(useful.size), error_estimate=abs(coarse - eta) / eta)
+                        code="project_efficiency", steps=int(useful.size),
+                        error_estimate=abs(coarse - eta) / eta if eta > 0 else None)
     return {"efficiency": float(eta), "work_useful": float(TWO_PI * useful.mean()),
             "work_friction": float(TWO_PI * lost.mean()), "numerics": numerics.as_dict()}
 
@@ -177,6 +180,8 @@ def chosen_sheet(kinetics: dict, k: int) -> tuple[dict, float | None]:
             "zhukovsky": {"moment": float(levered.balancing[k]), "lever": at_angle(levered, k),
                           "mu_v": levered.mu_v, "pole": [0.0, 0.0],
                           "images": images(result, omega, levered.mu_v, k),
+                          "balancing_force": balancing_force(kinetics["crank"], result, float(omega[k]),
+                                                             levered.mu_v, float(row.balancing[k]), k),
                           "difference_percent": float(difference_percent(levered.balancing, row.balancing,
                                                                          levered.rows)[k])}}
     answer = {"number": k + 1, "phi": float(result.phi[k]), "omega1": float(omega[k]),
@@ -187,12 +192,24 @@ def chosen_sheet(kinetics: dict, k: int) -> tuple[dict, float | None]:
     return answer, mu_f
 
 
+def balancing_force(crank, result, omega: float, mu_v: float, moment: float, k: int) -> dict:
+    """The textbook's balancing force at the crank pin A, perpendicular to OA, F_b = M_b/l₁ (its moment about O is
+    M_b along ω₁), on the lever at A's image: its lever moment −M_b ω₁/μ_v balances the rows'."""
+    pivot, pin = result.comp.joints[crank.pivot], result.comp.joints[crank.joint]
+    along = (pin.z[k] - pivot.z[k]) / crank.length
+    force = crank.sense * moment / crank.length * 1j * along
+    image = 1j * pin.d1[k] * omega / mu_v
+    lever_moment = float((np.conj(image) * force).imag)
+    return {"joint": crank.joint, "at": ks.xy(pin.z[k]), "image": ks.xy(image), "force": ks.xy(force),
+            "arm": lever_moment / abs(force) if force else 0.0, "moment": lever_moment}
+
+
 def images(result, omega: np.ndarray, mu_v: float, k: int) -> dict:
     """Every joint's image on the turned velocity plan at angle index k, mm from the pole: i v/μ_v."""
     return {name: ks.xy(1j * p.d1[k] * omega[k] / mu_v) for name, p in result.comp.joints.items()}
 
 
-def table(kinetics: dict, count: int) -> list[dict]:
+def table(kinetics: dict, working: np.ndarray) -> list[dict]:
     """One row per position: ω₁, ε₁, the balancing moment by the groups, the lever, the reduced equation, with
     friction (by the groups and the lever), and the useful loads' reduced moment (N·m)."""
     result = kinetics["result"]
@@ -200,8 +217,9 @@ def table(kinetics: dict, count: int) -> list[dict]:
     first = result.approximations[0].balancing
     differ = difference_percent(plain.balancing, first, plain.rows)
     rows = []
-    for k in range(count):
-        rows.append({"number": k + 1, "phi": float(result.phi[k]), "omega1": float(kinetics["omega"][k]),
+    for k in range(working.size):
+        rows.append({"number": k + 1, "phi": float(result.phi[k]), "working": bool(working[k]),
+                     "omega1": float(kinetics["omega"][k]),
                      "epsilon1": float(kinetics["epsilon"][k]), "M_b_groups": float(first[k]),
                      "M_b_lever": float(plain.balancing[k]), "M_b_reduced": float(kinetics["reduced"][k]),
                      "difference_percent": float(differ[k]),
