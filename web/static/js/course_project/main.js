@@ -17,6 +17,7 @@ import { renderDesign } from "./view/design.js";
 import { renderSettings, renderTitleInputs } from "./view/settings.js";
 import { renderReport } from "./view/report.js";
 import { element } from "../common/view/dom.js";
+import { richText } from "../common/view/notation.js";
 
 const lang = document.documentElement.lang;
 const t = JSON.parse(document.getElementById("interface-texts").textContent);
@@ -85,6 +86,7 @@ function show(asked) {
   const refusal = state.refusal;
   $("project-refusal").replaceChildren();
   markRefused(refusal ? refusedPath(refusal) : null);
+  report.classList.toggle("stale", Boolean(refusal));
   if (refusal) {
     const sentence = refusalSentence(refusal, refusalText(refusal, t), asked, t);
     $("project-refusal").append(element("div", { className: "refusal", role: "alert", id: "project-refusal-sentence" },
@@ -135,15 +137,16 @@ function showDesign() {
 /** The estimate: the places a load may go, and the design data where the mechanism came without any. */
 function askEstimate() {
   estimates.submit({ linkage: state.linkage }, (answer) => {
+    const estimated = answer.ok && !state.dynamics;
     if (answer.ok) {
       state.places = answer.data.load_places;
-      if (!state.dynamics) state.dynamics = completed(dynamicsOf(answer.data));
+      if (estimated) state.dynamics = completed(dynamicsOf(answer.data));
     } else if (!state.dynamics) {
       state.refusal = answer.error;
       show(null);
     }
     showDesign();
-    compute();
+    if (estimated) compute();
   });
 }
 
@@ -153,7 +156,7 @@ function open(linkage, dynamics, message = "") {
   state.dynamics = dynamics?.masses ? completed(dynamicsOf(dynamics)) : null;
   state.answer = null;
   state.settings = { ...defaultSettings(), title: state.settings.title };
-  $("project-file-status").textContent = message;
+  $("project-file-status").replaceChildren(richText(message));          // a preset's source writes J_S, J₁
   showSettings();
   showDesign();
   compute();

@@ -22,6 +22,9 @@ const MACHINE = { "inertias.J1": "project_J1", "inertias.J_rotor": "project_J_ro
   start: "project_phi0", chosen: "project_chosen", drawn: "project_drawn", output: "project_output",
   "title.student": "project_student", "title.group": "project_group", "title.variant": "project_variant" };
 
+const LISTS = { links: "editor_masses_links", forces: "project_stroke_loads", moments: "project_stroke_loads",
+  point_forces: "project_point_forces" };
+
 /** The refused field in words, from the request the page sent (to name a link or a slider by its own name). */
 export function fieldWords(path, request, t) {
   const keys = path.split(".");
@@ -30,6 +33,7 @@ export function fieldWords(path, request, t) {
     if (MACHINE[head]) return t[MACHINE[head]];
   }
   const [top, list, index, ...rest] = keys;
+  if (top === "masses" && index === undefined) return t[LISTS[list]] ?? t.project_design_data;
   const item = request?.masses?.[list]?.[Number(index)];
   const tail = rest.length ? ` (${rest.join(".")})` : "";
   if (top === "masses" && list === "links") return `${t.editor_link} ${item?.link ?? Number(index) + 1}${tail}`;
