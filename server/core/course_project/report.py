@@ -18,6 +18,8 @@ driving moment, Eremyants (1.13)).
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..dynamics import report as dynamics_report
@@ -67,8 +69,7 @@ def course_project(linkage: dict, masses: MassModel | None, inertias: Inertias, 
         raise GeometryError("masses.forces", "the useful loads do no work over the turn: the course project's "
                             "machine needs a useful load (a force on a slider or at a point, a moment on a link) for "
                             "its motor to drive against", "project_needs_load")
-    machine = general_machine(linkage, masses, inertias, Load(),
-                              Motor("constant", resisting.driving_moment / inertias.gear_ratio), pairs)
+    machine = replace(machine, motor=Motor("constant", resisting.driving_moment / inertias.gear_ratio), memo={})
     flywheel, notices = dynamics_report.flywheel(machine, omega_mean, delta, True, WIDTH_RATIO, DENSITY)
     if not flywheel:
         raise GeometryError("masses", " ".join(n.text for n in notices) or "no steady cycle", "project_no_cycle")
