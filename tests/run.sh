@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# Install what the tests need (Python packages; Debian's chromium, postgresql and nginx when missing), then run the whole suite.
+# Install what the tests need (Python packages; Debian's chromium, poppler-utils, postgresql and nginx when missing), then run the whole suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore -e ".[test]"
 if ! command -v /usr/bin/chromium >/dev/null 2>&1; then
     if [ "$(id -u)" -eq 0 ]; then apt-get update -qq && apt-get install -y -qq chromium >/dev/null
     else sudo apt-get update -qq && sudo apt-get install -y -qq chromium >/dev/null; fi
+fi
+if ! command -v pdftotext >/dev/null 2>&1; then     # tests/browser/test_course_project.py reads the printed PDF
+    if [ "$(id -u)" -eq 0 ]; then apt-get update -qq && apt-get install -y -qq poppler-utils >/dev/null
+    else sudo apt-get update -qq && sudo apt-get install -y -qq poppler-utils >/dev/null; fi
 fi
 if ! command -v initdb >/dev/null 2>&1 && ! ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1; then
     # a real PostgreSQL for the store tests (tests/postgres.py starts its own server in a temporary directory)

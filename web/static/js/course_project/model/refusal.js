@@ -48,6 +48,6 @@ export function fieldWords(path, request, t) {
 
 /** The sentence shown for a refusal: the field in words and the reason (reason: the translated server's). */
 export function refusalSentence(error, reason, request, t) {
-  if (refusesMechanism(error)) return reason;
+  if (refusesMechanism(error) || error.code === "server" || error.code === "network") return reason;
   return fill(t.project_refused_field, { field: fieldWords(refusedPath(error), request, t), reason });
 }

@@ -7,6 +7,8 @@
  * Column kinds: "int"; "number" (SI, written with 4 significant digits); "angle" (rad, written in degrees);
  * "text" (words or names in the notation markup: "F_in4", "πa3 = πc + n_A3C + τ_A3C").
  */
+import { symbolOf } from "../../forces_friction/model/group_free_body.js";
+
 const fill = (text, fields) => text.replace(/\{(\w+)\}/g, (whole, key) => fields[key] ?? whole);
 const column = (header, kind = "number") => ({ header, kind });
 const SUB = "₀₁₂₃₄₅₆₇₈₉";
@@ -87,10 +89,20 @@ export function flywheelDimensions(flywheel, t) {
     column(t.project_col_diameter), column(t.project_col_width), column(t.project_col_mass)], rows };
 }
 
-/** The inertia loads at the chosen position: F_in, its magnitude, M_in and the offset h of the resultant. */
+/**
+ * A load's symbol as the textbook and the drawings write it (forces_friction/model/group_free_body.js): G_4, Φ_4,
+ * M_Φ4, R_34; a useful force with its place, P_{E/ram}.
+ */
+export function loadSymbol(name, kind) {
+  if (kind === "useful" && name.startsWith("F_")) return `P_{${name.slice(2)}}`;
+  return symbolOf(name, kind === "reaction" ? "" : kind ?? "");
+}
+
+/** The inertia loads at the chosen position: Φ, its magnitude, M_Φ and the offset h of the resultant. */
 export function inertiaTable(kinetostatics, t) {
+  const N = t.units_N;
   return { id: "table-inertia", caption: t.project_inertia_caption, columns: [column(t.project_col_link, "int"),
-    column("F_{in,x}, N"), column("F_{in,y}, N"), column("|F_in|, N"), column(`M_in, ${t.units_N_m}`), column(`h, ${t.units_m}`)],
+    column(`Φ_x, ${N}`), column(`Φ_y, ${N}`), column(`|Φ|, ${N}`), column(`M_Φ, ${t.units_N_m}`), column(`h, ${t.units_m}`)],
   rows: kinetostatics.inertia.map((row) => ({ cells: [row.link, row.force[0], row.force[1], row.magnitude, row.moment,
     row.offset] })) };
 }
@@ -106,24 +118,29 @@ function magnitudes(plans) {
  */
 export function groupTable(group, plans, t, friction = false) {
   const sizes = magnitudes(plans);
-  const rows = [...group.loads.map((load) => ({ cells: [load.name, t[`project_load_${load.kind}`] ?? load.kind, load.link,
+  const rows = [...group.loads.map((load) => ({ cells: [loadSymbol(load.name, load.kind), t[`project_load_${load.kind}`] ?? load.kind, load.link,
     load.force?.[0] ?? null, load.force?.[1] ?? null, sizes.get(`${group.group}:${load.name}`) ?? null, load.moment ?? null] })),
-  ...group.reactions.map((r) => ({ cells: [r.name, `${t.project_load_reaction} ${r.pair}`, r.link, r.force[0], r.force[1],
+  ...group.reactions.map((r) => ({ cells: [loadSymbol(r.name, "reaction"), `${t.project_load_reaction} ${r.pair}`, r.link, r.force[0], r.force[1],
     r.magnitude ?? sizes.get(`${group.group}:${r.name}`) ?? null, r.moment ?? null] }))];
   const title = group.kind === "crank" ? t.project_crank_body : `${groupName({ kind_number: KIND_NUMBERS[group.kind], links: group.links })} ${group.kind}`;
   return { id: `table-group-${friction ? "f-" : ""}${group.group}`, caption: fill(t.project_group_caption, { group: title }),
     columns: [column(t.project_col_force, "text"), column(t.project_col_kind, "text"), column(t.project_col_link, "int"),
-      column("x, N"), column("y, N"), column("|F|, N"), column(`M, ${t.units_N_m}`)], rows };
+      column(`x, ${t.units_N}`), column(`y, ${t.units_N}`), column(`|F|, ${t.units_N}`), column(`M, ${t.units_N_m}`)], rows };
 }
 
 const KIND_NUMBERS = { RRR: 1, RRP: 2, RPR: 3, PRP: 4, RPP: 5 };
 
-/** Zhukovsky's lever: each force's arm on the turned plan (mm) and its moment about the pole. */
+/**
+ * Zhukovsky's lever: each force's arm on the turned plan (mm) and its moment about the pole (N·mm), a couple's
+ * moment, each row's share of M_b; last the balancing force F_b at the crank pin.
+ */
 export function leverTable(zhukovsky, t, friction = false) {
+  const balancing = zhukovsky.balancing_force;
   return { id: `table-lever${friction ? "-friction" : ""}`, caption: friction ? t.project_lever_friction_caption : t.project_lever_caption,
     columns: [column(t.project_col_force, "text"), column(t.project_col_link, "int"), column(t.project_col_arm),
-      column(`M, ${t.units_N_m}`), column(t.project_col_share)],
-    rows: zhukovsky.lever.map((row) => ({ cells: [row.name, row.link ?? null, row.arm ?? null, row.moment, row.share ?? null] })) };
+      column(t.project_col_lever_moment), column(t.project_col_share)],
+    rows: [...zhukovsky.lever.map((row) => ({ cells: [loadSymbol(row.name, row.kind), row.link ?? null, row.arm ?? null, row.moment, row.share ?? null] })),
+      ...(balancing ? [{ cells: [`${t.project_balancing_force} (${balancing.joint})`, 1, balancing.arm, balancing.moment, null] }] : [])] };
 }
 
 /** The balancing moment at every position: by the groups, by the lever, by the reduced equation, with friction. */

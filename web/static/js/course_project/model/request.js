@@ -8,6 +8,7 @@ const MASS_KEYS = ["links", "gravity", "forces", "moments", "point_forces", "fri
 /** The request of the project {linkage, dynamics (completed), settings}. */
 export function projectRequest({ linkage, dynamics, settings }) {
   const masses = Object.fromEntries(MASS_KEYS.filter((key) => dynamics.masses[key] !== undefined)
+    .filter((key) => key !== "point_forces" || dynamics.masses.point_forces.length)      // none: the field left out
     .map((key) => [key, dynamics.masses[key]]));
   const { J1, J_rotor, gear_ratio } = dynamics.inertias;
   return {
