@@ -58,6 +58,11 @@ def course_project(linkage: dict, masses: MassModel | None, inertias: Inertias, 
     the field of a request the project cannot be done for."""
     mechanism = GeneralMechanism(linkage)
     positions = stroke_positions(mechanism, masses, count, start, output)
+    asked = ([("chosen", chosen)] if chosen is not None else []) + [(f"drawn.{i}", k) for i, k in enumerate(drawn or [])]
+    for where, k in asked:
+        if not 1 <= k <= count:
+            raise GeometryError(where, f"position {k} is not among the positions 1…{count}", "project_position",
+                                number=k, count=count)
     if masses is None or not any(item.mass > 0 or item.inertia > 0 for item in masses.links):
         raise GeometryError("masses.links", "the dynamics and the kinetostatics need the links' masses: give at "
                             "least one moving link a mass or a moment of inertia", "project_needs_masses")
@@ -78,11 +83,7 @@ def course_project(linkage: dict, masses: MassModel | None, inertias: Inertias, 
     sheet = kinematic_sheet(mechanism, positions, state["omega"], state["epsilon"], masses)
     notices = notices + [Notice(n["code"], n["text"], n["context"]) for n in sheet.pop("notices")]
     kinetics = kinetostatics(mechanism, masses, pairs, motion, positions.phi, sheet["scales"]["mu_v"])
-    number = chosen_position(kinetics["useful"], chosen)
-    for i, k in enumerate(drawn or []):
-        if not 1 <= k <= count:
-            raise GeometryError(f"drawn.{i}", f"position {k} is not among the positions 1…{count}", "project_position",
-                                number=k, count=count)
+    number = chosen or int(np.argmax(np.abs(kinetics["useful"]))) + 1      # the largest useful load by default
     at_chosen, mu_f = chosen_sheet(kinetics, number - 1)
     return {
         "structure": mechanism.structure,
@@ -95,18 +96,6 @@ def course_project(linkage: dict, masses: MassModel | None, inertias: Inertias, 
         "kinetostatics": at_chosen,
         "table": table(kinetics, positions.working),
     }, notices + kinetics["result"].notices
-
-
-def chosen_position(useful: np.ndarray, chosen: int | None) -> int:
-    """The position of the force analysis, 1…N: ``chosen``, or the one with the largest |reduced moment of the
-    useful loads|."""
-    count = useful.size
-    if chosen is None:
-        return int(np.argmax(np.abs(useful))) + 1
-    if not 1 <= chosen <= count:
-        raise GeometryError("chosen", f"position {chosen} is not among the positions 1…{count}", "project_position",
-                            number=chosen, count=count)
-    return chosen
 
 
 def useful_moment(result) -> np.ndarray:
@@ -134,7 +123,6 @@ def kinetostatics(mechanism: GeneralMechanism, masses: MassModel, pairs: dict[st
     loads = reduced_loads(mechanism, result.comp, masses)
     reduced = linkage_part.J * epsilon + 0.5 * linkage_part.dJ * omega**2 + loads.total
     return {"result": result, "crank": mechanism.linkage.crank, "omega": omega, "epsilon": epsilon,
-            "count": phi.size, "mu_v": mu_v,
             "useful": useful_moment(result)[:phi.size], "reduced": reduced,
             "frictionless": lever(result, omega, mu_v),
             "friction": lever(result, omega, mu_v, result.solution) if result.rough else None,
