@@ -138,6 +138,32 @@ def test_the_frictionless_balancing_moment_is_the_reduced_equation_of_motion(cas
         assert np.abs(driving - dynamics["driving_moment"]).max() <= 1e-9 * dynamics["driving_moment"]
 
 
+MACHINES = [name for name, preset in presets().items() if "flywheel" in preset.get("dynamics", {})]
+
+
+@pytest.mark.parametrize("rough_pairs", [False, True])
+@pytest.mark.parametrize("name", MACHINES)
+def test_every_machine_preset_balances_three_ways(name, rough_pairs):
+    """Slider forces, a link's load moment (a couple on the lever), two loaded sliders: the lever and the reduced
+    equation give the groups' balancing moment at every position, the force plans close."""
+    dynamics = presets()[name]["dynamics"]
+    model = MassInput(**dynamics["masses"]).model()
+    model = replace(model, **ROUGH) if rough_pairs else model
+    answer, _ = course_project(presets()[name]["linkage"], model, Inertias(**dynamics["inertias"]), {},
+                               dynamics["flywheel"]["omega_mean"], dynamics["flywheel"]["delta"], 8)
+    groups = column(answer, "M_b_groups")
+    scale = np.abs(groups).max()
+    assert np.abs(column(answer, "M_b_lever") - groups).max() <= ROUND_OFF * scale
+    assert np.abs(column(answer, "M_b_reduced") - groups).max() <= ROUND_OFF * scale
+    sheet = answer["kinetostatics"]
+    if rough_pairs:
+        with_friction = column(answer, "M_b_friction")
+        assert np.abs(column(answer, "M_b_lever_friction") - with_friction).max() <= \
+            ROUND_OFF * np.abs(with_friction).max()
+        sheet = sheet["friction"]
+    assert max(plan["closure"] for plan in sheet["force_plans"]) <= 1e-12
+
+
 @pytest.fixture(scope="module")
 def motion():
     machine = general_machine(PRESET["linkage"], masses(), Inertias(**DYNAMICS["inertias"]), Load(),
