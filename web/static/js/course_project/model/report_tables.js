@@ -149,8 +149,10 @@ export function balancingTable(answer, t) {
   return { id: "table-balancing", caption: t.project_balancing_caption, columns: [column("№", "int"),
     column(t.project_col_phi, "angle"), column(t.project_col_omega1), column(t.project_col_epsilon1),
     column(t.project_col_Mb_groups), column(t.project_col_Mb_lever), column(t.project_col_Mb_reduced),
-    column(t.project_col_difference), ...(friction ? [column(t.project_col_Mb_friction)] : []), column(t.project_col_useful)],
+    column(t.project_col_difference),
+    ...(friction ? [column(t.project_col_Mb_friction), column(t.project_col_Mb_lever_friction)] : []),
+    column(t.project_col_useful)],
   rows: answer.table.map((row) => ({ chosen: row.number === answer.kinetostatics.number,
     cells: [row.number, row.phi, row.omega1, row.epsilon1, row.M_b_groups, row.M_b_lever, row.M_b_reduced,
-      row.difference_percent, ...(friction ? [row.M_b_friction] : []), row.useful_load] })) };
+      row.difference_percent, ...(friction ? [row.M_b_friction, row.M_b_lever_friction] : []), row.useful_load] })) };
 }

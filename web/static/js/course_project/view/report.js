@@ -113,6 +113,7 @@ function dynamics(answer, options) {
       [t.project_efficiency, cellText(d.efficiency, "number", lang), "efficiency"],
     ]),
     renderTable(flywheelDimensions(fly, t), options),
+    figure("flywheel", answer, options),
     figure("speed_diagrams", answer, options),
     numericsNote(fly.numerics, t), numericsNote(d.numerics, t),
   ];
@@ -148,6 +149,7 @@ function kinetostatics(answer, options) {
     [t.project_col_epsilon1, cellText(kin.epsilon1, "number", lang), "chosen-epsilon1"],
   ]),
   renderTable(inertiaTable(kin, t), options),
+  figure("groups_with_forces", answer, options),
   ...kin.groups.flatMap((group) => [renderTable(groupTable(group, kin.force_plans, t), options)]),
   figure("force_plans", answer, options),
   facts([
