@@ -272,6 +272,8 @@ BAD = [
     (BODY | {"linkage": presets()["slider_driven_crank"]["linkage"]}, ["body", "linkage", "input", "kind"]),
     (BODY | {"pair_friction": {"A": {"f": 0.1, "r": 0.01, "beta": 1.0}}}, ["body", "pair_friction", "A", "beta"]),
     (BODY | {"title": {"student": "x" * 81}}, ["body", "title", "student"]),
+    (BODY | {"output": "nope"}, ["body", "output"]),
+    (BODY | {"output": "link 1"}, ["body", "output"]),                   # the crank turns: it never reverses
 ]
 
 

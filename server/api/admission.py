@@ -36,8 +36,9 @@ from .endpoints import ENDPOINTS
 COOKIE = "mdl_client"
 COOKIE_MAX_AGE_S = 365 * 24 * 3600
 RETRY_AFTER_S = 1
-# run in the heavy process (heavy.submit): elastic machines, slider families, live work–precision studies
-HEAVY_NAMES = ("elastic", "family", r"work-precision/[a-z-]+")
+# run in the heavy process (heavy.submit): elastic machines, slider families, live work–precision studies, the
+# course project
+HEAVY_NAMES = ("elastic", "family", r"work-precision/[a-z-]+", "course-project")
 COMPUTING = re.compile(rf"/api/v1/({'|'.join([*map(re.escape, ENDPOINTS), *HEAVY_NAMES])})")
 HEAVY = re.compile(rf"/api/v1/({'|'.join(HEAVY_NAMES)})")
 _ID = re.compile(r"[A-Za-z0-9_-]{16,64}")

@@ -15,7 +15,8 @@ from ..core.mechanisms import GeometryError
 from .serialise import serialise
 
 REQUEST_FIELDS = ("outputs", "phi", "n", "motor", "inertias", "load", "compliances", "loads", "pairs",
-                  "linkage", "plan", "bearing", "masses", "pair_friction")
+                  "linkage", "plan", "bearing", "masses", "pair_friction", "positions", "start", "output",
+                  "chosen", "drawn")
 SERVER_ERROR = "internal error: the server could not answer this request (it has been logged)"
 
 

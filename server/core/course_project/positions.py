@@ -38,6 +38,7 @@ POSITION_COUNTS = (8, 12, 24)
 TURN_POINTS = 1441          # the turn at 0.25°: the assembly checked, the output's reversals bracketed
 ROOT_TOLERANCE = 1e-14      # rad: Brent's bracket at the end (the extremes to ~1e-13 rad)
 WORK_NODES = 200            # Gauss–Legendre nodes per stroke for the loads' resisting work
+_work_rule = np.polynomial.legendre.leggauss(WORK_NODES)
 EQUAL_WORK = 1e-9           # relative: the two strokes take the same work (a load with k = 1)
 LINK_NAME = re.compile(r"link\s*(\d{1,2})")
 
@@ -246,7 +247,7 @@ def output_loads(mechanism: GeneralMechanism, comp: Composition, model: MassMode
 def stroke_work(mechanism: GeneralMechanism, loads: MassModel, start: float, span: float) -> float:
     """The loads' resisting work A = ∫ M_c dφ (J) over the stroke from ``start`` through ``span`` by
     Gauss–Legendre quadrature (M_c is smooth inside a stroke: k switches at its ends, the reversals)."""
-    x, w = np.polynomial.legendre.leggauss(WORK_NODES)
+    x, w = _work_rule
     comp = compose(mechanism.linkage, start + (x + 1) * span / 2)
     return float(w @ reduced_loads(mechanism, comp, loads).total * span / 2)
 

@@ -165,17 +165,19 @@ def real_motion(resisting: Resistance, flywheel_inertia: float, omega_mean: floa
     floor = float(-work.min())
     level = max(0.5 * omega_mean**2 * float(inertia.mean()) - float(work.mean()), floor + 1e-9 * abs(floor) + 1e-300)
     steps = 0
-    for steps in range(1, NEWTON_STEPS + 1):
-        found = speed_extremes(probe, level, work, inertia)
-        (_, w_max, j_max), (_, w_min, j_min) = found
-        change = (0.5 * (w_max + w_min) - omega_mean) / (0.5 * (1 / (j_max * w_max) + 1 / (j_min * w_min)))
-        following = level - change
-        if following <= floor:                     # the speed would reach zero: halve the way to the floor
-            following = 0.5 * (level + floor)
-        done = abs(following - level) <= LEVEL_TOLERANCE * abs(level)
-        level = following
-        if done:
-            break
+    for exact in (False, True):         # the pieces' ends first (cheap), then the extremes refined exactly
+        for step in range(1, NEWTON_STEPS + 1):
+            found = speed_extremes(probe, level, work, inertia, exact)
+            (_, w_max, j_max), (_, w_min, j_min) = found
+            change = (0.5 * (w_max + w_min) - omega_mean) / (0.5 * (1 / (j_max * w_max) + 1 / (j_min * w_min)))
+            following = level - change
+            if following <= floor:                     # the speed would reach zero: halve the way to the floor
+                following = 0.5 * (level + floor)
+            done = abs(following - level) <= LEVEL_TOLERANCE * abs(level)
+            level = following
+            if done:
+                break
+        steps += step
     found = speed_extremes(probe, level, work, inertia)
     (phi_max, w_max, _), (phi_min, w_min, _) = found
     relative = resisting.error / max(float(inertia.min()) * w_min**2, 1e-300)    # δω/ω ≈ δA/(J ω²)
@@ -184,19 +186,22 @@ def real_motion(resisting: Resistance, flywheel_inertia: float, omega_mean: floa
                f"{ORDER} and {2 * ORDER} nodes on each of {edges.size} pieces, their difference the error bound); "
                "ω₁² = 2(T₀ + A)/J at each angle; T₀ by Newton's method on (ω_max + ω_min)/2 = ω₁ₘ with the extremes "
                "found by Brent's method where dω₁/dφ = 0", code="project_real_motion", steps=int(edges.size),
-        iterations=steps, converged=steps < NEWTON_STEPS, error_estimate=relative,
+        iterations=steps, converged=step < NEWTON_STEPS, error_estimate=relative,
         runtime_ms=1e3 * (time.perf_counter() - started))
     return RealMotion(resisting, flywheel_inertia, omega_mean, level, (phi_max, w_max, phi_min, w_min), steps,
                       numerics)
 
 
-def speed_extremes(motion: RealMotion, level: float, work: np.ndarray, inertia: np.ndarray):
-    """((φ, ω, J) at ω_max, (φ, ω, J) at ω_min) for T₀ = ``level``: the best piece end, then the root of
-    g = (M_д − M_c) J − (T₀ + A) J′ (the numerator of d(ω²)/dφ) between its neighbours by Brent's method, where
-    g changes sign there (else the piece end itself: a corner of ω)."""
+def speed_extremes(motion: RealMotion, level: float, work: np.ndarray, inertia: np.ndarray, exact: bool = True):
+    """((φ, ω, J) at ω_max, (φ, ω, J) at ω_min) for T₀ = ``level``: the best piece end, then (``exact``) the root
+    of g = (M_д − M_c) J − (T₀ + A) J′ (the numerator of d(ω²)/dφ) between its neighbours by Brent's method,
+    where g changes sign there (else the piece end itself: a corner of ω)."""
     edges = motion.resistance.edges
     squares = 2 * (level + work) / inertia
     count = squares.size
+    if not exact:
+        return [(float(edges[k]), float(np.sqrt(squares[k])), float(inertia[k]))
+                for k in (int(np.argmax(squares)), int(np.argmin(squares)))]
 
     def slope(phi: float) -> float:
         state = motion.resistance.moments(np.array([phi]))
