@@ -9,7 +9,7 @@
 import { setPath } from "../common/model/dotted_paths.js";
 import { LatestRequest, refusalText } from "../editor/model/service.js";
 import { dynamicsOf } from "../editor/model/dynamics.js";
-import { defaultSettings, editorAddress, projectQuery, readProject } from "./model/address.js";
+import { defaultSettings, editorAddress, outputChoices, projectQuery, readProject } from "./model/address.js";
 import { completed } from "./model/design.js";
 import { projectRequest } from "./model/request.js";
 import { refusalSentence, refusedPath, refusesMechanism } from "./model/refusal.js";
@@ -107,13 +107,15 @@ function show(asked) {
 }
 
 function showSettings() {
-  const found = state.answer ? { phi0: state.answer.positions?.phi0, chosen: state.answer.kinetostatics?.number } : null;
+  const found = state.answer ? { phi0: state.answer.positions?.phi0, chosen: state.answer.kinetostatics?.number,
+    output: state.answer.positions?.output && { kind: state.answer.positions.output.kind,
+      name: state.answer.positions.output.name.replace(/^link /, "") } } : null;
   const onSettings = (change) => {
     change(state.settings);
     showSettings();
     compute();
   };
-  renderSettings($("project-settings"), state.settings, found, { t, lang, onSettings });
+  renderSettings($("project-settings"), state.settings, found, outputChoices(state.linkage, state.places), { t, lang, onSettings });
 }
 
 function showDesign() {
@@ -146,6 +148,7 @@ function askEstimate() {
       show(null);
     }
     showDesign();
+    showSettings();
     if (estimated) compute();
   });
 }

@@ -64,3 +64,13 @@ export function editorAddress({ linkage, dynamics }, lang) {
 export function withPositions(settings, positions) {
   return settingsOf({ ...settings, positions });
 }
+
+/**
+ * The outputs the strokes may be defined by: every sliding pair where a load may go (the estimate's places,
+ * "E/ram") and every moving link ("link 3", as the API names them).
+ */
+export function outputChoices(linkage, places) {
+  const links = linkage?.input ? [linkage.input.link, ...(linkage.groups ?? []).flatMap((g) => g.links)] : [];
+  return [...(places?.forces ?? []).map((f) => ({ kind: "slide", name: f.joint, value: f.joint })),
+    ...links.map((link) => ({ kind: "link", name: String(link), value: `link ${link}` }))];
+}

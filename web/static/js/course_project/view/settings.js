@@ -17,8 +17,11 @@ export function renderTitleInputs(container, settings, { t, onSettings }) {
       maxLength: TITLE_LENGTH, onTake: (text) => onSettings((s) => { s.title[field] = text; }) }))));
 }
 
-/** The settings' inputs; found: what the app found where the student left it to the app (answer's phi0, chosen). */
-export function renderSettings(container, settings, found, { t, lang, onSettings }) {
+/**
+ * The settings' inputs; found: what the app found where the student left it to the app (the answer's phi0, chosen,
+ * output {kind, name}); outputs: the outputs to choose from (model/address.js outputChoices).
+ */
+export function renderSettings(container, settings, found, outputs, { t, lang, onSettings }) {
   const n = settings.positions;
   const positions = choiceInput(n, POSITION_CHOICES.map((k) => [k, String(k)]), { label: t.project_positions,
     path: "positions", onTake: (k) => onSettings((s) => Object.assign(s, withPositions(s, k))) });
@@ -36,6 +39,11 @@ export function renderSettings(container, settings, found, { t, lang, onSettings
     ...Array.from({ length: n }, (_, k) => [k + 1, String(k + 1)])], { label: t.project_chosen, path: "chosen",
     onTake: (k) => onSettings((s) => { s.chosen = k === "auto" ? null : k; }) });
   chosen.id = "project-chosen";
+  const words = (o) => (o.kind === "slide" ? t.project_output_slide : t.project_output_link).replace("{name}", o.name);
+  const autoOutput = found?.output ? `${t.project_output_auto} (${words(found.output)})` : t.project_output_auto;
+  const output = choiceInput(settings.output ?? "auto", [["auto", autoOutput], ...outputs.map((o) => [o.value, words(o)])],
+    { label: t.project_output, path: "output", onTake: (value) => onSettings((s) => { s.output = value === "auto" ? null : value; }) });
+  output.id = "project-output";
   const drawn = element("fieldset", { className: "drawn", id: "project-drawn" },
     element("legend", { textContent: t.project_drawn }),
     ...Array.from({ length: n }, (_, k) => {
@@ -53,6 +61,7 @@ export function renderSettings(container, settings, found, { t, lang, onSettings
     element("label", {}, element("span", { textContent: t.project_positions }), positions),
     element("label", {}, element("span", { textContent: t.project_start }), start),
     element("label", {}, element("span", { rich: t.project_phi0 }), phi0),
-    element("label", {}, element("span", { textContent: t.project_chosen }), chosen)),
+    element("label", {}, element("span", { textContent: t.project_chosen }), chosen),
+    element("label", {}, element("span", { textContent: t.project_output }), output)),
   drawn, element("p", { className: "hint", textContent: t.project_drawn_note }));
 }
