@@ -12,18 +12,13 @@ import { notationParts } from "../../common/view/notation.js";
 /** Paper sizes, mm (GOST 2.301): A1 landscape. */
 export const A1 = { width: 841, height: 594 };
 /** The frame's distance from the sheet's edges, mm: the binding margin on the left (GOST 2.104). */
-export const FRAME_MARGINS = { left: 20, top: 5, right: 5, bottom: 5 };
+const FRAME_MARGINS = { left: 20, top: 5, right: 5, bottom: 5 };
 /** The title block (GOST 2.104, form 1), mm, in the frame's bottom right corner. */
-export const TITLE_BLOCK = { width: 185, height: 55 };
+const TITLE_BLOCK = { width: 185, height: 55 };
 /** Font sizes of the drawings, mm (GOST 2.304: 2.5, 3.5, 5, 7). */
 export const FONT = { small: 2.5, label: 3.5, caption: 5, title: 7 };
 /** The mantissas of standard scale factors: 1, 2, 2.5, 4, 5 × 10ᵏ (the ESKD scales 1:1, 1:2, 1:2.5, 1:4, 1:5). */
-export const STANDARD_MANTISSAS = [1, 2, 2.5, 4, 5];
-
-/** The length on paper, mm, of a value drawn at the scale factor mu (the value's unit per mm). */
-export function paperLength(value, mu) {
-  return value / mu;
-}
+const STANDARD_MANTISSAS = [1, 2, 2.5, 4, 5];
 
 /** The smallest standard scale factor (1, 2, 2.5, 4, 5 × 10ᵏ per mm) at which extent fits into millimetres. */
 export function standardScale(extent, millimetres) {
@@ -108,28 +103,37 @@ export function textBox(text, [x, y], fontSize, anchor = "middle") {
 }
 
 /** The area two boxes share with gap added around each (0 if they are apart by more than gap). */
-export function boxOverlap(a, b, gap = 0) {
+function boxOverlap(a, b, gap = 0) {
   const w = Math.min(a.x + a.width, b.x + b.width) - Math.max(a.x, b.x) + gap;
   const h = Math.min(a.y + a.height, b.y + b.height) - Math.max(a.y, b.y) + gap;
   return w > 0 && h > 0 ? w * h : 0;
 }
 
-/** Whether the segment [[x1, y1], [x2, y2]] passes through the box (Liang–Barsky clipping). */
-export function segmentCrossesBox([[x1, y1], [x2, y2]], box) {
-  const [dx, dy] = [x2 - x1, y2 - y1];
-  let [t0, t1] = [0, 1];
-  const edges = [[-dx, x1 - box.x], [dx, box.x + box.width - x1], [-dy, y1 - box.y], [dy, box.y + box.height - y1]];
-  for (const [p, q] of edges) {
-    if (p === 0) {
-      if (q < 0) return false;
-    } else {
-      const r = q / p;
-      if (p < 0) t0 = Math.max(t0, r);
-      else t1 = Math.min(t1, r);
-      if (t0 > t1) return false;
-    }
-  }
-  return true;
+/**
+ * Whether the segment [[x1, y1], [x2, y2]] passes through the box: apart if their boxes are, else by
+ * Liang–Barsky clipping against the box's four edges (indices, not destructuring: it runs ~10⁵ times a drawing).
+ */
+function segmentCrossesBox(segment, box) {
+  const x1 = segment[0][0];
+  const y1 = segment[0][1];
+  const x2 = segment[1][0];
+  const y2 = segment[1][1];
+  const right = box.x + box.width;
+  const bottom = box.y + box.height;
+  if ((x1 < box.x && x2 < box.x) || (x1 > right && x2 > right) || (y1 < box.y && y2 < box.y)
+    || (y1 > bottom && y2 > bottom)) return false;
+  const dx = x2 - x1;
+  const dy = y2 - y1;
+  let t0 = 0;
+  let t1 = 1;
+  const clip = (p, q) => {
+    if (p === 0) return q >= 0;
+    const r = q / p;
+    if (p < 0) t0 = Math.max(t0, r);
+    else t1 = Math.min(t1, r);
+    return t0 <= t1;
+  };
+  return clip(-dx, x1 - box.x) && clip(dx, right - x1) && clip(-dy, y1 - box.y) && clip(dy, bottom - y1);
 }
 
 const NEAR_RINGS = [0, 1.2, 2.4, 3.6, 5, 6.5, 8, 10, 12.5, 15, 18];   // mm from where the drawing put the label
@@ -157,6 +161,7 @@ const shifted = (box, dx, dy) => ({ x: box.x + dx, y: box.y + dy, width: box.wid
 export function placeLabels(labels, { marks = [], segments = [], bounds = null } = {}) {
   const placed = [];
   const out = [];
+  const grid = segmentGrid(segments);
   for (const label of labels) {
     const box = textBox(label.text, label.at, label.fontSize, label.anchor);
     let best = null;
@@ -166,7 +171,7 @@ export function placeLabels(labels, { marks = [], segments = [], bounds = null }
     for (const radius of RINGS) {
       if (radius > reach) {              // the lines and boxes within reach of this ring and the next ones
         reach = radius + 2 * FAR_RING_STEP;
-        lines = near(segments, box, reach);
+        lines = near(grid, segments, box, reach);
         blockers = [...placed, ...marks].filter((b) => boxOverlap(b, box, reach + LABEL_GAP) > 0);
       }
       const count = directions(radius);
@@ -193,11 +198,32 @@ export function placeLabels(labels, { marks = [], segments = [], bounds = null }
   return out;
 }
 
-/** The segments that come within reach (mm) of the box. */
-function near(segments, box, reach) {
-  return segments.filter(([[x1, y1], [x2, y2]]) =>
-    Math.max(x1, x2) >= box.x - reach && Math.min(x1, x2) <= box.x + box.width + reach
-    && Math.max(y1, y2) >= box.y - reach && Math.min(y1, y2) <= box.y + box.height + reach);
+const CELL = 10;                 // mm: the side of a cell of the segments' grid
+
+/** The segments by the grid cells their boxes cover: Map "i,j" → [indices]. */
+function segmentGrid(segments) {
+  const cells = new Map();
+  segments.forEach(([[x1, y1], [x2, y2]], k) => {
+    for (let i = Math.floor(Math.min(x1, x2) / CELL); i <= Math.floor(Math.max(x1, x2) / CELL); i += 1) {
+      for (let j = Math.floor(Math.min(y1, y2) / CELL); j <= Math.floor(Math.max(y1, y2) / CELL); j += 1) {
+        const key = `${i},${j}`;
+        if (!cells.has(key)) cells.set(key, []);
+        cells.get(key).push(k);
+      }
+    }
+  });
+  return cells;
+}
+
+/** The segments in the grid's cells within reach (mm) of the box, each once. */
+function near(grid, segments, box, reach) {
+  const found = new Set();
+  for (let i = Math.floor((box.x - reach) / CELL); i <= Math.floor((box.x + box.width + reach) / CELL); i += 1) {
+    for (let j = Math.floor((box.y - reach) / CELL); j <= Math.floor((box.y + box.height + reach) / CELL); j += 1) {
+      for (const k of grid.get(`${i},${j}`) ?? []) found.add(k);
+    }
+  }
+  return [...found].map((k) => segments[k]);
 }
 
 function inside(box, bounds) {

@@ -45,7 +45,7 @@ export function inertiaDiagram(answer, t, lang, options = {}) {
 }
 
 /** A part of M_c as written beside its curve: "force E/ram" → P_{E/ram}, "moment 5" → M_{5}, "gravity" → G. */
-export function partSymbol(name, t) {
+function partSymbol(name, t) {
   const [kind, ...rest] = name.split(" ");
   const what = rest.join(" ");
   if (kind === "force") return `P_{${what}}`;

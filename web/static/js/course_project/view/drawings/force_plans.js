@@ -29,7 +29,7 @@ export function groupCaption(group, t) {
 }
 
 /** A force's symbol in the textbook's notation, from the answer's name and kind. */
-export function forceSymbol(name, kind) {
+function forceSymbol(name, kind) {
   return symbolOf(name, kind === "reaction" ? "" : kind);
 }
 
@@ -71,6 +71,6 @@ export function forcePlansFigure(answer, t, lang) {
 }
 
 /** The width (mm) of the widest of lines at font size. */
-export function widest(lines, size) {
+function widest(lines, size) {
   return Math.max(0, ...lines.map((line) => textBox(line, [0, 0], size, "start").width));
 }

@@ -34,7 +34,7 @@ export function accelerationPlan(answer, t, lang, options = {}) {
 }
 
 /** The position a plan is drawn at: options.number, else the first drawn one, else the chosen one. */
-export function planPosition(answer, options = {}) {
+function planPosition(answer, options = {}) {
   return options.number ?? answer.positions.drawn?.[0] ?? answer.positions.chosen ?? 1;
 }
 

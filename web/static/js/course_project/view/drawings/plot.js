@@ -9,8 +9,8 @@ import { degrees, formatNumber, formatQuantity } from "../../../common/view/nota
 import { roundTicks, standardScale, FONT } from "../../model/drawing_layout.js";
 import { perMillimetre } from "./captions.js";
 
-export const TURN = 180;                // mm of the abscissa for 2π
-export const MU_PHI = 2 * Math.PI / TURN;
+const TURN = 180;                // mm of the abscissa for 2π
+const MU_PHI = 2 * Math.PI / TURN;
 const HEIGHT = 50;                      // mm: the ordinate's range at most
 const LEFT = 20;                        // mm left of the ordinate for its tick values
 const TOP = 9;                          // mm above the plot for its title and scale

@@ -71,7 +71,7 @@ function pagesOf(drawings) {
 const size = (svg) => ({ width: Number(svg.dataset.widthMm), height: Number(svg.dataset.heightMm) });
 
 /** The sheet's name: its kind's, "(continued)" on a continuation sheet. */
-export function sheetName(kind, t, continued = false) {
+function sheetName(kind, t, continued = false) {
   const name = t[`project_dwg_sheet_${kind}`];
   return continued ? t.project_dwg_continued.replace("{name}", name) : name;
 }

@@ -95,7 +95,7 @@ export function zhukovskyLeverFigure(answer, t, lang) {
 }
 
 /** The foot of the perpendicular from the pole (the origin) to the line through image along force (mm, y up). */
-export function armFoot(image, force) {
+function armFoot(image, force) {
   const size = Math.hypot(force[0], force[1]);
   const u = [force[0] / size, force[1] / size];
   const along = image[0] * u[0] + image[1] * u[1];
