@@ -128,6 +128,18 @@ export function drawLinks(figure, answer, i, at, { kind = "main", only = null } 
       else figure.dot(at(joints[joint][i]), 0.45, { "data-position": number });
     }
   }
+  for (const [name, guide] of Object.entries(guides ?? {})) {     // a guide on a moving link reaches its slider
+    if (guide.link === 0 || !shown.some((link) => link.link === guide.link)) continue;
+    const joint = links.flatMap((link) => link.slides).find((slide) => slide.split("/")[1] === name)?.split("/")[0];
+    if (!joint || !joints[joint]) continue;
+    const from = at(guide.point[i]);
+    const to = at(joints[joint][i]);
+    const length = Math.hypot(to[0] - from[0], to[1] - from[1]);
+    if (!(length > 0)) continue;
+    const beyond = 1 + GUIDE_BEYOND / length;
+    figure.line(from, [from[0] + (to[0] - from[0]) * beyond, from[1] + (to[1] - from[1]) * beyond], kind,
+      { "data-link": guide.link, "data-guide": name, "data-position": number });
+  }
   if (kind !== "main") return;
   const pinned = new Set(shown.flatMap((link) => link.joints).filter((name) => joints[name] && isPair(answer, name)));
   for (const name of pinned) figure.pin(at(joints[name][i]));

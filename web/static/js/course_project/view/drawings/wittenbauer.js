@@ -88,7 +88,8 @@ function nearest(phi, angle) {
 
 /**
  * The flywheel: a solid disk of the answer's diameter D and width b (dynamics.flywheel.disk, m), front view and
- * section side by side at a standard μ_l (the ESKD scale written too), its dimensions in mm of the machine.
+ * section side by side at a standard μ_l (the ESKD scale written too), its dimensions in mm of the machine
+ * (with their unit, which an ESKD drawing leaves out).
  */
 export function flywheelDrawing(answer, t, lang, options = {}) {
   const figure = flywheelFigure(answer, t, lang);
@@ -112,7 +113,7 @@ export function flywheelFigure(answer, t, lang) {
   figure.polygon([side, [side[0] + b, side[1]], [side[0] + b, side[1] + 2 * radius], [side[0], side[1] + 2 * radius]], "main",
     { "data-role": "disk-section" });
   figure.line([side[0] - 4, centre[1]], [side[0] + b + 4, centre[1]], "dashdot");
-  const mm = (metres) => formatNumber(metres * 1000, lang, 0);
+  const mm = (metres) => `${formatNumber(metres * 1000, lang, 0)} ${t.editor_mm}`;
   dimension(figure, [centre[0] - radius, centre[1] + radius + 6], [centre[0] + radius, centre[1] + radius + 6],
     centre[1], `⌀${mm(diameter)}`);
   dimension(figure, [side[0], side[1] - 5], [side[0] + b, side[1] - 5], side[1], mm(width));
