@@ -6,8 +6,9 @@ view/drawings/*.js, built in Node without a DOM), checked against arithmetic don
   force of the force plans (its magnitude/μ_F), each arm on Zhukovsky's lever (the answer's arm, mm);
 - a standard scale is the smallest of 1, 2, 2.5, 4, 5 × 10ᵏ at which an extent fits, and μ_l = 0.002 m/mm is
   the ESKD scale 1:2;
-- placed labels never share a point, neither in crowds made here nor on any drawing of the shaping machine's
-  project (POST /api/v1/course-project's answer), and stay inside their drawing;
+- placed labels never share a point, neither in crowds made here nor on any drawing of the projects
+  (POST /api/v1/course-project's answers) of the shaping machine (RPR + RRP), the jaw crusher (RRR + RRR, a
+  rocking output) and lever_ram (RPR + PRP, a guide on the lever), and stay inside their drawing;
 - the A1 sheet's frame is 20 mm from the left edge and 5 mm from the others, the title block 185 × 55 mm in
   its bottom right corner, tiled exactly by its cells; drawings laid out on a sheet overlap neither each other nor
   the title block and stay inside the frame.
@@ -196,28 +197,36 @@ def test_a_drawing_larger_than_any_sheet_still_gets_a_sheet_of_its_own():
     assert result["placed"][0]["oversize"] and result["overflow"] == []
 
 
-SHAPING = presets()["shaping_machine"]
-BODY = {"linkage": SHAPING["linkage"], "masses": SHAPING["dynamics"]["masses"],
-        "inertias": SHAPING["dynamics"]["inertias"], "omega_mean": SHAPING["dynamics"]["flywheel"]["omega_mean"],
-        "delta": SHAPING["dynamics"]["flywheel"]["delta"], "positions": 12, "drawn": [3],
-        "title": {"student": "I. Petrenko", "group": "TMM-21", "variant": "7"}}
+CASES = [("shaping_machine", "ru"), ("shaping_machine", "en"), ("jaw_crusher", "ru"), ("lever_ram", "en")]
+ANSWERS = {}                   # preset → (path, answer): one project per preset for the module
 
 
-@pytest.fixture(scope="module")
-def answer(tmp_path_factory):
+def body(preset: str) -> dict:
+    """The preset's project: its linkage and dynamics, 12 positions, the plans drawn at position 3."""
+    p = presets()[preset]
+    d = p["dynamics"]
+    return {"linkage": p["linkage"], "masses": d["masses"], "inertias": d["inertias"],
+            "omega_mean": d["flywheel"]["omega_mean"], "delta": d["flywheel"]["delta"], "positions": 12,
+            "drawn": [3], "title": {"student": "I. Petrenko", "group": "TMM-21", "variant": "7"}}
+
+
+def project(preset: str, folder: Path) -> tuple[Path, dict]:
     """The endpoint's answer as the page gets it: its body function and serialisation, run in this process (the
     heavy process pool's start-up is none of this test's business)."""
-    response = respond(course_project(CourseProjectRequest(**BODY), "ru"))
-    path = tmp_path_factory.mktemp("project") / "answer.json"
-    path.write_bytes(response.body)
-    return path, json.loads(response.body)
+    if preset not in ANSWERS:
+        response = respond(course_project(CourseProjectRequest(**body(preset)), "ru"))
+        path = folder / f"{preset}.json"
+        path.write_bytes(response.body)
+        ANSWERS[preset] = path, json.loads(response.body)
+    return ANSWERS[preset]
 
 
-@pytest.fixture(scope="module", params=["ru", "en"])
-def figures(request, answer):
-    path, _ = answer
-    return node({"answer": str(path), "texts": str(REPO / "content" / "i18n" / f"{request.param}.json"),
-                 "lang": request.param})
+@pytest.fixture(scope="module", params=CASES, ids=[f"{preset}-{lang}" for preset, lang in CASES])
+def case(request, tmp_path_factory):
+    """(answer, figures): a preset's answer and every drawing of it built in Node in one language."""
+    preset, lang = request.param
+    path, answer = project(preset, tmp_path_factory.getbasetemp())
+    return answer, node({"answer": str(path), "texts": str(REPO / "content" / "i18n" / f"{lang}.json"), "lang": lang})
 
 
 def drawn(parts: list, key: str, value=None) -> list:
@@ -228,7 +237,8 @@ def arrow_length(part: dict) -> float:
     return math.dist(part["points"][0], part["head"][0])
 
 
-def test_no_two_labels_of_any_drawing_share_a_point_and_all_stay_inside_it(figures):
+def test_no_two_labels_of_any_drawing_share_a_point_and_all_stay_inside_it(case):
+    _, figures = case
     assert len(figures) == 13
     for name, figure in figures.items():
         boxes = [label["box"] for label in figure["labels"]]
@@ -238,8 +248,8 @@ def test_no_two_labels_of_any_drawing_share_a_point_and_all_stay_inside_it(figur
         assert all(inside(box, figure["extent"]) for box in boxes), name
 
 
-def test_the_crank_measures_oa_over_mu_l_at_every_position(figures, answer):
-    _, data = answer
+def test_the_crank_measures_oa_over_mu_l_at_every_position(case):
+    data, figures = case
     joints, mu = data["plan_of_positions"]["joints"], data["scales"]["mu_l"]
     crank = drawn(figures["plan_of_positions"]["parts"], "data-role", "crank")
     assert len(crank) == data["positions"]["count"]
@@ -248,8 +258,8 @@ def test_the_crank_measures_oa_over_mu_l_at_every_position(figures, answer):
         assert abs(math.dist(*part["points"]) - math.dist(joints["O"][i], joints["A"][i]) / mu) <= MM
 
 
-def test_plan_vectors_measure_their_values_over_mu_v_and_mu_a(figures, answer):
-    _, data = answer
+def test_plan_vectors_measure_their_values_over_mu_v_and_mu_a(case):
+    data, figures = case
     row = data["kinematics"][data["positions"]["drawn"][0] - 1]
     for plan, which, mu in (("velocity_plan", "velocity", data["scales"]["mu_v"]),
                             ("acceleration_plan", "acceleration", data["scales"]["mu_a"])):
@@ -262,8 +272,8 @@ def test_plan_vectors_measure_their_values_over_mu_v_and_mu_a(figures, answer):
                 assert abs(arrow_length(a) - values[a["attrs"]["data-vector"]] / mu) <= MM
 
 
-def test_force_polygons_measure_each_force_over_mu_f(figures, answer):
-    _, data = answer
+def test_force_polygons_measure_each_force_over_mu_f(case):
+    data, figures = case
     mu = data["scales"]["mu_F"]
     forces = {(str(p["group"]), v["name"]): v["magnitude"] for p in data["kinetostatics"]["force_plans"]
               for v in p["vectors"]}
@@ -274,8 +284,8 @@ def test_force_polygons_measure_each_force_over_mu_f(figures, answer):
         assert abs(arrow_length(a) - forces[key] / mu) <= 1e-5    # the polygon's ends are sent to 7 digits
 
 
-def test_each_arm_on_zhukovskys_lever_is_the_answers_arm(figures, answer):
-    _, data = answer
+def test_each_arm_on_zhukovskys_lever_is_the_answers_arm(case):
+    data, figures = case
     lever = data["kinetostatics"]["zhukovsky"]
     arms = {row["name"]: abs(row["arm"]) for row in lever["lever"] if "arm" in row}
     arms["balancing"] = abs(lever["balancing_force"]["arm"])
