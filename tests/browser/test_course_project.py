@@ -114,7 +114,12 @@ def test_a_student_sets_delta_and_the_position_and_prints_the_report(browser_pag
     row = page.locator("#table-balancing tr.chosen td")
     assert row.first.inner_text() == "3"
     assert close(row.nth(4).inner_text(), answer["table"][2]["M_b_groups"])
-    assert "p=" in page.url and "d=" in page.url          # the link holds the project
+    assert "p=" in page.url and "d=" in page.url          # the link holds the project: a reload shows the same one
+    shown_before = fact(page, "flywheel-inertia"), fact(page, "Mb")
+    page.reload()
+    settled(page, 0)                                     # the reloaded page's first answer
+    assert page.input_value("#project-chosen") == "3" and page.input_value("[data-path='flywheel.delta']") == typed
+    assert (fact(page, "flywheel-inertia"), fact(page, "Mb")) == shown_before
 
     with page.expect_download() as got:                 # the language's separators: "," and "." in en, ";" and ","
         page.click("button[data-table='table-positions']")
