@@ -8,7 +8,8 @@ from typing import Annotated, Literal
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from ..core.dynamics.motors import INDICATOR_POINTS, polytropic_diagram
-from ..core.structure.masses import LinkMass, LinkMoment, MassModel, SliderForce
+from ..core.structure.masses import (DIAGRAM_POINTS, FARTHEST, LinkMass, LinkMoment, LoadDiagram, MassModel,
+                                     PointForce, SliderForce, diagram_problem)
 from .schemas import MAX_PARAMS, LinkageModel, NumericsModel
 from .schemas_cycle import CycleInput
 
@@ -141,14 +142,92 @@ class SliderForceInput(BaseModel):
         return SliderForce(self.joint, self.working * factor, self.k, self.sense, diagram)
 
 
+class DiagramInput(BaseModel):
+    """A load diagram p(x) = P/P_max through points [x, p], monotone cubic (PCHIP) between them, zero outside
+    [x_first, x_last]."""
+
+    model_config = ConfigDict(extra="forbid")
+    over: Literal["stroke", "phi"] = Field(description=(
+        "'stroke': x is the travel as a fraction 0…1 of the whole travel from the extreme where the working "
+        "stroke starts (a point along its fixed force line, a link's angle between its extreme angles); 'phi': x "
+        "is the crank angle φ, rad, 0…2π"))
+    points: list[tuple[float, float]] = Field(min_length=2, max_length=DIAGRAM_POINTS, description=(
+        "[x, P/P_max] pairs, x strictly increasing, P/P_max from 0 to 1"))
+
+    @field_validator("points")
+    @classmethod
+    def diagram_points(cls, points, info):
+        over = info.data.get("over")
+        problem = diagram_problem(over, points) if over else None
+        if problem:
+            raise ValueError(problem[1])
+        return points
+
+    def diagram(self) -> LoadDiagram:
+        """The core's diagram."""
+        return LoadDiagram(self.over, tuple((float(x), float(p)) for x, p in self.points))
+
+
 class LinkMomentInput(BaseModel):
-    """A useful load moment on a link, against its rotation: M₀ on the working stroke, k·M₀ on the return."""
+    """A useful load moment on a link, against its rotation: M₀ on the working stroke, k·M₀ on the return, times
+    p(x) of a diagram where one is given."""
 
     model_config = ConfigDict(extra="forbid")
     link: int = LinkNumber
-    working: float = Field(ge=0, le=1e7, description="M₀ on the working stroke, N·m")
+    working: float = Field(ge=0, le=1e7, description="M₀ on the working stroke (its peak with a diagram), N·m")
     k: float = Field(1.0, ge=0, le=1, description="k: return-stroke moment / working-stroke moment")
     sense: Literal[1, -1] = Field(1, description="+1: the working stroke turns the link counter-clockwise")
+    diagram: DiagramInput | None = Field(None, description=(
+        "M = k M₀ p(x) against the rotation: over 'phi' the crank angle, over 'stroke' the link's angle between "
+        "its extreme angles from the working stroke's start (a rocking link only)"))
+
+    def moment(self, factor: float = 1.0) -> LinkMoment:
+        """The core's moment, its M₀ times ``factor``."""
+        return LinkMoment(self.link, self.working * factor, self.k, self.sense,
+                          None if self.diagram is None else self.diagram.diagram())
+
+
+class DirectionInput(BaseModel):
+    """The direction of a point force: fixed in the frame, or turning with its link."""
+
+    model_config = ConfigDict(extra="forbid")
+    kind: Literal["fixed", "link"] = Field(description=(
+        "'fixed': α from +x, counter-clockwise; 'link': α from the link's direction (its origin joint along its "
+        "angle), turning with it"))
+    angle: float = Field(0.0, ge=-1000, le=1000, description="α, rad, counter-clockwise")
+
+
+class PointForceInput(BaseModel):
+    """A force at a point of a moving link (a tool point, a press's slide, a crusher's jaw): F = P p(x) e."""
+
+    model_config = ConfigDict(extra="forbid")
+    link: int = LinkNumber
+    point: tuple[float, float] = Field(description=(
+        "the point [along, across] in the link's own frame, m: from the link's origin joint along its direction, "
+        "and to the left of it (as the centres of mass)"))
+    name: str | None = Field(None, min_length=1, max_length=8, description="a label for drawings, e.g. \"K\"")
+    magnitude: float = Field(ge=0, le=1e7, description="P, N (P_max with a diagram)")
+    direction: DirectionInput = Field(default_factory=lambda: DirectionInput(kind="fixed"), description=(
+        "e, the force's unit vector: {kind: 'fixed' | 'link', angle: α in rad}"))
+    acts: Literal["working", "always"] = Field("working", description=(
+        "'working': only where the point moves against e (the force does negative work: the working stroke), "
+        "zero where it moves along e; 'always': at every angle"))
+    diagram: DiagramInput | None = Field(None, description=(
+        "P·p(x) instead of the constant P; over 'stroke' only with a fixed direction"))
+
+    @field_validator("point")
+    @classmethod
+    def near_point(cls, point):
+        if not (all(math.isfinite(x) for x in point) and math.hypot(*point) <= FARTHEST):
+            raise ValueError(f"the point's coordinates must be finite numbers of metres, at most {FARTHEST:g} m "
+                             "from the link's origin")
+        return point
+
+    def force(self, factor: float = 1.0) -> PointForce:
+        """The core's point force, its P (or P_max) times ``factor``."""
+        return PointForce(self.link, tuple(self.point), self.magnitude * factor, self.direction.angle,
+                          self.direction.kind, self.acts, None if self.diagram is None else self.diagram.diagram(),
+                          self.name)
 
 
 class MassInput(BaseModel):
@@ -159,18 +238,21 @@ class MassInput(BaseModel):
     gravity: float = Field(9.81, ge=0, le=100, description="g along −y, m/s² (0: the mechanism lies horizontally)")
     forces: list[SliderForceInput] = Field(default_factory=list, max_length=20)
     moments: list[LinkMomentInput] = Field(default_factory=list, max_length=40)
+    point_forces: list[PointForceInput] = Field(default_factory=list, max_length=20, description=(
+        "forces at points of moving links (docs/loads.md)"))
     friction: float = Field(0.0, ge=0, le=2, description="f in the pairs (kinetostatics by groups)")
     pair_radius: float = Field(0.0, ge=0, le=1, description="radius r of the revolute pairs' journals, m")
     load_factor: float = Field(1.0, ge=0, le=10, description=(
-        "every useful load (each force's P or P_max, each moment's M₀) times this: the scenes' slider on the "
-        "student's own mechanism scales the loads of its table"))
+        "every useful load (each force's P or P_max, each point force's P, each moment's M₀) times this: the "
+        "scenes' slider on the student's own mechanism scales the loads of its table"))
 
     def model(self) -> MassModel:
         """The core's mass model, each useful load's working value times ``load_factor``."""
-        moments = tuple(LinkMoment(m.link, m.working * self.load_factor, m.k, m.sense) for m in self.moments)
+        factor = self.load_factor
         return MassModel(tuple(LinkMass(m.link, m.mass, tuple(m.centre), m.inertia) for m in self.links),
-                         self.gravity, tuple(f.force(self.load_factor) for f in self.forces), moments, self.friction,
-                         self.pair_radius)
+                         self.gravity, tuple(f.force(factor) for f in self.forces),
+                         tuple(m.moment(factor) for m in self.moments), self.friction, self.pair_radius,
+                         tuple(p.force(factor) for p in self.point_forces))
 
 
 class PairFrictionInput(BaseModel):

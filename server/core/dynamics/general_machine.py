@@ -180,11 +180,12 @@ class GeneralMachine(Machine):
         return []
 
     def kinks_key(self) -> tuple:
-        """The kinks are the zeros of the loaded sliders' and links' velocity analogs, and with dry friction
-        those of the rough pairs' relative motion and normal forces: they depend on the linkage and the loads,
-        and with friction on the weights too."""
+        """The kinks are the zeros of the loaded sliders', points' and links' velocity analogs and the loads'
+        diagrams' breaks, and with dry friction those of the rough pairs' relative motion and normal forces: they
+        depend on the linkage and the loads, and with friction on the weights too."""
         return ("general", repr(self.linkage.linkage), self.masses if self.rough else
-                (self.masses.forces, self.masses.moments), self.pairs, self.load, self.cycle())
+                (self.masses.forces, self.masses.moments, self.masses.point_forces), self.pairs, self.load,
+                self.cycle())
 
     @property
     def constant_inertia(self) -> float:
@@ -254,8 +255,8 @@ class GeneralMachine(Machine):
         """The kinks of ``Machine.find_kinks`` (the loads' switches and the rough pairs' relative motions). They
         depend on the linkage, the loads and which pairs are rough, not on f or r: a dragged f finds them kept
         (the last KINKS_KEPT, as Machine.kinks keeps a machine's)."""
-        key = (repr(self.linkage.linkage), self.masses.forces, self.masses.moments, self.load, self.cycle(),
-               self.rough_flags())
+        key = (repr(self.linkage.linkage), self.masses.forces, self.masses.moments, self.masses.point_forces,
+               self.load, self.cycle(), self.rough_flags())
         switches = super().find_kinks
         return _switches_found.kept(key, lambda: read_only(switches()))
 

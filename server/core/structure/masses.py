@@ -13,13 +13,23 @@ Loads (Eremyants ch. 3: the useful load resists the motion, k on the return stro
         with p given at equally spaced positions x = 0…1 of the slider's stroke H (x from the start of the
         working stroke), one row for the working and one for the return stroke, between them by monotone
         (PCHIP) interpolation; F = −P(x) sign(w) e^{iθ_g};
-    a moment on a link: M = −k(φ) M₀ sign(θ′), k = 1 on the working stroke (σ θ′ ≥ 0);
+    a moment on a link: M = −k(φ) M₀ p(x) sign(θ′), k = 1 on the working stroke (σ θ′ ≥ 0), p ≡ 1 without a
+        diagram;
+    a force at a point P of a link (the tool point of a ram, a press's slide, a crusher's jaw):
+        F = P p(x) e, e = e^{iα} fixed or e^{i(θ+α)} turning with the link, zero where it acts on the working
+        stroke only and the point moves along e (w = Re(z′_P ē) > 0: the working stroke is where F does
+        negative work);
+    a load diagram p(x) = P/P_max through points (x_j, p_j), monotone cubic (PCHIP) between them and zero outside
+        [x_first, x_last]: over the crank angle (x = φ mod 2π) or over the stroke (x the travel 0…1 from the
+        working stroke's start: of a point along its fixed force line from its extreme farthest along e, of a
+        link's angle between its extremes);
     gravity: G_k = −m_k g i at S_k;
 friction f and pair radius r of the revolute pairs (the friction moment f·R·r, Chaika–Vasylenko §3.1) for the
 kinetostatics by groups.  Their reduced moments (power equality) are in ``reduction.py``.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
@@ -57,15 +67,114 @@ class SliderForce:
     stroke: tuple[float, float] | None = None      # the slide's extremes s_min, s_max (with_strokes fills it)
 
 
+TURN = 2 * np.pi
+DIAGRAM_POINTS = 41              # a load diagram's points at most
+FARTHEST = 1000.0                # m: a load's point at most this far from its link's origin
+
+
+@dataclass(frozen=True)
+class LoadDiagram:
+    """p(x) = P/P_max (0…1) through ``points`` (x_j, p_j), x strictly increasing, monotone cubic (PCHIP) between
+    them, zero outside [x_first, x_last].  ``over`` "phi": x is the crank angle φ mod 2π, rad, in [0, 2π];
+    "stroke": x is the travel 0…1 from the working stroke's start (structure/masses.py, module docstring)."""
+
+    over: str
+    points: tuple[tuple[float, float], ...]
+
+    @property
+    def span(self) -> float:
+        """The range of x: 2π over the crank angle, 1 over the stroke."""
+        return TURN if self.over == "phi" else 1.0
+
+    def at(self, x: np.ndarray) -> np.ndarray:
+        """p(x): the monotone cubic inside [x_first, x_last], 0 outside."""
+        xs = [a for a, _ in self.points]
+        inside = (x >= xs[0]) & (x <= xs[-1])
+        return np.where(inside, profile_curve(self.points)(np.clip(x, xs[0], xs[-1])), 0.0)
+
+    def breaks(self) -> list[float]:
+        """Where p(x) has a corner or a jump: the inner points (the cubic is only once continuously
+        differentiable there) and the ends strictly inside the range of x (p drops to zero there)."""
+        xs = [a for a, _ in self.points]
+        return xs[1:-1] + [x for x in (xs[0], xs[-1]) if 0.0 < x < self.span]
+
+    def abscissa(self, phi: np.ndarray, travel: np.ndarray | None) -> np.ndarray:
+        """x over φ: φ mod 2π over the crank angle, else the stroke's ``travel``."""
+        return np.mod(phi, TURN) if self.over == "phi" else travel
+
+    def switches(self, phi: np.ndarray, travel: np.ndarray | None) -> list[np.ndarray]:
+        """Functions of φ that change sign at each break: sin((φ − x_j)/2) over the crank angle (zero at
+        x_j + 2πn only), x − x_j over the stroke."""
+        if self.over == "phi":
+            return [np.sin(0.5 * (phi - x)) for x in self.breaks()]
+        return [travel - x for x in self.breaks()]
+
+
+@lru_cache(maxsize=256)
+def profile_curve(points: tuple[tuple[float, float], ...]) -> PchipInterpolator:
+    """The monotone cubic through a diagram's points (built once per diagram)."""
+    return PchipInterpolator([x for x, _ in points], [p for _, p in points])
+
+
+def diagram_problem(over: str, points) -> tuple[str, str] | None:
+    """What is wrong with a load diagram, as (the field: "over" or "points", the reason in words), or None:
+    2…DIAGRAM_POINTS points, x strictly increasing within the range (0…1 over the stroke, 0…2π over φ),
+    p = P/P_max from 0 to 1."""
+    if over not in ("stroke", "phi"):
+        return "over", f"'{over}' is neither 'stroke' nor 'phi'"
+    span, unit = (1.0, "the stroke's fraction 0…1") if over == "stroke" else (TURN, "the crank angle 0…2π rad")
+    if not 2 <= len(points) <= DIAGRAM_POINTS:
+        return "points", f"a diagram has 2 to {DIAGRAM_POINTS} points [x, P/P_max], not {len(points)}"
+    if not all(len(row) == 2 and all(math.isfinite(v) for v in row) for row in points):
+        return "points", "each point is two finite numbers [x, P/P_max]"
+    xs, ps = [x for x, _ in points], [p for _, p in points]
+    if not all(0.0 <= p <= 1.0 for p in ps):
+        return "points", "each point's P/P_max is a number from 0 to 1"
+    if not all(0.0 <= x <= span for x in xs):
+        return "points", f"each point's x is {unit}"
+    if not all(b > a for a, b in zip(xs, xs[1:])):
+        return "points", "the points' x must increase strictly from one point to the next"
+    return None
+
+
 @dataclass(frozen=True)
 class LinkMoment:
     """A useful load moment on a link, always against the link's rotation: ``working`` M₀ (N·m) on the working
-    stroke, k·M₀ on the return; ``sense`` = +1: the working stroke turns the link counter-clockwise."""
+    stroke, k·M₀ on the return; ``sense`` = +1: the working stroke turns the link counter-clockwise.  With a
+    ``diagram`` M₀ is its peak, times p(x): over "stroke" x is the link's angle between its extremes θ_min, θ_max
+    (``stroke``, filled by with_strokes) from the working stroke's start."""
 
     link: int
     working: float
     k: float = 1.0
     sense: int = 1
+    diagram: LoadDiagram | None = None
+    stroke: tuple[float, float] | None = None      # θ_min, θ_max, rad, around their middle (with_strokes)
+
+
+@dataclass(frozen=True)
+class PointForce:
+    """A force at a point of a moving link: ``point`` (along, across) in the link's frame (as a centre of mass),
+    m; ``magnitude`` P (N; P_max with a diagram); direction e = e^{iα} (``direction`` "fixed": α from +x) or
+    e^{i(θ+α)} ("link": α from the link's direction, turning with it); ``acts`` "working": only where the point
+    moves against e (the working stroke, where F does negative work), "always": at every angle.  ``name``: a
+    label for drawings ("K").  ``stroke``: the point's extremes q_min, q_max along a fixed e, q = Re(z_P ē)
+    (with_strokes fills it for a stroke diagram)."""
+
+    link: int
+    point: tuple[float, float]
+    magnitude: float
+    angle: float = 0.0
+    direction: str = "fixed"
+    acts: str = "working"
+    diagram: LoadDiagram | None = None
+    name: str | None = None
+    stroke: tuple[float, float] | None = None
+
+    @property
+    def label(self) -> str:
+        """Its name, or "<link>:<along>,<across>"."""
+        return self.name or f"{self.link}:{self.point[0]:g},{self.point[1]:g}"
 
 
 @dataclass(frozen=True)
@@ -78,6 +187,7 @@ class MassModel:
     moments: tuple[LinkMoment, ...] = ()
     friction: float = 0.0            # f in every pair (kinetostatics by groups)
     pair_radius: float = 0.0         # r of the revolute pairs, m
+    point_forces: tuple[PointForce, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -164,35 +274,79 @@ def pair_of(comp: Composition, joint: str, where: str) -> str:
     return found[0]
 
 
-def check_model(comp: Composition, model: MassModel) -> None:
-    """Refuse a model whose links or sliders the linkage does not have (GeometryError naming the field)."""
+def unknown_link(comp: Composition, link: int, where: str) -> None:
+    """Refuse a link number the linkage does not move (GeometryError naming the field)."""
+    if link not in comp.links:
+        raise GeometryError(where, f"the linkage has no moving link {link} (links: {sorted(comp.links)})",
+                            "unknown_link", link=link)
+
+
+def check_diagram(diagram: LoadDiagram | None, where: str) -> None:
+    """Refuse a load diagram ``diagram_problem`` finds wrong, naming its field (``where``.points, .over)."""
+    problem = None if diagram is None else diagram_problem(diagram.over, diagram.points)
+    if problem:
+        raise GeometryError(f"{where}.{problem[0]}", problem[1], "invalid_load_diagram")
+
+
+def check_places(comp: Composition, model: MassModel) -> None:
+    """Refuse a model whose links, sliders, points or diagrams the linkage cannot carry (GeometryError naming
+    the field): an unknown or repeated link, an unknown sliding pair, a point farther than FARTHEST from its
+    link's origin, a direction or an ``acts`` not known, a wrong diagram, a stroke diagram on a force that turns
+    with its link (no fixed line to measure the travel along)."""
     seen = set()
     for i, item in enumerate(model.links):
-        if item.link not in comp.links:
-            raise GeometryError(f"masses.links.{i}.link", f"the linkage has no moving link {item.link} "
-                                f"(links: {sorted(comp.links)})", "unknown_link", link=item.link)
+        unknown_link(comp, item.link, f"masses.links.{i}.link")
         if item.link in seen:
             raise GeometryError(f"masses.links.{i}.link", f"link {item.link} is given twice", "duplicate_link",
                                 link=item.link)
         seen.add(item.link)
     for i, item in enumerate(model.moments):
-        if item.link not in comp.links:
-            raise GeometryError(f"masses.moments.{i}.link", f"the linkage has no moving link {item.link} "
-                                f"(links: {sorted(comp.links)})", "unknown_link", link=item.link)
+        unknown_link(comp, item.link, f"masses.moments.{i}.link")
+        check_diagram(item.diagram, f"masses.moments.{i}.diagram")
     for i, item in enumerate(model.forces):
         pair_of(comp, item.joint, f"masses.forces.{i}.joint")
-        if item.diagram is not None and item.stroke is None:
-            raise ValueError("a load diagram's stroke is resolved by with_strokes first")
+    for i, item in enumerate(model.point_forces):
+        where = f"masses.point_forces.{i}"
+        unknown_link(comp, item.link, f"{where}.link")
+        if not (len(item.point) == 2 and all(math.isfinite(x) for x in item.point)
+                and abs(complex(*item.point)) <= FARTHEST):
+            raise GeometryError(f"{where}.point", f"the point [along, across] must be finite numbers of metres, at "
+                                f"most {FARTHEST:g} m from the link's origin", "point_too_far")
+        if item.direction not in ("fixed", "link"):
+            raise GeometryError(f"{where}.direction.kind", f"'{item.direction}' is neither 'fixed' nor 'link'",
+                                "invalid_direction")
+        if item.acts not in ("working", "always"):
+            raise GeometryError(f"{where}.acts", f"'{item.acts}' is neither 'working' nor 'always'", "invalid_acts")
+        check_diagram(item.diagram, f"{where}.diagram")
+        if item.diagram is not None and item.diagram.over == "stroke" and item.direction == "link":
+            raise GeometryError(f"{where}.diagram.over", "a diagram over the stroke needs a fixed direction (the "
+                                "travel is measured along a fixed force line); a force turning with its link takes "
+                                "a diagram over the crank angle 'phi'", "stroke_diagram_turning")
+
+
+def check_model(comp: Composition, model: MassModel) -> None:
+    """``check_places``, and every stroke diagram's extremes resolved (``with_strokes``)."""
+    check_places(comp, model)
+    if any(item.diagram is not None and item.stroke is None for item in model.forces) or any(
+            item.diagram is not None and item.diagram.over == "stroke" and item.stroke is None
+            for item in (*model.moments, *model.point_forces)):
+        raise ValueError("a load diagram's stroke is resolved by with_strokes first")
 
 
 def with_strokes(mechanism, model: MassModel) -> MassModel:
-    """The model with every load diagram's slide extremes s_min, s_max (the slide's output reversals over the
-    turn, refined by Newton's method: mechanisms/general.reversals); GeometryError where that slide does not
-    move (no stroke to spread the diagram over)."""
-    if all(force.diagram is None or force.stroke is not None for force in model.forces):
+    """The model with every stroke diagram's extremes: a slide's s_min, s_max (its output reversals over the
+    turn, refined by Newton's method: mechanisms/general.reversals), a link's θ_min, θ_max, a point's q_min,
+    q_max along its force line (load_kinematics.angle_stroke, point_stroke); the places are checked first
+    (``check_places``); GeometryError where the slide, link or point does not move back and forth (no stroke to
+    spread the diagram over)."""
+    unresolved = lambda item: item.diagram is not None and item.diagram.over == "stroke" and item.stroke is None
+    if all(force.diagram is None or force.stroke is not None for force in model.forces) and \
+            not any(unresolved(item) for item in (*model.moments, *model.point_forces)):
         return model
     from ..mechanisms.general import reversals
+    from .load_kinematics import angle_stroke, point_stroke
     turn = compose(mechanism.linkage, mechanism.turn())
+    check_places(turn, model)
     extremes = reversals(mechanism.linkage, turn)
     forces = []
     for i, force in enumerate(model.forces):
@@ -204,7 +358,11 @@ def with_strokes(mechanism, model: MassModel) -> MassModel:
                                     "load diagram over (it does not reverse)", "diagram_no_stroke", joint=pair)
             force = replace(force, stroke=(float(min(values)), float(max(values))))
         forces.append(force)
-    return replace(model, forces=tuple(forces))
+    moments = tuple(replace(item, stroke=angle_stroke(mechanism, turn, item.link, f"masses.moments.{i}.diagram"))
+                    if unresolved(item) else item for i, item in enumerate(model.moments))
+    points = tuple(replace(item, stroke=point_stroke(mechanism, turn, item, f"masses.point_forces.{i}.diagram"))
+                   if unresolved(item) else item for i, item in enumerate(model.point_forces))
+    return replace(model, forces=tuple(forces), moments=moments, point_forces=points)
 
 
 def centre_points(comp: Composition, model: MassModel) -> list[tuple[Point, Angle]]:
@@ -244,14 +402,4 @@ def slider_loads(comp: Composition, model: MassModel) -> list[SliderLoad]:
             s = comp.slides[pair].s
             travel = np.clip(((s - low) if force.sense > 0 else (high - s)) / (high - low), 0.0, 1.0)
         out.append(SliderLoad(force, link, origin.z, unit, (origin.d1 * np.conj(unit)).real, travel))
-    return out
-
-
-def moment_strokes(comp: Composition, model: MassModel) -> list[tuple[LinkMoment, np.ndarray, np.ndarray]]:
-    """Every load moment with θ′ of its link and the moment on the link, −k M₀ sign(θ′) (N·m, CCW positive)."""
-    out = []
-    for item in model.moments:
-        d1 = comp.links[item.link][1].d1
-        k = np.where(item.sense * d1 >= 0, 1.0, item.k)
-        out.append((item, d1, -k * item.working * np.sign(d1)))
     return out

@@ -5,10 +5,12 @@ Kinetic-energy equality: J(φ) ω²/2 = Σ_k (m_k v_Sk²/2 + J_Sk ω_k²/2) with
     J(φ) = J_const + Σ_k [ m_k (x′_Sk² + y′_Sk²) + J_Sk θ′_k² ],   J_const = J₁ + J_rotor i²
     dJ/dφ = 2 Σ_k [ m_k (x′_Sk x″_Sk + y′_Sk y″_Sk) + J_Sk θ′_k θ″_k ]         (analytic: the second analogs)
 
-Power equality: the reduced moment of a force F at a point P is F·z′_P, of a moment M on link k it is M θ′_k.
-As resisting moments (positive against the crank, as M_c):
+Power equality (Chaika–Vasylenko (3.24)): the reduced moment of a force F at a point P is F·z′_P, of a moment M
+on link k it is M θ′_k.  As resisting moments (positive against the crank, as M_c):
     a slider force:  M_c = k(φ) P |w|,  w = Re(z′ e^{−iθ_g})      (Eremyants (3.21): M_c = k P_c |u₃₁|)
-    a load moment:   M_c = k(φ) M₀ |θ′|
+        (z′ the block's own velocity analog: the power of an external force on the block)
+    a point force:   M_c = −Re(F̄ z′_P) = −P p(x) Re(z′_P ē)      (structure/load_kinematics.py)
+    a load moment:   M_c = k(φ) M₀ p(x) |θ′|
     gravity:         M_c = Σ_k m_k g y′_Sk          (its work over a cycle is zero)
 Each link's and each load's contribution is kept apart.
 """
@@ -19,7 +21,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .compose import Composition
-from .masses import MassModel, centre_points, moment_strokes, slider_loads
+from .load_kinematics import moment_loads, point_loads
+from .masses import MassModel, centre_points, slider_loads
 
 
 @dataclass
@@ -35,7 +38,8 @@ class GeneralInertia:
 @dataclass
 class GeneralLoads:
     """The reduced resisting moment of the loads, N·m, each load apart (``parts``), and the functions whose
-    sign changes are its kinks (the velocity analog of every loaded slider and link: k switches there)."""
+    sign changes are its kinks (the velocity analog of every loaded slider and link: k switches there; of every
+    point force that acts on the working stroke only; every diagram's breaks)."""
 
     phi: np.ndarray
     parts: dict[str, np.ndarray]
@@ -63,8 +67,8 @@ def reduced_inertia(mechanism, comp: Composition, model: MassModel, constant: fl
 
 
 def reduced_loads(mechanism, comp: Composition, model: MassModel, centres: list | None = None) -> GeneralLoads:
-    """M_c(φ) of the slider forces, load moments and gravity, each apart (keys "force E/ram", "moment 3",
-    "gravity"; ``centres`` as for ``reduced_inertia``)."""
+    """M_c(φ) of the slider forces, point forces, load moments and gravity, each apart (keys "force E/ram",
+    "force K" (a point force's label), "moment 3", "gravity"; ``centres`` as for ``reduced_inertia``)."""
     n = comp.phi.shape
     parts, switches = {}, []
     for load in slider_loads(comp, model):           # −F·v/ω = k P |w|
@@ -72,10 +76,14 @@ def reduced_loads(mechanism, comp: Composition, model: MassModel, centres: list 
         velocity = comp.links[load.link][0].d1
         parts[name] = parts.get(name, np.zeros(n)) - (np.conj(load.vector) * velocity).real
         switches += load.switches()
-    for item, d1, moment in moment_strokes(comp, model):     # −M θ′ = k M₀ |θ′|
-        name = f"moment {item.link}"
-        parts[name] = parts.get(name, np.zeros(n)) - moment * d1
-        switches.append(d1)
+    for load in point_loads(comp, model):            # −F·z′_P
+        name = f"force {load.force.label}"
+        parts[name] = parts.get(name, np.zeros(n)) - (np.conj(load.vector) * load.point.d1).real
+        switches += load.switches()
+    for load in moment_loads(comp, model):           # −M θ′ = k M₀ p(x) |θ′|
+        name = f"moment {load.item.link}"
+        parts[name] = parts.get(name, np.zeros(n)) - load.moment * load.rate
+        switches += load.switches()
     if model.gravity and any(item.mass for item in model.links):
         centres = centres if centres is not None else centre_points(comp, model)
         parts["gravity"] = model.gravity * sum(item.mass * s.d1.imag for (s, _), item in zip(centres, model.links))

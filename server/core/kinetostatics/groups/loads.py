@@ -3,7 +3,7 @@
 d'Alembert's inertia loads (3.1): F_in = −m a_S, M_in = −J_S ε, with a_S = z″_S ω₁² + z′_S ε₁ and
 ε = θ″ω₁² + θ′ε₁ from the analogs (the crank's ω₁ > 0 along its rotation, ε₁ its angular acceleration);
 the weight G = −m g ĵ at S; the useful loads of the mass model (structure/masses.py): slider forces along their
-guides and moments on links, against the motion, k on the return stroke.  Each load is kept apart, with the
+guides, forces at points of links (structure/load_kinematics.py) and moments on links.  Each load is kept apart, with the
 velocity analog of its point (of its link's rotation for a couple), for the free-body diagrams and the power
 check; the equilibrium needs per link only the resultant force and its moment about the frame's origin.
 """
@@ -14,7 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...structure.compose import Composition
-from ...structure.masses import MassModel, centre_kinematics, moment_strokes, slider_loads
+from ...structure.load_kinematics import moment_loads, point_loads
+from ...structure.masses import MassModel, centre_kinematics, slider_loads
 from ...structure.state import cross
 
 
@@ -47,8 +48,11 @@ def link_loads(mechanism, comp: Composition, model: MassModel, omega: float, eps
     for load in slider_loads(comp, model):
         origin = comp.links[load.link][0]
         loads.append(Load(f"F_{load.force.joint}", load.link, "useful", origin.z, load.vector, None, origin.d1))
-    for item, d1, moment in moment_strokes(comp, model):
-        loads.append(Load(f"M_{item.link}", item.link, "useful", None, None, moment, d1))
+    for load in point_loads(comp, model):
+        loads.append(Load(f"F_{load.force.label}", load.force.link, "useful", load.point.z, load.vector, None,
+                          load.point.d1))
+    for load in moment_loads(comp, model):
+        loads.append(Load(f"M_{load.item.link}", load.item.link, "useful", None, None, load.moment, load.rate))
     return loads
 
 
