@@ -25,7 +25,7 @@ const presets = JSON.parse(document.getElementById("project-presets").textConten
 const $ = (id) => document.getElementById(id);
 
 /** linkage, dynamics (completed), settings: the project; places: where loads may go; answer, refusal: the last. */
-const state = { ...readProject(), places: null, answer: null, refusal: null, request: null };
+const state = { ...readProject(), places: null, answer: null, refusal: null };
 const projects = new LatestRequest(lang, "course-project");
 const estimates = new LatestRequest(lang, "dynamics-estimate");
 const status = $("project-status");
@@ -52,9 +52,8 @@ function setStatus(kind, text) {
 function compute() {
   writeAddress();
   if (!state.linkage || !state.dynamics) return;
-  state.request = projectRequest(state);
+  const asked = projectRequest(state);
   setStatus("waiting", t.loading);
-  const asked = state.request;
   projects.submit(asked, (answer) => {
     if (answer.ok) {
       state.answer = answer.data;

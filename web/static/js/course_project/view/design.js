@@ -209,7 +209,7 @@ export function renderDesign(container, linkage, d, options) {
     table("project-stroke-loads", t.project_stroke_loads, ["", t.editor_masses_P, "k", t.editor_masses_sense, ""],
       strokeLoads.length ? strokeLoads : [element("tr", {}, element("td", { colSpan: 5, className: "hint", textContent: t.project_loads_none }))]),
     ...(points.length ? [table("project-point-forces", t.project_point_forces,
-      ["", t.editor_masses_along, t.editor_masses_across, "P, N", t.project_direction_header, t.project_acts, t.project_diagram, ""], points)] : []),
+      ["", t.editor_masses_along, t.editor_masses_across, `P, ${t.units_N}`, t.project_direction_header, t.project_acts, t.project_diagram, ""], points)] : []),
     element("p", { className: "hint", rich: t.project_loads_note }),
     addLoadTools(d, all),
     machine(d, all));
