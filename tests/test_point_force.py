@@ -10,7 +10,8 @@ structure/load_kinematics.py), each against something that is not the code under
   the slider's group on the coupler's point, crank + RPR with an offset slot + RRR);
 - a slider force on a moving guide (the shaping machine's block on its slotted link): the same virtual work
   with the block's own (absolute) velocity; with the slot offset from the lever's pivot by e that velocity
-  along the slot is s′ − eθ′, not the sliding s′ (both from differences of the exact positions);
+  along the slot is s′ − eθ′, not the sliding s′ (both from differences of the exact positions), while two
+  opposite point forces along the slot, on the block and on the lever, reduce to −F s′;
 - the kinetostatics by groups without friction: the balancing moment equals the loads' reduced moment by
   power equality (GroupForces.reduced_moment) and the dynamics' J ε + ½J′ω² + M_c, to round-off (1e-10);
 - a stroke diagram and the working stroke's switch against a hand computation: the travel x from the exact
@@ -153,6 +154,13 @@ def test_slider_force_on_a_moving_guide_is_reduced_with_the_blocks_own_velocity(
     # offset by e: B = C + (s + ie)e^{iθ}, so Re(z′_B e^{−iθ}) = s′ − eθ′: the power of a force on the block
     assert np.abs(moment - 1000.0 * np.abs(s1 - 0.03 * th1)).max() <= 1e-9 * np.abs(work).max()
     assert np.abs(moment - 1000.0 * np.abs(s1)).max() >= 0.1 * np.abs(work).max()   # not the sliding's P|s′|
+    # a force between the block and its slotted link (a spring in the slot): two opposite point forces along the
+    # slot, on the block at B and on the lever at a point of the slot's line, whose power is F s′
+    pair = (PointForce(2, (0.0, 0.0), 1000.0, 0.0, "link", "always", name="on 2"),
+            PointForce(3, (0.3, 0.03), 1000.0, math.pi, "link", "always", name="on 3"))
+    mech = GeneralMechanism(offset)
+    spring = reduced_loads(mech, compose(mech.linkage, PHI), MassModel(gravity=0.0, point_forces=pair)).total
+    assert np.abs(spring + 1000.0 * s1).max() <= 1e-9 * np.abs(work).max()
 
 
 @pytest.mark.parametrize("name", ["shaping", "slotted"])
