@@ -25,7 +25,7 @@ import math
 import numpy as np
 import pytest
 
-from server.core.course_project.kinematic_sheet import finite, kinematic_sheet
+from server.core.course_project.kinematic_sheet import finite, kinematic_sheet, plan_of_positions
 from server.core.course_project.positions import POSITION_COUNTS, stroke_positions
 from server.core.course_project.scales import (FORCE_PLAN_MM, PLAN_MM, POSITIONS_MM, STANDARD_MANTISSAS, extent,
                                                standard_scale)
@@ -414,3 +414,23 @@ def test_undefined_values_become_null_with_their_places_listed():
     tree = finite({"a": [1.0, math.nan], "b": {"c": np.float64(math.inf), "d": "text", "e": None}}, "", missing)
     assert tree == {"a": [1.0, None], "b": {"c": None, "d": "text", "e": None}}
     assert missing == [".a.1", ".b.c"]
+
+
+@pytest.mark.parametrize("name", ["sine", "shaping_machine", "lever_ram", "v_engine"])
+def test_every_sliding_pair_has_its_guide_drawn_where_its_block_is(name):
+    """The plan of positions carries the guide of every sliding pair named "joint/guide" (an RPP's slot included),
+    and the block's joint lies on it: joint − point is along the guide's angle (cross product zero to 1e-12 m)."""
+    preset = presets()[name]
+    mechanism = GeneralMechanism(preset["linkage"])
+    phi = np.linspace(0.0, 2 * np.pi, 7)
+    comp = compose(mechanism.linkage, phi)
+    plan = plan_of_positions(mechanism, comp, {}, None)
+    for pair in comp.slides:
+        if "/" not in pair:
+            continue
+        joint, guide = pair.split("/")
+        drawn = plan["guides"][guide]
+        for k in range(phi.size):
+            offset = complex(*plan["joints"][joint][k]) - complex(*drawn["point"][k])
+            along = complex(math.cos(drawn["angle"][k]), math.sin(drawn["angle"][k]))
+            assert abs((offset * along.conjugate()).imag) < 1e-12, (pair, k)

@@ -101,13 +101,19 @@ def plan_of_positions(mechanism: GeneralMechanism, comp: Composition, marked: di
     slides = {}
     for pair in comp.slides:
         slides.setdefault(slider_link(comp, pair), []).append(pair)
+    guides = {name: {"link": g.link, "point": xy_list(g.point.z), "angle": g.angle.th.tolist()}
+              for name, g in comp.guides.items()}
+    for group in comp.groups:          # an RPP's slot: on the slotted link through R, along the block's frame
+        if group.kind == "RPP":
+            block, slotted = group.links
+            slot = list(group.slides)[1].split("/")[1]
+            guides[slot] = {"link": slotted, "point": xy_list(comp.links[slotted][0].z),
+                            "angle": comp.links[block][1].th.tolist()}
     return {"joints": {name: xy_list(p.z) for name, p in comp.joints.items()},
             "marked": {name: xy_list(p.z) for name, p in marked.items()},
             "links": [{"link": k, "joints": names, "slides": slides.get(k, [])}
                       for k, names in sorted(link_joints(mechanism).items())],
-            "guides": {name: {"link": g.link, "point": xy_list(g.point.z), "angle": g.angle.th.tolist()}
-                       for name, g in comp.guides.items()},
-            "trajectories": trajectories(mechanism, model)}
+            "guides": guides, "trajectories": trajectories(mechanism, model)}
 
 
 def position_rows(comp: Composition, marked: dict[str, Point], positions: StrokePositions, omega1: np.ndarray,

@@ -83,6 +83,9 @@ def group_sheets(result: GroupForces, row: Approximation, k: int, mu_f: float) -
     plan at μ_F."""
     view = replace(result, solution=row)
     bodies = free_body(view, k)
+    for body in bodies:
+        for reaction in body["reactions"]:
+            reaction["magnitude"] = float(np.hypot(*reaction["force"]))
     plans = []
     for body in bodies:
         forces = outside_forces(result, row, tuple(body["links"]), k)
