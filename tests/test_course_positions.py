@@ -139,7 +139,6 @@ def test_a_moment_on_a_link_chooses_that_link_as_the_output():
     assert np.all(np.diff(np.unwrap(theta.links[3][1].th)) < 0)     # sense −1: clockwise on the working stroke
 
 
-@pytest.mark.skipif(not hasattr(masses, "PointForce"), reason="the mass model has no point forces")
 @pytest.mark.parametrize("angle", [0.0, math.pi])
 def test_a_point_force_on_the_ram_takes_the_ram_and_the_stroke_it_resists(angle):
     """e = e^{iα} acts where its point moves against e: the ram's −x stroke for α = 0 (the slow one), +x for π."""

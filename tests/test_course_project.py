@@ -283,3 +283,26 @@ def test_bad_input_is_refused_naming_the_field(client, body, loc):
     assert answer.status_code == 422, answer.text[:300]
     detail = answer.json()["detail"][0]
     assert detail["loc"][:len(loc)] == loc, detail
+
+
+TOOL = {"link": 5, "point": [0.1, -0.05], "name": "K", "magnitude": 3000.0,
+        "direction": {"kind": "fixed", "angle": 0.0}, "acts": "working",
+        "diagram": {"over": "stroke", "points": [[0.05, 0.0], [0.1, 1.0], [0.9, 1.0], [0.95, 0.0]]}}
+
+
+@pytest.mark.parametrize("friction", [{}, ROUGH])
+def test_a_force_at_the_tool_point_with_a_stroke_diagram_carries_the_whole_project(client, friction):
+    """The shaping machine's cutting force at its tool point K over 5…95 % of the stroke (no slider force): the
+    endpoint answers every section, the load's reduced moment is its M_c part, and the lever and the reduced
+    equation give the groups' balancing moment at every position (to ROUND_OFF of its largest value)."""
+    body = BODY | {"masses": DYNAMICS["masses"] | friction | {"forces": [], "point_forces": [TOOL]}}
+    answer = client.post("/api/v1/course-project", json=body)
+    assert answer.status_code == 200, answer.text[:300]
+    result = answer.json()
+    assert set(SECTIONS) <= set(result) and "force K" in result["dynamics"]["M_c_parts"]
+    groups = column(result, "M_b_friction" if friction else "M_b_groups")
+    scale = np.abs(groups).max()
+    lever = column(result, "M_b_lever_friction" if friction else "M_b_lever")
+    assert np.abs(lever - groups).max() <= ROUND_OFF * scale
+    if not friction:
+        assert np.abs(column(result, "M_b_reduced") - groups).max() <= ROUND_OFF * scale

@@ -73,8 +73,8 @@ def marked_points(comp: Composition, model: MassModel | None) -> dict[str, Point
         origin = comp.links[slider_link(comp, pair)][0]
         if not any(origin is point for point in comp.joints.values()):
             marked[f"load {pair}"] = origin
-    for i, force in enumerate(getattr(model, "point_forces", ())):
-        marked[getattr(force, "name", None) or f"F{i + 1}"] = on_link(*comp.links[force.link], complex(*force.point))
+    for force in model.point_forces:
+        marked[force.label] = on_link(*comp.links[force.link], complex(*force.point))
     return marked
 
 

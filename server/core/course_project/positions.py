@@ -196,7 +196,7 @@ def find_output(mechanism: GeneralMechanism, comp: Composition, model: MassModel
     for i, force in enumerate(model.forces):
         if force.working > 0:
             return slide_output(comp, pair_of(comp, force.joint, f"masses.forces.{i}.joint"))
-    for force in getattr(model, "point_forces", ()):
+    for force in model.point_forces:
         if force.link in comp.links:
             return loaded_link_output(comp, force.link)
     for moment in model.moments:

@@ -32,7 +32,7 @@ from ..kinetostatics.groups.friction import PairFriction
 from ..mechanisms import GeometryError, Notice
 from ..mechanisms.general import GeneralMechanism
 from ..numerics import Numerics
-from ..structure.masses import MassModel
+from ..structure.masses import MassModel, with_strokes
 from ..structure.reduction import reduced_inertia, reduced_loads
 from . import kinetostatic_sheet as ks
 from .dynamic_sheet import dynamic_sheet
@@ -66,8 +66,9 @@ def course_project(linkage: dict, masses: MassModel | None, inertias: Inertias, 
     if masses is None or not any(item.mass > 0 or item.inertia > 0 for item in masses.links):
         raise GeometryError("masses.links", "the dynamics and the kinetostatics need the links' masses: give at "
                             "least one moving link a mass or a moment of inertia", "project_needs_masses")
+    masses = with_strokes(mechanism, masses)          # every stroke diagram's extremes, once for every part
     loaded = any(f.working > 0 for f in masses.forces) or any(m.working > 0 for m in masses.moments) or \
-        any(p.magnitude > 0 for p in getattr(masses, "point_forces", ()))
+        any(p.magnitude > 0 for p in masses.point_forces)
     machine = general_machine(linkage, masses, inertias, Load(), Motor("constant", 0.0), pairs) if loaded else None
     resisting = resistance(machine) if loaded else None
     if not loaded or not resisting.useful_work > USEFUL_FLOOR * resisting.magnitude:
