@@ -113,7 +113,7 @@ def test_lengths_that_close_nowhere(client, example):
 def test_partly_assembled_says_which_angles(client, example):
     request = with_groups(example, lambda groups: groups[1].update(length=0.01))
     body = client.post("/api/v1/kinematics", json=request | {"outputs": ["joints"], "n": 361}).json()
-    assert any("Group 1 (RRP) cannot be assembled at φ =" in w for w in body["warnings"])
+    assert any("Group II₂(4,5) RRP cannot be assembled at φ =" in w for w in body["warnings"])
     assert any(x is None for x, _ in body["outputs"]["joints"]["E"])
 
 

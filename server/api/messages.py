@@ -42,6 +42,7 @@ class CommaFloat(ReadableFloat):
 
 MINUS = "\u2212"
 SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 ZERO = re.compile(r"^-(?=[0.,]*(?:$|[^0-9.,]))")      # "-0", "-0.00", "-0e+00": a zero keeps no sign
 POWER = re.compile(r"e([-+]?\d+)$")
 NUMBER = re.compile(r"^-?\d+(?:\.\d+)?(?:e[-+]?\d+)?$")      # a number as Python writes it
@@ -178,23 +179,31 @@ def translate(notice: Notice, lang: str) -> str:
 
 
 def special_text(special: dict, lang: str) -> str:
-    """A general mechanism's special position (its fields: kind, group, group_kind, link or slide, value) as a
-    sentence in ``lang``: "group 1 (RRP): limit of assembly", "group 0: slider E (guide ram) reverses …".  A
-    slide is named as the core names it: "E/ram" is the slider E on the guide ram, "B/slot" the block at B in
-    its slot (RPP), an RPR group's slide ("s23") as it is."""
+    """A general mechanism's special position (its fields: kind, group, name, group_kind, link or slide, value)
+    as a sentence in ``lang``, the group by its name in the structural formula: "group II₂(2,3) RRP: limit of
+    assembly", "group II₂(4,5) RRP: slider E (guide x–x) reverses, an extreme position s = 0.181 m".  A slide is
+    named as the core names it, its guide by its label in ``lang`` (guide_label_*): "E/ram" is the slider E on
+    the guide ram, "B/slot" the block at B in its slot (RPP), an RPR group's slide ("s23") as it is.  Every
+    value with its unit: a link's angle θ in degrees, a slide's s in metres, the angle between the group's links
+    at its closest to a dead position in degrees."""
     texts = interface_texts(lang)
     number = CommaFloat if lang in DECIMAL_COMMA else ReadableFloat
-    what = ""
+    what, value = "", special.get("value")
     if special.get("link") is not None:
         what = f"{texts['editor_link']} {special['link']}"
+        if value is not None:
+            value = f"θ{str(special['link']).translate(SUBSCRIPTS)} = {number(math.degrees(value) % 360):.1f}°"
     elif special.get("slide") is not None:
         joint, _, guide = special["slide"].partition("/")
         where = "" if not guide else (f" {texts['editor_in_slot']}" if guide == "slot"
-                                      else f" ({texts['editor_guide_word']} {guide})")
+                                      else f" ({texts['editor_guide_word']} {texts.get(f'guide_label_{guide}', guide)})")
         what = f"{texts['editor_slide']} {joint}{where}"
-    value = "" if special.get("value") is None else format(number(special["value"]), ".3g")
-    return texts[f"editor_sp_{special['kind']}"].format(group=special["group"], kind=special["group_kind"],
-                                                         what=what, value=value)
+        if value is not None:
+            value = f"s = {number(value):.3f} {texts['units_m']}"
+    elif value is not None:           # |sin| of the angle between the group's links
+        value = f"{number(math.degrees(math.asin(min(value, 1.0)))):.1f}°"
+    return texts[f"editor_sp_{special['kind']}"].format(group=special.get("name") or special["group"],
+                                                         kind=special["group_kind"], what=what, value=value or "")
 
 
 def filled(context: dict, lang: str) -> dict:

@@ -3,9 +3,10 @@ behind the one ``Mechanism`` interface.
 
 Outputs (by name; nothing unrequested is computed): joint positions and their first and second analogs
 (x′, y′, x″, y″), link angles θ with θ′, θ″, slides along guides and slots with s′, s″, the structural analysis,
-special positions (each group's limits of assembly, dead positions, output reversals), and the velocity and
-acceleration plans at one angle.  Where a group cannot be assembled the values are NaN (null in the answer) with a
-sentence naming the group and the angles; where it closes nowhere the mechanism is refused.
+special positions (each group's limits of assembly, found exactly by bisection; dead positions, output
+reversals), and the velocity and acceleration plans at one angle.  Where a group cannot be assembled the values are
+NaN (null in the answer) with a sentence naming the group and the angles; where it closes nowhere the mechanism is
+refused.  A group is named as the structural formula names it ("II₂(2,3)", analysis.group_name).
 """
 from __future__ import annotations
 
@@ -13,15 +14,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..structure.analysis import analyse
+from ..structure.analysis import analyse, group_name
 from ..structure.compose import Composition, compose
 from ..structure.plans import plans
 from ..structure.spec import Linkage, SliderInput, parse
-from .base import (Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, angle_ranges, ranges_text,
+from .base import (Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, ranges_text,
                    wrap_angle)
 from .mechanism import Mechanism
 
 CHECK_POINTS = 721               # the full turn checked for assembly at 0.5°
+LIMIT_STEPS = 46                 # a grid step halved 46 times: 0.5° → 1.2e-16 rad, below round-off
 SMALL_TRANSMISSION = np.sin(np.radians(10))    # as the four-bar's warning (FourBar.proximity_warnings)
 
 GENERAL_OUTPUTS = (
@@ -44,18 +46,21 @@ GENERAL_OUTPUTS = (
 
 @dataclass(frozen=True)
 class GroupSpecial(SpecialPosition):
-    """A special position of one group as data: the group's number (as in linkage.groups), its kind, and the
-    link or slide it concerns (output reversals); the English ``description`` is for scripts, the pages say it
-    from these fields (server/api/messages.py: special_text)."""
+    """A special position of one group as data: the group's number (as in linkage.groups), its kind and name
+    ("II₂(2,3)"), the link or slide it concerns (output reversals), and at a limit of assembly whether the group
+    assembles just after it (at larger φ); the English ``description`` is for scripts, the pages say it from
+    these fields (server/api/messages.py: special_text)."""
 
     group: int = 0
     group_kind: str = ""
     link: int | None = None
     slide: str | None = None
+    name: str = ""
+    assembles_after: bool | None = None
 
     def as_dict(self) -> dict:
         return super().as_dict() | {"group": self.group, "group_kind": self.group_kind, "link": self.link,
-                                    "slide": self.slide}
+                                    "slide": self.slide, "name": self.name, "assembles_after": self.assembles_after}
 
 
 class GeneralMechanism(Mechanism):
@@ -124,7 +129,7 @@ class GeneralMechanism(Mechanism):
         """The wanted array outputs of a composed linkage."""
         phi = comp.phi
         ev = Evaluation(phi)
-        ev.warnings = assembly_notices(comp)
+        ev.warnings = assembly_notices(comp, self.linkage)
         ordered = phi.size > 1 and bool(np.all(np.diff(phi) > 0))
         for name in wanted:
             if name.startswith("joints"):
@@ -149,7 +154,7 @@ class GeneralMechanism(Mechanism):
 
     def special_positions(self, p) -> list[SpecialPosition]:
         turn = compose(self.linkage, self.turn())
-        return sorted(special_positions(turn) + reversals(self.linkage, turn), key=lambda sp: sp.phi)
+        return sorted(special_positions(turn, self.linkage) + reversals(self.linkage, turn), key=lambda sp: sp.phi)
 
     def plan(self, phi: float, omega1: float, epsilon1: float) -> dict:
         return plans(compose(self.linkage, np.array([float(phi)])), omega1, epsilon1)
@@ -170,50 +175,103 @@ def unwrapped(values: np.ndarray, unwrap: bool) -> np.ndarray:
     return np.unwrap(values)
 
 
-def assembly_notices(comp: Composition) -> list[Notice]:
-    """A sentence per group that cannot be assembled at some of the angles (which group, which angles), or
-    that comes close to a dead position: |sin| of the angle between its links (the transmission angle μ for
-    RRR) below sin 10°, the threshold the four-bar module warns at; the analogs grow as 1/sin μ there."""
+def assembly_limits(linkage: Linkage, comp: Composition, steps: int = LIMIT_STEPS) -> dict[tuple[int, int], float]:
+    """Every group's limits of assembly, exact: {(group k, grid step e): φ} for each step [φ_e, φ_e+1] of
+    ``comp`` over which the group's loop stops or starts closing (RRR: the triangle BCD flattens, |BD| = BC + CD
+    or |BC − CD|; RRP: the rod perpendicular to the guide; RPR: |BD| = e).  The step is bisected ``steps`` times
+    on whether the group closes at its middle (one composition of the linkage per halving for all steps of all
+    groups at once): a 0.5° step ends within 0.5°·2⁻⁴⁶ ≈ 1.2·10⁻¹⁶ rad of the limit, the round-off of the
+    closure's own test."""
+    brackets = [(k, int(e)) for k, group in enumerate(comp.groups)
+                for e in np.flatnonzero(group.closes[:-1] != group.closes[1:])]
+    if not brackets:
+        return {}
+    edges = np.array([e for _, e in brackets])
+    low, high = comp.phi[edges].astype(float), comp.phi[edges + 1].astype(float)
+    closed_low = np.array([comp.groups[k].closes[e] for k, e in brackets])
+    for _ in range(steps):
+        middle = 0.5 * (low + high)
+        with np.errstate(invalid="ignore", divide="ignore"):       # at a limit itself the analogs are unbounded
+            fine = compose(linkage, middle)
+        closes = np.array([fine.groups[k].closes[i] for i, (k, _) in enumerate(brackets)])
+        low, high = np.where(closes == closed_low, middle, low), np.where(closes == closed_low, high, middle)
+    return {bracket: float(0.5 * (a + b)) for bracket, a, b in zip(brackets, low, high)}
+
+
+def unassembled_ranges(phi: np.ndarray, closes: np.ndarray, limits: dict[int, float]) -> list[list[float]]:
+    """The stretches (degrees, [from, to]) where a group does not close: each run of grid points without a
+    closure, its ends moved out to the exact limits ``limits`` {grid step: φ} (the grid's own ends where the
+    run reaches them)."""
+    ranges = []
+    for start, end in runs(~closes):
+        a = limits.get(start - 1, phi[start]) if start > 0 else phi[0]
+        b = limits.get(end, phi[end]) if end < phi.size - 1 else phi[-1]
+        ranges.append([float(np.degrees(a)), float(np.degrees(b))])
+    return ranges
+
+
+def solved_name(group) -> str:
+    """A solved group's name in the structural formula, from its kind and its two links (in order)."""
+    return group_name(group.kind, list(group.links))
+
+
+def runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """(first, last) index of every run of True in ``mask``."""
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], mask.astype(np.int8), [0]))))
+    return [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2])]
+
+
+def assembly_notices(comp: Composition, linkage: Linkage | None = None) -> list[Notice]:
+    """A sentence per group that cannot be assembled at some of the angles (which group, which angles: with the
+    ``linkage`` given, between its exact limits of assembly, else between grid points), or that comes close to a
+    dead position: |sin| of the angle between its links (the transmission angle μ for RRR) below sin 10°, the
+    threshold the four-bar module warns at; the analogs grow as 1/sin μ there.  The group is named as in the
+    structural formula ("II₁(2,3)": solved_name)."""
     notes = []
+    limits = assembly_limits(linkage, comp) if linkage is not None else {}
     for k, group in enumerate(comp.groups):
+        name = solved_name(group)
         det = np.abs(np.where(group.closes, group.determinant, np.nan))
         if np.isfinite(det).any() and np.nanmin(det) < SMALL_TRANSMISSION:
             worst = int(np.nanargmin(det))
             mu, at = float(np.degrees(np.arcsin(min(det[worst], 1.0)))), float(np.degrees(comp.phi[worst]))
             notes.append(Notice("group_dead_position",
-                                f"Group {k} ({group.kind}) comes close to a dead position: its links are {mu:.2f}° "
+                                f"Group {name} {group.kind} comes close to a dead position: its links are {mu:.2f}° "
                                 f"from a line at φ = {at:.1f}°, the velocity and acceleration analogs are large there.",
-                                {"group": k, "kind": group.kind, "mu": mu, "phi": at}))
+                                {"group": name, "index": k, "kind": group.kind, "mu": mu, "phi": at}))
         if not group.closes.all():
-            ranges = angle_ranges(comp.phi, ~group.closes)
+            ranges = unassembled_ranges(comp.phi, group.closes, {e: phi for (g, e), phi in limits.items() if g == k})
             notes.append(Notice("group_cannot_assemble",
-                                f"Group {k} ({group.kind}) cannot be assembled at φ = {ranges_text(ranges)}: "
+                                f"Group {name} {group.kind} cannot be assembled at φ = {ranges_text(ranges)}: "
                                 "its loop does not close there (limit of assembly), the values are undefined.",
-                                {"group": k, "kind": group.kind, "ranges": ranges}))
+                                {"group": name, "index": k, "kind": group.kind, "ranges": ranges}))
     return notes
 
 
-def special_positions(comp: Composition) -> list[GroupSpecial]:
-    """Per group: where it stops closing (limit of assembly) and where its determinant changes sign or is
-    smallest (dead position: the group's links in line, the analogs unbounded)."""
+def special_positions(comp: Composition, linkage: Linkage) -> list[GroupSpecial]:
+    """Per group: where it stops or starts closing (limit of assembly, exact: assembly_limits) and where its
+    determinant changes sign or is smallest (dead position: the group's links in line, the analogs unbounded)."""
     out = []
     phi = comp.phi
+    for (k, edge), at in sorted(assembly_limits(linkage, comp).items()):
+        group = comp.groups[k]
+        out.append(GroupSpecial("limit_of_assembly", at, f"group {k} ({group.kind}): limit of assembly", None, k,
+                                group.kind, name=solved_name(group), assembles_after=not bool(group.closes[edge])))
     for k, group in enumerate(comp.groups):
+        name = solved_name(group)
         closes = group.closes
-        for edge in np.flatnonzero(np.diff(closes.astype(int))):
-            out.append(GroupSpecial("limit_of_assembly", float(phi[edge + 1 if closes[edge] else edge]),
-                                    f"group {k} ({group.kind}): limit of assembly", None, k, group.kind))
         det = np.where(closes, group.determinant, np.nan)
         if np.isfinite(det).any():
             worst = int(np.nanargmin(np.abs(det)))
             out.append(GroupSpecial("smallest_determinant", float(phi[worst]),
                                     f"group {k} ({group.kind}): closest to a dead position (|sin| of the "
-                                    "angle between its links or guides)", float(abs(det[worst])), k, group.kind))
+                                    "angle between its links or guides)", float(abs(det[worst])), k, group.kind,
+                                    name=name))
             signs = np.sign(det)
             for edge in np.flatnonzero(signs[:-1] * signs[1:] < 0):
                 out.append(GroupSpecial("dead_position", float(phi[edge]),
                                         f"group {k} ({group.kind}): dead position, its links in line", None, k,
-                                        group.kind))
+                                        group.kind, name=name))
     return out
 
 
@@ -241,7 +299,8 @@ def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[Group
     return [GroupSpecial("output_reversal", float(phi[i]) if slider else wrap_angle(phi[i]),
                          f"group {k}: {label} reverses (its first analog is zero): an extreme position",
                          float(analogs(fine, table, key)[0][i]), k, kind,
-                         key if table == "links" else None, key if table == "slides" else None)
+                         key if table == "links" else None, key if table == "slides" else None,
+                         solved_name(turn.groups[k]))
             for i, ((k, kind), label, table, key, _) in enumerate(found)]
 
 

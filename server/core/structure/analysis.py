@@ -15,6 +15,13 @@ from .spec import KIND_NUMBER, MAX_LINKS, Linkage, SliderInput
 SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
+def group_name(kind: str, links) -> str:
+    """A group as the structural formula names it: class II, Artobolevsky's kind as the subscript, its links
+    ("II₂(2,3)": the RRP dyad of links 2 and 3, Chaika–Vasylenko Fig. 3.3b); the one name of the group on every
+    page (list, drawings, special positions, warnings)."""
+    return f"II{str(KIND_NUMBER[kind]).translate(SUBSCRIPT)}({links[0]},{links[1]})"
+
+
 @dataclass(frozen=True)
 class Pair:
     """A lower kinematic pair: R (revolute, at a joint) or P (prismatic, along a guide or a slot)."""
@@ -133,8 +140,9 @@ def analyse(linkage: Linkage) -> dict:
             place(a.name, {a.link}, f"{where}.points.{a.name}")
         place_guides(group.new_guides, where)
         number = KIND_NUMBER[group.kind]
-        formula.append(f"II{str(number).translate(SUBSCRIPT)}({group.links[0]},{group.links[1]})")
-        groups.append({"kind": group.kind, "class": 2, "order": 2, "kind_number": number,
+        formula.append(group_name(group.kind, group.links))
+        groups.append({"name": group_name(group.kind, group.links), "kind": group.kind, "class": 2, "order": 2,
+                       "kind_number": number,
                        "links": list(group.links), "attached_to": sorted(attached)})
     n = len(declared)
     if n > MAX_LINKS:

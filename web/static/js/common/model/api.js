@@ -115,7 +115,7 @@ export class ApiClient {
       if (response.ok && payload) return { ok: true, data: payload };
       const detail = Array.isArray(payload?.detail) ? payload.detail[0] : null;
       if (!detail) return { ok: false, error: { code: "server", message: `HTTP ${response.status}` } };
-      return { ok: false, error: { code: detail.ctx?.code ?? null, message: detail.msg } };
+      return { ok: false, error: { code: detail.ctx?.code ?? null, message: detail.msg, ctx: detail.ctx ?? {} } };
     } catch (error) {
       return { ok: false, error: { code: "network", message: String(error) } };
     }

@@ -4,6 +4,8 @@
  * the field it names (loc) so that the page can show the reason beside the group it concerns.
  * An answer is {ok: true, data} or {ok: false, error: {code, message, loc, ctx}}.
  */
+import { errorReason } from "../../common/view/messages.js";
+
 export class LatestRequest {
   #busy = false;
   #waiting = null;
@@ -61,9 +63,10 @@ export function refusedGroup(error) {
   return Number.isInteger(k) ? k : null;
 }
 
-/** The reason of a refusal in the reader's language: err_<code> with its {placeholders} filled. */
-export function refusalText(error, t) {
-  const template = error.code && t[`err_${error.code}`];
-  if (!template) return error.message;
-  return template.replace(/\{(\w+)[^}]*\}/g, (whole, key) => (error.ctx?.[key] ?? whole));
+/**
+ * The reason of a refusal in the reader's language (the app's one message renderer, errorReason), a group
+ * named as in the structural formula where `groups` (its names) is given.
+ */
+export function refusalText(error, t, groups = null) {
+  return errorReason(error, t, { groups });
 }
