@@ -1,12 +1,14 @@
 """The editor's loads (web/static/js/editor/model/dynamics.js, run in Node) on the shaping machine's preset and its
-estimate's load places (server/core/structure/estimate.py): a load the student put on any sliding pair or link is
-kept while the mechanism still has that pair or link, dropped when it does not; where every kept load is gone the
-estimate's load takes their place, where the student kept none there stay none; "add" offers only the places
-without a load and adds the load offered there, "remove" takes one away."""
+estimate's load places (server/core/structure/estimate.py): a load the student put on any sliding pair or link, or
+a force at a point of a link, is kept while the mechanism still has that pair or link, dropped when it does not;
+where every kept load is gone the estimate's load takes their place, where the student kept none there stay none;
+"add" offers only the places without a load and adds the load offered there, and a force at a point on any moving
+link (as many as wanted), "remove" takes one away."""
 from __future__ import annotations
 
 import copy
 import json
+import math
 import shutil
 import subprocess
 from pathlib import Path
@@ -23,6 +25,7 @@ import(process.argv[1]).then((m) => {
   const out = cases.map(({ call, args }) => {
     if (call === "keptOn") return m.keptOn(...args).masses;
     if (call === "freePlaces") return m.freePlaces(...args).map((p) => p.key);
+    if (call === "pointPlaces") return m.pointPlaces(...args).map((p) => p.key);
     const [dynamics, ...rest] = args;
     m[call](dynamics, ...rest);
     return dynamics.masses;
@@ -46,10 +49,12 @@ def run(*cases: tuple[str, list]) -> list:
     return json.loads(done.stdout)
 
 
-def student(forces: list, moments: list) -> dict:
-    """The preset's dynamics with the student's loads."""
+def student(forces: list, moments: list, points: list | None = None) -> dict:
+    """The preset's dynamics with the student's loads (and forces at points, where given)."""
     dynamics = copy.deepcopy(SHAPING["dynamics"])
     dynamics["masses"] |= {"forces": forces, "moments": moments, "gravity": 0}
+    if points is not None:
+        dynamics["masses"]["point_forces"] = points
     return dynamics
 
 
@@ -61,6 +66,10 @@ SLOT = {"joint": "s23", "working": 700.0, "k": 0.2, "sense": 1}
 RAM = {"joint": "E/ram", "working": 3000.0, "k": 0.05, "sense": -1}
 ROD = {"link": 4, "working": 80.0, "k": 0.5, "sense": -1}
 RAM_LINK = {"link": 5, "working": 30.0, "k": 0.1, "sense": 1}
+TOOL = {"link": 5, "point": [0.1, -0.05], "name": "K", "magnitude": 3000.0,
+        "direction": {"kind": "fixed", "angle": 0.0}, "acts": "working"}
+ON_LEVER = {"link": 3, "point": [0.3, 0.0], "magnitude": 200.0, "direction": {"kind": "link", "angle": 1.5},
+            "acts": "always"}
 
 
 def test_loads_stay_on_the_pairs_and_links_the_mechanism_still_has():
@@ -88,3 +97,30 @@ def test_add_offers_the_free_places_and_adds_their_load_and_remove_takes_one_awa
     assert added["moments"] == [next(m for m in places["moments"] if m["link"] == 3)]
     assert added["forces"] == [RAM]
     assert (removed["forces"], removed["moments"]) == ([RAM], [ROD])
+
+
+def test_forces_at_points_go_with_their_links():
+    on_full, on_short, only_gone, without = run(
+        ("keptOn", [student([RAM], [], [TOOL, ON_LEVER]), estimate(FULL), FULL["load_places"]]),
+        ("keptOn", [student([SLOT], [], [TOOL, ON_LEVER]), estimate(SHORT), SHORT["load_places"]]),
+        ("keptOn", [student([], [], [TOOL]), estimate(SHORT), SHORT["load_places"]]),
+        ("keptOn", [student([RAM], []), estimate(FULL), FULL["load_places"]]))
+    assert on_full["point_forces"] == [TOOL, ON_LEVER] and on_full["forces"] == [RAM]
+    assert on_short["point_forces"] == [ON_LEVER] and on_short["forces"] == [SLOT]     # link 5 is gone
+    assert only_gone["point_forces"] == [] and only_gone["moments"] == SHORT["masses"]["moments"]
+    assert "point_forces" not in without                         # a table without any keeps none
+
+
+def test_a_force_at_a_point_is_added_on_any_moving_link_and_removed():
+    places = FULL["load_places"]
+    links, added, again, removed = run(
+        ("pointPlaces", [places]),
+        ("addLoad", [student([RAM], []), places, "point:5"]),
+        ("addLoad", [student([RAM], [], [TOOL]), places, "point:5"]),
+        ("removeLoad", [student([RAM], [], [TOOL, ON_LEVER]), "point_forces", 0]))
+    assert links == ["point:1", "point:2", "point:3", "point:4", "point:5"]
+    new = {"link": 5, "point": [0, 0], "magnitude": 1000, "direction": {"kind": "fixed", "angle": math.pi},
+           "acts": "working"}
+    assert added["point_forces"] == [new] and added["forces"] == [RAM]
+    assert again["point_forces"] == [TOOL, new]                  # a second one on the same link
+    assert removed["point_forces"] == [ON_LEVER]

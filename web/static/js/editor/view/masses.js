@@ -1,23 +1,30 @@
 /**
  * The editor's "Masses and loads" table: per moving link its mass, centre S (along, across its line) and J_S;
- * the useful loads on sliding pairs (P, k, the working stroke's sense) and links (M, k, sense), added on the
- * places the mechanism has and removed; gravity on or off; the crank's J₁, the rotor's J, the gear ratio i and the
- * linear motor M₀, b at the motor shaft. Every cell is a decimal input (comma or point); a value typed that is
- * no number is refused beside the cell and not taken. onEdit(path, value) puts a value at its dotted path of
- * the dynamics; the links open the dynamics scenes with the mechanism (hrefs given by the page).
+ * the useful loads on sliding pairs (P, k, the working stroke's sense) and links (M, k, sense), and forces at
+ * points of links (the point along and across the link, P, its angle α in degrees from +x or from the link, on the
+ * working stroke or always), added on the places the mechanism has and removed; gravity on or off; the crank's J₁,
+ * the rotor's J, the gear ratio i and the linear motor M₀, b at the motor shaft. Every number cell is a decimal
+ * input (comma or point); a value typed that is no number is refused beside the cell and not taken.
+ * onEdit(path, value) puts a value (SI: an angle in rad) at its dotted path of the dynamics; the links open the
+ * dynamics scenes with the mechanism (hrefs given by the page).
  */
 import { element } from "../../common/view/dom.js";
+import { slideLabel } from "../model/linkage.js";
 import { formatQuantity, plainText } from "../../common/view/notation.js";
 import { decimalMessage, parseDecimal } from "../../common/model/decimal_input.js";
-import { GRAVITY, freePlaces } from "../model/dynamics.js";
+import { GRAVITY, freePlaces, pointPlaces } from "../model/dynamics.js";
+
+const DEG = Math.PI / 180;
+const NAME_LENGTH = 8;                   // a point force's label, characters at most (the API's)
 
 /**
- * A decimal cell. Its text is taken on "change" and again on leaving it (a cell redrawn while typed into gets
+ * A decimal input. Its text is taken on "change" and again on leaving it (an input redrawn while typed into gets
  * the typed text back, and the browser's "change" would not see it as changed): the text taken last is kept
- * in data-taken, so each text is taken once.
+ * in data-taken, so each text is taken once. A negative number is refused unless the input is ``signed``; it
+ * shows and takes the value in ``unit`` (DEG: degrees shown, radians put).
  */
-function cell(value, path, label, { lang, t, onEdit }) {
-  const shown = formatQuantity(value, lang, 6);
+function decimalInput(value, path, label, { lang, t, onEdit }, { signed = false, unit = 1 } = {}) {
+  const shown = formatQuantity(value / unit, lang, 6);
   const input = element("input", { type: "text", inputMode: "decimal", size: 7, value: shown,
     "aria-label": label, "data-path": path, "data-taken": shown });
   const take = () => {
@@ -26,13 +33,16 @@ function cell(value, path, label, { lang, t, onEdit }) {
     const read = parseDecimal(input.value, lang);
     input.setCustomValidity(read.error ? decimalMessage(read.error, input.value, t) : "");
     input.title = read.error ? decimalMessage(read.error, input.value, t) : "";
-    if (read.error || read.value < 0) return;
-    onEdit(path, read.value);
+    if (read.error || (read.value < 0 && !signed)) return;
+    onEdit(path, read.value * unit);
   };
   input.addEventListener("change", take);
   input.addEventListener("blur", take);
-  return element("td", {}, input);
+  return input;
 }
+
+/** A decimal cell of a table (``decimalInput`` in a td). */
+const cell = (...args) => element("td", {}, decimalInput(...args));
 
 /** The working stroke's sense (+1, −1) of a load as a choice said in words. */
 function senseCell(sense, path, label, words, { onEdit }) {
@@ -43,12 +53,14 @@ function senseCell(sense, path, label, words, { onEdit }) {
   return element("td", {}, select);
 }
 
-function removeCell(list, index, label, { t, onRemoveLoad }) {
+function removeButton(list, index, label, { t, onRemoveLoad }) {
   const button = element("button", { type: "button", className: "secondary", textContent: t.editor_load_remove,
     "aria-label": `${t.editor_load_remove}: ${label}`, "data-remove": `${list}.${index}` });
   button.addEventListener("click", () => onRemoveLoad(list, index));
-  return element("td", {}, button);
+  return button;
 }
+
+const removeCell = (...args) => element("td", {}, removeButton(...args));
 
 /**
  * A table of rows under column headers. Each data cell also carries its column's header as a label of its own
@@ -85,18 +97,82 @@ function loadRows(masses, options) {
   const slideWords = [t.editor_sense_slide_plus, t.editor_sense_slide_minus];
   const linkWords = [t.editor_sense_link_plus, t.editor_sense_link_minus];
   return [
-    ...(masses.forces ?? []).map((f, k) => loadRow("forces", f, k, `${t.editor_slide} ${f.joint}`, "P", slideWords, options)),
+    ...(masses.forces ?? []).map((f, k) => loadRow("forces", f, k, `${t.editor_slide} ${slideLabel(f.joint, t)}`, "P",
+      slideWords, options)),
     ...(masses.moments ?? []).map((m, k) => loadRow("moments", m, k, `${t.editor_link} ${m.link}`, "M", linkWords, options)),
   ];
 }
 
-/** "Add a load": a choice of the places without one (a slider's pair, a link) and its button. */
+/** A choice among (value, words) pairs, put at path on "change". */
+function choice(value, path, label, choices, { onEdit }) {
+  const select = element("select", { "aria-label": label, "data-path": path },
+    ...choices.map(([key, text]) => new Option(plainText(text), key)));
+  select.value = value;
+  select.addEventListener("change", () => onEdit(path, select.value));
+  return select;
+}
+
+/** A point force's name (a label for drawings, up to NAME_LENGTH characters; empty: none). */
+function nameInput(name, path, label, { onEdit }) {
+  const input = element("input", { type: "text", size: 4, maxLength: NAME_LENGTH, value: name ?? "",
+    "aria-label": label, "data-path": path, "data-taken": name ?? "" });
+  input.addEventListener("change", () => {
+    input.dataset.taken = input.value;
+    onEdit(path, input.value.trim() || undefined);
+  });
+  return input;
+}
+
+/**
+ * A control with its words before it: an input as one whole (editor.css .field), a choice beside its words (a
+ * .field would put its select under them); the fields wrap between one another.
+ */
+const field = (words, control) => control.tagName === "SELECT" ? element("label", {}, `${words} `, control)
+  : element("label", { className: "field" }, words, control);
+
+/**
+ * Each force at a point as a group of fields that wrap in the panel's width (nine columns would not fit it): the
+ * name, the point along and across the link (m), P (N), whether α is from +x or from the link, α in degrees, on
+ * the working stroke or always, and "remove".
+ */
+function pointForces(masses, options) {
+  const { t } = options;
+  return (masses.point_forces ?? []).map((f, k) => {
+    const path = `masses.point_forces.${k}`;
+    const place = `${t.editor_point_force} ${k + 1}, ${t.editor_link} ${f.link}`;
+    const direction = f.direction ?? { kind: "fixed", angle: 0 };
+    const fields = [
+      field(t.editor_point_name, nameInput(f.name, `${path}.name`, `${place}: ${t.editor_point_name}`, options)),
+      field(t.editor_point_along, decimalInput(f.point?.[0] ?? 0, `${path}.point.0`, `${place}: ${t.editor_along}`,
+        options, { signed: true })),
+      field(t.editor_point_across, decimalInput(f.point?.[1] ?? 0, `${path}.point.1`,
+        `${place}: ${t.editor_across}`, options, { signed: true })),
+      field(t.editor_point_P, decimalInput(f.magnitude ?? 0, `${path}.magnitude`, `${place}: P`, options)),
+      field(t.editor_point_angle, decimalInput(direction.angle ?? 0, `${path}.direction.angle`, `${place}: α`,
+        options, { signed: true, unit: DEG })),
+      field(t.editor_point_direction, choice(direction.kind, `${path}.direction.kind`,
+        `${place}: ${t.editor_point_direction}`, [["fixed", t.editor_direction_fixed], ["link", t.editor_direction_link]],
+        options)),
+      field(t.editor_point_acts, choice(f.acts ?? "working", `${path}.acts`, `${place}: ${t.editor_point_acts}`,
+        [["working", t.editor_acts_working], ["always", t.editor_acts_always]], options)),
+      removeButton("point_forces", k, place, options),
+    ];
+    return element("fieldset", { className: "editor-masses editor-point-force", "data-point-force": String(k) },
+      element("legend", { textContent: place }), ...fields.flatMap((item) => [item, " "]));
+  });
+}
+
+/**
+ * "Add a load": a choice of the places without one (a slider's pair, a link) and of the links a force at a point
+ * may go on, and its button.
+ */
 function addLoadTools(dynamics, { t, places, onAddLoad }) {
-  const free = freePlaces(dynamics, places);
+  const free = [...freePlaces(dynamics, places), ...pointPlaces(places)];
+  const words = (place) => ({ force: () => t.editor_load_on_slide.replace("{pair}", slideLabel(place.joint, t)),
+    moment: () => t.editor_load_on_link.replace("{link}", String(place.link)),
+    point: () => t.editor_load_at_point.replace("{link}", String(place.link)) })[place.kind]();
   const select = element("select", { id: "editor-load-place", "aria-label": t.editor_load_place },
-    ...free.map((place) => new Option(place.kind === "force"
-      ? t.editor_load_on_slide.replace("{pair}", place.joint) : t.editor_load_on_link.replace("{link}", String(place.link)),
-    place.key)));
+    ...free.map((place) => new Option(words(place), place.key)));
   const button = element("button", { type: "button", id: "editor-load-add", textContent: t.editor_load_add,
     disabled: !free.length });
   button.addEventListener("click", () => select.value && onAddLoad(select.value));
@@ -145,11 +221,12 @@ export function renderMasses(container, dynamics, options) {
   const { masses, inertias, motor } = dynamics;
   const links = masses.links.map((row, k) => element("tr", {},
     element("th", { scope: "row", textContent: `${t.editor_link} ${row.link}` }),
-    cell(row.mass ?? 0, `masses.links.${k}.mass`, `${t.editor_link} ${row.link}: m`, options),
+    cell(row.mass ?? 0, `masses.links.${k}.mass`, `${t.editor_link} ${row.link}: ${t.editor_say_mass}`, options),
     cell(row.centre?.[0] ?? 0, `masses.links.${k}.centre.0`, `${t.editor_link} ${row.link}: ${t.editor_along}`, options),
     cell(row.centre?.[1] ?? 0, `masses.links.${k}.centre.1`, `${t.editor_link} ${row.link}: ${t.editor_across}`, options),
-    cell(row.inertia ?? 0, `masses.links.${k}.inertia`, `${t.editor_link} ${row.link}: J_S`, options)));
+    cell(row.inertia ?? 0, `masses.links.${k}.inertia`, `${t.editor_link} ${row.link}: ${t.editor_say_inertia}`, options)));
   const loads = loadRows(masses, options);
+  const points = pointForces(masses, options);
   const machine = [
     ["inertias.J1", inertias.J1 ?? 0, t.editor_masses_J1],
     ["inertias.J_rotor", inertias.J_rotor ?? 0, t.editor_masses_rotor],
@@ -166,6 +243,9 @@ export function renderMasses(container, dynamics, options) {
       loads.length ? loads
         : [element("tr", {}, element("td", { colSpan: 5, className: "hint", textContent: t.editor_loads_none }))]),
     element("p", { className: "hint", rich: t.editor_loads_note }),
+    ...(points.length ? [element("div", { id: "editor-masses-points" },
+      element("p", { className: "editor-points-caption" }, element("strong", { textContent: t.editor_points_caption })),
+      ...points, element("p", { className: "hint", rich: t.editor_points_note }))] : []),
     addLoadTools(dynamics, options),
     element("div", { className: "table-scroll" }, element("table", { className: "editor-masses" },
       element("caption", { textContent: t.editor_masses_machine }), element("tbody", {}, ...machine))));
