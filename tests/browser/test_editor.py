@@ -99,18 +99,18 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
         act(page, (lambda: page.click(last)) if isinstance(last, str) else (lambda: click_at(page, *last)))
 
     place("joint", (0, 0))                                  # O, the crank's pivot
-    place("joint", (0, -0.3))                               # A, the lever's pivot
+    place("joint", (0, -0.3))                               # O₁, the lever's pivot
     place("guide", (0, 0.25))                               # g1, the ram's guide
-    place("crank", '[data-joint="O"]', (0.1, 0))            # crank OB, 0.1 m
-    place("RPR", '[data-joint="B"]', '[data-joint="A"]')    # block at B in the lever's slot about A
+    place("crank", '[data-joint="O"]', (0.1, 0))            # crank OA, 0.1 m
+    place("RPR", '[data-joint="A"]', '[data-joint="O₁"]')   # block at A in the lever's slot about O₁
     page.click('[data-mode="point"]')
     page.select_option("#editor-point-link", "3")
-    act(page, lambda: click_at(page, 0.174, 0.222))         # C on the lever, 0.55 m from A
-    place("RRP", '[data-joint="C"]', (-0.3, 0.25), (0.32, 0.25))   # rod CD, slider D on g1
+    act(page, lambda: click_at(page, 0.174, 0.222))         # B on the lever, 0.55 m from O₁
+    place("RRP", '[data-joint="B"]', (-0.3, 0.25), (0.32, 0.25))   # rod BC, slider C on g1
     assert page.get_attribute("#editor-drawing", "data-state") == "ready"
     assert page.inner_text("#editor-mobility") == "W = 3·5 − 2·7 − 0 = 1"
     assert page.inner_text("#editor-formula") == "I(0,1) → II₃(2,3) → II₂(4,5)"
-    lever = page.locator('[data-group="0"] .point-row input[type="text"]').first.input_value()
+    lever = page.locator('[data-group="0"] .point-row input[aria-label="point B: along"]').input_value()
     assert number(lever) == pytest.approx(0.55, abs=0.005)      # the point clicked at 0.55 m along the lever
 
     frame = page.inner_html("#editor-drawing .links")
@@ -119,7 +119,7 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
     page.wait_for_function("html => document.querySelector('#editor-drawing .links').innerHTML !== html", arg=frame)
     page.click("#editor-play")
     plans_ready(page)
-    page.click('[data-joint="C"]')                          # in "Look", a click on a joint traces its path
+    page.click('[data-joint="B"]')                          # in "Look", a click on a joint traces its path
     assert page.locator("#editor-drawing polyline.trace").count() == 1
     shown_phi = page.input_value("#editor-phi")
 
@@ -142,21 +142,21 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
     for v in velocity["vectors"]:
         assert v["mm"] * 0.01 == pytest.approx(number(v["shown"]), rel=6e-4, abs=1e-12), v
 
-    typed = page.locator('[data-group="1"] > label.field input[type="text"]').first
-    before = page.get_attribute('[data-joint="D"]', "cx")
+    typed = page.locator('[data-group="1"] input[type="text"][aria-label="length B C"]')
+    before = page.get_attribute('[data-joint="C"]', "cx")
     act(page, lambda: (typed.fill("0.2"), typed.press("Enter")))
-    assert page.get_attribute('[data-joint="D"]', "cx") != before, "the slider D did not move with a longer rod"
+    assert page.get_attribute('[data-joint="C"]', "cx") != before, "the slider C did not move with a longer rod"
     assert page.input_value("#editor-phi") == shown_phi
-    before = page.get_attribute('[data-joint="D"]', "cx")
+    before = page.get_attribute('[data-joint="C"]', "cx")
     act(page, lambda: drag_slider(page, '[data-group="1"] > label.field input[type="range"]', 0.2))
     assert number(typed.input_value()) < 0.2, "the dragged length is not written in its field"
-    assert page.get_attribute('[data-joint="D"]', "cx") != before, "dragging the rod's length did not redraw"
+    assert page.get_attribute('[data-joint="C"]', "cx") != before, "dragging the rod's length did not redraw"
 
     texts = interface_texts("en")
-    act(page, lambda: page.click('[data-element="A"] button.remove'))     # the lever's pivot gone: refused
+    act(page, lambda: page.click('[data-element="O₁"] button.remove'))    # the lever's pivot gone: refused
     assert page.get_attribute("#editor-drawing", "data-state") == "refused"
     assert page.inner_text('[data-group="0"] .refusal-reason') == \
-        texts["err_unknown_element"].replace("{element}", "A")
+        texts["err_unknown_element"].replace("{element}", "O₁")
     act(page, lambda: page.click("#editor-undo"))           # the removal undone
     assert page.get_attribute("#editor-drawing", "data-state") == "ready"
 
@@ -272,10 +272,10 @@ def test_a_slider_driven_mechanism(browser_page):
     page.select_option("#editor-preset", "slider_crank")
     settled(page, before)
     assert page.inner_text("#editor-phi-label") == "Crank angle φ"
-    ratio = page.locator('[data-group="0"] input[type="text"][aria-label="λ = l{AB}/l{OA}"]')
-    inverse = page.locator('[data-group="0"] input[type="text"][aria-label="r/l = l{OA}/l{AB}"]')
+    ratio = page.locator('[data-group="0"] input[type="text"][aria-label="λ: length A B over length O A"]')
+    inverse = page.locator('[data-group="0"] input[type="text"][aria-label="r/l: length O A over length A B"]')
     assert number(ratio.input_value()) == pytest.approx(3.0) and number(inverse.input_value()) == pytest.approx(1 / 3, abs=5e-4)
     act(page, lambda: (ratio.fill("4"), ratio.press("Enter")))
-    rod = page.locator('[data-group="0"] > label.field input[type="text"]').first
+    rod = page.locator('[data-group="0"] input[type="text"][aria-label="length A B"]')
     assert number(rod.input_value()) == pytest.approx(0.4) and number(inverse.input_value()) == pytest.approx(0.25)
     assert [p for p in page.problems if not REFUSED.search(p)] == []

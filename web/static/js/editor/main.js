@@ -10,19 +10,21 @@ import { QuantityPlot } from "./view/plot.js";
 import { renderGroupsApart } from "./view/groups_apart.js";
 import { renderPlans } from "./view/plans.js";
 import { renderSpecial } from "./view/special.js";
+import { readiness, renderReadiness } from "./view/readiness.js";
 import { renderMasses, renderOpenLinks } from "./view/masses.js";
 import { addLoad, dynamicsOf, dynamicsParameter, keptOn, readDynamics, removeLoad, sceneAddress } from "./model/dynamics.js";
 import { setPath } from "../common/model/dotted_paths.js";
 import { renderStructure } from "./view/structure.js";
 import { mechanismQuery, readMechanism } from "./model/address.js";
 import { guideShapes, linkShapes, stateAt } from "./model/geometry.js";
-import { PICKS, addFrameGuide, addFrameJoint, addGroup, addLinkGuide, addPoint, emptyLinkage, guides, joints, links,
-  normalised, requestLinkage, setCrank, setSlider } from "./model/linkage.js";
+import { PICKS, addFrameGuide, addFrameJoint, addGroup, addLinkGuide, addPoint, emptyLinkage, groupNames, guideLabel,
+  guides, joints, links, normalised, requestLinkage, setCrank, setSlider, slideLabel } from "./model/linkage.js";
 import { animationRow } from "./model/animation.js";
-import { UndoHistory } from "./model/history.js";
+import { EditHistory } from "./model/history.js";
 import { LatestRequest, refusalText, refusedGroup } from "./model/service.js";
 import { frameOf, planRequest, quantities, specialRequest, tableRequest } from "./model/table.js";
 import { formatNumber, plainText } from "../common/view/notation.js";
+import { messageText } from "../common/view/messages.js";
 import { parseDecimal } from "../common/model/decimal_input.js";
 
 const lang = document.documentElement.lang;
@@ -52,7 +54,8 @@ const tables = new LatestRequest(lang);
 const planner = new LatestRequest(lang);
 const specials = new LatestRequest(lang);
 const estimates = new LatestRequest(lang, "dynamics-estimate");
-const undoHistory = new UndoHistory();
+const editHistory = new EditHistory();
+let recorded = null;                 // the mechanism (JSON) as the last step of the edit history left it
 const stage = $("editor-drawing");
 
 const drawing = new Drawing(stage, {
@@ -62,7 +65,7 @@ const drawing = new Drawing(stage, {
   onGuide: (name, at) => pickGuide(name, at),
 });
 const list = new ElementList($("editor-elements"), {
-  t, lang, onEdit: () => changed(false), onStructure: () => changed(true),
+  t, lang, onEdit: (continuing) => changed(false, continuing), onStructure: () => changed(true),
   onTrace: (name, on) => {
     if (on) state.traced.add(name);
     else state.traced.delete(name);
@@ -96,7 +99,7 @@ function prompt() {
   if (mode === "slider" && picked.length) text = t.editor_prompt_slider_joint;
   if (PICKS[mode]) {
     const next = PICKS[mode][picked.length];
-    text = `${mode}: ${t[`editor_prompt_pick_${next}`].replace("{n}", String(picked.length + 1))}`;
+    text = `${mode}: ${messageText(t[`editor_prompt_pick_${next}`], { n: picked.length + 1 })}`;
     if (picked.length) text += ` (${picked.join(", ")})`;
   }
   if (mode !== "select" && mode !== "joint" && mode !== "guide" && !linkage.input && mode !== "crank" && mode !== "slider") {
@@ -188,10 +191,12 @@ function writeAddress() {
   const query = mechanismQuery(state.linkage, lang);
   if (state.dynamics) query.set("d", dynamicsParameter(state.dynamics));
   history.replaceState(null, "", `?${query}`);
-  const hrefs = state.dynamics && state.table && !state.refusal
-    ? Object.fromEntries(ownScenes.map((own) => [own.scene, sceneAddress(own, query.get("m"), state.dynamics, lang)]))
-    : null;
+  const reason = !state.linkage.input || sliderInput() ? t.editor_dynamics_needs_crank
+    : !turnsFully() ? t.editor_project_needs_turn : !state.dynamics ? t.editor_project_needs_dynamics : "";
+  const hrefs = reason ? null
+    : Object.fromEntries(ownScenes.map((own) => [own.scene, sceneAddress(own, query.get("m"), state.dynamics, lang)]));
   renderOpenLinks($("editor-open-dynamics"), hrefs, ownScenes);
+  $("editor-open-dynamics-reason").textContent = reason;
   writeProjectLink(query);
   for (const link of document.querySelectorAll("a[data-lang]")) {
     query.set("lang", link.dataset.lang);
@@ -205,8 +210,7 @@ function writeAddress() {
  */
 function writeProjectLink(query) {
   const link = $("editor-course-project");
-  const turns = state.table && !state.refusal && Object.values(state.table.outputs.joints)
-    .every((rows) => rows.every(([x]) => x !== null));
+  const turns = turnsFully();
   const reason = !state.linkage.input || sliderInput() ? t.editor_project_needs_crank
     : !turns ? t.editor_project_needs_turn : !state.dynamics ? t.editor_project_needs_dynamics : "";
   const project = new URLSearchParams({ lang, m: query.get("m") });
@@ -218,22 +222,37 @@ function writeProjectLink(query) {
   $("editor-course-project-reason").textContent = reason;
 }
 
-/** Keep the mechanism before this change for "Undo". */
-function remember(structural) {
-  undoHistory.remember(JSON.stringify(state.linkage), structural, performance.now());
-  $("editor-undo").disabled = undoHistory.empty;
+/** Whether every joint is defined over the whole turn (travel): results over a cycle may be asked. */
+function turnsFully() {
+  return Boolean(state.table && !state.refusal && Object.values(state.table.outputs.joints)
+    .every((rows) => rows.every(([x]) => x !== null)));
 }
 
-function undo() {
-  const before = undoHistory.undo();
-  if (before === null) return;
-  state.linkage = normalised(JSON.parse(before));
+/**
+ * A change of the mechanism as a step of the edit history (model/history.js): the mechanism as the last step
+ * left it is recorded, unless nothing changed or the change goes on (`continuing`: a slider still dragged; its
+ * release makes the step). A drag of the drawing shows its frames without changed() and calls it once at the end.
+ */
+function remember(continuing = false) {
+  const json = JSON.stringify(state.linkage);
+  if (!continuing && recorded !== null && json !== recorded) editHistory.record(recorded);
+  if (!continuing) recorded = json;
+  $("editor-undo").disabled = !editHistory.canUndo;
+  $("editor-redo").disabled = !editHistory.canRedo;
+}
+
+/** Undo (back) or redo the last step: the mechanism it left is shown, and written in the address, again. */
+function step(back) {
+  const json = back ? editHistory.undo(recorded) : editHistory.redo(recorded);
+  if (json === null) return;
+  recorded = json;
+  state.linkage = normalised(JSON.parse(json));
   setMode("select");
   changed(true);
 }
 
-function changed(structural) {
-  remember(structural);
+function changed(structural, continuing = false) {
+  remember(continuing);
   writeAddress();
   if (structural) list.render(state.linkage, state.traced);
   const linkage = requestLinkage(state.linkage);
@@ -244,8 +263,10 @@ function changed(structural) {
     showAnswer();
     return;
   }
+  const asked = JSON.stringify(linkage);
   specials.submit(specialRequest(linkage), (answer) => {
     state.special = answer.ok ? answer.data.outputs.special : [];
+    state.specialOf = asked;           // the readiness line takes the limits of this mechanism only
     showSpecial();
   });
   tables.submit(tableRequest(linkage), (answer) => {
@@ -277,7 +298,7 @@ function askEstimate(linkage) {
       $("editor-masses-status").textContent = state.dynamicsKept ? "" : t.editor_masses_estimated;
     } else {
       state.places = null;
-      $("editor-masses-status").textContent = refusalText(answer.error, t);
+      $("editor-masses-status").textContent = refusalText(answer.error, t, groupNames(state.linkage));
     }
     showMasses();
     writeAddress();
@@ -325,7 +346,7 @@ function inputLabels() {
 function showAnswer() {
   inputLabels();
   const { table, refusal } = state;
-  const reason = refusal ? refusalText(refusal, t) : null;
+  const reason = refusal ? refusalText(refusal, t, groupNames(state.linkage)) : null;
   const refusals = new Map(refusal && refusedGroup(refusal) !== null ? [[refusedGroup(refusal), reason]] : []);
   if (JSON.stringify([...refusals]) !== JSON.stringify([...list.refusals])) {    // not during a drag that closes
     list.refusals = refusals;
@@ -347,8 +368,17 @@ function showAnswer() {
 
 function showSpecial() {
   const shown = state.refusal || !state.table;
-  renderSpecial($("editor-special"), $("editor-warnings"), shown ? [] : state.special ?? [], shown ? [] : state.table.warnings,
-    lang, (phi) => setAngle(frameOf(state.table, phi)), sliderInput(), t.units_m);
+  renderSpecial($("editor-special"), shown ? [] : state.special ?? [], lang, (phi) => setAngle(frameOf(state.table, phi)),
+    sliderInput(), t.units_m);
+  showReadiness();
+}
+
+/** The readiness line above the drawing (view/readiness.js): W, the turn or where each group assembles, what next. */
+function showReadiness() {
+  const { linkage, table, refusal } = state;
+  const special = state.specialOf === JSON.stringify(linkage) ? state.special : null;
+  renderReadiness($("editor-readiness"), readiness({ linkage, table, refusal, special }),
+    refusal ? refusalText(refusal, t, groupNames(linkage)) : "", t, lang);
 }
 
 function askPlan() {
@@ -381,7 +411,7 @@ function showPlans() {
 
 function fillQuantities() {
   const select = $("editor-quantity");
-  const all = state.table && !state.refusal ? quantities(state.table) : [];
+  const all = state.table && !state.refusal ? quantities(state.table, (pair) => slideLabel(pair, t)) : [];
   const keep = select.value || all.find((q) => q.id.startsWith("slides:"))?.id || all[0]?.id;
   select.replaceChildren(...all.map((q) => new Option(plainText(q.label), q.id)));
   if (keep && all.some((q) => q.id === keep)) select.value = keep;
@@ -407,7 +437,7 @@ function draw() {
   drawing.draw({
     frameJoints: linkage.frame.joints,
     joints: Object.fromEntries(jointNames.map((n) => [n, s.joints[n] ?? null])),
-    guides: guideShapes(s, [...guides(linkage).keys()]),
+    guides: guideShapes(s, [...guides(linkage).keys()]).map((g) => ({ ...g, label: guideLabel(g.name, t) })),
     links: table && !state.refusal ? linkShapes(linkage, table, s) : [],
     traces, picked: new Set(state.picked), clickable,
   });
@@ -494,7 +524,8 @@ $("editor-new").addEventListener("click", () => {
   presetSelect.value = "";
   load(emptyLinkage());
 });
-$("editor-undo").addEventListener("click", undo);
+$("editor-undo").addEventListener("click", () => step(true));
+$("editor-redo").addEventListener("click", () => step(false));
 $("editor-estimate").addEventListener("click", () => {
   state.dynamicsKept = false;
   const linkage = requestLinkage(state.linkage);
@@ -530,9 +561,10 @@ $("copy-link").addEventListener("click", async () => {
 });
 document.addEventListener("keydown", (event) => {
   if (event.key === "Escape") setMode("select");
-  if (event.key === "z" && (event.ctrlKey || event.metaKey) && !event.target.closest("input, select")) {
+  const key = event.key.toLowerCase();        // Ctrl+Z undoes; Ctrl+Shift+Z and Ctrl+Y redo
+  if ((key === "z" || key === "y") && (event.ctrlKey || event.metaKey) && !event.target.closest("input, select")) {
     event.preventDefault();
-    undo();
+    step(key === "z" && !event.shiftKey);
   }
 });
 

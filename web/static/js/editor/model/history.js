@@ -1,35 +1,43 @@
 /**
- * Undo over the mechanism's JSON (the address's document): each change keeps the mechanism shown before it;
- * edits closer together than DRAG_MS (a slider drag) are one step, an added or removed element always one.
+ * Undo and redo over the mechanism's JSON (the address's document). Every edit is one step: an element added
+ * or removed, a value typed, a whole drag (of a joint, or of a length's slider) however many frames it took.
+ * The caller records the mechanism as it was before the step (`record(before)`); undo hands back that JSON and
+ * keeps the one shown for redo; a new step after an undo forgets what could be redone.
  */
-const UNDO_DEPTH = 100;
-const DRAG_MS = 800;
+const DEPTH = 100;               // steps kept
 
-export class UndoHistory {
-  #steps = [];
-  #shown = null;          // the mechanism as last shown, JSON
-  #at = -Infinity;        // when it last changed, ms
+export class EditHistory {
+  #done = [];                   // the mechanism before each step, oldest first, JSON
+  #undone = [];                 // the mechanism after each undone step, latest undone last, JSON
 
-  /** The mechanism is now `json` (at time `now`, ms); `structural`: an element was added or removed. */
-  remember(json, structural, now) {
-    if (this.#shown !== null && this.#shown !== json && (structural || now - this.#at > DRAG_MS)) {
-      this.#steps.push(this.#shown);
-      if (this.#steps.length > UNDO_DEPTH) this.#steps.shift();
-    }
-    if (this.#shown !== json) this.#at = now;
-    this.#shown = json;
+  /** A step begins from the mechanism `before` (JSON); what was undone can no longer be redone. */
+  record(before) {
+    this.#done.push(before);
+    if (this.#done.length > DEPTH) this.#done.shift();
+    this.#undone = [];
   }
 
-  get empty() {
-    return this.#steps.length === 0;
+  get canUndo() {
+    return this.#done.length > 0;
   }
 
-  /** The mechanism before the last step (JSON), or null; it becomes the one shown. */
-  undo() {
-    const before = this.#steps.pop();
+  get canRedo() {
+    return this.#undone.length > 0;
+  }
+
+  /** The mechanism before the last step (JSON), or null; `shown` (JSON, the mechanism now) kept for redo. */
+  undo(shown) {
+    const before = this.#done.pop();
     if (before === undefined) return null;
-    this.#shown = before;
-    this.#at = -Infinity;
+    this.#undone.push(shown);
     return before;
+  }
+
+  /** The mechanism after the last undone step (JSON), or null; `shown` kept for undo. */
+  redo(shown) {
+    const after = this.#undone.pop();
+    if (after === undefined) return null;
+    this.#done.push(shown);
+    return after;
   }
 }

@@ -16,13 +16,16 @@ export const PICKS = {
   PRP: ["guide", "guide"], RPP: ["joint", "guide"],
 };
 
-const LETTERS = "ABCDEFGHKLMNOPQRSTUVWXYZ";
+const MOVING = "ABCDEFGHKLMNPQRSTUVWXYZ";       // moving joints and points: A the crank's pin, then B, C … (no I, J, O)
+const FRAME = "O";                               // frame joints: O, O₁, O₂ … as the textbook names the supports
+const SUB = "₀₁₂₃₄₅₆₇₈₉";
 const SNAP = 0.005;              // m: placed points snap to a 5 mm grid
 const MILLIMETRE = 1e-3;
 
 const snap = (value) => Math.round(value / SNAP) * SNAP;
 const mm = (value) => Math.round(value / MILLIMETRE) * MILLIMETRE;
 const round6 = (value) => Math.round(value * 1e6) / 1e6;
+const subscript = (n) => String(n).replace(/\d/g, (d) => SUB[d]);
 
 export function emptyLinkage() {
   return { frame: { joints: {}, guides: {} }, input: null, groups: [] };
@@ -59,20 +62,57 @@ export function links(linkage) {
   return [[linkage.input.link, "crank"], ...linkage.groups.flatMap((g, k) => g.links.map((link) => [link, k]))];
 }
 
+/**
+ * A group's name in the structural formula (server/core/structure/analysis.py, group_name): class II with
+ * Artobolevsky's kind as the subscript and its links, "II₂(2,3)" for the RRP dyad of links 2 and 3
+ * (Chaika–Vasylenko Fig. 3.3b). The one name of the group in the list, the drawings and the messages.
+ */
+export function groupName(group) {
+  return `II${subscript(KINDS.indexOf(group.kind) + 1)}(${group.links.join(",")})`;
+}
+
+/** The names of all groups, in order of attachment (messages name a group by its index into it). */
+export function groupNames(linkage) {
+  return linkage.groups.map(groupName);
+}
+
+/**
+ * A guide's label in the reader's language: the presets' guides by their textbook names (x–x for a slider's
+ * line, x₁–x₁ and x₂–x₂ for two cylinders, the lever's slot), t.guide_label_<name>; the student's own by name.
+ */
+export function guideLabel(name, t) {
+  return t[`guide_label_${name}`] ?? name;
+}
+
+/** A sliding pair as the API names it ("E/ram": the slider E on the guide ram) with its guide's label: "E/x–x". */
+export function slideLabel(pair, t) {
+  const [joint, guide] = pair.split("/");
+  return guide === undefined ? pair : `${joint}/${guideLabel(guide, t)}`;
+}
+
 function usedNames(linkage) {
   const names = new Set([...joints(linkage).keys(), ...guides(linkage).keys()]);
   for (const group of linkage.groups) names.add(group.inner);
   return names;
 }
 
-/** The first letter (then letter + number) that names nothing yet. */
-export function freeName(linkage, letters = LETTERS) {
+/** The first moving joint's letter (then letter + subscript) that names nothing yet: A, B, C … in order. */
+export function freeName(linkage) {
   const used = usedNames(linkage);
   for (let round = 0; ; round += 1) {
-    for (const letter of letters) {
-      const name = round ? `${letter}${round}` : letter;
+    for (const letter of MOVING) {
+      const name = round ? `${letter}${subscript(round)}` : letter;
       if (!used.has(name)) return name;
     }
+  }
+}
+
+/** The next frame joint's name: O, then O₁, O₂ … */
+export function freeFrameName(linkage) {
+  const used = usedNames(linkage);
+  for (let k = 0; ; k += 1) {
+    const name = k ? `${FRAME}${subscript(k)}` : FRAME;
+    if (!used.has(name)) return name;
   }
 }
 
@@ -84,7 +124,7 @@ function freeGuideName(linkage) {
 const nextLink = (linkage) => Math.max(0, ...links(linkage).map(([link]) => link)) + 1;
 
 export function addFrameJoint(linkage, [x, y]) {
-  const name = freeName(linkage, "O" + LETTERS);
+  const name = freeFrameName(linkage);
   linkage.frame.joints[name] = [snap(x), snap(y)];
   return name;
 }
@@ -185,6 +225,25 @@ export function addLinkGuide(linkage, link, place, frame) {
   element.new_guides = { ...(element.new_guides ?? {}),
     [name]: { link, along: mm(dx * c + dy * s), across: mm(-dx * s + dy * c), angle: 0 } };
   return name;
+}
+
+/**
+ * The joint `from` (a frame joint, the crank's pin, a group's inner joint or a point) named `to` wherever the
+ * mechanism refers to it; false, and nothing changed, where `to` is empty, longer than 16 characters, holds "/"
+ * or names another element already.
+ */
+export function renameJoint(linkage, from, to) {
+  const name = to.trim();
+  if (!name || name.length > 16 || name.includes("/") || (name !== from && usedNames(linkage).has(name))) return false;
+  const swap = (old) => (old === from ? name : old);
+  const rekeyed = (object) => Object.fromEntries(Object.entries(object).map(([key, value]) => [swap(key), value]));
+  linkage.frame.joints = rekeyed(linkage.frame.joints);
+  for (const element of [linkage.input, ...linkage.groups].filter(Boolean)) {
+    for (const field of ["pivot", "joint", "inner"]) if (element[field] !== undefined) element[field] = swap(element[field]);
+    if (element.outer) element.outer = element.outer.map(swap);
+    if (element.points) element.points = rekeyed(element.points);
+  }
+  return true;
 }
 
 /** The mechanism as the API takes it, or null while it has no crank. */

@@ -47,9 +47,9 @@ const subscriptDigits = (text) => String(text).replace(/\d/g, (d) => DIGITS[d]);
 
 /**
  * Every quantity the student may plot against φ: {id, label (notation markup), unit, values}.
- * Joints: x, y, x′, y′, x″, y″; links: θ, θ′, θ″; slides: s, s′, s″.
+ * Joints: x, y, x′, y′, x″, y″; links: θ, θ′, θ″; slides: s, s′, s″, each slide labelled by slideName(pair).
  */
-export function quantities(table) {
+export function quantities(table, slideName = (pair) => pair) {
   const out = [];
   const o = table.outputs;
   const primes = ["", "′", "″"];
@@ -69,7 +69,7 @@ export function quantities(table) {
   }
   for (const slide of Object.keys(o.slides)) {
     ["slides", "slides_d1", "slides_d2"].forEach((key, order) => {
-      out.push({ id: `${key}:${slide}`, label: `s${primes[order]}_{${slide}}`, unit: "m", values: o[key][slide] });
+      out.push({ id: `${key}:${slide}`, label: `s${primes[order]}_{${slideName(slide)}}`, unit: "m", values: o[key][slide] });
     });
   }
   return out;

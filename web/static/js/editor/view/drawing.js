@@ -87,7 +87,7 @@ export class Drawing {
       svgElement("line", { ...line, class: `guide${scene.picked.has(g.name) ? " picked" : ""}` }, guides);
       svgElement("line", { ...line, class: "guide-hit", "data-guide": g.name, "stroke-width": reach }, guides);
       const at = this.xy(g.point);
-      svgElement("text", { x: at[0] + 6, y: at[1] - 6, class: "guide-label" }, guides).textContent = g.name;
+      svgElement("text", { x: at[0] + 6, y: at[1] - 6, class: "guide-label" }, guides).textContent = g.label ?? g.name;
     }
     for (const path of scene.traces) {
       const points = path.filter(Boolean).map((p) => this.xy(p).map((v) => v.toFixed(1)).join(",")).join(" ");

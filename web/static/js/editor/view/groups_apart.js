@@ -1,16 +1,15 @@
 /**
  * The mechanism taken apart as in Chaika–Vasylenko Fig. 3.3: the input mechanism I(0,1) (the crank on the
  * frame) and each class-II group alone, at the cursor angle, its outer pairs marked where it attaches
- * (open circles, the guide a dashed stroke) and its inner pair filled.
+ * (open circles, the guide a dashed stroke) and its inner pair filled; each group under its name in the
+ * structural formula (II₂(2,3)).
  */
 import { element } from "../../common/view/dom.js";
 import { fitScale, svgElement } from "../../common/view/svg.js";
 import { linkShapes } from "../model/geometry.js";
-import { KINDS } from "../model/linkage.js";
+import { groupName } from "../model/linkage.js";
 
 const SIZE = [170, 130];
-const SUB = "₀₁₂₃₄₅₆₇₈₉";
-const sub = (n) => String(n).replace(/\d/g, (d) => SUB[d]);
 
 function figure(caption, label, shapes, outer, inner, guides) {
   const points = [...outer, ...inner].map((j) => j.at).concat(shapes.flatMap((s) => s.lines.flat()))
@@ -62,8 +61,7 @@ export function renderGroupsApart(host, linkage, table, s, t) {
   const figures = [figure(`I(0,${crank.link})`, t.editor_input_mechanism, shapes.filter((sh) => sh.link === crank.link),
     inputGuide ? [] : [at(crank.pivot)], [at(crank.joint)],
     inputGuide ? [{ at: s.joints[crank.joint] ?? inputGuide.point, angle: inputGuide.angle }] : [])];
-  linkage.groups.forEach((group, k) => {
-    const kindNumber = KINDS.indexOf(group.kind) + 1;          // Artobolevsky's kinds 1…5
+  linkage.groups.forEach((group) => {
     const guideNames = group.guides ?? (group.guide ? [group.guide] : []);
     const guides = guideNames.map((name) => {
       const g = s.guideAt(name);
@@ -72,8 +70,8 @@ export function renderGroupsApart(host, linkage, table, s, t) {
       return { at: slider ?? g?.point, angle: g?.angle };
     });
     const inner = group.kind === "RPR" ? [] : [at(group.inner)];
-    figures.push(figure(`${k}: II${sub(kindNumber)}(${group.links.join(",")}) ${group.kind}`,
-      `${t.editor_group_apart} ${k}`, shapes.filter((sh) => group.links.includes(sh.link)),
+    figures.push(figure(`${groupName(group)} ${group.kind}`,
+      `${t.editor_group_apart} ${groupName(group)} ${group.kind}`, shapes.filter((sh) => group.links.includes(sh.link)),
       (group.outer ?? []).map(at), inner, guides));
   });
   host.replaceChildren(...figures);

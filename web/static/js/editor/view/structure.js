@@ -1,11 +1,9 @@
 /**
  * The structural analysis (Chaika–Vasylenko §3.1; Chebyshev's formula W = 3n − 2p₅ − p₄), the structural
- * formula I(0,1) → II₃(2,3) → …, the class of the mechanism and its groups; or why the mechanism is refused.
+ * formula I(0,1) → II₃(2,3) → …, the class of the mechanism and its groups, each by its name in the formula
+ * (class II, Artobolevsky's kind as the subscript, its links); or why the mechanism is refused.
  */
 import { element } from "../../common/view/dom.js";
-
-const SUB = "₀₁₂₃₄₅₆₇₈₉";
-const sub = (n) => String(n).replace(/\d/g, (d) => SUB[d]);
 
 export function renderStructure(host, structure, refusal, t) {
   if (refusal) {
@@ -28,7 +26,7 @@ export function renderStructure(host, structure, refusal, t) {
     element("dd", { id: "editor-formula", textContent: s.formula }),
     element("dt", { textContent: t.editor_class }),
     element("dd", { id: "editor-class", textContent: `${s.class === 2 ? "II" : "I"}` }));
-  const groups = element("ol", { className: "structure-groups", start: 0 }, ...s.groups.map((g) => element("li", {},
-    `II${sub(g.kind_number)}(${g.links.join(",")}) — ${g.kind}: ${t.editor_attached_to} ${g.attached_to.join(", ")}`)));
+  const groups = element("ul", { className: "structure-groups" }, ...s.groups.map((g) => element("li", { "data-group-name": g.name },
+    `${g.name} — ${g.kind}, ${t.editor_kind} ${g.kind_number}: ${t.editor_attached_to} ${g.attached_to.join(", ")}`)));
   host.replaceChildren(list, groups);
 }
