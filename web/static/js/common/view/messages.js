@@ -18,9 +18,9 @@ function numberText(value, spec, lang) {
   const general = /^(?:\.(\d+))?g$/.exec(spec ?? "");
   if (general) return formatQuantity(value, lang, Number(general[1] ?? 6));
   const [mantissa, power] = String(value).split("e");          // no format: every digit, as Python's str()
-  const text = lang === "en" ? mantissa : mantissa.replace(".", ",");
-  return (power ? `${text}·10${power.replace(/[-+]?\d+/, (p) => [...String(Number(p))].map((c) => SUPERSCRIPTS[c]).join(""))}`
-    : text).replace("-", MINUS);
+  const digits = lang === "en" ? mantissa : mantissa.replace(".", ",");
+  const exponent = power === undefined ? "" : `·10${[...String(Number(power))].map((c) => SUPERSCRIPTS[c]).join("")}`;
+  return `${digits}${exponent}`.replace("-", MINUS);
 }
 
 /**
