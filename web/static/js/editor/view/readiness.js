@@ -46,7 +46,8 @@ export function readiness({ linkage, table, refusal, special }) {
   const slider = linkage.input?.kind === "slider";
   const base = { slider, mobility: null, groups: [], near: [], turns: false, pin: linkage.input?.joint ?? null,
     bare: !linkage.groups.length };
-  if (!Object.keys(linkage.frame.joints).length && !Object.keys(linkage.frame.guides).length) return { ...base, state: "empty" };
+  const frame = Object.keys(linkage.frame.joints ?? {}).length + Object.keys(linkage.frame.guides ?? {}).length;
+  if (!frame) return { ...base, state: "empty" };
   if (!linkage.input) return { ...base, state: "no_input" };
   if (refusal) return { ...base, state: "refused" };
   if (!table) return { ...base, state: "waiting" };
@@ -68,9 +69,12 @@ export function readiness({ linkage, table, refusal, special }) {
   return { ...base, state: turns ? "ready" : "partial", mobility, groups, near, turns };
 }
 
-/** A stretch of the input in words: "φ from 221.22° to 143.90° (through 0°)", "s from 0.1 to 0.15 m". */
+/** A stretch of the input in words: "φ from 221.22° through 0° to 143.90°", "s from 0.1 to 0.15 m". */
 function rangeText([from, to], slider, t, lang) {
-  if (slider) return messageText(t.editor_ready_range_s, { from: formatNumber(from, lang, 4), to: formatNumber(to, lang, 4), unit: t.units_m });
+  if (slider) {
+    return messageText(t.editor_ready_range_s, { from: formatNumber(from, lang, 4), to: formatNumber(to, lang, 4),
+      unit: t.units_m });
+  }
   const [a, b] = [from, to].map((phi) => `${formatNumber(phi * DEG, lang, 2)}°`);
   return messageText(from > to ? t.editor_ready_range_wraps : t.editor_ready_range, { from: a, to: b });
 }
