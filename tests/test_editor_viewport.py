@@ -1,7 +1,7 @@
 """The editor's view of the plane (web/static/js/editor/model/viewport.js, run in Node): world ↔ drawing, zoom about
 a point, pan, pinch, fit, the grid's step and snapping, each checked by arithmetic done here: the mapping
 X = (x − x₀)k, Y = (y₀ − y)k inverted, the world point under the pointer (between the fingers) kept where it is,
-the step the smallest round length at least 6 drawing units long, a snapped point the nearest grid node."""
+the step the smallest round length at least the units asked for, a snapped point the nearest grid node."""
 from __future__ import annotations
 
 import json
@@ -82,11 +82,11 @@ def test_fit_puts_every_point_inside_the_drawing_centred():
     assert (min(y for _, y in drawn) + max(y for _, y in drawn)) / 2 == pytest.approx(300, rel=TIGHT)
 
 
-@pytest.mark.parametrize("k", [600.0, 713.0, 37.0, 12345.0, 180000.0])
-def test_the_grid_step_is_the_smallest_round_length_six_units_long(k):
-    step, major = run(("gridStep", [{"x0": 0, "y0": 0, "k": k}]), ("majorStep", [0.02]))
+@pytest.mark.parametrize("k, units", [(600.0, 12.0), (713.0, 12.0), (37.0, 6.0), (12345.0, 25.9), (180000.0, 12.0)])
+def test_the_grid_step_is_the_smallest_round_length_as_long_as_asked(k, units):
+    step, major = run(("gridStep", [{"x0": 0, "y0": 0, "k": k}, units]), ("majorStep", [0.02]))
     rounds = sorted(m * 10.0 ** e for m in (1, 2, 5) for e in range(-6, 3))
-    expected = next(r for r in rounds if r * k >= 6 * (1 - 1e-12))
+    expected = next(r for r in rounds if r * k >= units * (1 - 1e-12))
     assert step == pytest.approx(expected, rel=TIGHT)
     assert major == pytest.approx(0.1, rel=TIGHT)
 

@@ -5,6 +5,11 @@
  * paths and the plot come from the table. The mechanism lives in the address (?m=…), and in files (export, import).
  */
 import { Drawing } from "./view/drawing.js";
+import { PointerGestures } from "./view/pointer.js";
+import { DirectEdit } from "./view/drag.js";
+import { keyboardEditing } from "./view/keyboard_place.js";
+import { viewControls } from "./view/view_controls.js";
+import { handles } from "./model/handles.js";
 import { ElementList } from "./view/elements.js";
 import { QuantityPlot } from "./view/plot.js";
 import { renderGroupsApart } from "./view/groups_apart.js";
@@ -48,7 +53,7 @@ const SPIN = 60;                               // degrees of crank per second of
 const state = {
   linkage: emptyLinkage(), mode: "select", picked: [], table: null, refusal: null, k: 0, playing: false,
   traced: new Set(), plan: null, special: [], quantities: [], fitPending: false,
-  dynamics: null, dynamicsKept: false, places: null,
+  dynamics: null, dynamicsKept: false, places: null, preview: null, handles: [],
 };
 const tables = new LatestRequest(lang);
 const planner = new LatestRequest(lang);
@@ -58,12 +63,51 @@ const editHistory = new EditHistory();
 let recorded = null;                 // the mechanism (JSON) as the last step of the edit history left it
 const stage = $("editor-drawing");
 
-const drawing = new Drawing(stage, {
-  label: t.drawing,
-  onPlace: (p) => place(p),
-  onJoint: (name, at) => pickJoint(name, at),
-  onGuide: (name, at) => pickGuide(name, at),
+const HANDLE_WORDS = { joint: "editor_handle_joint", guide: "editor_handle_guide", guide_angle: "editor_handle_angle" };
+const drawing = new Drawing(stage, { label: t.drawing, names: (kind, name) => t[HANDLE_WORDS[kind]].replace("{name}", name) });
+const readout = viewControls(drawing, { t, lang, onView: () => draw() });
+/** Dragging a handle: the drawing follows the pointer, the table asked as it goes (view/drag.js). */
+const direct = new DirectEdit({
+  read: () => {
+    const table = state.refusal ? null : state.table;
+    return { linkage: state.linkage, table, k: state.k, s: stateAt(state.linkage, table, state.k),
+      shown: table?.phi[state.k] ?? state.k * DEG };
+  },
+  ask: (linkage, onAnswer) => {
+    if (linkage.input) tables.submit(tableRequest(linkage), onAnswer);
+    else queueMicrotask(() => onAnswer({ ok: false, error: { code: null, message: "", loc: [], ctx: {} } }));
+  },
+  show: (linkage, table, preview, answered) => {
+    Object.assign(state, { linkage, table, preview, refusal: null });
+    if (answered) list.render(linkage, state.traced);
+    if (preview?.stop) $("editor-prompt").textContent = t.editor_drag_stopped;
+    else prompt();
+    draw();
+  },
+  commit: (linkage, _changed, table) => {
+    Object.assign(state, { linkage, table, preview: null });
+    prompt();
+    changed(true);
+  },
+  snapping: () => drawing.snap,
 });
+new PointerGestures(drawing, {
+  canDrag: () => state.mode === "select" && !state.playing,
+  dragStart: (id) => {
+    const handle = state.handles.find((h) => h.id === id);
+    return Boolean(handle) && direct.start(handle);
+  },
+  drag: (at) => direct.move(at),
+  dragEnd: () => direct.end(),
+  dragCancel: () => direct.cancel(),
+  joint: (name, at) => pickJoint(name, at),
+  guide: (name, at) => pickGuide(name, at),
+  place: (at) => place(at),
+  hover: (at) => readout.pointer(at),
+  view: () => draw(),
+});
+keyboardEditing(drawing, { t, lang, on: { joint: (name, at) => pickJoint(name, at), guide: (name, at) => pickGuide(name, at),
+  place: (at) => place(at), handle: (id) => state.handles.find((h) => h.id === id), nudge: (h, step) => direct.nudge(h, step) } });
 const list = new ElementList($("editor-elements"), {
   t, lang, onEdit: (continuing) => changed(false, continuing), onStructure: () => changed(true),
   onTrace: (name, on) => {
@@ -112,8 +156,26 @@ function current() {
   return stateAt(state.linkage, state.table, state.k);
 }
 
+/** What the tool picks next, if it is an element: "joint" or "guide" (a click on the plane makes a new one there). */
+function pickWanted() {
+  const { mode, picked } = state;
+  if (mode === "crank" && !picked.length) return "joint";
+  if (mode === "slider" && !picked.length) return "guide";
+  const next = PICKS[mode]?.[picked.length];
+  return next === "joint" || next === "guide" ? next : null;
+}
+
+/** A new frame joint or guide (along x) at p, picked for the tool. */
+function pickNew(kind, p) {
+  state.picked.push(kind === "joint" ? addFrameJoint(state.linkage, p) : addFrameGuide(state.linkage, p));
+  if (PICKS[state.mode]?.length !== state.picked.length) changed(true);       // (a complete group: added below)
+  afterPick();
+}
+
 function place(p) {
   const { mode, linkage } = state;
+  const wanted = pickWanted();
+  if (wanted) return pickNew(wanted, p);
   if (mode === "joint") addFrameJoint(linkage, p);
   else if (mode === "guide") addFrameGuide(linkage, p);
   else if (mode === "crank" && state.picked.length === 1) setCrank(linkage, state.picked[0], p);
@@ -144,7 +206,7 @@ function placing() {
 
 function pickJoint(name, at) {
   const { mode, picked, linkage } = state;
-  if (placing()) return place(at);
+  if (placing() || pickWanted() === "guide") return place(at);
   if (mode === "select") {
     if (state.traced.has(name)) state.traced.delete(name);
     else if (!(name in linkage.frame.joints)) state.traced.add(name);
@@ -163,7 +225,7 @@ function pickJoint(name, at) {
 
 function pickGuide(name, at) {
   const { mode, picked } = state;
-  if (placing()) place(at);
+  if (placing() || pickWanted() === "joint") place(at);
   else if (mode === "slider" && !picked.length && name in state.linkage.frame.guides) {
     picked.push(name);
     afterPick();
@@ -427,8 +489,10 @@ function drawPlot() {
 /* ---- drawing and animation ---- */
 
 function draw() {
-  const { linkage, table } = state;
+  const { linkage, table, preview } = state;
   const s = current();
+  Object.assign(s.joints, preview?.joints);            // a dragged joint where the pointer has it
+  state.handles = state.mode === "select" && !state.playing ? handles(linkage, s, drawing.handleReach) : [];
   const clickable = PICKS[state.mode]?.[state.picked.length]
     ?? ({ crank: "joint", slider: state.picked.length ? null : "guide" }[state.mode] ?? null);
   const jointNames = [...joints(linkage).keys()];
@@ -439,7 +503,7 @@ function draw() {
     joints: Object.fromEntries(jointNames.map((n) => [n, s.joints[n] ?? null])),
     guides: guideShapes(s, [...guides(linkage).keys()]).map((g) => ({ ...g, label: guideLabel(g.name, t) })),
     links: table && !state.refusal ? linkShapes(linkage, table, s) : [],
-    traces, picked: new Set(state.picked), clickable,
+    traces, picked: new Set(state.picked), clickable, handles: state.handles, stop: preview?.stop ?? null,
   });
   const travel = sliderInput() && state.table ? state.table.phi[state.k] : undefined;
   $("editor-phi-value").textContent = travel === undefined ? `φ = ${formatNumber(state.k, lang, 0)}°`
@@ -493,7 +557,7 @@ function load(linkage, status = "", dynamics = null) {
   state.dynamicsKept = Boolean(dynamics);
   $("editor-masses-status").textContent = dynamics ? t.editor_masses_from_preset : "";
   state.traced = new Set(Object.keys(state.linkage.groups.at(-1)?.points ?? {}).slice(0, 1));
-  state.fitPending = true;
+  state.fitPending = Boolean(state.linkage.input);      // a fit once its table is there; the view stays otherwise
   $("editor-file-status").textContent = status;
   setMode("select");
   changed(true);
@@ -560,7 +624,10 @@ $("copy-link").addEventListener("click", async () => {
   }
 });
 document.addEventListener("keydown", (event) => {
-  if (event.key === "Escape") setMode("select");
+  if (event.key === "Escape") {
+    direct.cancel();
+    setMode("select");
+  }
   const key = event.key.toLowerCase();        // Ctrl+Z undoes; Ctrl+Shift+Z and Ctrl+Y redo
   if ((key === "z" || key === "y") && (event.ctrlKey || event.metaKey) && !event.target.closest("input, select")) {
     event.preventDefault();

@@ -40,7 +40,7 @@ function attachments(linkage) {
 
 /**
  * Every handle at state s (geometry.js stateAt: joints, guideAt, frameOf): [{id, kind, name, at}], at in metres;
- * a guide's angle handle `reach` metres from its point. Handles whose place is unknown (a group that does not
+ * a guide's angle handle `reach` metres from its point `from`. Handles whose place is unknown (a group that does not
  * close there) are left out.
  */
 export function handles(linkage, s, reach) {
@@ -48,6 +48,8 @@ export function handles(linkage, s, reach) {
   const add = (kind, name, at, extra = {}) => {
     if (at && Number.isFinite(at[0]) && Number.isFinite(at[1])) out.push({ id: `${kind}:${name}`, kind, name, at, ...extra });
   };
+  const addAngle = (name, line) => add("guide_angle", name,
+    [line.point[0] + reach * Math.cos(line.angle), line.point[1] + reach * Math.sin(line.angle)], { from: line.point });
   for (const [name, p] of Object.entries(linkage.frame.joints)) add("frame", name, p);
   const input = linkage.input;
   if (input) add(input.kind === "slider" ? "input_slider" : "crank", input.joint, s.joints[input.joint]);
@@ -61,14 +63,14 @@ export function handles(linkage, s, reach) {
     const line = s.guideAt(name);
     if (!line) continue;
     if (Array.isArray(g.through)) add("guide", name, line.point);
-    add("guide_angle", name, [line.point[0] + reach * Math.cos(line.angle), line.point[1] + reach * Math.sin(line.angle)]);
+    addAngle(name, line);
   }
   for (const element of attachments(linkage)) {
     for (const name of Object.keys(element.new_guides ?? {})) {
       const line = s.guideAt(name);
       if (!line) continue;
       add("guide", name, line.point);
-      add("guide_angle", name, [line.point[0] + reach * Math.cos(line.angle), line.point[1] + reach * Math.sin(line.angle)]);
+      addAngle(name, line);
     }
   }
   return out;

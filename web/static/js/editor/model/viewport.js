@@ -3,14 +3,13 @@
  * (x, y) in metres (y up) to drawing units (X, Y) (Y down) by X = (x − x₀)k, Y = (y₀ − y)k: (x₀, y₀) is the
  * world point at the drawing's top left corner and k the drawing units per metre. Zooming keeps the world point
  * under the pointer (or between two fingers) where it is on the screen; panning moves the world with the
- * pointer. The grid's step is a round length (1, 2 or 5 ·10ⁿ m) at least MIN_STEP_UNITS apart on the drawing,
- * and a snapped point is the nearest grid node. No DOM.
+ * pointer. The grid's step is a round length (1, 2 or 5 ·10ⁿ m) at least a given number of drawing units apart
+ * (the drawing asks for 10 CSS pixels' worth), and a snapped point is the nearest grid node. No DOM.
  */
 export const WIDTH = 800;                // drawing units: the SVG's viewBox
 export const HEIGHT = 600;
 export const DEFAULT_VIEW = Object.freeze({ x0: -0.5, y0: 0.5, k: 600 });     // 1.33 m × 1 m round the origin
 export const K_RANGE = [20, 200000];     // drawing units per metre: 40 m … 4 mm across the drawing
-const MIN_STEP_UNITS = 6;                // the grid's step on the drawing, at least
 const MANTISSAS = [1, 2, 5];
 
 /** The drawing point [X, Y] of the world point [x, y] (m). */
@@ -61,9 +60,9 @@ export function fitView(points, view, fill = 0.8) {
   return { x0: (xa + xb) / 2 - WIDTH / 2 / k, y0: (ya + yb) / 2 + HEIGHT / 2 / k, k };
 }
 
-/** The grid's step (m): the smallest of 1, 2, 5 ·10ⁿ that is at least MIN_STEP_UNITS on the drawing. */
-export function gridStep({ k }) {
-  const least = MIN_STEP_UNITS / k;
+/** The grid's step (m): the smallest of 1, 2, 5 ·10ⁿ that is at least `units` drawing units long. */
+export function gridStep({ k }, units) {
+  const least = units / k;
   const power = 10 ** Math.floor(Math.log10(least));
   const mantissa = MANTISSAS.find((m) => m * power >= least * (1 - 1e-12)) ?? 10;
   return Number((mantissa * power).toPrecision(12));

@@ -1,93 +1,174 @@
 /**
- * The mechanism drawn at one crank angle, in an SVG whose mapping from metres is fixed until the student asks
- * for a new fit (so that clicking places things where the pointer is): X = (x − x₀)k, Y = (y₀ − y)k,
- * written on the <svg> as data-view="x₀ y₀ k". Joints and guides are clickable (data-joint, data-guide);
- * every click is reported with where it was, in metres. Traced paths are polylines over the whole turn.
+ * The mechanism drawn at one input position, in an SVG whose mapping from metres is the view
+ * (model/viewport.js: X = (x − x₀)k, Y = (y₀ − y)k), written on the <svg> as data-view="x₀ y₀ k". The view
+ * changes only when the student zooms, pans or asks for a fit: adding an element never moves it. Under the
+ * mechanism a grid of round lengths (its step is the snapping step); over it the handles the student may
+ * drag. Joints and guides are focusable and carry data-joint, data-guide (a click or Enter picks them);
+ * a draggable one also data-drag (its handle's id, model/handles.js). Traced paths are polylines over the
+ * whole turn. A drag that stopped where the mechanism no longer assembles is marked: the stopped joint
+ * ringed and a dashed line to the pointer.
  */
 import { svgElement } from "../../common/view/svg.js";
 import { setRichText } from "../../common/view/notation.js";
+import { DEFAULT_VIEW, HEIGHT, WIDTH, fitView, gridStep, majorStep, snapPoint, toScreen, toWorld, zoomAbout }
+  from "../model/viewport.js";
 
-const WIDTH = 800;
-const HEIGHT = 600;
-const DEFAULT_VIEW = { x0: -0.5, y0: 0.5, k: 600 };      // 1.33 m × 1 m around the origin
 const GUIDE_HALF = 3;                                     // m: a frame guide is drawn across the whole view
 const BLOCK = [34, 17];                                    // a slider block's length and width, drawing units
 const LINK_COLORS = ["#1f4e79", "#b5442f", "#2e7d4f", "#6a4c93", "#c07400", "#5d6978"];
+const GRID_PIXELS = 10;                                    // the grid's step on the screen, CSS px at least
+const ANGLE_HANDLE_PIXELS = 46;                            // a guide's angle handle from its point, CSS px
+const LABEL_ALONG = [-70, 70, -130, 130, -200, 200, -30];   // CSS px along a guide where its name may go
+const LABEL_CLEAR = 34;                                    // CSS px from any joint a guide's name keeps
 
 export class Drawing {
-  constructor(host, { onPlace, onJoint, onGuide, label }) {
+  /** names(kind, name): the words a handle is read by ("joint C", "guide g1: angle"). */
+  constructor(host, { label, names }) {
     this.view = { ...DEFAULT_VIEW };
-    this.svg = svgElement("svg", { viewBox: `0 0 ${WIDTH} ${HEIGHT}`, role: "img", "aria-label": label,
+    this.grid = true;
+    this.snap = false;
+    this.names = names;
+    this.scene = null;
+    this.svg = svgElement("svg", { viewBox: `0 0 ${WIDTH} ${HEIGHT}`, role: "group", "aria-label": label,
       class: "editor-svg" });
     host.append(this.svg);
-    this.svg.addEventListener("click", (event) => {
-      const target = event.target.closest("[data-joint], [data-guide]");
-      const at = this.toWorld(event.clientX, event.clientY);
-      if (target?.dataset.joint) onJoint(target.dataset.joint, at);
-      else if (target?.dataset.guide) onGuide(target.dataset.guide, at);
-      else onPlace(at);
-    });
     this.#writeView();
+  }
+
+  /** Drawing units per CSS pixel (the SVG is as wide as its box). */
+  get unit() {
+    return this.svg.clientWidth > 0 ? WIDTH / this.svg.clientWidth : 1;
+  }
+
+  /** The grid's step (m) at this view and screen: a round length at least GRID_PIXELS apart. */
+  get step() {
+    return gridStep(this.view, GRID_PIXELS * this.unit);
+  }
+
+  /** How far from its guide's point the angle handle is drawn, in metres at this view. */
+  get handleReach() {
+    return (ANGLE_HANDLE_PIXELS * this.unit) / this.view.k;
+  }
+
+  /** The world point p on the grid when snapping is on, else p. */
+  snapped(p) {
+    return this.snap ? snapPoint(p, this.step) : p;
   }
 
   #writeView() {
     const { x0, y0, k } = this.view;
     this.svg.dataset.view = `${x0} ${y0} ${k}`;
+    this.svg.dataset.step = String(this.step);
+  }
+
+  /** Show `view` from the next draw on (the page draws again). */
+  setView(view) {
+    this.view = view;
+    this.#writeView();
   }
 
   /** Fit the view around the points [x, y] (metres), with a margin. */
   fit(points) {
-    const finite = points.filter((p) => p && Number.isFinite(p[0]) && Number.isFinite(p[1]));
-    if (finite.length < 2) return;
-    const xs = finite.map((p) => p[0]);
-    const ys = finite.map((p) => p[1]);
-    const [xa, xb, ya, yb] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
-    const k = 0.8 * Math.min(WIDTH / Math.max(xb - xa, 0.05), HEIGHT / Math.max(yb - ya, 0.05));
-    this.view = { x0: (xa + xb) / 2 - WIDTH / 2 / k, y0: (ya + yb) / 2 + HEIGHT / 2 / k, k };
-    this.#writeView();
+    this.setView(fitView(points, this.view));
   }
 
-  toWorld(clientX, clientY) {
+  /** Zoom by factor about the drawing's centre (the view's buttons). */
+  zoom(factor) {
+    this.setView(zoomAbout(this.view, [WIDTH / 2, HEIGHT / 2], factor));
+  }
+
+  /** The drawing point [X, Y] under the client point (CSS px of the window). */
+  toDrawing(clientX, clientY) {
     const point = this.svg.createSVGPoint();
     point.x = clientX;
     point.y = clientY;
     const local = point.matrixTransform(this.svg.getScreenCTM().inverse());
-    const { x0, y0, k } = this.view;
-    return [x0 + local.x / k, y0 - local.y / k];
+    return [local.x, local.y];
   }
 
-  xy([x, y]) {
+  /** The world point (m) under the client point. */
+  toWorld(clientX, clientY) {
+    return toWorld(this.view, this.toDrawing(clientX, clientY));
+  }
+
+  xy(p) {
+    return toScreen(this.view, p);
+  }
+
+  #grid(layer) {
     const { x0, y0, k } = this.view;
-    return [(x - x0) * k, (y0 - y) * k];
+    const defs = svgElement("defs", {}, layer);
+    const steps = [["minor", this.step], ["major", majorStep(this.step)]];
+    for (const [kind, step] of steps) {
+      const size = step * k;
+      const pattern = svgElement("pattern", { id: `editor-grid-${kind}`, patternUnits: "userSpaceOnUse", width: size,
+        height: size, x: (-x0 * k) % size, y: (y0 * k) % size }, defs);
+      svgElement("path", { d: `M0,0 H${size} M0,0 V${size}`, class: `grid-${kind}` }, pattern);
+      svgElement("rect", { width: WIDTH, height: HEIGHT, fill: `url(#editor-grid-${kind})` }, layer);
+    }
+    const [ox, oy] = this.xy([0, 0]);
+    svgElement("path", { d: `M${ox},0 V${HEIGHT} M0,${oy} H${WIDTH}`, class: "grid-axes" }, layer);
+  }
+
+  /**
+   * Where a guide's name is written: along the guide from its point, on the first of a few places (nearer
+   * first, either way) that keeps LABEL_CLEAR drawing units from every joint (the joints' own names sit by them),
+   * and inside the drawing; beside the point if none does.
+   */
+  #guideLabelAt(g, marks) {
+    const [c, s] = [Math.cos(g.angle), -Math.sin(g.angle)];        // the guide's direction on the drawing (Y down)
+    const [x, y] = this.xy(g.point);
+    const scale = this.unit;
+    for (const along of LABEL_ALONG) {
+      const at = [x + along * scale * c + 6 * scale * s, y + along * scale * s - 6 * scale * c];
+      const clear = marks.every(([mx, my]) => Math.hypot(mx - at[0], my - at[1]) >= LABEL_CLEAR * scale);
+      if (clear && at[0] > 0 && at[0] < WIDTH - 30 && at[1] > 15 && at[1] < HEIGHT) return at;
+    }
+    return [x + 6, y - 6];
+  }
+
+  #focusable(attributes, label) {
+    return { ...attributes, tabindex: 0, role: "button", "aria-label": label };
   }
 
   /**
    * scene: {frameJoints: {name: [x, y]}, joints: {name: [x, y] | null}, guides: [{name, point, angle, moving}],
    * links: [{link, lines: [[a, b]], blocks: [{at, angle}]}], traces: [[[x, y], …]], picked: Set of names,
-   * clickable: "joint" | "guide" | null}
+   * clickable: "joint" | "guide" | null, handles: [{id, kind, name, at}] (draggable now), stop: {at, pointer}
+   * | null (a drag stopped at `at`, the pointer at `pointer`)}
    */
   draw(scene) {
+    this.scene = scene;
+    const focused = this.svg.contains(document.activeElement) ? document.activeElement.dataset.key : null;
     this.svg.replaceChildren();
     // drawing units per CSS pixel: a finger-sized target (about 14 px round a joint) at any screen width
-    const unit = this.svg.clientWidth > 0 ? WIDTH / this.svg.clientWidth : 1;
-    const reach = Math.max(11, 14 * unit);
+    const reach = Math.max(11, 14 * this.unit);
     const layer = (name) => svgElement("g", { class: name }, this.svg);
+    const grid = layer("grid");
     const guides = layer("guides");
     const traces = layer("traces");
     const linksLayer = layer("links");
     const joints = layer("joints");
+    const handles = layer("handles");
+    if (this.grid) this.#grid(grid);
     this.svg.classList.toggle("picking-joint", scene.clickable === "joint");
     this.svg.classList.toggle("picking-guide", scene.clickable === "guide");
+    const drags = new Map(scene.handles.map((h) => [h.id, h]));
+    const marks = Object.values(scene.joints).filter(Boolean).map((p) => this.xy(p));
+    const dragOf = (kinds, name) => kinds.map((kind) => drags.get(`${kind}:${name}`)).find(Boolean);
     for (const g of scene.guides) {
       const half = g.moving ? 0.25 : GUIDE_HALF;
       const [c, s] = [Math.cos(g.angle), Math.sin(g.angle)];
       const a = this.xy([g.point[0] - half * c, g.point[1] - half * s]);
       const b = this.xy([g.point[0] + half * c, g.point[1] + half * s]);
       const line = { x1: a[0], y1: a[1], x2: b[0], y2: b[1] };
+      const drag = dragOf(["guide"], g.name);
       svgElement("line", { ...line, class: `guide${scene.picked.has(g.name) ? " picked" : ""}` }, guides);
-      svgElement("line", { ...line, class: "guide-hit", "data-guide": g.name, "stroke-width": reach }, guides);
-      const at = this.xy(g.point);
-      svgElement("text", { x: at[0] + 6, y: at[1] - 6, class: "guide-label" }, guides).textContent = g.label ?? g.name;
+      svgElement("line", this.#focusable({ ...line, class: `guide-hit${drag ? " draggable" : ""}`, "data-guide": g.name,
+        "data-key": `guide:${g.name}`, "stroke-width": reach, ...(drag ? { "data-drag": drag.id } : {}) },
+      this.names("guide", g.name)), guides);
+      const [lx, ly] = this.#guideLabelAt(g, marks);
+      svgElement("text", { x: lx, y: ly, class: "guide-label" }, guides).textContent = g.label ?? g.name;
     }
     for (const path of scene.traces) {
       const points = path.filter(Boolean).map((p) => this.xy(p).map((v) => v.toFixed(1)).join(",")).join(" ");
@@ -109,7 +190,7 @@ export class Drawing {
           transform: `rotate(${(-block.angle * 180) / Math.PI} ${x} ${y})` }, group);
       }
     }
-    for (const [name, p] of Object.entries(scene.frameJoints)) {
+    for (const p of Object.values(scene.frameJoints)) {
       const [x, y] = this.xy(p);
       svgElement("path", { d: `M${x},${y} l-10,16 h20 z`, class: "ground" }, joints);
       svgElement("line", { x1: x - 14, y1: y + 16, x2: x + 14, y2: y + 16, class: "ground-line" }, joints);
@@ -117,9 +198,24 @@ export class Drawing {
     for (const [name, p] of Object.entries(scene.joints)) {
       if (!p) continue;
       const [x, y] = this.xy(p);
+      const drag = dragOf(["frame", "crank", "input_slider", "RRR", "RRP", "point"], name);
       svgElement("circle", { cx: x, cy: y, r: 5.5, class: `joint${scene.picked.has(name) ? " picked" : ""}` }, joints);
-      svgElement("circle", { cx: x, cy: y, r: reach, class: "joint-hit", "data-joint": name }, joints);
+      svgElement("circle", this.#focusable({ cx: x, cy: y, r: reach, class: `joint-hit${drag ? " draggable" : ""}`,
+        "data-joint": name, "data-key": `joint:${name}`, ...(drag ? { "data-drag": drag.id } : {}) },
+      this.names("joint", name)), joints);
       setRichText(svgElement("text", { x: x + 9, y: y - 9, class: "joint-label" }, joints), name);
     }
+    for (const h of scene.handles.filter((item) => item.kind === "guide_angle")) {
+      const [x, y] = this.xy(h.at);
+      svgElement("circle", this.#focusable({ cx: x, cy: y, r: 6, class: "angle-handle draggable", "data-drag": h.id,
+        "data-key": h.id }, this.names("guide_angle", h.name)), handles);
+    }
+    if (scene.stop) {
+      const [x, y] = this.xy(scene.stop.at);
+      const [px, py] = this.xy(scene.stop.pointer);
+      svgElement("line", { x1: x, y1: y, x2: px, y2: py, class: "stop-line" }, handles);
+      svgElement("circle", { cx: x, cy: y, r: 13, class: "stop-ring" }, handles);
+    }
+    if (focused) this.svg.querySelector(`[data-key="${CSS.escape(focused)}"]`)?.focus({ preventScroll: true });
   }
 }
