@@ -32,12 +32,19 @@ export class Drawing {
     this.svg = svgElement("svg", { viewBox: `0 0 ${WIDTH} ${HEIGHT}`, role: "group", "aria-label": label,
       class: "editor-svg" });
     host.append(this.svg);
+    // the SVG's width in CSS px, kept as it changes: read during a draw it would force a layout of the page
+    this.width = this.svg.clientWidth;
+    new ResizeObserver(([entry]) => {
+      const resized = Math.abs(entry.contentRect.width - this.width) > 1;
+      this.width = entry.contentRect.width;
+      if (resized && this.scene) this.draw(this.scene);        // the grid's step and the targets follow the size
+    }).observe(this.svg);
     this.#writeView();
   }
 
   /** Drawing units per CSS pixel (the SVG is as wide as its box). */
   get unit() {
-    return this.svg.clientWidth > 0 ? WIDTH / this.svg.clientWidth : 1;
+    return this.width > 0 ? WIDTH / this.width : 1;
   }
 
   /** The grid's step (m) at this view and screen: a round length at least GRID_PIXELS apart. */

@@ -41,6 +41,9 @@ export class PointerGestures {
 
   #down(event) {
     if (event.pointerType === "mouse" && event.button !== 0) return;
+    // no focus moved by a press (a focused joint redrawn every frame costs a layout of the page): the keyboard's
+    // focus is the keyboard's
+    event.preventDefault();
     this.drawing.svg.setPointerCapture?.(event.pointerId);
     this.pointers.set(event.pointerId, this.#point(event));
     if (this.pointers.size === 1) {
