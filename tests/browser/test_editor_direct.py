@@ -7,8 +7,8 @@ there places; the dynamics scenes opened from the editor with the mechanism in t
 dragged until the crank no longer turns and then past where the group closes: the drawing stops at the last
 assembling geometry (marked while dragging, kept on release), the dynamics links disabled, no "{" in any visible
 text. The same six-bar built with the keyboard only (typed coordinates, Tab and Enter, arrows and Escape). On a
-390 × 844 touch screen a joint dragged by a finger and the drawing pinched and panned with two. Screenshots in ru,
-en and at phone size.
+390 × 844 and an 820 × 1180 touch screen a joint dragged by a finger and the drawing pinched and panned with two,
+the controls on the screen. Screenshots in ru, en and at phone and tablet size.
 """
 from __future__ import annotations
 
@@ -43,6 +43,7 @@ VISIBLE_TEXT = """() => { const walker = document.createTreeWalker(document.body
     return texts.join(" "); }"""
 ROD = '[data-group="1"] > label.field input[type="text"]'       # the RRP group's length |BC|
 WRITTEN = 1e-4            # m: the data are written to 0.1 mm
+TABLET = {"width": 820, "height": 1180}
 
 
 def rod(page) -> float:
@@ -317,8 +318,9 @@ def touch(cdp, kind: str, points: list[tuple[float, float]]) -> None:
                                            "touchPoints": [{"x": x, "y": y, "id": i} for i, (x, y) in enumerate(points)]})
 
 
-def test_touch_drag_pinch_and_two_finger_pan_on_a_phone(chromium, app_url):
-    context = chromium.new_context(base_url=app_url, viewport=PHONE, has_touch=True, is_mobile=True,
+@pytest.mark.parametrize("screen", [PHONE, TABLET], ids=["phone", "tablet"])
+def test_touch_drag_pinch_and_two_finger_pan_on_a_phone_and_a_tablet(chromium, app_url, screen):
+    context = chromium.new_context(base_url=app_url, viewport=screen, has_touch=True, is_mobile=True,
                                    device_scale_factor=1)
     page = context.new_page()
     problems = []
@@ -360,10 +362,10 @@ def test_touch_drag_pinch_and_two_finger_pan_on_a_phone(chromium, app_url):
         assert panned[1] == pytest.approx(zoomed[1] + 40 * unit / zoomed[2], abs=1e-3 * unit / zoomed[2])
         for control in ("#editor-zoom-in", "#editor-fit", "#editor-place-x", '[data-mode="RRR"]'):
             box = page.locator(control).bounding_box()
-            assert box and box["x"] >= 0 and box["x"] + box["width"] <= PHONE["width"], control
+            assert box and box["x"] >= 0 and box["x"] + box["width"] <= screen["width"], control
         width = page.evaluate("() => document.documentElement.scrollWidth")
-        assert width <= PHONE["width"], f"the editor is {width} px wide"
-        screenshot(page, "editor_direct_phone_ru")
+        assert width <= screen["width"], f"the editor is {width} px wide"
+        screenshot(page, f"editor_direct_{screen['width']}_ru")
         assert problems == []
     finally:
         context.close()

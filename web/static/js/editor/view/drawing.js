@@ -120,11 +120,16 @@ export class Drawing {
   /**
    * Where a guide's name is written: along the guide from its point, on the first of a few places (nearer
    * first, either way) that keeps LABEL_CLEAR drawing units from every joint (the joints' own names sit by them),
-   * and inside the drawing; beside the point if none does.
+   * and inside the drawing; beside the point if none does. A guide whose point is out of view is named from the
+   * point of its line nearest the drawing's centre.
    */
   #guideLabelAt(g, marks) {
     const [c, s] = [Math.cos(g.angle), -Math.sin(g.angle)];        // the guide's direction on the drawing (Y down)
-    const [x, y] = this.xy(g.point);
+    let [x, y] = this.xy(g.point);
+    if (x < 0 || x > WIDTH || y < 0 || y > HEIGHT) {                 // its point out of view: from the line's point
+      const along = (WIDTH / 2 - x) * c + (HEIGHT / 2 - y) * s;      // nearest to the drawing's centre
+      [x, y] = [x + along * c, y + along * s];
+    }
     const scale = this.unit;
     for (const along of LABEL_ALONG) {
       const at = [x + along * scale * c + 6 * scale * s, y + along * scale * s - 6 * scale * c];
