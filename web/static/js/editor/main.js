@@ -64,7 +64,7 @@ let recorded = null;                 // the mechanism (JSON) as the last step of
 const stage = $("editor-drawing");
 
 const HANDLE_WORDS = { joint: "editor_handle_joint", guide: "editor_handle_guide", guide_angle: "editor_handle_angle" };
-const drawing = new Drawing(stage, { label: t.drawing, names: (kind, name) => t[HANDLE_WORDS[kind]].replace("{name}", name) });
+const drawing = new Drawing(stage, { label: t.drawing, names: (kind, name) => messageText(t[HANDLE_WORDS[kind]], { name }) });
 const readout = viewControls(drawing, { t, lang, onView: () => draw() });
 /** Dragging a handle: the drawing follows the pointer, the table asked as it goes (view/drag.js). */
 const direct = new DirectEdit({
@@ -84,7 +84,7 @@ const direct = new DirectEdit({
     else prompt();
     draw();
   },
-  commit: (linkage, _changed, table) => {
+  commit: (linkage, table) => {
     Object.assign(state, { linkage, table, preview: null });
     prompt();
     changed(true);

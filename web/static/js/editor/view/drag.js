@@ -21,9 +21,8 @@ export class DirectEdit {
    * page: {read() → {linkage, table, k, s, shown}: the mechanism, its table, the row shown, the state there and
    * the input's value there (φ, rad, or s, m); ask(linkage, onAnswer): the table's question (answers {ok, data}
    * or {ok: false, error}); show(linkage, table, preview, answered): draw this (preview: {joints: {name: [x, y]}}
-   * or {stop: {at, pointer}}, or null; answered: the fields are to show it); commit(linkage, changed, table):
-   * the drag is over with this mechanism (changed: other than before it; table: its last table); snapping():
-   * whether the grid snaps}.
+   * or {stop: {at, pointer}}, or null; answered: the fields are to show it); commit(linkage, table): the drag is
+   * over with this mechanism (table: its last table); snapping(): whether the grid snaps}.
    */
   constructor(page) {
     this.page = page;
@@ -82,7 +81,7 @@ export class DirectEdit {
     if (!session) return;
     this.session = null;
     cancelAnimationFrame(session.frame);
-    this.page.commit(JSON.parse(session.json), false, session.table);
+    this.page.commit(JSON.parse(session.json), session.table);
   }
 
   #preview() {
@@ -124,8 +123,9 @@ export class DirectEdit {
       const { linkage, table } = session.good;
       const at = table.outputs.joints[session.handle.name]?.[session.k] ?? session.handle.at;
       this.page.show(linkage, table, { stop: { at, pointer: session.latest.p } }, true);
-    } else {
-      this.page.show(question.linkage, session.table, question.at ? { joints: { [session.handle.name]: question.at } } : null, true);
+    } else {                                       // nothing assembled when the drag began: no stop, it follows
+      this.page.show(question.linkage, answer.ok ? answer.data : session.table,
+        question.at ? { joints: { [session.handle.name]: question.at } } : null, true);
     }
     performance.measure("editor-drag-answer-drawn", { start, end: performance.now() });
   }
@@ -136,6 +136,6 @@ export class DirectEdit {
     cancelAnimationFrame(session.frame);
     const kept = session.good?.linkage ?? session.latest?.linkage ?? JSON.parse(session.json);
     const table = session.good?.table ?? session.table;
-    this.page.commit(kept, JSON.stringify(kept) !== session.json, table);
+    this.page.commit(kept, table);
   }
 }
