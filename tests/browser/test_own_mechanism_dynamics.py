@@ -144,7 +144,8 @@ def test_the_student_places_the_loads_and_the_equation_of_motion_takes_them(brow
     page.wait_for_selector("#editor-masses-loads td.hint")                                # no loads now
     assert address_dynamics(page)["masses"]["forces"] == []
     offered = page.eval_on_selector_all("#editor-load-place option", "os => os.map((o) => o.value)")
-    assert offered == ["force:s23", "force:E/ram", *(f"moment:{k}" for k in range(1, 6))]   # every pair and link
+    assert offered == ["force:s23", "force:E/ram", *(f"moment:{k}" for k in range(1, 6)),   # every pair and link,
+                       *(f"point:{k}" for k in range(1, 6))]                          # a force at a point of each
     page.select_option("#editor-load-place", "moment:3")
     page.click("#editor-load-add")
     page.fill('input[data-path="masses.moments.0.working"]', "400")
