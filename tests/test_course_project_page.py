@@ -12,33 +12,22 @@ import html
 import io
 import json
 import math
-import re
 import shutil
 import subprocess
 from decimal import ROUND_HALF_UP, Decimal
 from pathlib import Path
 
 import pytest
-from fastapi.testclient import TestClient
 
-from server.api.app import app
 from server.core.structure.presets import presets
 from server.lessons.scenes import interface_texts
+from test_editor_page import client, embedded  # noqa: F401  (the module's client fixture)
 
 REPO = Path(__file__).resolve().parents[1]
 SECTIONS = ["project_report_title", "project_structure", "project_kinematics", "project_dynamics",
             "project_kinetostatics", "project_equations", "project_sheets"]
 
 
-@pytest.fixture(scope="module")
-def client() -> TestClient:
-    with TestClient(app) as c:
-        yield c
-
-
-def embedded(page: str, element_id: str):
-    match = re.search(rf'<script type="application/json" id="{element_id}">(.*?)</script>', page, re.S)
-    return json.loads(match.group(1).replace("<\\/", "</"))
 
 
 @pytest.mark.parametrize("lang", ["ru", "uk", "en"])

@@ -21,6 +21,7 @@ import re
 from urllib.parse import parse_qs, urlparse
 
 from conftest import PHONE, REPO, interface_texts, screenshot
+from test_editor import act, click_at
 
 REFUSED = re.compile(r"Failed to load resource: the server responded with a status of 422")
 PRESETS = sorted(path.stem for path in (REPO / "content" / "mechanisms").glob("*.json"))
@@ -58,27 +59,6 @@ LABELS_APART = """() => [...document.querySelectorAll(".plan-svg")].map((svg) =>
     }));
     return { kind: svg.closest("[data-plan-kind]").dataset.planKind, vertices: [...svg.querySelectorAll(".plan-vertex")]
         .map((t) => t.textContent), meet }; })"""
-
-
-def answers(page) -> int:
-    return int(page.get_attribute("#editor-drawing", "data-answers") or 0)
-
-
-def act(page, action) -> None:
-    """Do something that changes the mechanism and wait for the page to show the server's answer to it."""
-    before = answers(page)
-    action()
-    page.wait_for_function("""n => { const s = document.querySelector("#editor-drawing");
-        return Number(s.dataset.answers ?? 0) > n && s.dataset.state !== "waiting"; }""", arg=before, timeout=30_000)
-
-
-def click_at(page, x: float, y: float) -> None:
-    """A click at (x, y) m of the drawing (its mapping: data-view = "x₀ y₀ k")."""
-    cx, cy = page.evaluate("""([x, y]) => { const svg = document.querySelector("#editor-drawing svg");
-        const [x0, y0, k] = svg.dataset.view.split(" ").map(Number);
-        const p = svg.createSVGPoint(); p.x = (x - x0) * k; p.y = (y0 - y) * k;
-        const q = p.matrixTransform(svg.getScreenCTM()); return [q.x, q.y]; }""", [x, y])
-    page.mouse.click(cx, cy)
 
 
 def place(page, mode, *clicks) -> None:
