@@ -85,9 +85,9 @@ const direct = new DirectEdit({
     draw();
   },
   commit: (linkage, table) => {
-    Object.assign(state, { linkage, table, preview: null });
+    Object.assign(state, { linkage, preview: null });
     prompt();
-    changed(true);
+    changed(true, false, table);
   },
   snapping: () => drawing.snap,
 });
@@ -313,7 +313,8 @@ function step(back) {
   changed(true);
 }
 
-function changed(structural, continuing = false) {
+/** known: the table already answered for this very mechanism (a drag's last answer), shown without asking again. */
+function changed(structural, continuing = false, known = null) {
   remember(continuing);
   writeAddress();
   if (structural) list.render(state.linkage, state.traced);
@@ -331,7 +332,7 @@ function changed(structural, continuing = false) {
     state.specialOf = asked;           // the readiness line takes the limits of this mechanism only
     showSpecial();
   });
-  tables.submit(tableRequest(linkage), (answer) => {
+  const answered = (answer) => {
     if (answer.ok) {
       state.table = answer.data;
       state.refusal = null;
@@ -340,7 +341,9 @@ function changed(structural, continuing = false) {
     }
     showAnswer();
     writeAddress();
-  });
+  };
+  if (known) answered({ ok: true, data: known });
+  else tables.submit(tableRequest(linkage), answered);
   askEstimate(linkage);
 }
 

@@ -7,8 +7,8 @@
  * the shown input position is drawn whole (and the fields show the new lengths); one that does not (the
  * group cannot close there, or never) stops the drag: the drawing stays at the last assembling geometry,
  * marked, until the pointer comes back to where it assembles. On release the last assembling mechanism is
- * kept (its exact table asked once more with the rest of the page's answers: one undo step); Escape or a
- * cancelled touch puts back the mechanism as it was.
+ * kept with its table, the answer to it (the exact one: the rest of the page's answers follow; one undo step);
+ * Escape or a cancelled touch puts back the mechanism as it was.
  * Performance marks: "editor-drag-preview-drawn" (a frame drawn from the dragged geometry) and
  * "editor-drag-answer-drawn" (an answer drawn), for bench/editor_redraw.py.
  */
@@ -22,7 +22,8 @@ export class DirectEdit {
    * the input's value there (φ, rad, or s, m); ask(linkage, onAnswer): the table's question (answers {ok, data}
    * or {ok: false, error}); show(linkage, table, preview, answered): draw this (preview: {joints: {name: [x, y]}}
    * or {stop: {at, pointer}}, or null; answered: the fields are to show it); commit(linkage, table): the drag is
-   * over with this mechanism (table: its last table); snapping(): whether the grid snaps}.
+   * over with this mechanism (table: its exact table, the answer to it, or null: to be asked); snapping(): whether
+   * the grid snaps}.
    */
   constructor(page) {
     this.page = page;
@@ -81,7 +82,7 @@ export class DirectEdit {
     if (!session) return;
     this.session = null;
     cancelAnimationFrame(session.frame);
-    this.page.commit(JSON.parse(session.json), session.table);
+    this.page.commit(JSON.parse(session.json), null);
   }
 
   #preview() {
@@ -135,7 +136,6 @@ export class DirectEdit {
     this.session = null;
     cancelAnimationFrame(session.frame);
     const kept = session.good?.linkage ?? session.latest?.linkage ?? JSON.parse(session.json);
-    const table = session.good?.table ?? session.table;
-    this.page.commit(kept, table);
+    this.page.commit(kept, session.good?.table ?? null);
   }
 }
