@@ -30,10 +30,6 @@ export class DirectEdit {
     this.session = null;
   }
 
-  get active() {
-    return this.session !== null;
-  }
-
   /** Begin dragging `handle` (true: the drag has begun). */
   start(handle) {
     const { linkage, table, k, s, shown } = this.page.read();
