@@ -229,10 +229,18 @@ def test_a_joint_dragged_past_where_the_mechanism_closes_stops_there(browser_pag
     page.goto(six_bar_address("ru"))
     page.wait_for_function("() => document.querySelector('#editor-drawing')?.dataset.state === 'ready'")
     page.wait_for_function("() => document.querySelector('#editor-open-dynamics a[data-scene]') !== null")
-    # O₁ to the right: beyond x = 0.45 the crank no longer turns fully; at φ = 0 the RRR closes while
-    # |O₁A| ≤ |AB| + |BO₁| = 0.474 m, that is x ≤ 0.574 m; the pointer goes on to 0.8 m
+    # O₁ to the right: the RRR closes while |O₁A| ≤ |AB| + |BO₁| = 0.474 m; at φ = 180° |O₁A| = x + 0.1, so beyond
+    # x = 0.374 m the crank no longer turns fully, and at φ = 0 (shown) it closes while x ≤ 0.574 m; the pointer rests at 0.54 m (answered: there it
+    # assembles) and goes on to 0.8 m
     before = answers(page)
-    drag(page, SUPPORT, (0.8, 0), steps=45, release=False)
+    drag(page, SUPPORT, (0.54, 0), steps=20, release=False)
+    page.wait_for_function("""() => {        // O₁ drawn at 0.54 m: this geometry answered, and it assembles
+        const svg = document.querySelector("#editor-drawing svg"), [x0, , k] = svg.dataset.view.split(" ").map(Number);
+        const o = svg.querySelector('[data-joint="O1"]');
+        return o && Math.abs(x0 + o.cx.baseVal.value / k - 0.54) < 1e-3 && !svg.querySelector(".stop-ring"); }""")
+    for i in range(1, 27):
+        page.mouse.move(*client(page, 0.54 + 0.01 * i, 0))
+        page.wait_for_timeout(40)
     page.wait_for_selector("#editor-drawing .stop-ring")
     assert page.inner_text("#editor-prompt") == texts["editor_drag_stopped"]
     x, _ = drawn(page, "O1")
