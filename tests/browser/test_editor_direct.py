@@ -253,6 +253,8 @@ def test_a_joint_dragged_past_where_the_mechanism_closes_stops_there(browser_pag
     assert page.locator("#editor-open-dynamics a[data-scene]").count() == 0
     assert page.locator("#editor-open-dynamics .disabled").count() > 0
     assert page.get_attribute("#editor-course-project", "aria-disabled") == "true"
+    page.wait_for_function("() => document.querySelector('#editor-readiness').dataset.state === 'partial'")
+    assert texts["editor_ready_no_full_turn"] in page.inner_text("#editor-readiness")   # the readiness line says so
     text = page.evaluate(VISIBLE_TEXT)
     assert "{" not in text, re.findall(r".{30}\{.{30}", text)
     screenshot(page, "editor_direct_stopped_ru")
