@@ -7,7 +7,7 @@ if ! command -v /usr/bin/chromium >/dev/null 2>&1; then
     if [ "$(id -u)" -eq 0 ]; then apt-get update -qq && apt-get install -y -qq chromium >/dev/null
     else sudo apt-get update -qq && sudo apt-get install -y -qq chromium >/dev/null; fi
 fi
-if ! command -v pdftotext >/dev/null 2>&1; then     # tests/browser/test_course_project.py reads the printed PDF
+if ! command -v pdftotext >/dev/null 2>&1; then     # tests/browser/test_project_report.py reads the printed PDF
     if [ "$(id -u)" -eq 0 ]; then apt-get update -qq && apt-get install -y -qq poppler-utils >/dev/null
     else sudo apt-get update -qq && sudo apt-get install -y -qq poppler-utils >/dev/null; fi
 fi

@@ -23,7 +23,7 @@ import xml.etree.ElementTree as ElementTree
 import pytest
 
 from conftest import ARTIFACTS, interface_texts, shown
-from test_course_project import SECTIONS, TITLES, act, api_answer, close, fact, settled, type_into
+from test_project_report import SECTIONS, TITLES, act, api_answer, close, fact, settled, type_into
 
 pytestmark = pytest.mark.browser
 
