@@ -42,7 +42,7 @@ def free_port() -> int:
 def start_server(data_dir: Path, port: int) -> subprocess.Popen:
     env = os.environ | {"MDL_DATA_DIR": str(data_dir), "MDL_SUBMISSIONS_PER_MINUTE": "1000000"}
     process = subprocess.Popen([sys.executable, "-m", "server", "--port", str(port)], cwd=REPO, env=env,
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     deadline = time.monotonic() + START_SECONDS
     while time.monotonic() < deadline:
         try:
@@ -50,8 +50,18 @@ def start_server(data_dir: Path, port: int) -> subprocess.Popen:
                 return process
         except httpx.HTTPError:
             time.sleep(0.1)
-    process.kill()
+    kill_group(process)
     raise RuntimeError("the server did not start")
+
+
+def kill_group(process: subprocess.Popen) -> None:
+    """SIGKILL the server and every process it started (its heavy processes are in its session): a crash of the
+    whole service, and nothing left running after the test."""
+    try:
+        os.killpg(process.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    process.wait(timeout=10)
 
 
 def burst(base: str, assignment: str, secrets: dict, acknowledged: list, stop: threading.Event, seed: int) -> None:
@@ -110,14 +120,12 @@ def test_kill_during_a_burst_of_submissions(tmp_path, kill_after):
         deadline = time.monotonic() + START_SECONDS
         while len(acknowledged) < kill_after and time.monotonic() < deadline:
             time.sleep(0.005)
-        server.send_signal(signal.SIGKILL)
-        server.wait(timeout=10)
+        kill_group(server)
         stop.set()
         for client in clients:
             client.join(timeout=10)
     finally:
-        if server.poll() is None:
-            server.kill()
+        kill_group(server)
     assert len(acknowledged) >= kill_after, "the burst did not get going before the kill"
     print(f"{len(acknowledged)} submissions acknowledged before the kill")
     totals = check_database(tmp_path / DATABASE_FILE, created["id"], acknowledged)
@@ -126,8 +134,7 @@ def test_kill_during_a_burst_of_submissions(tmp_path, kill_after):
         results = httpx.get(f"{base}/api/v1/assignments/{created['id']}/results/{created['results_token']}").json()
         assert {row["student"].lower(): row["attempts"] for row in results["students"]} == totals
     finally:
-        restarted.kill()
-        restarted.wait(timeout=10)
+        kill_group(restarted)
 
 
 CRASH_BETWEEN_WRITES = """
