@@ -11,8 +11,8 @@ import unicodedata
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from server.classroom.names import (LOOK_ALIKES, MAX_NAME, NameRefused, check_new, clean, look_alike, mixed_script,
-                                    normalise, resembles, roster_names, script, words)
+from server.classroom.names import (MAX_NAME, NameRefused, check_new, clean, confusables, look_alike, mixed_script,
+                                    normalise, resembles, roster_names, script, skeleton, words)
 
 LATIN = "abcdefghijklmnopqrstuvwxyz"
 CYRILLIC = "абвгдеёжзийклмнопрстуфхцчшщъыьэюяєіїґ"
@@ -113,8 +113,8 @@ def test_legitimate_names_are_accepted(name, existing):
 def test_swapping_latin_letters_for_cyrillic_look_alikes_is_always_caught(word, data):
     """A Latin name with any of its letters replaced by a Cyrillic letter that looks like it: refused, whether
     alone (mixed alphabets) or, all replaced, beside the Latin original (a look-alike)."""
-    swappable = {latin: cyr for cyr, prototypes in LOOK_ALIKES.items() for latin in prototypes
-                 if script(cyr) == "CYRILLIC" and latin in LATIN}
+    swappable = {prototype: cyr for cyr, prototype in sorted(confusables().items())
+                 if script(cyr) == "CYRILLIC" and cyr.islower() and prototype in LATIN}
     places = [i for i, c in enumerate(word) if c in swappable]
     if not places:
         return
@@ -123,7 +123,7 @@ def test_swapping_latin_letters_for_cyrillic_look_alikes_is_always_caught(word, 
     with pytest.raises(NameRefused):
         check_new(spoof, [word])
     if len(places) == len(word):                       # every letter swapped: one alphabet, a pure look-alike
-        assert look_alike(normalise(spoof), normalise(word))
+        assert look_alike(spoof, word)
         assert resembles(spoof, [word]) == word
 
 
@@ -131,7 +131,50 @@ def test_swapping_latin_letters_for_cyrillic_look_alikes_is_always_caught(word, 
 @settings(max_examples=200)
 def test_a_name_never_resembles_itself_or_its_own_spelling(name):
     assert resembles(name, [name, name.upper(), " " + name.lower()]) is None
-    assert not look_alike(normalise(name), normalise(name))
+    assert not look_alike(name, name)
+
+
+# --- look-alikes within one alphabet, other alphabets, characters that show nothing ----------------------------
+
+@pytest.mark.parametrize("typed, registered", [
+    ("lvan Petrov", "Ivan Petrov"),                  # a Latin small l for the capital I
+    ("Iv\u0251n Petrov", "Ivan Petrov"),             # U+0251 LATIN SMALL LETTER ALPHA
+    ("1van Petrov", "Ivan Petrov"),                  # the digit 1
+    ("Ivan Petr0v", "Ivan Petrov"),                  # the digit 0
+    ("Marina Ivanova", "Rnarina Ivanova"),           # m and rn
+    ("\u13a0\u13aa\u13d9\u13ac Smith", "Dave Smith"),  # Cherokee ᎠᎪᏙᎬ
+    ("KM-2l/l Ivanov", "KM-21/1 Ivanov"),
+])
+def test_look_alikes_by_the_full_confusables_table_are_refused(typed, registered):
+    with pytest.raises(NameRefused) as refused:
+        check_new(typed, [registered])
+    assert refused.value.code == "name_confusable" and refused.value.about == {"resembles": registered}
+
+
+@pytest.mark.parametrize("blank", ["\u2800", "\u1160", "\u115f", "\u3164", "\uffa0", "\ufe00", "\ufe0f", "\u034f",
+                                   "\u00ad", "\u200d", "\u2060", "\U000e0041", "\U000e0100"])
+def test_characters_that_show_nothing_are_dropped_so_the_name_is_the_registered_one(blank):
+    typed = f"Iv{blank}an Pe{blank}trov{blank}"
+    assert clean(typed) == "Ivan Petrov" and normalise(typed) == normalise("Ivan Petrov")
+    with pytest.raises(NameRefused) as refused:
+        check_new(blank * 3, [])
+    assert refused.value.code == "name_empty"
+
+
+def test_ivan_typed_with_cyrillic_letters_is_refused_and_real_names_stay_apart():
+    with pytest.raises(NameRefused):
+        check_new("I\u0432\u0430\u043d Petrov", ["Ivan Petrov"])          # Iван: a word in two alphabets
+    assert skeleton("\u0406van") == skeleton("Ivan")                      # Ukrainian І reads as the Latin I
+    for one, other in [("Петров", "Петрова"), ("Іван", "Иван"), ("Олена", "Олеся"), ("Ганна", "Ґанна"),
+                       ("Ali", "All"), ("Анна", "Anna"), ("Ярослав", "Ярослава"), ("Юлія", "Юлия")]:
+        assert resembles(one, [other]) is None and check_new(one, [other]) == one
+
+
+def test_the_table_is_all_of_unicodes_confusables():
+    table = confusables()
+    assert len(table) > 6000
+    assert table["\u0430"] == "a" and table["I"] == "l" and table["m"] == "rn" and table["0"] == "O"
+    assert table["\u13a0"] == "D"
 
 
 def test_words_and_scripts():

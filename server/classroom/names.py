@@ -7,36 +7,40 @@ in Cyrillic beside a Latin "Popa". Such a name is refused, saying which name it 
 
 - a word (a run of letters) may not mix alphabets (``mixed_script``): "Ivаn" with the Cyrillic "а" is refused
   even when nobody is called Ivan yet; a name of several words each in one alphabet ("Ivan Петренко") is fine;
-- a name is refused when its skeleton matches an existing name's (``resembles``): each letter is replaced by the
-  Latin letters (or digits) it can be mistaken for, per Unicode Technical Standard #39, confusables.txt.
+- a name is refused when its skeleton matches an existing name's (``resembles``): the skeleton of Unicode
+  Technical Standard #39 (every character replaced by the prototype it can be mistaken for, all of
+  confusables.txt: Cyrillic "а" → "a", Cherokee "Ꭰ" → "D", and within one alphabet "I" → "l", "m" → "rn",
+  "0" → "O"), compared case-folded, so "lvan Petrov" (a Latin l) is refused beside "Ivan Petrov", and
+  "ᎠᎪᏙᎬ Smith" beside "Dave Smith". Distinct letters stay distinct: "Петров" and "Петрова", "Іван" and "Иван".
+
+Characters that show nothing (``IGNORABLE_RANGES``: zero-width and bidi marks, variation selectors, the
+combining grapheme joiner, Hangul fillers, the Braille blank) are dropped from a name as typed (``clean``).
 """
 from __future__ import annotations
 
+import bisect
 import csv
 import io
 import unicodedata
 from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
 
 MAX_NAME = 80
 MAX_ROSTER = 2000                 # names in one roster upload
 
-# Look-alikes across alphabets, from Unicode TR39 confusables.txt (https://www.unicode.org/Public/security/latest/
-# confusables.txt): the "MA" entries whose source is a Cyrillic or Greek letter and whose prototype is one ASCII
-# letter or digit, e.g. "0430 ; 0061 ; MA # ( а → a ) CYRILLIC SMALL LETTER A → LATIN SMALL LETTER A". Keys are
-# compared case-folded, so each lowercase letter lists the prototypes of its own entry and of its capital's
-# ("і" → i from U+0456, and l from U+0406 "І"; "н" → h from U+041D "Н"). Latin letters stand for themselves:
-# names in one alphabet are told apart by their keys (Latin I and l, or 0 and O, are not folded together).
-LOOK_ALIKES: dict[str, str] = {
-    # Cyrillic
-    "а": "a", "б": "6", "в": "b", "г": "r", "е": "e", "з": "3", "к": "k", "м": "m", "н": "h", "о": "o",
-    "р": "p", "с": "c", "т": "t", "у": "y", "х": "x", "ь": "b", "ѕ": "s", "і": "il", "ј": "j", "ѡ": "w",
-    "ѵ": "v", "ү": "y", "һ": "h", "ҽ": "e", "ӏ": "il", "ԁ": "d", "ԍ": "g", "ԛ": "q", "ԝ": "w",
-    # Greek
-    "α": "a", "β": "b", "γ": "y", "ε": "e", "ζ": "z", "η": "h", "ι": "il", "κ": "k", "μ": "m", "ν": "vn",
-    "ο": "o", "ρ": "p", "σ": "o", "τ": "t", "υ": "uy", "χ": "x", "ϲ": "c", "ϳ": "j",
-}
+# Unicode TR39 confusables (every entry of confusables.txt; server/classroom/confusables_build.py makes the table):
+# a character → the characters of its prototype, "а" (Cyrillic) → "a", "I" → "l", "m" → "rn", "0" → "O".
+CONFUSABLES = Path(__file__).with_name("confusables.txt")
+# Characters that show nothing, dropped from a name: Unicode's Default_Ignorable_Code_Point (DerivedCoreProperties,
+# Unicode 15: soft hyphen, combining grapheme joiner, Hangul fillers, variation selectors, tags, …) and blanks
+# that are not classed so, U+2800 BRAILLE PATTERN BLANK and U+FFFC OBJECT REPLACEMENT CHARACTER.
+IGNORABLE_RANGES = ((0x00AD, 0x00AD), (0x034F, 0x034F), (0x061C, 0x061C), (0x115F, 0x1160), (0x17B4, 0x17B5),
+                    (0x180B, 0x180F), (0x200B, 0x200F), (0x202A, 0x202E), (0x2060, 0x206F), (0x2800, 0x2800),
+                    (0x3164, 0x3164), (0xFE00, 0xFE0F), (0xFEFF, 0xFEFF), (0xFFA0, 0xFFA0), (0xFFF0, 0xFFF8),
+                    (0xFFFC, 0xFFFC), (0x1BCA0, 0x1BCA3), (0x1D173, 0x1D17A), (0xE0000, 0xE0FFF))
 # Scripts that one word may legitimately combine (Japanese writes kanji and kana together).
 SCRIPT_FAMILIES = {"HIRAGANA": "JAPANESE", "KATAKANA": "JAPANESE", "CJK": "JAPANESE"}
 ROSTER_HEADERS = {"name", "names", "student", "students", "full name", "имя", "фио", "студент", "ім'я", "піб",
@@ -51,11 +55,23 @@ class NameRefused(ValueError):
         self.code, self.reason, self.about = code, reason, about
 
 
+_IGNORABLE_STARTS = [start for start, _ in IGNORABLE_RANGES]
+
+
+def invisible(c: str) -> bool:
+    """A character that shows nothing in a name: a control or format character, an unassigned or private one,
+    a lone surrogate (category C), or one of ``IGNORABLE_RANGES``."""
+    code = ord(c)
+    k = bisect.bisect_right(_IGNORABLE_STARTS, code) - 1
+    return unicodedata.category(c)[0] == "C" or (k >= 0 and code <= IGNORABLE_RANGES[k][1])
+
+
 def clean(name: str) -> str:
-    """The name as shown: NFKC, control and invisible characters (zero-width spaces, bidi marks, lone
-    surrogates) removed, every run of whitespace one space, no space at the ends."""
-    text = unicodedata.normalize("NFKC", name)
-    kept = "".join(" " if c.isspace() else c for c in text if c.isspace() or unicodedata.category(c)[0] != "C")
+    """The name as shown: NFKC, characters that show nothing removed (``invisible``: zero-width spaces, bidi
+    marks, variation selectors, Hangul fillers, the Braille blank), every run of whitespace one space, no space
+    at the ends."""
+    text = unicodedata.normalize("NFKC", "".join(c for c in name if c.isspace() or not invisible(c)))
+    kept = "".join(" " if c.isspace() else c for c in text if c.isspace() or not invisible(c))
     return " ".join(kept.split())
 
 
@@ -106,22 +122,40 @@ def mixed_script(name: str) -> MixedWord | None:
     return None
 
 
-def skeleton(key: str) -> tuple[str, ...]:
-    """For each character of a key, the characters it can be taken for: itself, and its Latin look-alikes."""
-    return tuple(c + LOOK_ALIKES.get(c, "") for c in key)
+@lru_cache(maxsize=1)
+def confusables() -> dict[str, str]:
+    """The TR39 table: a character → its prototype (read once from ``CONFUSABLES``)."""
+    table = {}
+    for line in CONFUSABLES.read_text(encoding="utf-8").splitlines():
+        if line and not line.startswith("#"):
+            source, *prototype = line.split()
+            table[chr(int(source, 16))] = "".join(chr(int(code, 16)) for code in prototype)
+    return table
 
 
-def look_alike(key: str, other: str) -> bool:
-    """Two different keys that can be read as the same: at every place, some character both can be taken for."""
-    if key == other or len(key) != len(other):
-        return False
-    return all(set(a) & set(b) for a, b in zip(skeleton(key), skeleton(other)))
+def skeleton(text: str) -> str:
+    """The TR39 skeleton: NFD, every character replaced by its prototype, NFD again."""
+    table = confusables()
+    return unicodedata.normalize("NFD", "".join(table.get(c, c) for c in unicodedata.normalize("NFD", text)))
+
+
+@lru_cache(maxsize=16384)
+def look(name: str) -> frozenset[str]:
+    """How a name can be read, case aside: the case-folded skeletons of the name as typed and of its case-folded
+    form (the capital "I" reads as "l", the small "m" as "rn")."""
+    shown = clean(name)
+    return frozenset(skeleton(skeleton(form).casefold()) for form in (shown, shown.casefold()))
+
+
+def look_alike(name: str, other: str) -> bool:
+    """Two names of different students (different keys) that can be read as the same."""
+    return normalise(name) != normalise(other) and not look(name).isdisjoint(look(other))
 
 
 def resembles(name: str, existing: Iterable[str]) -> str | None:
     """The first existing name (as shown) that ``name`` looks like without being it, or None."""
-    key = normalise(name)
-    return next((shown for shown in existing if look_alike(key, normalise(shown))), None)
+    key, seen = normalise(name), look(name)
+    return next((shown for shown in existing if not seen.isdisjoint(look(shown)) and normalise(shown) != key), None)
 
 
 def check_new(name: str, existing: Iterable[str]) -> str:
