@@ -26,14 +26,12 @@ from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import lru_cache
-from pathlib import Path
+
+from .confusables_table import TABLE as CONFUSABLES
 
 MAX_NAME = 80
 MAX_ROSTER = 2000                 # names in one roster upload
 
-# Unicode TR39 confusables (every entry of confusables.txt; server/classroom/confusables_build.py makes the table):
-# a character → the characters of its prototype, "а" (Cyrillic) → "a", "I" → "l", "m" → "rn", "0" → "O".
-CONFUSABLES = Path(__file__).with_name("confusables.txt")
 # Characters that show nothing, dropped from a name: Unicode's Default_Ignorable_Code_Point (DerivedCoreProperties,
 # Unicode 15: soft hyphen, combining grapheme joiner, Hangul fillers, variation selectors, tags, …) and blanks
 # that are not classed so, U+2800 BRAILLE PATTERN BLANK and U+FFFC OBJECT REPLACEMENT CHARACTER.
@@ -124,10 +122,11 @@ def mixed_script(name: str) -> MixedWord | None:
 
 @lru_cache(maxsize=1)
 def confusables() -> dict[str, str]:
-    """The TR39 table: a character → its prototype (read once from ``CONFUSABLES``)."""
+    """Unicode TR39 confusables, every entry (confusables_table.py, made by confusables_build.py): a character →
+    its prototype, "а" (Cyrillic) → "a", "I" → "l", "m" → "rn", "0" → "O"."""
     table = {}
-    for line in CONFUSABLES.read_text(encoding="utf-8").splitlines():
-        if line and not line.startswith("#"):
+    for line in CONFUSABLES.splitlines():
+        if line:
             source, *prototype = line.split()
             table[chr(int(source, 16))] = "".join(chr(int(code, 16)) for code in prototype)
     return table

@@ -1,6 +1,9 @@
-# Unicode confusables (UTS #39), version 13.0.0 of 2020-02-13: source code point, prototype's code points (hex).
-# Made by server/classroom/confusables_build.py from https://www.unicode.org/Public/security/13.0.0/confusables.txt
-# (c) Unicode, Inc.; terms of use: https://www.unicode.org/terms_of_use.html
+"""Unicode confusables (UTS #39), version 13.0.0 of 2020-02-13: per line a source code point and its prototype's code points (hex).
+
+Made by server/classroom/confusables_build.py from https://www.unicode.org/Public/security/13.0.0/confusables.txt
+(c) Unicode, Inc.; terms of use: https://www.unicode.org/terms_of_use.html"""
+VERSION = "13.0.0"
+TABLE = """\
 0022 0027 0027
 0025 00BA 002F 2080
 0030 004F
@@ -6312,3 +6315,4 @@ FFED 25AA
 2FA1B 9F16
 2FA1C 9F3B
 2FA1D 2A600
+"""
