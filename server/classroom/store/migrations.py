@@ -115,6 +115,114 @@ MIGRATIONS = (
             answers TEXT NOT NULL,
             PRIMARY KEY (assignment_id, variant))
     """),
+    Migration(6, "LTI 1.3: platforms, the tool's key pair, launch state, LMS users as students, placements, line "
+                 "items and scores still to post", """
+        CREATE TABLE lti_platforms (
+            id TEXT PRIMARY KEY,
+            issuer TEXT NOT NULL,
+            client_id TEXT NOT NULL,
+            name TEXT NOT NULL,
+            auth_login_url TEXT NOT NULL,
+            auth_token_url TEXT NOT NULL,
+            key_set_url TEXT NOT NULL,
+            deployment_ids TEXT NOT NULL,
+            created_at REAL NOT NULL,
+            UNIQUE (issuer, client_id));
+        CREATE TABLE lti_tool_keys (
+            slot INTEGER PRIMARY KEY,
+            kid TEXT NOT NULL,
+            private_pem TEXT NOT NULL,
+            created_at REAL NOT NULL);
+        CREATE TABLE lti_launch_state (
+            key TEXT PRIMARY KEY,
+            value TEXT NOT NULL,
+            expires_at REAL NOT NULL);
+        CREATE INDEX lti_launch_state_by_expiry ON lti_launch_state (expires_at);
+        CREATE TABLE lti_learners (
+            platform_id TEXT NOT NULL REFERENCES lti_platforms(id),
+            sub TEXT NOT NULL,
+            assignment_id TEXT NOT NULL REFERENCES assignments(id),
+            student_key TEXT NOT NULL,
+            context_id TEXT NOT NULL,
+            ags TEXT,
+            PRIMARY KEY (platform_id, sub, assignment_id));
+        CREATE INDEX lti_learners_by_student ON lti_learners (assignment_id, student_key);
+        CREATE TABLE lti_placements (
+            platform_id TEXT NOT NULL REFERENCES lti_platforms(id),
+            context_id TEXT NOT NULL,
+            assignment_id TEXT NOT NULL REFERENCES assignments(id),
+            title TEXT NOT NULL,
+            placed_at REAL NOT NULL,
+            PRIMARY KEY (platform_id, context_id, assignment_id));
+        CREATE TABLE lti_line_items (
+            platform_id TEXT NOT NULL REFERENCES lti_platforms(id),
+            context_id TEXT NOT NULL,
+            assignment_id TEXT NOT NULL REFERENCES assignments(id),
+            url TEXT NOT NULL,
+            PRIMARY KEY (platform_id, context_id, assignment_id));
+        CREATE TABLE lti_passbacks (
+            assignment_id TEXT NOT NULL REFERENCES assignments(id),
+            student_key TEXT NOT NULL,
+            queued_at REAL NOT NULL,
+            tries INTEGER NOT NULL,
+            retry_at REAL NOT NULL,
+            last_error TEXT,
+            PRIMARY KEY (assignment_id, student_key));
+        CREATE INDEX lti_passbacks_by_retry ON lti_passbacks (retry_at)
+    """, """
+        CREATE TABLE lti_platforms (
+            id TEXT PRIMARY KEY,
+            issuer TEXT NOT NULL,
+            client_id TEXT NOT NULL,
+            name TEXT NOT NULL,
+            auth_login_url TEXT NOT NULL,
+            auth_token_url TEXT NOT NULL,
+            key_set_url TEXT NOT NULL,
+            deployment_ids TEXT NOT NULL,
+            created_at DOUBLE PRECISION NOT NULL,
+            UNIQUE (issuer, client_id));
+        CREATE TABLE lti_tool_keys (
+            slot INTEGER PRIMARY KEY,
+            kid TEXT NOT NULL,
+            private_pem TEXT NOT NULL,
+            created_at DOUBLE PRECISION NOT NULL);
+        CREATE TABLE lti_launch_state (
+            key TEXT PRIMARY KEY,
+            value TEXT NOT NULL,
+            expires_at DOUBLE PRECISION NOT NULL);
+        CREATE INDEX lti_launch_state_by_expiry ON lti_launch_state (expires_at);
+        CREATE TABLE lti_learners (
+            platform_id TEXT NOT NULL REFERENCES lti_platforms(id),
+            sub TEXT NOT NULL,
+            assignment_id TEXT NOT NULL REFERENCES assignments(id),
+            student_key TEXT NOT NULL,
+            context_id TEXT NOT NULL,
+            ags TEXT,
+            PRIMARY KEY (platform_id, sub, assignment_id));
+        CREATE INDEX lti_learners_by_student ON lti_learners (assignment_id, student_key);
+        CREATE TABLE lti_placements (
+            platform_id TEXT NOT NULL REFERENCES lti_platforms(id),
+            context_id TEXT NOT NULL,
+            assignment_id TEXT NOT NULL REFERENCES assignments(id),
+            title TEXT NOT NULL,
+            placed_at DOUBLE PRECISION NOT NULL,
+            PRIMARY KEY (platform_id, context_id, assignment_id));
+        CREATE TABLE lti_line_items (
+            platform_id TEXT NOT NULL REFERENCES lti_platforms(id),
+            context_id TEXT NOT NULL,
+            assignment_id TEXT NOT NULL REFERENCES assignments(id),
+            url TEXT NOT NULL,
+            PRIMARY KEY (platform_id, context_id, assignment_id));
+        CREATE TABLE lti_passbacks (
+            assignment_id TEXT NOT NULL REFERENCES assignments(id),
+            student_key TEXT NOT NULL,
+            queued_at DOUBLE PRECISION NOT NULL,
+            tries INTEGER NOT NULL,
+            retry_at DOUBLE PRECISION NOT NULL,
+            last_error TEXT,
+            PRIMARY KEY (assignment_id, student_key));
+        CREATE INDEX lti_passbacks_by_retry ON lti_passbacks (retry_at)
+    """),
 )
 LATEST = MIGRATIONS[-1].number
 VERSION_TABLE = {

@@ -18,6 +18,7 @@ import psycopg
 from psycopg.conninfo import conninfo_to_dict
 from psycopg_pool import ConnectionPool, PoolTimeout
 
+from .lti_tables import LtiTables
 from .migrations import LATEST, VERSION_TABLE, SchemaTooNew, pending
 from .records import (STUDENT_COLUMNS, SUBMISSION_COLUMNS, AssignmentRecord, StoreUnavailable, StudentRecord,
                       Submission, no_such_student, refuse_attempt, student_record, submission_record)
@@ -37,7 +38,7 @@ def where(url: str) -> str:
             f"/{parts.get('dbname', '')}")
 
 
-class PostgresStore:
+class PostgresStore(LtiTables):
     """AssignmentStore on the PostgreSQL at ``url``. StoreUnavailable (naming the server and the reason) when it
     cannot be reached or migrated."""
 

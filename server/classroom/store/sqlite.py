@@ -16,6 +16,7 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
+from .lti_tables import LtiTables
 from .migrations import LATEST, VERSION_TABLE, SchemaTooNew, legacy_version, pending
 from .records import (STUDENT_COLUMNS, SUBMISSION_COLUMNS, AssignmentRecord, StoreUnavailable, StudentRecord,
                       Submission, no_such_student, refuse_attempt, student_record, submission_record)
@@ -23,7 +24,7 @@ from .records import (STUDENT_COLUMNS, SUBMISSION_COLUMNS, AssignmentRecord, Sto
 BUSY_TIMEOUT_S = 10.0
 
 
-class SQLiteStore:
+class SQLiteStore(LtiTables):
     """AssignmentStore in one SQLite file; one connection per thread. StoreUnavailable (naming the file and
     the reason) when the file or its directory cannot be opened or migrated."""
 
