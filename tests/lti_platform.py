@@ -215,6 +215,13 @@ class Platform:
 
     # --- the roster, launches ----------------------------------------------------------------------------------
 
+    def add_link(self, context: str, custom: dict, title: str, line_item: dict | None = None) -> str:
+        """A resource link set up by hand in the course (custom parameters typed in), with its line item."""
+        link_id = f"link-{next(self._counter)}"
+        lineitem = self.add_lineitem(context, line_item | {"resourceLinkId": link_id})["id"] if line_item else None
+        self.links[link_id] = {"context": context, "custom": dict(custom), "title": title, "lineitem": lineitem}
+        return link_id
+
     def enrol(self, context: str, user: User, roles: list[str]) -> None:
         self.rosters.setdefault(context, {})[user.id] = (user, list(roles))
 
