@@ -220,6 +220,25 @@ def test_rate_limits_are_counted_in_the_database(store, open_store):
     assert [other.recent_assignments_by_client("10.0.0.1", since) for since in (0.0, 120.0, 141.0)] == [2, 1, 0]
 
 
+def test_registrations_are_counted_per_address_in_the_database(store, open_store):
+    """The registration rate limit counts the students each address registered (the roster's carry no address)."""
+    for k, at in enumerate((100.0, 130.0, 160.0)):
+        store.register("a1", StudentRecord(f"s{k}", f"S{k}", 0, {}, at), client="10.0.0.9")
+    store.register("a1", StudentRecord("r", "R", 0, {}, 150.0, on_roster=True))
+    store.register("a1", StudentRecord("s0", "S0", 0, {}, 170.0), client="10.0.0.9")      # not created: not counted
+    other = open_store()
+    assert [other.recent_registrations_by_client("10.0.0.9", since) for since in (0.0, 130.0, 161.0)] == [3, 2, 0]
+    assert other.recent_registrations_by_client("10.0.0.1", 0.0) == 0
+
+
+def test_the_results_token_is_replaced_once_and_the_old_one_ends(store, open_store):
+    assert store.replace_token("a1", "hash", "new-hash")
+    assert open_store().assignment("a1").token_hash == "new-hash"          # committed, seen by another server
+    assert not store.replace_token("a1", "hash", "third")                # a replacement of the old one: refused
+    assert not store.replace_token("nope", "new-hash", "x")
+    assert store.assignment("a1").token_hash == "new-hash"
+
+
 def test_variant_answers_are_a_cache_shared_by_every_server(store, open_store):
     assert store.variant_answers("a1", 0) is None
     answers = {"flywheel_inertia": 0.1 + 0.2, "delta": 1e-300, "u31_max": "no answer: the mechanism does not turn"}

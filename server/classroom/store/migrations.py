@@ -115,6 +115,13 @@ MIGRATIONS = (
             answers TEXT NOT NULL,
             PRIMARY KEY (assignment_id, variant))
     """),
+    Migration(5, "each student keeps the address that registered them (the registration rate limit)", """
+        ALTER TABLE students ADD COLUMN client TEXT NOT NULL DEFAULT '';
+        CREATE INDEX students_by_client ON students (client, first_seen)
+    """, """
+        ALTER TABLE students ADD COLUMN client TEXT NOT NULL DEFAULT '';
+        CREATE INDEX students_by_client ON students (client, first_seen)
+    """),
     Migration(6, "LTI 1.3: platforms, the tool's key pair, launch state, LMS users as students, placements, line "
                  "items and scores still to post", """
         CREATE TABLE lti_platforms (

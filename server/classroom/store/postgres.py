@@ -109,16 +109,27 @@ class PostgresStore(LtiTables):
         return self._one("SELECT COUNT(*) FROM assignments WHERE client = %s AND created_at >= %s",
                          (client, since))[0]
 
-    def register(self, assignment_id: str, student: StudentRecord) -> tuple[StudentRecord, bool]:
+    def replace_token(self, assignment_id: str, old_hash: str, new_hash: str) -> bool:
+        """Put a new results token's hash in place of ``old_hash``; False if the assignment has another one (a
+        replacement at the same moment won)."""
+        with self._pool.connection() as connection:
+            return connection.execute("UPDATE assignments SET token_hash = %s WHERE id = %s AND token_hash = %s",
+                                      (new_hash, assignment_id, old_hash)).rowcount == 1
+
+    def recent_registrations_by_client(self, client: str, since: float) -> int:
+        return self._one("SELECT COUNT(*) FROM students WHERE client = %s AND first_seen >= %s", (client, since))[0]
+
+    def register(self, assignment_id: str, student: StudentRecord, client: str = "") -> tuple[StudentRecord, bool]:
         """The student as stored, and whether this call created them: a second registration under the same
-        key (even at the same moment, from another server) changes nothing."""
+        key (even at the same moment, from another server) changes nothing. ``client``: the address that
+        registered them ("" for the instructor's roster)."""
         with self._pool.connection() as connection:
             row = connection.execute(
                 "INSERT INTO students (assignment_id, key, name, variant, parameters, first_seen, secret_hash, "
-                "on_roster) VALUES (%s, %s, %s, %s, %s, %s, %s, %s) ON CONFLICT (assignment_id, key) DO NOTHING "
-                f"RETURNING {STUDENT_COLUMNS}",
+                "on_roster, client) VALUES (%s, %s, %s, %s, %s, %s, %s, %s, %s) "
+                f"ON CONFLICT (assignment_id, key) DO NOTHING RETURNING {STUDENT_COLUMNS}",
                 (assignment_id, student.key, student.name, student.variant, json.dumps(student.parameters),
-                 student.first_seen, student.secret_hash, student.on_roster)).fetchone()
+                 student.first_seen, student.secret_hash, student.on_roster, client)).fetchone()
             created = row is not None
             if not created:
                 row = connection.execute(f"SELECT {STUDENT_COLUMNS} FROM students WHERE assignment_id = %s "

@@ -132,15 +132,26 @@ class SQLiteStore(LtiTables):
         return self._connection().execute("SELECT COUNT(*) FROM assignments WHERE client = ? AND created_at >= ?",
                                           (client, since)).fetchone()[0]
 
-    def register(self, assignment_id: str, student: StudentRecord) -> tuple[StudentRecord, bool]:
+    def replace_token(self, assignment_id: str, old_hash: str, new_hash: str) -> bool:
+        """Put a new results token's hash in place of ``old_hash``; False if the assignment has another one (a
+        replacement at the same moment won)."""
+        with self._transaction() as connection:
+            return connection.execute("UPDATE assignments SET token_hash = ? WHERE id = ? AND token_hash = ?",
+                                      (new_hash, assignment_id, old_hash)).rowcount == 1
+
+    def recent_registrations_by_client(self, client: str, since: float) -> int:
+        return self._connection().execute("SELECT COUNT(*) FROM students WHERE client = ? AND first_seen >= ?",
+                                          (client, since)).fetchone()[0]
+
+    def register(self, assignment_id: str, student: StudentRecord, client: str = "") -> tuple[StudentRecord, bool]:
         """The student as stored, and whether this call created them: a second registration under the same
-        key changes nothing."""
+        key changes nothing. ``client``: the address that registered them ("" for the instructor's roster)."""
         with self._transaction() as connection:
             created = connection.execute(
                 "INSERT INTO students (assignment_id, key, name, variant, parameters, first_seen, secret_hash, "
-                "on_roster) VALUES (?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (assignment_id, key) DO NOTHING",
+                "on_roster, client) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (assignment_id, key) DO NOTHING",
                 (assignment_id, student.key, student.name, student.variant, json.dumps(student.parameters),
-                 student.first_seen, student.secret_hash, int(student.on_roster))).rowcount == 1
+                 student.first_seen, student.secret_hash, int(student.on_roster), client)).rowcount == 1
             row = connection.execute(f"SELECT {STUDENT_COLUMNS} FROM students WHERE assignment_id = ? AND key = ?",
                                      (assignment_id, student.key)).fetchone()
         return student_record(row), created
