@@ -71,12 +71,12 @@ class AppServer:
 
 
 @contextmanager
-def app_servers(directory: Path, count: int = 1, database: dict | None = None, admin_token: str = ADMIN_TOKEN):
-    """`count` app servers sharing one database (the SQLite file in `directory`, or `database`'s
-    MDL_DATABASE_URL), started together; stopped when the block ends."""
-    env = os.environ | {"MDL_DATA_DIR": str(directory), "MDL_ADMIN_TOKEN": admin_token,
-                        "MDL_HEAVY_PROCESSES": "0", "MDL_DATABASE_URL": ""} | (database or {})
-    servers = [AppServer(env, directory) for _ in range(count)]
+def app_servers(directory: Path, count: int = 1, env: dict | None = None, admin_token: str = ADMIN_TOKEN):
+    """`count` app servers sharing one database (the SQLite file in `directory`, or the MDL_DATABASE_URL in
+    `env`, which is added to the environment), started together; stopped when the block ends."""
+    environment = os.environ | {"MDL_DATA_DIR": str(directory), "MDL_ADMIN_TOKEN": admin_token,
+                                "MDL_HEAVY_PROCESSES": "0", "MDL_DATABASE_URL": ""} | (env or {})
+    servers = [AppServer(environment, directory) for _ in range(count)]
     with ExitStack() as stack:
         for server in servers:
             stack.callback(server.stop)
