@@ -14,7 +14,7 @@ from ..lessons.scenes import REPO_ROOT
 from ..core.mechanisms import GeometryError
 from ..core.warm_up import warm_up
 from . import access_log, assignment_store, heavy
-from .errors import geometry_error, server_error, validation_error
+from .errors import geometry_error, server_error, store_unavailable, validation_error
 from .admission import AdmissionMiddleware
 from .bench_pages import BenchResults
 from .security import SecurityMiddleware
@@ -23,6 +23,7 @@ from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, Respon
 from .routers import cache as cache_stats
 from .routers import friction_influence
 from .routers import project as course_project
+from ..classroom.store import StoreUnavailable
 from ..classroom.variants import SpecError
 from .routers import (angular, assignment_pages, assignments, bearings, dynamics, editor_pages, elastic, family, motor,
                       forces, kinematics, mechanisms, pages, project_pages, scenes)
@@ -84,6 +85,7 @@ def create_app() -> FastAPI:
     app.add_exception_handler(RequestValidationError, validation_error)  # never echo NaN back
     app.add_exception_handler(GeometryError, geometry_error)
     app.add_exception_handler(SpecError, assignments.spec_error)
+    app.add_exception_handler(StoreUnavailable, store_unavailable)   # 503 + Retry-After: a full disk, a server down
     app.add_exception_handler(Exception, server_error)      # 500 as JSON (ServerErrorMiddleware answers it)
     app.state.response_cache = ResponseCache.from_env()  # MDL_CACHE_BYTES, default 64 MB, 0 = off
     app.add_middleware(ResponseCacheMiddleware, cache=app.state.response_cache, prefix=API_PREFIX)  # inside gzip

@@ -1,5 +1,6 @@
-"""Error answers: HTTP 422 in FastAPI's own error format for errors the numeric core or validation reports, and a
-JSON 500 for anything the app did not expect (the security headers are added around it by security.py).
+"""Error answers: HTTP 422 in FastAPI's own error format for errors the numeric core or validation reports, 503
+with Retry-After when the classroom's database cannot be used now (a full disk, a server down), and a JSON 500
+for anything the app did not expect (the security headers are added around them all by security.py).
 
 Whatever a request held is echoed back safely: the echo of a validation error is rebuilt without recursion
 (``plain``), with bytes and strings made valid UTF-8, integers beyond 64 bits as floats, and objects as their
@@ -11,6 +12,7 @@ from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import Response
 
+from ..classroom.store import StoreUnavailable
 from ..core.mechanisms import GeometryError
 from .serialise import serialise
 
@@ -18,6 +20,10 @@ REQUEST_FIELDS = ("outputs", "phi", "n", "motor", "inertias", "load", "complianc
                   "linkage", "plan", "bearing", "masses", "pair_friction", "positions", "start", "output",
                   "chosen", "drawn")
 SERVER_ERROR = "internal error: the server could not answer this request (it has been logged)"
+STORE_RETRY_AFTER_S = 5
+STORE_UNAVAILABLE = ("the classroom's database cannot be used just now (its disk is full, or its server is down or "
+                     "restarting): nothing was saved by this request, or it was saved without the answer coming back; "
+                     "try again in a few seconds")
 
 
 def unprocessable(content: dict) -> Response:
@@ -103,3 +109,12 @@ async def server_error(request: Request, error: Exception) -> Response:
     logging.getLogger("uvicorn.error").error("500 for %s %s: %r", request.method, request.url.path, error)
     content = {"detail": [{"loc": [], "msg": SERVER_ERROR, "type": "server_error"}]}
     return Response(serialise(content, digits=None), status_code=500, media_type="application/json")
+
+
+async def store_unavailable(request: Request, error: StoreUnavailable) -> Response:
+    """HTTP 503 with Retry-After and the reason in FastAPI's error format; one line in the log naming the
+    database and its error, without a traceback (the cause is the database's, not the app's)."""
+    logging.getLogger("uvicorn.error").warning("503 for %s %s: %s", request.method, request.url.path, error)
+    content = {"detail": [{"loc": [], "msg": STORE_UNAVAILABLE, "type": "store_unavailable"}]}
+    return Response(serialise(content, digits=None), status_code=503, media_type="application/json",
+                    headers={"Retry-After": str(STORE_RETRY_AFTER_S), "Cache-Control": "no-store"})

@@ -7,6 +7,14 @@ and each counts the attempts the ones before it committed (READ COMMITTED takes 
 statement), so the attempt limit holds; the UNIQUE (student, question, attempt) constraint backs it. The rate
 limits are counts of rows, so every server sees the same ones. Migrations run under an advisory lock, so
 servers starting together apply each one once.
+
+A server that cannot be reached (down, restarting, refusing connections, shut down by its administrator, or
+killed with a transaction in flight) raises StoreUnavailable: the API answers 503 with Retry-After, and the
+transaction was rolled back, or it committed without the answer coming back (then the caller was not told
+it landed; a submission sent again counts the attempt already there). The pool waits at most
+``POOL_WAIT_S`` for a connection, checks each one before lending it, and gives up reconnecting after
+``RECONNECT_S``, so that the next request starts afresh: a server started again is used again without
+restarting the app.
 """
 from __future__ import annotations
 
@@ -21,10 +29,12 @@ from psycopg_pool import ConnectionPool, PoolTimeout
 from .lti_tables import LtiTables
 from .migrations import LATEST, VERSION_TABLE, SchemaTooNew, pending
 from .records import (STUDENT_COLUMNS, SUBMISSION_COLUMNS, AssignmentRecord, StoreUnavailable, StudentRecord,
-                      Submission, no_such_student, refuse_attempt, student_record, submission_record)
+                      Submission, no_such_student, refuse_attempt, student_record, submission_record, unavailable_on)
 
 POOL_SIZE = int(os.environ.get("MDL_DATABASE_POOL", "8"))      # connections per worker process
 CONNECT_TIMEOUT_S = 10
+POOL_WAIT_S = 5.0          # a request waits this long for a connection, then StoreUnavailable (503)
+RECONNECT_S = 10.0         # the pool's reconnection backoff gives up after this; the next request tries again
 MIGRATION_LOCK = 0x6D646C                                      # pg_advisory_xact_lock key ("mdl")
 
 
@@ -38,9 +48,16 @@ def where(url: str) -> str:
             f"/{parts.get('dbname', '')}")
 
 
+def unavailable(error: BaseException) -> bool:
+    """Whether `error` says the server cannot be used now (psycopg's OperationalError: connection refused or
+    lost, admin shutdown, starting up, a pool timeout; or a read-only server), rather than a bug."""
+    return isinstance(error, (psycopg.OperationalError, psycopg.errors.ReadOnlySqlTransaction))
+
+
+@unavailable_on(unavailable)
 class PostgresStore(LtiTables):
     """AssignmentStore on the PostgreSQL at ``url``. StoreUnavailable (naming the server and the reason) when it
-    cannot be reached or migrated."""
+    cannot be reached, migrated or written."""
 
     def __init__(self, url: str, pool_size: int = POOL_SIZE):
         self.url, self.where = url, where(url)
@@ -51,7 +68,8 @@ class PostgresStore(LtiTables):
             raise StoreUnavailable(f"cannot use the database {self.where}: {error}".strip()) from error
         self._pool = ConnectionPool(url, min_size=1, max_size=pool_size, name="mdl", open=True,
                                     check=ConnectionPool.check_connection,     # a connection the server dropped
-                                    kwargs={"connect_timeout": CONNECT_TIMEOUT_S})  # is replaced, not used
+                                    kwargs={"connect_timeout": CONNECT_TIMEOUT_S},  # is replaced, not used
+                                    timeout=POOL_WAIT_S, reconnect_timeout=RECONNECT_S)
 
     def close(self) -> None:
         self._pool.close()

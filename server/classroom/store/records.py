@@ -6,9 +6,10 @@ it has committed, so whatever a caller acknowledges survives a crash. Both backe
 """
 from __future__ import annotations
 
+import functools
 import json
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Callable, Protocol
 
 
 @dataclass(frozen=True)
@@ -55,8 +56,35 @@ class AttemptRefused(Exception):
 
 
 class StoreUnavailable(Exception):
-    """The database cannot be opened for writing (a read-only file or directory, an unreachable server):
-    the message names where and why."""
+    """The database cannot be used now (a read-only or full disk, a file locked too long, an unreachable or
+    restarting server): the message names where and why. Nothing of the transaction landed; the API answers
+    503 with Retry-After."""
+
+
+def unavailable_on(is_unavailable: Callable[[BaseException], bool]):
+    """Class decorator for a backend: each public method turns the errors of a database that cannot be used
+    now (``is_unavailable``) into StoreUnavailable naming the database (``self.where``) and the reason; other
+    errors (a bug) pass unchanged."""
+    def guard(method):
+        @functools.wraps(method)
+        def guarded(self, *args, **kwargs):
+            try:
+                return method(self, *args, **kwargs)
+            except StoreUnavailable:
+                raise
+            except Exception as error:
+                if not is_unavailable(error):
+                    raise
+                reason = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
+                raise StoreUnavailable(f"cannot use the database {self.where}: {reason}") from error
+        return guarded
+
+    def decorate(cls):
+        for name, member in list(vars(cls).items()):
+            if callable(member) and not name.startswith("_") and name != "close":
+                setattr(cls, name, guard(member))
+        return cls
+    return decorate
 
 
 class AssignmentStore(Protocol):

@@ -6,6 +6,10 @@ half-written row (tests/test_crash_safety.py). Every write runs in ``BEGIN IMMED
 file's one write lock before reading, so the attempt count a submission checks cannot change under it:
 the attempt limit holds across threads, worker processes and servers sharing the file. Writers wait up to
 ``BUSY_TIMEOUT_S`` for the lock.
+
+A file that cannot take a write now (a full disk: SQLITE_FULL; a disk I/O error; a lock held past the busy
+timeout; a read-only file) raises StoreUnavailable. SQLite has then already rolled the transaction back
+itself, so the transaction is rolled back only if it is still open.
 """
 from __future__ import annotations
 
@@ -19,17 +23,33 @@ from pathlib import Path
 from .lti_tables import LtiTables
 from .migrations import LATEST, VERSION_TABLE, SchemaTooNew, legacy_version, pending
 from .records import (STUDENT_COLUMNS, SUBMISSION_COLUMNS, AssignmentRecord, StoreUnavailable, StudentRecord,
-                      Submission, no_such_student, refuse_attempt, student_record, submission_record)
+                      Submission, no_such_student, refuse_attempt, student_record, submission_record, unavailable_on)
 
 BUSY_TIMEOUT_S = 10.0
+# SQLite's primary result codes of a file that cannot be used now (not of a bug in a statement)
+UNAVAILABLE_CODES = {sqlite3.SQLITE_BUSY, sqlite3.SQLITE_LOCKED, sqlite3.SQLITE_NOMEM, sqlite3.SQLITE_READONLY,
+                     sqlite3.SQLITE_IOERR, sqlite3.SQLITE_FULL, sqlite3.SQLITE_CANTOPEN, sqlite3.SQLITE_PROTOCOL}
 
 
+def unavailable(error: BaseException) -> bool:
+    """Whether `error` says the file cannot be used now: a full disk, an I/O error, a lock, a read-only file."""
+    if not isinstance(error, sqlite3.Error):
+        return False
+    code = getattr(error, "sqlite_errorcode", None)
+    if code is not None:
+        return code & 0xFF in UNAVAILABLE_CODES
+    return isinstance(error, sqlite3.OperationalError) and any(
+        words in str(error) for words in ("disk is full", "disk I/O error", "locked", "readonly", "unable to open"))
+
+
+@unavailable_on(unavailable)
 class SQLiteStore(LtiTables):
     """AssignmentStore in one SQLite file; one connection per thread. StoreUnavailable (naming the file and
-    the reason) when the file or its directory cannot be opened or migrated."""
+    the reason) when the file or its directory cannot be opened, migrated or written."""
 
     def __init__(self, path: Path):
         self.path = Path(path)
+        self.where = str(self.path)
         self._local = threading.local()
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
@@ -77,7 +97,12 @@ class SQLiteStore(LtiTables):
             yield connection
             connection.execute("COMMIT")
         except BaseException:
-            connection.execute("ROLLBACK")
+            if connection.in_transaction:      # SQLite ends the transaction itself on SQLITE_FULL or IOERR
+                try:
+                    connection.execute("ROLLBACK")
+                except sqlite3.Error:          # a connection in doubt is closed: the next call opens a new one
+                    connection.close()
+                    self._local.connection = None
             raise
 
     def _migrate(self) -> None:
