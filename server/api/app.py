@@ -10,7 +10,7 @@ from fastapi import APIRouter, FastAPI
 from fastapi.exceptions import RequestValidationError
 from fastapi.middleware.gzip import GZipMiddleware
 
-from ..lessons.scenes import REPO_ROOT
+from ..paths import BENCH_RESULTS, WEB
 from ..core.mechanisms import GeometryError
 from ..core.warm_up import warm_up
 from . import access_log, assignment_store, heavy
@@ -30,7 +30,7 @@ from .routers import (angular, assignment_pages, assignments, bearings, dynamics
 
 API_PREFIX = "/api/v1"
 PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
-STATIC_DIR = REPO_ROOT / "web" / "static"
+STATIC_DIR = WEB / "static"
 
 
 @asynccontextmanager
@@ -95,7 +95,7 @@ def create_app() -> FastAPI:
     static = mount_versioned(app, "/static", STATIC_DIR, content_version(STATIC_DIR), "static")
     plotly_js = mount_versioned(app, "/vendor/plotly", PLOTLY_DIR, plotly.__version__, "plotly")
     pages.templates.env.globals.update(static=static, plotly=plotly_js)   # {{ static }}/js/api.js in templates
-    app.mount("/bench-results", BenchResults(directory=REPO_ROOT / "bench" / "results"), name="bench")
+    app.mount("/bench-results", BenchResults(directory=BENCH_RESULTS), name="bench")
     return app
 
 

@@ -10,7 +10,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from ..classroom.store import AssignmentStore, SQLiteStore, StoreUnavailable
-from ..lessons.scenes import REPO_ROOT
+from ..paths import default_data_dir
 
 DATABASE_FILE = "classroom.sqlite3"
 POSTGRES_SCHEMES = ("postgresql://", "postgres://")
@@ -20,7 +20,7 @@ POSTGRES_SCHEMES = ("postgresql://", "postgres://")
 def store() -> AssignmentStore:
     url = os.environ.get("MDL_DATABASE_URL", "").strip()
     if not url:
-        return SQLiteStore(Path(os.environ.get("MDL_DATA_DIR") or REPO_ROOT / "data") / DATABASE_FILE)
+        return SQLiteStore(Path(os.environ.get("MDL_DATA_DIR") or default_data_dir()) / DATABASE_FILE)
     if not url.startswith(POSTGRES_SCHEMES):
         raise StoreUnavailable(f"MDL_DATABASE_URL must start with postgresql:// (it starts with "
                                f"{url.split(':', 1)[0][:20]!r}); unset it for SQLite under MDL_DATA_DIR")

@@ -10,10 +10,10 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from ..classroom.expression import parse
+from ..paths import CONTENT
 from .scene_files import ContentError, resolved_scene
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
-CONTENT_DIR = REPO_ROOT / "content"
+CONTENT_DIR = CONTENT
 LANGUAGES = ("ru", "uk", "en")
 DEFAULT_LANGUAGE = "ru"
 

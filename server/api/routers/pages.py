@@ -2,7 +2,6 @@
 work–precision tables of bench/results)."""
 import re
 import unicodedata
-from pathlib import Path
 
 from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import FileResponse, HTMLResponse
@@ -10,11 +9,12 @@ from fastapi.templating import Jinja2Templates
 from markdown_it import MarkdownIt
 from markupsafe import Markup, escape
 
-from ...lessons.scenes import LANGUAGES, REPO_ROOT, interface_texts, language, scenes
+from ...lessons.scenes import LANGUAGES, interface_texts, language, scenes
+from ...paths import BENCH_RESULTS, WEB
 from ..messages import signed
 
-templates = Jinja2Templates(directory=Path(REPO_ROOT, "web", "templates"))
-MEASUREMENTS = Path(REPO_ROOT, "bench", "results", "work_precision.md")
+templates = Jinja2Templates(directory=WEB / "templates")
+MEASUREMENTS = BENCH_RESULTS / "work_precision.md"
 
 
 def _lowers(char: str) -> bool:
@@ -85,7 +85,7 @@ def index(request: Request, lang: str | None = None):
 @router.get("/favicon.ico")
 def favicon():
     """The icon a browser asks for on pages without a <link rel="icon"> (the stored figures at /bench-results)."""
-    return FileResponse(Path(REPO_ROOT, "web", "static", "img", "favicon.svg"), media_type="image/svg+xml",
+    return FileResponse(WEB / "static" / "img" / "favicon.svg", media_type="image/svg+xml",
                         headers={"Cache-Control": "public, max-age=86400"})
 
 

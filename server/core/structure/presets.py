@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import json
 from functools import cache
-from pathlib import Path
+from ...paths import CONTENT
 
-PRESETS_DIR = Path(__file__).resolve().parents[3] / "content" / "mechanisms"
+PRESETS_DIR = CONTENT / "mechanisms"
 
 
 @cache
