@@ -1,5 +1,6 @@
-"""A student's personal link never reaches a log: uvicorn's access log (server/api/access_log.py) and the shipped
-nginx site (tests/test_deployment.py) write its path with the secret cut."""
+"""A student's personal link and the instructor's results token never reach a log: uvicorn's access log
+(server/api/access_log.py) and the shipped nginx site (here, and tests/test_deployment.py) write the path with
+the secret or the token cut."""
 from __future__ import annotations
 
 import logging
@@ -11,11 +12,13 @@ import time
 from pathlib import Path
 
 import httpx
+import pytest
 
 from server.api import access_log
 from server.api.app import create_app
 
 SECRET = "s3cr3t-Of-A-Student_xyz"
+TOKEN = "T0ken-of-the_Instructor"
 REPO = Path(__file__).resolve().parents[1]
 
 
@@ -25,6 +28,19 @@ def test_a_personal_links_secret_is_cut_and_every_other_path_kept():
     for path in ("/api/v1/assignments/Ab-9/me?lang=en", "/assignments/Ab-9?lang=uk", "/scenes/flywheel",
                  "/api/v1/kinematics?lang=ru"):
         assert access_log.cut(path) == path
+
+
+@pytest.mark.parametrize("path, logged", [
+    (f"/assignments/Ab-9/results/{TOKEN}?lang=ru", "/assignments/Ab-9/results/(token)?lang=ru"),
+    (f"/api/v1/assignments/Ab-9/results/{TOKEN}", "/api/v1/assignments/Ab-9/results/(token)"),
+    (f"/api/v1/assignments/Ab-9/results/{TOKEN}/csv", "/api/v1/assignments/Ab-9/results/(token)/csv"),
+    (f"/api/v1/assignments/Ab-9/results/{TOKEN}/links?only_new=true",
+     "/api/v1/assignments/Ab-9/results/(token)/links?only_new=true"),
+    (f"/api/v1/assignments/Ab-9/results/{TOKEN}/roster", "/api/v1/assignments/Ab-9/results/(token)/roster"),
+    (f"/api/v1/assignments/Ab-9/results/{TOKEN}/token", "/api/v1/assignments/Ab-9/results/(token)/token"),
+])
+def test_the_results_token_is_cut_and_the_rest_of_the_path_kept(path, logged):
+    assert access_log.cut(path) == logged
 
 
 def test_uvicorns_access_record_of_a_personal_link_holds_no_secret():
@@ -37,6 +53,31 @@ def test_uvicorns_access_record_of_a_personal_link_holds_no_secret():
                                None)
     assert logger.filter(record)
     assert SECRET not in record.getMessage() and "/assignments/Ab-9/me/(secret)?lang=ru" in record.getMessage()
+    record = logger.makeRecord(logger.name, logging.INFO, __file__, 1, '%s - "%s %s HTTP/%s" %d',
+                               ("127.0.0.1:5000", "GET", f"/api/v1/assignments/Ab-9/results/{TOKEN}/csv", "1.1", 200),
+                               None)
+    assert logger.filter(record)
+    assert TOKEN not in record.getMessage() and "/results/(token)/csv" in record.getMessage()
+
+
+def test_the_shipped_nginx_site_logs_no_results_token(tmp_path):
+    """deploy/nginx/mdl.conf rendered and run (tests/nginx.py) in front of a port where nothing listens: nginx
+    answers 502 and logs each request, with the token and the secret cut by map $mdl_logged_uri."""
+    from nginx import free_port, nginx_proxy
+    paths = [f"/assignments/Ab-9/results/{TOKEN}?lang=uk", f"/api/v1/assignments/Ab-9/results/{TOKEN}/csv",
+             f"/api/v1/assignments/Ab-9/results/{TOKEN}/links?only_new=true", f"/assignments/Ab-9/me/{SECRET}"]
+    with nginx_proxy(tmp_path / "nginx", [free_port()]) as proxy:
+        for path in paths:
+            httpx.get(f"{proxy.url}{path}", timeout=30)
+        deadline = time.monotonic() + 60              # nginx logs a request after answering it: a guard, no measure
+        while len(proxy.access_log()) < len(paths):
+            assert time.monotonic() < deadline, proxy.access_log()
+            time.sleep(0.05)
+        logged = "\n".join(proxy.access_log())
+    assert TOKEN not in logged and SECRET not in logged
+    for kept in ("/assignments/Ab-9/results/(token)?lang=uk", "/api/v1/assignments/Ab-9/results/(token)/csv",
+                 "/api/v1/assignments/Ab-9/results/(token)/links?only_new=true", "/assignments/Ab-9/me/(secret)"):
+        assert kept in logged
 
 
 def test_the_running_servers_log_holds_no_secret(tmp_path):
