@@ -1,9 +1,12 @@
-"""The server's access log without the students' secrets.
+"""The server's access log without the students' secrets or the instructor's results token.
 
-A personal link, ``/assignments/<id>/me/<secret>``, carries the secret that lets a student in; uvicorn's access
-log writes every request's path. ``SecretsCut`` (a logging filter on the "uvicorn.access" logger, installed when
-the app is made) writes such a path as ``/assignments/<id>/me/(secret)``, the query kept; the shipped nginx site
-logs it the same way (deploy/nginx/mdl.conf, map $mdl_logged_uri).
+A personal link, ``/assignments/<id>/me/<secret>``, carries the secret that lets a student in; the results
+page, ``/assignments/<id>/results/<token>``, and the API under it (``/api/v1/assignments/<id>/results/<token>``,
+``…/csv``, ``…/links``, ``…/roster``) carry the token that shows every student's answers and makes their links.
+uvicorn's access log writes every request's path. ``SecretsCut`` (a logging filter on the "uvicorn.access"
+logger, installed when the app is made) writes such paths as ``/assignments/<id>/me/(secret)`` and
+``…/results/(token)/csv``, the rest of the path and the query kept; the shipped nginx site logs them the same
+way (deploy/nginx/mdl.conf, map $mdl_logged_uri).
 """
 from __future__ import annotations
 
@@ -11,12 +14,13 @@ import logging
 import re
 
 PERSONAL_LINK = re.compile(r"^(/assignments/[^/?#]+/me/)[^?#]*")
+RESULTS_TOKEN = re.compile(r"^((?:/api/v1)?/assignments/[^/?#]+/results/)[^/?#]*")
 ACCESS_LOGGER = "uvicorn.access"
 
 
 def cut(path: str) -> str:
-    """The path with a personal link's secret replaced by "(secret)"."""
-    return PERSONAL_LINK.sub(r"\1(secret)", path)
+    """The path with a personal link's secret replaced by "(secret)", a results token by "(token)"."""
+    return RESULTS_TOKEN.sub(r"\1(token)", PERSONAL_LINK.sub(r"\1(secret)", path))
 
 
 class SecretsCut(logging.Filter):
