@@ -21,6 +21,7 @@ from .security import SecurityMiddleware
 from .static_files import content_version, mount_versioned
 from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
+from .routers import lti
 from .routers import friction_influence
 from .routers import project as course_project
 from ..classroom.store import StoreUnavailable
@@ -82,6 +83,7 @@ def create_app() -> FastAPI:
     app.include_router(assignment_pages.router)
     app.include_router(editor_pages.router)     # /editor: the mechanism editor
     app.include_router(project_pages.router)    # /project: the course project and its report
+    app.include_router(lti.router)              # /lti: the LTI 1.3 tool; /api/v1/lti: its registration
     app.add_exception_handler(RequestValidationError, validation_error)  # never echo NaN back
     app.add_exception_handler(GeometryError, geometry_error)
     app.add_exception_handler(SpecError, assignments.spec_error)

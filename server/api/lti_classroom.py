@@ -1,0 +1,165 @@
+"""What an LTI launch does in the classroom: an LMS learner becomes (or is again) a student of the assignment
+with a fresh personal secret; an instructor gets a session tied to the assignment (its results without the
+token); the course's members (NRPS) fill the roster; a single-use ticket carries a launch from an LMS frame
+to a new window; scores are queued for the gradebook and posted off the request path. Glue between the
+launch (routers/lti.py), the assignments (assignments.py) and the LTI store (classroom/lti)."""
+from __future__ import annotations
+
+import hashlib
+import logging
+import secrets
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+from ..classroom import identity
+from ..classroom.lti import grades
+from ..classroom.lti.members import lms_name, student_key, teaches
+from ..classroom.names import normalise
+from ..classroom.store import AssignmentRecord, StudentRecord
+from ..classroom.store.lti_tables import LearnerRecord, PlatformRecord
+from ..classroom.variants import Plan
+from .assignment_store import store
+
+TEACHER_COOKIE = "mdl_lti_teacher"
+TEACHER_SECONDS = 8 * 3600        # an instructor's session: a working day
+TICKET_SECONDS = 300              # "Open in a new window": used once, within five minutes
+AGS_CLAIM = "https://purl.imsglobal.org/spec/lti-ags/claim/endpoint"
+CONTEXT_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/context"
+log = logging.getLogger("mdl.lti")
+_posting = ThreadPoolExecutor(max_workers=1, thread_name_prefix="lti-scores")
+
+
+def _hash(token: str) -> str:
+    return hashlib.sha256(token.encode()).hexdigest()
+
+
+def context_id(claims: dict) -> str:
+    return str((claims.get(CONTEXT_CLAIM) or {}).get("id") or "")
+
+
+def _linked_student(record: AssignmentRecord, platform: PlatformRecord, sub: str, name: str,
+                    resolved: Plan, on_roster: bool) -> StudentRecord:
+    """The student this LMS user is in the assignment: the one linked before; else a roster name nobody has
+    claimed or linked; else a new record under the user's own key (no name check: the LMS vouches for it)."""
+    linked = store().lti_learner(platform.id, sub, record.id)
+    if linked is not None:
+        student = store().student(record.id, linked.student_key)
+        if student is not None:
+            return student
+    key = student_key(platform.issuer, sub)
+    by_name = store().student(record.id, normalise(name)) if name else None
+    if (by_name is not None and by_name.secret_hash is None
+            and not store().lti_learners_of(record.id, by_name.key)):
+        return by_name
+    number = resolved.number_for(record.id, key)
+    stored, _ = store().register(record.id, StudentRecord(
+        key, name or f"LMS {sub[:12]}", number, resolved.values(number), time.time(),
+        secret_hash=identity.secret_hash(identity.new_secret()), on_roster=on_roster))
+    return stored
+
+
+def enter_learner(record: AssignmentRecord, resolved: Plan, platform: PlatformRecord,
+                  claims: dict) -> tuple[StudentRecord, str | None]:
+    """The launching learner as a student of the assignment, and a new personal secret for their session (the
+    one before stops working: a student of an LMS enters through the LMS)."""
+    sub = str(claims["sub"])
+    student = _linked_student(record, platform, sub, lms_name(claims), resolved, on_roster=False)
+    store().lti_link_learner(LearnerRecord(platform.id, sub, record.id, student.key, context_id(claims),
+                                           claims.get(AGS_CLAIM)))
+    return student, new_secret_for(record.id, student.key)
+
+
+def fill_roster(record: AssignmentRecord, resolved: Plan, platform: PlatformRecord, context: str,
+                members: list[dict]) -> dict:
+    """The course's active learners (NRPS members) as students of the assignment, each linked to their LMS
+    user; their records get a secret nobody holds, so they enter only through the LMS. Counts."""
+    outcome = {"added": 0, "linked": 0, "skipped": 0}
+    for member in members:
+        sub = str(member.get("user_id") or "")
+        if not sub or teaches(member.get("roles")) or member.get("status", "Active") != "Active":
+            outcome["skipped"] += 1
+            continue
+        if store().lti_learner(platform.id, sub, record.id) is not None:
+            outcome["linked"] += 1
+            continue
+        student = _linked_student(record, platform, sub, lms_name(member), resolved, on_roster=True)
+        if student.secret_hash is None:
+            store().set_secret(record.id, student.key, identity.secret_hash(identity.new_secret()))
+        store().lti_link_learner(LearnerRecord(platform.id, sub, record.id, student.key, context, None))
+        outcome["added"] += 1
+    return outcome
+
+
+# an instructor's session, and the tickets that carry a launch to a new window
+def new_teacher_session(assignment_id: str, platform_id: str, context: str) -> str:
+    token = secrets.token_urlsafe(24)
+    store().lti_put(f"teacher:{_hash(token)}", {"assignment": assignment_id, "platform": platform_id,
+                                                "context": context}, time.time() + TEACHER_SECONDS)
+    return token
+
+
+def teacher_session(token: str | None, assignment_id: str) -> dict | None:
+    """The instructor session this cookie names, if it is for this assignment and not expired."""
+    if not token or len(token) > 64:
+        return None
+    session = store().lti_get(f"teacher:{_hash(token)}", time.time())
+    return session if session is not None and session.get("assignment") == assignment_id else None
+
+
+def new_ticket(about: dict) -> str:
+    ticket = secrets.token_urlsafe(24)
+    store().lti_put(f"ticket:{_hash(ticket)}", about, time.time() + TICKET_SECONDS)
+    return ticket
+
+
+def take_ticket(ticket: str) -> dict | None:
+    """What the ticket was made for, once: a second use, or after TICKET_SECONDS, gives None."""
+    if not ticket or len(ticket) > 64:
+        return None
+    return store().lti_take(f"ticket:{_hash(ticket)}", time.time())
+
+
+# scores for the gradebook
+def queue_score(assignment_id: str, key: str) -> bool:
+    """Queue the student's score if they came from an LMS; whether it was queued."""
+    if not store().lti_learners_of(assignment_id, key):
+        return False
+    store().lti_queue_score(assignment_id, key, time.time())
+    return True
+
+
+def post_scores_later() -> None:
+    """Post every due score in this process's one background thread (never on a request's path)."""
+    _posting.submit(_post_due)
+
+
+def _post_due() -> None:
+    try:
+        grades.post_due(store())
+    except Exception:                                    # noqa: BLE001 - logged; the rows stay due
+        log.exception("posting LTI scores failed")
+
+
+def submitted(assignment_id: str, key: str) -> None:
+    """After a submission: queue the student's score for the LMS and post it later. Never raises."""
+    try:
+        if queue_score(assignment_id, key):
+            post_scores_later()
+    except Exception:                                    # noqa: BLE001 - a submission never fails for this
+        log.exception("queueing an LTI score failed")
+
+
+def score_changed(assignment_id: str, key: str) -> None:
+    """The instructor changed a student's standing (a reset): post their score again, later. Never raises."""
+    submitted(assignment_id, key)
+
+
+def post_due_now() -> dict:
+    """Post the due scores on this request (the administrator's retry): counts of posted and failed."""
+    return grades.post_due(store())
+
+
+def new_secret_for(assignment_id: str, key: str) -> str | None:
+    """A new personal secret for a student who entered through the LMS (None if they were removed meanwhile)."""
+    secret = identity.new_secret()
+    return secret if store().set_secret(assignment_id, key, identity.secret_hash(secret)) else None
