@@ -17,7 +17,7 @@ from ...classroom.names import NameRefused, normalise
 from ...classroom.spec import AssignmentSpec
 from ...classroom.store import AttemptRefused, StudentRecord
 from ...classroom.variants import SpecError
-from .. import assignment_answers, assignments
+from .. import assignment_answers, assignments, lti_classroom
 from ..answers import is_right, tolerance
 from ..assignment_store import store
 from ..csv_export import csv_attachment
@@ -159,6 +159,7 @@ def submit(submission: SubmissionRequest, request: Request, assignment_id: str =
     except AttemptRefused as refused:
         return _refuse(403 if refused.code == "no_such_student" else 409, ["body", "question"], refused.reason,
                        refused.code)
+    lti_classroom.submitted(record.id, student.key)      # an LMS student's score to their gradebook, later
     left = 0 if right else resolved.spec.attempts - saved.attempt
     return SubmissionOutcome(question=submission.question, right=right, attempt=saved.attempt, attempts_left=left,
                              closed=right or left == 0,
