@@ -3,6 +3,7 @@ student's page may show without giving them away."""
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
 
 import numpy as np
@@ -19,6 +20,7 @@ from ..lessons.dotted_paths import path_value
 from ..lessons.requests import scene_request
 
 ANSWER_POINTS_PER_TURN = 3600    # kinematics answers: 0.1° grid, extremum refined by a parabola (error ~h³)
+POSITION_INDEX = re.compile(r"\{([A-Za-z0-9_.]+)\}")     # "kinematics.{positions.chosen}.points.E.v.value"
 
 
 class AnswerCutShort(Exception):
@@ -50,11 +52,30 @@ def _extremum(values: list, largest: bool) -> float:
     return parabola_extremum(y, 1 if largest else -1, periodic)
 
 
+@lru_cache(maxsize=2)
+def _project(scene_id: str, variant_id: str, values: tuple) -> dict:
+    """A course-project scene's whole answer for the variant's values: computed once for all its questions
+    (a few hundred ms; every question reads its own path of it)."""
+    scene = scenes()[scene_id]
+    variant = next(v for v in scene.variants if v.id == variant_id)
+    return compute(scene.endpoint, scene_request(scene, variant, dict(values)))
+
+
+def project_path(answer: dict, path: str) -> str:
+    """A path with ``{dotted path}`` segments, each the position number found there in the answer, as the index
+    of that position's row ("kinematics.{positions.chosen}" is the row of the chosen position)."""
+    return POSITION_INDEX.sub(lambda found: str(int(path_value(answer, found.group(1))) - 1), path)
+
+
 @lru_cache(maxsize=4096)
 def _readout(scene_id: str, variant_id: str, values: tuple, readout: Readout, angles: tuple | None = None):
     """One readout for the variant's values: a number, or (``angles`` in degrees given) its values there."""
     scene = scenes()[scene_id]
     variant = next(v for v in scene.variants if v.id == variant_id)
+    if scene.kind == "project":
+        answer = _project(scene_id, variant_id, values)
+        found = path_value(answer, project_path(answer, readout.path))
+        return found if readout.reduce == "value" else _extremum(found, readout.reduce == "max")
     points = ANSWER_POINTS_PER_TURN if scene.kind == "kinematics" else None
     body = scene_request(scene, variant, dict(values), outputs=list(readout.outputs),
                          **({"points_per_turn": points} if points else {}))

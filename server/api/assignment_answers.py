@@ -29,6 +29,7 @@ from contextlib import contextmanager
 
 from fastapi import HTTPException
 
+from ..classroom import turning
 from ..classroom.variants import Plan, SpecError
 from ..core.mechanisms import GeometryError
 from . import heavy
@@ -88,10 +89,13 @@ def checked_numbers(count: int) -> list[int]:
 
 
 def check_new(resolved: Plan) -> dict[int, dict]:
-    """The answers of the checked variants (those the budget reached); SpecError naming the first question that
-    has no answer for one of them."""
+    """The answers of the checked variants (those the budget reached; a course project's: the variants handed out
+    in their place, turning.py); SpecError naming the first question that has no answer for one of them, or the
+    slider ranges when no sampled course-project variant turns fully."""
+    turning.check_some_turn(resolved)
+    numbers = sorted({turning.handed_out(resolved, n) for n in checked_numbers(resolved.count)})
     with computing_place():
-        found = heavy.run(answers_of_variants, resolved, checked_numbers(resolved.count), CREATE_BUDGET_S)
+        found = heavy.run(answers_of_variants, resolved, numbers, CREATE_BUDGET_S)
     for number, answers in sorted(found.items()):
         for question_id, value in answers.items():
             if isinstance(value, str):

@@ -10,7 +10,7 @@ from datetime import datetime, timezone
 
 from fastapi import HTTPException
 
-from ..classroom import identity
+from ..classroom import identity, turning
 from ..classroom.names import NameRefused, check_new, normalise, roster_names
 from ..classroom.spec import AssignmentSpec
 from ..classroom.store import AssignmentRecord, StudentRecord
@@ -78,7 +78,13 @@ def info(record: AssignmentRecord, resolved: Plan, lang: str) -> AssignmentInfo:
                                 **question_kind(resolved, p.id))
                    for p in spec.questions],
         attempts=spec.attempts, deadline=None if spec.deadline is None else spec.deadline.isoformat(),
-        open=is_open(resolved), variants=resolved.count)
+        open=is_open(resolved), variants=resolved.count, turning=turning_info(resolved))
+
+
+def turning_info(resolved: Plan) -> dict[str, int] | None:
+    """A course project's share of variants that turn fully (classroom/turning.py), else None."""
+    share = turning.turning_share(resolved)
+    return None if share is None else {"turn": share[0], "checked": share[1]}
 
 
 def student_id(assignment_id: str, key: str) -> str:

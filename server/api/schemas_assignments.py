@@ -35,6 +35,9 @@ class AssignmentInfo(BaseModel):
     deadline: str | None = Field(description="ISO 8601, UTC")
     open: bool = Field(description="submissions are accepted (the deadline has not passed)")
     variants: int
+    turning: dict[str, int] | None = Field(None, description=(
+        "a course project: of `checked` variant numbers spread over the range, how many `turn` fully; only those "
+        "are handed out (a student whose number does not turn gets the next one that does)"))
 
 
 class QuestionState(QuestionInfo):

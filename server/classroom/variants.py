@@ -2,7 +2,8 @@
 
 The variant number is derived from the assignment and the student's name alone,
 ``number = SHA-256(assignment id, normalised name) mod (number of variants)``, so the same student always
-gets the same variant, on any server, without storing anything first. The number is read as a
+gets the same variant, on any server, without storing anything first (a course project's variant whose crank
+cannot turn fully is never handed out: the next number that turns is, turning.py). The number is read as a
 mixed-radix numeral: one digit per varied slider, each digit an index into that slider's values.
 """
 from __future__ import annotations
@@ -15,6 +16,7 @@ from dataclasses import dataclass, field
 
 from ..lessons.scenes import Question, Scene, Variant
 from ..lessons.requests import slider_values
+from . import turning
 from .expression import ExpressionError, parse
 from .spec import AssignmentSpec, QuestionPick
 
@@ -45,7 +47,7 @@ class Plan:
 
     def number_for(self, assignment_id: str, key: str) -> int:
         digest = hashlib.sha256(f"{assignment_id}\n{key}".encode()).digest()
-        return int.from_bytes(digest, "big") % self.count
+        return turning.handed_out(self, int.from_bytes(digest, "big") % self.count)
 
     def values(self, number: int) -> dict[str, float | str]:
         values = dict(self.fixed)

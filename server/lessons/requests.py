@@ -6,6 +6,7 @@ Kinematics scenes: ``params = fixed``, each toggle sets ``params[toggle.param]``
 ``params[slider.param] = value × params[slider.scale]`` (λ = l₂/l₁ sets l₂ in metres).
 Dynamics scenes: the variant's ``request`` with the mechanism; toggles at their dotted paths; each slider
 puts ``value × to_si × (value at slider.scale)`` at ``slider.param`` and at every ``slider.also`` path.
+Course-project scenes: the same request, without the mechanism's name and the outputs (one whole answer).
 """
 from __future__ import annotations
 
@@ -57,6 +58,14 @@ def dynamics_body(variant: Variant, values: dict) -> dict:
     return body
 
 
+def project_body(variant: Variant, values: dict) -> dict:
+    """A course-project scene's request (POST /api/v1/course-project): the variant's request with the sliders
+    set as in a dynamics scene; the whole project is one answer, so there is no mechanism name and no outputs."""
+    body = dynamics_body(variant, values)
+    body.pop("mechanism")
+    return body
+
+
 def address_variant(variant: Variant, documents: dict) -> Variant:
     """The variant as a page whose address holds the documents {"m": linkage, "d": dynamics} shows it (a variant
     without ``address`` is itself); KeyError names a path the documents lack."""
@@ -85,4 +94,6 @@ def scene_request(scene: Scene, variant: Variant, values: dict | None = None,
     if scene.kind == "kinematics":
         return {"mechanism": variant.mechanism, "params": kinematics_params(variant, values),
                 "n": points_per_turn + 1, "outputs": outputs}
+    if scene.kind == "project":
+        return project_body(variant, values)
     return dynamics_body(variant, values) | {"outputs": outputs}

@@ -151,10 +151,12 @@ class Question(BaseModel):
 class Scene(BaseModel):
     id: str
     order: int
-    kind: Literal["kinematics", "dynamics"] = "kinematics"
+    kind: Literal["kinematics", "dynamics", "project"] = Field("kinematics", description=(
+        "project: the course project of a linkage (endpoint course-project), computed on /project; the scene "
+        "lists its design data and opens them there and in the editor"))
     endpoint: Literal["kinematics", "reduction", "motion", "flywheel", "elastic", "forces", "wear",
                       "angular-acceleration", "bearings", "motor-characteristic",
-                      "flywheel-analysis", "friction-influence"] = "kinematics"
+                      "flywheel-analysis", "friction-influence", "course-project"] = "kinematics"
     source: Text
     title: Text
     summary: Text

@@ -18,6 +18,7 @@ from ..student_secret import forget, from_another_site, hand_over, sent_secret
 from ...classroom.visibility import public_views
 from ...lessons.scenes import scenes
 from .pages import scene_context, templates, _context
+from ...lessons.project_links import project_links
 
 NAME_FIELD = "student"
 MAX_FORM_BYTES = 4096
@@ -81,6 +82,9 @@ def student_page(request: Request, assignment_id: str, lang: str | None = None,
                           unlocked_predictions(resolved, store().submissions(record.id, student.key)))
     page = {"id": record.id, "student": student.name, "variant": student.variant + 1,
             "variants": resolved.count, "values": student.parameters, "info": about.model_dump()}
+    if resolved.scene.kind == "project":             # the variant opens on /project and in the editor
+        page["links"] = project_links(resolved.variant, student.parameters, context["lang"],
+                                      {"student": student.name, "variant": str(student.variant + 1)})
     return templates.TemplateResponse(request, "scene.html", scene_context(request, context, shown) | {
         "assignment": page})
 
