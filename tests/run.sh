@@ -2,7 +2,7 @@
 # Install what the tests need (Python packages; Debian's chromium, poppler-utils, postgresql and nginx when missing), then run the whole suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore -e ".[test]"
+python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore -e ".[test]" -c .ci/constraints.txt
 if ! command -v /usr/bin/chromium >/dev/null 2>&1; then
     if [ "$(id -u)" -eq 0 ]; then apt-get update -qq && apt-get install -y -qq chromium >/dev/null
     else sudo apt-get update -qq && sudo apt-get install -y -qq chromium >/dev/null; fi
@@ -25,7 +25,12 @@ python3 -m server.core.warm_up     # compile the numba kernels once into their d
 # three worker processes on two CPUs: the browser and server tests mostly wait, the numeric ones fill the gaps;
 # the tests sharing a module's own fixture stay on one worker (tests/conftest.py)
 if [ "$#" -gt 0 ]; then exec python3 -m pytest -q --durations=15 -n 3 --dist loadgroup "$@"; fi
+before=$(python3 tests/leftover_processes.py --snapshot)
 # test_schemathesis_api's last test counts what the module's operation tests sent (module state): schemathesis's
-# items do not take xdist's group, so the module runs in one process after the others
-python3 -m pytest -q --durations=15 -n 3 --dist loadgroup --ignore=tests/test_schemathesis_api.py
-python3 -m pytest -q -p no:xdist tests/test_schemathesis_api.py
+# items do not take xdist's group, so the module runs in one process after the others. Both runs run; the
+# suite fails if either did, or if a test left a process behind.
+status=0
+python3 -m pytest -q --durations=15 -n 3 --dist loadgroup --ignore=tests/test_schemathesis_api.py || status=$?
+python3 -m pytest -q -p no:xdist tests/test_schemathesis_api.py || status=$((status ? status : $?))
+python3 tests/leftover_processes.py --since "$before" || status=$((status ? status : 1))
+exit "$status"

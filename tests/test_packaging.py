@@ -86,3 +86,20 @@ def test_a_normal_install_serves_the_app_from_another_directory(wheel, tmp_path)
                                            "MDL_DATA_DIR": str(tmp_path / "data"), "NUMBA_DISABLE_JIT": "1"})
     assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-4000:]
     assert "served" in run.stdout and str(env_dir) in run.stdout
+
+
+def test_postgresql_is_an_extra_and_its_absence_is_said_at_start():
+    """psycopg is installed only with ``[postgres]``; MDL_DATABASE_URL set without it stops the start with the
+    reason and the command, not an ImportError's trace."""
+    dependencies = " ".join(PYPROJECT["project"]["dependencies"])
+    assert "psycopg" not in dependencies and "plotly" not in dependencies
+    assert len({d.split(">")[0].split("=")[0] for d in PYPROJECT["project"]["dependencies"]}) == \
+        len(PYPROJECT["project"]["dependencies"]), "a package listed twice"
+    assert any("psycopg" in d for d in PYPROJECT["project"]["optional-dependencies"]["postgres"])
+    without_psycopg = ("import sys; sys.modules['psycopg'] = None; sys.modules['psycopg_pool'] = None\n"
+                       "from server.api.assignment_store import check\n"
+                       "try:\n    check()\nexcept Exception as error:\n    print(type(error).__name__, error)\n")
+    run = subprocess.run([sys.executable, "-c", without_psycopg], capture_output=True, text=True, timeout=300,
+                         env={"PATH": "/usr/bin:/bin", "MDL_DATABASE_URL": "postgresql://mdl@127.0.0.1:1/mdl"})
+    assert run.stdout.startswith("StoreUnavailable"), run.stdout + run.stderr[-2000:]
+    assert "[postgres]" in run.stdout and "psycopg" in run.stdout

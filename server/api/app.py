@@ -5,7 +5,6 @@ import time
 from contextlib import asynccontextmanager
 from pathlib import Path
 
-import plotly
 from fastapi import APIRouter, FastAPI
 from fastapi.exceptions import RequestValidationError
 from fastapi.middleware.gzip import GZipMiddleware
@@ -18,7 +17,7 @@ from .errors import geometry_error, server_error, store_unavailable, validation_
 from .admission import AdmissionMiddleware
 from .bench_pages import BenchResults
 from .security import SecurityMiddleware
-from .static_files import content_version, mount_versioned
+from .static_files import content_version, mount_versioned, script_version
 from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache, ResponseCacheMiddleware
 from .routers import cache as cache_stats
 from .routers import lti
@@ -30,7 +29,7 @@ from .routers import (angular, assignment_pages, assignments, bearings, dynamics
                       forces, kinematics, mechanisms, pages, project_pages, scenes)
 
 API_PREFIX = "/api/v1"
-PLOTLY_DIR = Path(plotly.__file__).parent / "package_data"
+PLOTLY_DIR = WEB / "vendor" / "plotly"            # plotly.min.js, vendored: its version is fixed here
 STATIC_DIR = WEB / "static"
 
 
@@ -95,7 +94,8 @@ def create_app() -> FastAPI:
     app.add_middleware(AdmissionMiddleware)  # per-client computations in flight (429), the mdl_client cookie
     # SecurityMiddleware (headers on every response, bodies ≤ 1 MiB and checked) wraps all of these: LabApp
     static = mount_versioned(app, "/static", STATIC_DIR, content_version(STATIC_DIR), "static")
-    plotly_js = mount_versioned(app, "/vendor/plotly", PLOTLY_DIR, plotly.__version__, "plotly")
+    plotly_js = mount_versioned(app, "/vendor/plotly", PLOTLY_DIR, script_version(PLOTLY_DIR / "plotly.min.js"),
+                                "plotly")
     pages.templates.env.globals.update(static=static, plotly=plotly_js)   # {{ static }}/js/api.js in templates
     app.mount("/bench-results", BenchResults(directory=BENCH_RESULTS), name="bench")
     return app

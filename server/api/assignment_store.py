@@ -24,7 +24,12 @@ def store() -> AssignmentStore:
     if not url.startswith(POSTGRES_SCHEMES):
         raise StoreUnavailable(f"MDL_DATABASE_URL must start with postgresql:// (it starts with "
                                f"{url.split(':', 1)[0][:20]!r}); unset it for SQLite under MDL_DATA_DIR")
-    from ..classroom.store.postgres import PostgresStore       # psycopg is needed only here
+    try:
+        from ..classroom.store.postgres import PostgresStore   # psycopg is needed only here
+    except ImportError as missing:
+        raise StoreUnavailable(f"MDL_DATABASE_URL names a PostgreSQL database, but {missing.name or 'psycopg'} is not "
+                               "installed: pip install '.[postgres]' in the checkout (or "
+                               "'mechanism-dynamics-lab[postgres]'), or unset MDL_DATABASE_URL for SQLite") from None
 
     return PostgresStore(url)
 

@@ -3,7 +3,9 @@
 ``/static/<version>/js/common/model/api.js`` where the version is a hash of every file name and content under
 web/static (its folders included), taken at start-up: a changed file gives a new version, hence new URLs, so a
 browser may keep what it has fetched ``immutable`` (RFC 8246) and a repeat visit asks for nothing but the page.
-Relative ES-module imports (``../common/model/api.js``) resolve under the same prefix. plotly.js is versioned by plotly's own version. The
+Relative ES-module imports (``../common/model/api.js``) resolve under the same prefix. plotly.js (vendored in
+web/vendor/plotly, so its version does not depend on the day of an install) is versioned by the version its header
+names. The
 unversioned paths stay for old links, with ``no-cache`` (the browser revalidates by ETag).
 
 Text files are sent gzip-compressed from a copy compressed once per worker (in a thread, on first request),
@@ -15,6 +17,7 @@ from __future__ import annotations
 import asyncio
 import gzip
 import hashlib
+import re
 from pathlib import Path
 
 import anyio.to_thread
@@ -32,6 +35,15 @@ def content_version(directory: Path) -> str:
         digest.update(path.relative_to(directory).as_posix().encode() + b"\0")
         digest.update(path.read_bytes() + b"\0")
     return digest.hexdigest()[:12]
+
+
+def script_version(path: Path) -> str:
+    """The version a vendored script names in its first lines ("* plotly.js v4.1.1" → "4.1.1")."""
+    head = path.read_bytes()[:300].decode("utf-8", "replace")
+    match = re.search(r"\bv(\d+(?:\.\d+)+)\b", head)
+    if match is None:
+        raise ValueError(f"{path} names no version in its first lines")
+    return match.group(1)
 
 
 COMPRESSIBLE = ("text/", "application/javascript", "application/json", "image/svg+xml")
