@@ -16,6 +16,7 @@ from . import access_log, assignment_store, heavy
 from .errors import geometry_error, server_error, store_unavailable, validation_error
 from .admission import AdmissionMiddleware
 from .bench_pages import BenchResults
+from .head_requests import HeadAsGet
 from .security import SecurityMiddleware
 from .static_files import content_version, mount_versioned, script_version
 from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache, ResponseCacheMiddleware
@@ -51,10 +52,11 @@ async def lifespan(app: FastAPI):
 
 class LabApp(FastAPI):
     """The FastAPI app with SecurityMiddleware outside everything, Starlette's ServerErrorMiddleware included:
-    every answer, a 500 too, carries the security headers, and bodies are checked before any layer reads them."""
+    every answer, a 500 too, carries the security headers, and bodies are checked before any layer reads them;
+    inside it, HEAD is answered as GET without the body."""
 
     def build_middleware_stack(self):
-        return SecurityMiddleware(super().build_middleware_stack())
+        return SecurityMiddleware(HeadAsGet(super().build_middleware_stack()))
 
 
 def create_app() -> FastAPI:
