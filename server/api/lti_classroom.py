@@ -5,7 +5,9 @@ to a new window; scores are queued for the gradebook and posted off the request 
 launch (routers/lti.py), the assignments (assignments.py) and the LTI store (classroom/lti)."""
 from __future__ import annotations
 
+import base64
 import hashlib
+import hmac
 import logging
 import secrets
 import time
@@ -13,6 +15,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 from ..classroom import identity
 from ..classroom.lti import grades
+from ..classroom.lti.tool_key import tool_key
 from ..classroom.lti.members import lms_name, student_key, teaches
 from ..classroom.names import normalise
 from ..classroom.store import AssignmentRecord, StudentRecord
@@ -160,6 +163,21 @@ def post_due_now() -> dict:
 
 
 def new_secret_for(assignment_id: str, key: str) -> str | None:
-    """A new personal secret for a student who entered through the LMS (None if they were removed meanwhile)."""
-    secret = identity.new_secret()
-    return secret if store().set_secret(assignment_id, key, identity.secret_hash(secret)) else None
+    """The personal secret of a student who enters through the LMS (None if they were removed meanwhile).
+
+    It is derived (HMAC-SHA-256 under a key derived from the tool's private key, which only the database holds)
+    from the assignment and the student, so every launch, on any device, hands over the same secret and the
+    sessions of a student's other devices keep working; a secret the instructor gave them instead is replaced."""
+    student = store().student(assignment_id, key)
+    if student is None:
+        return None
+    mac = hmac.new(_secrets_key(), f"{assignment_id}\n{key}".encode(), hashlib.sha256).digest()
+    secret = base64.urlsafe_b64encode(mac[:identity.SECRET_BYTES]).decode()
+    if student.secret_hash != identity.secret_hash(secret):
+        if not store().set_secret(assignment_id, key, identity.secret_hash(secret)):
+            return None
+    return secret
+
+
+def _secrets_key() -> bytes:
+    return hashlib.sha256(b"mdl-lti-student-secrets\n" + tool_key(store()).private_pem.encode()).digest()

@@ -9,6 +9,8 @@ that opens the assignment in a new window with a single-use ticket.
 """
 from __future__ import annotations
 
+import base64
+import hashlib
 import logging
 import os
 import secrets
@@ -32,15 +34,18 @@ from ...lessons.scenes import LANGUAGES, scenes
 from .. import assignments, lti_adapters, lti_classroom
 from ..assignment_store import store
 from ..schemas_lti import PendingScoreInfo, PlatformInfo, PlatformRegistered, PlatformRegistration, Platforms, ToolUrls
-from ..security import CONTENT_SECURITY_POLICY
+from ..security import CONTENT_SECURITY_POLICY, policy_with_script_hashes
 from ..student_secret import from_another_site, hand_over
 from .pages import _context, templates
 
 MAX_FORM_BYTES = 64 * 1024          # a launch's id_token is a few kilobytes
+RECENT_S = 14 * 86400               # the picker offers assignments made from the same address this recently
 CUSTOM_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/custom"
 PRESENTATION_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/launch_presentation"
 DEEP_LINKING = "LtiDeepLinkingRequest"
 MESSAGE_TYPE_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/message_type"
+AUTO_SUBMIT = "document.getElementById('lti-return').submit();"
+AUTO_SUBMIT_HASH = base64.b64encode(hashlib.sha256(AUTO_SUBMIT.encode()).digest()).decode()
 log = logging.getLogger("mdl.lti")
 
 router = APIRouter(include_in_schema=False)
@@ -92,11 +97,12 @@ def origin(url: str) -> str:
     return f"{parts.scheme}://{parts.netloc}" if parts.scheme and parts.netloc else ""
 
 
-def framed_by(response: Response, origins: set[str], form_to: str = "") -> Response:
+def framed_by(response: Response, origins: set[str], form_to: str = "", script_hash: str = "") -> Response:
     """Let the platform frame this page (CSP frame-ancestors; X-Frame-Options then ignored) and, for the deep
-    linking answer, post a form to it."""
+    linking answer, post a form to it with the one inline script of that hash."""
     allowed = " ".join(sorted(o for o in origins if o))
-    policy = CONTENT_SECURITY_POLICY.replace("frame-ancestors 'none'", f"frame-ancestors 'self' {allowed}".strip())
+    policy = policy_with_script_hashes([script_hash]) if script_hash else CONTENT_SECURITY_POLICY
+    policy = policy.replace("frame-ancestors 'none'", f"frame-ancestors 'self' {allowed}".strip())
     if form_to:
         policy = policy.replace("form-action 'self'", f"form-action 'self' {form_to}")
     response.headers["content-security-policy"] = policy
@@ -232,6 +238,9 @@ def open_assignment(request: Request, found, platform, claims: dict, assignment_
     lang = lang or resolved.spec.lang
     context = lti_classroom.context_id(claims)
     if teaches(claims.get(ROLES_CLAIM)):
+        if store().lti_placements_of(record.id) and not placeable(request, record, platform, context):
+            return refused_page(request, 403, "another_course", "this assignment belongs to another course: its "
+                                                                "results open from that course only", lang, origins)
         store().lti_place(platform.id, context, record.id, resolved.spec.title or resolved.scene.title[lang],
                           datetime.now(timezone.utc).timestamp())
         if found.has_nrps():
@@ -319,10 +328,29 @@ def reset_student(request: Request, assignment_id: str, student_id: str, lang: s
 
 
 # deep linking
+def client_of(request: Request) -> str:
+    return request.client.host if request.client else "unknown"
+
+
+def placeable(request: Request, record, platform, context: str) -> bool:
+    """Whether this course may place the assignment: it is placed here already, or nowhere yet and made from
+    this browser's address (an assignment is tied to the first course that places it: an instructor elsewhere
+    who learns its id from a student's link sees no results)."""
+    placements = store().lti_placements_of(record.id)
+    if placements:
+        return (platform.id, context) in placements
+    return record.client == client_of(request)
+
+
 def picker(request: Request, launch_id: str, platform, claims: dict) -> HTMLResponse:
+    """The assignments of this course, those made lately from this address and placed nowhere, the scenes."""
     lang = launch_language(claims, None)
     offered = [scene for scene in scenes().values() if scene.questions]
     placed = store().lti_placed(platform.id, lti_classroom.context_id(claims))
+    recent = store().lti_unplaced_by_client(client_of(request), datetime.now(timezone.utc).timestamp() - RECENT_S)
+    titles = {scene_id: scene.title for scene_id, scene in scenes().items()}
+    placed += [(assignment_id, spec.get("title") or titles.get(spec.get("scene"), {}).get(lang or "ru", assignment_id))
+               for assignment_id, spec in recent]
     return page(request, "lti_picker.html", lang, launch_id=launch_id, scenes=offered, placed=placed,
                 all_scenes=list(scenes().values()))
 
@@ -372,8 +400,10 @@ def _deep_link(request: Request, params: dict[str, str]):
             except SpecError as error:
                 return refused_page(request, 422, "assignment_error", f"{error.field}: {error.reason}", lang, origins)
         else:
-            if store().assignment(what[:40]) is None:
-                return refused_page(request, 422, "unknown_assignment", "no such assignment", lang, origins)
+            record = store().assignment(what[:40])
+            if record is None or not placeable(request, record, platform, lti_classroom.context_id(claims)):
+                return refused_page(request, 403, "another_course", "no such assignment of this course", lang,
+                                    origins)
             record, resolved = assignments.load(what)
         title = resolved.spec.title or resolved.scene.title[lang]
         store().lti_place(platform.id, lti_classroom.context_id(claims), record.id, title,
@@ -385,8 +415,8 @@ def _deep_link(request: Request, params: dict[str, str]):
     deep = found.get_deep_link()
     return_url = claims["https://purl.imsglobal.org/spec/lti-dl/claim/deep_linking_settings"]["deep_link_return_url"]
     response = page(request, "lti_deep_link_return.html", lang, return_url=return_url,
-                    jwt=deep.get_response_jwt([resource]))
-    return framed_by(response, origins, form_to=origin(return_url))
+                    jwt=deep.get_response_jwt([resource]), script=AUTO_SUBMIT)
+    return framed_by(response, origins, form_to=origin(return_url), script_hash=AUTO_SUBMIT_HASH)
 
 
 # registration by an administrator

@@ -164,6 +164,19 @@ class LtiTables:
                             "context_id = ? ORDER BY placed_at DESC", (platform_id, context_id))
         return [(row[0], row[1]) for row in rows]
 
+    def lti_placements_of(self, assignment_id: str) -> list[tuple[str, str]]:
+        """(platform id, context id) of every course the assignment is placed in."""
+        rows, _ = self._lti("SELECT platform_id, context_id FROM lti_placements WHERE assignment_id = ?",
+                            (assignment_id,))
+        return [(row[0], row[1]) for row in rows]
+
+    def lti_unplaced_by_client(self, client: str, since: float) -> list[tuple[str, dict]]:
+        """(id, spec) of the assignments made from this address since then that no course has placed yet."""
+        rows, _ = self._lti("SELECT id, spec FROM assignments WHERE client = ? AND created_at >= ? AND id NOT IN "
+                            "(SELECT assignment_id FROM lti_placements) ORDER BY created_at DESC LIMIT 50",
+                            (client, since))
+        return [(row[0], json.loads(row[1])) for row in rows]
+
     def lti_line_item(self, platform_id: str, context_id: str, assignment_id: str) -> str | None:
         rows, _ = self._lti("SELECT url FROM lti_line_items WHERE platform_id = ? AND context_id = ? AND "
                             "assignment_id = ?", (platform_id, context_id, assignment_id))
