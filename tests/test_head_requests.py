@@ -35,3 +35,4 @@ def test_head_of_a_post_only_route_is_refused_as_get_is(client):
     head = client.head("/api/v1/kinematics")
     assert head.status_code == 405 and head.content == b""
     assert head.headers["x-content-type-options"] == "nosniff"
+

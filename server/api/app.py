@@ -39,6 +39,9 @@ async def lifespan(app: FastAPI):
     assignment_store.check()           # a database it cannot write stops the server here, with the reason
     heavy.start()                      # the heavy processes warm their kernels meanwhile
     started = time.perf_counter()      # the compiled kernels, in this worker, before its first request
+    logging.getLogger("uvicorn.error").info(
+        "loading the compiled numerical kernels: a second from numba's cache; on a first start, or after an update, "
+        "they are compiled first (one to two minutes), then the server answers")
     parts = warm_up()
     logging.getLogger("uvicorn.error").info("compiled code ready in %.2f s (%s)", time.perf_counter() - started,
                                             ", ".join(f"{part} {seconds:.2f} s" for part, seconds in parts.items()))
