@@ -237,15 +237,105 @@ def test_a_roster_puts_names_on_with_their_variants_and_refuses_look_alikes(clie
     assert not rows["Ivan Petrov"]["on_roster"] and rows["Ivan Petrov"]["has_link"]
 
 
-def test_locked_registration_takes_only_roster_names_each_once(client, created):
+def test_locked_registration_takes_no_typed_name(client, created):
     client.post(f"{instructor(created)}/roster", json={"names": "Olena Shevchuk\nTaras Bulba", "lock": True})
     stranger = register(fresh(client), created, "Mallory")
     assert stranger.status_code == 403 and refusal(stranger)["type"] == "roster_locked"
-    claimed = register(fresh(client), created, "olena  shevchuk")
-    assert claimed.status_code == 201 and claimed.json()["student"] == "Olena Shevchuk"
-    assert register(fresh(client), created, "Olena Shevchuk").status_code == 409
+    typed = register(fresh(client), created, "olena  shevchuk")
+    assert typed.status_code == 403 and refusal(typed)["type"] == "roster_name_needs_link"
     assert client.put(f"{instructor(created)}/roster-lock", json={"locked": False}).json() == {"locked": False}
     assert register(fresh(client), created, "Mallory").status_code == 201
+
+
+def links(client, created) -> dict[str, str]:
+    """The instructor's links CSV for the students without a link: name → personal link."""
+    answer = client.post(f"{instructor(created)}/links?only_new=true")
+    return {row["student"]: row["personal_link"] for row in csv.DictReader(io.StringIO(answer.text.lstrip("\ufeff")))}
+
+
+@pytest.mark.parametrize("lock", [True, False])
+def test_a_roster_name_is_entered_only_with_its_personal_link(client, created, lock):
+    """Typing a name of the roster, or one that looks like it, never enters it (before: 201 and Dave's secret)."""
+    client.post(f"{instructor(created)}/roster", json={"names": "Carol Clark\nDave Dunn", "lock": lock})
+    for typed, named in [("Dave Dunn", "Dave Dunn"), ("dave  DUNN", "Dave Dunn"), ("Dave\u2800 Dunn", "Dave Dunn"),
+                         ("Carol CIark", "Carol Clark"), ("Caro1 Clark", "Carol Clark")]:
+        answer = register(fresh(client), created, typed)
+        assert answer.status_code == 403 and "secret" not in answer.text, (typed, answer.text)
+        assert refusal(answer)["type"] == "roster_name_needs_link" and refusal(answer)["name"] == named
+        assert "personal link the instructor gave you" in refusal(answer)["msg"]
+    assert all(not row["has_link"] for row in results(client, created))
+    dave = fresh(client)
+    dave.get(links(client, created)["Dave Dunn"].replace(str(client.base_url), ""))
+    assert dave.get(f"{API}/{created['id']}/me").json()["student"] == "Dave Dunn"
+
+
+@pytest.mark.parametrize("lang, text", [
+    ("en", "The name “Dave Dunn” is on the instructor's list: you enter it only with the personal link"),
+    ("ru", "Имя «Dave Dunn» есть в списке преподавателя: войти под ним можно только по личной ссылке"),
+    ("uk", "Ім'я «Dave Dunn» є у списку викладача: увійти під ним можна лише за особистим посиланням")])
+def test_the_name_form_says_a_roster_name_needs_its_link_in_the_readers_language(client, created, lang, text):
+    client.post(f"{instructor(created)}/roster", json={"names": "Dave Dunn"})
+    page = on_start_page(client, created, lang).post(f"/assignments/{created['id']}?lang={lang}",
+                                                     data={"student": "dave dunn"})
+    assert page.status_code == 403 and text in page.text.replace("&#39;", "'")
+    assert "mdl_student" not in page.headers.get("set-cookie", "")
+
+
+def test_registrations_from_one_address_are_limited(client, created, monkeypatch):
+    """One address made up 3,000 students in 101 s; now at most MDL_REGISTRATIONS_PER_HOUR an hour."""
+    monkeypatch.setenv("MDL_REGISTRATIONS_PER_HOUR", "3")
+    for k in range(3):
+        assert register(fresh(client), created, f"Made Up {k}").status_code == 201
+    refused = register(fresh(client), created, "Made Up 3")
+    assert refused.status_code == 429 and refused.headers["retry-after"] == "3600"
+    assert refusal(refused)["type"] == "too_many_registrations" and "at most 3 new students per hour" in \
+        refusal(refused)["msg"]
+    form = on_start_page(client, created).post(f"/assignments/{created['id']}?lang=en", data={"student": "Made Up 4"})
+    assert form.status_code == 429 and form.headers["retry-after"] == "3600" and "at most 3" in form.text
+    other = TestClient(client.app, base_url=str(client.base_url), client=("10.1.2.3", 5000))
+    assert register(other, created, "Made Up 5").status_code == 201            # another address
+    client.post(f"{instructor(created)}/roster", json={"names": "Roster Name"})     # the roster is not limited
+    assert len(results(client, created)) == 5
+
+
+def test_the_instructor_replaces_a_leaked_results_link(client, created):
+    old = instructor(created)
+    secret_of(client, created, "Ivan Petrov")
+    answer = client.post(f"{old}/token?lang=uk")
+    assert answer.status_code == 200
+    new_token, new_url = answer.json()["results_token"], answer.json()["results_url"]
+    assert new_token != created["results_token"]
+    assert new_url == f"{client.base_url}/assignments/{created['id']}/results/{new_token}?lang=uk"
+    for path in ("", "/csv"):
+        assert client.get(f"{old}{path}").status_code == 404
+        assert client.get(f"{API}/{created['id']}/results/{new_token}{path}").status_code == 200
+    assert client.post(f"{old}/links").status_code == 404 and client.post(f"{old}/token").status_code == 404
+    assert client.get(f"/assignments/{created['id']}/results/{created['results_token']}").status_code == 404
+    page = client.get(new_url.replace(str(client.base_url), ""))
+    assert page.status_code == 200 and 'id="replace-results-link"' in page.text and new_token in page.text
+    assert [row["student"] for row in client.get(f"{API}/{created['id']}/results/{new_token}").json()["students"]] \
+        == ["Ivan Petrov"]
+
+
+def test_answers_that_carry_a_secret_or_the_results_are_kept_by_no_cache(client, created):
+    def private(answer):
+        assert answer.headers.get("cache-control") == "no-store" and answer.headers.get("pragma") == "no-cache", \
+            (answer.request.url, answer.status_code, answer.headers)
+    browser = fresh(client)
+    registered = register(browser, created, "Ivan Petrov")
+    private(registered)
+    secret = registered.json()["secret"]
+    private(browser.get(f"{API}/{created['id']}/me"))
+    private(fresh(client).get(f"/assignments/{created['id']}/me/{secret}", follow_redirects=False))
+    private(fresh(client).get(f"/assignments/{created['id']}/me/{'B' * 32}"))
+    private(on_start_page(client, created).post(f"/assignments/{created['id']}", data={"student": "Taras"}))
+    private(client.get(instructor(created)))
+    private(client.get(f"/assignments/{created['id']}/results/{created['results_token']}"))
+    private(client.get(f"{instructor(created)}/csv"))
+    private(client.post(f"{instructor(created)}/links"))
+    row = results(client, created)[0]
+    private(client.post(f"{instructor(created)}/students/{row['id']}/link"))
+    private(client.post(f"{instructor(created)}/token"))
 
 
 def test_personal_links_csv_makes_new_links_and_ends_the_old(client, created):

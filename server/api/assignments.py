@@ -4,6 +4,7 @@ between the store, the names, the variants and the answers."""
 from __future__ import annotations
 
 import hashlib
+import os
 import secrets
 import time
 from datetime import datetime, timezone
@@ -11,7 +12,7 @@ from datetime import datetime, timezone
 from fastapi import HTTPException
 
 from ..classroom import identity, turning
-from ..classroom.names import NameRefused, check_new, normalise, roster_names
+from ..classroom.names import NameRefused, check_new, normalise, resembles, roster_names
 from ..classroom.spec import AssignmentSpec
 from ..classroom.store import AssignmentRecord, StudentRecord
 from ..classroom.variants import Plan, plan
@@ -22,7 +23,15 @@ from ..lessons.scenes import interface_texts, scenes
 from .schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow, RosterOutcome
 
 NAME_STATUS = {"name_empty": 422, "name_too_long": 422, "name_mixed_scripts": 422,    # HTTP status of a refused name
-               "name_confusable": 409, "name_taken": 409, "roster_locked": 403}
+               "name_confusable": 409, "name_taken": 409, "roster_locked": 403, "roster_name_needs_link": 403,
+               "too_many_registrations": 429}
+REGISTRATION_WINDOW_S = 3600
+
+
+def registrations_per_hour() -> int:
+    """New students one address may register per hour (``MDL_REGISTRATIONS_PER_HOUR``, 120 unless set: a class
+    behind one address, a university's NAT, registers well under it; a script making up students stops there)."""
+    return int(os.environ.get("MDL_REGISTRATIONS_PER_HOUR", "120"))
 
 
 def token_hash(token: str) -> str:
@@ -56,6 +65,19 @@ def load(assignment_id: str) -> tuple[AssignmentRecord, Plan]:
 def check_token(record: AssignmentRecord, token: str) -> None:
     if not secrets.compare_digest(token_hash(token), record.token_hash):
         raise HTTPException(404, "no such results page")
+
+
+def replace_token(record: AssignmentRecord, token: str) -> str:
+    """A new results token in place of ``token`` (a leaked link): the old one stops working at once."""
+    check_token(record, token)
+    new = secrets.token_urlsafe(18)
+    if not store().replace_token(record.id, record.token_hash, token_hash(new)):
+        raise HTTPException(404, "no such results page")             # replaced a moment ago by another request
+    return new
+
+
+def results_url(base: str, record: AssignmentRecord, token: str, lang: str) -> str:
+    return f"{base}/assignments/{record.id}/results/{token}?lang={lang}"
 
 
 def is_open(resolved: Plan, now: float | None = None) -> bool:
@@ -108,30 +130,50 @@ def identify(record: AssignmentRecord, secret: str | None) -> StudentRecord | No
     return store().student_by_secret(record.id, identity.secret_hash(secret))
 
 
-def register(record: AssignmentRecord, resolved: Plan, name: str,
-             current: StudentRecord | None) -> tuple[StudentRecord, str | None]:
-    """Register a name: the student and their new secret (None when the request already is this student).
+def needs_link(name: str) -> NameRefused:
+    return NameRefused("roster_name_needs_link", f"the name '{name}' is on the instructor's list: open the personal "
+                                                 f"link the instructor gave you", name=name)
 
-    A new name must pass ``names.check_new`` (one alphabet per word, not a look-alike of a registered name) and,
-    once the instructor has locked registration, be on the roster. A registered name that has no secret yet
-    (put on the roster by the instructor, or registered before secrets existed) is claimed by its first
-    registration; one that has a secret belongs to whoever holds it: NameRefused("name_taken")."""
+
+def register(record: AssignmentRecord, resolved: Plan, name: str, current: StudentRecord | None,
+             client: str = "") -> tuple[StudentRecord, str | None]:
+    """Register a name typed by ``client`` (an address): the student and their new secret (None when the request
+    already is this student).
+
+    A name on the instructor's roster is entered only with the personal link the instructor hands out, never by
+    typing it, nor by typing a name that looks like it: NameRefused("roster_name_needs_link"). A new name must
+    pass ``names.check_new`` (one alphabet per word, not a look-alike of a registered name), be on the roster
+    once the instructor has locked registration, and come from an address that has registered fewer than
+    ``registrations_per_hour()`` students in the last hour. A registered name off the roster that has no secret
+    yet (registered before secrets existed) is claimed by its first registration; one that has a secret
+    belongs to whoever holds it: NameRefused("name_taken")."""
     key = normalise(name)
     if current is not None and current.key == key:
         return current, None
     existing = store().students(record.id)
     same = next((s for s in existing if s.key == key), None)
     if same is None:
-        shown = check_new(name, [s.name for s in existing])
+        shown = check_new(name, [])                      # empty, too long, a word in two alphabets
+        on_roster = resembles(shown, [s.name for s in existing if s.on_roster])
+        if on_roster is not None:
+            raise needs_link(on_roster)
+        check_new(shown, [s.name for s in existing])
         if record.roster_locked:
             raise NameRefused("roster_locked", "registration is open only to the names on the instructor's roster; "
                                                "check how your name is written there, or ask the instructor")
+        limit = registrations_per_hour()
+        if store().recent_registrations_by_client(client, time.time() - REGISTRATION_WINDOW_S) >= limit:
+            raise NameRefused("too_many_registrations", f"at most {limit} new students per hour from one address "
+                                                        f"(MDL_REGISTRATIONS_PER_HOUR); try again later, or ask the "
+                                                        f"instructor for a personal link", limit=str(limit))
         secret = identity.new_secret()
         stored, created = store().register(record.id, new_student(record, resolved, shown,
-                                                                  identity.secret_hash(secret)))
+                                                                  identity.secret_hash(secret)), client)
         if created:
             return stored, secret
         same = stored                                    # registered by someone else a moment ago
+    if same.on_roster:
+        raise needs_link(same.name)
     if same.secret_hash is None:
         secret = identity.new_secret()
         if store().claim_secret(record.id, same.key, identity.secret_hash(secret)):     # the first claim only

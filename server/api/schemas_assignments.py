@@ -136,3 +136,8 @@ class RosterLock(BaseModel):
 class PersonalLink(BaseModel):
     student: str
     personal_url: str = Field(description="the student's new personal link; the old one no longer works")
+
+
+class ResultsLink(BaseModel):
+    results_token: str = Field(description="the instructor's new results token; the old one no longer works")
+    results_url: str = Field(description="the new private results page")

@@ -23,6 +23,9 @@ from fastapi.security import APIKeyCookie, HTTPAuthorizationCredentials, HTTPBea
 from .admission import COOKIE as CLIENT_COOKIE
 
 COOKIE = "mdl_student"
+# An answer that carries a secret or the instructor's results (a student's secret, the results token, names and
+# answers) is kept by no cache, the browser's or a proxy's.
+PRIVATE = {"Cache-Control": "no-store", "Pragma": "no-cache"}
 COOKIE_DAYS = 200                     # a term and then some
 API_PREFIX = "/api/v1"
 
@@ -50,6 +53,12 @@ def hand_over(response: Response, request: Request, assignment_id: str, secret: 
     for path, same_site in cookie_paths(assignment_id).items():
         response.set_cookie(COOKIE, secret, max_age=COOKIE_DAYS * 86400, path=path, httponly=True,
                             samesite=same_site, secure=request.url.scheme == "https")
+
+
+def keep_private(response: Response) -> Response:
+    """Mark an answer ``PRIVATE``: stored by no cache."""
+    response.headers.update(PRIVATE)
+    return response
 
 
 def forget(response: Response, request: Request, assignment_id: str) -> None:

@@ -107,16 +107,20 @@ def registered_page(request: Request, assignment_id: str, lang: str | None, name
     about = assignments.info(record, resolved, context["lang"])
     if from_another_site(request, form=True):
         return start_page(request, context, about, 403, error=t["assignment_error_cross_site"], name=name)
+    client = request.client.host if request.client else "unknown"
     try:
-        student, secret = assignments.register(record, resolved, name, assignments.identify(record, sent))
+        student, secret = assignments.register(record, resolved, name, assignments.identify(record, sent), client)
     except NameRefused as refused:
-        return start_page(request, context, about, assignments.NAME_STATUS[refused.code],
+        page = start_page(request, context, about, assignments.NAME_STATUS[refused.code],
                           error=refusal_text(t, refused), name=name)
+        if refused.code == "too_many_registrations":
+            page.headers["Retry-After"] = str(assignments.REGISTRATION_WINDOW_S)
+        return page
     if secret is None:                                   # already this student on this browser
         return RedirectResponse(f"/assignments/{record.id}?lang={context['lang']}", status_code=303)
     link = str(request.base_url).rstrip("/") + personal_path(record.id, secret) + f"?lang={context['lang']}"
-    response = start_page(request, context, about, 201, registered=student.name, personal_link=link)
-    response.headers["Cache-Control"] = "no-store"       # the secret: kept by no cache
+    response = keep_private(start_page(request, context, about, 201, registered=student.name,
+                                       personal_link=link))      # the secret: kept by no cache
     hand_over(response, request, record.id, secret)
     return response
 
@@ -128,8 +132,8 @@ def personal_link(request: Request, assignment_id: str, secret: str, lang: str |
     context = _context(request, lang)
     if assignments.identify(record, secret) is None:
         about = assignments.info(record, resolved, context["lang"])
-        return start_page(request, context, about, 404, error=context["t"]["assignment_link_invalid"])
-    response = RedirectResponse(f"/assignments/{record.id}?lang={context['lang']}", status_code=303)
+        return keep_private(start_page(request, context, about, 404, error=context["t"]["assignment_link_invalid"]))
+    response = keep_private(RedirectResponse(f"/assignments/{record.id}?lang={context['lang']}", status_code=303))
     hand_over(response, request, record.id, secret)
     return response
 
@@ -148,7 +152,7 @@ def results_page(request: Request, assignment_id: str, token: str, lang: str | N
     record, resolved = assignments.load(assignment_id)
     assignments.check_token(record, token)
     context = _context(request, lang)
-    return templates.TemplateResponse(request, "assignment_results.html", context | {
+    return keep_private(templates.TemplateResponse(request, "assignment_results.html", context | {
         "assignment": assignments.info(record, resolved, context["lang"]), "token": token,
         "sliders": resolved.variant.sliders, "toggles": resolved.variant.toggles,
-        "rows": assignments.result_rows(record, resolved), "roster_locked": record.roster_locked})
+        "rows": assignments.result_rows(record, resolved), "roster_locked": record.roster_locked}))

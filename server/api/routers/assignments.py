@@ -23,9 +23,9 @@ from ..assignment_store import store
 from ..csv_export import csv_attachment
 from ..schemas import Language
 from ..schemas_assignments import (AssignmentCreated, AssignmentInfo, PersonalLink, Registration, Results,
-                                   RosterLock, RosterOutcome, RosterUpload, StudentRegistration, StudentVariant,
-                                   SubmissionOutcome, SubmissionRequest)
-from ..student_secret import from_another_site, hand_over, sent_secret
+                                   ResultsLink, RosterLock, RosterOutcome, RosterUpload, StudentRegistration,
+                                   StudentVariant, SubmissionOutcome, SubmissionRequest)
+from ..student_secret import from_another_site, hand_over, keep_private, sent_secret
 
 router = APIRouter(prefix="/assignments", tags=["assignments"])
 LANG = Query("en", description="language of the question labels: ru, uk or en")
@@ -47,7 +47,11 @@ def spec_error(request: Request, error: SpecError) -> JSONResponse:
 
 
 def name_refused(refused: NameRefused) -> JSONResponse:
-    return _refuse(assignments.NAME_STATUS[refused.code], ["body", "name"], refused.reason, refused.code, **refused.about)
+    response = _refuse(assignments.NAME_STATUS[refused.code], ["body", "name"], refused.reason, refused.code,
+                       **refused.about)
+    if refused.code == "too_many_registrations":
+        response.headers["Retry-After"] = str(assignments.REGISTRATION_WINDOW_S)
+    return response
 
 
 def the_student(secret: str | None, record) -> StudentRecord | JSONResponse:
@@ -73,7 +77,7 @@ def create(spec: AssignmentSpec, request: Request) -> AssignmentCreated:
     record, resolved, token = assignments.create(spec, client)
     base = str(request.base_url).rstrip("/")
     return AssignmentCreated(id=record.id, student_url=f"{base}/assignments/{record.id}?lang={spec.lang}",
-                             results_url=f"{base}/assignments/{record.id}/results/{token}?lang={spec.lang}",
+                             results_url=assignments.results_url(base, record, token, spec.lang),
                              results_token=token, variants=resolved.count)
 
 
@@ -87,22 +91,28 @@ def describe(assignment_id: str = ID, lang: Language = LANG) -> AssignmentInfo:
 @router.post("/{assignment_id}/students", status_code=201, response_model=Registration,
              summary="Register a student by name: their variant, and a personal secret (cookie and link)",
              responses={200: {"description": "the request already carries this student's secret"},
-                        403: {"description": "registration is locked to the roster, or the request came from "
-                                             "another site"},
+                        403: {"description": "the name (or one it looks like) is on the instructor's roster: "
+                                             "only its personal link enters it (`roster_name_needs_link`); "
+                                             "registration is locked to the roster (`roster_locked`); or the "
+                                             "request came from another site"},
                         404: {"description": "no such assignment"},
                         409: {"description": "the name is taken (`name_taken`) or looks like a registered one "
                                              "(`name_confusable`, with `resembles`)"},
-                        422: {"description": "no name, too long, or a word in two alphabets"}})
+                        422: {"description": "no name, too long, or a word in two alphabets"},
+                        429: {"description": "this address registered MDL_REGISTRATIONS_PER_HOUR students in the "
+                                             "last hour (`too_many_registrations`, with Retry-After)"}})
 def register(registration: StudentRegistration, request: Request, response: Response, assignment_id: str = ID,
              sent: str | None = SECRET):
     record, resolved = assignments.load(assignment_id)
     if from_another_site(request):
         return _refuse(403, ["header", "origin"], "registration from another site's page", "cross_site")
+    client = request.client.host if request.client else "unknown"
     try:
         student, secret = assignments.register(record, resolved, registration.name,
-                                               assignments.identify(record, sent))
+                                               assignments.identify(record, sent), client)
     except NameRefused as refused:
         return name_refused(refused)
+    keep_private(response)
     if secret is None:
         response.status_code = 200
     else:
@@ -115,11 +125,13 @@ def register(registration: StudentRegistration, request: Request, response: Resp
 @router.get("/{assignment_id}/me", response_model=StudentVariant,
             summary="The student's own variant and the state of their questions (answers only once closed)",
             responses={**NO_SECRET, 404: {"description": "no such assignment"}})
-def student_variant(assignment_id: str = ID, lang: Language = LANG, secret: str | None = SECRET):
+def student_variant(response: Response, assignment_id: str = ID, lang: Language = LANG,
+                    secret: str | None = SECRET):
     record, resolved = assignments.load(assignment_id)
     student = the_student(secret, record)
     if isinstance(student, JSONResponse):
         return student
+    keep_private(response)
     return StudentVariant(assignment=assignments.info(record, resolved, lang), student=student.name,
                           variant=student.variant + 1, values=student.parameters,
                           questions=assignments.question_states(record, resolved, student, lang))
@@ -169,9 +181,10 @@ def submit(submission: SubmissionRequest, request: Request, assignment_id: str =
 @router.get("/{assignment_id}/results/{token}", response_model=Results,
             summary="Every student, variant, attempts, score and time (the instructor's token)",
             responses={404: {"description": "no such assignment or wrong token"}})
-def results(assignment_id: str = ID, token: str = TOKEN, lang: Language = LANG) -> Results:
+def results(response: Response, assignment_id: str = ID, token: str = TOKEN, lang: Language = LANG) -> Results:
     record, resolved = assignments.load(assignment_id)
     assignments.check_token(record, token)
+    keep_private(response)
     return Results(assignment=assignments.info(record, resolved, lang),
                    students=assignments.result_rows(record, resolved))
 
@@ -192,7 +205,7 @@ def results_csv(assignment_id: str = ID, token: str = TOKEN) -> Response:
                                               row.questions[q]["answer"], row.questions[q]["correct"])],
              row.score, row.attempts, row.first_seen, row.last_submission]
             for row in assignments.result_rows(record, resolved))
-    return csv_attachment(header, rows, f"results-{record.id}.csv")
+    return keep_private(csv_attachment(header, rows, f"results-{record.id}.csv"))
 
 
 @router.post("/{assignment_id}/results/{token}/roster", response_model=RosterOutcome,
@@ -234,17 +247,19 @@ def personal_links(request: Request, assignment_id: str = ID, token: str = TOKEN
             continue
         secret = assignments.new_link(record, student)
         rows.append([student.name, student.variant + 1, assignments.personal_url(base, record, resolved, secret)])
-    return csv_attachment(["student", "variant", "personal_link"], rows, f"links-{record.id}.csv")
+    return keep_private(csv_attachment(["student", "variant", "personal_link"], rows, f"links-{record.id}.csv"))
 
 
 @router.post("/{assignment_id}/results/{token}/students/{student_id}/link", response_model=PersonalLink,
              summary="A new personal link for one student (the old one and its cookies stop working)",
              responses={404: {"description": "no such assignment or student, or wrong token"}})
-def new_link(request: Request, assignment_id: str = ID, token: str = TOKEN, student_id: str = STUDENT):
+def new_link(request: Request, response: Response, assignment_id: str = ID, token: str = TOKEN,
+             student_id: str = STUDENT):
     record, resolved = assignments.load(assignment_id)
     assignments.check_token(record, token)
     student = assignments.find_student(record, student_id)
     secret = assignments.new_link(record, student)
+    keep_private(response)
     return PersonalLink(student=student.name, personal_url=assignments.personal_url(
         str(request.base_url).rstrip("/"), record, resolved, secret))
 
@@ -258,3 +273,17 @@ def delete_student(assignment_id: str = ID, token: str = TOKEN, student_id: str 
     student = assignments.find_student(record, student_id)
     store().delete_student(record.id, student.key)
     return Response(status_code=204)
+
+
+@router.post("/{assignment_id}/results/{token}/token", response_model=ResultsLink,
+             summary="Replace the results token (a results link that leaked): the new token and results link; the "
+                     "old ones stop working at once",
+             responses={404: {"description": "no such assignment or wrong token"}})
+def new_results_token(request: Request, response: Response, assignment_id: str = ID, token: str = TOKEN,
+                      lang: Language | None = Query(None, description="the new link's language (the assignment's "
+                                                                      "unless given)")) -> ResultsLink:
+    record, resolved = assignments.load(assignment_id)
+    new = assignments.replace_token(record, token)
+    keep_private(response)
+    return ResultsLink(results_token=new, results_url=assignments.results_url(
+        str(request.base_url).rstrip("/"), record, new, lang or resolved.spec.lang))

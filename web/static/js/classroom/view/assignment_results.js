@@ -1,14 +1,15 @@
 /**
  * The instructor's side of the students on the results page: upload a roster (pasted or from a file), lock
- * registration to it or open it again, make one student's new personal link, delete a student's row. Every
- * action is a request to /api/v1/assignments/{id}/results/{token}/…; after a change the table is read again
- * from the page. The links CSV downloads are plain forms (no script needed).
+ * registration to it or open it again, make one student's new personal link, delete a student's row, replace
+ * the results link itself (the page then goes on under the new token). Every action is a request to
+ * /api/v1/assignments/{id}/results/{token}/…; after a change the table is read again from the page. The links
+ * CSV downloads are plain forms (no script needed).
  */
 import { element } from "../../common/view/dom.js";
 
 const t = JSON.parse(document.getElementById("interface-texts").textContent);
 const root = document.getElementById("students");
-const api = root.dataset.api;
+let api = root.dataset.api;
 const outcome = document.getElementById("roster-outcome");
 
 async function send(method, path, body) {
@@ -96,4 +97,31 @@ document.getElementById("results-wrap").addEventListener("click", async (event) 
     row.querySelector(".new-link-shown").textContent = `${t.assignment_failed}: ${error.message}`;
     button.disabled = false;
   }
+});
+
+/** A new results token: the old link stops working, so every address on the page moves to the new one. */
+document.getElementById("replace-results-link").addEventListener("click", async (event) => {
+  const button = event.currentTarget;
+  if (!window.confirm(button.dataset.confirm)) return;
+  const shown = document.getElementById("new-results-link");
+  button.disabled = true;
+  try {
+    const lang = new URLSearchParams(location.search).get("lang");
+    const fresh = await send("POST", `/token${lang ? `?lang=${encodeURIComponent(lang)}` : ""}`);
+    const old = api;
+    api = old.replace(/[^/]+$/, encodeURIComponent(fresh.results_token));
+    root.dataset.api = api;
+    for (const link of document.querySelectorAll(`[href^="${old}"]`)) link.href = link.getAttribute("href").replace(old, api);
+    for (const form of document.querySelectorAll(`form[action^="${old}"]`)) {
+      form.action = form.getAttribute("action").replace(old, api);
+    }
+    const target = new URL(fresh.results_url);                // this page's own origin, as the instructor opened it
+    history.replaceState(null, "", target.pathname + target.search);
+    document.getElementById("new-results-url").value = location.origin + target.pathname + target.search;
+    shown.hidden = false;
+  } catch (error) {
+    shown.hidden = false;
+    shown.textContent = `${t.assignment_failed}: ${error.message}`;
+  }
+  button.disabled = false;
 });
