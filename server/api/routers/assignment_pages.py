@@ -14,7 +14,7 @@ from ...classroom.names import NameRefused
 from .. import assignments
 from ..answers import student_scene, unlocked_predictions
 from ..assignment_store import store
-from ..student_secret import forget, from_another_site, hand_over, sent_secret
+from ..student_secret import forget, from_another_site, hand_over, keep_private, sent_secret
 from ...classroom.visibility import public_views
 from ...lessons.scenes import scenes
 from .pages import scene_context, templates, _context
