@@ -149,7 +149,9 @@ class Question(BaseModel):
 
 
 class Scene(BaseModel):
-    id: str
+    id: str = Field(pattern=r"^[a-z0-9]+(-[a-z0-9]+)*$", description="lowercase words joined by hyphens: its URL")
+    former_ids: list[str] = Field(default_factory=list, description=(
+        "ids it had before: their URLs redirect here, and assignments made with them still find it"))
     order: int
     kind: Literal["kinematics", "dynamics", "project"] = Field("kinematics", description=(
         "project: the course project of a linkage (endpoint course-project), computed on /project; the scene "
@@ -216,9 +218,29 @@ def _check_slider(slider: dict, where: str) -> None:
         raise ContentError(f"{where}: {reasons}") from None
 
 
+class Catalogue(dict):
+    """The scenes by id, in order; a former id (``Scene.former_ids``) finds its scene too, though it is not listed:
+    ``catalogue.get("flywheel_analysis")`` is the scene now called "flywheel-analysis"."""
+
+    def __init__(self, ordered: list[Scene]):
+        super().__init__((s.id, s) for s in ordered)
+        self.former = {old: s for s in ordered for old in s.former_ids}
+
+    def __missing__(self, scene_id: str) -> Scene:
+        if scene_id in self.former:
+            return self.former[scene_id]
+        raise KeyError(scene_id)
+
+    def get(self, scene_id, default=None):
+        return super().get(scene_id) or self.former.get(scene_id, default)
+
+    def __contains__(self, scene_id) -> bool:
+        return super().__contains__(scene_id) or scene_id in self.former
+
+
 @lru_cache(maxsize=1)
-def scenes() -> dict[str, Scene]:
-    """All scenes in content/scenes, ordered, each checked to carry all three languages."""
+def scenes() -> Catalogue:
+    """All scenes in content/scenes, ordered, each checked to carry all three languages; former ids find theirs."""
     loaded = []
     for name, document in scene_documents().items():
         where = f"{name}.json"
@@ -230,7 +252,10 @@ def scenes() -> dict[str, Scene]:
         for question in scene.questions:
             _check_languages(question.label, f"{where}: question {question.id}")
         loaded.append(scene)
-    return {s.id: s for s in sorted(loaded, key=lambda s: s.order)}
+    taken = [i for s in loaded for i in (s.id, *s.former_ids)]
+    if len(taken) != len(set(taken)):
+        raise ContentError(f"scene ids or former ids used twice: {sorted({i for i in taken if taken.count(i) > 1})}")
+    return Catalogue(sorted(loaded, key=lambda s: s.order))
 
 
 @lru_cache(maxsize=len(LANGUAGES))

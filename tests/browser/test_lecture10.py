@@ -44,7 +44,7 @@ def operating_x(page) -> float:
 def test_the_load_moves_the_operating_point_and_the_approximations(browser_page):
     page = browser_page
     scene = read_scene("induction_motor")
-    page.goto("/scenes/induction_motor?lang=ru")
+    page.goto("/scenes/induction-motor?lang=ru")
     wait_for_graphs(page, scene, scene["variants"][0])
     before_x, before_laws = operating_x(page), trace_y(page, "laws", 0)
     load_trace = page.evaluate(f"id => {GRAPH}.data.findIndex(d => d.mode !== 'markers' && d.line.dash === 'dot')",
@@ -68,7 +68,7 @@ def test_the_load_moves_the_operating_point_and_the_approximations(browser_page)
 def test_the_flywheels_inertia_sets_the_delta(browser_page):
     page = browser_page
     scene = read_scene("flywheel_analysis")
-    page.goto("/scenes/flywheel_analysis?lang=ru")
+    page.goto("/scenes/flywheel-analysis?lang=ru")
     wait_for_graphs(page, scene, scene["variants"][0])
     before = trace_y(page, "speed", 0)
     figures = {panel: trace_y(page, panel, 0) for panel in ("moment", "transfer")}     # Fig. 10.6, Fig. 10.5

@@ -18,7 +18,10 @@ from ..student_secret import forget, from_another_site, hand_over, keep_private,
 from ...classroom.visibility import public_views
 from ...lessons.scenes import scenes
 from .pages import scene_context, templates, _context
-from ...lessons.project_links import project_links
+from ..scene_urls import renamed
+from ...classroom.spec import OwnMechanism
+from ...lessons.project_links import address_documents, project_links
+from ...lessons.requests import scene_variant
 
 NAME_FIELD = "student"
 MAX_FORM_BYTES = 4096
@@ -30,12 +33,21 @@ router = APIRouter(include_in_schema=False)
 def builder(request: Request, scene_id: str, lang: str | None = None, variant: str | None = None):
     """The instructor's form, opened with the scene's variant and slider values from the page address."""
     scene = scenes().get(scene_id)
+    if scene is not None and (moved := renamed(request, scene_id, scene.id)):
+        return moved
     if scene is None or not scene.questions:
         raise HTTPException(404, f"no scene '{scene_id}' with questions")
     chosen = next((v for v in scene.variants if v.id == variant), None)
-    offered = [v for v in scene.variants if v.address is None     # an own mechanism (the address) is no assignment
+    own = address_documents(request.query_params.get("m"), request.query_params.get("d")) \
+        if scene.kind == "project" else None           # a course project of the editor's mechanism (address m, d)
+    offered = [v for v in scene.variants if (v.address is None or own is not None)   # else an address is no assignment
                and any(not q.variants or v.id in q.variants for q in scene.questions)]
     chosen = chosen if chosen in offered else offered[0]
+    if chosen.address is not None:
+        try:
+            chosen = scene_variant(scene.id, chosen.id, OwnMechanism.model_validate(own).documents())
+        except (KeyError, ValueError):
+            raise HTTPException(422, "the address's mechanism cannot make this variant: open it from the editor")
     values = {}
     for control in [*chosen.sliders, *chosen.toggles]:
         text = request.query_params.get(control.id)
@@ -48,7 +60,8 @@ def builder(request: Request, scene_id: str, lang: str | None = None, variant: s
     questions = [q for q in scene.questions if not q.variants or chosen.id in q.variants]
     return templates.TemplateResponse(request, "assignment_builder.html", _context(request, lang) | {
         "scene": scene, "variant": chosen, "variants": offered, "values": values, "questions": questions,
-        "shown": {q.id: public_views(scene, chosen, q) for q in questions}})
+        "shown": {q.id: public_views(scene, chosen, q) for q in questions},
+        "own_mechanism": own if chosen.address is not None else None})
 
 
 def start_page(request: Request, context: dict, about, status: int = 200, **state) -> HTMLResponse:

@@ -11,6 +11,7 @@ from markupsafe import Markup, escape
 
 from ...lessons.scenes import LANGUAGES, interface_texts, language, scenes
 from ...paths import BENCH_RESULTS, WEB
+from ..scene_urls import renamed
 from ..messages import signed
 
 templates = Jinja2Templates(directory=WEB / "templates")
@@ -94,6 +95,8 @@ def scene_page(request: Request, scene_id: str, lang: str | None = None):
     scene = scenes().get(scene_id)
     if scene is None:
         raise HTTPException(404, f"no scene '{scene_id}'")
+    if moved := renamed(request, scene_id, scene.id):
+        return moved
     return templates.TemplateResponse(request, "scene.html", scene_context(request, _context(request, lang), scene))
 
 
