@@ -44,6 +44,7 @@ CRANK = {"scene": "transfer-functions", "variant": "slider_crank",
 @pytest.fixture()
 def client(tmp_path, monkeypatch) -> TestClient:
     monkeypatch.setenv("MDL_DATA_DIR", str(tmp_path))
+    monkeypatch.setenv("MDL_REGISTRATIONS_PER_HOUR", "100000")     # one test address registers whole classes
     assignment_store.store.cache_clear()
     yield TestClient(app)
     assignment_store.store.cache_clear()

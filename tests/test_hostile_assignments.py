@@ -162,6 +162,7 @@ API = "/api/v1/assignments"
 @pytest.fixture
 def client(tmp_path, monkeypatch) -> TestClient:
     monkeypatch.setenv("MDL_DATA_DIR", str(tmp_path))
+    monkeypatch.setenv("MDL_REGISTRATIONS_PER_HOUR", "100000")     # one test address registers many students
     monkeypatch.setattr(heavy, "HEAVY_PROCESSES", 0)
     assignment_store.store.cache_clear()
     yield TestClient(create_app())

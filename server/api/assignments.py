@@ -162,7 +162,7 @@ def register(record: AssignmentRecord, resolved: Plan, name: str, current: Stude
             raise NameRefused("roster_locked", "registration is open only to the names on the instructor's roster; "
                                                "check how your name is written there, or ask the instructor")
         limit = registrations_per_hour()
-        if store().recent_registrations_by_client(client, time.time() - REGISTRATION_WINDOW_S) >= limit:
+        if client and store().recent_registrations_by_client(client, time.time() - REGISTRATION_WINDOW_S) >= limit:
             raise NameRefused("too_many_registrations", f"at most {limit} new students per hour from one address "
                                                         f"(MDL_REGISTRATIONS_PER_HOUR); try again later, or ask the "
                                                         f"instructor for a personal link", limit=str(limit))

@@ -95,7 +95,8 @@ def app_url(tmp_path_factory):
     # loaded machine a family cut short would fail what the tests compare with its contract, which holds for
     # the complete family
     env = os.environ | {"MDL_DATA_DIR": str(tmp_path_factory.mktemp("data")), "MDL_FAMILY_BUDGET_S": "60",
-                        "MDL_HEAVY_NICE": "0"}
+                        "MDL_HEAVY_NICE": "0",
+                        "MDL_REGISTRATIONS_PER_HOUR": "100000"}    # every browser test registers from 127.0.0.1
     ARTIFACTS.mkdir(exist_ok=True)
     url = f"http://127.0.0.1:{port}"
     log = server_log(url).open("w", encoding="utf-8")     # its access log and errors, for a failure to quote

@@ -259,8 +259,9 @@ def test_kinematics_assignment_page_never_asks_for_the_answer(chromium, app_url)
 
 def test_roster_lock_new_link_and_delete_on_the_results_page(chromium, app_url, browser_page):
     """In Russian: the instructor pastes a roster (one look-alike line is refused, naming why), locks
-    registration; a name not on it is refused, a roster name registers and sees its personal link once; the
-    instructor downloads the links, makes one student a new link and deletes another's row."""
+    registration; a name not on it is refused, and so is a roster name typed (it enters only by its personal
+    link); the instructor downloads the links, the student opens theirs, the instructor makes them a new link,
+    deletes another's row, and replaces the results link itself (the old one stops working)."""
     created = httpx.post(f"{app_url}/api/v1/assignments", json={
         "scene": "flywheel", "variant": "rig", "lang": "ru", "questions": [{"id": "flywheel_inertia"}],
         "sliders": {"delta": {"vary": {"min": 0.01, "max": 0.05}, "step": 0.001}}}).json()
@@ -286,19 +287,18 @@ def test_roster_lock_new_link_and_delete_on_the_results_page(chromium, app_url, 
     page.problems.clear()                                      # the refusal's status, as Chromium logs it
     page.fill("#student", "иванов  иван")
     page.click("button[type=submit]")
-    page.wait_for_selector("#personal-link")
-    assert "Иванов Иван" in page.locator("#registered-heading").inner_text()
-    screenshot(page, "assignment_personal_link_ru")
-    page.click("#copy-link")
-    page.click("#continue")
-    page.wait_for_selector("#questions .question")
-    assert page.problems == []
+    assert "есть в списке преподавателя" in page.locator("#name-error").inner_text()
+    assert page.problems == ["Failed to load resource: the server responded with a status of 403 (Forbidden)"]
+    page.problems.clear()
 
     instructor.reload()
     with instructor.expect_download() as download:
-        instructor.click("#links-new")                         # Petrenko has no link yet; Ivanov keeps his
+        instructor.click("#links-new")                         # neither has a link yet
     links = list(csv.DictReader(io.StringIO(open(download.value.path(), encoding="utf-8-sig").read())))
-    assert [row["student"] for row in links] == ["Петренко Олена"]
+    assert sorted(row["student"] for row in links) == ["Иванов Иван", "Петренко Олена"]
+    page.goto(next(row["personal_link"] for row in links if row["student"] == "Иванов Иван"))
+    page.wait_for_selector("#questions .question")
+    assert page.problems == []
     ivanov = instructor.locator("#results tbody tr", has_text="Иванов Иван")
     ivanov.locator("button.new-link").click()
     new_link = ivanov.locator(".shown-link").input_value()
@@ -311,5 +311,18 @@ def test_roster_lock_new_link_and_delete_on_the_results_page(chromium, app_url, 
     instructor.locator("#results tbody tr", has_text="Петренко Олена").wait_for(state="detached")
     assert instructor.locator("#results tbody tr").count() == 1
     screenshot(instructor, "assignment_results_roster_ru")
+    assert instructor.problems == []
+
+    old_url = instructor.url
+    instructor.click("#replace-results-link")                 # the confirm dialog is accepted
+    instructor.locator("#new-results-link").wait_for()
+    new_url = instructor.locator("#new-results-url").input_value()
+    assert new_url != old_url and "/results/" in new_url and instructor.url == new_url
+    assert httpx.get(old_url).status_code == 404 and httpx.get(new_url).status_code == 200
+    instructor.locator("#results tbody tr", has_text="Иванов Иван").locator("button.new-link").click()   # the page
+    assert "/me/" in instructor.locator("#results tbody tr", has_text="Иванов Иван").locator(".shown-link").input_value()
+    assert instructor.locator("#csv").get_attribute("href").startswith(
+        f"/api/v1/assignments/{created['id']}/results/{new_url.split('/results/')[1].split('?')[0]}/")
+    screenshot(instructor, "assignment_results_link_replaced_ru")
     assert instructor.problems == []
     student.close()
