@@ -239,6 +239,23 @@ def test_nginx_logs_a_personal_link_without_its_secret(deployment):
     assert not [line for line in deployment.proxy.access_log() if student.secret in line]
 
 
+def test_nginx_logs_the_results_pages_and_api_without_the_token(deployment):
+    """The instructor's results token that went through nginx (the page, the JSON, the CSV, the links) is nowhere
+    in the shipped site's access log; each line is there with `/results/(token)`."""
+    created = make_assignment(deployment.proxy.url)
+    token, base = created["results_token"], f"{deployment.proxy.url}{API}/assignments/{created['id']}/results"
+    assert httpx.get(created["results_url"]).status_code == 200
+    assert httpx.get(f"{base}/{token}").status_code == 200
+    assert httpx.get(f"{base}/{token}/csv").status_code == 200
+    assert httpx.post(f"{base}/{token}/links?only_new=true").status_code == 200
+    deadline = time.monotonic() + 60               # nginx logs a request after answering it: wait for the lines
+    while len(lines := [line for line in deployment.proxy.access_log() if f"{created['id']}/results/" in line]) < 4:
+        assert time.monotonic() < deadline, f"nginx logged {len(lines)} of the 4 results requests"
+        time.sleep(0.05)
+    assert all("/results/(token)" in line for line in lines)
+    assert not [line for line in deployment.proxy.access_log() if token in line]
+
+
 class Burst:
     """What the class saw: acknowledged answers, and every status that was not an acknowledgement."""
 
