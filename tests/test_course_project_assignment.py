@@ -212,3 +212,61 @@ def test_the_links_open_the_students_variant_on_the_project_page_and_in_the_edit
     assert project["p"]["title"]["student"] == name and project["p"]["title"]["variant"] == str(mine["variant"])
     for key in ("project", "editor"):
         assert client.get(hrefs[key].replace("&amp;", "&")).status_code == 200
+
+
+def test_an_own_mechanism_from_the_editor_is_assigned_with_per_student_crank_and_speed(client):
+    """The editor's six-bar (no preset) with its estimated masses: per-student |OA| and ω₁ₘ; the answers computed
+    independently from the mechanism sent are accepted, the links carry the student's own linkage."""
+    from server.core.structure.estimate import estimated_dynamics
+    from test_dynamics_estimate import HAND_BUILT
+    dynamics = estimated_dynamics(HAND_BUILT)
+    length = HAND_BUILT["input"]["length"]
+    spec = {"scene": "course-project", "variant": "own", "lang": "en", "mechanism": {"m": HAND_BUILT, "d": dynamics},
+            "sliders": {"l_OA": {"vary": {"min": 0.8 * length, "max": 1.2 * length}, "step": 0.05 * length},
+                        "omega": {"vary": {"min": 8, "max": 12}, "step": 1}},
+            "questions": [{"id": "J_flywheel"}, {"id": "M_b_groups"}]}
+    assert client.post(API, json=spec | {"mechanism": None}).json()["detail"][0]["loc"] == ["body", "variant"]
+    wrong = client.post(API, json=spec | {"variant": "shaping_machine", "sliders": {}})
+    assert wrong.status_code == 422 and wrong.json()["detail"][0]["loc"] == ["body", "mechanism"]
+    response = client.post(API, json=spec)
+    assert response.status_code == 201, response.text
+    created = response.json()
+    seen = set()
+    for name in NAMES[:3]:
+        headers = register(client, created, name)
+        mine = my_variant(client, created, headers)
+        values = mine["values"]
+        seen.add(mine["variant"])
+        linkage = copy.deepcopy(HAND_BUILT)
+        linkage["input"]["length"] = values["l_OA"]
+        body = {"linkage": linkage, "masses": dynamics["masses"] | {"friction": values["friction"], "pair_radius": 0.02},
+                "inertias": dynamics["inertias"], "omega_mean": values["omega"], "delta": values["delta"],
+                "positions": 12, "chosen": int(values["chosen"])}
+        project = client.post("/api/v1/course-project", json=body).json()
+        expected = {"J_flywheel": project["dynamics"]["flywheel"]["flywheel_inertia"],
+                    "M_b_groups": project["kinetostatics"]["balancing_moment"]}
+        for question, value in expected.items():
+            outcome = client.post(f"{API}/{created['id']}/submissions", headers=headers,
+                                  json={"question": question, "answer": value}).json()
+            assert outcome["right"], (name, question, outcome)
+        client.cookies.clear()
+        client.get(f"/assignments/{created['id']}/me/{headers['Authorization'][7:]}")
+        page = client.get(f"/assignments/{created['id']}", params={"lang": "en"}).text
+        project_link = link_documents(re.search(r'id="open-project" href="([^"]+)"', page).group(1))
+        assert project_link["m"] == linkage and project_link["d"]["flywheel"]["omega_mean"] == values["omega"]
+    assert len(seen) >= 2
+
+
+def test_the_builder_offers_the_presets_and_with_an_editor_address_the_own_mechanism(client):
+    from server.core.structure.estimate import estimated_dynamics
+    from server.lessons.project_links import base64url
+    from test_dynamics_estimate import HAND_BUILT
+    page = client.get("/scenes/course-project/assign", params={"lang": "ru"}).text
+    assert 'data-variant="shaping_machine"' in page and "variant=jaw_crusher" in page and "variant=own" not in page
+    assert 'data-slider="l_OA"' in page and 'data-slider="P"' in page and 'value="0,1"' in page     # decimal comma
+    address = {"lang": "en", "variant": "own", "m": base64url(HAND_BUILT), "d": base64url(estimated_dynamics(HAND_BUILT))}
+    page = client.get("/scenes/course-project/assign", params=address).text
+    assert 'data-variant="own"' in page and 'id="own-mechanism"' in page
+    own = json.loads(unescape(re.search(r'id="own-mechanism">(.*?)</script>', page, re.S).group(1)))
+    assert own["m"] == HAND_BUILT
+    assert client.get("/scenes/course-project", params={"lang": "uk"}).status_code == 200

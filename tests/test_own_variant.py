@@ -10,6 +10,7 @@ import pytest
 from server.api.endpoints import compute
 from server.api.schemas_dynamics import FlywheelRequest, MotionRequest, ReductionRequest
 from server.api.schemas_forces import ForcesRequest
+from server.api.schemas_project import CourseProjectRequest
 from server.classroom.spec import AssignmentSpec
 from server.classroom.variants import SpecError, plan
 from server.core.structure.estimate import estimated_dynamics
@@ -18,14 +19,14 @@ from server.lessons.scenes import scenes
 from test_dynamics_estimate import HAND_BUILT
 
 REQUEST_MODELS = {"motion": MotionRequest, "flywheel": FlywheelRequest, "forces": ForcesRequest,
-                  "reduction": ReductionRequest}
+                  "reduction": ReductionRequest, "course-project": CourseProjectRequest}
 OWN = [(scene.id, variant.id) for scene in scenes().values() for variant in scene.variants if variant.address]
 DOCUMENTS = {"m": HAND_BUILT, "d": estimated_dynamics(HAND_BUILT)}
 
 
 def test_the_dynamics_scenes_offer_the_own_mechanism():
     """Every scene that offers a six-bar preset offers the student's own mechanism too."""
-    assert sorted(scene for scene, _ in OWN) == ["equation-of-motion", "flywheel", "forces-friction",
+    assert sorted(scene for scene, _ in OWN) == ["course-project", "equation-of-motion", "flywheel", "forces-friction",
                                                  "reduced-inertia", "resisting-moment"]
 
 

@@ -17,7 +17,7 @@ from .endpoints import compute_answer
 from .serialise import serialise
 from ..lessons.scenes import AngleGrid, Question, Readout, Scene, Slider, Toggle, scenes
 from ..lessons.dotted_paths import path_value
-from ..lessons.requests import scene_request
+from ..lessons.requests import scene_request, scene_variant
 
 ANSWER_POINTS_PER_TURN = 3600    # kinematics answers: 0.1° grid, extremum refined by a parabola (error ~h³)
 POSITION_INDEX = re.compile(r"\{([A-Za-z0-9_.]+)\}")     # "kinematics.{positions.chosen}.points.E.v.value"
@@ -53,11 +53,11 @@ def _extremum(values: list, largest: bool) -> float:
 
 
 @lru_cache(maxsize=2)
-def _project(scene_id: str, variant_id: str, values: tuple) -> dict:
+def _project(scene_id: str, variant_id: str, documents: str, values: tuple) -> dict:
     """A course-project scene's whole answer for the variant's values: computed once for all its questions
     (a few hundred ms; every question reads its own path of it)."""
     scene = scenes()[scene_id]
-    variant = next(v for v in scene.variants if v.id == variant_id)
+    variant = scene_variant(scene_id, variant_id, documents)
     return compute(scene.endpoint, scene_request(scene, variant, dict(values)))
 
 
@@ -68,12 +68,14 @@ def project_path(answer: dict, path: str) -> str:
 
 
 @lru_cache(maxsize=4096)
-def _readout(scene_id: str, variant_id: str, values: tuple, readout: Readout, angles: tuple | None = None):
-    """One readout for the variant's values: a number, or (``angles`` in degrees given) its values there."""
+def _readout(scene_id: str, variant_id: str, documents: str, values: tuple, readout: Readout,
+             angles: tuple | None = None):
+    """One readout for the variant's values (``documents``: the JSON of an own mechanism's {m, d}, else ""): a
+    number, or (``angles`` in degrees given) its values there."""
     scene = scenes()[scene_id]
-    variant = next(v for v in scene.variants if v.id == variant_id)
+    variant = scene_variant(scene_id, variant_id, documents)
     if scene.kind == "project":
-        answer = _project(scene_id, variant_id, values)
+        answer = _project(scene_id, variant_id, documents, values)
         found = path_value(answer, project_path(answer, readout.path))
         return found if readout.reduce == "value" else _extremum(found, readout.reduce == "max")
     points = ANSWER_POINTS_PER_TURN if scene.kind == "kinematics" else None
@@ -114,7 +116,7 @@ def variant_answer(plan: Plan, values: dict, question_id: str) -> float | dict[s
     """What one variant's answer is, as a per-variant cache may keep it (JSON): the number, or for an at_angle
     question the value at every angle offered, keyed by repr(angle in degrees). SpecError when it has none."""
     asked, key = question(plan.scene, question_id), tuple(sorted(values.items()))
-    at = (plan.scene.id, plan.variant.id, key)
+    at = (plan.scene.id, plan.variant.id, "" if plan.spec.mechanism is None else plan.spec.mechanism.documents(), key)
     if asked.kind == "at_angle":
         angles = _grid_angles(angle_grid(plan, question_id))
         found = _readout(*at, asked.readout_list()[0], angles)

@@ -2,6 +2,7 @@
 its per-student values are drawn from, how far a student may move it, the questions, attempts, deadline."""
 from __future__ import annotations
 
+import json
 from datetime import datetime, timezone
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
@@ -10,6 +11,9 @@ from ..lessons.scenes import AngleGrid
 
 MAX_QUESTIONS = 10
 MAX_ATTEMPTS = 10
+MAX_MECHANISM_CHARS = 100_000       # an editor's mechanism with its design data is a few kB
+DESIGN_DEFAULTS = {"inertias": {"J1": 0.0, "J_rotor": 0.0, "gear_ratio": 1.0},
+                   "flywheel": {"omega_mean": 10.0, "delta": 0.05}}     # the course-project page's (design.js)
 
 
 class Span(BaseModel):
@@ -50,12 +54,36 @@ class QuestionPick(BaseModel):
                                                                      "(default: the question's)")
 
 
+class OwnMechanism(BaseModel):
+    """A mechanism of the instructor's (made in the editor) for a variant that takes it from the page address:
+    the address's documents, m the linkage and d its masses, loads, inertias and flywheel data."""
+
+    model_config = ConfigDict(extra="forbid")
+    m: dict = Field(description="the linkage, as the editor writes it into the address (m)")
+    d: dict = Field(description="its masses and loads, inertias and flywheel data (the address's d)")
+
+    @model_validator(mode="after")
+    def bounded(self):
+        if len(json.dumps([self.m, self.d])) > MAX_MECHANISM_CHARS:
+            raise ValueError(f"longer than {MAX_MECHANISM_CHARS} characters of JSON")
+        return self
+
+    def documents(self) -> str:
+        """The documents {m, d} as JSON text (d completed with the course-project page's defaults where it has no
+        inertias or flywheel part), the key of the variant's computations."""
+        d = {key: DESIGN_DEFAULTS[key] | self.d.get(key, {}) if key in DESIGN_DEFAULTS else value
+             for key, value in (DESIGN_DEFAULTS | self.d).items()}
+        return json.dumps({"m": self.m, "d": d}, sort_keys=True, separators=(",", ":"))
+
+
 class AssignmentSpec(BaseModel):
     """POST /api/v1/assignments: everything the students' link will show and check."""
 
     model_config = ConfigDict(extra="forbid")
     scene: str = Field(max_length=60, description="scene id, e.g. flywheel")
     variant: str = Field(max_length=60, description="the scene's variant (mechanism set-up)")
+    mechanism: OwnMechanism | None = Field(None, description="a variant of one's own mechanism (course project: "
+                                                             "variant own): the mechanism made in the editor")
     title: str = Field("", max_length=200)
     lang: str = Field("ru", pattern="^(ru|uk|en)$", description="language of the links")
     sliders: dict[str, SliderRule] = Field(default_factory=dict, max_length=20,

@@ -21,8 +21,7 @@ from functools import lru_cache
 from ..core.course_project.positions import stroke_positions
 from ..core.mechanisms import GeometryError
 from ..core.mechanisms.general import GeneralMechanism
-from ..lessons.requests import project_body
-from ..lessons.scenes import scenes
+from ..lessons.requests import project_body, scene_variant
 
 SAMPLE = 64             # variant numbers checked when an assignment is made
 MAX_SKIP = 500          # numbers tried after a student's own before giving up
@@ -34,9 +33,8 @@ def checked(plan) -> bool:
 
 
 @lru_cache(maxsize=8192)
-def _stuck(scene_id: str, variant_id: str, values: tuple) -> tuple[str, str] | None:
-    variant = next(v for v in scenes()[scene_id].variants if v.id == variant_id)
-    body = project_body(variant, dict(values))
+def _stuck(scene_id: str, variant_id: str, documents: str, values: tuple) -> tuple[str, str] | None:
+    body = project_body(scene_variant(scene_id, variant_id, documents), dict(values))
     try:
         stroke_positions(GeneralMechanism(body["linkage"]), None, int(body.get("positions", 12)), body.get("start"),
                          body.get("output"))
@@ -50,7 +48,8 @@ def stuck(plan, number: int) -> tuple[str, str] | None:
     and has its two strokes."""
     if not checked(plan):
         return None
-    return _stuck(plan.scene.id, plan.variant.id, tuple(sorted(plan.values(number).items())))
+    documents = "" if plan.spec.mechanism is None else plan.spec.mechanism.documents()
+    return _stuck(plan.scene.id, plan.variant.id, documents, tuple(sorted(plan.values(number).items())))
 
 
 def handed_out(plan, number: int) -> int:

@@ -15,7 +15,7 @@ import numpy as np
 from dataclasses import dataclass, field
 
 from ..lessons.scenes import Question, Scene, Variant
-from ..lessons.requests import slider_values
+from ..lessons.requests import scene_variant, slider_values
 from . import turning
 from .expression import ExpressionError, parse
 from .spec import AssignmentSpec, QuestionPick
@@ -72,8 +72,18 @@ def plan(spec: AssignmentSpec, scenes: dict[str, Scene]) -> Plan:
     if variant is None:
         raise SpecError("variant", f"scene '{scene.id}' has no variant '{spec.variant}'")
     if variant.address is not None:
-        raise SpecError("variant", f"variant '{variant.id}' computes the reader's own mechanism from the page "
-                                   "address; an assignment needs a mechanism of the scene")
+        if spec.mechanism is None:
+            raise SpecError("variant", f"variant '{variant.id}' computes the reader's own mechanism from the page "
+                                       "address; an assignment needs a mechanism of the scene, or that mechanism "
+                                       "sent as mechanism {m, d}")
+        try:
+            variant = scene_variant(scene.id, variant.id, spec.mechanism.documents())
+        except KeyError as missing:
+            raise SpecError("mechanism", f"the mechanism has no {missing.args[0]!r}") from None
+        except ValueError as error:
+            raise SpecError("mechanism", f"its sliders cannot be made from it: {error}") from None
+    elif spec.mechanism is not None:
+        raise SpecError("mechanism", f"variant '{variant.id}' has a mechanism of its own; send none")
     sliders = {s.id: s for s in variant.sliders}
     for name in spec.sliders:
         if name not in sliders:

@@ -41,3 +41,13 @@ def project_links(variant: Variant, values: dict, lang: str, title: dict | None 
     mechanism = {"lang": lang, "m": base64url(documents["m"]), "d": base64url(documents["d"])}
     return {"project": "/project?" + urlencode(mechanism | {"p": base64url(documents["p"])}),
             "editor": "/editor?" + urlencode(mechanism)}
+
+
+def address_documents(m: str | None, d: str | None) -> dict | None:
+    """The documents {m, d} of a page address (base64url JSON objects, as the editor writes them), or None where
+    either is missing or unreadable."""
+    try:
+        documents = {"m": read_base64url(m), "d": read_base64url(d)} if m and d else None
+    except ValueError:
+        return None
+    return documents if documents and all(isinstance(v, dict) for v in documents.values()) else None

@@ -11,11 +11,13 @@ Course-project scenes: the same request, without the mechanism's name and the ou
 from __future__ import annotations
 
 import copy
+import json
 import math
+from functools import lru_cache
 
 from .dotted_paths import path_value, set_path
 from .scene_files import addressed
-from .scenes import Scene, Slider, Variant
+from .scenes import Scene, Slider, Variant, scenes
 
 TURN = 2 * math.pi
 POINTS_PER_TURN = 360          # the kinematics page's grid: 1° of crank angle
@@ -72,6 +74,14 @@ def address_variant(variant: Variant, documents: dict) -> Variant:
     if variant.address is None:
         return variant
     return Variant.model_validate(addressed(variant.model_dump(), documents))
+
+
+@lru_cache(maxsize=64)
+def scene_variant(scene_id: str, variant_id: str, documents: str = "") -> Variant:
+    """A scene's variant by id; one that takes its mechanism from the address resolved with `documents` (the JSON
+    text of {"m", "d"}: an assignment of an instructor's own mechanism), else as the scene file resolves it."""
+    variant = next(v for v in scenes()[scene_id].variants if v.id == variant_id)
+    return address_variant(variant, json.loads(documents)) if documents and variant.address else variant
 
 
 def page_outputs(scene: Scene, variant: Variant) -> list[str]:

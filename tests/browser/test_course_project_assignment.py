@@ -45,6 +45,9 @@ def make_assignment(page) -> tuple[str, str]:
     screenshot(page, "course_project_assignment_builder")
     page.click("#create-assignment")
     page.wait_for_selector("#assignment-links:not([hidden])")
+    turning = page.locator("#variants-turning")                   # |OA| up to 0.2 m: some variants stick
+    turning.wait_for()
+    assert re.search(r"of 64 variants checked, \d+ turn fully", turning.inner_text()), turning.inner_text()
     return page.locator("#student-link").get_attribute("href"), page.locator("#results-link").get_attribute("href")
 
 

@@ -1,14 +1,17 @@
 /**
  * A course-project scene's page (kind "project"): each variant (a crank preset) with its design data at the
  * sliders' defaults and a link that opens it on the course-project page (/project) with that data in the
- * address, as server/lessons/project_links.py writes a student's link. A student's assignment page lists their
- * own values (assignment_panel.js) and the server writes their links, so this page draws nothing there.
+ * address, as server/lessons/project_links.py writes a student's link. The variant of one's own mechanism is
+ * shown when the address holds one (the editor's m and d: the editor's scene links open it so), and the button
+ * that makes an assignment then takes it along. A student's assignment page lists their own values
+ * (assignment_panel.js) and the server writes their links, so this page draws nothing there.
  */
 import { element } from "../common/view/dom.js";
 import { formatQuantity } from "../common/view/notation.js";
 import { byId, lang, scene, t } from "../common/view/page_data.js";
 import { toBase64Url } from "../common/model/base64url.js";
 import { pathValue, setPath } from "../common/model/dotted_paths.js";
+import { resolveAddressVariants } from "../common/model/address_mechanism.js";
 
 /** The course-project request of a variant at its sliders' defaults (the twin of requests.project_body). */
 export function projectBody(variant) {
@@ -44,4 +47,15 @@ function variantCard(variant) {
 }
 
 const holder = byId("project-variants");
-if (holder && !byId("assignment-data")) holder.replaceChildren(...scene.variants.map(variantCard));
+if (holder && !byId("assignment-data")) {
+  resolveAddressVariants(scene);
+  const shown = scene.variants.filter((variant) => !variant.addressMissing);
+  holder.replaceChildren(...shown.map(variantCard));
+  const own = shown.find((variant) => variant.address);
+  const assign = byId("make-assignment");
+  if (own && assign) {
+    const search = new URLSearchParams(location.search);
+    const query = new URLSearchParams({ lang, variant: own.id, m: search.get("m"), d: search.get("d") });
+    assign.href = `/scenes/${scene.id}/assign?${query}`;
+  }
+}

@@ -7,6 +7,7 @@
  * language, before anything is sent). A 422 answer names the field and the reason, shown beside the form.
  */
 import { decimalMessage, parseDecimal } from "../../common/model/decimal_input.js";
+import { element } from "../../common/view/dom.js";
 
 const form = document.getElementById("assignment-form");
 const t = JSON.parse(document.getElementById("interface-texts").textContent);
@@ -93,12 +94,20 @@ function questions() {
   return [...form.querySelectorAll('input[name="question"]:checked')].map(questionPick);
 }
 
+/** The editor's mechanism {m, d} of a variant that takes it from the address (a course project of one's own), or
+ * null. */
+function ownMechanism() {
+  const data = document.getElementById("own-mechanism");
+  return data ? JSON.parse(data.textContent) : null;
+}
+
 function spec() {
   const sliders = {};
   for (const row of form.querySelectorAll(".slider-rule")) sliders[row.dataset.slider] = sliderRule(row);
   const deadline = form.querySelector("#deadline").value;
   return {
     scene: form.dataset.scene, variant: form.dataset.variant, lang: form.dataset.lang,
+    ...(ownMechanism() ? { mechanism: ownMechanism() } : {}),
     title: form.querySelector("#title").value.trim(), sliders, toggles: toggles(), questions: questions(),
     attempts: number(form.querySelector("#attempts")),
     reveal_answers: form.querySelector("#reveal").checked,
@@ -124,6 +133,16 @@ function showLinks(created) {
   document.getElementById("variants-count").textContent = `${t.assignment_variants_count}: ${created.variants}`;
   links.hidden = false;
   links.scrollIntoView({ block: "nearest" });
+  showTurning(created.id);
+}
+
+/** A course project: how many of a sample of the variants turn fully (only those are handed out). */
+async function showTurning(id) {
+  const response = await fetch(`/api/v1/assignments/${encodeURIComponent(id)}?lang=${form.dataset.lang}`);
+  const turning = response.ok ? (await response.json()).turning : null;
+  if (!turning) return;
+  document.getElementById("variants-count").append(" ", element("span", { id: "variants-turning",
+    textContent: t.assignment_variants_turning.replace("{turn}", turning.turn).replace("{checked}", turning.checked) }));
 }
 
 /** A row's range fields are open when "per student" is ticked, its value field when it is not. */
