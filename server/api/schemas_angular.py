@@ -2,12 +2,17 @@
 with its unit; signs in the one convention of server/core/angular_acceleration.py."""
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from .schemas import NumericsModel
+
+# The slowest crank allowed (ω₀ = 10⁻³ rad/s) turns once in 6283 s; within ±10⁴ s the fastest law allowed
+# (ω₀ = 10³ rad/s, ε₀ = 10³ rad/s²) reaches φ = 5·10¹⁰ rad, where float64 still resolves 10⁻⁵ rad, so sin φ
+# keeps its digits. Beyond, φ loses them, and the accelerating law's t² overflows to inf (null answers).
+T_MAX_S = 1e4
 
 
 class AngularRequest(BaseModel):
@@ -24,7 +29,8 @@ class AngularRequest(BaseModel):
     epsilon0: float = Field(0.0, ge=-1e3, le=1e3, description="accelerating law: ε₀, rad/s²")
     amplitude: float = Field(0.0, ge=0, lt=1, description="harmonic law: ω = ω₀(1 + a sin νt), a")
     frequency: float = Field(1.0, gt=0, le=1e3, description="harmonic law: ν, rad/s")
-    t: list[float] | None = Field(None, max_length=10001, description="times, s (default: one crank turn)")
+    t: list[Annotated[float, Field(ge=-T_MAX_S, le=T_MAX_S)]] | None = Field(
+        None, max_length=10001, description=f"times, s, within ±{T_MAX_S:g} s (default: one crank turn)")
     n: int = Field(361, ge=3, le=10001, description="samples over one turn when t is not given")
 
     @model_validator(mode="after")

@@ -331,8 +331,21 @@ class MotionRequest(MechanismChoice):
     max_cycles: int = Field(60, ge=1, le=200, description="cycles of the start-up at most")
 
 
+class Erratum(BaseModel):
+    key: str = Field(description="which misprint (a key of the translations)")
+    source: str = Field(description="the book")
+    equation: str = Field(description="the equation's number in the book")
+    printed_value: float | None = Field(description="the value the formula as printed gives")
+    printed_unit: str = Field(description="the unit of printed_value (a key of the translations)")
+    corrected_value: float | None = Field(description="the value the corrected formula gives")
+    unit: str = Field(description="the unit of corrected_value (a key of the translations)")
+
+
 class ReductionResponse(BaseModel):
-    phi: list[float] = Field(description="crank angles over one closed cycle, rad")
+    phi: list[float] | None = Field(None, description="crank angles over one closed cycle, rad (absent when only "
+                                                      "errata are asked: they are values of the cycle, not of φ)")
+    errata: list[Erratum] | None = Field(None, description="the source's misprints of the formulas used, beside "
+                                                          "the corrected ones, with the value each gives")
     inertia: dict | None = Field(None, description="J, dJ (kg·m², kg·m²/rad), mean J̄, variable part J̃, the parts "
                                                    "of each link, and the textbook approximation where one exists")
     resisting: dict | None = Field(None, description="M_c total and its parts (useful, dry, viscous), N·m; its "

@@ -12,7 +12,9 @@ A body that FastAPI will parse as JSON (Content-Type application/json or …+jso
 refused with HTTP 422 naming the body when it is not UTF-8 (Python's parser would guess UTF-16 or UTF-32), when
 its brackets nest deeper than MAX_JSON_DEPTH (1 KB of brackets would otherwise reach Python's recursion limit in
 the validation echo and every walker over the data), or when a string holds a lone UTF-16 surrogate (``"\\ud800"``
-is valid JSON but no character: it cannot be written back as UTF-8, nor stored). The depth is counted without
+is valid JSON but no character: it cannot be written back as UTF-8, nor stored), or when an integer has more
+digits than Python converts (``sys.get_int_max_str_digits()``, 4300: its parser would refuse the whole body
+with a bare 400). The depth is counted without
 recursion: string literals are cut out by a regular expression, and the running sum of opening minus closing
 brackets is taken over the bytes left (numpy).
 """
@@ -20,6 +22,7 @@ from __future__ import annotations
 
 import json
 import re
+import sys
 
 import numpy as np
 from fastapi import HTTPException
@@ -28,6 +31,10 @@ MAX_BODY_BYTES = 1024 * 1024  # 1 MiB; the largest honest body (10001 angles) is
 MAX_JSON_DEPTH = 64           # the deepest honest body (a family of a nested request) has 4 levels
 _STRING = re.compile(rb'"[^"\\]*(?:\\.[^"\\]*)*"', re.DOTALL)       # a JSON string literal, escapes included
 _OPEN, _CLOSE = list(b"[{"), list(b"]}")
+MAX_INT_DIGITS = sys.get_int_max_str_digits() or 4300   # 0 would mean no limit; keep the default's
+_LONG_DIGITS = re.compile(rb"\d{%d}" % (MAX_INT_DIGITS + 1))
+# an integer literal (no fraction, no exponent: those are floats, which have no such limit)
+_INTEGER = re.compile(rb"(?<![\d.eE+-])-?(\d+)(?![\d.eE])")
 
 # Everything this app loads is its own (plotly.js included, served from /vendor/plotly): no third-party origin.
 # Scripts only from files (no inline scripts, no event-handler attributes, no eval); the pages' embedded data
@@ -103,6 +110,11 @@ def lone_surrogate(raw: bytes) -> str | None:
     return None
 
 
+def longest_integer(raw: bytes) -> int:
+    """The number of digits of the longest integer literal of a JSON text, outside its strings."""
+    return max((len(match.group(1)) for match in _INTEGER.finditer(_STRING.sub(b'""', raw))), default=0)
+
+
 def body_problem(raw: bytes) -> dict | None:
     """What makes a JSON body unreadable before it is parsed, as one error in FastAPI's format, or None."""
     try:
@@ -115,6 +127,10 @@ def body_problem(raw: bytes) -> dict | None:
     if depth > MAX_JSON_DEPTH:
         return {"loc": ["body"], "type": "body_too_deep", "ctx": {"limit": MAX_JSON_DEPTH, "depth": depth},
                 "msg": f"the body's brackets nest {depth} deep; at most {MAX_JSON_DEPTH} levels are accepted"}
+    digits = longest_integer(raw) if _LONG_DIGITS.search(raw) else 0
+    if digits > MAX_INT_DIGITS:
+        return {"loc": ["body"], "type": "body_integer_too_long", "ctx": {"limit": MAX_INT_DIGITS, "digits": digits},
+                "msg": f"an integer of the body has {digits} digits; at most {MAX_INT_DIGITS} are accepted"}
     literal = lone_surrogate(raw)
     if literal is not None:
         return {"loc": ["body"], "type": "body_lone_surrogate", "ctx": {"string": literal},
