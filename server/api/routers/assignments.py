@@ -153,7 +153,7 @@ def submit(submission: SubmissionRequest, request: Request, assignment_id: str =
     student = the_student(secret, record)
     if isinstance(student, JSONResponse):
         return student
-    if submission.student is not None and normalise(submission.student) != student.key:
+    if submission.student is not None and normalise(submission.student) != normalise(student.name):
         return _refuse(403, ["body", "student"], "this is not the name of the student whose secret came with the "
                                                  "request", "not_your_name")
     client = request.client.host if request.client else "unknown"
