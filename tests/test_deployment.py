@@ -1,6 +1,6 @@
 """Several app servers behind nginx with one database, as a university runs them.
 
-Two app servers (`python3 -m server --port P`, as the README starts them) on loopback share one database,
+Two app servers (`python3 -m server --port P`, as docs/deployment.md starts them) on loopback share one database,
 behind a real nginx running the shipped `deploy/nginx/mdl.conf` (tests/nginx.py). An assignment is made
 through nginx; a class of students, each on a loopback address of their own (127.0.1.k, so every student is
 a client address of their own as behind a real proxy), registers and submits wrong answers through nginx,
@@ -415,11 +415,11 @@ def test_the_default_options_trust_no_proxy(monkeypatch):
     assert uvicorn_options([])["forwarded_allow_ips"] == "127.0.0.1"
 
 
-# --- the shipped files say the same as the README and the app -----------------------------------------------
+# --- the shipped files say the same as the deployment guide and the app ------------------------------------
 
-def test_the_readme_shows_the_shipped_nginx_site():
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    assert re.search(r"```nginx\n(.+?)```", readme, re.S).group(1) == SITE.read_text(encoding="utf-8")
+def test_the_deployment_guide_shows_the_shipped_nginx_site():
+    guide = (REPO / "docs" / "deployment.md").read_text(encoding="utf-8")
+    assert re.search(r"```nginx\n(.+?)```", guide, re.S).group(1) == SITE.read_text(encoding="utf-8")
 
 
 def test_the_settings_file_names_only_what_the_app_or_the_unit_reads():

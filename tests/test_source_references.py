@@ -3,7 +3,7 @@
 Every file the project writes in server/, web/, content/ and tests/ is read as text: no source is cited by a
 file number ("seed 000", "000.md", the notes' folder) and nothing by an issue number; every author-like name
 followed by an equation, section, figure or table number is one of the five keys (or its ru/uk form), the
-lecture is Lecture 10 and its formulas are numbered within the (L1)–(L30) that the README lists; every scene
+lecture is Lecture 10 and its formulas are numbered within the (L1)–(L30) that docs/sources.md lists; every scene
 and every preset names its source in each of its three languages.  Exact text checks: nothing to tolerate.
 """
 from __future__ import annotations
@@ -90,11 +90,11 @@ def test_every_cited_name_is_one_of_the_five_sources():
     assert unknown == [], f"cited by a name that is not a key of content/sources.json: {unknown}"
 
 
-def test_the_lecture_is_lecture_10_and_its_formula_numbers_are_the_ones_the_readme_lists():
+def test_the_lecture_is_lecture_10_and_its_formula_numbers_are_the_ones_docs_sources_lists():
     assert [f"{where}: {match.group(0)}" for where, match in lines_matching(LECTURE) if match.group(1) != "10"] == []
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    listing = (REPO / "docs" / "sources.md").read_text(encoding="utf-8")
     listed = set()
-    for first, last in re.findall(r"^\| \(L(\d+)\)(?:–\(L(\d+)\))? \| §10\.\d+ \|", readme, re.MULTILINE):
+    for first, last in re.findall(r"^\| \(L(\d+)\)(?:–\(L(\d+)\))? \| §10\.\d+ \|", listing, re.MULTILINE):
         listed |= set(range(int(first), int(last or first) + 1))
     assert listed == set(range(1, 31))
     cited = {int(match.group(1)) for _, match in lines_matching(LECTURE_NUMBER)}
