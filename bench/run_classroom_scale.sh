@@ -3,8 +3,8 @@
 # the change) beside new (this tree). Run from anywhere on a quiet machine; about an hour in all (the old
 # elastic scenes dominate the sweep; the classroom runs take 60 s each plus start-up).
 #
-#   bash bench/run_issue13.sh [OLD_TREE]        # default /tmp/mdl-old, made with git worktree if missing
-#   QUICK=1 RESULTS=/tmp/r bash bench/run_issue13.sh   # a few minutes at tiny sizes: does everything run?
+#   bash bench/run_classroom_scale.sh [OLD_TREE]        # default /tmp/mdl-old, made with git worktree if missing
+#   QUICK=1 RESULTS=/tmp/r bash bench/run_classroom_scale.sh   # a few minutes at tiny sizes: does everything run?
 #
 # Results: $RESULTS (default bench/results)/{scene_sweep,http_floor,classroom_30,classroom_60,classroom_100,
 #          classroom_30_base,classroom_60_base,classroom_100_base,fairness}.md
