@@ -134,3 +134,41 @@ def test_a_course_project_assignment_from_the_builder_to_the_results(chromium, a
     results = httpx.get(f"{app_url}/api/v1/assignments/{assignment_id}/results/{token}").json()
     assert sorted(row["score"] for row in results["students"]) == [3, 3]
     screenshot(instructor, "course_project_assignment_results")
+
+
+def test_the_editors_mechanism_becomes_a_course_project_assignment(chromium, app_url, browser_page):
+    """From the editor (the shaping machine's preset), its link to the course-project scene shows the own
+    mechanism; the button makes an assignment of it with per-student |OA|; a student's link opens /project with
+    that very linkage (its frame and groups the editor's, |OA| the student's)."""
+    from test_editor import act
+    page = browser_page
+    page.goto("/editor?lang=en")
+    page.wait_for_function("() => document.querySelector('#editor-drawing')?.dataset.state !== undefined")
+    act(page, lambda: page.select_option("#editor-preset", "shaping_machine"))
+    page.wait_for_function("() => document.querySelector('#editor-open-dynamics a[data-scene=\"course-project\"]')")
+    with page.expect_navigation():
+        page.click('#editor-open-dynamics a[data-scene="course-project"]')
+    page.wait_for_selector("#project-variant-own a")
+    editor_linkage = read_base64url(re.search(r"[?&]m=([\w-]+)", page.url).group(1))
+    page.click("#make-assignment")
+    page.wait_for_selector("#assignment-form")
+    assert page.locator("#assignment-form").get_attribute("data-variant") == "own"
+    row = page.locator('.slider-rule[data-slider="l_OA"]')
+    row.locator('[name="vary"]').check()
+    row.locator('[name="vary_min"]').fill("0.09")
+    row.locator('[name="vary_max"]').fill("0.11")
+    row.locator('[name="vary_step"]').fill("0.005")
+    page.click("#create-assignment")
+    page.wait_for_selector("#assignment-links:not([hidden])")
+    page.locator("#variants-turning").wait_for()
+    student_url = page.locator("#student-link").get_attribute("href")
+    assignment_id = re.search(r"/assignments/([\w-]+)", student_url).group(1)
+    context = chromium.new_context(base_url=app_url, viewport={"width": 1400, "height": 900})
+    student = open_as_student(context, student_url, "Iryna Bondar")
+    variant = own_variant(app_url, assignment_id, student.link)
+    linkage = read_base64url(re.search(r"[?&]m=([\w-]+)", student.locator("#open-project").get_attribute("href"))
+                             .group(1))
+    assert linkage["input"]["length"] == pytest.approx(variant["values"]["l_OA"])
+    assert linkage["groups"] == editor_linkage["groups"] and linkage["frame"] == editor_linkage["frame"]
+    assert student.problems == []
+    context.close()

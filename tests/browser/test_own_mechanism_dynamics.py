@@ -95,7 +95,8 @@ def test_own_mechanism_from_the_editor_into_the_dynamics_scenes(browser_page):
     page.go_back()
     masses_ready(page)
     offered = page.eval_on_selector_all("#editor-open-dynamics a[data-scene]", "as => as.map((a) => a.dataset.scene)")
-    assert sorted(offered) == sorted(scene["id"] for scene in (MOTION, FLYWHEEL, FORCES, INERTIA, MOMENT))
+    assert sorted(offered) == sorted([*(scene["id"] for scene in (MOTION, FLYWHEEL, FORCES, INERTIA, MOMENT)),
+                                      "course-project"])      # and the course project's assignments
     for scene in (INERTIA, MOMENT):                                     # the reduced model, link by link
         open_from_editor(page, scene)
         assert page.inner_text("#notices") == ""
