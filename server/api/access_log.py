@@ -15,12 +15,13 @@ import re
 
 PERSONAL_LINK = re.compile(r"^(/assignments/[^/?#]+/me/)[^?#]*")
 RESULTS_TOKEN = re.compile(r"^((?:/api/v1)?/assignments/[^/?#]+/results/)[^/?#]*")
+LTI_TICKET = re.compile(r"^(/lti/continue/)[^?#]*")      # an LMS launch carried to a new window (single use)
 ACCESS_LOGGER = "uvicorn.access"
 
 
 def cut(path: str) -> str:
     """The path with a personal link's secret replaced by "(secret)", a results token by "(token)"."""
-    return RESULTS_TOKEN.sub(r"\1(token)", PERSONAL_LINK.sub(r"\1(secret)", path))
+    return LTI_TICKET.sub(r"\1(ticket)", RESULTS_TOKEN.sub(r"\1(token)", PERSONAL_LINK.sub(r"\1(secret)", path)))
 
 
 class SecretsCut(logging.Filter):

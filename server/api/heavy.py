@@ -144,7 +144,9 @@ def shutdown() -> None:
         _stopped.add(pool)
         for process in list(getattr(pool, "_processes", {}).values()):
             process.kill()
-        pool.shutdown(wait=False, cancel_futures=True)
+        # with its processes gone the pool's manager ends at once; waiting for it lets the pool close its queues,
+        # whose named semaphores are then released (else: "resource_tracker: … leaked semaphore objects")
+        pool.shutdown(wait=True, cancel_futures=True)
     server = getattr(multiprocessing.forkserver, "_forkserver", None)
     pid = getattr(server, "_forkserver_pid", None)
     if pid:

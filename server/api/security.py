@@ -61,6 +61,25 @@ SECURITY_HEADERS = {
     "cross-origin-opener-policy": "same-origin",
 }
 _RAW_HEADERS = [(name.encode("latin-1"), value.encode("latin-1")) for name, value in SECURITY_HEADERS.items()]
+# The pages an LMS shows in its frame after an LTI launch may be framed by the registered LMSs (their origins from
+# the provider the LTI router installs, allow_framing_by); X-Frame-Options cannot name an origin and is left off.
+FRAMED_PATHS = ("/assignments/", "/scenes/", "/lti/")
+_framing_origins = tuple
+
+
+def allow_framing_by(origins) -> None:
+    """Install the function that gives the origins allowed to frame FRAMED_PATHS (called per response: cache it)."""
+    global _framing_origins
+    _framing_origins = origins
+
+
+def framed(headers: list, origins) -> list:
+    """The default headers with frame-ancestors opened to `origins` (none: unchanged)."""
+    if not origins:
+        return headers
+    policy = CONTENT_SECURITY_POLICY.replace("frame-ancestors 'none'", "frame-ancestors 'self' " + " ".join(origins))
+    return [(name, policy.encode("latin-1")) if name == b"content-security-policy" else (name, value)
+            for name, value in headers if name != b"x-frame-options"]
 
 
 def body_too_large_detail(limit: int = MAX_BODY_BYTES) -> list[dict]:
@@ -160,6 +179,8 @@ class SecurityMiddleware:
                 headers = message.get("headers", [])
                 present = {name.lower(): value for name, value in headers}
                 extra = [h for h in _RAW_HEADERS if h[0] not in present]
+                if scope["path"].startswith(FRAMED_PATHS) and b"content-security-policy" not in present:
+                    extra = framed(extra, _framing_origins())
                 if present.get(b"content-type", b"").startswith(b"text/html") and b"cache-control" not in present:
                     extra.append((b"cache-control", b"no-cache"))
                 message = {**message, "headers": [*headers, *extra]}

@@ -14,6 +14,7 @@ import hashlib
 import logging
 import os
 import secrets
+import time
 from datetime import datetime, timezone
 from urllib.parse import parse_qs, urlencode, urlsplit
 
@@ -31,7 +32,7 @@ from ...classroom.lti.platforms import DatabaseToolConf, PlatformRefused, new_pl
 from ...classroom.spec import MAX_QUESTIONS, AssignmentSpec, QuestionPick
 from ...classroom.variants import SpecError
 from ...lessons.scenes import LANGUAGES, scenes
-from .. import assignments, lti_adapters, lti_classroom
+from .. import assignments, lti_adapters, lti_classroom, security
 from ..assignment_store import store
 from ..schemas_lti import PendingScoreInfo, PlatformInfo, PlatformRegistered, PlatformRegistration, Platforms, ToolUrls
 from ..security import CONTENT_SECURITY_POLICY, policy_with_script_hashes
@@ -39,6 +40,7 @@ from ..student_secret import from_another_site, hand_over
 from .pages import _context, templates
 
 MAX_FORM_BYTES = 64 * 1024          # a launch's id_token is a few kilobytes
+ORIGINS_TTL_S = 30.0                # a platform registered on one server may frame the pages of all within this
 RECENT_S = 14 * 86400               # the picker offers assignments made from the same address this recently
 CUSTOM_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/custom"
 PRESENTATION_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/launch_presentation"
@@ -140,9 +142,32 @@ def launch_language(claims: dict, fallback: str | None) -> str | None:
     return locale if locale in LANGUAGES else fallback
 
 
-def in_frame(request: Request) -> bool:
-    """Whether the browser says this launch is loading into a frame (the LMS's iframe)."""
-    return request.headers.get("sec-fetch-dest") in ("iframe", "frame")
+def needs_new_window(request: Request) -> bool:
+    """Whether the browser says this launch loads into a frame of another site (the LMS's iframe, the LMS on
+    another site): there the session cookie is a third-party cookie, which browsers block. In a frame of the same
+    site (lms.example.edu framing lab.example.edu) it is kept, and the pages open in the frame."""
+    return (request.headers.get("sec-fetch-dest") in ("iframe", "frame")
+            and request.headers.get("sec-fetch-site") not in ("same-origin", "same-site"))
+
+
+_framing = {"at": -ORIGINS_TTL_S, "origins": ()}
+
+
+def framing_origins() -> tuple[str, ...]:
+    """The registered LMSs' origins, which may frame the pages a launch opens (security.FRAMED_PATHS); read from
+    the database at most every ORIGINS_TTL_S, so that every server learns of a new platform."""
+    now = time.monotonic()
+    if now - _framing["at"] > ORIGINS_TTL_S:
+        try:
+            found = {o for platform in store().lti_platforms() for o in platform_origins(platform) if o}
+            _framing["origins"] = tuple(sorted(found))
+        except Exception:                                    # noqa: BLE001 - keep the last known; pages still answer
+            log.warning("the LMS origins could not be read; framing stays as it was")
+        _framing["at"] = now
+    return _framing["origins"]
+
+
+security.allow_framing_by(framing_origins)
 
 
 # the tool's public face
@@ -222,7 +247,7 @@ def _launch(request: Request, params: dict[str, str]):
                                                          "(custom parameter scene=… or assignment=…)", lang, origins)
     target = f"/scenes/{scene.id}?" + urlencode({"lang": lang or "ru", **(
         {"variant": str(custom["variant"])} if custom.get("variant") else {})})
-    if in_frame(request):
+    if needs_new_window(request):
         return framed_by(page(request, "lti_new_window.html", lang, link=target, title=scene.title[lang or "ru"]),
                          origins)
     return RedirectResponse(target, status_code=303)
@@ -256,7 +281,7 @@ def open_assignment(request: Request, found, platform, claims: dict, assignment_
     else:
         student, _ = lti_classroom.enter_learner(record, resolved, platform, claims)
         about = {"kind": "student", "assignment": record.id, "student": student.key, "lang": lang}
-    if in_frame(request):
+    if needs_new_window(request):
         ticket = lti_classroom.new_ticket(about)
         return framed_by(page(request, "lti_new_window.html", lang, link=f"/lti/continue/{ticket}",
                               title=resolved.spec.title or resolved.scene.title[lang]), origins)
@@ -457,6 +482,7 @@ def register_platform(body: PlatformRegistration, request: Request,
                                                                   "msg": "this issuer and client id are registered "
                                                                          "already"}]})
     tool_key.tool_key(store())                      # the key pair exists before the platform asks for it
+    _framing["at"] = -ORIGINS_TTL_S                 # this server lets it frame the pages at once
     return PlatformRegistered(id=platform.id, tool=tool_urls(request))
 
 
