@@ -193,10 +193,11 @@ def test_the_instructors_launch_shows_the_results_with_the_nrps_roster(servers, 
 
 # --- refused launches ---------------------------------------------------------------------------------------------
 
-def assert_refused(servers, response: httpx.Response, *words: str) -> None:
+def assert_refused(servers, response: httpx.Response, *codes: str) -> None:
+    """A 4xx page giving the reason in words and its code (one of `codes`)."""
     assert 400 <= response.status_code < 500, fail_message(servers, response)
     text = page_text(response).lower() if "html" in response.headers.get("content-type", "") else response.text.lower()
-    assert any(word in text for word in words), (words, response.status_code, text[:600])
+    assert any(code in text for code in codes), (codes, response.status_code, text[:600])
 
 
 def nobody_named(servers, story, user: User) -> None:
@@ -211,13 +212,13 @@ def mallory_launch(platform, story, **options):
 
 def test_a_forged_launch_is_refused(servers, platform, story):
     response = Browser(platform).launch(mallory_launch(platform, story, forged=True))
-    assert_refused(servers, response, "signature", "forged", "verif")
+    assert_refused(servers, response, "bad_signature")
     nobody_named(servers, story, MALLORY)
 
 
 def test_an_expired_launch_is_refused(servers, platform, story):
     response = Browser(platform).launch(mallory_launch(platform, story, expired=True))
-    assert_refused(servers, response, "expired", "exp")
+    assert_refused(servers, response, "expired")
     nobody_named(servers, story, MALLORY)
 
 
@@ -227,26 +228,27 @@ def test_a_replayed_launch_is_refused(servers, platform, story):
     first = browser.launch(launch)
     assert first.status_code == 200, fail_message(servers, first)
     same = browser.replay(launch.id_token, launch.state, launch.redirect_uri)
-    assert_refused(servers, same, "state", "nonce", "replay", "used")
+    assert_refused(servers, same, "replayed_nonce", "replayed_state", "unknown_state")
     # the nonce again under a fresh state: a new login, then the old id_token with the new state
     fresh = platform.launch(RAY, [LEARNER], resource_link_id=link_of(platform, story))
     auth_page = browser.login_only(fresh)
     new_state = forms_of(auth_page.text)[0]["fields"]["state"]
     again = browser.replay(launch.id_token, new_state, launch.redirect_uri)
-    assert_refused(servers, again, "nonce", "replay", "used", "state")
+    assert_refused(servers, again, "replayed_nonce")
 
 
-@pytest.mark.parametrize("case, options, words", [
-    ("unknown issuer at login", {"iss": "http://unknown.example"}, ("issuer", "platform", "registered")),
-    ("unknown issuer in the token", {"claims": {"iss": "http://unknown.example"}},
-     ("issuer", "iss", "platform", "registered")),
-    ("wrong audience", {"claims": {"aud": "someone-else", "azp": "someone-else"}}, ("aud", "client")),
+@pytest.mark.parametrize("case, options, codes", [
+    ("unknown issuer at login", {"iss": "http://unknown.example"}, ("unknown_issuer",)),
+    ("unknown issuer in the token", {"claims": {"iss": "http://unknown.example"}}, ("unknown_issuer",)),
+    # pylti1p3 finds the registration by (iss, aud): another audience is no registration of this tool
+    ("wrong audience", {"claims": {"aud": "someone-else", "azp": "someone-else"}},
+     ("unknown_issuer", "wrong_audience")),
     ("unregistered deployment", {"deployment_id": "99", "claims": {LTI + "deployment_id": "99"}},
-     ("deployment",)),
+     ("unknown_deployment",)),
 ])
-def test_a_launch_from_nowhere_is_refused(servers, platform, story, case, options, words):
+def test_a_launch_from_nowhere_is_refused(servers, platform, story, case, options, codes):
     response = Browser(platform).launch(mallory_launch(platform, story, **options))
-    assert_refused(servers, response, *words)
+    assert_refused(servers, response, *codes)
     nobody_named(servers, story, MALLORY)
 
 
