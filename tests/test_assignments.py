@@ -280,14 +280,18 @@ def test_results_and_csv_agree(client):
     results = client.get(f"{API}/{created['id']}/results/{created['results_token']}").json()
     table = client.get(f"{API}/{created['id']}/results/{created['results_token']}/csv")
     assert table.headers["content-type"].startswith("text/csv")
-    rows = list(csv.DictReader(io.StringIO(table.text.lstrip("\ufeff"))))
-    assert [r["student"] for r in rows] == [s["student"] for s in results["students"]] == ["Ткаченко", "Lysenko"]
+    rows = list(csv.DictReader(io.StringIO(table.text.lstrip("\ufeff")), delimiter=";"))   # ru: ";", "0,5"
+    plan = load(created["id"])[1]                       # the columns in words of the assignment's language (ru)
+    delta = next(s.label["ru"] for s in plan.variant.sliders if s.id == "delta")
+    inertia = next(q.label["ru"] for q in plan.scene.questions if q.id == "flywheel_inertia")
+    number = lambda cell: float(cell.replace(",", "."))                    # noqa: E731
+    assert [r["Студент"] for r in rows] == [s["student"] for s in results["students"]] == ["Ткаченко", "Lysenko"]
     for row, student in zip(rows, results["students"]):
-        assert int(row["variant"]) == student["variant"] and float(row["delta"]) == student["values"]["delta"]
-        assert int(row["score"]) == student["score"] and int(row["flywheel_inertia right"]) == student["score"]
+        assert int(row["Вариант"]) == student["variant"] and number(row[delta]) == student["values"]["delta"]
+        assert int(row["Верно"]) == student["score"] and int(row[f"{inertia}: верно"]) == student["score"]
         checked_against = student["questions"]["flywheel_inertia"]["correct"]
         assert checked_against == variant_answer(client, created, student["student"])
-        assert float(row["flywheel_inertia correct"]) == checked_against        # repr: every digit
+        assert number(row[f"{inertia}: Правильный ответ"]) == checked_against     # repr: every digit
     assert client.get(f"{API}/{created['id']}/results/wrong-token").status_code == 404
     assert client.get(f"/assignments/{created['id']}/results/wrong-token").status_code == 404
 

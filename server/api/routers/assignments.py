@@ -20,7 +20,7 @@ from ...classroom.variants import SpecError
 from .. import assignment_answers, assignments, lti_classroom
 from ..answers import is_right, tolerance
 from ..assignment_store import store
-from ..csv_export import csv_attachment
+from ..csv_export import links_csv, results_csv as results_csv_file
 from ..schemas import Language
 from ..schemas_assignments import (AssignmentCreated, AssignmentInfo, PersonalLink, Registration, Results,
                                    ResultsLink, RosterLock, RosterOutcome, RosterUpload, StudentRegistration,
@@ -195,17 +195,8 @@ def results(response: Response, assignment_id: str = ID, token: str = TOKEN, lan
 def results_csv(assignment_id: str = ID, token: str = TOKEN) -> Response:
     record, resolved = assignments.load(assignment_id)
     assignments.check_token(record, token)
-    questions = [p.id for p in resolved.spec.questions]
-    parameters = list(resolved.values(0))
-    header = ["student", "variant", *parameters,
-              *[f"{q} {part}" for q in questions for part in ("attempts", "right", "answer", "correct")],
-              "score", "attempts", "first_seen", "last_submission"]
-    rows = ([row.student, row.variant, *[row.values.get(p) for p in parameters],
-             *[v for q in questions for v in (row.questions[q]["attempts"], int(row.questions[q]["right"]),
-                                              row.questions[q]["answer"], row.questions[q]["correct"])],
-             row.score, row.attempts, row.first_seen, row.last_submission]
-            for row in assignments.result_rows(record, resolved))
-    return keep_private(csv_attachment(header, rows, f"results-{record.id}.csv"))
+    return keep_private(results_csv_file(resolved, assignments.result_rows(record, resolved),
+                                         f"results-{record.id}.csv"))
 
 
 @router.post("/{assignment_id}/results/{token}/roster", response_model=RosterOutcome,
@@ -247,7 +238,7 @@ def personal_links(request: Request, assignment_id: str = ID, token: str = TOKEN
             continue
         secret = assignments.new_link(record, student)
         rows.append([student.name, student.variant + 1, assignments.personal_url(base, record, resolved, secret)])
-    return keep_private(csv_attachment(["student", "variant", "personal_link"], rows, f"links-{record.id}.csv"))
+    return keep_private(links_csv(resolved, rows, f"links-{record.id}.csv"))
 
 
 @router.post("/{assignment_id}/results/{token}/students/{student_id}/link", response_model=PersonalLink,
