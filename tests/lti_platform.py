@@ -292,14 +292,20 @@ class Platform:
 
     # --- the gradebook ---------------------------------------------------------------------------------------
 
-    def grade(self, user: User, lineitem: str | None = None) -> dict | None:
-        """The latest score of `user` in `lineitem` (the only line item when there is one)."""
+    def grade(self, user: User, lineitem=None) -> dict | None:
+        """The latest score of `user` in `lineitem` (the only line item when there is one; a callable: the line
+        item it names now, or none yet), with the line item's URL as `lineitem`."""
+        if callable(lineitem):
+            lineitem = lineitem()
+            if lineitem is None:
+                return None
         if lineitem is None:
             assert len(self.lineitems) == 1, f"name the line item: {list(self.lineitems)}"
             lineitem = next(iter(self.lineitems))
-        return self.gradebook.get((lineitem, user.id))
+        score = self.gradebook.get((lineitem, user.id))
+        return None if score is None else score | {"lineitem": lineitem}
 
-    def wait_for_grade(self, user: User, condition=lambda score: score is not None, lineitem: str | None = None,
+    def wait_for_grade(self, user: User, condition=lambda score: score is not None, lineitem=None,
                        within: float = 120.0) -> dict:
         """Poll the gradebook until `condition(score)`; `within` seconds is a guard against a hang only."""
         deadline = time.monotonic() + within

@@ -27,6 +27,7 @@ CLARA = User("lms-clara-9", "Clara", "Novak")          # on the course roster on
 TEACHER = User("lms-teacher-1", "Tamara", "Sidorova")
 MALLORY = User("lms-mallory-0", "Mallory", "Forger")    # every launch of hers is bad
 RAY = User("lms-ray-5", "Ray", "Replay")                 # launches once, then replays it
+GLEB = User("lms-gleb-2", "Gleb", "Orlov")
 QUESTIONS = [q["id"] for q in SPEC["questions"]]
 
 
@@ -149,7 +150,8 @@ def test_a_learners_launch_opens_the_student_page_under_the_lms_name(servers, pl
     assert urlsplit(str(page.url)).path == f"/assignments/{assignment}", page.url
     assert 'id="assignment-data"' in page.text and ANNA.name in page.text
     assert my_variant(servers, story, browser)["student"] == ANNA.name
-    again, _ = learner_launch(platform, story, ANNA)                 # another device: the same student
+    again = Browser(platform)                                        # another device, the login by GET: the same
+    again.launch(platform.launch(ANNA, [LEARNER], resource_link_id=link_of(platform, story)), method="GET")
     assert my_variant(servers, story, again)["variant"] == my_variant(servers, story, browser)["variant"]
     rows = [row for row in results(servers[0].url, story["assignment"])["students"] if row["student"] == ANNA.name]
     assert len(rows) == 1
@@ -189,6 +191,53 @@ def test_the_instructors_launch_shows_the_results_with_the_nrps_roster(servers, 
     for user in (ANNA, BORIS, CLARA):
         assert user.name in page.text or user.name in text, (user.name, text[:2000])
     assert TEACHER.name not in [row["student"] for row in results(servers[0].url, story["assignment"])["students"]]
+
+
+def test_the_instructor_resets_a_student_and_the_gradebook_is_told(servers, platform, story):
+    """The results page's reset removes Anna's answers; her grade in the LMS goes back to 0."""
+    browser = Browser(platform)
+    page = browser.launch(platform.launch(TEACHER, [INSTRUCTOR], resource_link_id=link_of(platform, story)))
+    assert page.status_code == 200, fail_message(servers, page)
+    platform.wait_for_grade(ANNA, lambda s: s.get("scoreGiven") == 1, story["lineitem"])
+    anna = next(row for row in results(servers[0].url, story["assignment"])["students"] if row["student"] == ANNA.name)
+    form = next(f for f in forms_of(page.text) if f"/students/{anna['id']}/reset" in f["action"])
+    after = browser.post_form(str(page.url), form)
+    assert after.status_code == 200, fail_message(servers, after)
+    score = platform.wait_for_grade(ANNA, lambda s: s.get("scoreGiven") == 0, story["lineitem"])
+    assert score["scoreMaximum"] == len(QUESTIONS)
+
+
+def test_a_link_without_a_line_item_gets_one_from_the_tool(servers, platform, story):
+    """A link typed in by hand with the assignment but no grade column: the tool finds or makes its line item
+    in the course's line items container (AGS lineitems), and the score goes there."""
+    assignment = story["assignment"]["id"]
+    link = platform.add_link("course-1", {"assignment": assignment}, "Typed in by hand")
+    before = set(platform.lineitems)
+    browser = Browser(platform)
+    page = browser.launch(platform.launch(GLEB, [LEARNER], resource_link_id=link))
+    assert page.status_code == 200, fail_message(servers, page)
+    variant = my_variant(servers, story, browser)
+    assert submit(servers, story, browser, QUESTIONS[0], right_answer(variant, QUESTIONS[0]))["right"]
+    score = platform.wait_for_grade(GLEB, lambda s: s.get("scoreGiven") == 1,
+                                    lineitem=lambda: next(iter(set(platform.lineitems) - before), None))
+    made = platform.lineitems[score["lineitem"]]
+    assert made["scoreMaximum"] == len(QUESTIONS) and assignment in (made.get("tag"), made.get("resourceId"))
+
+
+def test_a_scene_link_opens_the_scene(servers, platform):
+    page = Browser(platform).launch(platform.launch(GLEB, [LEARNER], custom={"scene": "transfer-functions"}))
+    assert page.status_code == 200 and urlsplit(str(page.url)).path == "/scenes/transfer-functions", \
+        fail_message(servers, page)
+
+
+def test_registration_is_closed_without_an_admin_token(monkeypatch):
+    """A server without MDL_ADMIN_TOKEN refuses every registration, saying why (the app in this process)."""
+    from fastapi.testclient import TestClient
+    from server.api.app import app
+    monkeypatch.delenv("MDL_ADMIN_TOKEN", raising=False)
+    refused = TestClient(app).post(f"{API}/lti/platforms", json=Platform().registration(),
+                                   headers={"Authorization": "Bearer anything"})
+    assert refused.status_code == 403 and "MDL_ADMIN_TOKEN" in refused.text, refused.text
 
 
 # --- refused launches ---------------------------------------------------------------------------------------------
