@@ -44,8 +44,8 @@ def harmonics(mech, p: dict[str, float], output: str, count: int = HARMONIC_COUN
 
 def fourth_harmonic_claim(spectrum: dict, lam: float) -> dict:
     """Eremyants (2.17): the 4φ harmonic of u′₃₁ of the central crank-slider (λ = l₂/l₁) is "< 0.5 % of the
-    first" for λ > 3.  Expanding √(λ² − sin²φ) to sin⁴φ/(8λ³) gives x ∋ −l₁cos 4φ/(64λ³), so u′₃₁ ∋
-    −l₁cos 4φ/(4λ³): A₄/A₁ ≈ 1/(4λ³) (0.93 % at λ = 3), not the printed 1/(8λ³) (0.46 %).  ``computed`` is
+    first" for λ > 3.  Expanding √(λ² − sin²φ) to sin⁴φ/(8λ³) gives x ∋ −l₁cos 4φ/(64λ³), so u′₃₁ = x″ ∋
+    +l₁cos 4φ/(4λ³): A₄/A₁ ≈ 1/(4λ³) (0.93 % at λ = 3), not the printed 1/(8λ³) (0.46 %).  ``computed`` is
     A₄/A₁ of the spectrum itself (u′₃₁'s FFT)."""
     amplitude = spectrum["amplitude"]
     return {"computed": amplitude[3] / amplitude[0], "printed": 1 / (8 * lam**3), "corrected": 1 / (4 * lam**3),
