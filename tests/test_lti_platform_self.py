@@ -70,17 +70,20 @@ class FakeTool:
         async def deep_link(request: Request):
             claims = verified(await form_of(request))
             settings = claims[DL + "deep_linking_settings"]
-            now = int(time.time())
-            response = jwt.encode({"alg": "RS256", "kid": "tool-1"}, {
-                "iss": platform.client_id, "aud": platform.issuer, "iat": now, "exp": now + 300,
-                "nonce": secrets.token_urlsafe(8), LTI + "deployment_id": claims[LTI + "deployment_id"],
-                LTI + "message_type": "LtiDeepLinkingResponse", LTI + "version": "1.3.0",
-                DL + "data": settings["data"],
-                DL + "content_items": [{"type": "ltiResourceLink", "title": "Lab 1", "url": self.url + "/launch",
-                                        "custom": {"assignment": "a1"},
-                                        "lineItem": {"scoreMaximum": 2, "label": "Lab 1", "resourceId": "a1"}}]},
-                self.key)
+            self.deep_link_data = settings["data"]
+            response = self.deep_link_response(settings["data"])
             return HTMLResponse(auto_form(settings["deep_link_return_url"], {"JWT": response}, "Back"))
+
+    def deep_link_response(self, data: str, key: RSAKey | None = None, **changes) -> str:
+        now = int(time.time())
+        return jwt.encode({"alg": "RS256", "kid": "tool-1"}, {
+            "iss": self.platform.client_id, "aud": self.platform.issuer, "iat": now, "exp": now + 300,
+            "nonce": secrets.token_urlsafe(8), LTI + "deployment_id": self.platform.deployment_id,
+            LTI + "message_type": "LtiDeepLinkingResponse", LTI + "version": "1.3.0", DL + "data": data,
+            DL + "content_items": [{"type": "ltiResourceLink", "title": "Lab 1", "url": self.url + "/launch",
+                                    "custom": {"assignment": "a1"},
+                                    "lineItem": {"scoreMaximum": 2, "label": "Lab 1", "resourceId": "a1"}}]
+        } | changes, key or self.key)
 
     def assertion(self, audience: str, jti: str | None = None) -> str:
         now = int(time.time())
@@ -185,3 +188,19 @@ def test_deep_linking_scores_and_memberships(pair):
     no_scope = httpx.post(platform.lineitems_url("course-1"), json={"label": "x", "scoreMaximum": 1}, headers={
         "Authorization": f"Bearer {token}", "Content-Type": LINEITEM_TYPE})
     assert no_scope.status_code == 403
+
+
+def test_the_deep_linking_return_refuses_what_the_tool_did_not_sign_for_this_request(pair):
+    platform, tool = pair
+    Browser(platform).launch(platform.launch(BORIS, [INSTRUCTOR], message_type="LtiDeepLinkingRequest"))
+    data, kept = tool.deep_link_data, len(platform.deep_links)
+    stranger = RSAKey.generate_key(2048, parameters={"kid": "tool-1"})
+    used = tool.deep_link_response(data, nonce="used-once")
+    assert httpx.post(platform.deep_link_return_url, data={"JWT": used}).status_code == 200
+    kept += 1
+    for bad in (tool.deep_link_response(data, key=stranger), tool.deep_link_response(data, aud="http://other"),
+                tool.deep_link_response(data, iss="someone"), tool.deep_link_response(data, exp=1),
+                tool.deep_link_response(data, **{LTI + "deployment_id": "99"}),
+                tool.deep_link_response("dl-unknown"), used):
+        assert httpx.post(platform.deep_link_return_url, data={"JWT": bad}).status_code in (400, 401)
+    assert len(platform.deep_links) == kept
