@@ -57,3 +57,79 @@ def test_the_4phi_term_tends_to_the_notes_coefficient_for_a_long_rod():
     cos4 = compute_kinematics("slider_crank", {"l1": 1.0, "l2": lam}, ["harmonics_du31"], n=3) \
         .outputs["harmonics_du31"]["cos"][3]
     assert cos4 == pytest.approx(1 / (4 * lam**3), rel=0.01)
+
+
+# --- Eremyants (2.48)/(2.50), (2.53): the special four-bars' sign of ψ ----------------------------------
+
+SCHEME_3 = {"l0": 4.0, "l1": 1.0, "l2": 3.0, "l3": 2.0, "assembly": 1, "limiter": 0}     # (λ₂, λ₃, λ₀) = (3, 2, 4)
+
+
+def eremyants_2_48(phi, l2=4.0, l3=3.0, l0=2.0):
+    """Scheme 1, ψ = π − arctan A₁ − arccos B₁ (B₁ with 2λ₃, as corrected), the textbook's frame: D = (λ₀, 0)."""
+    d1 = 1 + l0**2 - 2 * l0 * np.cos(phi)
+    return np.pi - np.arctan(np.sin(phi) / (l0 - np.cos(phi))) - np.arccos((l3**2 - l2**2 + d1) / (2 * l3 * np.sqrt(d1)))
+
+
+def eremyants_2_50(phi, l2=3.0, l3=2.0, l0=4.0):
+    """Scheme 3, ψ = −arctan A₂ + arccos B₂, the textbook's frame: D = (−λ₀, 0), the crank away from D at φ = 0."""
+    d2 = 1 + l0**2 + 2 * l0 * np.cos(phi)
+    return -np.arctan(np.sin(phi) / (l0 + np.cos(phi))) + np.arccos((l3**2 - l2**2 + d2) / (2 * l3 * np.sqrt(d2)))
+
+
+def eremyants_2_53(phi, l2=3.0, l3=2.0, l0=4.0):
+    s2, c = np.sin(phi / 2) ** 2, np.cos(phi / 2)
+    return -(1 + l0 - 2 * l0 * s2 + (2 * l0 * s2 - l2 * (l0 + 1)) * c / np.sqrt(l2 * l3 / l0 - s2)) \
+        / (1 + l0**2 + 2 * l0 * np.cos(phi))
+
+
+def coupler_mismatch(pivot, rocker, psi, phi, coupler) -> float:
+    """Largest |AC| − l₂ when the rocker's angle ψ is read counter-clockwise from +x: zero iff C = D + λ₃(cos ψ,
+    sin ψ) closes the loop with the crank A = (cos φ, sin φ)."""
+    c = np.asarray(pivot) + rocker * np.stack([np.cos(psi), np.sin(psi)], 1)
+    return float(np.max(np.abs(np.hypot(c[:, 0] - np.cos(phi), c[:, 1] - np.sin(phi)) - coupler)))
+
+
+def test_eremyants_2_50_counts_the_rocker_clockwise_and_2_48_counter_clockwise():
+    """The exact geometry decides the convention: ψ of (2.48), read counter-clockwise, closes scheme 1's loop;
+    ψ of (2.50) closes scheme 3's loop only read clockwise (counter-clockwise the coupler is off by up to 0.9 l₁).
+    So the textbook's scheme-3 ψ runs against φ, and u₃₁ of (2.53) is minus the counter-clockwise rocker's."""
+    phi = np.linspace(0.05, 2 * np.pi - 0.05, 60)
+    assert coupler_mismatch((2.0, 0.0), 3.0, eremyants_2_48(phi), phi, 4.0) < 1e-12
+    psi = eremyants_2_50(phi)
+    assert coupler_mismatch((-4.0, 0.0), 2.0, -psi, phi, 3.0) < 1e-12
+    assert coupler_mismatch((-4.0, 0.0), 2.0, psi, phi, 3.0) > 0.5
+
+
+def test_scheme_3_u31_is_minus_2_53_by_finite_differences_of_the_exact_geometry():
+    """θ = −ψ(2.50), the counter-clockwise rocker angle that closes the loop (test above), differentiated by central
+    differences (h = 1e-5: error ~h²u‴ < 1e-8) is the app's u₃₁ at φ + π (its frame is the textbook's turned by
+    180°, D at +l₀: a rotation keeps the sense of angles) and −(2.53); the issue's numbers included."""
+    phi, h = np.linspace(0.05, 2 * np.pi - 0.05, 60), 1e-5
+    theta_rate = -(eremyants_2_50(phi + h) - eremyants_2_50(phi - h)) / (2 * h)
+    from server.core.mechanisms import MECHANISMS
+    four_bar = MECHANISMS["four_bar"]
+    p = four_bar.check(SCHEME_3)
+    ours = four_bar.evaluate(p, phi + np.pi, set()).values["u31"]
+    np.testing.assert_allclose(ours, theta_rate, atol=1e-8)
+    np.testing.assert_allclose(ours, -eremyants_2_53(phi), atol=1e-12)
+    issue = four_bar.evaluate(p, np.array([np.pi + 1e-7, 1.5 * np.pi, 2 * np.pi, 2.5 * np.pi, 3 * np.pi - 1e-7]),
+                              set()).values["u31"]
+    np.testing.assert_allclose(issue, [-0.28990, -0.39872, -0.33333, 0.51636, 0.68990], atol=5e-6)
+
+
+@pytest.mark.parametrize("lang", LANGS)
+def test_scheme_3_scene_shows_the_textbooks_sign_beside_ours(lang):
+    """The scheme-3 variant says (2.50) counts ψ against φ and shows u₃₁ leaving (φ = 180°) and arriving
+    (φ = 540°) with the app's sign and the textbook's, three decimals, computed here."""
+    variant = next(v for v in scene_json("transfer_functions")["variants"] if v["id"] == "special_3")
+    text = variant["text"][lang]
+    assert "(2.50)" in text and "(2.53)" in text and "2.9" in text
+    from server.core.mechanisms import MECHANISMS
+    four_bar = MECHANISMS["four_bar"]
+    ours = four_bar.evaluate(four_bar.check(SCHEME_3), np.array([np.pi + 1e-9, 3 * np.pi - 1e-9]), set()).values["u31"]
+    book = eremyants_2_53(np.array([1e-9, 2 * np.pi - 1e-9]))
+    comma = "," if lang != "en" else "."
+    for here, printed in zip(ours, book):
+        shown = [f"{v:+.3f}".replace("-", "−").replace(".", comma) for v in (here, printed)]
+        assert shown[0] != shown[1] and all(s in text for s in shown), (shown, text)
+        assert text.index(shown[0]) < text.index(shown[1])          # ours first, then the textbook's
