@@ -133,3 +133,50 @@ def test_scheme_3_scene_shows_the_textbooks_sign_beside_ours(lang):
         shown = [f"{v:+.3f}".replace("-", "−").replace(".", comma) for v in (here, printed)]
         assert shown[0] != shown[1] and all(s in text for s in shown), (shown, text)
         assert text.index(shown[0]) < text.index(shown[1])          # ours first, then the textbook's
+
+
+# --- Chaika–Vasylenko Fig. 4.7: the maxima read from the figure ---------------------------------------
+
+BOOK_REQUEST = {"reactions": "table_4_3", "I_pin": 6e-11, "I_bush": 1e-10, "I_piston": 2e-12, "I_cylinder": 3e-12,
+                "hours": 1000, "outputs": ["wear"]}
+
+
+@pytest.fixture(scope="module")
+def book_wear():
+    from server.api.answers import compute
+    return compute("wear", BOOK_REQUEST)
+
+
+def test_figure_4_7_maxima_shown_beside_ours_with_the_books_own_half(book_wear):
+    """The /wear answer for the book's data carries Fig. 4.7's maxima (36, 68, 59 µm) beside its own largest
+    wear (76.2, 134.5, 101.1 µm: the distributions' maxima) and the book's sums with its printed k over
+    N_c/2 (38.9, 69.0, 58.8 µm, within 8 % of the figure).  By hand: the wear is linear in k and N_c, so the
+    last column is ours × k_printed/k_ours / 2 (rel 1e-12)."""
+    rows = {r["element"]: r for r in book_wear["figure_4_7"]}
+    assert {k: r["figure"] for k, r in rows.items()} == {"pin_23": 36.0, "bush_23": 68.0, "cylinder_max": 59.0}
+    assert rows["bush_23"]["table"] == pytest.approx(max(book_wear["bush"]), rel=1e-12)
+    assert rows["pin_23"]["table"] == pytest.approx(max(book_wear["pin"]), rel=1e-12)
+    assert rows["cylinder_max"]["table"] == pytest.approx(max(book_wear["cylinder"]), rel=1e-12)
+    assert (rows["bush_23"]["table"], rows["cylinder_max"]["table"]) == (pytest.approx(134.5, abs=0.05),
+                                                                         pytest.approx(101.1, abs=0.05))
+    k = book_wear["coefficients"]
+    printed = {"pin_23": ("pin", 0.68e-17), "bush_23": ("bush", 1.14e-17), "cylinder_max": ("cylinder", 1.41e-17)}
+    for key, (part, k_printed) in printed.items():
+        row = rows[key]
+        assert row["book_half"] == pytest.approx(row["table"] * k_printed / k[part] / 2, rel=1e-12)
+        assert abs(row["book_half"] / row["figure"] - 1) < 0.08
+    assert [round(rows[key]["book_half"], 1) for key in ("pin_23", "bush_23", "cylinder_max")] == [38.9, 69.0, 58.8]
+
+
+@pytest.mark.parametrize("lang", LANGS)
+def test_wear_scene_shows_figure_4_7_with_the_reason(lang):
+    """The Table 4.3 variant shows the panel; its note gives the three numbers of the last column and N_c."""
+    scene = scene_json("wear")
+    variant = next(v for v in scene["variants"] if v["id"] == "table_4_3")
+    assert "figure_4_7" in variant["panels"]
+    note = scene["panels"]["figure_4_7"]["note"][lang]
+    numbers = ("38.9", "69.0", "58.8", "1.44·10⁸", "0.72·10⁸")
+    for number in numbers:
+        assert (number if lang == "en" else number.replace(".", ",")) in note
+    words = json.loads((CONTENT / "i18n" / f"{lang}.json").read_text("utf-8"))
+    assert "wear_element_cylinder_max" in words

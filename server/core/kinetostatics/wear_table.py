@@ -43,6 +43,14 @@ BOOK_CYLINDER_LIMITS = ((0.0, 120.0), (330.0, 360.0))   # the printed limits of 
 PRINTED_PISTON_INTEGRAND_150 = 61.0     # Table 4.4 at φ₁ = 150°: R₃₄|V_qB| printed 61 N·m/rad (1467·0.0176 = 25.8)
 PRINTED_MEAN_R23 = 3468.0               # §4.3 (A) step 1: the mean of R₂₃ printed 3468 N (the 13 rows: 3535 N)
 PRINTED_CYLINDER_K = 1.41e-17           # §4.3 (B) step 3: k₃₄⁽⁴⁾ printed 1.41·10⁻¹⁷ m²/N (I_s = 3·10⁻¹² gives 1.21)
+# §4.3, the maxima the text reads from Fig. 4.7, µm: the pin δ₃,max = 36 (β₃ = 180…200°), the bush δ₂,max ≈ 68,
+# the cylinder's right side δ₄,max ≈ 59 (region II, X ≈ 0.076…0.090 m)
+FIGURE_4_7 = {"pin_23": 36.0, "bush_23": 68.0, "cylinder": 59.0}
+# §4.3 steps 3: the wear coefficients as printed, m²/N (pin 0.68·10⁻¹⁷, bush 1.14·10⁻¹⁷, cylinder 1.41·10⁻¹⁷)
+PRINTED_K = {"pin": 0.68e-17, "bush": 1.14e-17, "cylinder": 1.41e-17}
+BOOK_PARTS = {"pin_diameter": 0.02, "pin_length": 0.025, "piston_diameter": 0.075, "piston_length": 0.076,
+              "I_pin": 0.6e-10, "I_bush": 1.0e-10, "I_piston": 2e-12, "I_cylinder": 3e-12}     # §4.3's data
+BOOK_CYCLES = 1.44e8                    # §4.3 step 0: N_c = 60·n₁·t = 60·2400·1000
 
 
 def book_sum(phi: np.ndarray, values: np.ndarray) -> np.ndarray:
@@ -191,6 +199,7 @@ def book_table_report(parts: dict, cycles: float) -> dict:
     result["comparison"] = [{"element": key, "printed": BOOK_WEAR[key], "table": points[key]}
                             for key in ("bush_23", "pin_23", "piston", "cylinder")]
     result["book"] = BOOK_WEAR
+    result["figure_4_7"] = figure_maxima(result)
     result["errata"] = [
         *errata.wear_example(*BOOK_LINKS),
         errata.row("wear_mean_reaction", "chaika_vasylenko", "(4.23), §4.3", PRINTED_MEAN_R23,
@@ -205,6 +214,23 @@ def book_table_report(parts: dict, cycles: float) -> dict:
                    points["cylinder"], "um"),
     ]
     return result
+
+
+def figure_maxima(result: dict) -> list[dict]:
+    """Fig. 4.7's maxima (the text's 36, 68, 59 µm) beside the largest wear of the answer's own distributions
+    (its parts and hours) and beside the book's data summed the same way with its printed coefficients k
+    (PRINTED_K) over half its cycles, N_c/2 = 0.72·10⁸: 38.9, 69.0 and 58.8 µm, within 8 % of the figure.  The
+    figure's curves are half of what the book's text and formulas give for N_c = 1.44·10⁸ (500 h at 2400 rpm,
+    or one cycle per two revolutions as in a four-stroke engine); the book says neither.  Wear in µm."""
+    c = table_columns(TABLE_4_3)
+    p23, p34, _ = _coefficients(c, BOOK_PARTS)
+    printed = {**BOOK_PARTS, "I_pin": PRINTED_K["pin"] * p23, "I_bush": PRINTED_K["bush"] * p23,
+               "I_cylinder": PRINTED_K["cylinder"] * p34}
+    half = tabulated_wear(TABLE_4_3, printed, BOOK_CYCLES / 2)
+    ours = {"pin_23": result["pin"], "bush_23": result["bush"], "cylinder": result["cylinder"]}
+    theirs = {"pin_23": half["pin"], "bush_23": half["bush"], "cylinder": half["cylinder"]}
+    return [{"element": "cylinder_max" if key == "cylinder" else key, "figure": figure, "table": float(np.max(ours[key])),
+             "book_half": float(np.max(theirs[key]))} for key, figure in FIGURE_4_7.items()]
 
 
 def constant_load_rows(mean_r23: float, parts: dict, k: dict, cycles: float, stroke: float) -> list[dict]:

@@ -92,7 +92,8 @@ function rowsTable(panel, data, texts) {
       element("td", { rich: cell(row[column.key], texts.lang, column, texts.t) }))))));
   const series = pathValue(data, panel.path.split(".").slice(0, -1).join("."));
   const summary = series && "converged" in series ? [seriesSummary(series, columns, texts)] : [];
-  return [...summary, scrollingFrame(table, panel, texts)];
+  const note = panel.note ? [element("p", { className: "note", rich: panel.note[texts.lang] })] : [];
+  return [...summary, scrollingFrame(table, panel, texts), ...note];
 }
 
 /**
