@@ -16,32 +16,28 @@ ALGORITHM = "RS256"
 
 @dataclass(frozen=True)
 class ToolKey:
+    """The key pair, with its public forms computed once (loading an RSA private key is costly: tens of ms)."""
     kid: str
     private_pem: str
+    public_pem: str
+    public_jwk: dict
 
     def __repr__(self) -> str:              # never the key in a log or a traceback
         return f"ToolKey(kid={self.kid!r})"
 
-    @property
-    def public_jwk(self) -> dict:
-        jwk = JWK.from_pem(self.private_pem.encode()).export_public(as_dict=True)
-        return jwk | {"kid": self.kid, "alg": ALGORITHM, "use": "sig"}
-
-    @property
-    def public_pem(self) -> str:
-        return JWK.from_pem(self.private_pem.encode()).export_to_pem(private_key=False).decode()
-
-
-def key_id(private_pem: str) -> str:
-    """The key's id: its JWK thumbprint (RFC 7638), the kid pylti1p3 puts in the headers it signs."""
-    return JWK.from_pem(private_pem.encode()).thumbprint()
+    @classmethod
+    def from_pem(cls, private_pem: str) -> "ToolKey":
+        jwk = JWK.from_pem(private_pem.encode())
+        kid = jwk.thumbprint()           # RFC 7638: the kid pylti1p3 puts in the headers it signs
+        return cls(kid, private_pem, jwk.export_to_pem(private_key=False).decode(),
+                   jwk.export_public(as_dict=True) | {"kid": kid, "alg": ALGORITHM, "use": "sig"})
 
 
 def new_key() -> ToolKey:
     private = rsa.generate_private_key(public_exponent=65537, key_size=KEY_BITS)
     pem = private.private_bytes(serialization.Encoding.PEM, serialization.PrivateFormat.PKCS8,
                                 serialization.NoEncryption()).decode()
-    return ToolKey(key_id(pem), pem)
+    return ToolKey.from_pem(pem)
 
 
 @lru_cache(maxsize=4)
@@ -50,7 +46,7 @@ def _tool_key(store_id: int, store) -> ToolKey:
     if stored is None:                       # the first server to need it makes it; the others read it back
         made = new_key()
         stored = store.lti_tool_key(made.kid, made.private_pem, time.time())
-    return ToolKey(key_id(stored[1]), stored[1])
+    return ToolKey.from_pem(stored[1])
 
 
 def tool_key(store) -> ToolKey:
