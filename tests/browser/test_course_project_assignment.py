@@ -5,6 +5,7 @@ course-project page from their assignment page, read J_fw and M_b (by the groups
 that page and type them in; the instructor's results page shows both scores."""
 from __future__ import annotations
 
+import json
 import re
 
 import httpx
@@ -172,3 +173,29 @@ def test_the_editors_mechanism_becomes_a_course_project_assignment(chromium, app
     assert linkage["groups"] == editor_linkage["groups"] and linkage["frame"] == editor_linkage["frame"]
     assert student.problems == []
     context.close()
+
+
+PROJECT_BODY_JS = """async ({ scene, documents }) => {
+  const entry = document.querySelector('script[type="module"][src*="project_scene.js"]').src;
+  const { projectBody } = await import(entry);
+  const { resolveAddressVariants } = await import(new URL("../common/model/address_mechanism.js", entry));
+  resolveAddressVariants(scene, documents);
+  return Object.fromEntries(scene.variants.map((variant) => [variant.id, projectBody(variant)]));
+}"""
+
+
+def test_the_scene_page_and_the_server_write_the_same_project_request(browser_page):
+    """project_scene.js's projectBody against requests.project_body at the defaults, for every variant (the own
+    one resolved with a hand-built six-bar and its estimate): the same request, exactly."""
+    from server.core.structure.estimate import estimated_dynamics
+    from server.lessons.requests import address_variant, defaults, project_body
+    from test_dynamics_estimate import HAND_BUILT
+    documents = {"m": HAND_BUILT, "d": estimated_dynamics(HAND_BUILT)}
+    scene = scenes()["course-project"]
+    page = browser_page
+    page.goto("/scenes/course-project?lang=en")
+    page.wait_for_selector("#project-variant-shaping_machine a")
+    built = page.evaluate(PROJECT_BODY_JS, {"scene": json.loads(scene.model_dump_json()), "documents": documents})
+    for variant in scene.variants:
+        variant = address_variant(variant, documents)
+        assert built[variant.id] == project_body(variant, defaults(variant)), variant.id
