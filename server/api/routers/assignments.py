@@ -263,6 +263,7 @@ def delete_student(assignment_id: str = ID, token: str = TOKEN, student_id: str 
     assignments.check_token(record, token)
     student = assignments.find_student(record, student_id)
     store().delete_student(record.id, student.key)
+    lti_classroom.score_changed(record.id, student.key)      # an LMS student's grade goes back to 0
     return Response(status_code=204)
 
 
