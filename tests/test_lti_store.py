@@ -215,3 +215,24 @@ def test_a_reset_student_stands_at_zero():
 
 def test_the_access_log_cuts_a_ticket():
     assert cut("/lti/continue/AbC-123_xyz?lang=ru") == "/lti/continue/(ticket)?lang=ru"
+
+
+def test_a_grade_that_could_not_be_posted_is_tried_again_on_a_timer(stores, monkeypatch):
+    from server.api import lti_classroom
+    first, _ = stores
+    platform = moodle(auth_token_url="http://127.0.0.1:9/token")          # nothing listens there
+    first.lti_add_platform(platform)
+    first.register("a1", StudentRecord("lti:k1", "Anna", 0, {}, 100.0))
+    first.lti_link_learner(LearnerRecord(platform.id, "u1", "a1", "lti:k1", "course-1", AGS))
+    first.lti_queue_score("a1", "lti:k1", time.time())
+    monkeypatch.setattr(lti_classroom, "store", lambda: first)
+    monkeypatch.setattr(lti_classroom, "_retry", {"timer": None})
+    lti_classroom._post_due()
+    timer = lti_classroom._retry["timer"]
+    try:
+        assert first.lti_pending_scores()[0].tries == 1
+        assert timer is not None and timer.is_alive() and timer.daemon
+        assert lti_classroom.RETRY_FLOOR_S <= timer.interval <= grades.MAX_DELAY_SECONDS
+    finally:
+        if timer is not None:
+            timer.cancel()

@@ -10,6 +10,7 @@ import hashlib
 import hmac
 import logging
 import secrets
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
@@ -26,6 +27,7 @@ from .assignment_store import store
 TEACHER_COOKIE = "mdl_lti_teacher"
 TEACHER_SECONDS = 8 * 3600        # an instructor's session: a working day
 TICKET_SECONDS = 300              # "Open in a new window": used once, within five minutes
+RETRY_FLOOR_S = 5.0               # a waiting grade is tried again no sooner than this
 AGS_CLAIM = "https://purl.imsglobal.org/spec/lti-ags/claim/endpoint"
 CONTEXT_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/context"
 log = logging.getLogger("mdl.lti")
@@ -139,8 +141,28 @@ def post_scores_later() -> None:
 def _post_due() -> None:
     try:
         grades.post_due(store())
+        waiting = store().lti_pending_scores()
     except Exception:                                    # noqa: BLE001 - logged; the rows stay due
         log.exception("posting LTI scores failed")
+        waiting = []
+    if waiting:                                          # a retry later, even if no student submits again
+        _retry_at(min(p.retry_at for p in waiting))
+
+
+_retry = {"timer": None}
+_retry_lock = threading.Lock()
+
+
+def _retry_at(at: float) -> None:
+    """One timer per process wakes the posting thread when the earliest waiting score is due (no sooner than
+    RETRY_FLOOR_S, no later than an hour; another server may post it first: the row is then gone or taken)."""
+    with _retry_lock:
+        if _retry["timer"] is not None and _retry["timer"].is_alive():
+            return
+        delay = min(max(at - time.time(), RETRY_FLOOR_S), grades.MAX_DELAY_SECONDS)
+        _retry["timer"] = threading.Timer(delay, post_scores_later)
+        _retry["timer"].daemon = True
+        _retry["timer"].start()
 
 
 def submitted(assignment_id: str, key: str) -> None:

@@ -5,7 +5,8 @@ A submission (or an instructor's change) only *queues* the student's score: one 
 student's standing at that moment (questions right of the number of questions), so a burst of submissions
 posts the newest score, and a score queued again while being posted is posted once more. A failure (the
 platform down, a refused token) is recorded with the reason and retried later with a growing delay
-(RETRY_SECONDS · 2^tries, at most MAX_DELAY_SECONDS), by the next ``post_due`` run of any server.
+(RETRY_SECONDS · 2^tries, at most MAX_DELAY_SECONDS), by the next ``post_due`` run of any server (the
+app runs one after each LMS student's submission, each instructor launch, and on a timer while scores wait).
 
 Where the score goes: the line item of the student's launch (the ``lineitem`` of the AGS claim), else the one
 found or created in the course's ``lineitems`` container for this assignment (tag = the assignment id, kept
