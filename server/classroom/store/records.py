@@ -7,6 +7,7 @@ it has committed, so whatever a caller acknowledges survives a crash. Both backe
 from __future__ import annotations
 
 import functools
+import inspect
 import json
 from dataclasses import dataclass
 from typing import Callable, Protocol
@@ -80,8 +81,9 @@ def unavailable_on(is_unavailable: Callable[[BaseException], bool]):
         return guarded
 
     def decorate(cls):
-        for name, member in list(vars(cls).items()):
-            if callable(member) and not name.startswith("_") and name != "close":
+        for name in dir(cls):                       # the class's own methods and those it inherits (LtiTables)
+            member = inspect.getattr_static(cls, name)   # a plain function: a method (not a static one)
+            if inspect.isfunction(member) and not name.startswith("_") and name != "close":
                 setattr(cls, name, guard(member))
         return cls
     return decorate
