@@ -180,3 +180,93 @@ def test_wear_scene_shows_figure_4_7_with_the_reason(lang):
         assert (number if lang == "en" else number.replace(".", ",")) in note
     words = json.loads((CONTENT / "i18n" / f"{lang}.json").read_text("utf-8"))
     assert "wear_element_cylinder_max" in words
+
+
+# --- Chaika–Vasylenko (3.6), (3.7), (3.19), (3.27), (3.40): printed beside corrected ------------------------
+
+@pytest.fixture(scope="module")
+def central_forces():
+    from server.api.answers import compute
+    from server.lessons.requests import scene_request
+    from server.lessons.scenes import scenes
+    scene = scenes()["forces-friction"]
+    variant = next(v for v in scene.variants if v.id == "central")
+    request = scene_request(scene, variant)
+    return request, compute("forces", request)
+
+
+def test_crank_slider_misprints_corrected_values_are_the_apps_own(central_forces):
+    """Each corrected value against the app's kinetostatics of the same crank-slider (a route of its own: the
+    joints' positions and the d'Alembert loads it solves with); the printed ones by hand.  The scene's crank-slider:
+    l₁ = 0.1, l₂ = 0.4 (λ₂ = 4), S₂ at 0.3 of AB, ω = 50 rad/s, m₂ = 3 kg, ε₁ = 0."""
+    from server.core.kinetostatics.crank_slider import analyse, Loads, Pairs
+    from server.core.mechanisms import MECHANISMS
+    request, answer = central_forces
+    rows = {r["key"]: r for r in answer["errata"]}
+    assert set(rows) == {"slider_acceleration_36", "rod_centre_acceleration_36", "rod_angle_37", "inertia_arm_319",
+                         "relative_rate_327"}
+    params = MECHANISMS["slider_crank"].check(request["params"])
+    l1, l2, omega, m2, m3 = params["l1"], params["l2"], request["loads"]["omega"], request["loads"]["m2"], \
+        request["loads"]["m3"]
+    lam = l2 / l1
+    phi = np.linspace(0, 2 * np.pi, 2881)
+    loads = Loads(m2=m2, m3=m3, omega=omega, gravity=False)
+    analysis = analyse(params, loads, Pairs(), phi, table=False)
+    a, b, s2 = (analysis.points[k] for k in ("A", "B", "S2"))
+    # (3.6) a_B: |F_in3|/m₃ (d'Alembert), largest at the dead centre l₁ω²(1 + 1/λ₂); printed l₁ω²(1 + 2/λ₂)
+    slider = np.max(np.linalg.norm(analysis.applied["F_in3"], axis=1)) / m3
+    assert rows["slider_acceleration_36"]["corrected_value"] == pytest.approx(slider, rel=1e-6)
+    assert rows["slider_acceleration_36"]["printed_value"] == pytest.approx(l1 * omega**2 * (1 + 2 / lam), rel=1e-12)
+    # (3.7): the rod's largest angle from the joints, arcsin(1/λ₂); printed 0 (λ_e = 0)
+    rod = np.degrees(np.max(np.abs(np.arcsin((b[:, 1] - a[:, 1]) / l2))))
+    assert rows["rod_angle_37"]["corrected_value"] == pytest.approx(rod, abs=1e-6)
+    assert rows["rod_angle_37"]["printed_value"] == 0.0
+    # (3.19): the moment of F_2in about A as the vector product, largest over the cycle (grids of 1441 and 2881
+    # points: the maximum of a smooth curve to 1e-5)
+    from server.core.kinetostatics.crank_slider import cross
+    arm = np.max(np.abs(cross(s2 - a, analysis.applied["F_in2"])))
+    assert rows["inertia_arm_319"]["corrected_value"] == pytest.approx(arm, rel=1e-5)
+    assert rows["inertia_arm_319"]["printed_value"] != pytest.approx(arm, rel=1e-2)
+    # (3.6) a_S2x at φ₁ = 45°: the component along the guide of S₂'s acceleration (F_in2/m₂) where the crank
+    # makes 45° with the line from O to the slider (the book's φ₁; either sense: the central linkage is symmetric)
+    o = analysis.points["O"]
+    crank, guide = a - o, b - o
+    angle = np.degrees(np.arccos(np.sum(crank * guide, 1) / np.linalg.norm(crank, axis=1)
+                                 / np.linalg.norm(guide, axis=1)))
+    i = int(np.argmin(np.abs(angle - 45.0)))
+    assert angle[i] == pytest.approx(45.0, abs=1e-9)
+    f_in2 = analysis.applied["F_in2"]
+    along = abs(np.dot(f_in2[i], guide[i] / np.linalg.norm(guide[i]))) / m2
+    assert abs(rows["rod_centre_acceleration_36"]["corrected_value"]) == pytest.approx(along, rel=1e-6)
+    assert abs(rows["rod_centre_acceleration_36"]["printed_value"]) != pytest.approx(along, rel=1e-4)
+    # (3.27) at φ₁ = 0: |1 − u₂₁| = 1 + 1/λ₂ (the rod turns against the crank there), printed 1 − 1/λ₂
+    assert rows["relative_rate_327"]["corrected_value"] == pytest.approx(1 + 1 / lam, rel=1e-12)
+    assert rows["relative_rate_327"]["printed_value"] == pytest.approx(1 - 1 / lam, rel=1e-12)
+    rate = np.gradient(np.unwrap(np.arctan2(b[:, 1] - a[:, 1], b[:, 0] - a[:, 0])), phi)
+    assert np.max(np.abs(1 - rate)) == pytest.approx(1 + 1 / lam, rel=1e-5)
+
+
+def test_parallel_efficiency_as_printed_beside_corrected():
+    """(3.40), two branches η = 0.9, 0.8 with A_P = 100, 300 J: corrected (90 + 240)/400 = 0.825, printed
+    Σ η_k = 1.7 (by hand); series unchanged."""
+    from server.api.answers import compute
+    answer = compute("efficiency-chain", {"efficiencies": [0.9, 0.8], "works": [100, 300]})
+    assert answer["parallel"] == pytest.approx(0.825, rel=1e-12)
+    (row,) = answer["errata"]
+    assert (row["key"], row["equation"]) == ("parallel_efficiency_340", "(3.40)")
+    assert row["printed_value"] == pytest.approx(1.7, rel=1e-12)
+    assert row["corrected_value"] == pytest.approx(0.825, rel=1e-12)
+
+
+def test_new_errata_rows_have_their_words_in_three_languages(central_forces):
+    from server.core import errata
+    rows = [*central_forces[1]["errata"], errata.parallel_efficiency([0.5], [1.0])]
+    for lang in LANGS:
+        words = json.loads((CONTENT / "i18n" / f"{lang}.json").read_text("utf-8"))
+        for r in rows:
+            for name in (f"erratum_why_{r['key']}", f"erratum_printed_{r['key']}", f"erratum_corrected_{r['key']}",
+                         f"erratum_unit_{r['unit']}", f"source_{r['source']}"):
+                assert name in words, (lang, name)
+        assert "chain_parallel_printed" in words
+    scene = scene_json("forces_friction")
+    assert "errata" in next(v for v in scene["variants"] if v["id"] == "central")["panels"]

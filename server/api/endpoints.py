@@ -343,6 +343,9 @@ def forces(request: ForcesRequest, lang: str, reads: Reads = None, preview: Prev
         frictionless = analyse(params, loads, Pairs(), analysis.phi, table=False) if rough else analysis
         result["crank_check"] = crank_check(analysis, frictionless,
                                             reduced_moment(params, analysis.applied, analysis.phi))
+    if (reads is None or "errata" in reads) and params["e"] == 0:     # the book's formulas are for e = 0
+        result["errata"] = errata.crank_slider_kinetostatics(params["l1"], params["l2"], params["a2"] * params["l2"],
+                                                             loads.omega, loads.m2)
     return answer(result, analysis.notices, lang)
 
 
@@ -403,7 +406,8 @@ def efficiency_chain(request: ChainRequest, lang: str) -> Answer:
         return Answer({"series": series})
     total = sum(request.works)
     parallel = sum(a * e for a, e in zip(request.works, request.efficiencies)) / total if total > 0 else None
-    return Answer({"series": series, "parallel": parallel})
+    as_printed = errata.parallel_efficiency(request.efficiencies, request.works) if total > 0 else None
+    return Answer({"series": series, "parallel": parallel, "errata": [as_printed] if as_printed else []})
 
 
 def bearings(request: BearingsRequest, lang: str) -> Answer:

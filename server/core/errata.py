@@ -114,3 +114,58 @@ def reduction(mechanism: str, params: dict, m3: float, omega: float) -> list[dic
     (3.38)/(3.39) for the crank-slider (λ = l₂/l₁), (3.50)/(3.53) for the slotted link (λ = l₀/l₁)."""
     from .mechanisms import MECHANISMS          # errata is imported by the mechanisms' modules
     return MECHANISMS[mechanism].reduction_errata(params, m3, omega)
+
+
+def _central_crank_slider(l1: float, l2: float, points: int) -> dict:
+    """Chaika–Vasylenko §3.1's central crank-slider in its own frame (φ₁ counter-clockwise from the crank
+    pointing at the slider, φ₂ the rod's angle, λ₂ = l₂/l₁): sin φ₂ = −sin φ₁/λ₂, u₂₁ = −cos φ₁/(λ₂cos φ₂)
+    (3.7) and du₂₁/dφ₁ = (sin φ₁ + λ₂u₂₁² sin φ₂)/(λ₂cos φ₂), on a closed grid of the cycle."""
+    lam = l2 / l1
+    phi = np.linspace(0.0, 2 * np.pi, points)
+    s2 = -np.sin(phi) / lam
+    c2 = np.sqrt(1 - s2**2)
+    u21 = -np.cos(phi) / (lam * c2)
+    du21 = (np.sin(phi) + lam * u21**2 * s2) / (lam * c2)
+    return {"lam": lam, "phi": phi, "s2": s2, "c2": c2, "u21": u21, "du21": du21}
+
+
+def crank_slider_kinetostatics(l1: float, l2: float, l_as2: float, omega: float, m2: float,
+                               points: int = 1441) -> list[dict]:
+    """Chaika–Vasylenko §3.1, the central crank-slider at constant ω₁ (ε₁ = 0), each misprint by the largest value
+    over the cycle it gives, printed beside corrected:
+
+    (3.6) a_B's bracket with 2cos²φ₁ where d(V_qB)/dφ₁ gives cos 2φ₁: max |a_B|, m/s²;
+    (3.6) a_S2x with u₂₁²cos²φ₂ where it is u₂₁²cos φ₂: a_S2x at φ₁ = 45°, m/s² (about where the two differ
+          most; at the dead centres φ₂ = 0 and they agree);
+    (3.7) φ₂ = arcsin(λ_e sin φ₁/λ₂) where (3.5) gives arcsin((λ_e − sin φ₁)/λ₂): max |φ₂|, deg (λ_e = 0);
+    (3.19) the arm of F₂ᵢₙ about A, (F_y cos φ₂ + F_x sin φ₂)·l_AS2 where the vector product gives
+           (F_y cos φ₂ − F_x sin φ₂)·l_AS2: max |M_A(F₂ᵢₙ)|, N·m (F₂ᵢₙ = −m₂a_S2);
+    (3.27) the crank pin's relative angular velocity analog |u₁₁ + u₂₁| where it is |u₁₁ − u₂₁|: its value at
+           φ₁ = 0, where it is largest (1 + 1/λ₂)."""
+    k = _central_crank_slider(l1, l2, points)
+    lam, phi, s2, c2, u21, du21 = (k[key] for key in ("lam", "phi", "s2", "c2", "u21", "du21"))
+    w2 = l1 * omega**2
+    root = np.sqrt(lam**2 - np.sin(phi) ** 2)
+    tail = np.sin(phi) ** 2 * np.cos(phi) ** 2 / root**2
+    a_b = lambda first: -w2 * (np.cos(phi) + (first + tail) / root)
+    ratio = l_as2 / l2
+    a_s2x = lambda c: -(np.cos(phi) + lam * ratio * (du21 * s2 + u21**2 * c)) * w2
+    a_s2y = (ratio - 1) * np.sin(phi) * w2
+    fx, fy = -m2 * a_s2x(c2), -m2 * a_s2y
+    largest = lambda v: float(np.max(np.abs(v)))
+    return [row("slider_acceleration_36", "chaika_vasylenko", "(3.6), a_B", largest(a_b(2 * np.cos(phi) ** 2)),
+                largest(a_b(np.cos(2 * phi))), "m_s2"),
+            row("rod_centre_acceleration_36", "chaika_vasylenko", "(3.6), a_S2x, φ₁ = 45°",
+                float(np.interp(np.pi / 4, phi, a_s2x(c2**2))), float(np.interp(np.pi / 4, phi, a_s2x(c2))), "m_s2"),
+            row("rod_angle_37", "chaika_vasylenko", "(3.7)", 0.0, np.degrees(np.arcsin(1 / lam)), "deg"),
+            row("inertia_arm_319", "chaika_vasylenko", "(3.19)", largest((fy * c2 + fx * s2) * l_as2),
+                largest((fy * c2 - fx * s2) * l_as2), "Nm"),
+            row("relative_rate_327", "chaika_vasylenko", "(3.27), φ₁ = 0", abs(1 + u21[0]), abs(1 - u21[0]), "none")]
+
+
+def parallel_efficiency(efficiencies, works) -> dict:
+    """Chaika–Vasylenko (3.40): η of mechanisms in parallel, printed Σ A_P η_k / A_P (= Σ η_k, which can exceed
+    1), corrected Σ A_P,k η_k / A_P with A_P = Σ A_P,k."""
+    total = float(np.sum(works))
+    corrected = float(np.dot(works, efficiencies)) / total if total > 0 else float("nan")
+    return row("parallel_efficiency_340", "chaika_vasylenko", "(3.40)", float(np.sum(efficiencies)), corrected, "none")

@@ -1,7 +1,7 @@
 /**
  * Panel view of the efficiency-chain calculator (model: efficiency_chain.js): a row per mechanism with
  * its η_k and A_P,k, buttons to add and remove mechanisms, and η of the chain in series (3.39) and in
- * parallel (3.40). It needs nothing from the scene's answer: its own client asks /efficiency-chain
+ * parallel (3.40), with (3.40) as printed (the sum of the η_k) beside it. It needs nothing from the scene's answer: its own client asks /efficiency-chain
  * whenever a valid value changes. The fields are text read by decimal_input.js, so "0,9" is 0.9 on a
  * Russian page whatever the browser's locale (an <input type="number"> would follow the browser's).
  */
@@ -24,6 +24,7 @@ export class EfficiencyChainView {
     this.rows = element("tbody");
     this.series = element("output", { className: "chain-series" });
     this.parallel = element("output", { className: "chain-parallel" });
+    this.printed = element("output", { className: "chain-parallel-printed" });
     this.message = element("div", { className: "chain-message" });
     const add = element("button", { type: "button", className: "chain-add", textContent: t.chain_add });
     add.addEventListener("click", () => this.model.add());
@@ -38,13 +39,14 @@ export class EfficiencyChainView {
       add,
       element("dl", { className: "figures-list chain-results" },
         element("dt", { rich: t.chain_series }), element("dd", {}, this.series),
-        element("dt", { rich: t.chain_parallel }), element("dd", {}, this.parallel)),
+        element("dt", { rich: t.chain_parallel }), element("dd", {}, this.parallel),
+        element("dt", { rich: t.chain_parallel_printed }), element("dd", {}, this.printed)),
       this.message);
 
     this.model.on("mechanisms", () => {
       this.#rows();
       if (this.model.valid()) client.submit("chain", this.model.request(), (answer) => this.model.receive(answer));
-      else this.series.textContent = this.parallel.textContent = "—";
+      else this.series.textContent = this.parallel.textContent = this.printed.textContent = "—";
     });
     this.model.on("result", (answer) => this.#result(answer));
     this.model.emit("mechanisms");
@@ -88,5 +90,7 @@ export class EfficiencyChainView {
     this.message.replaceChildren(...(answer.ok ? [] : [refusalMessage(this.t.computation_refused, answer.error, this.t)]));
     this.series.textContent = answer.ok ? shown(answer.data.series) : "—";
     this.parallel.textContent = answer.ok ? shown(answer.data.parallel) : "—";
+    // (3.40) as printed, the sum of the η_k (Chaika–Vasylenko: the total A_P in the numerator), beside the corrected
+    this.printed.textContent = answer.ok ? shown(answer.data.errata?.[0]?.printed_value) : "—";
   }
 }
