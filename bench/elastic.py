@@ -22,14 +22,19 @@
    two trees taking turns, ROUNDS rounds, the least time of the rounds per request.
 
 Run:  python bench/elastic.py      (writes bench/results/elastic.md; about ten minutes, mostly part 4's scipy
-      rows; --quick leaves part 4 out)
+      rows; --quick leaves part 4 out; --positions N sweeps each slider at N values, not 9; --no-write
+      prints only; --output PATH writes elsewhere)
       python bench/elastic.py --versus /tmp/elastic-old    (part 0 only, written to bench/results/elastic.md's
       first section; OLD e.g. ``mkdir /tmp/elastic-old && git archive 9b8d9d3 | tar -x -C /tmp/elastic-old``
       and ``python3 -m server.core.warm_up`` there)
 """
 from __future__ import annotations
 
+import argparse
+import contextlib
+import functools
 import json
+import math
 import os
 import statistics
 import subprocess
@@ -43,6 +48,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from server.lessons.scenes import scenes                                            # noqa: E402
+from server.api import endpoints                                                 # noqa: E402
 from server.api.endpoints import elastic_machine                          # noqa: E402
 from server.lessons.requests import scene_request, slider_values               # noqa: E402
 from server.api.schemas_elastic import ElasticRequest                            # noqa: E402
@@ -90,17 +96,27 @@ def run(machine, t_end, method, rtol, budget=BUDGET_S, engine="compiled"):
 
 
 def answer(request: ElasticRequest, engine: str) -> tuple[float, dict]:
-    """The core of /elastic for the request (what elastic_answer computes, without the JSON, with a time budget
-    that a loaded machine does not reach): seconds, result."""
-    machine = elastic_machine(request)
-    start = time.perf_counter()
-    result = {}
-    if "histories" in request.outputs or "rigid" in request.outputs:
-        result = simulate(machine, request.t_end, request.n, request.rtol, request.method,
-                          budget_s=BUDGET_S, with_rigid="rigid" in request.outputs, engine=engine)[0]
-    if "modal" in request.outputs:
-        result["modal"] = modal(machine)
-    return time.perf_counter() - start, result
+    """The server's compute of the request, every output it asks for (endpoints.elastic, the body of POST
+    /api/v1/elastic without the JSON), its time integration on ``engine`` and with a time budget (BUDGET_S, no
+    request deadline) that a loaded machine does not reach: seconds, the answer's payload."""
+    timed = functools.partial(simulate, engine=engine, budget_s=BUDGET_S)
+    with patched(endpoints, simulate=timed, request_deadline=lambda: math.inf):
+        start = time.perf_counter()
+        result = endpoints.elastic(request, "en").payload
+        return time.perf_counter() - start, result
+
+
+@contextlib.contextmanager
+def patched(module, **names):
+    """The module's names replaced for the duration of the block."""
+    saved = {name: getattr(module, name) for name in names}
+    for name, value in names.items():
+        setattr(module, name, value)
+    try:
+        yield
+    finally:
+        for name, value in saved.items():
+            setattr(module, name, value)
 
 
 def elastic_variants():
@@ -111,12 +127,19 @@ def elastic_variants():
 def scene_defaults() -> list[str]:
     """Part 1: old (scipy) and new (compiled) per default request, with errors against a tight reference."""
     lines = ["## Default requests of the elastic scenes: scipy's stepping against the compiled path\n",
-             "Server compute of the request's outputs (the core, without the JSON), median of 3 after one warm run; "
-             "error: the twist against compiled DOP853 at rtol 1e-11, relative to the largest twist.\n",
+             "Server compute of the request's outputs (the endpoint's body, without the JSON), median of 3 after one "
+             "warm run; error: the twist against compiled DOP853 at rtol 1e-11, relative to the largest twist. A "
+             "variant without time histories has no engine to compare: its compute time stands in the compiled "
+             "column.\n",
              "| scene / variant | outputs | scipy, ms | compiled, ms | ratio | steps (scipy / compiled) | "
              "error scipy | error compiled | error estimate |", "|---|---|---:|---:|---:|---|---:|---:|---:|"]
     for scene, variant in elastic_variants():
         request = ElasticRequest.model_validate(scene_request(scene, variant))
+        if "histories" not in request.outputs:        # nothing integrated in time: no engine to compare
+            seconds = statistics.median(answer(request, "compiled")[0] for _ in range(4))
+            lines.append(f"| {scene.id} / {variant.id} | {', '.join(request.outputs)} | — | {1e3 * seconds:.1f} | — | "
+                         "no time integration | — | — | — |")
+            continue
         times, results = {}, {}
         for engine in ("scipy", "compiled"):
             answer(request, engine)
@@ -136,10 +159,10 @@ def scene_defaults() -> list[str]:
     return lines
 
 
-def slider_sweeps() -> list[str]:
-    """Part 2: the compiled request's compute time over each slider's range."""
+def slider_sweeps(positions: int = SWEEP_POSITIONS) -> list[str]:
+    """Part 2: the compiled request's compute time over each slider's range, at ``positions`` values of it."""
     lines = ["\n## Slider sweeps, compiled path\n",
-             f"Each slider at {SWEEP_POSITIONS} positions over its range (the others at their defaults), each request "
+             f"Each slider at {positions} positions over its range (the others at their defaults), each request "
              "once (a fresh machine: no table shared with the previous request unless the slider leaves the "
              "mechanism's tables alone, as the damping does).\n",
              "| scene / variant | slider | requests | median, ms | p95, ms | max, ms | partial answers |",
@@ -147,7 +170,7 @@ def slider_sweeps() -> list[str]:
     for scene, variant in elastic_variants():
         for slider in variant.sliders:
             values = slider_values(slider)
-            picks = [values[round(k * (len(values) - 1) / (SWEEP_POSITIONS - 1))] for k in range(SWEEP_POSITIONS)]
+            picks = [values[round(k * (len(values) - 1) / (positions - 1))] for k in range(positions)]
             times, partial = [], 0
             for value in picks:
                 request = ElasticRequest.model_validate(scene_request(scene, variant, {slider.id: value}))
@@ -239,11 +262,31 @@ def versus(old: Path) -> list[str]:
     return lines
 
 
-def main() -> None:
-    if "--versus" in sys.argv:
-        section = "\n".join(versus(Path(sys.argv[sys.argv.index("--versus") + 1]))) + "\n"
+def arguments(argv: list[str] | None = None) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="leave part 4 (the methods at several tolerances) out")
+    parser.add_argument("--versus", metavar="OLD", type=Path,
+                        help="part 0 only: CPU time per answer, the tree OLD beside this one")
+    parser.add_argument("--output", type=Path, default=Path(__file__).with_name("results") / "elastic.md",
+                        help="the Markdown file written (default: %(default)s)")
+    parser.add_argument("--positions", type=int, default=SWEEP_POSITIONS,
+                        help="part 2: values of each slider over its range, at least 2 (default: %(default)s)")
+    parser.add_argument("--no-write", action="store_true", help="print the tables only, write no file")
+    options = parser.parse_args(argv)
+    if options.positions < 2:
+        parser.error("--positions: at least 2 (the ends of each slider's range)")
+    return options
+
+
+def main(argv: list[str] | None = None) -> None:
+    options = arguments(argv)
+    if options.versus is not None:
+        section = "\n".join(versus(options.versus)) + "\n"
         print(section)
-        path = Path(__file__).with_name("results") / "elastic.md"
+        if options.no_write:
+            return
+        path = options.output
         text = path.read_text(encoding="utf-8")
         start = text.find("## Old beside new")
         rest = text[text.find("\n## ", start + 1) + 1:] if start >= 0 else text[text.find("\n## ") + 1:]
@@ -251,13 +294,16 @@ def main() -> None:
         path.write_text(title + section + "\n" + rest, encoding="utf-8")
         return
     ready()
-    lines = ["# Elastic models: compiled against scipy, error against run time\n", *scene_defaults(),
-             *slider_sweeps(), *compile_times()]
-    if "--quick" not in sys.argv:
+    lines = ["# Elastic models: compiled against scipy, error against run time\n",
+             f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, load average {os.getloadavg()[0]:.1f}, "
+             f"{os.cpu_count()} CPUs{', --quick (no part 4)' if options.quick else ''}.\n",
+             *scene_defaults(), *slider_sweeps(options.positions), *compile_times()]
+    if not options.quick:
         lines += ["\n## Methods at several tolerances (part 4)"] + method_study()
     text = "\n".join(lines) + "\n"
     print(text)
-    (Path(__file__).with_name("results") / "elastic.md").write_text(text, encoding="utf-8")
+    if not options.no_write:
+        options.output.write_text(text, encoding="utf-8")
 
 
 def method_study() -> list[str]:

@@ -17,6 +17,7 @@ curves are off by more, with the worst quantity and how far, relative to its spa
 """
 from __future__ import annotations
 
+import argparse
 import json
 import random
 import sys
@@ -78,6 +79,9 @@ def worst(body: dict, rng: random.Random) -> tuple[float, float, str]:
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                            formatter_class=argparse.RawDescriptionHelpFormatter,
+                            epilog="Prints what it finds; writes nothing.").parse_args()
     report.TIME_BUDGET_S = family.TIME_BUDGET_S = 1e9
     scene = scenes()["equation-of-motion"]
     checked = beyond = 0

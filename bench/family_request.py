@@ -13,6 +13,7 @@ asks for the family packed; ``preview_fields`` runs that module in Node on the s
 """
 from __future__ import annotations
 
+import argparse
 import json
 import shutil
 import subprocess
@@ -73,3 +74,9 @@ def page_family_body(scene, variant, slider, tree: Path = ROOT, values: dict | N
     body = family_body(scene, variant, slider, values)
     fields = all_preview_fields(tree).get(f"{scene.id}/{variant.id}")
     return body | ({"fields": fields, "packed": True} if fields else {})
+
+
+if __name__ == "__main__":
+    epilog = ("A module: the body of POST /api/v1/family a scene page sends, for the bench scripts"
+              "; nothing to run by itself.")
+    argparse.ArgumentParser(description=__doc__.split("\n\n")[0], epilog=epilog).parse_args()

@@ -9,6 +9,7 @@ Every ``DIR/<name>.body`` is answered at ``POST /<name>`` with the headers of ``
 """
 from __future__ import annotations
 
+import argparse
 import json
 import sys
 from pathlib import Path
@@ -36,5 +37,9 @@ def app_for(directory: Path) -> Starlette:
 
 
 if __name__ == "__main__":
-    port, directory = int(sys.argv[1]), Path(sys.argv[2])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("port", type=int, help="the loopback port to listen on")
+    parser.add_argument("directory", type=Path, help="the stored answers: <name>.body and <name>.json")
+    options = parser.parse_args()
+    port, directory = options.port, options.directory
     uvicorn.run(app_for(directory), host="127.0.0.1", port=port, log_level="info")

@@ -4,11 +4,13 @@ For each mechanism (default parameters, plus a change-point four-bar) it measure
   * the median time of ``compute_kinematics`` for 721 crank angles and every output a scene
     requests (s, u31, du31, s2, u21, du21, joints, special), in this process;
   * p50 and p95 of N sequential POST /api/v1/kinematics round trips with the same request,
-    against ``python -m server`` started as a subprocess on a free loopback port.
+    against ``python -m server`` started as a subprocess on a free loopback port with its response cache
+    turned off (MDL_CACHE_BYTES=0), so every round trip computes the answer: the run stops if any answer
+    says X-Cache: hit or the server's /api/v1/cache says the cache is on.
 
 Prints a Markdown table and writes it to bench/results/kinematics.md.
 
-    python bench/kinematics.py [--requests 200] [--repeats 50]
+    python bench/kinematics.py [--requests 200] [--repeats 50] [--no-write] [--output PATH]
 """
 from __future__ import annotations
 
@@ -32,6 +34,7 @@ from server.core.kinematics import compute_kinematics  # noqa: E402
 
 SCENE_OUTPUTS = ["s", "u31", "du31", "s2", "u21", "du21", "joints", "special"]
 POINTS = 721
+START_GUARD_S = 180       # a guard against a hang: a first start may load or compile the numerical kernels
 CASES = [  # (label, mechanism, params)
     ("sine", "sine", {}),
     ("slider_crank", "slider_crank", {}),
@@ -62,18 +65,23 @@ def free_port() -> int:
 def start_server(port: int) -> subprocess.Popen:
     """``python -m server --port PORT`` from the repository root; returns once it answers."""
     process = subprocess.Popen([sys.executable, "-m", "server", "--port", str(port)], cwd=ROOT,
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    deadline = time.monotonic() + 30
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                               env=os.environ | {"MDL_CACHE_BYTES": "0"})     # every request computed
+    deadline = time.monotonic() + START_GUARD_S
     while time.monotonic() < deadline:
         if process.poll() is not None:
             raise RuntimeError(f"the server exited with code {process.returncode}")
         try:
             if httpx.get(f"http://127.0.0.1:{port}/api/v1/mechanisms", timeout=1).status_code == 200:
+                if httpx.get(f"http://127.0.0.1:{port}/api/v1/cache", timeout=5).json()["enabled"]:
+                    process.terminate()
+                    raise RuntimeError("the server's response cache is on: the round trips would time cache hits")
                 return process
         except httpx.TransportError:
             time.sleep(0.1)
     process.terminate()
-    raise RuntimeError("the server did not answer within 30 s")
+    process.wait(timeout=30)
+    raise RuntimeError(f"the server did not answer within {START_GUARD_S} s")
 
 
 def round_trips_ms(client: httpx.Client, url: str, body: dict, requests: int) -> tuple[float, float, int, int]:
@@ -86,6 +94,8 @@ def round_trips_ms(client: httpx.Client, url: str, body: dict, requests: int) ->
         response = client.post(url, json=body)
         response.raise_for_status()
         times.append(time.perf_counter() - start)
+        if response.headers.get("x-cache") == "hit":
+            raise RuntimeError("an answer came from the response cache: the round trips must compute")
     wire = int(response.headers.get("content-length", len(response.content)))
     p50, p95 = np.percentile(1000 * np.array(times), [50, 95])
     return float(p50), float(p95), len(response.content), wire
@@ -95,6 +105,9 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--requests", type=int, default=200, help="sequential HTTP requests per mechanism")
     parser.add_argument("--repeats", type=int, default=50, help="compute_kinematics calls per mechanism")
+    parser.add_argument("--output", type=Path, default=ROOT / "bench" / "results" / "kinematics.md",
+                        help="the Markdown file written (default: %(default)s)")
+    parser.add_argument("--no-write", action="store_true", help="print the table only, write no file")
     args = parser.parse_args()
 
     core = {label: core_median_ms(mech, params, args.repeats) for label, mech, params in CASES}
@@ -118,7 +131,8 @@ def main() -> None:
         "",
         f"{time.strftime('%Y-%m-%d %H:%M')}, Python {platform.python_version()}, {platform.machine()}, "
         f"{os.cpu_count()} CPUs; core: median of {args.repeats} calls; HTTP: {args.requests} sequential POSTs "
-        "on one keep-alive loopback connection to `python -m server` (1 worker), gzip accepted.",
+        "on one keep-alive loopback connection to `python -m server` (1 worker, response cache off: "
+        "MDL_CACHE_BYTES=0, every answer computed), gzip accepted.",
         "",
         "| mechanism | core compute_kinematics, median (ms) | HTTP round trip p50 (ms) | HTTP p95 (ms) "
         "| JSON size (kB) | gzip on the wire (kB) |",
@@ -129,10 +143,10 @@ def main() -> None:
         lines.append(f"| {label} | {core[label]:.2f} | {p50:.2f} | {p95:.2f} | {size / 1000:.0f} | {wire / 1000:.0f} |")
     table = "\n".join(lines) + "\n"
     print(table)
-    out = ROOT / "bench" / "results" / "kinematics.md"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(table, encoding="utf-8")
-    print(f"written to {out.relative_to(ROOT)}")
+    if not args.no_write:
+        args.output.parent.mkdir(parents=True, exist_ok=True)
+        args.output.write_text(table, encoding="utf-8")
+        print(f"written to {args.output}")
 
 
 if __name__ == "__main__":

@@ -13,9 +13,11 @@ the same way.
 
 Run:  python bench/steady_cycle.py            (writes bench/results/steady_cycle.md)
       python bench/steady_cycle.py --paths    (only compiled against reference, printed, nothing written)
+      python bench/steady_cycle.py --no-write (the whole table, printed only; --output PATH writes elsewhere)
 """
 from __future__ import annotations
 
+import argparse
 import statistics
 import sys
 import time
@@ -96,10 +98,22 @@ def paths_table(omega_ref: float, delta_ref: float) -> list[str]:
     return lines
 
 
-def main() -> None:
+def arguments(argv: list[str] | None = None) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--paths", action="store_true",
+                        help="only the compiled loops against the reference loops, printed, nothing written")
+    parser.add_argument("--output", type=Path, default=Path(__file__).with_name("results") / "steady_cycle.md",
+                        help="the Markdown file written (default: %(default)s)")
+    parser.add_argument("--no-write", action="store_true", help="print the table only, write no file")
+    return parser.parse_args(argv)
+
+
+def main(argv: list[str] | None = None) -> None:
+    options = arguments(argv)
     warm = compiled.warm_up()
     ours_ref = steady_cycle(MACHINE, rtol=1e-10).steady
-    if "--paths" in sys.argv:
+    if options.paths:
         print("\n".join(paths_table(ours_ref.omega[0], ours_ref.delta)))
         return
     omega_ref, delta_ref, _, _ = time_domain("DOP853", 1e-13, ours_ref.omega[0] * 0.9)
@@ -126,8 +140,8 @@ def main() -> None:
               f"Reference ω(0) = {omega_ref:.12g} rad/s, δ = {delta_ref:.10g} (DOP853, rtol 1e-13, in time). "
               f"solve_ivp starts at 0.9·ω(0) of the steady cycle.\n\n")
     print(header + text)
-    out = Path(__file__).with_name("results") / "steady_cycle.md"
-    out.write_text(header + text + "\n", encoding="utf-8")
+    if not options.no_write:
+        options.output.write_text(header + text + "\n", encoding="utf-8")
 
 
 if __name__ == "__main__":

@@ -16,12 +16,22 @@ Commands: {"op": "info"}; {"op": "warm"} (every scene's default request once, un
 """
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import sys
 import time
 
-TREE = os.path.abspath(sys.argv[1])
+
+def tree_argument() -> str:
+    """The tree from the command line (``--help`` prints the usage and exits before anything is imported)."""
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     epilog="Commands on stdin, answers on stdout: see the module's docstring.")
+    parser.add_argument("tree", help="a directory holding a server package")
+    return os.path.abspath(parser.parse_args().tree)
+
+
+TREE = tree_argument()
 sys.path.insert(0, TREE)
 os.chdir(TREE)
 os.environ["MDL_HEAVY_PROCESSES"] = "0"

@@ -8,6 +8,7 @@ the old one. ``python3 -m server`` started with the tree as its working director
 """
 from __future__ import annotations
 
+import argparse
 import http.client
 import importlib
 import json
@@ -206,3 +207,9 @@ def machine_line() -> str:
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     return (f"{time.strftime('%Y-%m-%d %H:%M %Z')}, Python {platform.python_version()}, {platform.machine()}, "
             f"{os.cpu_count()} CPUs, load average {load:.1f} at the start")
+
+
+if __name__ == "__main__":
+    epilog = ("A module: the bench scripts' shared code (trees, ports, the app started from a tree)"
+              "; nothing to run by itself.")
+    argparse.ArgumentParser(description=__doc__.split("\n\n")[0], epilog=epilog).parse_args()

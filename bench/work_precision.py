@@ -7,10 +7,12 @@ reference computed to 1e-11…1e-13 by a different method.  Writes bench/results
 interactive plot per problem (bench/results/<name>.html, plotly.js from the app's /vendor path, served
 by the app at /bench-results/) and a PNG of it rendered by headless Chromium.
 
-Run:  python bench/work_precision.py
+Run:  python bench/work_precision.py                 (writes bench/results/)
+      python bench/work_precision.py --no-write      (prints the tables only; --results DIR writes elsewhere)
 """
 from __future__ import annotations
 
+import argparse
 import sys
 from pathlib import Path
 
@@ -156,7 +158,18 @@ def winner_paragraph(study: dict) -> str:
     return "Fastest to " + "; ".join(parts) + "." if parts else "No method reached 1e-4."
 
 
-def main() -> None:
+def arguments(argv: list[str] | None = None) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--results", type=Path, default=RESULTS,
+                        help="the directory written: work_precision.md, wp_*.html, wp_*.png (default: %(default)s)")
+    parser.add_argument("--no-write", action="store_true", help="print the tables only, write no file")
+    return parser.parse_args(argv)
+
+
+def main(argv: list[str] | None = None) -> None:
+    options = arguments(argv)
+    results = options.results
     studies = {"steady_cycle": steady_cycle_study(), "flywheel": flywheel_study()}
     for key, name in (("elastic_belt", "belt drive, c = 1e5 N·m/rad, b = 30"),
                       ("elastic_stiff", "stiff belt, c = 1e8, b = 1e5 (heavily damped)"),
@@ -165,16 +178,18 @@ def main() -> None:
         studies[key] = elastic_study(name)
     lines = ["# Work–precision: error against run time", ""]
     for key, study in studies.items():
-        fig = figure(study)
-        fig.write_html(RESULTS / f"wp_{key}.html", include_plotlyjs="/vendor/plotly/plotly.min.js")
-        render_png(fig, RESULTS / f"wp_{key}.png")
+        if not options.no_write:
+            fig = figure(study)
+            fig.write_html(results / f"wp_{key}.html", include_plotlyjs="/vendor/plotly/plotly.min.js")
+            render_png(fig, results / f"wp_{key}.png")
         lines += [f"## {study['title']}", "", f"Reference: {study['reference']}. ![plot](wp_{key}.png) "
                   f"(interactive: /bench-results/wp_{key}.html)", "", winner_paragraph(study), "",
                   "| method | tolerance | error | run time, ms |", "|---|---|---:|---:|"]
         for label, points in study["series"].items():
             lines += [f"| {label} | {tol:.0e} | {err:.1e} | {1e3 * s:.1f} |" for tol, err, s in points]
         lines.append("")
-    (RESULTS / "work_precision.md").write_text("\n".join(lines), encoding="utf-8")
+    if not options.no_write:
+        (results / "work_precision.md").write_text("\n".join(lines), encoding="utf-8")
     print("\n".join(lines))
 
 
