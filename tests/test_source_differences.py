@@ -270,3 +270,42 @@ def test_new_errata_rows_have_their_words_in_three_languages(central_forces):
         assert "chain_parallel_printed" in words
     scene = scene_json("forces_friction")
     assert "errata" in next(v for v in scene["variants"] if v["id"] == "central")["panels"]
+
+
+# --- Lecture 10: the drilling rig's slips the flywheel study computes right ------------------------------
+
+@pytest.fixture(scope="module")
+def rig_flywheel():
+    from server.api.answers import compute
+    from server.lessons.requests import scene_request
+    from server.lessons.scenes import scenes
+    scene = scenes()["flywheel"]
+    variant = next(v for v in scene.variants if v.id == "rig")
+    return compute("flywheel", scene_request(scene, variant))
+
+
+def test_lecture10_rig_slips_beside_the_studys_own_numbers(rig_flywheel):
+    """Step 1.3: I_v printed = group I (the crankshaft I₁₀ = 2.72 kg·m², the lecture's datum), corrected the cycle
+    mean of I_II, 0.55079 kg·m² by the lecture's kinematics (L12)–(L14), (L18) (the notes' table: 5 digits);
+    (L17): the driving work over the cycle, the answer's A_д(2π), and its negative; §10.6: b/(2π) = 38.197 mm/rad
+    under either symbol; ω₁ср 47.124 in rad/s² as printed, rad/s corrected."""
+    rows = {r["key"]: r for r in rig_flywheel["errata"]}
+    groups = rows["groups_reversed"]
+    assert groups["printed_value"] == pytest.approx(2.72, rel=1e-12)
+    assert groups["printed_value"] == pytest.approx(rig_flywheel["group_i_existing"], rel=1e-12)
+    assert groups["corrected_value"] == pytest.approx(0.55079, abs=5e-6)
+    driving = rows["driving_ordinate"]
+    assert driving["corrected_value"] == pytest.approx(rig_flywheel["curves"]["work_driving"][-1], rel=1e-12)
+    assert driving["printed_value"] == -driving["corrected_value"] and driving["corrected_value"] > 0
+    scale = rows["phi_scale"]
+    assert scale["printed_value"] == scale["corrected_value"] == pytest.approx(240 / (2 * np.pi), rel=1e-12)
+    assert (scale["printed_unit"], scale["unit"]) == ("mm_rad_as_pressure", "mm_rad")
+    omega = rows["omega_unit"]
+    assert omega["printed_value"] == omega["corrected_value"] == pytest.approx(47.124, rel=1e-12)
+    assert (omega["printed_unit"], omega["unit"]) == ("rad_s2", "rad_s")
+    for lang in LANGS:
+        words = json.loads((CONTENT / "i18n" / f"{lang}.json").read_text("utf-8"))
+        for r in rows.values():
+            for name in (f"erratum_why_{r['key']}", f"erratum_printed_{r['key']}", f"erratum_corrected_{r['key']}",
+                         f"erratum_unit_{r['unit']}", f"erratum_unit_{r['printed_unit']}"):
+                assert name in words, (lang, name)

@@ -169,3 +169,27 @@ def parallel_efficiency(efficiencies, works) -> dict:
     total = float(np.sum(works))
     corrected = float(np.dot(works, efficiencies)) / total if total > 0 else float("nan")
     return row("parallel_efficiency_340", "chaika_vasylenko", "(3.40)", float(np.sum(efficiencies)), corrected, "none")
+
+
+DIAGRAM_BASE_MM = 240.0     # b: the length of the abscissa that draws one cycle on the sheet (Lecture 10 §10.6)
+
+
+def lecture10_rig(group_i: float, inertia_ii: np.ndarray, driving_work: float, omega_mean: float) -> list[dict]:
+    """Lecture 10's slips in the drilling-rig example that the flywheel study computes right, each with the value
+    it gives for the scene's machine:
+
+    step 1.3   the variable part I_v^пр is assigned to the links of constant transfer functions (and the constant
+               part to the variable ones): I_v as printed is group I's inertia, corrected the cycle mean of I_II;
+    (L17)      y_Fд called the ordinate of the resisting force: read so, the driving moment changes sign, and its
+               work over the cycle with it, J;
+    §10.6      the abscissa scale μ_φ = b/(2π) printed μ_p = b/2π, the symbol of the pressure scale (L15): the
+               same number (b = DIAGRAM_BASE_MM), mm/rad;
+    given data ω₁ср = 47.124 printed in рад/с² (an angular acceleration's unit): the same number, rad/s.
+
+    ``inertia_ii`` on the flywheel cycle's closed uniform grid (its last point is the first again)."""
+    mean_ii = float(np.mean(np.asarray(inertia_ii)[:-1]))
+    return [row("groups_reversed", "lecture10", "1.3: I_v^пр, I_c^пр", group_i, mean_ii, "kgm2"),
+            row("driving_ordinate", "lecture10", "(L17): y_Fд", -driving_work, driving_work, "J"),
+            row("phi_scale", "lecture10", "§10.6: μ_φ", DIAGRAM_BASE_MM / (2 * np.pi), DIAGRAM_BASE_MM / (2 * np.pi),
+                "mm_rad", printed_unit="mm_rad_as_pressure"),
+            row("omega_unit", "lecture10", "ω₁ср", omega_mean, omega_mean, "rad_s", printed_unit="rad_s2")]

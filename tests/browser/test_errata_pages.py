@@ -20,7 +20,8 @@ ERRATA = "#panel-errata tbody"
 CASES = [
     ("reduced-inertia", "slider_crank", ERRATA, 2, "lambda", 0.1),
     ("resisting-moment", "slotted_link", ERRATA, 2, "lambda", 0.8),
-    ("flywheel", "rig", ERRATA, 3, "delta", 0.5),
+    ("flywheel", "rig", ERRATA, 7, "delta", 0.5),
+    ("forces-friction", "central", ERRATA, 5, "omega", 0.8),
     ("wear", "engine", ERRATA, 3, "p_max", 0.9),
     ("elastic-linkage", "dimensions", ERRATA, 1, "gear_ratio", 0.8),
     ("transfer-functions", "slider_crank", "#panel-harmonics_du31 .caption", None, "lambda", 0.6),

@@ -182,7 +182,8 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
         "balancing_moment": tables.balancing_moment,
         "errata": [errata.gutyar_squares(work, cycle.inertia_ii, omega_mean, delta, rows[1]["inertia"]),
                    errata.wittenbauer_axes(omega_mean, delta),
-                   errata.flywheel_part(required, machine.inertias.J1, group_i_existing - machine.inertias.J1)],
+                   errata.flywheel_part(required, machine.inertias.J1, group_i_existing - machine.inertias.J1),
+                   *errata.lecture10_rig(group_i_existing, cycle.inertia_ii, float(driving[-1]), omega_mean)],
     }
     if with_numerics:
         result["numerics"] = Numerics(
