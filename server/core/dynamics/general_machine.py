@@ -30,7 +30,7 @@ import numpy as np
 
 from ..mechanisms import GeometryError, Notice
 from ..mechanisms.base import angle_ranges, ranges_text
-from ..mechanisms.general import CHECK_POINTS, GeneralMechanism, assembly_notices
+from ..mechanisms.general import GeneralMechanism, assembly_notices
 from ..kinetostatics.groups.analysis import setup, with_friction
 from ..kinetostatics.groups.dry_moment import TOLERANCE as DRY_TOLERANCE, dry_moment, proved_signs, rough
 from ..kinetostatics.groups.friction import PairFriction
@@ -363,13 +363,7 @@ def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: 
     links and sliders, the loads are the general mechanism's (GeometryError names the field)."""
     mech = GeneralMechanism(linkage)
     mech.require_crank("the dynamics")
-    turn = compose(mech.linkage, np.linspace(0.0, TURN, CHECK_POINTS))
-    for k, group in enumerate(turn.groups):
-        if not group.closes.all():
-            ranges = ranges_text(angle_ranges(turn.phi, ~group.closes))
-            raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at φ = {ranges}: "
-                                "the crank cannot turn fully, a machine needs the whole turn", "no_full_turn",
-                                group=k)
+    turn = mech.require_full_turn()
     masses = with_strokes(mech, masses)
     check_model(turn, masses)
     known = {name for name, _ in pair_motions(mech, compose(mech.linkage, np.zeros(1)))}

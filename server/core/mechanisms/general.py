@@ -18,7 +18,7 @@ from ..structure.analysis import analyse, group_name
 from ..structure.compose import Composition, compose
 from ..structure.plans import plans
 from ..structure.spec import Linkage, SliderInput, parse
-from .base import (Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, ranges_text,
+from .base import (Evaluation, GeometryError, Notice, OutputSpec, SpecialPosition, angle_ranges, ranges_text,
                    wrap_angle)
 from .mechanism import Mechanism
 
@@ -93,6 +93,19 @@ class GeneralMechanism(Mechanism):
             raise GeometryError("linkage.input.kind", f"{what} of a general mechanism takes a crank as the input "
                                 "link (its cycle is the crank's turn); a slider input is for the kinematics",
                                 "slider_input_kinematics_only", what=what)
+
+    def require_full_turn(self) -> Composition:
+        """Refuse a linkage one of whose groups cannot be assembled somewhere on the crank's turn (checked at
+        0.5°): a machine needs the whole turn (every dynamics endpoint and the dynamics estimate answer alike).
+        The composition over the turn is handed back."""
+        turn = compose(self.linkage, self.turn())
+        for k, group in enumerate(turn.groups):
+            if not group.closes.all():
+                ranges = ranges_text(angle_ranges(turn.phi, ~group.closes))
+                raise GeometryError(f"linkage.groups.{k}", f"the {group.kind} group cannot be assembled at "
+                                    f"φ = {ranges}: the crank cannot turn fully, a machine needs the whole turn",
+                                    "no_full_turn", group=k)
+        return turn
 
     def turn(self, points: int = CHECK_POINTS) -> np.ndarray:
         """The generalised coordinate over its cycle: the crank's turn, or the input slider's travel (m)."""

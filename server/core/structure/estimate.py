@@ -85,9 +85,11 @@ def link_bars(linkage: Linkage) -> list[dict]:
 
 def estimated_dynamics(raw_linkage: dict) -> dict:
     """The estimate's "masses", "inertias", "motor" and "flywheel" for the linkage's JSON (as a preset's
-    "dynamics"); a slider-driven linkage has no dynamics (GeometryError, as the dynamics endpoints answer)."""
+    "dynamics"); a slider-driven linkage, or one whose crank cannot turn fully, has no dynamics (GeometryError,
+    as the dynamics endpoints answer)."""
     mechanism = GeneralMechanism(raw_linkage)
     mechanism.require_crank("the dynamics")
+    mechanism.require_full_turn()
     linkage = mechanism.linkage
     bars = link_bars(linkage)
     phi = np.linspace(0.0, 2 * math.pi, POINTS)
