@@ -62,8 +62,8 @@ def pytest_collection_modifyitems(config, items):
         if named[item.nodeid] > 1:
             _rename(item, f"{item.nodeid.rsplit('::', 1)[0]}::{item.name}")
     assert len({item.nodeid for item in items}) == len(items), "two tests share a node id"
-    if getattr(config.option, "dist", "no") != "loadgroup":
-        return
+    if getattr(config.option, "dist", "no") != "loadgroup" and not getattr(config.option, "loadgroup", False):
+        return                    # (an xdist worker, which collects, has dist "no" and loadgroup True instead)
     shared = {item.path for item in items if any(
         definition.scope in ("module", "class", "package") for definitions in
         getattr(getattr(item, "_fixtureinfo", None), "name2fixturedefs", {}).values() for definition in definitions)}
