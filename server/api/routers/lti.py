@@ -50,7 +50,7 @@ AUTO_SUBMIT = "document.getElementById('lti-return').submit();"
 AUTO_SUBMIT_HASH = base64.b64encode(hashlib.sha256(AUTO_SUBMIT.encode()).digest()).decode()
 log = logging.getLogger("mdl.lti")
 
-router = APIRouter(include_in_schema=False)
+router = APIRouter()                                    # the protocol and its pages: not in the OpenAPI
 api = APIRouter(prefix="/api/v1/lti", tags=["lti"])
 ADMIN = HTTPBearer(auto_error=False, scheme_name="admin_token", description="MDL_ADMIN_TOKEN")
 
@@ -171,12 +171,12 @@ security.allow_framing_by(framing_origins)
 
 
 # the tool's public face
-@router.get("/lti/jwks")
+@router.get("/lti/jwks", include_in_schema=False)
 def jwks() -> JSONResponse:
     return JSONResponse(tool_key.jwks(store()), headers={"Cache-Control": "public, max-age=300"})
 
 
-@router.get("/lti", response_class=HTMLResponse)
+@router.get("/lti", response_class=HTMLResponse, include_in_schema=False)
 def tool_page(request: Request, lang: str | None = None):
     """The tool's URLs for an LMS administrator to paste, and how to register the platform here."""
     return page(request, "lti_tool.html", lang, urls=tool_urls(request),
@@ -184,7 +184,7 @@ def tool_page(request: Request, lang: str | None = None):
 
 
 # OIDC login and launch
-@router.api_route("/lti/login", methods=["GET", "POST"])
+@router.api_route("/lti/login", methods=["GET", "POST"], include_in_schema=False)
 async def login(request: Request):
     params = await form_params(request)
     if params is None:
@@ -208,7 +208,7 @@ def _login(request: Request, params: dict[str, str]):
                                                             f"registered here ({error})")
 
 
-@router.post("/lti/launch")
+@router.post("/lti/launch", include_in_schema=False)
 async def launch(request: Request):
     params = await form_params(request)
     if params is None:
@@ -308,7 +308,7 @@ def enter(request: Request, about: dict) -> Response:
     return response
 
 
-@router.get("/lti/continue/{ticket}")
+@router.get("/lti/continue/{ticket}", include_in_schema=False)
 def continue_launch(request: Request, ticket: str):
     """The launch continued in a new window (first-party: its cookies are kept); the ticket works once."""
     about = lti_classroom.take_ticket(ticket)
@@ -323,7 +323,7 @@ def teacher_of(request: Request, assignment_id: str) -> dict | None:
     return lti_classroom.teacher_session(request.cookies.get(lti_classroom.TEACHER_COOKIE), assignment_id)
 
 
-@router.get("/lti/results/{assignment_id}", response_class=HTMLResponse)
+@router.get("/lti/results/{assignment_id}", response_class=HTMLResponse, include_in_schema=False)
 def results(request: Request, assignment_id: str, lang: str | None = None):
     if teacher_of(request, assignment_id) is None:
         return refused_page(request, 401, "no_session", "no instructor session for this assignment: open it "
@@ -340,7 +340,7 @@ def results(request: Request, assignment_id: str, lang: str | None = None):
     return response
 
 
-@router.post("/lti/results/{assignment_id}/students/{student_id}/reset")
+@router.post("/lti/results/{assignment_id}/students/{student_id}/reset", include_in_schema=False)
 def reset_student(request: Request, assignment_id: str, student_id: str, lang: str | None = None):
     """Remove a student's submissions (the student starts again); their LMS grade is posted again (0)."""
     if teacher_of(request, assignment_id) is None or from_another_site(request):
@@ -389,7 +389,7 @@ def default_spec(scene, lang: str) -> AssignmentSpec:
                           questions=[QuestionPick(id=q.id) for q in questions])
 
 
-@router.post("/lti/deep-link")
+@router.post("/lti/deep-link", include_in_schema=False)
 async def deep_link(request: Request):
     params = await form_params(request)
     if params is None or not params.get("launch") or not params.get("choice"):
@@ -501,7 +501,7 @@ def list_platforms(credentials: HTTPAuthorizationCredentials | None = Depends(AD
                                      for p in store().lti_pending_scores()])
 
 
-@api.post("/scores/retry", summary="Post the scores that wait now (they are also retried on later submissions)",
+@api.post("/scores/retry", response_model=dict[str, int], summary="Post the scores that wait now (they are also retried on later submissions)",
           responses={401: {"description": "no or a wrong admin token"}, 403: {"description": "registration closed"}})
 def retry_scores(credentials: HTTPAuthorizationCredentials | None = Depends(ADMIN)):
     refused = admin_refusal(credentials)
