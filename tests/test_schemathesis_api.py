@@ -109,6 +109,8 @@ def test_no_answer_is_a_server_error_and_every_answer_carries_the_security_heade
     # answers in a heavy process, which a loaded machine may take tens of seconds to start and run
     response = case.call(app=world["app"], base_url="http://testserver", timeout=300)
     answered[f"{case.method} {case.path}"][response.status_code] += 1
+    if case.path.endswith("/results/{token}/token") and response.status_code == 200:
+        world["token"] = response.json()["results_token"]      # the instructor replaced the token: the old one ended
     where = f"{case.method} {case.formatted_path} → {response.status_code}"
     assert response.status_code < 500, where
     missing = [name for name, value in SECURITY_HEADERS.items() if response.headers.get(name) != [value]]
