@@ -137,8 +137,8 @@ def scene_defaults() -> list[str]:
         request = ElasticRequest.model_validate(scene_request(scene, variant))
         if "histories" not in request.outputs:        # nothing integrated in time: no engine to compare
             seconds = statistics.median(answer(request, "compiled")[0] for _ in range(4))
-            lines.append(f"| {scene.id} / {variant.id} | {', '.join(request.outputs)} | — | {1e3 * seconds:.1f} | — | "
-                         "no time integration | — | — | — |")
+            lines.append(f"| {scene.id} / {variant.id} | {', '.join(request.outputs)} | — | {1e3 * seconds:.1f} | "
+                         "— | no time integration | — | — | — |")
             continue
         times, results = {}, {}
         for engine in ("scipy", "compiled"):

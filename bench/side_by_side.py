@@ -72,7 +72,8 @@ def main(doc: str, repeats: int, result: str, one_round: Round,
     parser.add_argument("--repeats", type=int, default=repeats)
     parser.add_argument("--old", help="another checkout to compare with, side by side")
     parser.add_argument("--serve", help=argparse.SUPPRESS)
-    parser.add_argument("--no-write", action="store_true", help=f"print the table only, do not write bench/results/{result}")
+    parser.add_argument("--no-write", action="store_true",
+                        help=f"print the table only, do not write bench/results/{result}")
     args = parser.parse_args()
     if args.serve:
         serve(args.serve, one_round)
@@ -84,6 +85,6 @@ def main(doc: str, repeats: int, result: str, one_round: Round,
 
 
 if __name__ == "__main__":
-    epilog = ("A module: the side-by-side benchmarks' shared code (bench/course_project.py, general_dynamics.py, group_forces.py)"
-              "; nothing to run by itself.")
+    epilog = ("A module: the side-by-side benchmarks' shared code (bench/course_project.py, general_dynamics.py, "
+              "group_forces.py); nothing to run by itself.")
     argparse.ArgumentParser(description=__doc__.split("\n\n")[0], epilog=epilog).parse_args()
