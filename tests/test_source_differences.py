@@ -309,3 +309,38 @@ def test_lecture10_rig_slips_beside_the_studys_own_numbers(rig_flywheel):
             for name in (f"erratum_why_{r['key']}", f"erratum_printed_{r['key']}", f"erratum_corrected_{r['key']}",
                          f"erratum_unit_{r['unit']}", f"erratum_unit_{r['printed_unit']}"):
                 assert name in words, (lang, name)
+
+
+# --- Eremyants (3.34) beside (3.33) ------------------------------------------------------------------------
+
+def test_viscous_moment_approximation_3_34_beside_the_exact_3_33():
+    """The resisting-moment answer of the crank-slider carries M_T/(βω) by (3.33), the app's own u₃₁², and by
+    (3.34) l₁² sin²φ(1 − cos φ/λ)².  Derivation (no number is printed): replacing √(λ² − sin²φ) by λ leaves
+    an error O(λ⁻³) relative to l₁² (sin 2φ sin²φ/(4λ³) in u₃₁): checked as the relative difference 0.0118 at
+    λ = 3 falling at least 25 times by λ = 10; at φ = 90° both are l₁² exactly (cos φ = 0, sin 2φ = 0)."""
+    from server.api.answers import compute
+    from server.lessons.requests import scene_request
+    from server.lessons.scenes import scenes
+    scene = scenes()["resisting-moment"]
+    variant = next(v for v in scene.variants if v.id == "slider_crank")
+    assert "viscous" in variant.panels
+    answer = compute("reduction", scene_request(scene, variant))
+    shape = answer["resisting"]["viscous_shape"]
+    from server.core.mechanisms import MECHANISMS
+    mech = MECHANISMS["slider_crank"]
+    p = mech.check(scene_request(scene, variant)["params"])
+    phi = np.asarray(answer["phi"])
+    u31 = mech.evaluate(p, phi, set()).values["u31"]
+    np.testing.assert_allclose(shape["exact"], u31**2, rtol=0, atol=1e-14)
+    lam = p["l2"] / p["l1"]
+    np.testing.assert_allclose(shape["approximation"],
+                               p["l1"] ** 2 * np.sin(phi) ** 2 * (1 - np.cos(phi) / lam) ** 2, atol=1e-15)
+    quarter = int(np.argmin(np.abs(phi - np.pi / 2)))
+    assert shape["approximation"][quarter] == pytest.approx(shape["exact"][quarter], abs=1e-12)
+    from server.core.dynamics.report import slider_viscous_shape
+    grid = np.linspace(0, 2 * np.pi, 4001)
+    errors = [slider_viscous_shape({"l1": 1.0, "l2": lam, "e": 0.0}, grid)["largest_error"] for lam in (3.0, 10.0)]
+    assert errors[0] == pytest.approx(0.0118, abs=5e-5)
+    assert errors[0] / errors[1] > 25
+    for lang in LANGS:
+        assert "(3.34)" in scene_json("resisting_moment")["panels"]["viscous"]["title"][lang]

@@ -22,6 +22,17 @@ DISPLAY_POINTS = 512    # curves are computed on thousands of nodes and sent on 
 TIME_BUDGET_S = 5.0     # wall-clock bound of one motion request (each path stops there with its partial result)
 
 
+def slider_viscous_shape(p: dict, phi: np.ndarray) -> dict:
+    """Eremyants (3.33) and its approximation (3.34) for the central crank-slider, as M_T/(βω) in m² (any β, ω):
+    exact u₃₁² = l₁²(sin φ − sin 2φ/(2√(λ² − sin²φ)))², for λ² ≫ 1 l₁² sin²φ(1 − cos φ/λ)² (λ = l₂/l₁); the
+    largest difference relative to the exact curve's largest value."""
+    l1, lam = p["l1"], p["l2"] / p["l1"]
+    exact = (l1 * (np.sin(phi) - np.sin(2 * phi) / (2 * np.sqrt(lam**2 - np.sin(phi) ** 2)))) ** 2
+    approximation = l1**2 * np.sin(phi) ** 2 * (1 - np.cos(phi) / lam) ** 2
+    return {"exact": exact, "approximation": approximation,
+            "largest_error": float(np.max(np.abs(approximation - exact)) / np.max(exact))}
+
+
 def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: int, omega: float,
               outputs: list[str], iteration_phi: float) -> tuple[dict, list[Notice]]:
     """J(φ), dJ/dφ, M_c(φ) over one cycle (closed grid of n points) and the friction iteration."""
@@ -51,6 +62,8 @@ def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: i
             "total": moment.total, "useful": moment.useful, "dry": moment.dry, "viscous": moment.viscous,
             "mean": means[load.convention], "means": means, "friction_angle": float(np.arctan(load.f)),
             "self_locking": None if locked is None else phi[locked]}
+        if mechanism == "slider_crank" and p["e"] == 0:
+            result["resisting"]["viscous_shape"] = slider_viscous_shape(p, phi)
     if "friction_iteration" in outputs:
         if mechanism not in ("sine", "slider_crank"):
             raise GeometryError("outputs", "the textbook iterates friction forces for the sine mechanism and the "

@@ -231,7 +231,8 @@ export class DynamicsView {
       const cursor = this.animated && spec.kind === "plot" && spec.x_unit === "deg"
         ? new PlotCursor((phi) => this.#values(spec, phi), this.phi) : null;
       const frame = element("div", { className: "graph-frame" }, graph, ...(cursor ? [cursor.element] : []));
-      return { id, spec, figure: make(frame), graph, cursor, stale: false };
+      const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] })] : [];   // under the plot
+      return { id, spec, figure: make(frame, ...note), graph, cursor, stale: false };
     }
     const body = element("div", { className: `readings ${spec.kind}-readings` });
     return { id, spec, figure: make(body), body };

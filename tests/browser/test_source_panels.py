@@ -1,0 +1,40 @@
+"""The sources' numbers the app shows beside its own, on screen in Russian and English: Chaika–Vasylenko
+Fig. 4.7's maxima on the wear scene (Table 4.3 variant) with the note saying why they are half of ours, and
+Eremyants (3.34) beside (3.33) on the resisting-moment scene (crank-slider).  No English app words on the Russian
+page, no console error; a screenshot each (test-artifacts/sources_<scene>_<lang>.png)."""
+from __future__ import annotations
+
+import sys
+
+import pytest
+
+from conftest import REPO, screenshot
+
+sys.path.insert(0, str(REPO / "tests"))
+from test_translations import english_in  # noqa: E402
+
+pytestmark = pytest.mark.browser
+
+CASES = [("wear", "table_4_3", "#panel-figure_4_7", ("68", "59", "36", "69,0", "58,8")),
+         ("resisting-moment", "slider_crank", "#panel-viscous", ("(3.34)", "(3.33)"))]
+
+
+@pytest.mark.parametrize("lang", ["ru", "en"])
+@pytest.mark.parametrize("scene, variant, panel, expected", CASES, ids=[c[0] for c in CASES])
+def test_sources_numbers_beside_ours(browser_page, scene, variant, panel, expected, lang):
+    page = browser_page
+    page.goto(f"/scenes/{scene}?lang={lang}&variant={variant}")
+    page.wait_for_selector(f"{panel}:not([hidden])")
+    page.locator(panel).scroll_into_view_if_needed()
+    page.wait_for_function("sel => /\\d/.test(document.querySelector(sel)?.innerText ?? '')", arg=panel)
+    if scene == "resisting-moment":
+        page.wait_for_function("sel => document.querySelector(sel + ' .graph')?.data?.length === 2", arg=panel)
+    text = page.inner_text(panel)
+    for number in expected:
+        assert (number if lang == "ru" else number.replace(",", ".")) in text, text
+    assert page.locator(f"{panel} p.note").count() == 1
+    if lang == "ru":
+        assert english_in(page.inner_text("body"), "ru") == []
+    assert "NaN" not in page.inner_text("body")
+    screenshot(page, f"sources_{scene}_{lang}")
+    assert page.problems == []
