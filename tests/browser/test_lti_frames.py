@@ -4,10 +4,11 @@ the frame, as in Moodle.
 
 - Same site (platform and tool both on 127.0.0.1, other ports): the student lands on the assignment's page in the
   frame, answers there, and the score arrives in the platform's gradebook.
-- Different sites (platform on `localhost`, tool on `127.0.0.1`) with third-party cookies blocked
-  (`--test-third-party-cookie-phaseout`; a cookie set on plain http inside a cross-site frame is refused anyway):
-  the frame offers "Open in a new window"; the new window holds the session first-party and the student answers
-  there.
+- Different sites (platform on `localhost`, tool on `127.0.0.1`), in a Chromium started with its third-party
+  cookie phase-out switch (`--test-third-party-cookie-phaseout`; over plain http a cookie set inside a
+  cross-site frame is refused in any case: SameSite=Lax is not kept there, SameSite=None needs Secure): the
+  frame offers "Open in a new window" (the tool tells a cross-site frame by Sec-Fetch-Dest/Site); the new
+  window holds the session first-party, the student answers there, and the window's ticket works once.
 No console errors on either page; screenshots in test-artifacts/ (lti-frame-*.png).
 """
 from __future__ import annotations
