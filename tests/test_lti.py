@@ -84,32 +84,60 @@ def test_registration_needs_the_admin_token_and_real_urls(servers, platform):
 
 # --- deep linking, the learner's launch, grades --------------------------------------------------------------
 
-def pick(page: httpx.Response, assignment_id: str) -> dict:
-    """The picker's form that chooses the assignment (its fields or button name the assignment's id)."""
+def pick(page: httpx.Response, wanted: str) -> dict:
+    """The picker's form with the button that chooses `wanted` (its value, e.g. "scene:<id>", or an assignment's
+    id within it), that button's name and value as `extra`."""
     for form in forms_of(page.text):
-        if assignment_id in str(form["fields"]) or any(assignment_id in str(b) for b in form["buttons"]):
-            button = next((b for b in form["buttons"] if b[0] and assignment_id in str(b)), None)
-            return form | {"extra": {button[0]: button[1]} if button else {}}
-    raise AssertionError(f"no form of the picker chooses {assignment_id}:\n{page.text[:3000]}")
+        buttons = [b for b in form["buttons"] if b[0] and b[1] == wanted] or \
+                  [b for b in form["buttons"] if b[0] and wanted in str(b[1])]
+        if buttons:
+            return form | {"extra": {buttons[0][0]: buttons[0][1]}}
+        if wanted in str(form["fields"]):
+            return form | {"extra": {}}
+    raise AssertionError(f"no form of the picker chooses {wanted}:\n{page.text[:3000]}")
+
+
+def deep_link(servers, platform, wanted: str) -> dict:
+    """The instructor's deep linking launch choosing `wanted`: the content item the platform received."""
+    browser = Browser(platform)
+    picker = browser.launch(platform.launch(TEACHER, [INSTRUCTOR], message_type="LtiDeepLinkingRequest"))
+    assert picker.status_code == 200, fail_message(servers, picker)
+    form = pick(picker, wanted)
+    kept = len(platform.deep_links)
+    returned = browser.post_form(str(picker.url), form, form["extra"])
+    assert returned.status_code == 200 and str(returned.url) == platform.deep_link_return_url, \
+        fail_message(servers, returned) + f"\nplatform refused: {platform.refusals}"
+    assert len(platform.deep_links) == kept + 1
+    items = platform.deep_links[-1][DL + "content_items"]
+    assert len(items) == 1 and items[0]["type"] == "ltiResourceLink"
+    assert items[0]["url"] == platform.tool.launch_url
+    return items[0]
 
 
 def test_deep_linking_returns_a_signed_item_with_the_assignment_and_a_line_item(servers, platform, story):
     assignment = story["assignment"]["id"]
-    browser = Browser(platform)
-    picker = browser.launch(platform.launch(TEACHER, [INSTRUCTOR], message_type="LtiDeepLinkingRequest"))
-    assert picker.status_code == 200, fail_message(servers, picker)
-    form = pick(picker, assignment)
-    returned = browser.post_form(str(picker.url), form, form["extra"])
-    assert returned.status_code == 200 and str(returned.url) == platform.deep_link_return_url, \
-        fail_message(servers, returned) + f"\nplatform refused: {platform.refusals}"
-    items = platform.deep_links[-1][DL + "content_items"]
-    assert len(items) == 1
-    item = items[0]
-    assert item["type"] == "ltiResourceLink" and item["url"] == platform.tool.launch_url
+    item = deep_link(servers, platform, assignment)
     assert item["custom"] == {"assignment": assignment}
     assert item["lineItem"]["scoreMaximum"] == len(QUESTIONS) and item["lineItem"]["resourceId"] == assignment
     story["link"] = item["resource_link_id"]
     story["lineitem"] = platform.links[story["link"]]["lineitem"]
+
+
+def test_deep_linking_a_scene_or_a_new_assignment(servers, platform, story):
+    scene = deep_link(servers, platform, "scene:transfer-functions")
+    assert scene["custom"] == {"scene": "transfer-functions"} and "lineItem" not in scene
+    made = deep_link(servers, platform, "new:transfer-functions")
+    new_id = made["custom"]["assignment"]
+    assert new_id != story["assignment"]["id"]
+    info = httpx.get(f"{servers[0].url}{API}/assignments/{new_id}").json()
+    assert info["scene"] == "transfer-functions" and info["questions"]
+    assert made["lineItem"]["scoreMaximum"] == len(info["questions"]) and made["lineItem"]["resourceId"] == new_id
+
+
+def test_a_learner_cannot_choose_content(servers, platform):
+    page = Browser(platform).launch(platform.launch(User("lms-lena-11", "Lena", "Curious"), [LEARNER],
+                                                    message_type="LtiDeepLinkingRequest", context="course-2"))
+    assert_refused(servers, page, "not_instructor")
 
 
 def link_of(platform, story) -> str:
