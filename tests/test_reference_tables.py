@@ -18,6 +18,8 @@ Converting the sources to the app's conventions (each conversion is itself check
 """
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
@@ -26,6 +28,8 @@ from linkage_geometry import measured_positions
 from server.core.harmonics import harmonics
 from server.core.kinematics import compute_kinematics
 from server.core.mechanisms import MECHANISMS
+
+assert_allclose = partial(np.testing.assert_allclose, equal_nan=False)   # a NaN on either side fails
 
 SLIDER, SLOTTED, FOUR_BAR = MECHANISMS["slider_crank"], MECHANISMS["slotted_link"], MECHANISMS["four_bar"]
 ROUNDING_SLACK = 1e-12   # on top of half a unit in the last digit: binary rounding of the reference itself
@@ -120,8 +124,8 @@ def test_approximations_2_17_star_are_2_13_and_2_15_with_the_root_replaced_by_la
     root = lam   # √(λ² − sin²φ) → λ
     du31 = np.cos(phi) - np.cos(2 * phi) / root - np.sin(2 * phi) ** 2 / (4 * root**3)      # (2.13)
     du21 = (1 - lam**2) * np.sin(phi) / root**3                                              # (2.15)
-    np.testing.assert_allclose(v["du31_approx"], du31, atol=1e-15)
-    np.testing.assert_allclose(v["du21_approx"], du21, atol=1e-15)
+    assert_allclose(v["du31_approx"], du31, atol=1e-15)
+    assert_allclose(v["du21_approx"], du21, atol=1e-15)
 
 
 def test_corrected_sign_of_the_rod_acceleration_approximation_at_lambda_3_phi_1_rad():
@@ -219,7 +223,7 @@ def test_lever_turns_at_half_the_crank_speed_when_lambda_is_one_and_is_undefined
     phi = np.linspace(0, 2 * np.pi, 721)
     u31 = values_at(SLOTTED, {"l0": 1.0, "l1": 1.0}, phi, ("u31",))["u31"]
     regular = ~np.isclose(phi, np.pi)
-    np.testing.assert_allclose(u31[regular], 0.5, atol=1e-15)
+    assert_allclose(u31[regular], 0.5, atol=1e-15)
     assert np.isnan(u31[~regular]).all()
 
 
@@ -233,7 +237,7 @@ def test_oscillating_lever_swings_through_two_arcsin_one_over_lambda(lam):
     extremes = [sp for sp in SLOTTED.special_positions(p) if sp.kind == "rocker_extreme"]
     assert sorted(sp.value for sp in extremes) == pytest.approx([-gamma / 2, gamma / 2], abs=1e-14)
     u31_there = SLOTTED.evaluate(p, np.array([sp.phi for sp in extremes]), set()).values["u31"]
-    np.testing.assert_allclose(u31_there, 0.0, atol=1e-15)
+    assert_allclose(u31_there, 0.0, atol=1e-15)
     if lam == 2.0:
         assert np.degrees(gamma) == pytest.approx(60.0, abs=1e-12)
 
@@ -306,7 +310,7 @@ SPECIAL_000 = {1: (0.63299, -2.63299, 0.56181, 0.33333, -0.16181),
 def test_change_point_four_bar_u31_matches_eremyants_values(scheme):
     leaving, arriving, *quarters = SPECIAL_000[scheme]
     u = textbook_u31(scheme, np.radians([0.0, 360.0, 90.0, 180.0, 270.0]))
-    np.testing.assert_allclose(u, [leaving, arriving, *quarters], rtol=0, atol=half_unit(5))
+    assert_allclose(u, [leaving, arriving, *quarters], rtol=0, atol=half_unit(5))
 
 
 @pytest.mark.parametrize("scheme", SCHEMES)
@@ -317,14 +321,14 @@ def test_rocker_speed_at_the_special_position_follows_the_closed_forms_of_eremya
         expected = [(root - 1) / (1 + l0), -(root + 1) / (1 + l0)]
     else:
         expected = [(-1 + root) / (l0 - 1), (-1 - root) / (l0 - 1)]
-    np.testing.assert_allclose(textbook_u31(scheme, np.array([0.0, 2 * np.pi])), expected, atol=1e-12)
+    assert_allclose(textbook_u31(scheme, np.array([0.0, 2 * np.pi])), expected, atol=1e-12)
 
 
 @pytest.mark.parametrize("scheme", SCHEMES)
 def test_change_point_four_bar_without_limiter_follows_2_52_and_2_53_over_the_whole_4pi_cycle(scheme):
     """The textbook's half-angle formulas are the no-limiter motion: one branch on 0…2π, the other on 2π…4π."""
     phi = np.linspace(0, 4 * np.pi, 1441)
-    np.testing.assert_allclose(textbook_u31(scheme, phi), textbook_2_52_2_53(scheme, phi), rtol=0, atol=1e-12)
+    assert_allclose(textbook_u31(scheme, phi), textbook_2_52_2_53(scheme, phi), rtol=0, atol=1e-12)
 
 
 @pytest.mark.parametrize("scheme", [1, 3])
@@ -332,7 +336,7 @@ def test_change_point_four_bar_acceleration_analog_follows_2_54_and_2_55(scheme)
     phi = np.linspace(0, 4 * np.pi, 1441)
     _, _, shift, sign = SCHEMES[scheme]
     du31 = sign * values_at(FOUR_BAR, scheme_params(scheme, 0), phi + shift, ("du31",))["du31"]
-    np.testing.assert_allclose(du31, textbook_2_54_2_55(scheme, phi), rtol=0, atol=1e-12)
+    assert_allclose(du31, textbook_2_54_2_55(scheme, phi), rtol=0, atol=1e-12)
 
 
 def test_scheme_2_as_printed_2_52_would_give_wrong_values():
@@ -342,7 +346,7 @@ def test_scheme_2_as_printed_2_52_would_give_wrong_values():
     s2, c = np.sin(phi / 2) ** 2, np.cos(phi / 2)
     printed = (1 - l0 + 2 * l0 * s2 + (2 * l0 * s2 + l2 * (l0 - 1)) * c / np.sqrt(l2 * l3 / l0 - s2)) \
         / (1 + l0**2 - 2 * l0 * np.cos(phi))
-    np.testing.assert_allclose(printed, [0.50151, 0.33333, -0.10151], atol=half_unit(5))
+    assert_allclose(printed, [0.50151, 0.33333, -0.10151], atol=half_unit(5))
     assert abs(textbook_u31(2, phi[0]) - printed[0]) > 0.2
 
 
@@ -418,7 +422,7 @@ def test_ice_crank_slider_reproduces_chaika_vasylenko_table_4_3(row):
 
 def test_table_4_3_prints_0_2187_where_the_rod_ratio_gives_0_2182():
     u21 = ice_kinematics([30, 150])["u21"]
-    np.testing.assert_allclose(u21, [-0.2182, 0.2182], atol=half_unit(4))
+    assert_allclose(u21, [-0.2182, 0.2182], atol=half_unit(4))
     assert np.all(np.abs(np.abs(u21) - 0.2187) > 4e-4)   # the printed digits are off by 5 units
 
 
@@ -457,10 +461,10 @@ def test_drakunov_tuleshova_cramer_formulas_hold_with_the_corrected_sign_of_8(as
     v = values_at(FOUR_BAR, p, phi)
     f2, f3 = v["s2"], v["s"]
     l1, l2, l3 = OAK["l1"], OAK["l2"], OAK["l3"]
-    np.testing.assert_allclose(v["u21"], -l1 * np.sin(f3 - phi) / (l2 * np.sin(f3 - f2)), atol=1e-12)
+    assert_allclose(v["u21"], -l1 * np.sin(f3 - phi) / (l2 * np.sin(f3 - f2)), atol=1e-12)
     u31 = l1 * np.sin(phi - f2) / (l3 * np.sin(f3 - f2))
-    np.testing.assert_allclose(v["u31"], u31, atol=1e-12)
+    assert_allclose(v["u31"], u31, atol=1e-12)
     # where crank and coupler are in line (u₃₁ = 0) cot(φ₁ − φ₂) is infinite: (10) is 0·∞ there
     regular = np.abs(np.sin(phi - f2)) > 1e-3
     du31 = u31 * (1 / np.tan(phi - f2) * (1 - v["u21"]) - 1 / np.tan(f3 - f2) * (u31 - v["u21"]))
-    np.testing.assert_allclose(v["du31"][regular], du31[regular], atol=1e-10)
+    assert_allclose(v["du31"][regular], du31[regular], atol=1e-10)

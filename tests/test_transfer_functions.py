@@ -9,7 +9,7 @@ sliders stay on their guides, and the motion repeats after one kinematic cycle.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import lru_cache, partial
 
 import numpy as np
 import pytest
@@ -18,6 +18,8 @@ from hypothesis import strategies as st
 
 from linkage_geometry import MEASURED, fd_transfer_functions, joints, measured_positions
 from server.core.mechanisms import MECHANISMS
+
+assert_allclose = partial(np.testing.assert_allclose, equal_nan=False)   # a NaN on either side fails
 
 # Finite differences against closed forms.  Richardson-extrapolated central differences
 # have a truncation error ~ (h/w)⁴ relative to the curve, w being the width of its sharpest
@@ -134,7 +136,7 @@ def assert_matches_finite_differences(c: Case, name: str) -> None:
     assert np.all(np.isfinite(exact)), f"{c.id}: {name} undefined at a regular position"
     scale = max(np.max(np.abs(exact)), natural_scale(c.mechanism, c.p, name))
     worst = int(np.argmax(np.abs(numeric[name] - exact)))
-    np.testing.assert_allclose(
+    assert_allclose(
         numeric[name], exact, rtol=FD_RTOL, atol=FD_RTOL * scale,
         err_msg=f"{c.id}: {name} vs finite differences, worst at φ = {np.degrees(phi[worst]):.3f}°")
 
@@ -269,7 +271,7 @@ def test_motion_repeats_after_one_kinematic_cycle(c):
         # φ + cycle is rounded by ≈ 1e-15 rad; times |u| ≤ 50 that is far below 1e-9
         assert np.max(np.abs(change)) < 1e-9, f"{c.id}: {what}"
     u_now, u_then = (mech.evaluate(c.p, x, set()).values["u31"] for x in (phi, later))
-    np.testing.assert_allclose(u_then, u_now, rtol=1e-9, atol=1e-9 * np.max(np.abs(u_now)))
+    assert_allclose(u_then, u_now, rtol=1e-9, atol=1e-9 * np.max(np.abs(u_now)))
 
 
 # --- change points: passing through without limiter, rebounding with it --------------------------
@@ -298,7 +300,7 @@ def test_without_limiter_the_rocker_leaves_the_change_point_as_it_arrived_mirror
     passage = mech.change_point(p) + 2 * np.pi
     x = np.array([1e-4, 0.01, 0.3, 1.0, 2.5])
     after, before = (mech.evaluate(p, passage + sign * x, set()).values["u31"] for sign in (1, -1))
-    np.testing.assert_allclose(after, before, rtol=0, atol=1e-12)   # rounding of O(1) values
+    assert_allclose(after, before, rtol=0, atol=1e-12)   # rounding of O(1) values
 
 
 @pytest.mark.parametrize("scheme", SCHEMES)
@@ -322,11 +324,11 @@ def test_crank_pins_follow_the_stated_sign_conventions():
     phi = np.linspace(0, 2 * np.pi, 13)
     for mechanism in ("sine", "slider_crank"):
         j = joints(mechanism, MECHANISMS[mechanism].check({"l1": 0.1}), phi)
-        np.testing.assert_allclose(j["A"], 0.1 * np.c_[-np.cos(phi), np.sin(phi)], atol=1e-15)
+        assert_allclose(j["A"], 0.1 * np.c_[-np.cos(phi), np.sin(phi)], atol=1e-15)
     j = joints("four_bar", MECHANISMS["four_bar"].check({"l1": 0.1}), phi)
-    np.testing.assert_allclose(j["B"], 0.1 * np.c_[np.cos(phi), np.sin(phi)], atol=1e-15)
+    assert_allclose(j["B"], 0.1 * np.c_[np.cos(phi), np.sin(phi)], atol=1e-15)
     j = joints("slotted_link", MECHANISMS["slotted_link"].check({"l1": 0.1}), phi)
-    np.testing.assert_allclose(j["B"], 0.1 * np.c_[np.sin(phi), np.cos(phi)], atol=1e-15)
+    assert_allclose(j["B"], 0.1 * np.c_[np.sin(phi), np.cos(phi)], atol=1e-15)
 
 
 # --- property-based layer: random valid linkages --------------------------------------------------
@@ -343,7 +345,7 @@ def assert_random_linkage_is_consistent(mechanism: str, params: dict[str, float]
     numeric = fd_transfer_functions(mechanism, p, phi, h)
     for name in TRANSFER_FUNCTIONS:
         scale = max(np.max(np.abs(closed[name])), natural_scale(mechanism, p, name))
-        np.testing.assert_allclose(numeric[name], closed[name], rtol=FD_RTOL, atol=FD_RTOL * scale,
+        assert_allclose(numeric[name], closed[name], rtol=FD_RTOL, atol=FD_RTOL * scale,
                                    err_msg=f"{mechanism} {params}: {name}")
     assert_links_keep_their_lengths(mechanism, p, joints(mechanism, p, phi), f"{mechanism} {params}")
 
