@@ -16,12 +16,14 @@ import re
 PERSONAL_LINK = re.compile(r"^(/assignments/[^/?#]+/me/)[^?#]*")
 RESULTS_TOKEN = re.compile(r"^((?:/api/v1)?/assignments/[^/?#]+/results/)[^/?#]*")
 LTI_TICKET = re.compile(r"^(/lti/continue/)[^?#]*")      # an LMS launch carried to a new window (single use)
+LTI_REGISTRATION = re.compile(r"^(/lti/register/).*")   # a registration code, and the LMS's token in the query
 ACCESS_LOGGER = "uvicorn.access"
 
 
 def cut(path: str) -> str:
     """The path with a personal link's secret replaced by "(secret)", a results token by "(token)"."""
-    return LTI_TICKET.sub(r"\1(ticket)", RESULTS_TOKEN.sub(r"\1(token)", PERSONAL_LINK.sub(r"\1(secret)", path)))
+    path = LTI_REGISTRATION.sub(r"\1(code)", LTI_TICKET.sub(r"\1(ticket)", path))
+    return RESULTS_TOKEN.sub(r"\1(token)", PERSONAL_LINK.sub(r"\1(secret)", path))
 
 
 class SecretsCut(logging.Filter):

@@ -53,3 +53,8 @@ class PendingScoreInfo(BaseModel):
 class Platforms(BaseModel):
     platforms: list[PlatformInfo]
     pending_scores: list[PendingScoreInfo] = Field(description="scores not yet accepted by a gradebook")
+
+
+class RegistrationLink(BaseModel):
+    url: str = Field(description="paste into the LMS as the tool's dynamic registration URL; works once")
+    expires_in: int = Field(description="seconds the link stays valid")

@@ -18,6 +18,7 @@ import time
 from datetime import datetime, timezone
 from urllib.parse import parse_qs, urlencode, urlsplit
 
+import requests
 from fastapi import APIRouter, Depends, Request
 from fastapi.responses import HTMLResponse, JSONResponse, RedirectResponse, Response
 from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
@@ -26,7 +27,8 @@ from pylti1p3.exception import LtiException, OIDCException
 from pylti1p3.lineitem import LineItem
 from starlette.concurrency import run_in_threadpool
 
-from ...classroom.lti import tool_key
+from ...classroom.lti import dynamic, tool_key
+from ...classroom.lti.grades import TimeoutSession
 from ...classroom.lti.members import ROLES_CLAIM, teaches
 from ...classroom.lti.platforms import DatabaseToolConf, PlatformRefused, new_platform
 from ...classroom.spec import MAX_QUESTIONS, AssignmentSpec, QuestionPick
@@ -34,7 +36,8 @@ from ...classroom.variants import SpecError
 from ...lessons.scenes import LANGUAGES, scenes
 from .. import assignments, lti_adapters, lti_classroom, security
 from ..assignment_store import store
-from ..schemas_lti import PendingScoreInfo, PlatformInfo, PlatformRegistered, PlatformRegistration, Platforms, ToolUrls
+from ..schemas_lti import (PendingScoreInfo, PlatformInfo, PlatformRegistered, PlatformRegistration, Platforms,
+                           RegistrationLink, ToolUrls)
 from ..security import CONTENT_SECURITY_POLICY, policy_with_script_hashes
 from ..student_secret import from_another_site, hand_over
 from .pages import _context, templates
@@ -48,6 +51,9 @@ DEEP_LINKING = "LtiDeepLinkingRequest"
 MESSAGE_TYPE_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/message_type"
 AUTO_SUBMIT = "document.getElementById('lti-return').submit();"
 AUTO_SUBMIT_HASH = base64.b64encode(hashlib.sha256(AUTO_SUBMIT.encode()).digest()).decode()
+CLOSE_REGISTRATION = "(window.opener || window.parent).postMessage({subject: 'org.imsglobal.lti.close'}, '*');"
+CLOSE_REGISTRATION_HASH = base64.b64encode(hashlib.sha256(CLOSE_REGISTRATION.encode()).digest()).decode()
+REGISTRATION_LINK_S = 7 * 86400     # a dynamic-registration link works once within a week
 log = logging.getLogger("mdl.lti")
 
 router = APIRouter()                                    # the protocol and its pages: not in the OpenAPI
@@ -192,9 +198,6 @@ async def login(request: Request):
     for field in ("iss", "login_hint"):
         if not params.get(field):
             return refused_page(request, 422, f"no_{field}", f"the login request has no {field}")
-    target = params.get("target_link_uri")
-    if target and origin(target) != origin(base_url(request) + "/"):
-        return refused_page(request, 422, "foreign_target", "target_link_uri is not a URL of this tool")
     return await run_in_threadpool(_login, request, params)
 
 
@@ -508,6 +511,47 @@ def retry_scores(credentials: HTTPAuthorizationCredentials | None = Depends(ADMI
     if refused is not None:
         return refused
     return lti_classroom.post_due_now()
+
+
+@api.post("/registration-links", status_code=201, response_model=RegistrationLink,
+          summary="A single-use URL for an LMS's dynamic registration (LTI Dynamic Registration 1.0)",
+          responses={401: {"description": "no or a wrong admin token"}, 403: {"description": "registration closed"}})
+def registration_link(request: Request, credentials: HTTPAuthorizationCredentials | None = Depends(ADMIN)):
+    refused = admin_refusal(credentials)
+    if refused is not None:
+        return refused
+    code = secrets.token_urlsafe(24)
+    store().lti_put(f"register:{hashlib.sha256(code.encode()).hexdigest()}", {"made": time.time()},
+                    time.time() + REGISTRATION_LINK_S)
+    return RegistrationLink(url=f"{base_url(request)}/lti/register/{code}", expires_in=REGISTRATION_LINK_S)
+
+
+@router.get("/lti/register/{code}", include_in_schema=False)
+def dynamic_registration(request: Request, code: str, openid_configuration: str = "", registration_token: str = "",
+                         lang: str | None = None):
+    """The LMS's dynamic registration, opened by its administrator with the URL made above."""
+    if not openid_configuration or len(openid_configuration) > 2000 or len(registration_token) > 8000:
+        return refused_page(request, 422, "no_configuration", "the LMS sent no (or too long an) openid_configuration "
+                                                              "or registration_token", lang)
+    if len(code) > 64 or store().lti_take(f"register:{hashlib.sha256(code.encode()).hexdigest()}",
+                                          time.time()) is None:
+        return refused_page(request, 403, "registration_code", "this registration link is unknown, used or expired: "
+                                                               "make a new one (POST /api/v1/lti/registration-links)",
+                            lang)
+    try:
+        platform = dynamic.register(openid_configuration, registration_token, base_url(request),
+                                    "Mechanism Dynamics Lab", TimeoutSession())
+    except PlatformRefused as error:
+        return refused_page(request, 422, "registration_refused", f"{error.field}: {error.reason}", lang)
+    except (requests.RequestException, ValueError) as error:
+        return refused_page(request, 422, "registration_failed", f"the LMS could not be read: "
+                                                                 f"{type(error).__name__}", lang)
+    if not store().lti_add_platform(platform):
+        return refused_page(request, 409, "registered", "this issuer and client id are registered already", lang)
+    tool_key.tool_key(store())
+    _framing["at"] = -ORIGINS_TTL_S
+    response = page(request, "lti_registered.html", lang, platform=platform, script=CLOSE_REGISTRATION)
+    return framed_by(response, platform_origins(platform), script_hash=CLOSE_REGISTRATION_HASH)
 
 
 @api.get("/tool", response_model=ToolUrls, summary="The tool's URLs to paste into the LMS")

@@ -41,6 +41,8 @@ def check_url(field: str, url: str) -> str:
 def new_platform(issuer: str, client_id: str, deployment_ids: list[str], auth_login_url: str, auth_token_url: str,
                  key_set_url: str, name: str) -> PlatformRecord:
     """A platform record from what its administrator's page shows; PlatformRefused naming the field."""
+    if not issuer or not client_id:
+        raise PlatformRefused("client_id" if issuer else "issuer", "must not be empty")
     if not deployment_ids:
         raise PlatformRefused("deployment_ids", "at least one deployment id")
     for field, url in (("auth_login_url", auth_login_url), ("auth_token_url", auth_token_url),
