@@ -43,7 +43,7 @@ class AttachmentModel(BaseModel):
     """A point (centre of mass, tool point, joint for a later group) or a guide fixed on one of the element's
     links, in that link's frame: from its origin joint along its angle (see GET /api/v1/mechanisms/general)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     link: int | None = Field(None, description="which of the element's links (default: its first)")
     along: float = Field(0.0, description="m, along the link's direction from its origin joint")
     across: float = Field(0.0, description="m, to the left of that direction")
@@ -51,13 +51,13 @@ class AttachmentModel(BaseModel):
 
 
 class FrameGuideModel(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     through: tuple[float, float] | str = Field((0.0, 0.0), description="[x, y] in m, or a frame joint's name")
     angle: float = Field(0.0, description="direction, rad counter-clockwise from +x")
 
 
 class FrameModel(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     joints: dict[str, tuple[float, float]] = Field(default_factory=dict, max_length=64,
                                                    description="fixed joints {name: [x, y]} in m")
     guides: dict[str, FrameGuideModel] = Field(default_factory=dict, max_length=64, description="fixed guides")
@@ -66,7 +66,7 @@ class FrameModel(BaseModel):
 class CrankModel(BaseModel):
     """The input link: a crank turning about a frame joint; θ₁ = angle0 + sense·φ."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     kind: Literal["crank"] = "crank"
     link: int = Field(1, ge=1, le=99)
     pivot: str = Field(description="the frame joint it turns about")
@@ -82,7 +82,7 @@ class SliderInputModel(BaseModel):
     """The input link: a slider on a frame guide, A = P + s·u; s (m) over ``travel`` is the generalised
     coordinate (the answer's `phi` holds s; analogs are with respect to s)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     kind: Literal["slider"]
     link: int = Field(1, ge=1, le=99)
     guide: str = Field(description="the frame guide it slides along")
@@ -95,7 +95,7 @@ class SliderInputModel(BaseModel):
 class GroupModel(BaseModel):
     """A class-II structural group (kinds 1–5: RRR, RRP, RPR, PRP, RPP) attached to elements placed before."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     kind: Literal["RRR", "RRP", "RPR", "PRP", "RPP"]
     links: tuple[int, int] = Field(description="its two links' numbers [i, j]")
     outer: list[str] = Field(default_factory=list, max_length=2, description=(
@@ -117,14 +117,14 @@ class LinkageModel(BaseModel):
     """A planar mechanism as data: frame, input link (a crank or a slider), class-II groups in the order they
     are attached."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     frame: FrameModel
     input: CrankModel | SliderInputModel
     groups: list[GroupModel] = Field(default_factory=list, max_length=20)
 
 
 class PlanRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     phi: float = Field(ge=-MAX_ANGLE, le=MAX_ANGLE, description="crank angle of the plans, rad")
     omega1: float = Field(1.0, ge=-1e4, le=1e4, description="crank angular velocity ω₁, rad/s")
     epsilon1: float = Field(0.0, ge=-1e6, le=1e6, description="crank angular acceleration ε₁, rad/s²")
@@ -133,7 +133,7 @@ class PlanRequest(BaseModel):
 class KinematicsRequest(BaseModel):
     """Kinematics of one mechanism over a set of crank angles."""
 
-    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, json_schema_extra={"examples": [
         {"mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3, "e": 0.0}, "n": 361,
          "outputs": ["s", "u31", "du31", "u21", "du21", "joints"]}]})
 
@@ -190,7 +190,7 @@ class NumericsModel(BaseModel):
     """How a result was computed (server/core/numerics.py, ``Numerics``): declared once for every answer.
     A field the method has no use for is null."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     method: str = Field(description="what was computed and how, in the reader's language")
     code: str = Field("", description="names the method for the interface's translations")
     why: str | None = Field(None, description="why this method was chosen (stiffness, smoothness)")

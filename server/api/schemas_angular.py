@@ -16,7 +16,7 @@ T_MAX_S = 1e4
 
 
 class AngularRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     outputs: list[Literal["angular"]] = Field(["angular"], max_length=1, description="the components and the points")
     mechanism: Literal["crank_slider", "trammel"] = Field("crank_slider", description="central crank-slider or "
                                                                                        "elliptic trammel")

@@ -17,7 +17,7 @@ from .schemas_forces import ForceLoadsInput, PairsInput
 class BearingInput(BaseModel):
     """The bearing of one pair: its kind, material, geometry, lubricant and heat removal."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     pair: Literal["O", "A", "B"] = Field("O", description="main bearing O (R₄₁), crank pin A (R₁₂), piston pin B (R₂₃)")
     kind: Literal["dry", "semi_fluid", "fluid"] = Field("dry", description="dry (Table 2.1), semi-fluid or fluid (Table 2.2)")
     material: str = Field("bronze_brof", max_length=40, description="a row of Table 2.1 (dry) or 2.2 (semi-fluid, fluid)")
@@ -46,7 +46,7 @@ class BearingInput(BaseModel):
 
 
 class BearingsRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider whose reactions load the bearing")
     outputs: list[Literal[OUTPUTS]] = Field(["checks"], min_length=1, max_length=len(OUTPUTS), description="what the scene shows")
     params: dict[str, float] = Field(default_factory=dict, max_length=MAX_PARAMS, description="crank-slider lengths l1, l2, e (m) and a2")

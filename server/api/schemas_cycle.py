@@ -18,7 +18,7 @@ DRAWING, CYLINDER, MASSES = Drawing(), Cylinder(), Masses()
 class DrawingInput(BaseModel):
     """The drawing of Fig. 3.7 (the chord method of graphical integration)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     per_turn: Literal[12, 24] = Field(DRAWING.per_turn, description="intervals per turn (12: 30° positions)")
     pole: float = Field(DRAWING.pole, ge=10, le=200, description="pole distance K, mm (the book: 30 … 60)")
     width: float = Field(DRAWING.width, ge=60, le=600, description="length of the φ axis per turn, mm")
@@ -32,7 +32,7 @@ class DrawingInput(BaseModel):
 class CycleInput(BaseModel):
     """The cylinder's gas, the links' gravity and the efficiency; masses m₂, m₃ are the request's inertias."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     mode: Literal[MODES] = Field(CYLINDER.mode, description=(
         "two_stroke, four_stroke: an engine (M_P from the gas, M_kO constant over the cycle 2π or 4π); "
         "compressor: M_kO from the gas, the motor's M_P constant over 2π"))

@@ -21,7 +21,7 @@ LinkNumber = Field(ge=1, le=99, description="the link's number in the linkage (1
 class InertiaInput(BaseModel):
     """Masses and moments of inertia of the links; defaults are zero (massless link)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     J1: float = Field(0.0, ge=0, le=1e4, description="crank with shaft and gears about the crank axis, kg·m²")
     m2: float = Field(0.0, ge=0, le=1e5, description="link 2 (rod, coupler or block) mass, kg")
     J_S2: float = Field(0.0, ge=0, le=1e4, description="link 2 moment of inertia about its centre of mass S2, kg·m²")
@@ -34,7 +34,7 @@ class InertiaInput(BaseModel):
 class LoadInput(BaseModel):
     """Useful load and friction (Eremyants, chapter 3)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     force: float = Field(0.0, ge=0, le=1e7, description="P_c on the slider/yoke in N, or M₃ on the lever/rocker in N·m")
     return_factor: float = Field(1.0, ge=0, le=1, description="k_p (k_M): return-stroke load / working-stroke load")
     f: float = Field(0.0, ge=0, le=2, description="dry sliding-friction coefficient in the prismatic pairs")
@@ -48,7 +48,7 @@ class LoadInput(BaseModel):
 class MotorInput(BaseModel):
     """Motor characteristic at the motor shaft (torque N·m, speed rad/s)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     kind: Literal["constant", "linear", "induction", "kloss", "indicator"] = Field(
         description="constant M₀; linear M₀ − bω; induction: linearised stable branch (Lecture 10 (L30)); "
                     "kloss: Kloss curve (standard addition, not in the lecture); indicator: piston engine")
@@ -85,7 +85,7 @@ class MotorInput(BaseModel):
 class LinkMassInput(BaseModel):
     """One moving link of a general mechanism: mass, centre of mass on the link, moment of inertia about it."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     link: int = LinkNumber
     mass: float = Field(ge=0, le=1e5, description="m, kg")
     centre: tuple[float, float] = Field((0.0, 0.0), description=(
@@ -105,7 +105,7 @@ class LoadDiagramInput(BaseModel):
     """A useful-load diagram over the slider's stroke, as the indicator diagram: P/P_max at equally spaced
     positions x/H = 0…1 from the start of the working stroke, for the working and the return stroke."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     working_stroke: list[float] = Field(min_length=2, max_length=41, description="P/P_max on the working stroke")
     return_stroke: list[float] = Field(min_length=2, max_length=41, description="P/P_max on the return stroke")
 
@@ -120,7 +120,7 @@ class LoadDiagramInput(BaseModel):
 class SliderForceInput(BaseModel):
     """A useful load on a slider along its guide, against the motion: P on the working stroke, k·P on the return."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     joint: str = Field(min_length=1, max_length=40, description=(
         "the sliding pair as named in the kinematics' `slides` (\"E/ram\"), or the slider's joint (\"E\")"))
     working: float = Field(ge=0, le=1e7, description="P on the working stroke, N")
@@ -146,7 +146,7 @@ class DiagramInput(BaseModel):
     """A load diagram p(x) = P/P_max through points [x, p], monotone cubic (PCHIP) between them, zero outside
     [x_first, x_last]."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     over: Literal["stroke", "phi"] = Field(description=(
         "'stroke': x is the travel as a fraction 0…1 of the whole travel from the extreme where the working "
         "stroke starts (a point along its fixed force line, a link's angle between its extreme angles); 'phi': x "
@@ -172,7 +172,7 @@ class LinkMomentInput(BaseModel):
     """A useful load moment on a link, against its rotation: M₀ on the working stroke, k·M₀ on the return, times
     p(x) of a diagram where one is given."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     link: int = LinkNumber
     working: float = Field(ge=0, le=1e7, description="M₀ on the working stroke (its peak with a diagram), N·m")
     k: float = Field(1.0, ge=0, le=1, description="k: return-stroke moment / working-stroke moment")
@@ -190,7 +190,7 @@ class LinkMomentInput(BaseModel):
 class DirectionInput(BaseModel):
     """The direction of a point force: fixed in the frame, or turning with its link."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     kind: Literal["fixed", "link"] = Field(description=(
         "'fixed': α from +x, counter-clockwise; 'link': α from the link's direction (its origin joint along its "
         "angle), turning with it"))
@@ -200,7 +200,7 @@ class DirectionInput(BaseModel):
 class PointForceInput(BaseModel):
     """A force at a point of a moving link (a tool point, a press's slide, a crusher's jaw): F = P p(x) e."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     link: int = LinkNumber
     point: tuple[float, float] = Field(description=(
         "the point [along, across] in the link's own frame, m: from the link's origin joint along its direction, "
@@ -233,7 +233,7 @@ class PointForceInput(BaseModel):
 class MassInput(BaseModel):
     """Mass model and loads of a general mechanism (links not listed are massless)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     links: list[LinkMassInput] = Field(default_factory=list, max_length=40)
     gravity: float = Field(9.81, ge=0, le=100, description="g along −y, m/s² (0: the mechanism lies horizontally)")
     forces: list[SliderForceInput] = Field(default_factory=list, max_length=20)
@@ -258,7 +258,7 @@ class MassInput(BaseModel):
 class PairFrictionInput(BaseModel):
     """f and the journal radius r of one pair of a general mechanism (Chaika–Vasylenko (3.3))."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     f: float = Field(0.0, ge=0, le=2, description="friction coefficient")
     r: float = Field(0.0, ge=0, le=1, description="journal radius of a revolute pair, m (unused for a prismatic one)")
     beta: float = Field(0.0, ge=0, le=1e6, description=(
@@ -298,7 +298,7 @@ class MechanismChoice(BaseModel):
 class ReductionRequest(MechanismChoice):
     """Reduced moment of inertia and of the resisting forces over one cycle; no equation of motion."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     inertias: InertiaInput = Field(default_factory=InertiaInput)
     load: LoadInput = Field(default_factory=LoadInput)
     n: int = Field(361, ge=3, le=10001, description="points over one closed cycle")
@@ -318,7 +318,7 @@ class ReductionRequest(MechanismChoice):
 class MotionRequest(MechanismChoice):
     """The machine's equation of motion: steady cycle and/or start-up."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     inertias: InertiaInput = Field(default_factory=InertiaInput)
     load: LoadInput = Field(default_factory=LoadInput)
     motor: MotorInput
@@ -387,7 +387,7 @@ class MotionResponse(BaseModel):
 class FlywheelRequest(MechanismChoice):
     """Flywheel for a permissible δ: Merzalov, Gutyar, Wittenbauer and the exact periodic solution."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     inertias: InertiaInput = Field(default_factory=InertiaInput, description="J1 + J_rotor·i² is the group I "
                                                                             "the machine already has (I₁₀)")
     load: LoadInput = Field(default_factory=LoadInput)
@@ -417,7 +417,7 @@ class FlywheelResponse(BaseModel):
 class EstimateRequest(BaseModel):
     """A general mechanism (crank-driven) whose masses, loads and motor are to be estimated."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     linkage: LinkageModel
 
 

@@ -13,7 +13,7 @@ from .schemas_dynamics import InertiaInput, LoadInput, MotorInput
 class CompliancesInput(BaseModel):
     """Compliances of the elastic linkage, Eremyants (1.24)–(1.25), (1.34); Drakunov–Tuleshova (2)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     e1: float = Field(0.0, ge=0, le=1, description="crank-shaft torsion e₁ = L₁/(G I_p1), rad/(N·m)")
     e2: float = Field(0.0, ge=0, le=1, description="rod/coupler tension–compression e₂ = l₂/(E F₂), m/N")
     e3: float = Field(0.0, ge=0, le=1, description="rocker-shaft torsion e₃ = L₃/(G I_p3), rad/(N·m) (four-bar)")
@@ -23,7 +23,7 @@ class DimensionsInput(BaseModel):
     """The elastic linkage's compliances from its parts, Eremyants (1.16), (1.24)–(1.25), (1.37): the crank
     shaft, the motor shaft behind the gear (inertias.gear_ratio = u) and the rod (its length is l₂)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     shaft_length: float = Field(0.3, gt=0, le=10, description="crank shaft's length L, m")
     shaft_diameter: float = Field(0.04, ge=1e-3, le=1, description="crank shaft's diameter d, m")
     rod_diameter: float = Field(0.02, ge=1e-3, le=1, description="rod's diameter d₂ (round section), m")
@@ -36,7 +36,7 @@ class DimensionsInput(BaseModel):
 class BearingInput(BaseModel):
     """Ball bearings in the rod's joints B and C, Eremyants (1.43)–(1.44)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     balls: int = Field(9, ge=3, le=60, description="number of balls z")
     r_inner: float = Field(0.01, gt=0, le=1, description="radius r₁ of the inner race where the balls touch, m")
     r_outer: float = Field(0.011, gt=0, le=1, description="radius r₂ of the outer race, m")
@@ -57,7 +57,7 @@ MODEL_FIELDS = {        # the fields each model reads besides the common ones (b
 class ElasticRequest(BaseModel):
     """An elastic machine, its time span and the outputs wanted."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     model: Literal["two_mass", "kinematic_drive", "three_mass", "elastic_linkage", "elastic_four_bar"] = Field(
         description="two_mass: belt drive (1.20)–(1.21); kinematic_drive: powerful motor φ₁ = ωt (1.22)–(1.23); "
                     "three_mass: (1.40)–(1.42); elastic_linkage: c(φ) of the linkage (1.29)/(1.34), (1.31)–(1.32); "

@@ -13,7 +13,7 @@ from .schemas_wear import TabulatedReactions
 class PairsInput(BaseModel):
     """Friction coefficients and journal radii of the crank-slider's pairs (Chaika–Vasylenko (3.3))."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     f14: float = Field(0.0, ge=0, le=2, description="main bearing O (crank–frame), revolute")
     f12: float = Field(0.0, ge=0, le=2, description="crank pin A (crank–rod), revolute")
     f23: float = Field(0.0, ge=0, le=2, description="piston pin B (rod–slider), revolute")
@@ -26,7 +26,7 @@ class PairsInput(BaseModel):
 class ForceLoadsInput(BaseModel):
     """Masses, inertias, the crank's motion and the piston force."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     m2: float = Field(0.0, ge=0, le=1e5, description="rod mass, kg")
     J_S2: float = Field(0.0, ge=0, le=1e4, description="rod inertia about S2, kg·m²")
     m3: float = Field(0.0, ge=0, le=1e5, description="slider mass, kg")
@@ -47,7 +47,7 @@ class ForceLoadsInput(BaseModel):
 
 
 class ForcesRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     mechanism: Literal["slider_crank", "general"] = Field("slider_crank", description=(
         "the crank-slider (Chaika–Vasylenko §3.1), or 'general': the mechanism in `linkage`, by structural groups"))
     linkage: LinkageModel | None = Field(None, description=(
@@ -90,7 +90,7 @@ class WearPartsInput(BaseModel):
     """The pin and piston, the wear intensities I_s (Table 1.1) and the service life: by default the two-stroke
     engine of Chaika–Vasylenko §4.3."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     pin_diameter: float = Field(0.02, ge=1e-3, le=1, description="piston pin diameter d₂₃, m")
     pin_length: float = Field(0.025, ge=1e-3, le=1, description="pin bearing length l_z23, m")
     piston_diameter: float = Field(0.075, ge=1e-3, le=2, description="piston diameter D_p, m")
@@ -125,7 +125,7 @@ class WearRequest(ForcesRequest, WearPartsInput):
 class ChainRequest(BaseModel):
     """Efficiency of mechanisms in series (3.39) or in parallel (3.40)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     efficiencies: list[float] = Field(min_length=1, max_length=50, description="η_k of each mechanism, 0…1")
     works: list[Annotated[float, Field(ge=0, le=1e12)]] | None = Field(
         None, max_length=50, description="parallel only: driving work A_P,k of each branch, J (0…10¹²)")

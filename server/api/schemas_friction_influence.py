@@ -15,14 +15,14 @@ OUTPUTS = ("sweep", "cycle")
 class RadiiInput(BaseModel):
     """The journal radii of the revolute pairs (the friction circles are ρ = f·r)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     r14: float = Field(0.02, gt=0, le=1, description="journal radius at O (main bearing), m")
     r12: float = Field(0.015, gt=0, le=1, description="journal radius at A (crank pin), m")
     r23: float = Field(0.01, gt=0, le=1, description="journal radius at B (piston pin), m")
 
 
 class FrictionInfluenceRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider of /forces")
     outputs: list[Literal[OUTPUTS]] = Field(list(OUTPUTS), min_length=1, max_length=2, description=(
         "sweep: each figure over f = 0 … f_max; cycle: the curves at f = 0 and at f overlaid, and the comparison"))

@@ -17,7 +17,7 @@ class MotorCharacteristicRequest(MechanismChoice):
     """The machine of /motion driven by an induction motor ('kloss': the whole curve; 'induction': the
     linearised stable branch, Lecture 10 (L30))."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     inertias: InertiaInput = Field(default_factory=InertiaInput)
     load: LoadInput = Field(default_factory=LoadInput)
     motor: MotorInput
@@ -36,7 +36,7 @@ class MotorCharacteristicRequest(MechanismChoice):
 class FlywheelAnalysisRequest(FlywheelRequest):
     """The flywheel study's machine with the group-I inertia given: the δ it gives, beside the inertia [δ] needs."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     inertia: float = Field(ge=1e-6, le=1e6, description="the flywheel's moment of inertia I_м, kg·m² (added to "
                                                         "the crank's and rotor's I₁₀)")
     outputs: list[Literal[ANALYSIS_OUTPUTS]] = Field(min_length=1, max_length=4)

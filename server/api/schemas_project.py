@@ -15,7 +15,7 @@ class GroupOneInput(BaseModel):
     """Group I on the crank's shaft (its inertia is constant): the crank with its shaft and gears, the motor's rotor
     through the transmission; the flywheel is added to it."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     J1: float = Field(0.0, ge=0, le=1e4, description="the crank with its shaft and gears about the crank's axis, kg·m²")
     J_rotor: float = Field(0.0, ge=0, le=1e4, description="the motor's rotor about its axis, kg·m²")
     gear_ratio: float = Field(1.0, gt=0, le=1000, description="transmission ratio i = ω_motor/ω₁")
@@ -24,7 +24,7 @@ class GroupOneInput(BaseModel):
 class TitleInput(BaseModel):
     """The report's title block, free text."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     student: str = Field("", max_length=80, description="the student's name")
     group: str = Field("", max_length=80, description="the student's group")
     variant: str = Field("", max_length=80, description="the variant of the assignment")
@@ -34,7 +34,7 @@ class CourseProjectRequest(BaseModel):
     """The course project of a crank-driven linkage (Chaika–Vasylenko §3.4): kinematics at N positions, the
     dynamics with the flywheel for [δ], the kinetostatics at the real motion with Zhukovsky's lever."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     linkage: LinkageModel = Field(description="the mechanism as data (GET /api/v1/mechanisms/general), a crank as "
                                               "its input")
     masses: MassInput = Field(description="the links' masses, centres of mass and J_S; the useful loads; g; f and r "

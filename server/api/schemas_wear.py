@@ -16,7 +16,7 @@ class TabulatedReactions(BaseModel):
     """A table like Chaika–Vasylenko's Table 4.3: rows at crank angles φ₁ from 0 to 360° (the last repeating
     the first), summed by trapezoids over the rows as the book does (§4.2)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     phi: list[Annotated[float, Field(ge=0, le=360, allow_inf_nan=False)]] = Field(
         min_length=5, max_length=MAX_ROWS, description="crank angles φ₁, deg: 0 first, 360 last, increasing")
     R23: list[Annotated[float, Field(ge=0, le=1e8, allow_inf_nan=False)]] = Field(

@@ -21,7 +21,7 @@ Endpoint = Literal[tuple(ENDPOINTS)]
 
 
 class VaryItem(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     path: str = Field(min_length=1, max_length=200, description="dotted path of a number in `request`, "
                                                                 "e.g. params.l2")
     factor: float = Field(1.0, allow_inf_nan=False, description="the path is set to value × factor (the "
@@ -29,7 +29,7 @@ class VaryItem(BaseModel):
 
 
 class FamilyRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
     endpoint: Endpoint = Field(description="the computing endpoint whose answers make the family")
     request: dict[str, Any] = Field(description="the endpoint's body exactly as the page sends it")
     vary: list[VaryItem] = Field(min_length=1, max_length=8, description="the paths the slider sets")
