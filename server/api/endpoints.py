@@ -212,7 +212,8 @@ def _general_machine(request: ReductionRequest | MotionRequest | FlywheelRequest
 
 
 def _motor(motor) -> Motor:
-    return Motor(**{**motor.model_dump(), "expansion": tuple(motor.expansion), "compression": tuple(motor.compression)})
+    return Motor(**{**motor.model_dump(), "expansion": tuple(motor.expansion), "compression": tuple(motor.compression),
+                    "table_phi": tuple(motor.table_phi or ()), "table_moment": tuple(motor.table_moment or ())})
 
 
 def dynamics_estimate(request: EstimateRequest, lang: str) -> Answer:
@@ -253,7 +254,7 @@ def motion_work_precision(request: MotionRequest, lang: str) -> Answer:
 
 
 def elastic_machine(request: ElasticRequest) -> ElasticMachine:
-    if request.motor.kind == "indicator":
+    if request.motor.kind in ("indicator", "table"):
         raise GeometryError("motor.kind", "the elastic models take a motor with a speed characteristic or a "
                             "constant torque", "elastic_motor")
     params = MECHANISMS[request.mechanism].check(request.params)

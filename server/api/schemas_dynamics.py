@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from ..core.dynamics.motors import INDICATOR_POINTS, polytropic_diagram
+from ..core.dynamics.motors import INDICATOR_POINTS, TABLE_POINTS, polytropic_diagram
 from ..core.structure.masses import (DIAGRAM_POINTS, FARTHEST, LinkMass, LinkMoment, LoadDiagram, MassModel,
                                      PointForce, SliderForce, diagram_problem)
 from .schemas import MAX_PARAMS, LinkageModel, NumericsModel
@@ -49,9 +49,11 @@ class MotorInput(BaseModel):
     """Motor characteristic at the motor shaft (torque N·m, speed rad/s)."""
 
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
-    kind: Literal["constant", "linear", "induction", "kloss", "indicator"] = Field(
+    kind: Literal["constant", "linear", "induction", "kloss", "indicator", "table"] = Field(
         description="constant M₀; linear M₀ − bω; induction: linearised stable branch (Lecture 10 (L30)); "
-                    "kloss: Kloss curve (standard addition, not in the lecture); indicator: piston engine")
+                    "kloss: Kloss curve (standard addition, not in the lecture); indicator: piston engine; "
+                    "table: a free law M_P(φ₁) at the crank (Chaika–Vasylenko §3.4, step 9), table_phi and "
+                    "table_moment, linear between the points and periodic over a turn")
     M0: float = Field(0.0, ge=0, le=1e7, description="constant, linear: torque at standstill, N·m")
     b: float = Field(0.0, ge=0, le=1e6, description="linear: slope of the characteristic, N·m·s/rad")
     M_nominal: float = Field(0.0, ge=0, le=1e7, description="induction: nominal torque M_н, N·m")
@@ -66,6 +68,19 @@ class MotorInput(BaseModel):
     compression: list[float] = Field(default_factory=lambda: polytropic_diagram()[1], min_length=INDICATOR_POINTS,
                                      max_length=INDICATOR_POINTS, description="indicator: p/p_max on compression at x/H = 0, 0.1, …, 1")
     strokes: Literal[2, 4] = Field(2, description="indicator: two-stroke (cycle 2π) or four-stroke (cycle 4π)")
+    table_phi: list[Annotated[float, Field(ge=0, lt=2 * math.pi)]] | None = Field(
+        None, min_length=TABLE_POINTS[0], max_length=TABLE_POINTS[1],
+        description="table: crank angles φ_j of the free law, rad, increasing within one turn [0, 2π)")
+    table_moment: list[Annotated[float, Field(ge=-1e7, le=1e7)]] | None = Field(
+        None, min_length=TABLE_POINTS[0], max_length=TABLE_POINTS[1],
+        description="table: the driving moment M_P(φ_j) at the crank shaft, N·m, one per angle")
+
+    @field_validator("table_phi")
+    @classmethod
+    def increasing(cls, phi):
+        if phi is not None and any(b - a < 1e-6 for a, b in zip(phi, phi[1:])):
+            raise ValueError("the angles of a free law must increase, at least 1e-6 rad apart")
+        return phi
 
     @model_validator(mode="after")
     def consistent(self):
@@ -77,6 +92,11 @@ class MotorInput(BaseModel):
             raise ValueError("linear motor: the slope b must be positive (b = 0 is the constant-torque motor)")
         if self.kind == "indicator" and not (self.p_max > 0 and self.piston_diameter > 0):
             raise ValueError("piston engine: need p_max > 0 and piston_diameter > 0")
+        if self.kind == "table" and (self.table_phi is None or self.table_moment is None
+                                     or len(self.table_phi) != len(self.table_moment)):
+            raise ValueError("a free law M_P(φ₁): need table_phi and table_moment, one moment per angle")
+        if self.kind != "table" and (self.table_phi is not None or self.table_moment is not None):
+            raise ValueError("table_phi and table_moment belong to the free law (kind 'table') only")
         if not all(0 <= x <= 1 for x in self.expansion + self.compression):
             raise ValueError("indicator diagram ordinates are p/p_max, between 0 and 1")
         return self

@@ -42,7 +42,7 @@ from ..structure.reduction import reduced_inertia, reduced_loads
 from .kink_table import KinkTable, build as build_table
 from .kept import Kept
 from .machine import KINK_ITERATIONS, KINK_MERGE, KINK_SCAN, KINKS_KEPT, Machine, Tables, read_only
-from .motors import Motor
+from .motors import Motor, table_moment
 from .reduction import Inertias
 from .resistance import Load
 
@@ -194,14 +194,14 @@ class GeneralMachine(Machine):
 
     def tables(self, phi: np.ndarray) -> Tables:
         """J, J′, M_useful, S from ``smooth_table`` (composed directly within KINK_SIDE of a kinematic kink, or on
-        a segment the table leaves), M_T from ``dry_table``, the constant motor's moment."""
+        a segment the table leaves), M_T from ``dry_table``, the constant motor's moment or a free law M_P(φ₁)."""
         phi = np.asarray(phi, float)
         table, notices = self.smooth_table()
         columns, direct = table.at(phi)
         if direct.any():
             columns[:, direct] = self.smooth_columns(phi[direct])
         drive = np.full(phi.shape, self.motor.M0 * self.inertias.gear_ratio) if self.motor.kind == "constant" \
-            else np.zeros(phi.shape)
+            else table_moment(self.motor, phi) if self.motor.kind == "table" else np.zeros(phi.shape)
         dry, locking = self.dry_moment(phi)
         return Tables(phi, columns[0], columns[1], drive, columns[2], dry, columns[3], locking + notices)
 

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..mechanisms import MECHANISMS, Notice
 from .kept import Kept
-from .motors import Motor, driving_moment, indicator_switches
+from .motors import Motor, driving_moment, indicator_switches, table_moment, table_switches
 from .reduction import Inertias, reduced_inertia
 from .resistance import Load, resisting_moment
 
@@ -113,6 +113,8 @@ class Machine:
                                    kinematics)
         elif self.motor.kind == "constant":
             drive = np.full_like(phi, self.motor.M0 * self.inertias.gear_ratio)
+        elif self.motor.kind == "table":                # M_P(φ₁) given at the crank: no gear to reduce it by
+            drive = table_moment(self.motor, phi)
         else:
             drive = np.zeros_like(phi)
         sliding = resisting.viscous / self.load.beta if self.load.beta else np.zeros_like(phi)
@@ -126,6 +128,8 @@ class Machine:
         rows = resisting_moment(self.mechanism, self.params, self.load, phi, 1.0, kinematics).switches
         if self.motor.kind == "indicator":
             rows = rows + indicator_switches(MECHANISMS[self.mechanism], self.params, phi, kinematics)
+        if self.motor.kind == "table":
+            rows = rows + table_switches(self.motor, phi)
         return np.array(rows)
 
     def kinks(self) -> np.ndarray:
@@ -137,7 +141,7 @@ class Machine:
     def kinks_key(self) -> tuple:
         """What the kinks depend on (``kinks``)."""
         return (self.mechanism, tuple(sorted(self.params.items())), self.load, self.motor.kind == "indicator",
-                self.cycle())
+                self.motor.table_phi, self.cycle())
 
     def jumps(self) -> list[float]:
         """The mechanism's jumps (a stroke limiter), rad."""

@@ -8,6 +8,8 @@ to i·M(iω) (power equality, Eremyants (1.17)).  Characteristics:
     induction    M = M_н (ω_с − ω_m)/(ω_с − ω_н)  (stable branch, linearised)  Lecture 10 (L30)
     kloss        M = 2M_к/(s/s_к + s_к/s),  s = (ω_с − ω_m)/ω_с      standard addition, not in the lecture
     indicator    M = −p(x) A_p u₃₁ of the crank-slider's piston        Lecture 10 (L15)–(L17)
+    table        M_P(φ₁) at the crank, a free law given as points (φ_j, M_j) over one turn, linear between
+                 them and periodic (the last point joins the first)   Chaika–Vasylenko §3.4, step 9
 
 The indicator diagram gives p/p_max at 11 equally spaced piston positions x/H from top dead
 centre for the expansion and the compression stroke; p between them by monotone (PCHIP)
@@ -24,7 +26,8 @@ from scipy.interpolate import PchipInterpolator
 
 from ..mechanisms import MECHANISMS
 
-KINDS = ("constant", "linear", "induction", "kloss", "indicator")
+KINDS = ("constant", "linear", "induction", "kloss", "indicator", "table")
+TABLE_POINTS = (2, 361)         # a free law M_P(φ₁): at least 2 points, at most one a degree
 INDICATOR_POINTS = 11
 
 
@@ -54,6 +57,8 @@ class Motor:
     expansion: tuple[float, ...] = field(default_factory=lambda: tuple(polytropic_diagram()[0]))
     compression: tuple[float, ...] = field(default_factory=lambda: tuple(polytropic_diagram()[1]))
     strokes: int = 2                # indicator: 2 or 4 strokes per cycle
+    table_phi: tuple[float, ...] = ()     # table: crank angles φ_j in [0, 2π), increasing, rad
+    table_moment: tuple[float, ...] = ()  # table: M_P(φ_j) at the crank shaft, N·m
 
     @property
     def speed_dependent(self) -> bool:
@@ -70,6 +75,8 @@ class Motor:
             return self.M_nominal * self.omega_sync / (self.omega_sync - self.omega_nominal)
         if self.kind == "kloss":
             return self.M_max
+        if self.kind == "table":
+            return max(self.table_moment)
         return np.inf
 
     def torque(self, w):
@@ -96,6 +103,8 @@ def driving_moment(motor: Motor, mechanism: str, params: dict[str, float], phi: 
     """M_д at crank angles φ and crank speed ω, reduced to the crank shaft (N·m): i·M(iω) (Eremyants (1.17)) or the
     indicator moment (Lecture 10 (L17)); ``kinematics``: the
     mechanism already evaluated at phi, to share one evaluation."""
+    if motor.kind == "table":
+        return table_moment(motor, phi)
     if motor.kind != "indicator":
         return gear_ratio * motor.torque(gear_ratio * np.asarray(omega, float) + 0 * phi)[0]
     return indicator_moment(motor, mechanism, params, phi, kinematics)
@@ -134,3 +143,17 @@ def indicator_switches(mechanism, params: dict[str, float], phi: np.ndarray, kin
     x/H = 0.1 … 0.9 (the monotone cubic is only once continuously differentiable there)."""
     x = mechanism.piston_travel(params, phi, kinematics)
     return [np.sin(phi)] + [x - j / (INDICATOR_POINTS - 1) for j in range(1, INDICATOR_POINTS - 1)]
+
+
+def table_moment(motor: Motor, phi: np.ndarray) -> np.ndarray:
+    """A free law M_P(φ₁) (Chaika–Vasylenko §3.4, step 9: the driving moment of the transient regime given as a
+    function of the crank angle), at the crank shaft, N·m: linear between the table's points, periodic over
+    one turn (from the last point back to the first at φ₀ + 2π)."""
+    return np.interp(np.mod(np.asarray(phi, float), 2 * np.pi), motor.table_phi, motor.table_moment,
+                     period=2 * np.pi)
+
+
+def table_switches(motor: Motor, phi: np.ndarray) -> list[np.ndarray]:
+    """Functions whose sign changes are the corners of a free law M_P(φ₁): sin((φ − φ_j)/2) changes sign at
+    φ_j alone within a turn."""
+    return [np.sin((np.asarray(phi, float) - node) / 2) for node in motor.table_phi]
