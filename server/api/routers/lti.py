@@ -1,11 +1,11 @@
 """The app as an LTI 1.3 tool: OIDC login, launches, the tool's JWKS, deep linking, the instructor's results
-without a token, "Open in a new window" tickets, and the administrator's registration API.
+without a token, and "Open in a new window" tickets; registration is ``lti_registration``'s.
 
-Every refusal names its reason: a page (401 forged, expired or replayed launch; 403 unknown issuer or
-deployment, or a learner where an instructor is needed; 422 a malformed request) or, on the API, JSON. The
-protocol checks are pylti1p3's (``lti_adapters``), the classroom side is ``lti_classroom``. The app's pages
-refuse to be framed; inside an LMS frame a launch answers a small page of its own (framed by that LMS only)
-that opens the assignment in a new window with a single-use ticket.
+Every refusal is a page naming its reason and code (401 a forged, expired or replayed launch; 403 an unknown
+issuer or deployment, or a learner where an instructor is needed; 422 a malformed request). The protocol checks
+are pylti1p3's (``lti_adapters``), the classroom side is ``lti_classroom``, the pages' framing ``lti_pages``.
+In a frame of the same site a launch opens its page in the frame; in a frame of another site (where the session
+cookie is blocked) it answers a small page that opens it in a new window with a single-use ticket.
 """
 from __future__ import annotations
 
@@ -13,37 +13,30 @@ import base64
 import hashlib
 import logging
 import os
-import secrets
-import time
 from datetime import datetime, timezone
-from urllib.parse import parse_qs, urlencode, urlsplit
+from urllib.parse import parse_qs, urlencode
 
-import requests
-from fastapi import APIRouter, Depends, Request
+from fastapi import APIRouter, Request
 from fastapi.responses import HTMLResponse, JSONResponse, RedirectResponse, Response
-from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 from pylti1p3.deep_link_resource import DeepLinkResource
 from pylti1p3.exception import LtiException, OIDCException
 from pylti1p3.lineitem import LineItem
 from starlette.concurrency import run_in_threadpool
 
-from ...classroom.lti import dynamic, tool_key
-from ...classroom.lti.grades import TimeoutSession
+from ...classroom.lti import tool_key
 from ...classroom.lti.members import ROLES_CLAIM, teaches
-from ...classroom.lti.platforms import DatabaseToolConf, PlatformRefused, new_platform
+from ...classroom.lti.platforms import DatabaseToolConf
 from ...classroom.spec import MAX_QUESTIONS, AssignmentSpec, QuestionPick
 from ...classroom.variants import SpecError
 from ...lessons.scenes import LANGUAGES, scenes
-from .. import assignments, lti_adapters, lti_classroom, security
+from .. import assignments, lti_adapters, lti_classroom
 from ..assignment_store import store
-from ..schemas_lti import (PendingScoreInfo, PlatformInfo, PlatformRegistered, PlatformRegistration, Platforms,
-                           RegistrationLink, ToolUrls)
-from ..security import CONTENT_SECURITY_POLICY, policy_with_script_hashes
+from ..lti_pages import base_url, framed_by, origin, page, platform_origins, refused_page, tool_urls
 from ..student_secret import from_another_site, hand_over
+from . import lti_registration
 from .pages import _context, templates
 
 MAX_FORM_BYTES = 64 * 1024          # a launch's id_token is a few kilobytes
-ORIGINS_TTL_S = 30.0                # a platform registered on one server may frame the pages of all within this
 RECENT_S = 14 * 86400               # the picker offers assignments made from the same address this recently
 CUSTOM_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/custom"
 PRESENTATION_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/launch_presentation"
@@ -51,14 +44,9 @@ DEEP_LINKING = "LtiDeepLinkingRequest"
 MESSAGE_TYPE_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/message_type"
 AUTO_SUBMIT = "document.getElementById('lti-return').submit();"
 AUTO_SUBMIT_HASH = base64.b64encode(hashlib.sha256(AUTO_SUBMIT.encode()).digest()).decode()
-CLOSE_REGISTRATION = "(window.opener || window.parent).postMessage({subject: 'org.imsglobal.lti.close'}, '*');"
-CLOSE_REGISTRATION_HASH = base64.b64encode(hashlib.sha256(CLOSE_REGISTRATION.encode()).digest()).decode()
-REGISTRATION_LINK_S = 7 * 86400     # a dynamic-registration link works once within a week
 log = logging.getLogger("mdl.lti")
 
 router = APIRouter()                                    # the protocol and its pages: not in the OpenAPI
-api = APIRouter(prefix="/api/v1/lti", tags=["lti"])
-ADMIN = HTTPBearer(auto_error=False, scheme_name="admin_token", description="MDL_ADMIN_TOKEN")
 
 
 # what pylti1p3 says → (status, code, reason in words)
@@ -90,47 +78,12 @@ def refusal(error: Exception) -> tuple[int, str, str]:
     return 422, "invalid_launch", f"the launch is not valid LTI 1.3: {text[:200]}"
 
 
-def base_url(request: Request) -> str:
-    return str(request.base_url).rstrip("/")
-
-
-def tool_urls(request: Request) -> ToolUrls:
-    base = base_url(request)
-    return ToolUrls(login_url=f"{base}/lti/login", launch_url=f"{base}/lti/launch", jwks_url=f"{base}/lti/jwks",
-                    deep_linking_url=f"{base}/lti/launch")
-
-
-def origin(url: str) -> str:
-    parts = urlsplit(url)
-    return f"{parts.scheme}://{parts.netloc}" if parts.scheme and parts.netloc else ""
-
-
-def framed_by(response: Response, origins: set[str], form_to: str = "", script_hash: str = "") -> Response:
-    """Let the platform frame this page (CSP frame-ancestors; X-Frame-Options then ignored) and, for the deep
-    linking answer, post a form to it with the one inline script of that hash."""
-    allowed = " ".join(sorted(o for o in origins if o))
-    policy = policy_with_script_hashes([script_hash]) if script_hash else CONTENT_SECURITY_POLICY
-    policy = policy.replace("frame-ancestors 'none'", f"frame-ancestors 'self' {allowed}".strip())
-    if form_to:
-        policy = policy.replace("form-action 'self'", f"form-action 'self' {form_to}")
-    response.headers["content-security-policy"] = policy
-    response.headers["x-frame-options"] = "SAMEORIGIN"
-    response.headers["cache-control"] = "no-store"
-    return response
-
-
-def platform_origins(platform) -> set[str]:
-    return {origin(platform.issuer), origin(platform.auth_login_url)} if platform is not None else set()
-
-
-def page(request: Request, template: str, lang: str | None, status: int = 200, **values) -> HTMLResponse:
-    return templates.TemplateResponse(request, template, _context(request, lang) | values, status_code=status)
-
-
-def refused_page(request: Request, status: int, code: str, reason: str, lang: str | None = None,
-                 origins: set[str] = frozenset()) -> HTMLResponse:
-    response = page(request, "lti_error.html", lang, status, code=code, reason=reason)
-    return framed_by(response, set(origins))
+def needs_new_window(request: Request) -> bool:
+    """Whether the browser says this launch loads into a frame of another site (the LMS's iframe, the LMS on
+    another site): there the session cookie is a third-party cookie, which browsers block. In a frame of the same
+    site (lms.example.edu framing lab.example.edu) it is kept, and the pages open in the frame."""
+    return (request.headers.get("sec-fetch-dest") in ("iframe", "frame")
+            and request.headers.get("sec-fetch-site") not in ("same-origin", "same-site"))
 
 
 async def form_params(request: Request) -> dict[str, str] | None:
@@ -146,34 +99,6 @@ async def form_params(request: Request) -> dict[str, str] | None:
 def launch_language(claims: dict, fallback: str | None) -> str | None:
     locale = str((claims.get(PRESENTATION_CLAIM) or {}).get("locale") or "")[:2].lower()
     return locale if locale in LANGUAGES else fallback
-
-
-def needs_new_window(request: Request) -> bool:
-    """Whether the browser says this launch loads into a frame of another site (the LMS's iframe, the LMS on
-    another site): there the session cookie is a third-party cookie, which browsers block. In a frame of the same
-    site (lms.example.edu framing lab.example.edu) it is kept, and the pages open in the frame."""
-    return (request.headers.get("sec-fetch-dest") in ("iframe", "frame")
-            and request.headers.get("sec-fetch-site") not in ("same-origin", "same-site"))
-
-
-_framing = {"at": -ORIGINS_TTL_S, "origins": ()}
-
-
-def framing_origins() -> tuple[str, ...]:
-    """The registered LMSs' origins, which may frame the pages a launch opens (security.FRAMED_PATHS); read from
-    the database at most every ORIGINS_TTL_S, so that every server learns of a new platform."""
-    now = time.monotonic()
-    if now - _framing["at"] > ORIGINS_TTL_S:
-        try:
-            found = {o for platform in store().lti_platforms() for o in platform_origins(platform) if o}
-            _framing["origins"] = tuple(sorted(found))
-        except Exception:                                    # noqa: BLE001 - keep the last known; pages still answer
-            log.warning("the LMS origins could not be read; framing stays as it was")
-        _framing["at"] = now
-    return _framing["origins"]
-
-
-security.allow_framing_by(framing_origins)
 
 
 # the tool's public face
@@ -447,116 +372,4 @@ def _deep_link(request: Request, params: dict[str, str]):
     return framed_by(response, origins, form_to=origin(return_url), script_hash=AUTO_SUBMIT_HASH)
 
 
-# registration by an administrator
-def admin_refusal(credentials: HTTPAuthorizationCredentials | None) -> JSONResponse | None:
-    expected = os.environ.get("MDL_ADMIN_TOKEN", "")
-    if not expected:
-        return JSONResponse(status_code=403, content={"detail": [{
-            "loc": ["header", "authorization"], "type": "registration_closed",
-            "msg": "registration is closed: MDL_ADMIN_TOKEN is not set on the server"}]})
-    if credentials is None or not secrets.compare_digest(credentials.credentials.encode(), expected.encode()):
-        return JSONResponse(status_code=401, headers={"WWW-Authenticate": "Bearer"}, content={"detail": [{
-            "loc": ["header", "authorization"], "type": "not_admin",
-            "msg": "send Authorization: Bearer <MDL_ADMIN_TOKEN>"}]})
-    return None
-
-
-def iso(at: float) -> str:
-    return datetime.fromtimestamp(at, timezone.utc).isoformat(timespec="seconds")
-
-
-@api.post("/platforms", status_code=201, response_model=PlatformRegistered, summary="Register an LMS (platform)",
-          responses={401: {"description": "no or a wrong admin token"}, 403: {"description": "registration closed"},
-                     409: {"description": "this issuer and client id are registered already"},
-                     422: {"description": "the field and the reason"}})
-def register_platform(body: PlatformRegistration, request: Request,
-                      credentials: HTTPAuthorizationCredentials | None = Depends(ADMIN)):
-    refused = admin_refusal(credentials)
-    if refused is not None:
-        return refused
-    try:
-        platform = new_platform(body.issuer, body.client_id, body.deployment_ids, body.auth_login_url,
-                                body.auth_token_url, body.key_set_url, body.name)
-    except PlatformRefused as error:
-        return JSONResponse(status_code=422, content={"detail": [{"loc": ["body", error.field], "msg": error.reason,
-                                                                  "type": "platform_error"}]})
-    if not store().lti_add_platform(platform):
-        return JSONResponse(status_code=409, content={"detail": [{"loc": ["body", "client_id"], "type": "registered",
-                                                                  "msg": "this issuer and client id are registered "
-                                                                         "already"}]})
-    tool_key.tool_key(store())                      # the key pair exists before the platform asks for it
-    _framing["at"] = -ORIGINS_TTL_S                 # this server lets it frame the pages at once
-    return PlatformRegistered(id=platform.id, tool=tool_urls(request))
-
-
-@api.get("/platforms", response_model=Platforms, summary="The registered LMSs, and scores still to post",
-         responses={401: {"description": "no or a wrong admin token"}, 403: {"description": "registration closed"}})
-def list_platforms(credentials: HTTPAuthorizationCredentials | None = Depends(ADMIN)):
-    refused = admin_refusal(credentials)
-    if refused is not None:
-        return refused
-    return Platforms(platforms=[PlatformInfo(id=p.id, issuer=p.issuer, client_id=p.client_id, name=p.name,
-                                             deployment_ids=list(p.deployment_ids), auth_login_url=p.auth_login_url,
-                                             auth_token_url=p.auth_token_url, key_set_url=p.key_set_url,
-                                             created_at=iso(p.created_at)) for p in store().lti_platforms()],
-                     pending_scores=[PendingScoreInfo(assignment_id=p.assignment_id, tries=p.tries,
-                                                      last_error=p.last_error, retry_at=iso(p.retry_at))
-                                     for p in store().lti_pending_scores()])
-
-
-@api.post("/scores/retry", response_model=dict[str, int], summary="Post the scores that wait now (they are also retried on later submissions)",
-          responses={401: {"description": "no or a wrong admin token"}, 403: {"description": "registration closed"}})
-def retry_scores(credentials: HTTPAuthorizationCredentials | None = Depends(ADMIN)):
-    refused = admin_refusal(credentials)
-    if refused is not None:
-        return refused
-    return lti_classroom.post_due_now()
-
-
-@api.post("/registration-links", status_code=201, response_model=RegistrationLink,
-          summary="A single-use URL for an LMS's dynamic registration (LTI Dynamic Registration 1.0)",
-          responses={401: {"description": "no or a wrong admin token"}, 403: {"description": "registration closed"}})
-def registration_link(request: Request, credentials: HTTPAuthorizationCredentials | None = Depends(ADMIN)):
-    refused = admin_refusal(credentials)
-    if refused is not None:
-        return refused
-    code = secrets.token_urlsafe(24)
-    store().lti_put(f"register:{hashlib.sha256(code.encode()).hexdigest()}", {"made": time.time()},
-                    time.time() + REGISTRATION_LINK_S)
-    return RegistrationLink(url=f"{base_url(request)}/lti/register/{code}", expires_in=REGISTRATION_LINK_S)
-
-
-@router.get("/lti/register/{code}", include_in_schema=False)
-def dynamic_registration(request: Request, code: str, openid_configuration: str = "", registration_token: str = "",
-                         lang: str | None = None):
-    """The LMS's dynamic registration, opened by its administrator with the URL made above."""
-    if not openid_configuration or len(openid_configuration) > 2000 or len(registration_token) > 8000:
-        return refused_page(request, 422, "no_configuration", "the LMS sent no (or too long an) openid_configuration "
-                                                              "or registration_token", lang)
-    if len(code) > 64 or store().lti_take(f"register:{hashlib.sha256(code.encode()).hexdigest()}",
-                                          time.time()) is None:
-        return refused_page(request, 403, "registration_code", "this registration link is unknown, used or expired: "
-                                                               "make a new one (POST /api/v1/lti/registration-links)",
-                            lang)
-    try:
-        platform = dynamic.register(openid_configuration, registration_token, base_url(request),
-                                    "Mechanism Dynamics Lab", TimeoutSession())
-    except PlatformRefused as error:
-        return refused_page(request, 422, "registration_refused", f"{error.field}: {error.reason}", lang)
-    except (requests.RequestException, ValueError) as error:
-        return refused_page(request, 422, "registration_failed", f"the LMS could not be read: "
-                                                                 f"{type(error).__name__}", lang)
-    if not store().lti_add_platform(platform):
-        return refused_page(request, 409, "registered", "this issuer and client id are registered already", lang)
-    tool_key.tool_key(store())
-    _framing["at"] = -ORIGINS_TTL_S
-    response = page(request, "lti_registered.html", lang, platform=platform, script=CLOSE_REGISTRATION)
-    return framed_by(response, platform_origins(platform), script_hash=CLOSE_REGISTRATION_HASH)
-
-
-@api.get("/tool", response_model=ToolUrls, summary="The tool's URLs to paste into the LMS")
-def tool(request: Request) -> ToolUrls:
-    return tool_urls(request)
-
-
-router.include_router(api)
+router.include_router(lti_registration.router)     # /lti/register/<code> and /api/v1/lti
