@@ -20,7 +20,8 @@ from ...classroom.lti.grades import TimeoutSession
 from ...classroom.lti.platforms import PlatformRefused, new_platform
 from .. import lti_classroom
 from ..assignment_store import store
-from ..lti_pages import base_url, forget_origins, framed_by, page, platform_origins, refused_page, tool_urls
+from ..lti_pages import (base_url, forget_origins, framed_by, origin, page, platform_origins, refused_page,
+                         tool_urls)
 from ..schemas_lti import (PendingScoreInfo, PlatformInfo, PlatformRegistered, PlatformRegistration, Platforms,
                            RegistrationLink, ToolUrls)
 
@@ -118,21 +119,23 @@ def dynamic_registration(request: Request, code: str, openid_configuration: str 
     if not openid_configuration or len(openid_configuration) > 2000 or len(registration_token) > 8000:
         return refused_page(request, 422, "no_configuration", "the LMS sent no (or too long an) openid_configuration "
                                                               "or registration_token", lang)
+    lms = {origin(openid_configuration)}            # the LMS shows this page in its frame: its errors too
     if len(code) > 64 or store().lti_take(f"register:{hashlib.sha256(code.encode()).hexdigest()}",
                                           time.time()) is None:
         return refused_page(request, 403, "registration_code", "this registration link is unknown, used or expired: "
                                                                "make a new one (POST /api/v1/lti/registration-links)",
-                            lang)
+                            lang, lms)
     try:
         platform = dynamic.register(openid_configuration, registration_token, base_url(request),
                                     "Mechanism Dynamics Lab", TimeoutSession())
     except PlatformRefused as error:
-        return refused_page(request, 422, "registration_refused", f"{error.field}: {error.reason}", lang)
+        return refused_page(request, 422, "registration_refused", f"{error.field}: {error.reason}", lang, lms)
     except (requests.RequestException, ValueError) as error:
         return refused_page(request, 422, "registration_failed", f"the LMS could not be read: "
-                                                                 f"{type(error).__name__}", lang)
+                                                                 f"{type(error).__name__}", lang, lms)
     if not store().lti_add_platform(platform):
-        return refused_page(request, 409, "registered", "this issuer and client id are registered already", lang)
+        return refused_page(request, 409, "registered", "this issuer and client id are registered already", lang,
+                            lms)
     tool_key.tool_key(store())
     forget_origins()
     response = page(request, "lti_registered.html", lang, platform=platform, script=CLOSE_REGISTRATION)
