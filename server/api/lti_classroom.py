@@ -1,5 +1,5 @@
 """What an LTI launch does in the classroom: an LMS learner becomes (or is again) a student of the assignment
-with a fresh personal secret; an instructor gets a session tied to the assignment (its results without the
+with a personal secret derived for them (the same on every device); an instructor gets a session tied to the assignment (its results without the
 token); the course's members (NRPS) fill the roster; a single-use ticket carries a launch from an LMS frame
 to a new window; scores are queued for the gradebook and posted off the request path. Glue between the
 launch (routers/lti.py), the assignments (assignments.py) and the LTI store (classroom/lti)."""
@@ -16,8 +16,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 from ..classroom import identity
 from ..classroom.lti import grades
-from ..classroom.lti.tool_key import tool_key
 from ..classroom.lti.members import lms_name, student_key, teaches
+from ..classroom.lti.tool_key import tool_key
 from ..classroom.names import normalise
 from ..classroom.store import AssignmentRecord, StudentRecord
 from ..classroom.store.lti_tables import LearnerRecord, PlatformRecord
@@ -63,15 +63,14 @@ def _linked_student(record: AssignmentRecord, platform: PlatformRecord, sub: str
     return stored
 
 
-def enter_learner(record: AssignmentRecord, resolved: Plan, platform: PlatformRecord,
-                  claims: dict) -> tuple[StudentRecord, str | None]:
-    """The launching learner as a student of the assignment, and a new personal secret for their session (the
-    one before stops working: a student of an LMS enters through the LMS)."""
+def enter_learner(record: AssignmentRecord, resolved: Plan, platform: PlatformRecord, claims: dict) -> StudentRecord:
+    """The launching learner as a student of the assignment, linked to their LMS user with their launch's grade
+    service (their session's secret is ``new_secret_for``'s)."""
     sub = str(claims["sub"])
     student = _linked_student(record, platform, sub, lms_name(claims), resolved, on_roster=False)
     store().lti_link_learner(LearnerRecord(platform.id, sub, record.id, student.key, context_id(claims),
                                            claims.get(AGS_CLAIM)))
-    return student, new_secret_for(record.id, student.key)
+    return student
 
 
 def fill_roster(record: AssignmentRecord, resolved: Plan, platform: PlatformRecord, context: str,

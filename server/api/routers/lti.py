@@ -207,7 +207,7 @@ def open_assignment(request: Request, found, platform, claims: dict, assignment_
         about = {"kind": "teacher", "assignment": record.id, "platform": platform.id, "context": context,
                  "lang": lang}
     else:
-        student, _ = lti_classroom.enter_learner(record, resolved, platform, claims)
+        student = lti_classroom.enter_learner(record, resolved, platform, claims)
         about = {"kind": "student", "assignment": record.id, "student": student.key, "lang": lang}
     if needs_new_window(request):
         ticket = lti_classroom.new_ticket(about)
