@@ -164,6 +164,7 @@ class Platform:
         self.refusals: list[str] = []              # every request refused, with its reason
         self.tokens: dict[str, dict] = {}          # access token → {"scopes", "expires"}
         self.token_requests: list[dict] = []
+        self.token_outage = False                  # True: the token endpoint answers 503 (the LMS is down)
         self._jtis: set[str] = set()
         self._dl_nonces: set[str] = set()
         self._counter = itertools.count(1)
@@ -493,6 +494,8 @@ class Platform:
 
     def _token(self, form: dict) -> Response:
         self.token_requests.append({k: v for k, v in form.items() if k != "client_assertion"})
+        if self.token_outage:
+            return self._refuse(503, "the token endpoint is down (an outage the test made)")
         if form.get("grant_type") != "client_credentials":
             return self._refuse(400, "grant_type is not client_credentials")
         if form.get("client_assertion_type") != ASSERTION_TYPE:

@@ -13,6 +13,7 @@ No assertion depends on the machine's speed: the gradebook is polled with a guar
 from __future__ import annotations
 
 import re
+import time
 from urllib.parse import urlsplit
 
 import httpx
@@ -28,6 +29,8 @@ TEACHER = User("lms-teacher-1", "Tamara", "Sidorova")
 MALLORY = User("lms-mallory-0", "Mallory", "Forger")    # every launch of hers is bad
 RAY = User("lms-ray-5", "Ray", "Replay")                 # launches once, then replays it
 GLEB = User("lms-gleb-2", "Gleb", "Orlov")
+HANA = User("lms-hana-12", "Hana", "Sato")
+GUARD_SECONDS = 120          # waits are guards against a hang, never timings
 QUESTIONS = [q["id"] for q in SPEC["questions"]]
 
 
@@ -250,6 +253,30 @@ def test_a_link_without_a_line_item_gets_one_from_the_tool(servers, platform, st
                                     lineitem=lambda: next(iter(set(platform.lineitems) - before), None))
     made = platform.lineitems[score["lineitem"]]
     assert made["scoreMaximum"] == len(QUESTIONS) and assignment in (made.get("tag"), made.get("resourceId"))
+
+
+def test_a_grade_the_lms_could_not_take_is_posted_when_it_is_back(servers, platform, story):
+    """The platform's token endpoint down: the student's answer is accepted all the same, the score waits with
+    the reason (the administrator's list), and reaches the gradebook on the tool's own retry once the LMS is back."""
+    browser, page = learner_launch(platform, story, HANA)
+    assert page.status_code == 200, fail_message(servers, page)
+    variant = my_variant(servers, story, browser)
+    refused_before = platform.refusals.count("the token endpoint is down (an outage the test made)")
+    platform.token_outage = True
+    try:
+        assert submit(servers, story, browser, QUESTIONS[0], right_answer(variant, QUESTIONS[0]))["right"]
+        admin = {"Authorization": f"Bearer {ADMIN_TOKEN}"}
+        deadline = time.monotonic() + GUARD_SECONDS
+        while not any("503" in (p.get("last_error") or "") for p in httpx.get(
+                f"{servers[0].url}{API}/lti/platforms", headers=admin).json().get("pending_scores", [])):
+            assert time.monotonic() < deadline, f"no failed passback listed; platform refused {platform.refusals}"
+            time.sleep(0.2)
+        assert platform.refusals.count("the token endpoint is down (an outage the test made)") > refused_before
+        assert platform.grade(HANA, story["lineitem"]) is None
+    finally:
+        platform.token_outage = False
+    score = platform.wait_for_grade(HANA, lambda s: s.get("scoreGiven") == 1, story["lineitem"])
+    assert score["userId"] == HANA.id
 
 
 def test_a_scene_link_opens_the_scene(servers, platform):
