@@ -24,8 +24,10 @@ thread, started by `Platform.running()` and stopped when its block ends):
 `login_params` to POST) for the tool's `/lti/login`. The id_token is made when the tool comes back to `/auth`, with
 every claim of LTI 1.3 core, AGS, NRPS and (for LtiDeepLinkingRequest) deep_linking_settings. A launch may be made
 bad on purpose: `forged=True` (signed by another key under the platform's kid), `expired=True` (exp in the past),
-`claims={...}` (any claim replaced, e.g. aud, iss, deployment id); `Browser.replay()` posts the last id_token and
-state again.
+`claims={...}` (any claim replaced, e.g. aud, iss, deployment id), `iss`/`client_id`/`deployment_id` (the login
+initiation's); `Browser.replay(id_token, state, url)` posts a launch's id_token and state again. `token_outage`
+makes the token endpoint answer 503 (the LMS down). Resource links come from deep linking or `add_link` (set up by
+hand); the gradebook is read with `grade` / `wait_for_grade` (polling, with a guard against a hang only).
 
 `Browser` follows a launch as a browser does with httpx (login → 302 to /auth → the auto-submitted form → POST to
 the tool → the final page), keeping its cookies (one per user). `register(app_url, admin_token)` registers the
@@ -35,13 +37,11 @@ from __future__ import annotations
 
 import html
 import itertools
-import json
 import re
 import secrets
 import socket
 import threading
 import time
-import uuid
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from html.parser import HTMLParser
@@ -725,13 +725,3 @@ def page_text(response: httpx.Response) -> str:
     text = re.sub(r"(?is)<(script|style)\b.*?</\1>", " ", response.text)
     return html.unescape(re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", text))).strip()
 
-
-def decode_unverified(token: str) -> dict:
-    """The claims of a JWT without checking it (to look at what was sent)."""
-    import base64
-    payload = token.split(".")[1]
-    return json.loads(base64.urlsafe_b64decode(payload + "=" * (-len(payload) % 4)))
-
-
-def new_id() -> str:
-    return uuid.uuid4().hex

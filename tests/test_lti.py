@@ -12,7 +12,6 @@ No assertion depends on the machine's speed: the gradebook is polled with a guar
 """
 from __future__ import annotations
 
-import re
 import time
 from urllib.parse import urlsplit
 
@@ -20,7 +19,7 @@ import httpx
 import pytest
 
 from lti_app import ADMIN_TOKEN, API, SPEC, app_servers, make_assignment, results, right_answer
-from lti_platform import (AGS, DL, INSTRUCTOR, LEARNER, LTI, Browser, Platform, User, forms_of, page_text)
+from lti_platform import DL, INSTRUCTOR, LEARNER, LTI, Browser, Platform, User, forms_of, page_text
 
 ANNA = User("lms-anna-7", "Anna", "Kovalenko")
 BORIS = User("lms-boris-8", "Boris", "Lebedev")

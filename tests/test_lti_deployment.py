@@ -12,7 +12,6 @@ from __future__ import annotations
 import re
 from urllib.parse import urlsplit
 
-import httpx
 import pytest
 
 from lti_app import ADMIN_TOKEN, API, SPEC, app_servers, make_assignment, right_answer
