@@ -344,3 +344,28 @@ def test_viscous_moment_approximation_3_34_beside_the_exact_3_33():
     assert errors[0] / errors[1] > 25
     for lang in LANGS:
         assert "(3.34)" in scene_json("resisting_moment")["panels"]["viscous"]["title"][lang]
+
+
+# --- Chaika–Vasylenko §1: the friction coefficients and the wear-resistance classes ------------------------
+
+def test_section_1_reference_tables_as_printed_and_on_their_scenes():
+    """The four ranges of f as printed (the first backwards, 0.8 … 0.6, with its note); ten classes 0…IX, class k
+    the decade 10^(k−13)…10^(k−12), whose groups' upper ends are the printed 10⁻¹²…10⁻⁷ (0–V), 10⁻⁶…10⁻⁵
+    (VI–VII), 10⁻⁴…10⁻³ (VIII–IX); each shown (written into its panel) on the wear and friction scenes."""
+    from server.lessons.scenes import scenes
+    every = scenes()
+    friction = every["forces-friction"].panels["friction_coefficients"]
+    assert [row["f"] for row in friction["rows"]] == [[0.8, 0.6], [0.4, 0.8], [0.1, 0.6], [0.0001, 0.02]]
+    assert all(friction["rows"][0]["note"][lang] for lang in LANGS)
+    classes = every["wear"].panels["wear_classes"]["rows"]
+    assert [row["class"] for row in classes] == ["0", "I", "II", "III", "IV", "V", "VI", "VII", "VIII", "IX"]
+    for k, row in enumerate(classes):
+        assert row["I_s"] == pytest.approx([10.0 ** (k - 13), 10.0 ** (k - 12)], rel=1e-12)
+    groups = [row["group"]["en"] for row in classes]
+    assert len(set(groups[:6])) == len(set(groups[6:8])) == len(set(groups[8:])) == 1 == len({groups[5]} & {groups[6]}) + 1
+    uppers = [row["I_s"][1] for row in classes]
+    assert (uppers[0], uppers[5], uppers[6], uppers[7], uppers[8], uppers[9]) == pytest.approx(
+        (1e-12, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3), rel=1e-12)
+    for scene, variant, panel in (("wear", "engine", "wear_classes"), ("wear", "table_4_3", "wear_classes"),
+                                  ("forces-friction", "central", "friction_coefficients")):
+        assert panel in next(v for v in every[scene].variants if v.id == variant).panels

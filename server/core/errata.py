@@ -188,8 +188,8 @@ def lecture10_rig(group_i: float, inertia_ii: np.ndarray, driving_work: float, o
 
     ``inertia_ii`` on the flywheel cycle's closed uniform grid (its last point is the first again)."""
     mean_ii = float(np.mean(np.asarray(inertia_ii)[:-1]))
-    return [row("groups_reversed", "lecture10", "1.3: I_v^пр, I_c^пр", group_i, mean_ii, "kgm2"),
-            row("driving_ordinate", "lecture10", "(L17): y_Fд", -driving_work, driving_work, "J"),
-            row("phi_scale", "lecture10", "§10.6: μ_φ", DIAGRAM_BASE_MM / (2 * np.pi), DIAGRAM_BASE_MM / (2 * np.pi),
+    return [row("groups_reversed", "lecture10", "§10.4, 1.3", group_i, mean_ii, "kgm2"),
+            row("driving_ordinate", "lecture10", "(L17)", -driving_work, driving_work, "J"),
+            row("phi_scale", "lecture10", "§10.6", DIAGRAM_BASE_MM / (2 * np.pi), DIAGRAM_BASE_MM / (2 * np.pi),
                 "mm_rad", printed_unit="mm_rad_as_pressure"),
-            row("omega_unit", "lecture10", "ω₁ср", omega_mean, omega_mean, "rad_s", printed_unit="rad_s2")]
+            row("omega_unit", "lecture10", "§10.5", omega_mean, omega_mean, "rad_s", printed_unit="rad_s2")]

@@ -45,7 +45,7 @@ def resolved_scene(raw: dict, where: str, shared: dict[str, dict], presets: dict
                    tables: dict[str, dict] | None = None) -> dict:
     """The scene ``raw`` (read from the file ``where``) with every "extends", "use", "preset" and table picker
     resolved (``presets``: content/mechanisms/*.json by name; ``tables``: content/tables/*.json, tables.py)."""
-    from .tables import with_table_pickers
+    from .tables import with_reference_tables, with_table_pickers
     variants = raw.get("variants", [])
     by_id = {}
     for index, variant in enumerate(variants):
@@ -57,7 +57,8 @@ def resolved_scene(raw: dict, where: str, shared: dict[str, dict], presets: dict
     resolved = [copy.deepcopy(with_table_pickers(_with_example(_with_preset(_with_shared_sliders(
         _inherited(v, by_id, where, ()), where, shared), where, presets or {}), where, presets or {}), where,
         tables or {})) for v in variants]                   # each its own objects: inherited parts are not shared
-    return copy.deepcopy(raw | {"variants": []}) | {"variants": resolved}
+    panels = {"panels": with_reference_tables(raw["panels"], where, tables or {})} if "panels" in raw else {}
+    return copy.deepcopy(raw | {"variants": []} | panels) | {"variants": resolved}
 
 
 def _inherited(variant: dict, by_id: dict[str, dict], where: str, chain: tuple[str, ...]) -> dict:

@@ -6,6 +6,10 @@ the request path ``param`` to the row's ``value``, labelled with the row's label
 ``default``; the reference's own keys (an ``id``) replace the picker's.  A table, picker or row that does not
 exist, or two rows of one picker with the same value (the list could not tell them apart), is refused with
 the scene file and the variant named.
+
+A panel ``{"kind": "reference_table", "table": "<name>"}`` shows the table's ``reference`` (its title, note,
+columns and rows, read on the page without an answer): its parts are copied into the panel, the panel's own keys
+kept.
 """
 from __future__ import annotations
 
@@ -38,3 +42,20 @@ def _picker(entry, where: str, tables: dict[str, dict]):
               "option_labels": [row["label"] for row in rows], "default": table["rows"][picker["default"]]["value"],
               "display": "select"}
     return toggle | {key: value for key, value in entry.items() if key not in ("table", "picker")}
+
+
+def with_reference_tables(panels, where: str, tables: dict[str, dict]):
+    """The scene's panels with each reference_table panel's table written in (module docstring)."""
+    from .scene_files import ContentError
+    if not isinstance(panels, dict):
+        return panels
+    written = {}
+    for name, panel in panels.items():
+        if isinstance(panel, dict) and panel.get("kind") == "reference_table":
+            reference = (tables.get(panel.get("table")) or {}).get("reference")
+            if reference is None:
+                raise ContentError(f"{where}: panel {name}: content/tables has no reference table "
+                                   f"{panel.get('table')!r}")
+            panel = reference | panel
+        written[name] = panel
+    return written
