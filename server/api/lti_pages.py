@@ -58,7 +58,9 @@ def page(request: Request, template: str, lang: str | None, status: int = 200, *
 
 def refused_page(request: Request, status: int, code: str, reason: str, lang: str | None = None,
                  origins: set[str] = frozenset()) -> HTMLResponse:
-    response = page(request, "lti_error.html", lang, status, code=code, reason=reason)
+    """A refusal page: what to do in the reader's language (the launch's, else ?lang=), the reason, the code."""
+    response = page(request, "lti_error.html", lang or request.query_params.get("lang"), status, code=code,
+                    reason=reason)
     return framed_by(response, set(origins))
 
 
