@@ -369,3 +369,38 @@ def test_section_1_reference_tables_as_printed_and_on_their_scenes():
     for scene, variant, panel in (("wear", "engine", "wear_classes"), ("wear", "table_4_3", "wear_classes"),
                                   ("forces-friction", "central", "friction_coefficients")):
         assert panel in next(v for v in every[scene].variants if v.id == variant).panels
+
+
+# --- Chaika–Vasylenko Table 4.4 row by row, N_c and a₂…a₄ ------------------------------------------------
+
+def test_table_4_4_rows_are_what_the_wear_sums(book_wear):
+    """Our integrands of each row, summed by the book's trapezoid over the 13 rows (Δφ = π/6) and multiplied by
+    the answer's a, are the answer's wear at the book's points (rel 1e-12); the printed columns summed the same
+    way give the notes' 3148 (bush) and 3166 (pin) (±1) and the piston's 76.1 µm with the printed a₃п = 0.261."""
+    rows = book_wear["table_4_4"]
+    assert [r["phi"] for r in rows] == pytest.approx(list(range(0, 361, 30)), abs=1e-9)
+    a = {r["quantity"]: r["value"] for r in book_wear["book_coefficients"]}
+    step = np.pi / 6
+    trapezoid = lambda column: step * (sum(r[column] for r in rows) - (rows[0][column] + rows[-1][column]) / 2)
+    points = book_wear["points"]
+    assert a["a_2"] * trapezoid("bush") == pytest.approx(points["bush_23"], rel=1e-12)
+    assert a["a_3"] * trapezoid("pin") == pytest.approx(points["pin_23"], rel=1e-12)
+    assert a["a_{3p}"] * trapezoid("piston") == pytest.approx(points["piston"], rel=1e-12)
+    assert trapezoid("bush_printed") == pytest.approx(3148, abs=1)
+    assert trapezoid("pin_printed") == pytest.approx(3166, abs=1)
+    assert 0.261 * trapezoid("piston_printed") == pytest.approx(76.1, abs=0.05)
+
+
+def test_cycles_and_coefficients_printed_beside_ours(book_wear):
+    """N_c = 60·2400·1000 = 1.44·10⁸ as printed; a by (4.13), (4.17), (4.18) from the answer's k by hand; the
+    printed a₂ = 0.042, a₃ = 0.025, a₃п = 0.261, a₄ = 0.454 beside them."""
+    rows = {r["quantity"]: r for r in book_wear["book_coefficients"]}
+    assert rows["N_c"]["value"] == rows["N_c"]["printed"] == pytest.approx(1.44e8, rel=1e-12)
+    k, n = book_wear["coefficients"], 1.44e8
+    assert rows["a_2"]["value"] == pytest.approx(2e6 * k["bush"] * n / (np.pi * 0.025), rel=1e-12)
+    assert rows["a_3"]["value"] == pytest.approx(2e6 * k["pin"] * n / (np.pi * 0.025), rel=1e-12)
+    assert rows["a_{3p}"]["value"] == pytest.approx(4e6 * k["piston"] * n / (np.pi * 0.076 * 0.075), rel=1e-12)
+    assert rows["a_4"]["value"] == pytest.approx(4e6 * k["cylinder"] * n / (np.pi * 0.076 * 0.075), rel=1e-12)
+    assert [rows[q]["printed"] for q in ("a_2", "a_3", "a_{3p}", "a_4")] == [0.042, 0.025, 0.261, 0.454]
+    variant = next(v for v in scene_json("wear")["variants"] if v["id"] == "table_4_3")
+    assert {"table_4_4", "book_coefficients"} <= set(variant["panels"])

@@ -51,6 +51,18 @@ PRINTED_K = {"pin": 0.68e-17, "bush": 1.14e-17, "cylinder": 1.41e-17}
 BOOK_PARTS = {"pin_diameter": 0.02, "pin_length": 0.025, "piston_diameter": 0.075, "piston_length": 0.076,
               "I_pin": 0.6e-10, "I_bush": 1.0e-10, "I_piston": 2e-12, "I_cylinder": 3e-12}     # §4.3's data
 BOOK_CYCLES = 1.44e8                    # §4.3 step 0: N_c = 60·n₁·t = 60·2400·1000
+# §4.3 Table 4.4 as printed, β₂ = β₃ = 190°: per row of Table 4.3 ψ₂ (deg), R₂₃|u₂₁|cos ψ₂, ψ₃ (deg),
+# R₂₃|u₂₁|cos ψ₃ and R₃₄|V_qB| (N·m/rad; the left side's values printed in parentheses are None here: 0 for the
+# right side)
+TABLE_4_4 = {
+    "psi2": [200.0, 190.6, 177.8, 174.5, 176.2, 182.1, 200.0, 230.2, 240.1, 238.0, 242.5, 252.6, 199.4],
+    "bush": [311, 2252, 836, 0, 596, 756, 688, 194, 147, 0, 48, 185, 311],
+    "psi3": [189.6, 173.4, -10.0, 196.9, 117.7, 129.9, -165.4, -186.5, -180.5, -178.0, -179.8, -175.2, 167.0],
+    "pin": [326, 2277, 760, 0, 536, 716, 721, 204, 132, 0, 60, 314, 326],
+    "piston": [0, 83, 164, 155, 94, 61, 0, 0, 0, 0, 0, 0, 0],
+}
+# §4.3 steps 5 and 0 as printed: a₂ (bush), a₃ (pin), a₃п (piston), a₄ (cylinder), N_c
+PRINTED_COEFFICIENTS = {"N_c": 1.44e8, "a_2": 0.042, "a_3": 0.025, "a_{3p}": 0.261, "a_4": 0.454}
 
 
 def book_sum(phi: np.ndarray, values: np.ndarray) -> np.ndarray:
@@ -200,6 +212,8 @@ def book_table_report(parts: dict, cycles: float) -> dict:
                             for key in ("bush_23", "pin_23", "piston", "cylinder")]
     result["book"] = BOOK_WEAR
     result["figure_4_7"] = figure_maxima(result)
+    result["table_4_4"] = table_4_4_rows(c, k, cycles, parts)
+    result["book_coefficients"] = book_coefficients(k, cycles, parts)
     result["errata"] = [
         *errata.wear_example(*BOOK_LINKS),
         errata.row("wear_mean_reaction", "chaika_vasylenko", "(4.23), §4.3", PRINTED_MEAN_R23,
@@ -214,6 +228,41 @@ def book_table_report(parts: dict, cycles: float) -> dict:
                    points["cylinder"], "um"),
     ]
     return result
+
+
+def table_4_4_rows(c: dict, k: dict, cycles: float, parts: dict) -> list[dict]:
+    """Table 4.4 row by row beside ours: at each row of Table 4.3 the printed ψ₂, ψ₃ and integrands, and the
+    integrands the app sums for the same points (β = 190° of the book, 170° counter-clockwise here):
+    R₂₃|u₂₁|·max(cos ψ, 0) of the bush (the rod's reaction on it, turning with the rod, φ₂) and of the pin (the
+    pressed side against the force), and R₃₄|V_qB| of the piston's right side (R₃₄ > 0)."""
+    beta = np.radians(360.0 - BOOK_POINT)
+    force, rate = c["R23_magnitude"], np.abs(c["u21"])
+
+    def integrand(reaction, link_angle, journal):
+        gamma = np.arctan2(reaction[:, 1], reaction[:, 0]) + (np.pi if journal else 0.0)
+        return force * rate * np.maximum(np.cos(link_angle + beta - gamma), 0.0)
+
+    bush = integrand(-c["R23"], c["phi2"], False)
+    pin = integrand(c["R23"], np.zeros_like(c["phi"]), True)
+    piston = np.where(c["R34"] > 0, np.abs(c["R34"] * c["V_qB"]), 0.0)
+    return [{"phi": float(np.degrees(c["phi"][i])), "psi2_printed": TABLE_4_4["psi2"][i],
+             "bush_printed": float(TABLE_4_4["bush"][i]), "bush": float(bush[i]),
+             "psi3_printed": TABLE_4_4["psi3"][i], "pin_printed": float(TABLE_4_4["pin"][i]), "pin": float(pin[i]),
+             "piston_printed": float(TABLE_4_4["piston"][i]), "piston": float(piston[i])}
+            for i in range(c["phi"].size)]
+
+
+def book_coefficients(k: dict, cycles: float, parts: dict) -> list[dict]:
+    """N_c and the coefficients in front of the integrals, printed (§4.3) beside the answer's: a = 2·10⁶ k N_c/(π l_z)
+    of the bush and pin (4.13), a = 10⁶ (4/π) k N_c/(l_p d_p) of the piston and cylinder (4.17), (4.18)."""
+    revolute = 2e6 * cycles / (np.pi * parts["pin_length"])
+    slider = 1e6 * (4 / np.pi) * cycles / (parts["piston_length"] * parts["piston_diameter"])
+    ours = {"N_c": cycles, "a_2": revolute * k["bush"], "a_3": revolute * k["pin"],
+            "a_{3p}": slider * k["piston"], "a_4": slider * k["cylinder"]}
+    elements = {"N_c": None, "a_2": "bush_23", "a_3": "pin_23", "a_{3p}": "piston", "a_4": "cylinder"}
+    equations = {"N_c": "60·n·t", "a_2": "(4.13)", "a_3": "(4.13)", "a_{3p}": "(4.17)", "a_4": "(4.18)"}
+    return [{"quantity": key, **({"element": elements[key]} if elements[key] else {}), "equation": equations[key],
+             "printed": PRINTED_COEFFICIENTS[key], "value": float(ours[key])} for key in PRINTED_COEFFICIENTS]
 
 
 def figure_maxima(result: dict) -> list[dict]:
