@@ -47,6 +47,7 @@ from ..core.kinetostatics.wear_table import book_table_report, constant_load_row
 from ..core.kinetostatics.virtual_work import reduced_moment
 from ..core.mechanisms import MECHANISMS, GeometryError, Notice
 from ..core.mechanisms.general import GENERAL_OUTPUTS, GeneralMechanism, compute_general
+from ..core.mechanisms.general import change_point_mask, change_point_notices, undefined_at
 from ..core.structure.masses import MassModel
 from ..core.structure.estimate import estimated_dynamics
 from .messages import localise_numerics, localise_study, special_text, translate
@@ -374,7 +375,10 @@ def _general_forces(request: ForcesRequest, lang: str, reads: Reads = None, prev
     result = analyse_groups(mechanism, masses, np.linspace(0.0, 2 * np.pi, request.n), request.loads.omega,
                             request.loads.epsilon, tolerance, pairs, **({} if table else {"shown": 1}),
                             budget=FORCES_BUDGET_S)
-    return answer(group_forces_report(result, request.free_body_phi), result.notices, lang)
+    report = group_forces_report(result, request.free_body_phi)
+    singular = change_point_mask(mechanism.linkage, np.linspace(0.0, 2 * np.pi, request.n))
+    report["reduced_moment"] = undefined_at(np.asarray(report["reduced_moment"], float), singular)
+    return answer(report, [*change_point_notices(mechanism.linkage), *result.notices], lang)
 
 
 def wear(request: WearRequest, lang: str) -> Answer:
@@ -385,6 +389,8 @@ def wear(request: WearRequest, lang: str) -> Answer:
     cycles = 60 * request.rpm * request.hours
     if request.reactions == "table_4_3":
         return answer(book_table_report(parts, cycles), [], lang)
+    if request.mechanism == "general":
+        return _general_wear(request, parts, cycles, lang)
     if request.reactions != "kinetostatics":
         table = request.reactions
         return answer(table_report(table.columns(), parts, cycles, (table.l1, table.l2)), [], lang)
@@ -397,6 +403,18 @@ def wear(request: WearRequest, lang: str) -> Answer:
     result["coefficients"] = k
     result["constant_load"] = constant_load_rows(mean_r23, parts, k, cycles, stroke)
     return answer(result, analysis.notices, lang)
+
+
+def _general_wear(request: WearRequest, parts: dict, cycles: float, lang: str) -> Answer:
+    """Every pair's wear of a general mechanism (core/kinetostatics/general_wear.py) at the request's speed."""
+    from ..core.kinetostatics.general_wear import general_wear
+    mechanism = GeneralMechanism(request.linkage.model_dump(exclude_none=True))
+    mechanism.require_crank("the kinetostatics")
+    masses = request.masses.model() if request.masses is not None else MassModel()
+    pairs = {name: PairFriction(p.f, p.r, p.beta) for name, p in request.pair_friction.items()}
+    result = analyse_groups(mechanism, masses, np.linspace(0.0, 2 * np.pi, request.n), request.rpm * np.pi / 30,
+                            request.loads.epsilon, request.tolerance, pairs, shown=1, budget=FORCES_BUDGET_S)
+    return answer(general_wear(result, parts, cycles), result.notices, lang)
 
 
 def efficiency_chain(request: ChainRequest, lang: str) -> Answer:

@@ -75,8 +75,8 @@ class ForcesRequest(BaseModel):
         if general:
             if self.params:
                 raise ValueError("a general mechanism takes its lengths in `linkage`, not in `params`")
-            if "wear" in self.outputs:
-                raise ValueError("outputs: wear is computed for the crank-slider only")
+            if "wear" in self.outputs and not isinstance(self, WearPartsInput):
+                raise ValueError("outputs: wear is asked of /wear")
             kept = {"omega", "epsilon"}
             loads = self.loads.model_dump(exclude_defaults=True)
             if set(loads) - kept or self.pairs.model_dump(exclude_defaults=True):
@@ -105,7 +105,8 @@ class WearPartsInput(BaseModel):
 class WearRequest(ForcesRequest, WearPartsInput):
     """The wear of Chaika–Vasylenko §4 for a crank-slider (by default the two-stroke engine of §4.3)."""
 
-    mechanism: Literal["slider_crank"] = Field("slider_crank", description="the crank-slider (Chaika–Vasylenko §4)")
+    mechanism: Literal["slider_crank", "general"] = Field("slider_crank", description=(
+        "the crank-slider (Chaika–Vasylenko §4), or 'general': every pair of the mechanism in `linkage`"))
 
     rpm: float = Field(2400, ge=1, le=1e5, description="crank speed, rev/min (one cycle per revolution)")
     reactions: Literal["kinetostatics", "table_4_3"] | TabulatedReactions = Field(
@@ -119,6 +120,9 @@ class WearRequest(ForcesRequest, WearPartsInput):
         given = sorted(self.model_fields_set & {"params", "loads", "pairs", "n", "tolerance", *fixed})
         if self.reactions != "kinetostatics" and given:
             raise ValueError(f"reactions from a table take no kinetostatics: leave out {', '.join(given)}")
+        if self.mechanism == "general" and self.reactions != "kinetostatics":
+            raise ValueError("a general mechanism's reactions come from its kinetostatics (reactions: "
+                             "'kinetostatics')")
         return self
 
 
