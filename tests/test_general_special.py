@@ -110,11 +110,13 @@ def test_rocker_extremes():
         assert abs(phi - phi_ref) <= 1e-9 and abs(theta - theta_ref) <= 1e-12
 
 
-def test_a_dead_position_on_the_grid_is_said_in_words():
-    """A change-point four-bar (l₀ + l₁ = l₂ + l₃): at φ = π all joints line up (μ = 0)."""
+def test_a_change_point_on_the_grid_is_said_in_words():
+    """A change-point four-bar (l₀ + l₁ = l₂ + l₃): at φ = π all joints line up (μ = 0) while the crank passes,
+    a change point, not a dead position (the continuing motion's analogs stay bounded; test_change_points.py);
+    it is passed once a turn, which is said too."""
     from server.core.mechanisms.general import compute_general
     linkage = copy.deepcopy(presets()["four_bar"]["linkage"])
     linkage["groups"][0]["lengths"] = [0.3, 0.2]
     result = compute_general(linkage, ["angles_d1"], n=361)
-    assert [n.code for n in result.warnings] == ["group_dead_position"]
-    assert result.warnings[0].context["phi"] == 180.0 and result.warnings[0].context["mu"] < 1e-5
+    assert [n.code for n in result.warnings] == ["group_change_point", "group_change_point_odd"]
+    assert result.warnings[0].context["phi"] == 180.0

@@ -30,7 +30,7 @@ import numpy as np
 
 from ..mechanisms import GeometryError, Notice
 from ..mechanisms.base import angle_ranges, ranges_text
-from ..mechanisms.general import GeneralMechanism, assembly_notices
+from ..mechanisms.general import GeneralMechanism, assembly_notices, change_point_mask, undefined_at
 from ..kinetostatics.groups.analysis import setup, with_friction
 from ..kinetostatics.groups.dry_moment import TOLERANCE as DRY_TOLERANCE, dry_moment, proved_signs, rough
 from ..kinetostatics.groups.friction import PairFriction
@@ -147,7 +147,8 @@ class GeneralMachine(Machine):
                self.rough_flags())
         found = _smooth_tables.kept(key, lambda: (
             build_table(self.smooth_columns, self.kinematic_kinks(), SMOOTH_TOLERANCE, SMOOTH_ORDERS),
-            assembly_notices(compose(self.linkage.linkage, np.linspace(0.0, TURN, KINK_SCAN + 1)))))
+            assembly_notices(compose(self.linkage.linkage, np.linspace(0.0, TURN, KINK_SCAN + 1)),
+                             self.linkage.linkage, integrated=True)))
         self.memo["smooth_table"] = found
         return found
 
@@ -364,6 +365,7 @@ def general_machine(linkage: dict, masses: MassModel, inertias: Inertias, load: 
     mech = GeneralMechanism(linkage)
     mech.require_crank("the dynamics")
     turn = mech.require_full_turn()
+    mech.require_even_change_points()
     masses = with_strokes(mech, masses)
     check_model(turn, masses)
     known = {name for name, _ in pair_motions(mech, compose(mech.linkage, np.zeros(1)))}
@@ -471,13 +473,16 @@ def reduction(machine: GeneralMachine, n: int, omega: float, outputs: list[str])
         raise GeometryError("outputs", "the textbook iterates friction forces for the sine mechanism and the "
                             "crank-slider only", "no_iteration")
     phi = np.linspace(0.0, TURN, n)
-    comp = compose(machine.linkage.linkage, phi)
-    result, notices = {"phi": phi}, assembly_notices(comp)
+    linkage = machine.linkage.linkage
+    comp = compose(linkage, phi)            # the limit at change points: the means integrate the continuing motion
+    result, notices = {"phi": phi}, assembly_notices(comp, linkage, integrated=True)
+    singular = change_point_mask(linkage, phi)
     if "inertia" in outputs:
         inertia = reduced_inertia(machine.linkage, comp, machine.masses, machine.constant_inertia)
         mean = float(np.mean(inertia.J[:-1]))
-        result["inertia"] = {"J": inertia.J, "dJ": inertia.dJ, "mean": mean, "variable": inertia.J - mean,
-                             "parts": inertia.parts, "slopes": inertia.slopes, "approximation": None}
+        result["inertia"] = undefined_at({"J": inertia.J, "dJ": inertia.dJ, "variable": inertia.J - mean,
+                                          "parts": inertia.parts, "slopes": inertia.slopes}, singular) \
+            | {"mean": mean, "approximation": None}
     if "resisting" in outputs:
         started = time.perf_counter()
         loads = reduced_loads(machine.linkage, comp, machine.masses)
@@ -499,7 +504,8 @@ def reduction(machine: GeneralMachine, n: int, omega: float, outputs: list[str])
             numerics.message_code = "no_mean_moment"
         result["numerics"] = numerics.as_dict()
         locked = ~np.isfinite(dry)
-        result["resisting"] = {"total": useful + dry + viscous, "useful": useful, "dry": dry, "viscous": viscous,
-                               "parts": loads.parts, "mean": mean, "means": {"consistent": mean}, "friction_angle": 0.0,
-                               "self_locking": phi[locked] if locked.any() else None}
+        result["resisting"] = undefined_at({"total": useful + dry + viscous, "useful": useful, "dry": dry,
+                                            "viscous": viscous, "parts": loads.parts}, singular) \
+            | {"mean": mean, "means": {"consistent": mean}, "friction_angle": 0.0,
+               "self_locking": phi[locked] if locked.any() else None}
     return result, notices

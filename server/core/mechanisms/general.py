@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..structure import change_points
 from ..structure.analysis import analyse, group_name
 from ..structure.compose import Composition, compose
 from ..structure.plans import plans
@@ -107,6 +108,17 @@ class GeneralMechanism(Mechanism):
                                     "no_full_turn", group=k)
         return turn
 
+    def require_even_change_points(self) -> None:
+        """Refuse a machine one of whose groups passes an odd number of change points a turn: continued through
+        them it comes back to its start only after two turns, and a machine's cycle is one turn."""
+        points = change_points.find(self.linkage)
+        for k, group in enumerate(self.linkage.groups):
+            if change_points.per_turn(points, k) % 2:
+                name = group_name(group.kind, list(group.links))
+                raise GeometryError(f"linkage.groups.{k}", f"group {name} passes an odd number of change points a "
+                                    "turn: continued through them the linkage comes back to its start only after "
+                                    "two turns, and a machine's cycle is one turn", "change_point_odd", group=name)
+
     def turn(self, points: int = CHECK_POINTS) -> np.ndarray:
         """The generalised coordinate over its cycle: the crank's turn, or the input slider's travel (m)."""
         return np.linspace(*self.linkage.coordinate_range, points)
@@ -135,8 +147,8 @@ class GeneralMechanism(Mechanism):
 
     def evaluate(self, p, phi, wanted) -> Evaluation:
         """The outputs at φ from the groups composed in order of attachment (Chaika–Vasylenko §3.1), the
-        analogs z′, z″ as in Eremyants §2.1."""
-        return self.outputs_of(compose(self.linkage, phi), wanted)
+        analogs z′, z″ as in Eremyants §2.1; undefined (NaN) near a change point."""
+        return self.outputs_of(compose(self.linkage, phi, "null"), wanted)
 
     def outputs_of(self, comp: Composition, wanted) -> Evaluation:
         """The wanted array outputs of a composed linkage."""
@@ -170,7 +182,7 @@ class GeneralMechanism(Mechanism):
         return sorted(special_positions(turn, self.linkage) + reversals(self.linkage, turn), key=lambda sp: sp.phi)
 
     def plan(self, phi: float, omega1: float, epsilon1: float) -> dict:
-        return plans(compose(self.linkage, np.array([float(phi)])), omega1, epsilon1)
+        return plans(compose(self.linkage, np.array([float(phi)]), "null"), omega1, epsilon1)
 
     def describe(self, p):
         return self.structure
@@ -234,17 +246,105 @@ def runs(mask: np.ndarray) -> list[tuple[int, int]]:
     return [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2])]
 
 
-def assembly_notices(comp: Composition, linkage: Linkage | None = None) -> list[Notice]:
+def change_point_runs(comp: Composition, k: int, points: tuple) -> np.ndarray:
+    """Grid points of group k that belong to a change point: the run of |sin| < SMALL_TRANSMISSION around each
+    of its change points (periodic over the turn).  The links come in line there because of the change
+    point, where the continuing motion's analogs stay bounded: no dead position."""
+    phi, det = comp.phi, np.abs(comp.groups[k].determinant)
+    mask = np.zeros(phi.size, bool)
+    small = ~(det >= SMALL_TRANSMISSION)
+    periodic = phi.size > 2 and abs(phi[-1] - phi[0] - change_points.TURN) < 1e-9
+    for cp in points:
+        if cp.group != k:
+            continue
+        distance = np.abs(change_points.offset(phi, cp.phi))
+        start = int(np.argmin(distance))
+        if distance[start] > 2 * (phi[1] - phi[0] if phi.size > 1 else 0.0) + cp.half_width:
+            continue
+        for step in (1, -1):
+            i = start
+            for _ in range(phi.size):
+                if not small[i] and i != start:
+                    break
+                mask[i] = True
+                i += step
+                if not 0 <= i < phi.size:
+                    if not periodic:
+                        break
+                    i = 1 if step == 1 else phi.size - 2
+                    mask[0 if step == -1 else -1] = True
+    if periodic:
+        mask[0] = mask[-1] = mask[0] | mask[-1]
+    return mask
+
+
+def change_point_mask(linkage: Linkage, phi: np.ndarray) -> np.ndarray:
+    """Where any group is within a change point's neighbourhood (its analogs undefined)."""
+    points = change_points.find(linkage)
+    masks = [m for k in range(len(linkage.groups)) if (m := change_points.near(points, k, phi)) is not None]
+    return np.any(masks, axis=0) if masks else np.zeros(np.shape(phi), bool)
+
+
+def undefined_at(value, mask: np.ndarray):
+    """Every array over the angles in ``value`` (nested in dicts) NaN where ``mask`` holds: the values at points
+    near a change point, sent as null."""
+    if not mask.any():
+        return value
+    if isinstance(value, dict):
+        return {key: undefined_at(v, mask) for key, v in value.items()}
+    if isinstance(value, np.ndarray) and value.shape[-1:] == mask.shape:
+        return np.where(mask, np.nan, value)
+    return value
+
+
+def change_point_notices(linkage: Linkage, integrated: bool = False) -> list[Notice]:
+    """A sentence per change point (which group, at which angle, its neighbourhood, the branch kept), one per
+    group that passes an odd number a turn, and (``integrated``: an answer with means over the cycle or the
+    motion) one saying that those integrate the continuing motion's limit there."""
+    notes = []
+    points = change_points.find(linkage)
+    for cp in points:
+        group = linkage.groups[cp.group]
+        name = group_name(group.kind, list(group.links))
+        after = float(group.branch * change_points.signs(points, cp.group, np.array([cp.phi + cp.half_width]))[0])
+        notes.append(Notice("group_change_point",
+                            f"Group {name} {group.kind} passes a change point at φ = {np.degrees(cp.phi):.1f}°: its "
+                            "loop lies flat (its links in line), two assemblies meet there and the crank's motion "
+                            "does not determine the velocities; the analogs within "
+                            f"±{np.degrees(cp.half_width):.3f}° of it are undefined (null). The linkage is kept "
+                            "moving as it was drawn: past the change point its assembly is σ = "
+                            f"{'+1' if after > 0 else '−1'} (angles continuous, velocities bounded; a parallelogram stays a "
+                            "parallelogram).",
+                            {"group": name, "index": cp.group, "kind": group.kind,
+                             "phi": float(np.degrees(cp.phi)), "width": float(np.degrees(cp.half_width)),
+                             "sigma": after}))
+    for k, group in enumerate(linkage.groups):
+        if change_points.per_turn(points, k) % 2:
+            name = group_name(group.kind, list(group.links))
+            notes.append(Notice("group_change_point_odd",
+                                f"Group {name} {group.kind} passes an odd number of change points a turn: kept on "
+                                "its continuing motion it comes back to its start after two turns only (the second "
+                                "on the other assembly); the values shown are the first turn's.",
+                                {"group": name, "index": k, "kind": group.kind}))
+    if integrated and points:
+        notes.append(Notice("change_point_limit", "At the change points the values at single angles are not sent "
+                            "(null); the means over the cycle, the motion and the flywheel integrate the continuing "
+                            "motion's limit there (the change point itself is a single angle)."))
+    return notes
+
+
+def assembly_notices(comp: Composition, linkage: Linkage | None = None, integrated: bool = False) -> list[Notice]:
     """A sentence per group that cannot be assembled at some of the angles (which group, which angles: with the
     ``linkage`` given, between its exact limits of assembly, else between grid points), or that comes close to a
     dead position: |sin| of the angle between its links (the transmission angle μ for RRR) below sin 10°, the
     threshold the four-bar module warns at; the analogs grow as 1/sin μ there.  The group is named as in the
     structural formula ("II₁(2,3)": solved_name)."""
-    notes = []
+    notes = change_point_notices(linkage, integrated) if linkage is not None else []
     limits = assembly_limits(linkage, comp) if linkage is not None else {}
+    points = change_points.find(linkage) if linkage is not None else ()
     for k, group in enumerate(comp.groups):
         name = solved_name(group)
-        det = np.abs(np.where(group.closes, group.determinant, np.nan))
+        det = np.abs(np.where(group.closes & ~change_point_runs(comp, k, points), group.determinant, np.nan))
         if np.isfinite(det).any() and np.nanmin(det) < SMALL_TRANSMISSION:
             worst = int(np.nanargmin(det))
             mu, at = float(np.degrees(np.arcsin(min(det[worst], 1.0)))), float(np.degrees(comp.phi[worst]))
@@ -266,6 +366,12 @@ def special_positions(comp: Composition, linkage: Linkage) -> list[GroupSpecial]
     determinant changes sign or is smallest (dead position: the group's links in line, the analogs unbounded)."""
     out = []
     phi = comp.phi
+    points = change_points.find(linkage)
+    for cp in points:
+        group = linkage.groups[cp.group]
+        out.append(GroupSpecial("change_point", cp.phi, f"group {cp.group} ({group.kind}): change point, its loop flat "
+                                "while the crank passes; the assembly continued through it", None, cp.group, group.kind,
+                                name=group_name(group.kind, list(group.links))))
     for (k, edge), at in sorted(assembly_limits(linkage, comp).items()):
         group = comp.groups[k]
         out.append(GroupSpecial("limit_of_assembly", at, f"group {k} ({group.kind}): limit of assembly", None, k,
@@ -273,7 +379,7 @@ def special_positions(comp: Composition, linkage: Linkage) -> list[GroupSpecial]
     for k, group in enumerate(comp.groups):
         name = solved_name(group)
         closes = group.closes
-        det = np.where(closes, group.determinant, np.nan)
+        det = np.where(closes & ~change_point_runs(comp, k, points), group.determinant, np.nan)
         if np.isfinite(det).any():
             worst = int(np.nanargmin(np.abs(det)))
             out.append(GroupSpecial("smallest_determinant", float(phi[worst]),
@@ -294,12 +400,14 @@ def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[Group
     φ ← φ − q′/q″ (quadratic: four steps take the grid's 0.5° to round-off)."""
     found = []
     slider = isinstance(linkage.crank, SliderInput)
+    size = max(float(np.max(np.abs(point.z))) for point in turn.joints.values())
     for k, group in enumerate(turn.groups):
         quantities = [(f"link {link}", "links", link) for link in group.links] + \
                      [(f"slide {name}", "slides", name) for name in group.slides]
         for label, table, key in quantities:
+            scale = 1.0 if table == "links" else size         # θ′ against the crank's 1, s′ against the linkage
             found += [((k, group.kind), label, table, key, start)
-                      for start in sign_changes(turn.phi, analogs(turn, table, key)[1], not slider)]
+                      for start in sign_changes(turn.phi, analogs(turn, table, key)[1], not slider, scale)]
     if not found:
         return []
     phi = np.array([f[4] for f in found])
@@ -317,12 +425,13 @@ def reversals(linkage: Linkage, turn: Composition, steps: int = 4) -> list[Group
             for i, ((k, kind), label, table, key, _) in enumerate(found)]
 
 
-def sign_changes(phi: np.ndarray, d1: np.ndarray, periodic: bool = True) -> list[float]:
+def sign_changes(phi: np.ndarray, d1: np.ndarray, periodic: bool = True, scale: float = 0.0) -> list[float]:
     """Starting values where d1 changes sign over one turn (periodic: the grid's ends are the same angle) or
     over an input slider's travel (not periodic: its ends are the travel's ends): between two grid points by
-    linear interpolation, or at a grid point where it is zero up to round-off."""
+    linear interpolation, or at a grid point where it is zero up to round-off (1e-12 of its largest value, and
+    1e-9 of ``scale``: a coupler that only translates, θ′ = 0 up to round-off, never reverses)."""
     d, h = (d1[:-1] if periodic else d1), phi[1] - phi[0]
-    tiny = 1e-12 * np.nanmax(np.abs(d), initial=0.0)
+    tiny = max(1e-12 * np.nanmax(np.abs(d), initial=0.0), 1e-9 * scale)
     sign = np.where(np.abs(d) <= tiny, 0.0, np.sign(d))
     after, before = np.roll(sign, -1), np.roll(sign, 1)
     if not periodic:
@@ -358,7 +467,7 @@ def compute_general(linkage: dict, outputs: list[str], phi: np.ndarray | None = 
         if n is None or not 2 <= n <= MAX_POINTS:
             raise GeometryError("n", f"give between 2 and {MAX_POINTS} points")
         phi = mech.turn(n)
-    comp = compose(mech.linkage, phi)
+    comp = compose(mech.linkage, phi, "null")
     mech.check_closure(comp)
     start, end = mech.linkage.coordinate_range
     result = KinematicsResult("general", {}, end - start, phi)

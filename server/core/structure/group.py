@@ -65,6 +65,33 @@ class GroupSolution:
     determinant: np.ndarray                   # Jacobian determinant / its scale: 0 at a dead position
     plan: Callable[[], Plan]
     undetermined: np.ndarray | None = None    # angles where the closure leaves a link's angle free (RPR, B ≡ D)
+    margins: dict | None = None               # {edge: (f, f′)}: gap to the edge of closure (change_points.py)
+
+
+@dataclass(frozen=True)
+class Singular:
+    """How a group is solved near its change points (change_points.py): ``flip`` multiplies its σ (the
+    assembly continued through each), ``near`` marks the neighbourhoods (the loop's radicand there is taken
+    ≥ 0: the flattened loop, whatever the round-off), and ``fill`` gives the analogs there: a function of a
+    pair (x′, x″) returning the limit of the continuing motion, or None for undefined (NaN)."""
+
+    flip: np.ndarray | float = 1.0
+    near: np.ndarray | None = None
+    fill: Callable | None = None
+
+    def radicand(self, value: np.ndarray) -> np.ndarray:
+        return value if self.near is None else np.where(self.near, np.maximum(value, 0.0), value)
+
+    def analogs(self, *pairs):
+        """Each pair (x′, x″) of the group's analogs, the limit or NaN within the neighbourhoods."""
+        if self.near is None or not np.any(self.near):
+            return pairs
+        if self.fill is not None:
+            return tuple(self.fill(d1, d2) for d1, d2 in pairs)
+        return tuple((np.where(self.near, np.nan, d1), np.where(self.near, np.nan, d2)) for d1, d2 in pairs)
+
+
+REGULAR = Singular()
 
 
 def carried(origin: Point, angle: Angle, z: np.ndarray) -> Point:

@@ -19,25 +19,28 @@ from __future__ import annotations
 
 import numpy as np
 
-from .group import GroupSolution, Plan, Slide, carried, chains, rotation, sliding
+from .group import REGULAR, GroupSolution, Plan, Singular, Slide, carried, chains, rotation, sliding
 from .state import Angle, Point, solve_pair
 
 
 def solve(b: Point, d: Point, offset: float, branch: int, names: tuple[str, str, str],
-          links: tuple[int, int]) -> GroupSolution:
-    """Lever angle and block slide from B, D; ``names`` = (B, D, slide name); links (block i, lever j)."""
+          links: tuple[int, int], singular: Singular = REGULAR) -> GroupSolution:
+    """Lever angle and block slide from B, D; ``names`` = (B, D, slide name); links (block i, lever j);
+    ``singular``: σ continued through the change points and the analogs near them (group.Singular)."""
     diag = b.z - d.z
     size = max(float(np.max(np.abs(b.z), initial=0.0)), float(np.max(np.abs(d.z), initial=0.0)))
     undetermined = np.abs(diag) <= 1e-9 * size if offset == 0 else np.zeros(diag.shape, bool)
     diag = np.where(undetermined, np.nan, diag)
-    radicand = np.abs(diag) ** 2 - offset**2
+    radicand = singular.radicand(np.abs(diag) ** 2 - offset**2)
     closes = (radicand >= 0) | undetermined
-    s = branch * np.sqrt(np.where(closes, radicand, np.nan))
+    s = branch * singular.flip * np.sqrt(np.where(closes, radicand, np.nan))
     arm = s + 1j * offset
     e_j = np.exp(1j * (np.angle(diag) - np.angle(arm)))
     col_s, col_t = e_j, 1j * arm * e_j
-    s1, w1 = solve_pair(col_s, col_t, b.d1 - d.d1)
-    s2, w2 = solve_pair(col_s, col_t, b.d2 - d.d2 - 2j * s1 * w1 * e_j + w1**2 * arm * e_j)
+    with np.errstate(over="ignore", invalid="ignore"):
+        s1, w1 = solve_pair(col_s, col_t, b.d1 - d.d1)
+        s2, w2 = solve_pair(col_s, col_t, b.d2 - d.d2 - 2j * s1 * w1 * e_j + w1**2 * arm * e_j)
+    (s1, s2), (w1, w2) = singular.analogs((s1, s2), (w1, w2))
     lever = Angle(np.angle(e_j), w1, w2)
     slide = Slide(s, s1, s2)
     nb, nd, name = names
@@ -50,5 +53,8 @@ def solve(b: Point, d: Point, offset: float, branch: int, names: tuple[str, str,
         return Plan([vel_b, vel_d], [acc_b, acc_d], {on_lever: carried(d, lever, b.z)})
     with np.errstate(divide="ignore", invalid="ignore"):
         det = np.where(undetermined, 0.0, s / np.abs(arm))
+        length = np.abs(diag)
+        margins = None if offset == 0 else {
+            "slot": ((length - abs(offset)) / abs(offset), (np.conj(diag) * (b.d1 - d.d1)).real / length / abs(offset))}
     return GroupSolution("RPR", {}, {links[0]: (b, lever), links[1]: (d, lever)}, {name: slide}, closes, det, plan,
-                         undetermined)
+                         undetermined, margins)

@@ -13,25 +13,29 @@ from __future__ import annotations
 
 import numpy as np
 
-from .group import GroupSolution, Plan, Slide, carried, chains, rotation, sliding
+from .group import REGULAR, GroupSolution, Plan, Singular, Slide, carried, chains, rotation, sliding
 from .state import Angle, Guide, Point, solve_pair
 
 
 def solve(b: Point, guide: Guide, length: float, branch: int,
-          names: tuple[str, str, str], links: tuple[int, int]) -> GroupSolution:
-    """C from B and the guide; ``names`` = (B, C, guide's name); link i = BC (rod), link j = slider at C."""
+          names: tuple[str, str, str], links: tuple[int, int], singular: Singular = REGULAR) -> GroupSolution:
+    """C from B and the guide; ``names`` = (B, C, guide's name); link i = BC (rod), link j = slider at C;
+    ``singular``: σ continued through the change points and the analogs near them (group.Singular)."""
     p, g = guide.point, guide.angle
     u = g.unit()
     rel = (b.z - p.z) * np.conj(u)
-    radicand = length**2 - rel.imag**2
+    radicand = singular.radicand(length**2 - rel.imag**2)
     closes = radicand >= 0
-    s = rel.real + branch * np.sqrt(np.where(closes, radicand, np.nan))
+    s = rel.real + branch * singular.flip * np.sqrt(np.where(closes, radicand, np.nan))
+    rate = ((b.d1 - p.d1) * np.conj(u) - 1j * g.d1 * rel).imag          # h′, h = Im(rel) B's distance off the guide
     c_z = p.z + s * u
     e_i = (c_z - b.z) / length
     du, ddu = 1j * g.d1 * u, (1j * g.d2 - g.d1**2) * u
     col_s, col_i = u, -1j * length * e_i
-    s1, w1 = solve_pair(col_s, col_i, b.d1 - p.d1 - s * du)
-    s2, w2 = solve_pair(col_s, col_i, b.d2 - p.d2 - 2 * s1 * du - s * ddu - length * w1**2 * e_i)
+    with np.errstate(over="ignore", invalid="ignore"):
+        s1, w1 = solve_pair(col_s, col_i, b.d1 - p.d1 - s * du)
+        s2, w2 = solve_pair(col_s, col_i, b.d2 - p.d2 - 2 * s1 * du - s * ddu - length * w1**2 * e_i)
+    (s1, s2), (w1, w2) = singular.analogs((s1, s2), (w1, w2))
     ang_i = Angle(np.angle(e_i), w1, w2)
     slide = Slide(s, s1, s2)
     c = carried(b, ang_i, c_z)
@@ -44,4 +48,5 @@ def solve(b: Point, guide: Guide, length: float, branch: int,
         vel_g, acc_g = chains(nc, under, on_guide.lower(), [sliding(on_slider, on_guide, slide, u, g)])
         return Plan([vel_b, vel_g], [acc_b, acc_g])
     return GroupSolution("RRP", {nc: c}, {links[0]: (b, ang_i), links[1]: (c, g)}, {f"{nc}/{ng}": slide},
-                         closes, np.cos(ang_i.th - g.th), plan)
+                         closes, np.cos(ang_i.th - g.th), plan,
+                         margins={"rod": ((length - np.abs(rel.imag)) / length, -np.sign(rel.imag) * rate / length)})
