@@ -124,7 +124,8 @@ def test_a_launch_state_is_taken_once_across_servers(stores):
     assert sorted(taken, key=str) == [None, {"kind": "student"}]
     second.lti_put("ticket:old", {"kind": "student"}, time.time() - 1)      # expired: never given
     assert first.lti_get("ticket:old", time.time()) is None and first.lti_take("ticket:old", time.time()) is None
-    assert first.lti_forget_expired(time.time()) == 0                        # taken already
+    second.lti_put("state:never-used", {"nonce": "n"}, time.time() - 1)      # a login never launched
+    assert first.lti_forget_expired(time.time()) == 1 and second.lti_forget_expired(time.time()) == 0
 
 
 def login(store, state: str, nonce: str) -> None:

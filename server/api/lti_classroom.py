@@ -27,6 +27,7 @@ from .assignment_store import store
 TEACHER_COOKIE = "mdl_lti_teacher"
 TEACHER_SECONDS = 8 * 3600        # an instructor's session: a working day
 TICKET_SECONDS = 300              # "Open in a new window": used once, within five minutes
+SWEEP_S = 600                     # expired launch states are removed at most this often per process
 RETRY_FLOOR_S = 5.0               # a waiting grade is tried again no sooner than this
 AGS_CLAIM = "https://purl.imsglobal.org/spec/lti-ags/claim/endpoint"
 CONTEXT_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/context"
@@ -92,6 +93,22 @@ def fill_roster(record: AssignmentRecord, resolved: Plan, platform: PlatformReco
         store().lti_link_learner(LearnerRecord(platform.id, sub, record.id, student.key, context, None))
         outcome["added"] += 1
     return outcome
+
+
+_swept = {"at": 0.0}
+
+
+def sweep_expired() -> None:
+    """Remove expired launch states, tickets and sessions from the database, at most every SWEEP_S per process
+    (called on each login: the table grows only with launches). Never raises."""
+    now = time.time()
+    if now - _swept["at"] < SWEEP_S:
+        return
+    _swept["at"] = now
+    try:
+        store().lti_forget_expired(now)
+    except Exception:                                    # noqa: BLE001 - the next sweep tries again
+        log.exception("removing expired LTI launch states failed")
 
 
 # an instructor's session, and the tickets that carry a launch to a new window

@@ -127,6 +127,7 @@ async def login(request: Request):
 
 
 def _login(request: Request, params: dict[str, str]):
+    lti_classroom.sweep_expired()
     oidc = lti_adapters.login(request, params, store())
     try:
         return oidc.pass_params_to_launch({"target": params.get("target_link_uri") or ""}).redirect(
