@@ -404,3 +404,37 @@ def test_cycles_and_coefficients_printed_beside_ours(book_wear):
     assert [rows[q]["printed"] for q in ("a_2", "a_3", "a_{3p}", "a_4")] == [0.042, 0.025, 0.261, 0.454]
     variant = next(v for v in scene_json("wear")["variants"] if v["id"] == "table_4_3")
     assert {"table_4_4", "book_coefficients"} <= set(variant["panels"])
+
+
+# --- Drakunov–Tuleshova: the four-bar's Grashof class on its page ----------------------------------------------
+
+@pytest.mark.parametrize("lengths, cls, relation, shortest", [
+    ((1.0, 0.3, 1.0, 0.8), "crank_rocker", "<", "l_1"),          # the scene's linkage: 1.3 < 1.8
+    ((0.3, 1.0, 1.0, 0.8), "double_crank", "<", "l_0"),
+    ((1.0, 0.8, 0.3, 1.0), "double_rocker", "<", "l_2"),
+    ((4.0, 1.0, 3.0, 2.0), "change_point_linkage", "=", "l_1"),  # Eremyants' scheme 3: 1 + 4 = 3 + 2
+    ((1.0, 0.9, 0.3, 0.35), "non_grashof", ">", "l_2"),
+])
+def test_grashof_row_by_hand(lengths, cls, relation, shortest):
+    from server.core.mechanisms.four_bar import grashof_row
+    row = grashof_row(*lengths)
+    ordered = sorted(lengths)
+    assert (row["class"], row["relation"], row["shortest"]) == (cls, relation, shortest)
+    assert row["s_plus_l"] == pytest.approx(ordered[0] + ordered[3]) and row["p_plus_q"] == pytest.approx(
+        ordered[1] + ordered[2])
+
+
+def test_elastic_four_bar_page_shows_the_grashof_row():
+    from server.api.answers import compute
+    from server.lessons.requests import scene_request
+    from server.lessons.scenes import scenes
+    scene = scenes()["elastic-four-bar"]
+    variant = scene.variants[0]
+    assert "grashof" in variant.panels
+    (row,) = compute("elastic", scene_request(scene, variant))["assemblies"]["grashof"]
+    assert row == {"class": "crank_rocker", "s_plus_l": pytest.approx(1.3), "relation": "<",
+                   "p_plus_q": pytest.approx(1.8), "shortest": "l_1"}
+    for lang in LANGS:
+        words = json.loads((CONTENT / "i18n" / f"{lang}.json").read_text("utf-8"))
+        assert all(key in words for key in ("crank_rocker", "double_crank", "double_rocker", "change_point_linkage",
+                                            "non_grashof"))

@@ -38,3 +38,19 @@ def test_sources_numbers_beside_ours(browser_page, scene, variant, panel, expect
     assert "NaN" not in page.inner_text("body")
     screenshot(page, f"sources_{scene}_{lang}")
     assert page.problems == []
+
+
+@pytest.mark.parametrize("lang", ["ru", "en"])
+def test_elastic_four_bar_shows_its_grashof_class(browser_page, lang):
+    """Drakunov–Tuleshova's four-bar: the class in words and the inequality's numbers, 1,3 < 1,8."""
+    page = browser_page
+    page.goto(f"/scenes/elastic-four-bar?lang={lang}")
+    panel = "#panel-grashof"
+    page.wait_for_selector(f"{panel}:not([hidden])", timeout=60000)
+    page.wait_for_function("sel => /\\d/.test(document.querySelector(sel)?.innerText ?? '')", arg=panel)
+    text = page.inner_text(panel)
+    assert ("кривошипно-коромысловый" if lang == "ru" else "crank-rocker") in text
+    assert ("1,3" if lang == "ru" else "1.3") in text and ("1,8" if lang == "ru" else "1.8") in text and "<" in text
+    assert "crank_rocker" not in text
+    screenshot(page, f"sources_grashof_{lang}")
+    assert page.problems == []

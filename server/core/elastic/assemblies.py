@@ -39,4 +39,8 @@ def assembly_curves(machine, phi: np.ndarray | None = None) -> dict:
         inertia = reduced_inertia(machine.mechanism, params, inertias, phi)
         stiffness, slope, _ = linkage_stiffness(machine.mechanism, params, machine.compliances, phi)
         answer[name] = dict(zip(CURVES, (inertia.J, inertia.dJ, stiffness, slope)))
+    if machine.mechanism == "four_bar":             # the linkage's Grashof class with its inequality
+        from ..mechanisms.four_bar import grashof_row
+        p = machine.params
+        answer["grashof"] = [grashof_row(p["l0"], p["l1"], p["l2"], p["l3"])]
     return answer

@@ -57,7 +57,7 @@ function quantity(value, item, { t, lang }) {
 /** A cell of a table: numbers with TABLE_DIGITS digits, words as they are (or as the column's `words` name them). */
 function cell(value, lang, column = {}, t = {}) {
   if (absent(value)) return MISSING;
-  if (column.words) return t[`${column.words}${value}`] ?? String(value);
+  if (column.words !== undefined) return t[`${column.words}${value}`] ?? String(value);   // "" : the value is the key
   return typeof value === "number" ? formatQuantity(value, lang, TABLE_DIGITS) : String(value);
 }
 
