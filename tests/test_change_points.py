@@ -211,3 +211,16 @@ def links_variable(estimate: dict) -> float:
     θ₃′ = 1 is constant too, but the lecture's group I holds the crank and rotor only)."""
     links = {row["link"]: row for row in estimate["masses"]["links"]}
     return links[3]["inertia"] + links[3]["mass"] * links[3]["centre"][0] ** 2
+
+
+def test_four_bar_module_parallelogram_names_both_change_points_and_turns_once():
+    """The four-bar module's parallelogram (P₀ = Q₀ = 0): its half-angle branch passes both change points, 0 and
+    180°, and is periodic over one turn; drawn as a parallelogram (assembly −1) u₃₁ = 1, u′₃₁ = 0 throughout."""
+    four_bar = MECHANISMS["four_bar"]
+    params = four_bar.check({"l0": 0.3, "l1": 0.1, "l2": 0.3, "l3": 0.1, "assembly": -1, "limiter": 0})
+    assert four_bar.cycle(params) == pytest.approx(2 * np.pi)
+    points = [round(math.degrees(sp.phi), 9) for sp in four_bar.special_positions(params) if sp.kind == "change_point"]
+    assert points == [0.0, 180.0]
+    ev = four_bar.evaluate(params, np.linspace(0.0, 2 * np.pi, N), set())
+    np.testing.assert_allclose(ev.values["u31"], 1.0, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(ev.values["du31"], 0.0, rtol=0, atol=1e-12)

@@ -149,8 +149,19 @@ class FourBar(Mechanism):
             return np.pi
         return None
 
+    def change_points(self, p) -> list[float]:
+        """Every change point of the turn: both 0 and π when P₀ = Q₀ = 0 (a parallelogram, l₀ = l₂ and l₁ = l₃, or
+        a kite, l₀ = l₃ and l₁ = l₂: all four joints line up at both), else the one of ``change_point``."""
+        p0, q0 = self._p0_q0(p)
+        if p0 == 0.0 and q0 == 0.0:
+            return [0.0, np.pi]
+        cp = self.change_point(p)
+        return [] if cp is None else [cp]
+
     def cycle(self, p):
-        return 4 * np.pi if self.change_point(p) is not None and not p["limiter"] else 2 * np.pi
+        """4π when the rocker passes one change point a turn (it comes back after two); 2π with the limiter, and
+        when it passes two (a parallelogram or kite: its half-angle branch is periodic over one turn)."""
+        return 4 * np.pi if len(self.change_points(p)) == 1 and not p["limiter"] else 2 * np.pi
 
     def jumps(self, p):
         """With a stroke limiter the rocker rebounds at the change point: u₃₁ jumps there (Eremyants Fig. 2.9b)."""
@@ -281,8 +292,7 @@ class FourBar(Mechanism):
         """``extremes``: rocker_extremes(p) if found already (special_positions_many)."""
         cycle = self.cycle(p)
         positions = []
-        cp = self.change_point(p)
-        if cp is not None:
+        for cp in self.change_points(p):
             note = ("stroke limiter: the rocker hits it and rebounds, u₃₁ jumps" if p["limiter"]
                     else "the rocker passes through on the other branch")
             for phi in np.arange(cp, cp + cycle - 1e-9, 2 * np.pi):
