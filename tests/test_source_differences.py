@@ -438,3 +438,19 @@ def test_elastic_four_bar_page_shows_the_grashof_row():
         words = json.loads((CONTENT / "i18n" / f"{lang}.json").read_text("utf-8"))
         assert all(key in words for key in ("crank_rocker", "double_crank", "double_rocker", "change_point_linkage",
                                             "non_grashof"))
+
+
+# --- Lecture 10's "(L…)" numbers explained on the pages that use them ---------------------------------------
+
+@pytest.mark.parametrize("scene, shown", [("flywheel", True), ("induction-motor", True), ("flywheel-analysis", True),
+                                          ("reduced-inertia", True), ("wear", False)])
+def test_pages_with_lecture_numbers_say_they_are_the_apps(scene, shown):
+    from fastapi.testclient import TestClient
+    from server.api.app import app
+    client = TestClient(app)
+    for lang in LANGS:
+        html = client.get(f"/scenes/{scene}?lang={lang}").text
+        assert ('id="lecture-numbering"' in html) == shown, (scene, lang)
+        if shown:
+            words = json.loads((CONTENT / "i18n" / f"{lang}.json").read_text("utf-8"))
+            assert words["lecture10_numbering"].split(" ")[0] in html
