@@ -224,3 +224,24 @@ def test_four_bar_module_parallelogram_names_both_change_points_and_turns_once()
     ev = four_bar.evaluate(params, np.linspace(0.0, 2 * np.pi, N), set())
     np.testing.assert_allclose(ev.values["u31"], 1.0, rtol=0, atol=1e-12)
     np.testing.assert_allclose(ev.values["du31"], 0.0, rtol=0, atol=1e-12)
+
+
+def test_isosceles_crank_slider_moves_on_through_its_change_points(client):
+    """An RRP group: crank = rod = 0.1 m, the guide through the crank's pivot. At φ = 90° and 270° the rod stands
+    across the guide with the slider on the pivot, where the slider could also stay (the other assembly); kept on
+    its motion the slider runs s = 2l₁cos φ (closed form), its analogs null at those two angles only."""
+    linkage = {"frame": {"joints": {"O": [0, 0]}, "guides": {"g": {"through": [0, 0], "angle": 0}}},
+               "input": {"link": 1, "pivot": "O", "joint": "A", "length": 0.1},
+               "groups": [{"kind": "RRP", "links": [2, 3], "outer": ["A"], "guide": "g", "inner": "B",
+                           "length": 0.1, "branch": 1}]}
+    answer = ok(client.post("/api/v1/kinematics?precision=full", json={
+        "mechanism": "general", "linkage": linkage, "n": N, "outputs": ["slides", "slides_d1", "slides_d2"]}))
+    phi = np.array(answer["phi"])
+    s, s1, s2 = (array(answer["outputs"][name]["B/g"]) for name in ("slides", "slides_d1", "slides_d2"))
+    assert np.flatnonzero(np.isnan(s1)).tolist() == [180, 540] == np.flatnonzero(np.isnan(s2)).tolist()
+    np.testing.assert_allclose(s, 0.2 * np.cos(phi), rtol=0, atol=1e-12)
+    fine = ~np.isnan(s1)
+    np.testing.assert_allclose(s1[fine], -0.2 * np.sin(phi[fine]), rtol=0, atol=1e-9)
+    np.testing.assert_allclose(s2[fine], -0.2 * np.cos(phi[fine]), rtol=0, atol=1e-9)
+    said = change_point_warnings(answer["warnings"])
+    assert len(said) == 2 and "φ = 90.0°" in said[0] and "φ = 270.0°" in said[1]
