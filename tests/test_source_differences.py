@@ -454,3 +454,44 @@ def test_pages_with_lecture_numbers_say_they_are_the_apps(scene, shown):
         if shown:
             words = json.loads((CONTENT / "i18n" / f"{lang}.json").read_text("utf-8"))
             assert words["lecture10_numbering"].split(" ")[0] in html
+
+
+# --- Lecture 10: Merzalov's construction on the drawing sheet (L15)–(L24) -------------------------------------
+
+def test_merzalov_sheet_scales_follow_the_lectures_relations(rig_flywheel):
+    """μ_φ = 240/(2π); μ_p = 100 mm/4.4 MPa; μ_F = μ_p/S_п (d_п of the rig's indicator); μ_A = μ_M μ_φ/k₁ (L19);
+    μ_T = 2μ_I/ω² (L20); ΔT_Imax = y_ΔTImax/μ_A and I_I = ΔT_Imax/(ω²[δ]) (L22), which is Merzalov's own I_I
+    (rel 1e-5: the sheet takes the grid's extremes, the study refines them by a parabola); μ_ω = μ_A I_I ω (L24);
+    μ_M, μ_I round (1, 2, 2.5, 4, 5 × 10ᵏ per mm read back) and their diagrams within 80 and 60 mm."""
+    sheet = rig_flywheel["merzalov_sheet"]
+    mu = {r["symbol"]: r["value"] for r in sheet["scales"]}
+    omega, delta = 47.124, 1 / 80
+    assert mu["μ_φ"] == pytest.approx(240 / (2 * np.pi), rel=1e-12)
+    assert mu["μ_p"] == pytest.approx(100 / 4.4, rel=1e-6)              # mm per MPa
+    assert mu["μ_A"] == pytest.approx(mu["μ_M"] * mu["μ_φ"] / mu["k_1"], rel=1e-12)
+    assert mu["μ_T"] == pytest.approx(2 * mu["μ_I"] / omega**2, rel=1e-4)
+    assert mu["ΔT_Imax"] == pytest.approx(mu["y_ΔTImax"] / mu["μ_A"], rel=1e-12)
+    assert mu["I_I"] == pytest.approx(mu["ΔT_Imax"] / (omega**2 * delta), rel=1e-4)
+    merzalov = next(m for m in rig_flywheel["methods"] if m["method"] == "merzalov")
+    assert mu["I_I"] == pytest.approx(merzalov["inertia"], rel=1e-5)
+    assert mu["μ_ω"] == pytest.approx(mu["μ_A"] * merzalov["inertia"] * omega, rel=1e-4)
+    for name in ("μ_M", "μ_I"):
+        per_mm = 1 / mu[name]
+        mantissa = per_mm / 10 ** np.floor(np.log10(per_mm) + 1e-12)
+        assert any(abs(mantissa - m) < 1e-9 for m in (1, 2, 2.5, 4, 5)), (name, per_mm)
+    rows = sheet["ordinates"]
+    assert [r["phi"] for r in rows] == pytest.approx(list(range(0, 361, 30)))
+    assert max(abs(r["y_M"]) for r in rows) <= 80 and max(r["y_I"] for r in rows) <= 60
+    for r in rows:
+        assert r["y_A"] == pytest.approx(r["y_A_d"] + r["y_A_c"], abs=1e-9)
+        assert r["y_TII_star"] == pytest.approx(r["y_I"] * mu["μ_A"] / mu["μ_T"], rel=1e-12)
+    # y_ΔTI = y_A − y*_TII from the initial position (L21)
+    first = rows[0]
+    for r in rows:
+        assert r["y_dTI"] == pytest.approx((r["y_A"] - r["y_TII_star"]) - (first["y_A"] - first["y_TII_star"]),
+                                           abs=1e-6)
+    for lang in LANGS:
+        words = json.loads((CONTENT / "i18n" / f"{lang}.json").read_text("utf-8"))
+        assert all(f"sheet_unit_{r['unit']}" in words for r in sheet["scales"])
+    variant = next(v for v in scene_json("flywheel")["variants"] if v["id"] == "rig")
+    assert {"merzalov_scales", "merzalov_ordinates"} <= set(variant["panels"])

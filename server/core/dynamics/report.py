@@ -11,6 +11,7 @@ from . import flywheel as fw
 from .flywheel_analysis import flywheel_cycle
 from .friction_iteration import friction_iteration
 from .machine import Machine
+from .merzalov_sheet import merzalov_sheet
 from .motion import startup, steady_cycle
 from ..numerics import Numerics
 from .. import errata
@@ -198,6 +199,10 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
                    errata.flywheel_part(required, machine.inertias.J1, group_i_existing - machine.inertias.J1),
                    *errata.lecture10_rig(group_i_existing, cycle.inertia_ii, float(driving[-1]), omega_mean)],
     }
+    motor = machine.motor
+    result["merzalov_sheet"] = merzalov_sheet(
+        phi, np.gradient(driving, phi), driving, work, cycle.inertia_ii, omega_mean, delta, merz["inertia"],
+        (motor.p_max, motor.piston_diameter) if motor.kind == "indicator" else None)
     if with_numerics:
         result["numerics"] = Numerics(
             method="Simpson's rule for A(φ) on a uniform grid; exact inertia by Brent's method on the periodic "
