@@ -28,7 +28,7 @@ import numpy as np
 ROOT = Path.cwd()               # the tree whose families are checked (run from its root; an old worktree too)
 sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
 
-from server.api import family  # noqa: E402
+from server.families import family  # noqa: E402
 from server.api.endpoints import compute_answer  # noqa: E402
 from server.api.routers import family as route  # noqa: E402
 from server.core.dynamics import report  # noqa: E402

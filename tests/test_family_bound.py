@@ -1,4 +1,4 @@
-"""The family's bound against the endpoints' exact answers on every scene (server/api/family.py): for
+"""The family's bound against the endpoints' exact answers on every scene (server/families/family.py): for
 every slider of every variant, at the defaults or with the other sliders at random values (the scene's sliders,
 variant after variant, take the two in turn), the family the page
 asks for (its drawn ``fields``, packed) is interpolated by the contract's rule (linear or cubic by interval)
@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from server.api import family
+from server.families import family
 from server.api.endpoints import compute_answer
 from server.lessons.requests import path_value, scene_request, slider_values
 from server.lessons.scenes import scenes

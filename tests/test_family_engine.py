@@ -1,4 +1,4 @@
-"""The family engine (server/api/family.py, server/api/family_batch.py): the error estimate h²·|f''|/8 from
+"""The family engine (server/families/family.py, server/api/family_batch.py): the error estimate h²·|f''|/8 from
 neighbouring members against functions whose interpolation error is known in closed form, the bound against
 the endpoints' own exact answers at random values on several scenes (a dynamics one among them), the coarse
 stage, the memo of members, and the response cache keeping the stages apart.
@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import family, family_batch, heavy
+from server.api import family_batch, heavy
+from server.families import family
 from server.api.app import app
 from server.api.endpoints import compute_answer
 from server.api.serialise import Answer

@@ -1,5 +1,5 @@
 """A family pruned to what a preview draws ("fields") and packed ("packed": shared arrays once, arrays as integer
-steps in a quantum of at most 1e-4 of their span): server/api/family.py, sections Fields and Packed.
+steps in a quantum of at most 1e-4 of their span): server/families/family.py, sections Fields and Packed.
 
 The accuracy contract is checked against the endpoint itself (a separate POST at the midpoint of intervals,
 at full precision), not against the family's own estimate: at each midpoint every drawn quantity of the
@@ -13,7 +13,7 @@ import numpy as np
 import orjson
 import pytest
 
-from server.api import family
+from server.families import family
 from server.api.serialise import Answer
 from test_family import API, SENT, TOLERANCE, exact, family_body, post_family, strict_json
 from test_family_engine import client  # noqa: F401,F811  the fixture: in-process, no time budgets

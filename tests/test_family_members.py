@@ -21,7 +21,8 @@ import orjson
 import pytest
 from pydantic import ValidationError
 
-from server.api import family, family_batch
+from server.api import family_batch
+from server.families import family
 from server.api.endpoints import compute_answer, compute_answers
 from server.core.dynamics import report
 from server.core.kinematics import compute_kinematics, compute_kinematics_many

@@ -1,4 +1,4 @@
-"""A family's claim where the answer is not smooth in the slider (server/api/family.py, Refinement): a step
+"""A family's claim where the answer is not smooth in the slider (server/families/family.py, Refinement): a step
 between members (an angle found as the argmin on a grid moves node by node as the value changes, a
 staircase), and a corner (|v − c|). Second differences read a step of height J as J/8 on an even spacing and
 J/12 beside an interval twice as wide, and a corner at t from an end as Δs·min(t, h − t)/8 and less; the cubic's
@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from server.api import family
+from server.families import family
 from server.api.serialise import Answer
 from server.lessons.scenes import scenes
 from test_family import SENT, TOLERANCE

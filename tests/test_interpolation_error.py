@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from test_family import family_body
 
-from server.api import family
+from server.families import family
 from server.api.family_batch import member_batch
 from server.core.interpolation_error import CONCENTRATED, PREDICTORS, divided_differences, irregularities
 

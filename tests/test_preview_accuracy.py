@@ -1,4 +1,4 @@
-"""A family's members are computed to the preview's accuracy (server/api/family.py, Preview accuracy;
+"""A family's members are computed to the preview's accuracy (server/families/family.py, Preview accuracy;
 endpoints.Preview): each drawn quantity within PREVIEW = PREVIEW_FRACTION × TOLERANCE of its span of the exact
 answer, decisions (stall, self-locking, refusals) the same, and exact answers untouched by it.
 
@@ -27,7 +27,7 @@ import random
 import numpy as np
 import pytest
 
-from server.api import family
+from server.families import family
 from server.api.endpoints import PREVIEW_AWARE, compute_answer, compute_answers
 from server.api.serialise import serialise
 from server.core.dynamics import report

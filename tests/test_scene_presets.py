@@ -1,6 +1,6 @@
 """A scene's variant names a mechanism preset of content/mechanisms instead of copying its linkage and masses
 (server/lessons/scene_files.py), and a slider may set an item of a list ("masses.forces.0.working") in the
-lesson model (server/lessons/requests.py), in a family's members (server/api/family.py) and on the page
+lesson model (server/lessons/requests.py), in a family's members (server/families/family.py) and on the page
 (tests/browser/test_request_body_parity.py checks the page's twin against the lesson model)."""
 from __future__ import annotations
 
@@ -9,7 +9,8 @@ import json
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import family, heavy
+from server.api import heavy
+from server.families import family
 from server.api.app import app
 from server.lessons.requests import path_value, scene_request, set_path
 from server.lessons.scene_files import ContentError, resolved_scene

@@ -61,7 +61,7 @@ from .schemas_motor import FlywheelAnalysisRequest, MotorCharacteristicRequest
 from .serialise import Answer, serialise
 
 Reads = Collection[str] | None      # the answer's top-level keys a caller reads; None: every one
-# A family member's accuracy (server/api/family.py, PREVIEW): the error allowed as a fraction of each drawn
+# A family member's accuracy (server/families/family.py, PREVIEW): the error allowed as a fraction of each drawn
 # curve's span, where the endpoint's own tolerance would be far tighter than a preview needs; None: the exact
 # answer, computed exactly as without it. Only the family asks for it, and only for PREVIEW_AWARE endpoints.
 Preview = float | None

@@ -29,7 +29,8 @@ from dataclasses import replace
 
 import orjson
 
-from . import family, heavy
+from . import heavy
+from ..families import family
 from .endpoints import BATCHES, compute_answers
 
 MEMO_MEMBERS = 4096

@@ -46,7 +46,7 @@ import orjson
 import pydantic_core
 from pydantic import BaseModel
 
-from . import family
+from ..families import family
 from .endpoints import ENDPOINTS
 from .serialise import PARTIAL_HEADER
 

@@ -14,53 +14,18 @@ them non-finite, and `serialise` checks no other spelling can occur (tests/test_
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 import orjson
 from fastapi.responses import Response
 
+from ..core.answer import POWERS_OF_TEN, Answer, significant  # noqa: F401  (re-exported: the endpoints' Answer)
+
 PLOT_DIGITS = 7
 Precision = Literal["plot", "full"]
 PARTIAL_HEADER = "X-Partial"
-with np.errstate(over="ignore"):
-    POWERS_OF_TEN = 10.0 ** np.arange(400)             # 10ᵏ, exact up to 10²²; past 10³⁰⁸ infinite
 _OPTIONS = orjson.OPT_SERIALIZE_NUMPY
-
-
-@dataclass(frozen=True)
-class Answer:
-    """A computing endpoint's answer before serialisation: the payload (dicts, lists, numbers, numpy arrays)
-    and whether a time or work bound cut the computation short (sent as the header X-Partial: 1; such an
-    answer is not cached, since computing it again may get further)."""
-
-    payload: dict
-    partial: bool = False
-
-
-def significant(x: np.ndarray, digits: int) -> np.ndarray:
-    """x rounded to `digits` significant digits, element-wise; 0, ±inf and NaN unchanged.
-
-    x·10ᵏ is rounded to an integer and scaled back, k = digits − 1 − ⌊log₁₀|x|⌋, with 10^|k| from a table:
-    for k < 0 it divides by 10^|k| rather than multiplying by the inexact 10ᵏ, so while 10^|k| is exact
-    (|k| ≤ 22, i.e. 10⁻¹⁶ ≤ |x| < 10²⁸) the result is the double nearest to the decimal, whose shortest
-    repr is the decimal itself; beyond, the last bit may differ (still rounded, a longer repr)."""
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        exponent = np.log10(np.abs(x))
-        np.floor(exponent, out=exponent)
-        np.subtract(digits - 1, exponent, out=exponent)
-        exponent[~np.isfinite(exponent)] = 0.0            # 0, ±inf, NaN: scaled by 1, left as they are
-        k = np.clip(exponent.astype(np.int64), 1 - POWERS_OF_TEN.size, POWERS_OF_TEN.size - 1)
-        up, down = POWERS_OF_TEN[np.maximum(k, 0)], POWERS_OF_TEN[np.maximum(-k, 0)]
-        rounded = x * up
-        rounded /= down
-        np.round(rounded, out=rounded)
-        rounded /= up
-        rounded *= down
-    lost = ~np.isfinite(rounded)                            # subnormals (10ᵏ overflows): sent as they are
-    rounded[lost] = x[lost]
-    return rounded
 
 
 def _float_arrays(value, found: list) -> None:

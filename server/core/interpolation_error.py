@@ -1,5 +1,5 @@
 """What the second differences of a sampled curve do not see, compiled with numba: the family engine's
-``irregular`` (server/api/family.py, where the measures and their reasons are given) over every element of the
+``irregular`` (server/families/family.py, where the measures and their reasons are given) over every element of the
 members' stacked answers, each element's measures reduced at once to the largest of its leaf; and the divided
 differences of ``family.divided`` likewise.
 

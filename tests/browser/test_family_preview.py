@@ -461,7 +461,7 @@ def test_preview_on_a_phone(family_page, scene, variant, slider, panel, ready):
 
 def test_interpolation_rule_of_the_page(family_page):
     """The page's rule (web/static/js/common/model/family_model.js) against the contract's rule worked by hand, and on a
-    family with cubic intervals against the server's rule (server/api/family.py interpolate_family): a cubic
+    family with cubic intervals against the server's rule (server/families/family.py interpolate_family): a cubic
     through 4 members reproduces x³ exactly, and numbers one of the 4 members lacks (null, another kind of
     object, an array of another length) are linear."""
     page = family_page
@@ -472,7 +472,7 @@ def test_interpolation_rule_of_the_page(family_page):
         {"x": 3.0, "y": [2, 20, 5], "s": "two", "n": [1, 2, 3], "warnings": ["b"], "numerics": {"steps": 20},
          "joints": {"A": [[2, 2], [3, 5]]}, "special": [{"kind": "dead", "phi": 1.0}, {"kind": "min", "phi": 3.0}]},
         None]}
-    from server.api.family import interpolate_family                  # the server checks with the same rule
+    from server.families.family import interpolate_family                  # the server checks with the same rule
     result = page.evaluate("""async ([family, log]) => {
         const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
         const { interpolate } = await import(new URL("../common/model/family_model.js", src));
@@ -677,7 +677,7 @@ def test_the_curve_drawn_during_a_drag_is_the_exact_answer_within_the_tolerance(
     read back through Plotly's axes (its pixels are written to 0.01 px, at most a hundredth of a pixel's worth)."""
     if not takes_stages(app_url):
         pytest.skip("the app has no /api/v1/family of its own")
-    from server.api import family as contract
+    from server.families import family as contract
     page = family_page
     page.goto(f"/scenes/{scene}?lang=en&variant={variant}")
     page.wait_for_selector(f"#panel-{panel} .graph path.js-line", state="attached", timeout=60_000)
@@ -728,11 +728,11 @@ def test_the_curve_drawn_during_a_drag_is_the_exact_answer_within_the_tolerance(
 
 
 def test_the_page_unpacks_a_packed_family_as_the_server_does(family_page, app_url):
-    """family_model.js received() against server/api/family.py unpacked + merged, on a packed family with
+    """family_model.js received() against server/families/family.py unpacked + merged, on a packed family with
     shared arrays, nulls and two-column arrays (the forces' points and reactions)."""
     if not takes_stages(app_url):
         pytest.skip("the app has no /api/v1/family of its own")
-    from server.api import family as contract
+    from server.families import family as contract
     page = family_page
     page.goto("/scenes/forces-friction?lang=en&variant=central")
     page.wait_for_selector("#panel-free_body svg .forces", state="attached", timeout=60_000)

@@ -1,4 +1,4 @@
-"""POST /api/v1/family: a slider's family of answers (server/api/family.py), computed in the heavy process."""
+"""POST /api/v1/family: a slider's family of answers (server/families/family.py), computed in the heavy process."""
 from __future__ import annotations
 
 import math
@@ -8,7 +8,8 @@ from fastapi import APIRouter, Request
 from fastapi.responses import Response
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator
 
-from .. import family, heavy
+from .. import heavy
+from ...families import family
 from ..endpoints import ENDPOINTS
 from ..family_batch import member_batch
 from ..response_cache import compressed
@@ -47,7 +48,7 @@ class FamilyRequest(BaseModel):
     packed: bool = Field(False, description="send the family packed: arrays equal in every member once, in "
                          "`shared`; every float array of a quantity with a span as {exp10: e, order: n, deltas: [...]}, "
                          "the integers round(x/10^e) as differences of order n along the first axis (order 1 keeps "
-                         "null where x is null), 10^e ≤ 1e-4 of the quantity's span (server/api/family.py, Packed)")
+                         "null where x is null), 10^e ≤ 1e-4 of the quantity's span (server/families/family.py, Packed)")
 
     @field_validator("fields")
     @classmethod
@@ -100,7 +101,7 @@ class FamilyResponse(BaseModel):
     values: list[float] = Field(description="the members' slider values, ascending, min and max included")
     orders: list[int] = Field(description="each interval's rule (len(values) − 1 of them): 1 linear between "
                               "its two members, 3 Lagrange's cubic through the 4 members k − 1 … k + 2 (moved "
-                              "inside the range at its ends) for the numbers all 4 hold (server/api/family.py)")
+                              "inside the range at its ends) for the numbers all 4 hold (server/families/family.py)")
     shared: dict | None = Field(None, description="only when `packed`: the arrays equal in every "
                                 "answered member, sent once; each member's answer is `shared` merged with its own, "
                                 "object by object")

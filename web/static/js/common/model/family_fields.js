@@ -1,7 +1,7 @@
 /**
  * What a preview draws: the dotted paths of the answer's leaves that a variant's panels draw while a slider
  * is dragged (plots, polar plots, drawings and their cursors), sent as the family request's "fields". The
- * server prunes every member of the family to them (server/api/family.py): nothing else is rounded, checked
+ * server prunes every member of the family to them (server/families/family.py): nothing else is rounded, checked
  * or sent, and numbers in tables and readouts keep coming from the exact answer. No DOM: bench/ and tests/
  * run this module in Node to send what the page sends.
  *

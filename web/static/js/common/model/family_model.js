@@ -84,7 +84,7 @@ function cubic({ trees, weights }, pick) {
     + weights[2] * pick(trees[2]) + weights[3] * pick(trees[3]);
 }
 
-/** The first of the 4 members whose cubic draws interval k of count members (server/api/family.py, stencils). */
+/** The first of the 4 members whose cubic draws interval k of count members (server/families/family.py, stencils). */
 export function stencilStart(k, count) {
   return Math.min(Math.max(k - 1, 0), Math.max(count - 4, 0));
 }
@@ -139,7 +139,7 @@ export function familyKey(body, paths, fields = []) {
 }
 
 /**
- * A packed array's values (server/api/family.py, Packed): the integers k as differences of its order along the
+ * A packed array's values (server/families/family.py, Packed): the integers k as differences of its order along the
  * first axis, column by column; x = 10^exp10 · k, null where the step is null (order 1 only).
  */
 function unpackedArray({ exp10, order, deltas }) {
