@@ -54,3 +54,17 @@ def test_elastic_four_bar_shows_its_grashof_class(browser_page, lang):
     assert "crank_rocker" not in text
     screenshot(page, f"sources_grashof_{lang}")
     assert page.problems == []
+
+
+def test_flywheel_sheet_tables_in_russian(browser_page):
+    """The drilling rig's Merzalov sheet: the scales in Russian units and the 13 rows of ordinates."""
+    page = browser_page
+    page.goto("/scenes/flywheel?lang=ru&variant=rig")
+    page.wait_for_selector("#panel-merzalov_ordinates:not([hidden])", timeout=60000)
+    page.locator("#panel-merzalov_scales").scroll_into_view_if_needed()
+    scales = page.inner_text("#panel-merzalov_scales")
+    assert "мм/Дж" in scales and "(L19)" in scales and "mm/" not in scales
+    assert page.locator("#panel-merzalov_ordinates tbody tr").count() == 13
+    assert english_in(page.inner_text("body"), "ru") == []
+    screenshot(page, "sources_merzalov_sheet_ru")
+    assert page.problems == []
