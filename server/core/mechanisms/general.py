@@ -306,14 +306,15 @@ def change_point_notices(linkage: Linkage, integrated: bool = False) -> list[Not
     for cp in points:
         group = linkage.groups[cp.group]
         name = group_name(group.kind, list(group.links))
-        after = float(group.branch * change_points.signs(points, cp.group, np.array([cp.phi + cp.half_width]))[0])
+        after = "+1" if group.branch * change_points.signs(points, cp.group, np.array([cp.phi + cp.half_width]))[0] > 0 \
+            else "−1"
         notes.append(Notice("group_change_point",
                             f"Group {name} {group.kind} passes a change point at φ = {np.degrees(cp.phi):.1f}°: its "
                             "loop lies flat (its links in line), two assemblies meet there and the crank's motion "
                             "does not determine the velocities; the analogs within "
                             f"±{np.degrees(cp.half_width):.3f}° of it are undefined (null). The linkage is kept "
                             "moving as it was drawn: past the change point its assembly is σ = "
-                            f"{'+1' if after > 0 else '−1'} (angles continuous, velocities bounded; a parallelogram stays a "
+                            f"{after} (angles continuous, velocities bounded; a parallelogram stays a "
                             "parallelogram).",
                             {"group": name, "index": cp.group, "kind": group.kind,
                              "phi": float(np.degrees(cp.phi)), "width": float(np.degrees(cp.half_width)),
