@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api.answers import compute
+from server.api.endpoints import compute
 from server.api.app import app
 from server.core.dynamics.motors import Motor, table_moment
 

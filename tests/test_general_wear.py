@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api.answers import compute
+from server.api.endpoints import compute
 from server.api.app import app
 from server.lessons.requests import scene_request
 from server.lessons.scenes import scenes

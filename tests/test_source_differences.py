@@ -143,7 +143,7 @@ BOOK_REQUEST = {"reactions": "table_4_3", "I_pin": 6e-11, "I_bush": 1e-10, "I_pi
 
 @pytest.fixture(scope="module")
 def book_wear():
-    from server.api.answers import compute
+    from server.api.endpoints import compute
     return compute("wear", BOOK_REQUEST)
 
 
@@ -186,7 +186,7 @@ def test_wear_scene_shows_figure_4_7_with_the_reason(lang):
 
 @pytest.fixture(scope="module")
 def central_forces():
-    from server.api.answers import compute
+    from server.api.endpoints import compute
     from server.lessons.requests import scene_request
     from server.lessons.scenes import scenes
     scene = scenes()["forces-friction"]
@@ -249,7 +249,7 @@ def test_crank_slider_misprints_corrected_values_are_the_apps_own(central_forces
 def test_parallel_efficiency_as_printed_beside_corrected():
     """(3.40), two branches η = 0.9, 0.8 with A_P = 100, 300 J: corrected (90 + 240)/400 = 0.825, printed
     Σ η_k = 1.7 (by hand); series unchanged."""
-    from server.api.answers import compute
+    from server.api.endpoints import compute
     answer = compute("efficiency-chain", {"efficiencies": [0.9, 0.8], "works": [100, 300]})
     assert answer["parallel"] == pytest.approx(0.825, rel=1e-12)
     (row,) = answer["errata"]
@@ -276,7 +276,7 @@ def test_new_errata_rows_have_their_words_in_three_languages(central_forces):
 
 @pytest.fixture(scope="module")
 def rig_flywheel():
-    from server.api.answers import compute
+    from server.api.endpoints import compute
     from server.lessons.requests import scene_request
     from server.lessons.scenes import scenes
     scene = scenes()["flywheel"]
@@ -318,7 +318,7 @@ def test_viscous_moment_approximation_3_34_beside_the_exact_3_33():
     (3.34) l₁² sin²φ(1 − cos φ/λ)².  Derivation (no number is printed): replacing √(λ² − sin²φ) by λ leaves
     an error O(λ⁻³) relative to l₁² (sin 2φ sin²φ/(4λ³) in u₃₁): checked as the relative difference 0.0118 at
     λ = 3 falling at least 25 times by λ = 10; at φ = 90° both are l₁² exactly (cos φ = 0, sin 2φ = 0)."""
-    from server.api.answers import compute
+    from server.api.endpoints import compute
     from server.lessons.requests import scene_request
     from server.lessons.scenes import scenes
     scene = scenes()["resisting-moment"]
@@ -425,7 +425,7 @@ def test_grashof_row_by_hand(lengths, cls, relation, shortest):
 
 
 def test_elastic_four_bar_page_shows_the_grashof_row():
-    from server.api.answers import compute
+    from server.api.endpoints import compute
     from server.lessons.requests import scene_request
     from server.lessons.scenes import scenes
     scene = scenes()["elastic-four-bar"]
