@@ -5,6 +5,9 @@ admin token no link is made. The lab runs in-process (TestClient) on a data dire
 """
 from __future__ import annotations
 
+import base64
+import hashlib
+import re
 import threading
 import time
 
@@ -17,7 +20,7 @@ from starlette.responses import JSONResponse
 from starlette.routing import Route
 
 from lti_platform import free_port
-from server.api import assignment_store
+from server.classroom import assignment_store
 from server.api.app import create_app
 
 ADMIN = "dyn-admin-" + "y" * 20
@@ -79,6 +82,7 @@ def test_an_lms_registers_the_lab_with_a_single_use_link(lms, lab):
                                    "registration_token": "reg-token-1"})
     assert opened.status_code == 200, opened.text
     assert "org.imsglobal.lti.close" in opened.text and base in opened.headers["content-security-policy"]
+    assert_inline_scripts_allowed(opened)        # a browser runs the close message only if its hash is allowed
     sent = received[-1]
     assert sent["initiate_login_uri"] == "http://testserver/lti/login"
     assert sent["jwks_uri"] == "http://testserver/lti/jwks" and sent["redirect_uris"] == ["http://testserver/lti/launch"]
@@ -101,3 +105,14 @@ def test_a_registration_the_lms_refuses_registers_nothing(lms, lab):
     assert refused.status_code == 422 and "registration_token" in refused.text
     listed = lab.get("/api/v1/lti/platforms", headers={"Authorization": f"Bearer {ADMIN}"}).json()["platforms"]
     assert listed == before
+
+
+def assert_inline_scripts_allowed(page) -> None:
+    """Every inline script of the page has its SHA-256 among the Content-Security-Policy's script sources, as a
+    browser checks it (the text between the tags, byte for byte: an escaped quote changes the hash)."""
+    policy = page.headers["content-security-policy"]
+    scripts = re.findall(r"<script>(.*?)</script>", page.text, flags=re.S)
+    assert scripts
+    for script in scripts:
+        digest = base64.b64encode(hashlib.sha256(script.encode()).digest()).decode()
+        assert f"'sha256-{digest}'" in policy, (script[:120], policy)
