@@ -192,6 +192,8 @@ def test_parallelogram_motion_flywheel_and_forces_agree(client, estimate):
     assert works["driving"] == pytest.approx(works["useful"], rel=1e-8)
     assert np.isfinite(steady["omega"]).all() and steady["omega_mean"] > 0
     fly = ok(client.post("/api/v1/flywheel?precision=full", json={**body, **estimate["flywheel"]}))
+    for said in (steady["warnings"], fly["warnings"]):               # the change points and the limit, said
+        assert len(change_point_warnings(said)) == 2 and any("limit" in w for w in said), said
     assert fly["group_i_existing"] == pytest.approx(inertia - 0.03 - links_variable(estimate), rel=1e-6)
     forces = ok(client.post("/api/v1/forces?precision=full", json={"mechanism": "general", "linkage": PARALLELOGRAM,
                                                     "masses": estimate["masses"], "loads": {"omega": 10.0},

@@ -30,7 +30,8 @@ import numpy as np
 
 from ..mechanisms import GeometryError, Notice
 from ..mechanisms.base import angle_ranges, ranges_text
-from ..mechanisms.general import GeneralMechanism, assembly_notices, change_point_mask, undefined_at
+from ..mechanisms.general import (GeneralMechanism, assembly_notices, change_point_mask, change_point_notices,
+                                  undefined_at)
 from ..kinetostatics.groups.analysis import setup, with_friction
 from ..kinetostatics.groups.dry_moment import TOLERANCE as DRY_TOLERANCE, dry_moment, proved_signs, rough
 from ..kinetostatics.groups.friction import PairFriction
@@ -176,6 +177,10 @@ class GeneralMachine(Machine):
 
     def cycle(self) -> float:
         return max(TURN, self.motor.cycle())
+
+    def linkage_notices(self) -> list[Notice]:
+        """The change points passed (angle, branch kept) and that the motion integrates their limit."""
+        return change_point_notices(self.linkage.linkage, integrated=True)
 
     def jumps(self) -> list[float]:
         return []

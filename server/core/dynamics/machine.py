@@ -103,6 +103,10 @@ class Machine:
     def cycle(self) -> float:
         return max(MECHANISMS[self.mechanism].cycle(self.params), self.motor.cycle())
 
+    def linkage_notices(self) -> list[Notice]:
+        """What the motion and the flywheel say of the linkage itself (a general mechanism's change points)."""
+        return []
+
     def tables(self, phi: np.ndarray) -> Tables:
         """The tables at phi from one evaluation of the mechanism there."""
         kinematics = MECHANISMS[self.mechanism].evaluate(self.params, phi, set())

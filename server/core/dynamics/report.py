@@ -87,7 +87,7 @@ def motion(machine: Machine, outputs: list[str], omega0: float, rtol: float, ome
            balance: bool, max_cycles: int, preview: float | None = None) -> tuple[dict, list[Notice]]:
     """The steady cycle and/or the start-up transient, each with its numerics; ``preview``: a family member's
     accuracy, a fraction of each drawn curve's span (motion.steady_cycle; None: the exact answer)."""
-    result, notices = {}, []
+    result, notices = {}, machine.linkage_notices()
     compiled.warm_up()                      # compiled before the clock starts (once per process)
     deadline = time.perf_counter() + TIME_BUDGET_S
     if "steady" in outputs:
@@ -155,7 +155,7 @@ def flywheel(machine: Machine, omega_mean: float, delta: float, balance: bool, w
     rows = [{"method": m.name, "inertia": m.inertia, "additional": m.inertia - group_i_existing,
              "energy_swing": m.energy_swing, "delta_achieved": fw.achieved_delta(cycle, m.inertia, omega_mean)}
             for m in methods]
-    notices = []
+    notices = machine.linkage_notices()
     required = rows[-1]["inertia"]
     chosen = max(required, group_i_existing)
     if required <= group_i_existing:
