@@ -82,3 +82,19 @@ def test_elastic_models_refuse_the_free_law():
             "motor": table(np.full(NODES.size, 40.0))}
     response = client.post("/api/v1/elastic?lang=en", json=body)
     assert response.status_code == 422
+
+
+def test_the_equation_of_motion_scene_has_a_free_law_variant():
+    """The variant 'free_law' drives the crank-slider by 12 points (20 … 100 … 0 N·m); its steady cycle at
+    ω_m = 30 rad/s: the driving work is the table's trapezoid over the turn, 2π·mean(M_j) = 2π·470/12 J (rel 1e-6:
+    the scene's angles are written to 6 decimals, so their steps differ from 30° by up to 1e-6 rad)."""
+    from server.lessons.requests import scene_request
+    from server.lessons.scenes import scenes
+    scene = scenes()["equation-of-motion"]
+    variant = next(v for v in scene.variants if v.id == "free_law")
+    request = scene_request(scene, variant)
+    assert request["motor"]["kind"] == "table" and len(request["motor"]["table_phi"]) == 12
+    answer = compute("motion", request)
+    assert answer["warnings"] == []
+    assert answer["works"]["driving"] == pytest.approx(2 * np.pi * 470 / 12, rel=1e-6)
+    assert 0 < answer["delta"] < 0.1
