@@ -68,3 +68,14 @@ def test_flywheel_sheet_tables_in_russian(browser_page):
     assert english_in(page.inner_text("body"), "ru") == []
     screenshot(page, "sources_merzalov_sheet_ru")
     assert page.problems == []
+
+
+def test_free_law_variant_draws_its_speed(browser_page):
+    """The equation of motion driven by a free law M_d(φ₁) of 12 points: ω(φ) drawn, no console error."""
+    page = browser_page
+    page.goto("/scenes/equation-of-motion?lang=uk&variant=free_law")
+    page.wait_for_function("() => document.querySelector('#panel-omega_phi .graph')?.data?.length > 0", timeout=60000)
+    assert "NaN" not in page.inner_text("body")
+    assert english_in(page.inner_text("body"), "uk") == []
+    screenshot(page, "sources_free_law_uk")
+    assert page.problems == []
