@@ -13,6 +13,8 @@ from server.lessons.requests import scene_request
 from server.lessons.scenes import scenes
 
 client = TestClient(app)
+from pathlib import Path  # noqa: E402
+REPO = Path(__file__).parents[1]
 
 
 @pytest.fixture(scope="module")
@@ -74,3 +76,16 @@ def test_general_wear_refusals_name_the_field(shaping, change, field):
     response = client.post("/api/v1/wear?lang=en", json=body)
     assert response.status_code == 422
     assert field in response.text
+
+
+def test_the_wear_scene_has_the_shaping_machines_pairs():
+    """The wear scene's variant 'shaping': /wear of the general six-bar, a row for each element, their words in
+    three languages."""
+    scene = scenes()["wear"]
+    variant = next(v for v in scene.variants if v.id == "shaping")
+    assert "pairs_wear" in variant.panels
+    rows = compute("wear", scene_request(scene, variant))["pairs_wear"]
+    assert len(rows) == 14 and all(np.isfinite(r["wear"]) for r in rows)
+    for lang in ("ru", "uk", "en"):
+        words = json.loads((REPO / "content" / "i18n" / f"{lang}.json").read_text("utf-8"))
+        assert {f"pair_element_{r['element']}" for r in rows} <= set(words)

@@ -79,3 +79,16 @@ def test_free_law_variant_draws_its_speed(browser_page):
     assert english_in(page.inner_text("body"), "uk") == []
     screenshot(page, "sources_free_law_uk")
     assert page.problems == []
+
+
+def test_shaping_machine_pairs_wear_in_russian(browser_page):
+    """The wear of every pair of the shaping machine: 14 rows, elements in Russian, no console error."""
+    page = browser_page
+    page.goto("/scenes/wear?lang=ru&variant=shaping")
+    page.wait_for_selector("#panel-pairs_wear:not([hidden])", timeout=60000)
+    assert page.locator("#panel-pairs_wear tbody tr").count() == 14
+    text = page.inner_text("#panel-pairs_wear")
+    assert "цапфа" in text and "втулка" in text and "ползун" in text and "journal" not in text
+    assert english_in(page.inner_text("body"), "ru") == []
+    screenshot(page, "sources_pairs_wear_ru")
+    assert page.problems == []
