@@ -75,7 +75,7 @@ REQUEST_TIMEOUT_S = 60
 DEFAULT_RETRY_AFTER_S = 1.0     # a 429 without a readable Retry-After
 BUDGETED = ("motion", "elastic")                 # endpoints that stop at a wall-clock time budget
 BUDGET_MARKERS = (b"time budget", b"work bound")  # server/core/dynamics/motion.py, server/core/elastic/simulate.py
-CACHE_AT_EXIT = "response cache at exit:"        # server/api/response_cache.py: each worker logs its counters
+CACHE_AT_EXIT = "response cache at exit:"        # server/runtime/response_cache.py: each worker logs its counters
 ELASTIC = "elastic"
 # Targets at 100 students, ms: p95 of exact answers and of families, light and elastic scenes.
 TARGETS_P95_MS = {("exact", "light"): 150, ("exact", "elastic"): 500, ("coarse", "light"): 500,

@@ -41,7 +41,7 @@ ROOT = Path(__file__).resolve().parents[1]
 OLD_COMMIT = "5a15c56"         # before the stacked engine and the cubic rule (an earlier run: d0a7cb5, whole answers)
 DEFAULT_OLD = Path("/tmp/mdl-engine-old")
 HEAVY = ("elastic-", "forces-friction", "flywheel", "equation-of-motion")
-GZIP_LEVEL = 3                  # server/api/response_cache.py: the app's GZip middleware's level
+GZIP_LEVEL = 3                  # server/runtime/response_cache.py: the app's GZip middleware's level
 COLD_RUNS, WARM_RUNS = 2, 3     # the fastest of these runs is kept: the least disturbed by other work
 
 

@@ -100,7 +100,7 @@ def results(base: str, created: dict) -> dict:
 
 def right_answer(variant: dict, question: str, spec: dict = SPEC) -> float:
     """The exact answer to `question` for a student's variant (`GET …/me`), computed here as the server does."""
-    from server.api.answers import correct_answer
+    from server.classroom.answers import correct_answer
     from server.classroom.spec import AssignmentSpec
     from server.classroom.variants import plan
     from server.lessons.scenes import scenes

@@ -11,7 +11,8 @@ from concurrent.futures import ThreadPoolExecutor
 from fastapi.routing import APIRoute
 from fastapi.testclient import TestClient
 
-from server.api.admission import COOKIE, AdmissionMiddleware
+from server.api.endpoints import ENDPOINTS
+from server.runtime.admission import COOKIE, AdmissionMiddleware
 from server.api.app import create_app
 from event_loop import run_to_end
 from tests.test_security import assert_security_headers
@@ -84,7 +85,7 @@ def run(scenario):
 def test_past_the_client_limit_429_with_retry_after_while_another_client_is_admitted():
     async def scenario():
         app = HeldApp()
-        middleware = AdmissionMiddleware(app, per_client=2, per_address=10)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=2, per_address=10)
         held = [Exchange(middleware) for _ in range(2)]
         await settle()
         refused = Exchange(middleware)
@@ -105,7 +106,7 @@ def test_past_the_client_limit_429_with_retry_after_while_another_client_is_admi
 def test_a_place_is_given_back_on_error_and_on_disconnect():
     async def scenario():
         app = HeldApp()
-        middleware = AdmissionMiddleware(app, per_client=1, per_address=10)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=1, per_address=10)
         gone = Exchange(middleware)
         await settle()
         gone.hang_up.set()                                     # the student closed the tab
@@ -127,7 +128,7 @@ def test_a_place_is_given_back_on_error_and_on_disconnect():
 def test_new_ids_on_one_address_count_toward_the_address_cap():
     async def scenario():
         app, time = HeldApp(), FakeTime()
-        middleware = AdmissionMiddleware(app, per_client=2, per_address=3, clock=time.clock, sleep=time.sleep)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=2, per_address=3, clock=time.clock, sleep=time.sleep)
         held = [Exchange(middleware, client_id=ID_A), Exchange(middleware, client_id=ID_A),
                 Exchange(middleware, client_id=ID_B)]
         await settle()
@@ -150,7 +151,7 @@ def test_heavy_requests_have_a_smaller_limit_of_their_own():
     """A client's elastic runs and studies queue for the heavy process: two at most, its light requests still go."""
     async def scenario():
         app = HeldApp()
-        middleware = AdmissionMiddleware(app, per_client=8, per_address=64, per_client_heavy=2)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=64, per_client_heavy=2)
         held = [Exchange(middleware, path=path) for path in ("/api/v1/elastic", "/api/v1/work-precision/motion")]
         await settle()
         third = Exchange(middleware, path="/api/v1/elastic")
@@ -168,7 +169,7 @@ def test_heavy_requests_have_a_smaller_limit_of_their_own():
 def test_only_computing_posts_are_counted():
     async def scenario():
         app = HeldApp()
-        middleware = AdmissionMiddleware(app, per_client=1, per_address=1)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=1, per_address=1)
         held = Exchange(middleware, path="/api/v1/work-precision/elastic")
         others = [Exchange(middleware, path=path) for path in ("/api/v1/assignments", "/api/v1/scenes/x")]
         await settle()
@@ -185,7 +186,7 @@ def test_an_html_page_gives_a_browser_without_one_a_random_http_only_strict_id()
     async def scenario():
         app = HeldApp()
         app.release.set()
-        middleware = AdmissionMiddleware(app)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS)
         first, second = (Exchange(middleware, path="/scenes/x", method="GET", client_id=None) for _ in range(2))
         known = Exchange(middleware, path="/scenes/x", method="GET", client_id=ID_A)
         await asyncio.gather(first.task, second.task, known.task)
@@ -248,7 +249,7 @@ class FakeTime:
 async def one_place_held():
     """A middleware with one place per client on a fake clock, and that place held by a computation."""
     app, time = HeldApp(), FakeTime()
-    middleware = AdmissionMiddleware(app, per_client=1, per_address=10, clock=time.clock, sleep=time.sleep)
+    middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=1, per_address=10, clock=time.clock, sleep=time.sleep)
     held = Exchange(middleware)
     await settle()
     return app, time, middleware, held

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import endpoints, heavy
+from server.api import endpoints
+from server.runtime import heavy
 from server.api.app import create_app
 from server.core.elastic import report as elastic_report
 from server.core.kinetostatics.crank_slider import Loads, Pairs, analyse

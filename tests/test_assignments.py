@@ -22,10 +22,10 @@ import pytest
 from fastapi.testclient import TestClient
 from scipy.optimize import minimize_scalar
 
-from server.api import assignment_store
-from server.api.answers import correct_answer
+from server.classroom import assignment_store
+from server.classroom.answers import correct_answer
 from server.api.app import app
-from server.api.assignments import load
+from server.classroom.assignments import load
 from server.api.routers import assignments as assignments_router
 from server.classroom.store import SQLiteStore
 from server.lessons.requests import scene_request

@@ -13,7 +13,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from server.api.response_cache import CACHED_ENDPOINTS
+from server.api.routers.cache import CACHED_ENDPOINTS
 from server.lessons.scenes import scene_documents
 
 REPO = Path(__file__).resolve().parents[1]

@@ -62,7 +62,8 @@ def test_the_nudged_default_request_misses_the_response_cache_and_changes_one_va
     """k = 0 is the page's default request; k ≠ 0 changes one length or slider value (every path a slider sets)
     by the factor 1 + k·1e-8, which the server's own cache key (the validated request, its floats exact) tells
     apart from every other k."""
-    from server.api.response_cache import _request_models, validated_body
+    from server.api.routers.cache import request_models
+    from server.runtime.response_cache import validated_body
     for scene in scenes().values():
         variant = http_floor.variant_of(scene)
         default = http_floor.nudged_request(scene, variant, 0)
@@ -74,5 +75,5 @@ def test_the_nudged_default_request_misses_the_response_cache_and_changes_one_va
             assert bool(changed) == (k != 0), (scene.id, changed)
             for _, before, after in changed:
                 assert math.isclose(after / before, 1 + k * http_floor.NUDGE, rel_tol=1e-12)
-            keys.add(validated_body(json.dumps(body).encode(), _request_models()[scene.endpoint]))
+            keys.add(validated_body(json.dumps(body).encode(), request_models()[scene.endpoint]))
         assert len(keys) == 6, scene.id

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import heavy
+from server.runtime import heavy
 from server.api.app import app
 from server.api.schemas_dynamics import MassInput
 from server.core.course_project.real_motion import real_motion, resistance

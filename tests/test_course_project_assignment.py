@@ -18,9 +18,10 @@ from urllib.parse import parse_qs, urlsplit
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import answers, assignment_store
+from server.classroom import assignment_store
+from server.classroom import answers
 from server.api.app import app
-from server.api.assignments import load
+from server.classroom.assignments import load
 from server.classroom import turning
 from server.classroom.names import normalise
 from server.core.course_project.positions import full_turn, stroke_positions

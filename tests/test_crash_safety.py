@@ -23,7 +23,7 @@ from pathlib import Path
 import httpx
 import pytest
 
-from server.api.assignment_store import DATABASE_FILE
+from server.classroom.assignment_store import DATABASE_FILE
 
 REPO = Path(__file__).resolve().parents[1]
 SPEC = {"scene": "transfer-functions", "variant": "slider_crank",

@@ -17,7 +17,7 @@ import re
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import assignment_store
+from server.classroom import assignment_store
 from server.api.app import app
 from server.api.csv_export import csv_attachment
 

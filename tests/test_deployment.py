@@ -33,7 +33,7 @@ import httpx
 import pytest
 
 from server.__main__ import uvicorn_options
-from server.api.assignment_store import DATABASE_FILE
+from server.classroom.assignment_store import DATABASE_FILE
 from server.classroom.names import normalise
 from server.classroom.store import SQLiteStore
 from server.classroom.store.postgres import PostgresStore

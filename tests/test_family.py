@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import heavy
+from server.runtime import heavy
 from server.families import family
 from server.api.app import app
 from server.api.endpoints import ENDPOINTS

@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import family_batch, heavy
+from server.api import family_batch
+from server.runtime import heavy
 from server.families import family
 from server.api.app import app
 from server.api.endpoints import compute_answer

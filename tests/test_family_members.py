@@ -228,7 +228,7 @@ def test_members_past_the_deadline_are_not_computed_and_the_known_ones_come_in_o
 def test_a_family_given_up_by_its_client_computes_no_further_chunk(monkeypatch):
     """family_batch: once heavy.stopped() says the client has given the family up (the page aborted it), no
     further chunk is computed; the members before it come back, in order, and stay in the memo."""
-    from server.api import heavy
+    from server.runtime import heavy
     family_batch.MEMO.store.clear()
     family_batch.MEMO.held = 0
     _, _, request, vary = request_and_vary("transfer-functions", "slider_crank", "lambda")

@@ -24,7 +24,7 @@ import psycopg
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import assignment_store
+from server.classroom import assignment_store
 from server.api.app import app
 from server.api.security import SECURITY_HEADERS
 from server.classroom.store import AssignmentRecord, SQLiteStore, StoreUnavailable, StudentRecord

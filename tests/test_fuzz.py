@@ -284,7 +284,7 @@ def test_a_flywheel_study_of_a_machine_that_stalls_without_its_flywheel_draws_no
 def test_an_elastic_work_precision_study_without_a_finished_reference_skips_every_run(client, monkeypatch):
     """Found: a stiff belt (J_motor = 1e-5) whose reference run stopped at the work bound had fewer samples than
     the runs compared with it (shapes could not broadcast); with none at all its scale had no maximum."""
-    from server.api import heavy
+    from server.runtime import heavy
     from server.core import work_precision
     monkeypatch.setattr(heavy, "HEAVY_PROCESSES", 0)           # in this process, where the budget is patched
     monkeypatch.setattr(work_precision, "BUDGET_S", 1e-4)

@@ -14,7 +14,7 @@ from concurrent.futures.process import BrokenProcessPool
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import heavy
+from server.runtime import heavy
 from server.api.app import app
 from server.lessons.scenes import scenes
 from server.lessons.requests import scene_request
@@ -60,7 +60,7 @@ def test_a_heavy_process_has_the_modules_of_its_work_loaded_before_its_first_job
     try:
         for lane in heavy.LANES:
             assert heavy.run(eval, "[name in __import__('sys').modules for name in ('server.api.routers.family', "
-                                   "'server.api.endpoints', 'server.api.assignment_answers')]", lane=lane) == [True] * 3
+                                   "'server.api.endpoints', 'server.classroom.assignment_answers')]", lane=lane) == [True] * 3
     finally:
         heavy.shutdown()
 

@@ -13,7 +13,9 @@ from dataclasses import replace
 import pytest
 from fastapi import HTTPException
 
-from server.api import answers, assignment_answers, heavy
+from server.classroom import assignment_answers
+from server.classroom import answers
+from server.runtime import heavy
 from server.classroom.spec import AssignmentSpec
 from server.classroom.variants import SpecError, plan
 from server.lessons.scenes import scenes
@@ -152,7 +154,7 @@ def test_one_address_makes_a_bounded_number_of_assignments_an_hour(memory, monke
 
 from fastapi.testclient import TestClient                      # noqa: E402
 
-from server.api import assignment_store                        # noqa: E402
+from server.classroom import assignment_store  # noqa: E402
 from server.api.app import create_app                           # noqa: E402
 from server.api.security import SECURITY_HEADERS               # noqa: E402
 

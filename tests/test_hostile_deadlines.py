@@ -13,7 +13,8 @@ import math
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import endpoints, heavy
+from server.api import endpoints
+from server.runtime import heavy
 from server.api.app import create_app
 from server.api.schemas_elastic import ElasticRequest
 from server.core import work_precision

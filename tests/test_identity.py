@@ -16,7 +16,7 @@ import pytest
 from fastapi.testclient import TestClient
 from hypothesis import given, strategies as st
 
-from server.api import assignment_store
+from server.classroom import assignment_store
 from server.api.app import app
 from server.api.csv_export import FORMULA_STARTS, safe_cell
 from server.classroom.identity import secret_hash

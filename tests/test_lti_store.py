@@ -219,7 +219,7 @@ def test_the_access_log_cuts_a_ticket():
 
 
 def test_a_grade_that_could_not_be_posted_is_tried_again_on_a_timer(stores, monkeypatch):
-    from server.api import lti_classroom
+    from server.classroom import lti_classroom
     first, _ = stores
     platform = moodle(auth_token_url="http://127.0.0.1:9/token")          # nothing listens there
     first.lti_add_platform(platform)

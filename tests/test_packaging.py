@@ -97,7 +97,7 @@ def test_postgresql_is_an_extra_and_its_absence_is_said_at_start():
         len(PYPROJECT["project"]["dependencies"]), "a package listed twice"
     assert any("psycopg" in d for d in PYPROJECT["project"]["optional-dependencies"]["postgres"])
     without_psycopg = ("import sys; sys.modules['psycopg'] = None; sys.modules['psycopg_pool'] = None\n"
-                       "from server.api.assignment_store import check\n"
+                       "from server.classroom.assignment_store import check\n"
                        "try:\n    check()\nexcept Exception as error:\n    print(type(error).__name__, error)\n")
     run = subprocess.run([sys.executable, "-c", without_psycopg], capture_output=True, text=True, timeout=300,
                          env={"PATH": "/usr/bin:/bin", "MDL_DATABASE_URL": "postgresql://mdl@127.0.0.1:1/mdl"})

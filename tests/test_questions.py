@@ -13,7 +13,7 @@ import pytest
 from fastapi.testclient import TestClient
 from scipy.optimize import minimize_scalar
 
-from server.api import assignment_store
+from server.classroom import assignment_store
 from server.api.app import app
 from server.classroom.visibility import public_views
 
@@ -360,8 +360,8 @@ def test_what_a_per_variant_cache_keeps_gives_the_same_answers_after_a_json_roun
     """variant_answer / answer_from are the interface of the store's per-variant answers (JSON): an at_angle
     question keeps its value at every angle offered, and reading the student's angle from it after JSON is
     the exact u₃₁ there."""
-    from server.api.answers import answer_from, variant_answer
-    from server.api.assignments import load
+    from server.classroom.answers import answer_from, variant_answer
+    from server.classroom.assignments import load
     created = create(client, [{"id": "u31_at_angle", "angle": {"min": 20, "max": 160, "step": 0.5}},
                               {"id": "du31_ratio"}])
     _, resolved = load(created["id"])

@@ -1,4 +1,4 @@
-"""The small arithmetic language of combination questions (server/classroom/expression.py): the same value as
+"""The small arithmetic language of combination questions (server/lessons/expression.py): the same value as
 Python's own arithmetic on the same text (the reference: the expressions generated here hold only numbers,
 names bound to numbers, + − × ÷ and parentheses), and refusals in words for everything else."""
 from __future__ import annotations
@@ -8,7 +8,7 @@ import math
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from server.classroom.expression import MAX_DEPTH, ExpressionError, evaluate, names_in, parse
+from server.lessons.expression import MAX_DEPTH, ExpressionError, evaluate, names_in, parse
 
 VALUES = {"a": 2.5, "b": -4.0, "du_max": 0.13, "du_min": -0.07}
 

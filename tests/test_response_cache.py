@@ -14,12 +14,14 @@ import orjson
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import endpoints, heavy
+from server.api import endpoints
+from server.runtime import heavy
 from server.api.app import create_app
 from pydantic import BaseModel, ConfigDict
 
-from server.api.response_cache import (CACHED_ENDPOINTS, CachedAnswer, ResponseCache, ResponseCacheMiddleware,
-                                       _request_models, canonical_json, validated_body)
+from server.api.routers.cache import CACHED_ENDPOINTS, request_models
+from server.runtime.response_cache import (CachedAnswer, ResponseCache, ResponseCacheMiddleware, canonical_json,
+                                           validated_body)
 from server.core.dynamics import report
 from server.lessons.requests import scene_request
 from server.lessons.scenes import scenes
@@ -111,11 +113,11 @@ def test_the_key_is_the_validated_request_in_canonical_json_exactly():
         canonical_json({"a": [2.5, {"c": "x", "d": 0.1}], "b": 1})
     assert len({canonical_json({"x": v}) for v in (float("nan"), None, float("inf"), -float("inf"))}) == 4
     assert validated_body(b"{not json", Question) is None
-    assert validated_body(b'{"mechanism": "sine", "n": 0}', _request_models()["kinematics"]) is None
+    assert validated_body(b'{"mechanism": "sine", "n": 0}', request_models()["kinematics"]) is None
 
 
 def test_every_cached_endpoint_has_its_request_model():
-    assert set(_request_models()) == set(CACHED_ENDPOINTS)
+    assert set(request_models()) == set(CACHED_ENDPOINTS)
 
 
 def test_point_one_times_three_and_point_three_are_two_entries_each_echoing_its_value(client):

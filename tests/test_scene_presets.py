@@ -9,7 +9,7 @@ import json
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import heavy
+from server.runtime import heavy
 from server.families import family
 from server.api.app import app
 from server.lessons.requests import path_value, scene_request, set_path

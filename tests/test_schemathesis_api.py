@@ -26,7 +26,7 @@ from fastapi.testclient import TestClient
 from hypothesis import HealthCheck, settings
 from schemathesis.config import SchemathesisConfig
 
-from server.api import assignment_store
+from server.classroom import assignment_store
 from server.api.app import create_app
 from server.api.security import SECURITY_HEADERS
 

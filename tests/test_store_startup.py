@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import assignment_store
+from server.classroom import assignment_store
 from server.api.app import app
 from server.classroom.store import AssignmentRecord, SQLiteStore, StoreUnavailable
 from server.classroom.store.postgres import PostgresStore

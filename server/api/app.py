@@ -12,14 +12,18 @@ from fastapi.middleware.gzip import GZipMiddleware
 from ..paths import BENCH_RESULTS, WEB
 from ..core.mechanisms import GeometryError
 from ..core.warm_up import warm_up
-from . import access_log, assignment_store, heavy
+from . import access_log
+from ..classroom import assignment_store
+from ..runtime import heavy
 from .errors import geometry_error, server_error, store_unavailable, validation_error
-from .admission import AdmissionMiddleware
+from ..runtime.admission import AdmissionMiddleware
 from .bench_pages import BenchResults
+from .endpoints import ENDPOINTS
 from .head_requests import HeadAsGet
 from .security import SecurityMiddleware
 from .static_files import content_version, mount_versioned, script_version
-from .response_cache import CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache, ResponseCacheMiddleware
+from ..runtime.response_cache import (CACHE_AT_EXIT, GZIP_LEVEL, GZIP_MINIMUM_SIZE, ResponseCache,
+                                      ResponseCacheMiddleware)
 from .routers import cache as cache_stats
 from .routers import lti
 from .routers import friction_influence
@@ -94,9 +98,10 @@ def create_app() -> FastAPI:
     app.add_exception_handler(StoreUnavailable, store_unavailable)   # 503 + Retry-After: a full disk, a server down
     app.add_exception_handler(Exception, server_error)      # 500 as JSON (ServerErrorMiddleware answers it)
     app.state.response_cache = ResponseCache.from_env()  # MDL_CACHE_BYTES, default 64 MB, 0 = off
-    app.add_middleware(ResponseCacheMiddleware, cache=app.state.response_cache, prefix=API_PREFIX)  # inside gzip
+    app.add_middleware(ResponseCacheMiddleware, cache=app.state.response_cache, models=cache_stats.request_models(),
+                       prefix=API_PREFIX)  # inside gzip
     app.add_middleware(GZipMiddleware, minimum_size=GZIP_MINIMUM_SIZE, compresslevel=GZIP_LEVEL)
-    app.add_middleware(AdmissionMiddleware)  # per-client computations in flight (429), the mdl_client cookie
+    app.add_middleware(AdmissionMiddleware, computing=ENDPOINTS)  # computations in flight per client (429), cookie
     # SecurityMiddleware (headers on every response, bodies ≤ 1 MiB and checked) wraps all of these: LabApp
     static = mount_versioned(app, "/static", STATIC_DIR, content_version(STATIC_DIR), "static")
     plotly_js = mount_versioned(app, "/vendor/plotly", PLOTLY_DIR, script_version(PLOTLY_DIR / "plotly.min.js"),

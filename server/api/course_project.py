@@ -6,6 +6,7 @@ from ..core.course_project.report import course_project as project
 from ..core.dynamics.reduction import Inertias
 from ..core.kinetostatics.groups.friction import PairFriction
 from ..core.mechanisms import GeometryError
+from .answering import answer
 from .messages import localise_numerics
 from .schemas_project import CourseProjectRequest
 from .serialise import Answer
@@ -13,7 +14,6 @@ from .serialise import Answer
 
 def course_project(request: CourseProjectRequest, lang: str) -> Answer:
     """The whole project of the request (docs/course_project.md); GeometryError (422) names the field."""
-    from .endpoints import answer             # endpoints registers this body: imported when it runs
     for name, pair in request.pair_friction.items():
         if pair.beta > 0:
             raise GeometryError(f"pair_friction.{name}.beta", "the flywheel of the course project needs moments of "

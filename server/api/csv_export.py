@@ -25,7 +25,7 @@ from fastapi.responses import Response
 
 from ..classroom.variants import Plan
 from ..lessons.scenes import interface_texts
-from .answers import question
+from ..classroom.answers import question
 from .schemas_assignments import ResultRow
 
 FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")

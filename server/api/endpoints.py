@@ -50,7 +50,8 @@ from ..core.mechanisms.general import GENERAL_OUTPUTS, GeneralMechanism, compute
 from ..core.mechanisms.general import change_point_mask, change_point_notices, undefined_at
 from ..core.structure.masses import MassModel
 from ..core.structure.estimate import estimated_dynamics
-from .messages import localise_numerics, localise_study, special_text, translate
+from .answering import answer
+from .messages import localise_numerics, special_text, translate
 from .schemas import KinematicsRequest, KinematicsResponse
 from .schemas_angular import AngularRequest
 from .schemas_bearings import BearingsRequest
@@ -66,36 +67,7 @@ Reads = Collection[str] | None      # the answer's top-level keys a caller reads
 # answer, computed exactly as without it. Only the family asks for it, and only for PREVIEW_AWARE endpoints.
 Preview = float | None
 
-# The core's words when a bound stopped a computation with a partial result (server/core/dynamics/motion.py:
-# "stopped at the time budget …"; server/core/elastic/simulate.py and the start from rest: "… the work bound").
-PARTIAL_MARKERS = ("time budget", "work bound")
 FORCES_BUDGET_S = 5.0               # wall clock of a general mechanism's friction solve (the motion request's bound)
-
-
-def payload(result: dict, notices, lang: str) -> dict:
-    """The answer's body: numerics and study in the reader's language, the warnings once each, in order."""
-    warnings = dict.fromkeys(translate(n, lang) for n in notices)
-    if isinstance(result.get("study"), dict):
-        result["study"] = localise_study(result["study"], lang)
-    for holder in (result, result.get("startup") or {}):
-        if isinstance(holder.get("numerics"), dict):
-            holder["numerics"] = localise_numerics(holder["numerics"], lang)
-    return result | {"warnings": list(warnings)}
-
-
-def cut_short(result: dict, notices) -> bool:
-    """Whether a time or work bound stopped part of the computation: the core says so in the message of a
-    numerics dict (the answer's, the start-up's) or in a warning, in English before translation."""
-    texts = [notice.text for notice in notices]
-    for holder in (result, result.get("startup") or {}):
-        if isinstance(holder.get("numerics"), dict):
-            texts.append(str(holder["numerics"].get("message", "")))
-    return any(marker in text for text in texts for marker in PARTIAL_MARKERS)
-
-
-def answer(result: dict, notices, lang: str) -> Answer:
-    partial = cut_short(result, notices)               # before the texts are translated
-    return Answer(payload(result, notices, lang), partial)
 
 
 def count_undefined(value) -> int:

@@ -29,7 +29,7 @@ from dataclasses import replace
 
 import orjson
 
-from . import heavy
+from ..runtime import heavy
 from ..families import family
 from .endpoints import BATCHES, compute_answers
 

@@ -10,7 +10,7 @@ from fastapi import Request
 from fastapi.responses import HTMLResponse, Response
 
 from . import security
-from .assignment_store import store
+from ..classroom.assignment_store import store
 from .routers.pages import _context, templates
 from .schemas_lti import ToolUrls
 from .security import CONTENT_SECURITY_POLICY, policy_with_script_hashes

@@ -21,10 +21,10 @@ import orjson
 from fastapi.responses import Response
 
 from ..core.answer import POWERS_OF_TEN, Answer, significant  # noqa: F401  (re-exported: the endpoints' Answer)
+from ..runtime.response_cache import PARTIAL_HEADER  # noqa: F401  (the header the cache reads)
 
 PLOT_DIGITS = 7
 Precision = Literal["plot", "full"]
-PARTIAL_HEADER = "X-Partial"
 _OPTIONS = orjson.OPT_SERIALIZE_NUMPY
 
 

@@ -20,7 +20,7 @@ from urllib.parse import urlsplit
 from fastapi import Depends, Request, Response
 from fastapi.security import APIKeyCookie, HTTPAuthorizationCredentials, HTTPBearer
 
-from .admission import COOKIE as CLIENT_COOKIE
+from ..runtime.admission import COOKIE as CLIENT_COOKIE
 
 COOKIE = "mdl_student"
 # An answer that carries a secret or the instructor's results (a student's secret, the results token, names and

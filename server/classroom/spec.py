@@ -16,6 +16,14 @@ DESIGN_DEFAULTS = {"inertias": {"J1": 0.0, "J_rotor": 0.0, "gear_ratio": 1.0},
                    "flywheel": {"omega_mean": 10.0, "delta": 0.05}}     # the course-project page's (design.js)
 
 
+class SpecError(ValueError):
+    """An assignment that cannot be made as specified: the field (dotted path) and the reason."""
+
+    def __init__(self, field: str, reason: str):
+        super().__init__(f"{field}: {reason}")
+        self.field, self.reason = field, reason
+
+
 class Span(BaseModel):
     model_config = ConfigDict(extra="forbid")
     min: float = Field(allow_inf_nan=False)

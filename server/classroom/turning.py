@@ -22,6 +22,7 @@ from ..core.course_project.positions import stroke_positions
 from ..core.mechanisms import GeometryError
 from ..core.mechanisms.general import GeneralMechanism
 from ..lessons.requests import project_body, scene_variant
+from .spec import SpecError
 
 SAMPLE = 64             # variant numbers checked when an assignment is made
 MAX_SKIP = 500          # numbers tried after a student's own before giving up
@@ -54,7 +55,6 @@ def stuck(plan, number: int) -> tuple[str, str] | None:
 
 def handed_out(plan, number: int) -> int:
     """The first number from `number` on (cyclically) whose variant turns; SpecError past MAX_SKIP."""
-    from .variants import SpecError
     if not checked(plan):
         return number
     for step in range(min(plan.count, MAX_SKIP)):
@@ -83,7 +83,6 @@ def turning_share(plan) -> tuple[int, int] | None:
 def check_some_turn(plan) -> tuple[int, int] | None:
     """The turning share; SpecError (variants.py) when no sampled variant turns, naming the varied slider that
     sets the linkage (else every varied slider) with its range and the core's reason."""
-    from .variants import SpecError
     share = turning_share(plan)
     if share is None or share[0] > 0:
         return share

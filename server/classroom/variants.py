@@ -17,18 +17,10 @@ from dataclasses import dataclass, field
 from ..lessons.scenes import Question, Scene, Variant
 from ..lessons.requests import scene_variant, slider_values
 from . import turning
-from .expression import ExpressionError, parse
-from .spec import AssignmentSpec, QuestionPick
+from ..lessons.expression import ExpressionError, parse
+from .spec import AssignmentSpec, QuestionPick, SpecError
 
 MAX_CHOICES = 10_000      # values of one varied slider
-
-
-class SpecError(ValueError):
-    """An assignment that cannot be made as specified: the field (dotted path) and the reason."""
-
-    def __init__(self, field: str, reason: str):
-        super().__init__(f"{field}: {reason}")
-        self.field, self.reason = field, reason
 
 
 @dataclass

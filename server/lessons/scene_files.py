@@ -32,20 +32,17 @@ from __future__ import annotations
 
 import copy
 
+from .content_errors import ContentError
 from .dotted_paths import path_value
+from .tables import with_reference_tables, with_table_pickers
 
 MERGED_KEYS = ("request",)   # merged key by key under "extends"; every other key is replaced whole
-
-
-class ContentError(ValueError):
-    """A scene file that does not resolve; the message names the file, the variant and the slider."""
 
 
 def resolved_scene(raw: dict, where: str, shared: dict[str, dict], presets: dict[str, dict] | None = None,
                    tables: dict[str, dict] | None = None) -> dict:
     """The scene ``raw`` (read from the file ``where``) with every "extends", "use", "preset" and table picker
     resolved (``presets``: content/mechanisms/*.json by name; ``tables``: content/tables/*.json, tables.py)."""
-    from .tables import with_reference_tables, with_table_pickers
     variants = raw.get("variants", [])
     by_id = {}
     for index, variant in enumerate(variants):

@@ -9,7 +9,7 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
-from ..classroom.expression import parse
+from .expression import parse
 from ..paths import CONTENT
 from .scene_files import ContentError, resolved_scene
 
@@ -112,7 +112,7 @@ class Question(BaseModel):
 
     Kinds: ``readout`` (that number); ``at_angle`` (the array at a crank angle the student chooses on the
     ``angle`` grid and states with the answer; kinematics scenes); ``combination`` (``expression`` over the
-    named ``readouts``, server/classroom/expression.py); ``prediction`` (the readout, predicted before the
+    named ``readouts``, server/lessons/expression.py); ``prediction`` (the readout, predicted before the
     panels showing its ``hides`` open on the student's page: they open once the question is closed)."""
 
     id: str

@@ -13,6 +13,8 @@ kept.
 """
 from __future__ import annotations
 
+from .content_errors import ContentError
+
 
 def with_table_pickers(variant: dict, where: str, tables: dict[str, dict]) -> dict:
     """The variant with each toggle that names a table's picker written out in full."""
@@ -23,7 +25,6 @@ def with_table_pickers(variant: dict, where: str, tables: dict[str, dict]) -> di
 
 
 def _picker(entry, where: str, tables: dict[str, dict]):
-    from .scene_files import ContentError
     if not isinstance(entry, dict) or "table" not in entry:
         return entry
     table = tables.get(entry["table"])
@@ -46,7 +47,6 @@ def _picker(entry, where: str, tables: dict[str, dict]):
 
 def with_reference_tables(panels, where: str, tables: dict[str, dict]):
     """The scene's panels with each reference_table panel's table written in (module docstring)."""
-    from .scene_files import ContentError
     if not isinstance(panels, dict):
         return panels
     written = {}

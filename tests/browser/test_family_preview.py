@@ -241,7 +241,7 @@ def until(page, condition, timeout_s: float = 120) -> None:
 
 def test_grabbing_another_slider_aborts_the_family_on_its_way_and_keeps_the_coarse_one(family_page):
     """The full family of λ is held on its way (HeldFull); grabbing the offset slider aborts it (the server, seeing
-    the request gone, stops computing it: server/api/heavy.py), with nothing on the console; grabbing λ again
+    the request gone, stops computing it: server/runtime/heavy.py), with nothing on the console; grabbing λ again
     previews from the coarse family kept and asks for λ's full family anew (not the coarse one)."""
     page = family_page
     held = HeldFull(page)

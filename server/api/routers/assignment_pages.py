@@ -11,9 +11,9 @@ from starlette.concurrency import run_in_threadpool
 
 from ...classroom.identity import personal_path
 from ...classroom.names import NameRefused
-from .. import assignments
-from ..answers import student_scene, unlocked_predictions
-from ..assignment_store import store
+from ...classroom import assignments
+from ...classroom.answers import student_scene, unlocked_predictions
+from ...classroom.assignment_store import store
 from ..student_secret import forget, from_another_site, hand_over, keep_private, sent_secret
 from ...classroom.visibility import public_views
 from ...lessons.scenes import scenes

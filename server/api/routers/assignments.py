@@ -17,9 +17,9 @@ from ...classroom.names import NameRefused, normalise
 from ...classroom.spec import AssignmentSpec
 from ...classroom.store import AttemptRefused, StudentRecord
 from ...classroom.variants import SpecError
-from .. import assignment_answers, assignments, lti_classroom
-from ..answers import is_right, tolerance
-from ..assignment_store import store
+from ...classroom import assignment_answers, assignments, lti_classroom
+from ...classroom.answers import is_right, tolerance
+from ...classroom.assignment_store import store
 from ..csv_export import links_csv, results_csv as results_csv_file
 from ..schemas import Language
 from ..schemas_assignments import (AssignmentCreated, AssignmentInfo, PersonalLink, Registration, Results,

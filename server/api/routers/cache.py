@@ -1,12 +1,22 @@
-"""GET /api/v1/cache: how the response cache of this server process is doing."""
+"""GET /api/v1/cache: how the response cache of this server process is doing; and what it caches: the computing
+endpoints and the slider families, whose answer is a function of (path, query, validated body)."""
 import os
 
 from fastapi import APIRouter, Request
 from pydantic import BaseModel, Field
 
-from ..response_cache import CACHED_ENDPOINTS
+from ..endpoints import ENDPOINTS
+from .family import FamilyRequest
+
+# The computing endpoints and the slider families, whose answer is a function of (path, query, validated body).
+CACHED_ENDPOINTS = (*ENDPOINTS, "family")
 
 router = APIRouter(tags=["cache"])
+
+
+def request_models() -> dict[str, type[BaseModel]]:
+    """The request model of each cached endpoint (the family's lives with its route): given to the cache."""
+    return {**{name: model for name, (model, _) in ENDPOINTS.items()}, "family": FamilyRequest}
 
 
 class CacheStats(BaseModel):

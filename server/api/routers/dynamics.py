@@ -2,12 +2,15 @@
 /dynamics-estimate: a first mass model for a mechanism that has none."""
 from fastapi import APIRouter
 
-from .. import endpoints, heavy
+from .. import endpoints
+from ...runtime import heavy
 from ..schemas import Language
 from ..schemas_dynamics import (EstimateRequest, EstimateResponse, FlywheelRequest, FlywheelResponse, MotionRequest,
                                 MotionResponse, ReductionRequest, ReductionResponse)
 from ..serialise import Precision, respond
 from .query import LANG, PRECISION
+
+heavy.preload(endpoints.__name__)
 
 router = APIRouter(tags=["dynamics"])
 INVALID = {422: {"description": "invalid input: the field and the reason"}}
@@ -41,5 +44,6 @@ def dynamics_estimate(request: EstimateRequest, lang: Language = LANG, precision
 @router.post("/work-precision/motion", responses=INVALID,
              summary="Live work–precision study of the current machine's steady cycle (ours against solve_ivp "
                      "integrating cycles, small budget)")
+
 async def motion_work_precision(request: MotionRequest, lang: Language = LANG, precision: Precision = PRECISION):
     return respond(await heavy.submit(endpoints.motion_work_precision, request, lang), precision)

@@ -1,11 +1,14 @@
 """POST /api/v1/elastic, /work-precision/elastic: elastic machine models in time (run in the heavy process)."""
 from fastapi import APIRouter
 
-from .. import endpoints, heavy
+from .. import endpoints
+from ...runtime import heavy
 from ..schemas import Language
 from ..schemas_elastic import ElasticRequest
 from ..serialise import Precision, respond
 from .query import LANG, PRECISION
+
+heavy.preload(endpoints.__name__)
 
 router = APIRouter(tags=["elastic"])
 INVALID = {422: {"description": "invalid input: the field and the reason"}}
@@ -21,5 +24,6 @@ async def elastic(request: ElasticRequest, lang: Language = LANG, precision: Pre
 @router.post("/work-precision/elastic", responses=INVALID,
              summary="Live work–precision study of the current elastic machine (error against run time of "
                      "several solvers, small budget)")
+
 async def elastic_work_precision(request: ElasticRequest, lang: Language = LANG, precision: Precision = PRECISION):
     return respond(await heavy.submit(endpoints.elastic_work_precision, request, lang), precision)

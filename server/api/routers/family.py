@@ -8,14 +8,16 @@ from fastapi import APIRouter, Request
 from fastapi.responses import Response
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator
 
-from .. import heavy
+from ...runtime import heavy
 from ...families import family
 from ..endpoints import ENDPOINTS
 from ..family_batch import member_batch
-from ..response_cache import compressed
+from ...runtime.response_cache import compressed
 from ..schemas import Language
 from ..serialise import PARTIAL_HEADER, serialise
 from .query import LANG
+
+heavy.preload(__name__)     # family_body runs in the lanes
 
 router = APIRouter(tags=["family"])
 Endpoint = Literal[tuple(ENDPOINTS)]
@@ -49,6 +51,7 @@ class FamilyRequest(BaseModel):
                          "`shared`; every float array of a quantity with a span as {exp10: e, order: n, deltas: [...]}, "
                          "the integers round(x/10^e) as differences of order n along the first axis (order 1 keeps "
                          "null where x is null), 10^e ≤ 1e-4 of the quantity's span (server/families/family.py, Packed)")
+
 
     @field_validator("fields")
     @classmethod

@@ -29,8 +29,9 @@ from ...classroom.lti.platforms import DatabaseToolConf
 from ...classroom.spec import MAX_QUESTIONS, AssignmentSpec, QuestionPick
 from ...classroom.variants import SpecError
 from ...lessons.scenes import LANGUAGES, scenes
-from .. import assignments, lti_adapters, lti_classroom
-from ..assignment_store import store
+from ...classroom import assignments, lti_classroom
+from .. import lti_adapters
+from ...classroom.assignment_store import store
 from ..lti_pages import base_url, framed_by, origin, page, platform_origins, refused_page, tool_urls
 from ..student_secret import from_another_site, hand_over
 from . import lti_registration

@@ -18,8 +18,8 @@ from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 from ...classroom.lti import dynamic, tool_key
 from ...classroom.lti.grades import TimeoutSession
 from ...classroom.lti.platforms import PlatformRefused, new_platform
-from .. import lti_classroom
-from ..assignment_store import store
+from ...classroom import lti_classroom
+from ...classroom.assignment_store import store
 from ..lti_pages import (base_url, forget_origins, framed_by, origin, page, platform_origins, refused_page,
                          tool_urls)
 from ..schemas_lti import (PendingScoreInfo, PlatformInfo, PlatformRegistered, PlatformRegistration, Platforms,

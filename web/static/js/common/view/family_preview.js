@@ -13,7 +13,7 @@
  * gets one request without it, the full family, for the rest of the page's life.
  *
  * A grab of another slider (or of the same one at other values) gives up the families still on their way:
- * their requests are aborted, so that the server stops computing them (server/api/heavy.py, LaneQueue) and
+ * their requests are aborted, so that the server stops computing them (server/runtime/heavy.py, LaneQueue) and
  * its CPU goes to the family now held. A coarse family already there is kept; grabbing its slider again asks
  * for the full one anew.
  *

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import asyncio
 import gc
+import importlib
 import itertools
 import multiprocessing
 import multiprocessing.forkserver
@@ -60,27 +61,38 @@ _stop_flags = _stops           # read by `stopped`: in a heavy process, the arra
 _running_ticket = 0            # in a heavy process (or the worker's heavy thread): the ticket of the job it runs
 
 
+_preload: list[str] = []       # the modules a new heavy process imports (``preload``)
+
+
+def preload(module: str) -> None:
+    """A module whose functions are given to the lanes, imported by each new heavy process as it starts (as
+    multiprocessing's forkserver preload): the module that submits them names itself, ``preload(__name__)``."""
+    if module not in _preload:
+        _preload.append(module)
+
+
 def _current_pool(lane: str) -> ProcessPoolExecutor:
     with _lock:
         if lane not in _pools:                # forkserver: no fork of a process that runs threads
             _pools[lane] = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"),
                                                initializer=_start_heavy_process,
-                                               initargs=(LANES[lane] if NICE else 0, _stops))
+                                               initargs=(LANES[lane] if NICE else 0, _stops, tuple(_preload)))
         return _pools[lane]
 
 
-def _start_heavy_process(niceness: int, stops) -> None:
+def _start_heavy_process(niceness: int, stops, modules: tuple[str, ...] = ()) -> None:
     """A new heavy process yields the CPU (nice `niceness`) and loads the compiled kernels: a student's 5-ms
     answer is not made to wait behind seconds of an elastic run, nor an elastic answer behind a family. It reads
-    its worker's stops from `stops` (shared memory), and imports the modules of the work it will be given. What it
+    its worker's stops from `stops` (shared memory), and imports the modules of the work it will be given
+    (`modules`: those named to ``preload``). What it
     holds then (modules, compiled code: ~185 000 objects) is frozen out of the garbage collector's reach
     (``frozen_after_start``)."""
     global _stop_flags
     _stop_flags = stops
     os.nice(niceness)
     warm_up()
-    from . import assignment_answers, endpoints  # noqa: F401  the modules of the work the lanes are given: unpickling
-    from .routers import family  # noqa: F401   a job imports its function's module, ~0.4 s on the first family
+    for module in modules:               # the modules of the work the lanes are given: unpickling a job imports its
+        importlib.import_module(module)  # function's module, ~0.4 s on the first family
     frozen_after_start()
 
 

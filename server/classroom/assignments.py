@@ -11,16 +11,16 @@ from datetime import datetime, timezone
 
 from fastapi import HTTPException
 
-from ..classroom import identity, turning
-from ..classroom.names import NameRefused, check_new, normalise, resembles, roster_names
-from ..classroom.spec import AssignmentSpec
-from ..classroom.store import AssignmentRecord, StudentRecord
-from ..classroom.variants import Plan, plan
+from . import identity, turning
+from .names import NameRefused, check_new, normalise, resembles, roster_names
+from .spec import AssignmentSpec
+from .store import AssignmentRecord, StudentRecord
+from .variants import Plan, plan
 from . import assignment_answers
 from .answers import question, question_kind, tolerance
 from .assignment_store import store
 from ..lessons.scenes import interface_texts, scenes
-from .schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow, RosterOutcome
+from ..api.schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow, RosterOutcome
 
 NAME_STATUS = {"name_empty": 422, "name_too_long": 422, "name_mixed_scripts": 422,    # HTTP status of a refused name
                "name_confusable": 409, "name_taken": 409, "roster_locked": 403, "roster_name_needs_link": 403,

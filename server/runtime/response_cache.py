@@ -47,9 +47,8 @@ import pydantic_core
 from pydantic import BaseModel
 
 from ..families import family
-from .endpoints import ENDPOINTS
-from .serialise import PARTIAL_HEADER
 
+PARTIAL_HEADER = "X-Partial"      # an answer a time or work bound cut short (the serialiser sets it)
 DEFAULT_MAX_BYTES = 64 * 1024 * 1024
 ENV_MAX_BYTES = "MDL_CACHE_BYTES"
 PARTIAL = PARTIAL_HEADER.lower().encode()
@@ -59,14 +58,6 @@ ENTRY_OVERHEAD_BYTES = 200          # key, bookkeeping and object headers of one
 CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSON) after this as it stops
 
 
-def _request_models() -> dict[str, type[BaseModel]]:
-    """The request model of each cached endpoint (the family's lives with its route)."""
-    from .routers.family import FamilyRequest
-    return {**{name: model for name, (model, _) in ENDPOINTS.items()}, "family": FamilyRequest}
-
-
-# The computing endpoints and the slider families, whose answer is a function of (path, query, validated body).
-CACHED_ENDPOINTS = (*ENDPOINTS, "family")
 # What an answer depends on, where it is less than the whole request: a family not on its slider's current value.
 KEY_FORMS = {"family": family.shared}
 
@@ -223,11 +214,10 @@ def _is_json(content_type: bytes) -> bool:
 class ResponseCacheMiddleware:
     """Answers repeated POSTs to the computing endpoints from a ResponseCache (see the module's docstring)."""
 
-    def __init__(self, app, cache: ResponseCache, prefix: str = "/api/v1",
-                 models: dict[str, type[BaseModel]] | None = None):
+    def __init__(self, app, cache: ResponseCache, models: dict[str, type[BaseModel]], prefix: str = "/api/v1"):
         self.app = app
         self.cache = cache
-        self.models = {f"{prefix}/{name}": model for name, model in (models or _request_models()).items()}
+        self.models = {f"{prefix}/{name}": model for name, model in models.items()}
         self.forms = {f"{prefix}/{name}": form for name, form in KEY_FORMS.items()}
 
     async def __call__(self, scope, receive, send):

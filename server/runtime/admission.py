@@ -30,8 +30,7 @@ import re
 import secrets
 import time
 from collections import Counter
-
-from .endpoints import ENDPOINTS
+from collections.abc import Iterable
 
 COOKIE = "mdl_client"
 COOKIE_MAX_AGE_S = 365 * 24 * 3600
@@ -39,7 +38,6 @@ RETRY_AFTER_S = 1
 # run in the heavy process (heavy.submit): elastic machines, slider families, live work–precision studies, the
 # course project
 HEAVY_NAMES = ("elastic", "family", r"work-precision/[a-z-]+", "course-project")
-COMPUTING = re.compile(rf"/api/v1/({'|'.join([*map(re.escape, ENDPOINTS), *HEAVY_NAMES])})")
 HEAVY = re.compile(rf"/api/v1/({'|'.join(HEAVY_NAMES)})")
 _ID = re.compile(r"[A-Za-z0-9_-]{16,64}")
 TOLD_TO_WAIT_KEPT = 4096        # past this many clients told to wait, those whose wait is over are forgotten
@@ -75,8 +73,11 @@ class AdmissionMiddleware:
     address; the cookie handed to HTML pages that arrive without one."""
 
     def __init__(self, app, per_client: int | None = None, per_address: int | None = None,
-                 per_client_heavy: int | None = None, clock=time.monotonic, sleep=asyncio.sleep):
+                 per_client_heavy: int | None = None, clock=time.monotonic, sleep=asyncio.sleep,
+                 computing: Iterable[str] = ()):
         self.app = app
+        # the computing endpoints (`computing`: their names under /api/v1, the app's registry) and the heavy ones
+        self.computing = re.compile(rf"/api/v1/({'|'.join([*map(re.escape, computing), *HEAVY_NAMES])})")
         self.clock, self.sleep = clock, sleep
         self.told_to_wait: dict[tuple, float] = {}   # client → the time its Retry-After runs out
         self.per_client = _env_limit("MDL_CLIENT_CONCURRENCY", 8) if per_client is None else per_client
@@ -88,7 +89,7 @@ class AdmissionMiddleware:
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http":
             await self.app(scope, receive, send)
-        elif scope["method"] == "POST" and COMPUTING.fullmatch(scope["path"]):
+        elif scope["method"] == "POST" and self.computing.fullmatch(scope["path"]):
             await self._admit(scope, receive, send)
         elif scope["method"] == "GET" and client_id(scope) is None:
             await self.app(scope, receive, _with_cookie(send, scope.get("scheme") == "https"))

@@ -2,7 +2,7 @@
 bounded rate (no expensive anonymous work).
 
 Each variant's answers (question id → correct value, or the reason it has none) are computed in a heavy process
-(server/api/heavy.py, the answers' lane) under a budget, and kept in the store per variant
+(server/runtime/heavy.py, the answers' lane) under a budget, and kept in the store per variant
 (``variant_answers`` / ``put_variant_answers``), shared by every server: a variant is computed once for the whole
 class, not once per student, per worker, per restart.
 
@@ -29,12 +29,14 @@ from contextlib import contextmanager
 
 from fastapi import HTTPException
 
-from ..classroom import turning
-from ..classroom.variants import Plan, SpecError
+from . import turning
+from .variants import Plan, SpecError
 from ..core.mechanisms import GeometryError
-from . import heavy
+from ..runtime import heavy
 from .answers import AnswerCutShort, answer_from, variant_answer
 from .assignment_store import store
+
+heavy.preload(__name__)     # answers_of_variants runs in the answers' lane
 
 CHECKED_VARIANTS = 8            # variants whose answers are computed when the assignment is made
 CREATE_BUDGET_S = 15.0          # of one heavy process, for those variants' answers
@@ -59,6 +61,7 @@ def computing_place():
         yield
     finally:
         _computing.release()
+
 
 
 def answers_of_variants(resolved: Plan, numbers: list[int], budget_s: float) -> dict[int, dict]:

@@ -9,7 +9,7 @@ import os
 from functools import lru_cache
 from pathlib import Path
 
-from ..classroom.store import AssignmentStore, SQLiteStore, StoreUnavailable
+from .store import AssignmentStore, SQLiteStore, StoreUnavailable
 from ..paths import default_data_dir
 
 DATABASE_FILE = "classroom.sqlite3"
@@ -25,7 +25,7 @@ def store() -> AssignmentStore:
         raise StoreUnavailable(f"MDL_DATABASE_URL must start with postgresql:// (it starts with "
                                f"{url.split(':', 1)[0][:20]!r}); unset it for SQLite under MDL_DATA_DIR")
     try:
-        from ..classroom.store.postgres import PostgresStore   # psycopg is needed only here
+        from .store.postgres import PostgresStore   # psycopg is needed only here
     except ImportError as missing:
         raise StoreUnavailable(f"MDL_DATABASE_URL names a PostgreSQL database, but {missing.name or 'psycopg'} is not "
                                "installed: pip install '.[postgres]' in the checkout (or "

@@ -9,12 +9,12 @@ from functools import lru_cache
 import numpy as np
 import orjson
 
-from ..classroom.expression import ExpressionError, evaluate, parse
-from ..classroom.variants import Plan, SpecError
-from ..classroom.visibility import shows_any
+from ..lessons.expression import ExpressionError, evaluate, parse
+from .variants import Plan, SpecError
+from .visibility import shows_any
 from ..core.numerics import parabola_extremum
-from .endpoints import compute_answer
-from .serialise import serialise
+from ..api.endpoints import compute_answer
+from ..api.serialise import serialise
 from ..lessons.scenes import AngleGrid, Question, Readout, Scene, Slider, Toggle, scenes
 from ..lessons.dotted_paths import path_value
 from ..lessons.requests import scene_request, scene_variant

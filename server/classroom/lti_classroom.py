@@ -14,14 +14,14 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
-from ..classroom import identity
-from ..classroom.lti import grades
-from ..classroom.lti.members import lms_name, student_key, teaches
-from ..classroom.lti.tool_key import tool_key
-from ..classroom.names import normalise
-from ..classroom.store import AssignmentRecord, StudentRecord
-from ..classroom.store.lti_tables import LearnerRecord, PlatformRecord
-from ..classroom.variants import Plan
+from . import identity
+from .lti import grades
+from .lti.members import lms_name, student_key, teaches
+from .lti.tool_key import tool_key
+from .names import normalise
+from .store import AssignmentRecord, StudentRecord
+from .store.lti_tables import LearnerRecord, PlatformRecord
+from .variants import Plan
 from .assignment_store import store
 
 TEACHER_COOKIE = "mdl_lti_teacher"
