@@ -185,7 +185,7 @@ def slider_sweeps(positions: int = SWEEP_POSITIONS) -> list[str]:
 def compile_times() -> list[str]:
     """Part 3: warm_up() in a fresh process, with an empty numba cache and with the disk cache."""
     code = ("import sys, time; sys.path.insert(0, %r); start = time.perf_counter(); "
-            "from server.core.elastic.compiled import warm_up; imported = time.perf_counter() - start; "
+            "from server.core.elastic.warm import warm_up; imported = time.perf_counter() - start; "
             "print(imported, warm_up())" % str(Path(__file__).resolve().parents[1]))
     rows = []
     with tempfile.TemporaryDirectory() as empty:

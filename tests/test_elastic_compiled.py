@@ -10,7 +10,8 @@ from server.api.endpoints import elastic_machine
 from server.lessons.requests import scene_request, slider_values
 from server.api.schemas_elastic import ElasticRequest
 from server.core.elastic import report
-from server.core.elastic.compiled import jac_of, ready, rhs_of
+from server.core.elastic.compiled import jac_of, rhs_of
+from server.core.elastic.warm import ready
 from server.core.elastic.periodic_table import PeriodicTable
 from server.core.elastic.report import absolute_tolerances, build, simulate
 from server.core.elastic.simulate import integrate

@@ -1,7 +1,7 @@
 """Compile (or load from numba's disk cache, `__pycache__` beside each module) every compiled kernel before the
 first request, so that no student waits for the JIT: the equation of motion's RK4 in φ, the flywheel's periodic
 solution and DOP853 leaving rest (server.core.dynamics.compiled), and the elastic models' right-hand sides,
-DOP853 and Radau IIA (server.core.elastic.compiled), the friction equilibrium of a general mechanism
+DOP853 and Radau IIA (server.core.elastic.warm), the friction equilibrium of a general mechanism
 (server.core.kinetostatics.groups.compiled), its tables between the kinks (server.core.dynamics.kink_table) and
 what a slider family's second differences do not see (server.core.interpolation_error). The first compile on a
 fresh machine takes tens of seconds (tests/run.sh and the Dockerfile do it once, `python3 -m
@@ -12,7 +12,7 @@ from __future__ import annotations
 from . import interpolation_error
 from .dynamics import compiled as dynamics
 from .dynamics import kink_table
-from .elastic import compiled as elastic
+from .elastic import warm as elastic
 from .kinetostatics.groups import compiled as group_friction
 
 

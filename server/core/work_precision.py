@@ -18,7 +18,7 @@ from scipy.integrate import solve_ivp
 from .dynamics.machine import Machine
 from .dynamics.motion import steady_cycle
 from .elastic.report import ElasticMachine, absolute_tolerances, build, no_load_speed
-from .elastic.compiled import ready
+from .elastic.warm import ready
 from .elastic.simulate import STIFF_RATIO, WorkBound, bounded, integrate, stiffness_ratio
 from .mechanisms import Notice
 

@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit, objmode
 from scipy.integrate._ivp import dop853_coefficients as dop
 
-from .compiled import speed_moment
+from .speed_moment import speed_moment
 
 STAGES = 12
 A = np.ascontiguousarray(dop.A, dtype=np.float64)                 # 16 × 16, rows 13–15: dense-output stages

@@ -26,7 +26,8 @@ from ..dynamics.resistance import Load, resisting_moment
 from ..mechanisms import MECHANISMS, GeometryError, Notice
 from ..numerics import Numerics
 from . import dop853
-from .compiled import MOTOR_KINDS, pack, pack_rigid, ready
+from .compiled import MOTOR_KINDS, pack, pack_rigid
+from .warm import ready
 from .models import Drive, MechanismSide, ThreeMass, TwoMass
 from .periodic_table import PeriodicTable
 from .simulate import CHUNKS, MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio

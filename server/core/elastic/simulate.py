@@ -29,7 +29,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from . import dop853, radau
-from .compiled import jac_of, ready
+from .compiled import jac_of
+from .warm import ready
 
 STIFF_RATIO = 1e3
 CHUNKS = 16
