@@ -109,11 +109,10 @@ def piston_pressure(force: float, length: float, diameter: float) -> dict:
                4 * force / (np.pi * length * diameter), "Pa")
 
 
-def reduction(mechanism: str, params: dict, m3: float, omega: float) -> list[dict]:
+def reduction(mechanism, params: dict, m3: float, omega: float) -> list[dict]:
     """The misprints of the reduction formulas of the mechanism (Mechanism.reduction_errata): Eremyants
     (3.38)/(3.39) for the crank-slider (λ = l₂/l₁), (3.50)/(3.53) for the slotted link (λ = l₀/l₁)."""
-    from .mechanisms import MECHANISMS          # errata is imported by the mechanisms' modules
-    return MECHANISMS[mechanism].reduction_errata(params, m3, omega)
+    return mechanism.reduction_errata(params, m3, omega)
 
 
 def _central_crank_slider(l1: float, l2: float, points: int) -> dict:

@@ -19,8 +19,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..mechanisms import MECHANISMS
+from ..mechanisms.base import DIVERGED  # noqa: F401  (friction_iteration.DIVERGED)
 
-DIVERGED = 1e9   # a force this many times the load: the series has visibly run away
 
 
 @dataclass

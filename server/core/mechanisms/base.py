@@ -11,6 +11,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import numpy as np
 
+# A friction series whose force passes this many times the load has visibly run away (friction_steps).
+DIVERGED = 1e9
+
 TWO_PI = 2.0 * np.pi
 
 

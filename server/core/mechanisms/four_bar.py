@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..dynamics.resisting_forces import four_bar_moment
 from .base import Evaluation, GeometryError, Notice, OutputSpec, ParamSpec, SpecialPosition, point, wrap_angle
 from .mechanism import Mechanism
 
@@ -285,7 +286,6 @@ class FourBar(Mechanism):
                       if abs(found - ac) <= 1e-9 * scale and abs(u31) < 1e-6)
 
     def resisting(self, p, load, phi, values, k):
-        from ..dynamics.resistance import four_bar_moment
         return four_bar_moment(p, load, phi, values, k)
 
     def special_positions(self, p, extremes: list[tuple[float, float]] | None = None):

@@ -15,7 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Evaluation, ParamSpec, SpecialPosition, point
+from ..dynamics.resisting_forces import sine_moment
+from .base import DIVERGED, Evaluation, ParamSpec, SpecialPosition, point
 from .mechanism import Mechanism
 
 
@@ -37,7 +38,6 @@ class Sine(Mechanism):
     def friction_steps(self, p, phi, force, f, tolerance, max_steps):
         """Yoke 3 (Eremyants Fig. 3.1): (R₂₃)₀ = P_c; F_T2 = f R₂₃, R₀₃ = F_T2, F_T3 = f R₀₃, R₂₃ = P_c + F_T3;
         the ratio f², the limit P_c/(1 − f²)."""
-        from ..dynamics.friction_iteration import DIVERGED
         ratio = f**2
         r23 = force
         steps = [{"n": 0, "R23": r23, "F_T2": 0.0, "F_T3": 0.0, "R03": 0.0, "change": None}]
@@ -75,7 +75,6 @@ class Sine(Mechanism):
         return ev
 
     def resisting(self, p, load, phi, values, k):
-        from ..dynamics.resistance import sine_moment
         return sine_moment(p, load, phi, values, k)
 
     def special_positions(self, p):

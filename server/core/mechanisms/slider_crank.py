@@ -24,7 +24,9 @@ from functools import lru_cache
 
 import numpy as np
 
-from .base import Evaluation, GeometryError, Notice, OutputSpec, ParamSpec, SpecialPosition, point, wrap_angle
+from ..dynamics.resisting_forces import slider_crank_moment
+from ..errata import variable_inertia
+from .base import DIVERGED, Evaluation, GeometryError, Notice, OutputSpec, ParamSpec, SpecialPosition, point, wrap_angle
 from .mechanism import Mechanism
 
 APPROXIMATIONS = ("u31_approx", "du31_approx", "u21_approx", "du21_approx")
@@ -50,7 +52,6 @@ class SliderCrank(Mechanism):
     def friction_steps(self, p, phi, force, f, tolerance, max_steps):
         """Group 2–3 (Eremyants Fig. 3.3): (R₀₃)₀ = P_c tan ψ; F_T = f R₀₃, R₀₃ = (P_c + F_T) tan ψ (3.24);
         the ratio f|tan ψ|, the limit P_c f tan ψ/(1 − f tan ψ)."""
-        from ..dynamics.friction_iteration import DIVERGED
         values = self.evaluate(p, np.array([phi]), set()).values
         tan_psi = abs(float(np.tan(values["s2"][0])))
         ratio = f * tan_psi
@@ -75,7 +76,6 @@ class SliderCrank(Mechanism):
 
     def reduction_errata(self, p, m3, omega):
         """Eremyants (3.38)/(3.39), λ = l₂/l₁."""
-        from ..errata import variable_inertia
         return variable_inertia(m3, p["l1"], p["l2"] / p["l1"])
 
     def proximity_warnings(self, p):
@@ -181,7 +181,6 @@ class SliderCrank(Mechanism):
                                       f"(λ² ≫ 1); here λ = {lam:.3g}.", {"lam": lam}))
 
     def resisting(self, p, load, phi, values, k):
-        from ..dynamics.resistance import slider_crank_moment
         return slider_crank_moment(p, load, phi, values, k)
 
     def special_positions(self, p):

@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..dynamics.resisting_forces import slotted_link_moment
+from ..errata import slotted_viscous
 from .base import Evaluation, Notice, ParamSpec, SpecialPosition, point
 from .mechanism import Mechanism
 
@@ -36,7 +38,6 @@ class SlottedLink(Mechanism):
 
     def reduction_errata(self, p, m3, omega):
         """Eremyants (3.50)/(3.53), λ = l₀/l₁."""
-        from ..errata import slotted_viscous
         return slotted_viscous(omega, p["l1"], p["l0"] / p["l1"])
 
     def proximity_warnings(self, p):
@@ -112,7 +113,6 @@ class SlottedLink(Mechanism):
         return p["l1"] ** 2 * np.sin(half) ** 2 * ratio
 
     def resisting(self, p, load, phi, values, k):
-        from ..dynamics.resistance import slotted_link_moment
         return slotted_link_moment(p, load, phi, values, k)
 
     def special_positions(self, p):
