@@ -141,8 +141,9 @@ def reduction(request: ReductionRequest, lang: str) -> Answer:
         Load(**request.load.model_dump()), request.n, request.omega, outputs, request.iteration_phi) \
         if outputs else ({}, [])
     if "errata" in request.outputs:
-        result["errata"] = errata.reduction(MECHANISMS[request.mechanism], MECHANISMS[request.mechanism].check(request.params),
-                                            request.inertias.m3, request.omega)
+        mechanism = MECHANISMS[request.mechanism]
+        result["errata"] = errata.reduction(mechanism, mechanism.check(request.params), request.inertias.m3,
+                                            request.omega)
     if cycle is not None:
         result["cycle_moments"], more = cycle
         notices = [*notices, *more]

@@ -29,63 +29,13 @@ analogs and their derivatives at the neighbourhood's edges (error ~ h⁴, h the 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from .spec import Linkage, SliderInput
-
-EQUALITY = 1e-9
-SECOND_ANALOG_ERROR = 1e-6
-SINGULAR_SIN = (np.finfo(float).eps / SECOND_ANALOG_ERROR) ** (1 / 3)
-GRID = 721
-STEPS = 60
-MAX_HALF_WIDTH = np.radians(1.0)
-TURN = 2 * np.pi
-
-
-@dataclass(frozen=True)
-class ChangePoint:
-    """Group ``group`` flattens at the crank angle ``phi`` ∈ [0, 2π) while assembling on both sides; its analogs
-    are undefined for |φ − phi| < ``half_width`` (|sin| < SINGULAR_SIN); ``edge`` says which: "stretched"
-    (RRR, |BD| = BC + CD), "folded" (RRR, |BD| = |BC − CD|), "rod" (RRP), "slot" (RPR)."""
-
-    group: int
-    phi: float
-    half_width: float
-    edge: str
-
-
-def offset(phi: np.ndarray, at: float) -> np.ndarray:
-    """φ − at, wrapped to [−π, π)."""
-    return np.mod(np.asarray(phi, float) - at + np.pi, TURN) - np.pi
-
-
-def signs(points: tuple[ChangePoint, ...], k: int, phi: np.ndarray):
-    """The factor of group k's branch σ along the motion: (−1)^(change points of group k passed since φ = 0),
-    counting a change point at 0 once a turn (passed at 2π, not at the start); 1 without change points."""
-    own = np.array([cp.phi for cp in points if cp.group == k])
-    if own.size == 0:
-        return 1.0
-    phi = np.asarray(phi, float)
-    turns = np.floor(phi / TURN)
-    rest = phi - turns * TURN
-    passed = turns * own.size + np.sum((own[:, None] > 0) & (own[:, None] < rest[None, :]), axis=0) \
-        if phi.ndim == 1 else turns * own.size + np.sum((own > 0) & (own < rest))
-    return np.where(np.mod(passed, 2) == 0, 1.0, -1.0)
-
-
-def near(points: tuple[ChangePoint, ...], k: int, phi: np.ndarray) -> np.ndarray | None:
-    """Where group k is within a change point's neighbourhood (None: it has none)."""
-    own = [cp for cp in points if cp.group == k]
-    if not own:
-        return None
-    return np.any([np.abs(offset(phi, cp.phi)) < cp.half_width for cp in own], axis=0)
-
-
-def per_turn(points: tuple[ChangePoint, ...], k: int) -> int:
-    """How many change points group k passes a turn (odd: it comes back to its start after two turns only)."""
-    return sum(cp.group == k for cp in points)
+# the marks the composition reads, and the names read from here (change_points.offset, ...)
+from .change_point_marks import (EQUALITY, GRID, MAX_HALF_WIDTH, SECOND_ANALOG_ERROR, SINGULAR_SIN, STEPS,  # noqa: F401
+                                 TURN, ChangePoint, near, offset, per_turn, signs)
+from .composition import compose_with
 
 
 def find(linkage: Linkage) -> tuple[ChangePoint, ...]:
@@ -96,7 +46,6 @@ def find(linkage: Linkage) -> tuple[ChangePoint, ...]:
         return cached
     points: tuple[ChangePoint, ...] = ()
     if not isinstance(linkage.crank, SliderInput):
-        from .compose import compose_with
         grid = np.linspace(0.0, TURN, GRID)
         with np.errstate(all="ignore"):      # at a change point not yet known the analogs are 0/0 (inf, NaN)
             for k in range(len(linkage.groups)):
@@ -109,7 +58,6 @@ def find(linkage: Linkage) -> tuple[ChangePoint, ...]:
 def _group_points(linkage: Linkage, k: int, turn, points) -> tuple[ChangePoint, ...]:
     """Group k's change points: minima of its margins bracketed on the grid (kept only where the margin there is
     within |f′|·step of zero: it may reach zero within the step), bisected together on the sign of f′."""
-    from .compose import compose_with
     step = turn.phi[1] - turn.phi[0]
     brackets = []
     for edge, (f, df) in margins(turn.groups[k]).items():
@@ -142,7 +90,6 @@ def _group_points(linkage: Linkage, k: int, turn, points) -> tuple[ChangePoint, 
 def _half_width(linkage: Linkage, k: int, at: float, points) -> float:
     """The smallest h (on a ×1.25 ladder from 10⁻⁶ rad) at which |sin| of group k reaches SINGULAR_SIN on both
     sides of the change point, at most 1°."""
-    from .compose import compose_with
     ladder = 1e-6 * 1.25 ** np.arange(70)
     ladder = ladder[ladder <= MAX_HALF_WIDTH]
     both = compose_with(linkage, np.concatenate([at - ladder, at + ladder]), points, "null", upto=k + 1)

@@ -39,6 +39,7 @@ from scipy.interpolate import PchipInterpolator
 from ..mechanisms.base import GeometryError
 from .compose import Composition, compose
 from .state import Angle, Point, on_link
+from .strokes import angle_stroke, point_stroke
 
 
 @dataclass(frozen=True)
@@ -336,7 +337,7 @@ def check_model(comp: Composition, model: MassModel) -> None:
 def with_strokes(mechanism, model: MassModel) -> MassModel:
     """The model with every stroke diagram's extremes: a slide's s_min, s_max (its output reversals over the
     turn, refined by Newton's method: mechanisms/general.reversals), a link's θ_min, θ_max, a point's q_min,
-    q_max along its force line (load_kinematics.angle_stroke, point_stroke); the places are checked first
+    q_max along its force line (strokes.angle_stroke, point_stroke); the places are checked first
     (``check_places``); GeometryError where the slide, link or point does not move back and forth (no stroke to
     spread the diagram over)."""
     unresolved = lambda item: item.diagram is not None and item.diagram.over == "stroke" and item.stroke is None
@@ -344,7 +345,6 @@ def with_strokes(mechanism, model: MassModel) -> MassModel:
             not any(unresolved(item) for item in (*model.moments, *model.point_forces)):
         return model
     from ..mechanisms.general import reversals
-    from .load_kinematics import angle_stroke, point_stroke
     turn = compose(mechanism.linkage, mechanism.turn())
     check_places(turn, model)
     extremes = reversals(mechanism.linkage, turn)
