@@ -425,7 +425,7 @@ def test_the_deployment_guide_shows_the_shipped_nginx_site():
 def test_the_settings_file_names_only_what_the_app_or_the_unit_reads():
     unit = (REPO / "deploy" / "systemd" / "mdl@.service").read_text(encoding="utf-8")
     start = re.search(r"^ExecStart=(.+)$", unit, re.M).group(1)
-    assert start.startswith("/usr/bin/python3 -m server ") and "--port %i" in start
+    assert start.startswith("/opt/mdl/.venv/bin/python3 -m server ") and "--port %i" in start   # the venv's Python
     code = "\n".join(p.read_text(encoding="utf-8") for p in (REPO / "server").rglob("*.py"))
     example = (REPO / "deploy" / "mdl.env.example").read_text(encoding="utf-8")
     names = re.findall(r"^([A-Z_]+)=", example, re.M)
