@@ -19,7 +19,7 @@ from .lti import grades
 from .lti.members import lms_name, student_key, teaches
 from .lti.tool_key import tool_key
 from .names import normalise
-from .store import AssignmentRecord, StudentRecord
+from .store import AssignmentRecord, StoreUnavailable, StudentRecord
 from .store.lti_tables import LearnerRecord, PlatformRecord
 from .variants import Plan
 from .assignment_store import store
@@ -107,6 +107,8 @@ def sweep_expired() -> None:
     _swept["at"] = now
     try:
         store().lti_forget_expired(now)
+    except StoreUnavailable as error:                    # the database is down: one line, the next sweep retries
+        log.warning("removing expired LTI launch states waits for the database: %s", error)
     except Exception:                                    # noqa: BLE001 - the next sweep tries again
         log.exception("removing expired LTI launch states failed")
 
@@ -158,6 +160,9 @@ def _post_due() -> None:
     try:
         grades.post_due(store())
         waiting = store().lti_pending_scores()
+    except StoreUnavailable as error:                    # the database is down: one line, no traceback
+        log.warning("posting LTI scores waits for the database: %s", error)
+        waiting = []
     except Exception:                                    # noqa: BLE001 - logged; the rows stay due
         log.exception("posting LTI scores failed")
         waiting = []
@@ -186,6 +191,8 @@ def submitted(assignment_id: str, key: str) -> None:
     try:
         if queue_score(assignment_id, key):
             post_scores_later()
+    except StoreUnavailable as error:                    # the database is down: one line, no traceback
+        log.warning("queueing an LTI score waits for the database: %s", error)
     except Exception:                                    # noqa: BLE001 - a submission never fails for this
         log.exception("queueing an LTI score failed")
 
