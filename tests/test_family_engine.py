@@ -298,3 +298,11 @@ def test_the_shared_key_does_not_tell_a_missing_stage_from_full():
     body = family_body("reduced-inertia", "slider_crank", "lambda")
     assert family.shared(body) == family.shared(body | {"stage": "full"}) != family.shared(body | {"stage": "coarse"})
     assert math.isfinite(body["min"])
+
+
+def test_the_course_project_has_no_family(client):
+    """Its page drags no slider: a family of whole course projects is refused, naming the field."""
+    refused = client.post("/api/v1/family", json={"endpoint": "course-project", "request": {},
+                                                 "vary": [{"path": "omega_mean"}], "values": [1.0, 2.0]})
+    assert refused.status_code == 422
+    assert any(e["loc"][:2] == ["body", "endpoint"] for e in refused.json()["detail"])

@@ -20,7 +20,10 @@ from .query import LANG
 heavy.preload(__name__)     # family_body runs in the lanes
 
 router = APIRouter(tags=["family"])
-Endpoint = Literal[tuple(ENDPOINTS)]
+# A family answers a page's dragged slider; the course project is computed whole on /project and its scene's page
+# has no slider to drag, so it has none (a family of course projects would cost seconds of CPU).
+WITHOUT_FAMILY = ("course-project",)
+Endpoint = Literal[tuple(endpoint for endpoint in ENDPOINTS if endpoint not in WITHOUT_FAMILY)]
 
 
 class VaryItem(BaseModel):
