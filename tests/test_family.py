@@ -22,6 +22,7 @@ from server.runtime import heavy
 from server.families import family
 from server.api.app import app
 from server.api.endpoints import ENDPOINTS
+from server.api.routers.family import WITHOUT_FAMILY
 from server.lessons.scenes import scenes
 from server.lessons.requests import path_value, scene_request
 from server.core.dynamics import report
@@ -227,9 +228,12 @@ def test_non_finite_numbers_are_refused(client, field, loc):
     assert response.status_code == 422 and strict_json(response.text)["detail"][0]["loc"] == loc
 
 
-def test_the_endpoint_choice_is_every_computing_endpoint(client):
+def test_the_endpoint_choice_is_every_computing_endpoint_but_those_without_a_family(client):
+    """Every computing endpoint but the course project (a family of whole course projects costs seconds to
+    minutes of CPU), which the family endpoint refuses."""
     schema = client.get(f"{API}/openapi.json").json()["components"]["schemas"]["FamilyRequest"]
-    assert set(schema["properties"]["endpoint"]["enum"]) == set(ENDPOINTS)
+    assert WITHOUT_FAMILY == ("course-project",)
+    assert set(schema["properties"]["endpoint"]["enum"]) == set(ENDPOINTS) - set(WITHOUT_FAMILY)
 
 
 def test_the_answer_holds_no_nan_and_floats_of_at_most_five_significant_digits(families):
