@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from server.api import endpoints
+from server.api import endpoints_forces
 from server.runtime import heavy
 from server.api.app import create_app
 from server.core.elastic import report as elastic_report
@@ -69,7 +69,7 @@ def test_the_rigid_machine_alone_needs_no_elastic_run_and_is_the_same_start_up(c
 def test_forces_without_friction_analyse_once_and_check_against_the_separate_frictionless_analysis(client, monkeypatch):
     """Without friction in the pairs the analysis is the frictionless one: computed once, and the check (3.2)
     equals the one from a separate frictionless analysis."""
-    analyses = counted(monkeypatch, endpoints, "analyse")
+    analyses = counted(monkeypatch, endpoints_forces, "analyse")
     data = client.post(f"{API}/forces?precision=full", json=ENGINE).json()
     assert len(analyses) == 1
     loads = Loads(**{**ENGINE["loads"], "gravity": True})
@@ -84,7 +84,7 @@ def test_forces_without_friction_analyse_once_and_check_against_the_separate_fri
 
 
 def test_wear_analyses_the_forces_once(client, monkeypatch):
-    analyses = counted(monkeypatch, endpoints, "analyse")
+    analyses = counted(monkeypatch, endpoints_forces, "analyse")
     body = {"params": {"l1": 0.045, "l2": 0.18, "a2": 0.38},
             "loads": {"m2": 1.8, "m3": 1.33, "J1": 0.09, "gas": {"kind": "indicator", "p_max": 3e6,
                                                                    "piston_diameter": 0.075}}}
