@@ -70,10 +70,14 @@ def all_preview_fields(tree: Path = ROOT) -> dict[str, list[str]]:
 
 def page_family_body(scene, variant, slider, tree: Path = ROOT, values: dict | None = None) -> dict:
     """The family request the page of ``tree`` sends on a grab (without "stage"), the other controls at
-    ``values`` (defaults if absent): fields and packed where that page has them."""
+    ``values`` (defaults if absent). A page with family_fields.js asks for the family packed, and names the
+    fields when the variant's panels draw any in a preview (a variant of tables alone names none: whole answers)."""
     body = family_body(scene, variant, slider, values)
-    fields = all_preview_fields(tree).get(f"{scene.id}/{variant.id}")
-    return body | ({"fields": fields, "packed": True} if fields else {})
+    previews = all_preview_fields(tree)
+    key = f"{scene.id}/{variant.id}"
+    if key not in previews:
+        return body
+    return body | ({"fields": previews[key]} if previews[key] else {}) | {"packed": True}
 
 
 if __name__ == "__main__":

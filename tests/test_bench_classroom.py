@@ -13,7 +13,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-from server.api.routers.cache import CACHED_ENDPOINTS
+from typing import get_args
+
+from server.api.routers.family import WITHOUT_FAMILY, Endpoint, FamilyRequest
 from server.lessons.scenes import scene_documents
 
 REPO = Path(__file__).resolve().parents[1]
@@ -58,7 +60,7 @@ def test_three_students_for_three_seconds_write_the_tables_without_errors(tmp_pa
     assert text.count("s after it stopped (SIGTERM, 15 s): 0.") == 2, text       # no process outlives it
 
 
-FAMILY_ENDPOINTS = set(CACHED_ENDPOINTS) - {"family"}       # the contract's cached computing endpoints
+FAMILY_ENDPOINTS = set(get_args(Endpoint))          # the contract's choice of endpoint (all but WITHOUT_FAMILY)
 
 
 def substituted(request: dict, vary: list[dict], value: float) -> dict:
@@ -88,21 +90,27 @@ def close(a, b) -> bool:
 
 
 def test_the_family_request_of_every_slider_follows_the_contract():
-    """For every scene, variant and slider, with the other sliders at random positions: the body has the
-    contract's fields; its request is the page's request; setting the vary paths to v × factor reproduces the
+    """For every scene with families, variant and slider, with the other sliders at random positions: the body is
+    a valid FamilyRequest (the contract) with packed and, where the variant's panels draw any in a preview, the
+    fields; its request is the page's request; setting the vary paths to v × factor reproduces the
     page's request at any other slider value v (checked at the slider's ends and a random position, against
     scene_request, which is independent of the factors); min, max and log are the slider's, as in the scene JSON."""
     rng = random.Random(13)
     scene_request, slider_values = classroom.scene_request, classroom.slider_values
-    checked = 0
-    for scene in classroom.scenes().values():
+    previews = sys.modules["family_request"].all_preview_fields(REPO)
+    checked = with_fields = 0
+    for scene in (s for s in classroom.scenes().values() if s.endpoint not in WITHOUT_FAMILY):
         raw = scene_documents()[scene.id.replace("-", "_")]
         for variant, raw_variant in zip(scene.variants, raw["variants"]):
             for slider, raw_slider in zip(variant.sliders, raw_variant.get("sliders", [])):
                 values = {s.id: rng.choice(slider_values(s)) for s in variant.sliders}
                 body = classroom.page_family_body(scene, variant, slider, REPO, values)
-                assert set(body) == {"endpoint", "request", "vary", "min", "max", "log", "fields", "packed"}
-                assert body["packed"] is True and body["fields"] and all(isinstance(f, str) for f in body["fields"])
+                fields = previews[f"{scene.id}/{variant.id}"]
+                assert set(body) == {"endpoint", "request", "vary", "min", "max", "log", "packed"} | \
+                    ({"fields"} if fields else set())
+                FamilyRequest.model_validate(body)
+                assert body["packed"] is True and body.get("fields", []) == fields
+                with_fields += bool(fields)
                 assert body["endpoint"] == scene.endpoint and body["endpoint"] in FAMILY_ENDPOINTS
                 assert body["request"] == scene_request(scene, variant, values)
                 assert (body["min"], body["max"], body["log"]) == \
@@ -118,7 +126,7 @@ def test_the_family_request_of_every_slider_follows_the_contract():
                                  scene_request(scene, variant, values | {slider.id: value})), (scene.id, slider.id)
                 json.dumps(body, allow_nan=False)
                 checked += 1
-    assert checked > 50
+    assert checked > 50 and with_fields > 50
 
 
 def test_the_new_page_pattern_reports_a_family_the_server_cannot_give_as_errors(tmp_path):
