@@ -55,7 +55,7 @@ from server.api.schemas_elastic import ElasticRequest                           
 from server.core.dynamics.motors import Motor                                    # noqa: E402
 from server.core.dynamics.reduction import Inertias                              # noqa: E402
 from server.core.dynamics.resistance import Load                                 # noqa: E402
-from server.core.elastic.compiled import ready                                   # noqa: E402
+from server.core.elastic.warm import ready                                       # noqa: E402
 from server.core.elastic.report import (ElasticMachine, absolute_tolerances,    # noqa: E402
                                         build, modal, no_load_speed, simulate)
 from server.core.elastic.simulate import STIFF_RATIO, integrate, stiffness_ratio  # noqa: E402
