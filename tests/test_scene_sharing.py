@@ -29,11 +29,13 @@ def test_no_slider_definition_is_written_twice_and_every_shared_one_is_used():
 
 def test_the_equation_of_motion_writes_each_slider_once():
     """Its four motors on one machine: three variants extend the first and every common slider is shared (the
-    six-bars too: Whitworth's variant extends the shaping machine's)."""
+    six-bars too: Whitworth's variant extends the shaping machine's; the free law's variant, driven by a moment given by
+    points, extends none)."""
     raw = json.loads((CONTENT_DIR / "scenes" / "equation_of_motion.json").read_text(encoding="utf-8"))
-    assert [v.get("extends") for v in raw["variants"]] == [None, "linear", "linear", "linear", None, None, "shaping", None]
+    assert [v.get("extends") for v in raw["variants"]] == [None, "linear", "linear", "linear", None, None, None,
+                                                           "shaping", None]
     in_full = [s["id"] for v in raw["variants"] for s in v["sliders"] if "use" not in s]
-    assert len(in_full) == len(set(in_full)) == 4          # of its 33 sliders; the 29 others are shared
+    assert len(in_full) == len(set(in_full)) == 4          # of its 40 sliders; the 36 others are shared
     motion = scenes()["equation-of-motion"]
     assert [s.id for s in motion.variants[1].sliders] == ["lambda", "f", "load", "omega0", "M_nominal"]
     assert motion.variants[1].request["inertias"] == motion.variants[0].request["inertias"]
