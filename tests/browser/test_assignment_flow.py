@@ -19,6 +19,7 @@ from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
 from server.lessons.scenes import scenes
 from server.lessons.requests import scene_request
+from server.classroom.answers import question
 from server.classroom.spec import AssignmentSpec
 from server.classroom.names import normalise
 from server.classroom.variants import plan
@@ -28,6 +29,15 @@ from conftest import drag_slider, screenshot, server_log_tail
 pytestmark = pytest.mark.browser
 NUMBER = re.compile(r"-?\d+(?:[.,]\d+)?(?:[eE][-+]?\d+)?")
 LEAK_RTOL = 1e-7        # a leaked answer would match to ~1e-15; a coincidence among ~10⁴ numbers at 1e-7 is ~1e-3
+
+
+SEPARATOR = {"ru": ";", "uk": ";", "en": ","}           # where the language's spreadsheet splits the cells
+
+
+def spreadsheet(text: str, lang: str) -> list[dict]:
+    """The CSV's rows as a spreadsheet in the assignment's language reads them: split at its separator, each
+    row keyed by the header's words."""
+    return list(csv.DictReader(io.StringIO(text.lstrip("\ufeff"), newline=""), delimiter=SEPARATOR[lang]))
 
 
 def numbers_in(text: str) -> np.ndarray:
@@ -197,14 +207,16 @@ def test_assignment_from_making_to_results(chromium, app_url, browser_page):
     assert f"Correct answer: {students[wrong_name][2]:.6g}" in table[wrong_name]     # the instructor sees it
     assert "Correct answer" not in table[right_name]
     screenshot(instructor, "assignment_results")
-    exported = httpx.get(app_url + instructor.locator("#csv").get_attribute("href")).text.lstrip("\ufeff")
-    exported_rows = {row["student"]: row for row in csv.DictReader(io.StringIO(exported))}
+    assert "lang=en" in results_url                               # the assignment's language: its CSV's words
+    exported = httpx.get(app_url + instructor.locator("#csv").get_attribute("href")).text
+    exported_rows = {row["Student"]: row for row in spreadsheet(exported, "en")}
     assert set(exported_rows) == {right_name, wrong_name}
+    inertia = question(scenes()["flywheel"], "flywheel_inertia").label["en"]
     for name, (_, variant, _) in students.items():
         row = exported_rows[name]
-        assert int(row["variant"]) == variant["variant"] and float(row["delta"]) == variant["values"]["delta"]
-        assert row["score"] == ("1" if name == right_name else "0")
-        assert float(row["flywheel_inertia correct"]) == pytest.approx(students[name][2], rel=1e-9)
+        assert int(row["Variant"]) == variant["variant"] and float(row["[δ]"]) == variant["values"]["delta"]
+        assert row["Score"] == ("1" if name == right_name else "0")
+        assert float(row[f"{inertia}: Correct answer"]) == pytest.approx(students[name][2], rel=1e-9)
         assert f"{variant['variant']}" in table[name]
     assert instructor.problems == []
 
@@ -264,7 +276,7 @@ def test_roster_lock_new_link_and_delete_on_the_results_page(chromium, app_url, 
     deletes another's row, and replaces the results link itself (the old one stops working)."""
     created = httpx.post(f"{app_url}/api/v1/assignments", json={
         "scene": "flywheel", "variant": "rig", "lang": "ru", "questions": [{"id": "flywheel_inertia"}],
-        "sliders": {"delta": {"vary": {"min": 0.01, "max": 0.05}, "step": 0.001}}}).json()
+        "sliders": {"delta": {"vary": {"min": 0.01, "max": 0.05}, "step": 0.001}}}, timeout=60).json()
     instructor = browser_page
     instructor.on("dialog", lambda dialog: dialog.accept())
     instructor.goto(created["results_url"])
@@ -294,9 +306,9 @@ def test_roster_lock_new_link_and_delete_on_the_results_page(chromium, app_url, 
     instructor.reload()
     with instructor.expect_download() as download:
         instructor.click("#links-new")                         # neither has a link yet
-    links = list(csv.DictReader(io.StringIO(open(download.value.path(), encoding="utf-8-sig").read())))
-    assert sorted(row["student"] for row in links) == ["Иванов Иван", "Петренко Олена"]
-    page.goto(next(row["personal_link"] for row in links if row["student"] == "Иванов Иван"))
+    links = spreadsheet(open(download.value.path(), encoding="utf-8").read(), "ru")    # a ru spreadsheet: ";"
+    assert sorted(row["Студент"] for row in links) == ["Иванов Иван", "Петренко Олена"]
+    page.goto(next(row["Личная ссылка"] for row in links if row["Студент"] == "Иванов Иван"))
     page.wait_for_selector("#questions .question")
     assert page.problems == []
     ivanov = instructor.locator("#results tbody tr", has_text="Иванов Иван")
