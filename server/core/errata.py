@@ -177,7 +177,8 @@ def lecture10_rig(group_i: float, inertia_ii: np.ndarray, driving_work: float, o
     """Lecture 10's slips in the drilling-rig example that the flywheel study computes right, each with the value
     it gives for the scene's machine:
 
-    step 1.3   the variable part I_v^пр is assigned to the links of constant transfer functions (and the constant
+    §10.4.1.3  (step 1.3 of §10.4, written as a section number so that no page reads it as a decimal) the
+               variable part I_v^пр is assigned to the links of constant transfer functions (and the constant
                part to the variable ones): I_v as printed is group I's inertia, corrected the cycle mean of I_II;
     (L17)      y_Fд called the ordinate of the resisting force: read so, the driving moment changes sign, and its
                work over the cycle with it, J;
@@ -187,7 +188,7 @@ def lecture10_rig(group_i: float, inertia_ii: np.ndarray, driving_work: float, o
 
     ``inertia_ii`` on the flywheel cycle's closed uniform grid (its last point is the first again)."""
     mean_ii = float(np.mean(np.asarray(inertia_ii)[:-1]))
-    return [row("groups_reversed", "lecture10", "§10.4, 1.3", group_i, mean_ii, "kgm2"),
+    return [row("groups_reversed", "lecture10", "§10.4.1.3", group_i, mean_ii, "kgm2"),
             row("driving_ordinate", "lecture10", "(L17)", -driving_work, driving_work, "J"),
             row("phi_scale", "lecture10", "§10.6", DIAGRAM_BASE_MM / (2 * np.pi), DIAGRAM_BASE_MM / (2 * np.pi),
                 "mm_rad", printed_unit="mm_rad_as_pressure"),
