@@ -679,14 +679,20 @@ class Browser:
             if response.is_redirect:
                 response = self.http.get(urljoin(str(response.url), response.headers["location"]))
                 continue
-            if response.status_code == 200 and "text/html" in response.headers.get("content-type", "") \
-                    and re.search(r"\.submit\(\)", response.text):
+            if response.status_code == 200 and "text/html" in response.headers.get("content-type", ""):
                 forms = forms_of(response.text)
-                if len(forms) == 1 and forms[0]["method"] == "post":
+                if len(forms) == 1 and forms[0]["method"] == "post" \
+                        and re.search(r"\.submit\(\)", self._scripts_of(response)):
                     response = self.post_form(str(response.url), forms[0], follow=False)
                     continue
             return response
         raise AssertionError(f"more than {limit} redirects or forms: {[str(r.url) for r in self.history[-limit:]]}")
+
+    def _scripts_of(self, page: httpx.Response) -> str:
+        """The page's scripts as a browser runs them: inline, and those it loads from its own server."""
+        loaded = [self.http.get(urljoin(str(page.url), src)).text
+                  for src in re.findall(r'<script[^>]*\ssrc="([^"]+)"', page.text) if "://" not in src]
+        return "\n".join([page.text, *loaded])
 
     def post_form(self, page_url: str, form: dict, extra: dict | None = None, follow: bool = True) -> httpx.Response:
         url = urljoin(page_url, form["action"] or page_url)

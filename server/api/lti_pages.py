@@ -13,7 +13,7 @@ from . import security
 from ..classroom.assignment_store import store
 from .routers.pages import _context, templates
 from .schemas_lti import ToolUrls
-from .security import CONTENT_SECURITY_POLICY, policy_with_script_hashes
+from .security import CONTENT_SECURITY_POLICY
 
 ORIGINS_TTL_S = 30.0                # a platform registered on one server may frame the pages of all within this
 log = logging.getLogger("mdl.lti")
@@ -34,12 +34,11 @@ def origin(url: str) -> str:
     return f"{parts.scheme}://{parts.netloc}" if parts.scheme and parts.netloc else ""
 
 
-def framed_by(response: Response, origins: set[str], form_to: str = "", script_hash: str = "") -> Response:
+def framed_by(response: Response, origins: set[str], form_to: str = "") -> Response:
     """Let the platform frame this page (CSP frame-ancestors; X-Frame-Options then ignored) and, for the deep
-    linking answer, post a form to it with the one inline script of that hash."""
+    linking answer, post a form to it."""
     allowed = " ".join(sorted(o for o in origins if o))
-    policy = policy_with_script_hashes([script_hash]) if script_hash else CONTENT_SECURITY_POLICY
-    policy = policy.replace("frame-ancestors 'none'", f"frame-ancestors 'self' {allowed}".strip())
+    policy = CONTENT_SECURITY_POLICY.replace("frame-ancestors 'none'", f"frame-ancestors 'self' {allowed}".strip())
     if form_to:
         policy = policy.replace("form-action 'self'", f"form-action 'self' {form_to}")
     response.headers["content-security-policy"] = policy

@@ -9,8 +9,6 @@ cookie is blocked) it answers a small page that opens it in a new window with a 
 """
 from __future__ import annotations
 
-import base64
-import hashlib
 import logging
 import os
 from datetime import datetime, timezone
@@ -43,8 +41,6 @@ CUSTOM_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/custom"
 PRESENTATION_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/launch_presentation"
 DEEP_LINKING = "LtiDeepLinkingRequest"
 MESSAGE_TYPE_CLAIM = "https://purl.imsglobal.org/spec/lti/claim/message_type"
-AUTO_SUBMIT = "document.getElementById('lti-return').submit();"
-AUTO_SUBMIT_HASH = base64.b64encode(hashlib.sha256(AUTO_SUBMIT.encode()).digest()).decode()
 log = logging.getLogger("mdl.lti")
 
 router = APIRouter()                                    # the protocol and its pages: not in the OpenAPI
@@ -370,8 +366,8 @@ def _deep_link(request: Request, params: dict[str, str]):
     deep = found.get_deep_link()
     return_url = claims["https://purl.imsglobal.org/spec/lti-dl/claim/deep_linking_settings"]["deep_link_return_url"]
     response = page(request, "lti_deep_link_return.html", lang, return_url=return_url,
-                    jwt=deep.get_response_jwt([resource]), script=AUTO_SUBMIT)
-    return framed_by(response, origins, form_to=origin(return_url), script_hash=AUTO_SUBMIT_HASH)
+                    jwt=deep.get_response_jwt([resource]))
+    return framed_by(response, origins, form_to=origin(return_url))
 
 
 router.include_router(lti_registration.router)     # /lti/register/<code> and /api/v1/lti

@@ -3,7 +3,6 @@ is closed), or by the LMS itself with a single-use link the administrator made (
 ``/lti/register/<code>``); the tool's URLs to paste (``/api/v1/lti/tool``); the grades still to post."""
 from __future__ import annotations
 
-import base64
 import hashlib
 import os
 import secrets
@@ -25,8 +24,6 @@ from ..lti_pages import (base_url, forget_origins, framed_by, origin, page, plat
 from ..schemas_lti import (PendingScoreInfo, PlatformInfo, PlatformRegistered, PlatformRegistration, Platforms,
                            RegistrationLink, ToolUrls)
 
-CLOSE_REGISTRATION = "(window.opener || window.parent).postMessage({subject: 'org.imsglobal.lti.close'}, '*');"
-CLOSE_REGISTRATION_HASH = base64.b64encode(hashlib.sha256(CLOSE_REGISTRATION.encode()).digest()).decode()
 REGISTRATION_LINK_S = 7 * 86400     # a dynamic-registration link works once within a week
 ADMIN = HTTPBearer(auto_error=False, scheme_name="admin_token", description="MDL_ADMIN_TOKEN")
 
@@ -138,8 +135,8 @@ def dynamic_registration(request: Request, code: str, openid_configuration: str 
                             lms)
     tool_key.tool_key(store())
     forget_origins()
-    response = page(request, "lti_registered.html", lang, platform=platform, script=CLOSE_REGISTRATION)
-    return framed_by(response, platform_origins(platform), script_hash=CLOSE_REGISTRATION_HASH)
+    response = page(request, "lti_registered.html", lang, platform=platform)
+    return framed_by(response, platform_origins(platform))
 
 
 @api.get("/tool", response_model=ToolUrls, summary="The tool's URLs to paste into the LMS")
