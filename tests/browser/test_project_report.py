@@ -210,6 +210,9 @@ def test_the_editor_opens_the_project_and_says_why_it_cannot(browser_page):
     assert page.get_attribute("#editor-course-project", "aria-disabled") == "true"
     assert page.get_attribute("#editor-course-project", "href") is None
     assert page.inner_text("#editor-course-project-reason") == t["editor_project_needs_turn"]
+    page.wait_for_function("() => document.querySelector('#editor-masses-status').textContent !== ''")
+    assert page.text_content("#editor-masses-status") == t["editor_project_needs_turn"]   # no estimate asked
+    assert page.problems == []                           # (the server refuses one for this crank: 422)
     page.goto(f"/editor?lang=en&m={address(preset['linkage'])}&d={address(preset['dynamics'])}")
     page.wait_for_function("() => document.querySelector('#editor-course-project').getAttribute('aria-disabled') === 'false'")
     page.click("#editor-course-project")

@@ -341,18 +341,31 @@ function changed(structural, continuing = false, known = null) {
     }
     showAnswer();
     writeAddress();
+    askEstimate(linkage);                // once the table tells whether the crank turns fully
   };
   if (known) answered({ ok: true, data: known });
   else tables.submit(tableRequest(linkage), answered);
-  askEstimate(linkage);
 }
 
 /* ---- masses and loads ---- */
 
-/** The estimate for the mechanism as it is now: the whole table, or (kept values) rows for new links only. */
+/**
+ * The estimate for the mechanism as it is now: the whole table, or (kept values) rows for new links only. Not
+ * asked for a crank that cannot turn fully (the table says so; the server would refuse it, as every dynamics
+ * endpoint does): the masses say why instead.
+ */
 function askEstimate(linkage) {
   if (sliderInput()) {
     showMasses();
+    return;
+  }
+  if (!turnsFully()) {
+    estimates.cancel();
+    state.places = null;
+    $("editor-masses-status").textContent = state.refusal
+      ? refusalText(state.refusal, t, groupNames(state.linkage)) : t.editor_project_needs_turn;
+    showMasses();
+    writeAddress();
     return;
   }
   estimates.submit({ linkage }, (answer) => {

@@ -21,6 +21,12 @@ export class LatestRequest {
     if (!this.#busy) this.#drain();
   }
 
+  /** Drop the question waiting and the answer to the one in flight: nothing is to be asked now. */
+  cancel() {
+    this.#serial += 1;
+    this.#waiting = null;
+  }
+
   async #drain() {
     this.#busy = true;
     while (this.#waiting) {
