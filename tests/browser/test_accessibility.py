@@ -10,7 +10,9 @@ Every scene is loaded once, on a phone (390 × 844, ru), and that one load serve
   colour, stroke opacity and trace opacity Plotly actually drew, blended over the background it drew;
 - the curves of one plot all differ by dash (so they differ by more than colour);
 - every plot is an image named by its panel's title and described by a summary of its curves that holds their
-  numbers, with a table of values a button shows.
+  numbers, with a table of values a button shows;
+- a course-project scene (kind "project") draws no plot by design: it shows a card per preset, headed by the
+  preset's name, with its design data and a link to /project.
 Then on the flywheel scene: the logarithmic slider [δ] announces its value as the page writes it and steps
 by fractions of a decade from the keyboard; a plot's table of values holds the numbers Plotly draws.
 """
@@ -48,6 +50,11 @@ ALTERNATIVES = """() => [...document.querySelectorAll(".js-plotly-plot")].map((g
   title: graph.closest("figure")?.querySelector("h2")?.textContent.trim(),
   summary: document.getElementById(graph.getAttribute("aria-describedby"))?.textContent ?? "",
   button: graph.closest("figure")?.querySelector(".plot-table-toggle")?.getAttribute("aria-controls") ?? null }))"""
+
+# a course-project scene's cards: the preset's name, how many data it lists, its link to /project
+PROJECT_CARDS = """() => [...document.querySelectorAll("#project-variants .project-variant")].map((card) => ({
+  id: card.id, title: card.querySelector("h2")?.textContent ?? "", data: card.querySelectorAll("li").length,
+  link: card.querySelector("a")?.getAttribute("href") ?? "" }))"""
 
 
 def rgb(css: str) -> tuple[float, float, float]:
@@ -100,6 +107,13 @@ def test_scene_on_a_phone_fits_and_reads_without_sight(phone, name):
         r.violations.map((v) => `${v.id} (${v.impact}): ${v.nodes.map((n) => n.target.join(" ")).slice(0, 3).join(", ")}`))""")
     assert violations == [], f"{name}: axe-core finds {violations}"
 
+    if scene["kind"] == "project":
+        cards = phone.evaluate(PROJECT_CARDS)
+        presets = [variant["id"] for variant in scene["variants"] if not variant.get("address")]
+        assert [card["id"] for card in cards] == [f"project-variant-{v}" for v in presets], f"{name}: {cards}"
+        assert all(card["title"] and card["data"] and card["link"].startswith("/project?") for card in cards), cards
+        assert phone.evaluate(DRAWN_TRACES) == [] and phone.problems == []
+        return
     graphs = phone.evaluate(DRAWN_TRACES)
     assert graphs, f"{name}: no plot drawn"
     for graph in graphs:
