@@ -112,14 +112,22 @@ def tool_page(request: Request, lang: str | None = None):
 
 
 # OIDC login and launch
-@router.api_route("/lti/login", methods=["GET", "POST"], include_in_schema=False)
-async def login(request: Request):
+async def required_form(request: Request, what: str, fields: tuple[str, ...], how: str = ""):
+    """The request's form (or query) fields, or the 422 page naming the one missing or the size."""
     params = await form_params(request)
     if params is None:
-        return refused_page(request, 422, "too_large", "the login request is too large")
-    for field in ("iss", "login_hint"):
+        return refused_page(request, 422, "too_large", f"{what} is too large")
+    for field in fields:
         if not params.get(field):
-            return refused_page(request, 422, f"no_{field}", f"the login request has no {field}")
+            return refused_page(request, 422, f"no_{field}", f"{what} has no {field}{how}")
+    return params
+
+
+@router.api_route("/lti/login", methods=["GET", "POST"], include_in_schema=False)
+async def login(request: Request):
+    params = await required_form(request, "the login request", ("iss", "login_hint"))
+    if not isinstance(params, dict):
+        return params
     return await run_in_threadpool(_login, request, params)
 
 
@@ -136,12 +144,9 @@ def _login(request: Request, params: dict[str, str]):
 
 @router.post("/lti/launch", include_in_schema=False)
 async def launch(request: Request):
-    params = await form_params(request)
-    if params is None:
-        return refused_page(request, 422, "too_large", "the launch is too large")
-    for field in ("id_token", "state"):
-        if not params.get(field):
-            return refused_page(request, 422, f"no_{field}", f"the launch has no {field} (post it as a form field)")
+    params = await required_form(request, "the launch", ("id_token", "state"), " (post it as a form field)")
+    if not isinstance(params, dict):
+        return params
     return await run_in_threadpool(_launch, request, params)
 
 
