@@ -6,19 +6,13 @@ scores arrive in the platform's gradebook. No assertion depends on the machine's
 with a guard against a hang."""
 from __future__ import annotations
 
-import copy
-import json
-import math
-from pathlib import Path
-
 import httpx
 import pytest
 
 from lti_app import ADMIN_TOKEN, API, app_servers, make_assignment, results
 from lti_platform import LEARNER, Browser, Platform, User, page_text
+from test_course_project_assignment import request_by_hand
 
-PRESET = json.loads((Path(__file__).resolve().parents[1] / "content" / "mechanisms" / "shaping_machine.json")
-                    .read_text(encoding="utf-8"))
 QUESTIONS = ["J_flywheel", "M_b_groups", "M_b_lever"]
 SPEC = {"scene": "course-project", "variant": "shaping_machine", "title": "Course project (LMS)",
         "sliders": {"l_OA": {"vary": {"min": 0.08, "max": 0.2}, "step": 0.01},
@@ -43,20 +37,6 @@ def platform(server):
         yield platform
 
 
-def request_of(values: dict) -> dict:
-    """The course-project request of a student's values, written into the preset here."""
-    linkage, dynamics = copy.deepcopy(PRESET["linkage"]), copy.deepcopy(PRESET["dynamics"])
-    linkage["input"]["length"] = values["l_OA"]
-    linkage["frame"]["joints"]["C"][1] = -values["l_OC"]
-    linkage["groups"][1]["length"] = values["l_DE"]
-    masses = dynamics["masses"]
-    masses["links"][3]["mass"] = values["m5"]
-    masses["forces"][0]["working"] = values["P"]
-    masses |= {"friction": values["friction"], "pair_radius": 0.02}
-    return {"linkage": linkage, "masses": masses, "inertias": dynamics["inertias"],
-            "omega_mean": values["n1"] * math.pi / 30, "delta": values["delta"], "positions": 12,
-            "chosen": int(values["chosen"])}
-
 
 def test_two_learners_launch_answer_and_their_scores_reach_the_gradebook(server, platform):
     created = make_assignment(server.url, SPEC)
@@ -76,7 +56,7 @@ def test_two_learners_launch_answer_and_their_scores_reach_the_gradebook(server,
             break
     assert len(launched) == 2, "four learners, one variant"
     for user, browser, mine in launched:
-        project = httpx.post(f"{server.url}{API}/course-project", json=request_of(mine["values"]), timeout=120)
+        project = httpx.post(f"{server.url}{API}/course-project", json=request_by_hand(mine["values"]), timeout=120)
         assert project.status_code == 200, project.text
         answer = project.json()
         expected = {"J_flywheel": answer["dynamics"]["flywheel"]["flywheel_inertia"],
