@@ -107,7 +107,7 @@ def test_scene_on_a_phone_fits_and_reads_without_sight(phone, name):
         r.violations.map((v) => `${v.id} (${v.impact}): ${v.nodes.map((n) => n.target.join(" ")).slice(0, 3).join(", ")}`))""")
     assert violations == [], f"{name}: axe-core finds {violations}"
 
-    if scene["kind"] == "project":
+    if scene.get("kind") == "project":
         cards = phone.evaluate(PROJECT_CARDS)
         presets = [variant["id"] for variant in scene["variants"] if not variant.get("address")]
         assert [card["id"] for card in cards] == [f"project-variant-{v}" for v in presets], f"{name}: {cards}"
