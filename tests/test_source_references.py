@@ -111,3 +111,36 @@ def test_every_scene_and_preset_names_its_source_in_each_language():
             if not any(name in source[lang] for name in local):
                 missing.append(f"{path.name} [{lang}]")
     assert missing == []
+
+
+def served_texts():
+    """(address, text) of everything the app serves in words: every page in ru, uk and en (the start page, each
+    scene and its assignment builder where it has questions, the editor, the course project, the measurements), the scenes and
+    mechanisms as JSON, and every stored Markdown or HTML file under /bench-results."""
+    from fastapi.testclient import TestClient
+
+    from server.api.app import app
+    from server.lessons.scenes import scenes
+
+    client = TestClient(app)
+    pages = ["/", "/measurements", "/editor", "/project"]
+    for scene_id, scene in scenes().items():
+        pages += [f"/scenes/{scene_id}"] + [f"/scenes/{scene_id}/assign"] * bool(scene.questions)
+    addresses = [f"{page}?lang={lang}" for page in pages for lang in ("ru", "uk", "en")]
+    addresses += ["/api/v1/scenes", "/api/v1/mechanisms", "/api/v1/mechanisms/general"]
+    addresses += [f"/bench-results/{path.name}" for path in sorted((REPO / "bench" / "results").iterdir())
+                  if path.suffix in (".md", ".html")]
+    for address in addresses:
+        answer = client.get(address)
+        assert answer.status_code == 200, address
+        yield address, answer.text
+
+
+def test_nothing_the_app_serves_names_a_source_by_file_number():
+    """What a reader can open (pages in three languages, the scenes' JSON, the stored benchmark results and
+    figures) cites no source by a file number: "seed 003", "seed-003", "003.md"."""
+    hits = []
+    for address, text in served_texts():
+        for what in ("a seed's file number", "a notes file"):
+            hits += [f"{address}: {match.group(0)}" for match in FORBIDDEN[what].finditer(text)]
+    assert hits == []
