@@ -4,11 +4,15 @@ Proxy headers (X-Forwarded-For, X-Forwarded-Proto) are read only from the revers
 ``--forwarded-allow-ips`` or ``MDL_FORWARDED_ALLOW_IPS`` (comma-separated addresses or networks). By default
 none is trusted: any local process could otherwise name itself a new client in X-Forwarded-For and so
 escape the per-address limits (submissions per minute, computations in flight).
+
+Every accepted connection has TCP_NODELAY (server/runtime/nodelay.py), with one worker and with several.
 """
 import argparse
 import os
 
 import uvicorn
+
+from .runtime.nodelay import HTTP
 
 
 def uvicorn_options(argv: list[str] | None = None) -> dict:
@@ -23,7 +27,7 @@ def uvicorn_options(argv: list[str] | None = None) -> dict:
     args = parser.parse_args(argv)
     trusted = args.forwarded_allow_ips.strip()
     return {"host": args.host, "port": args.port, "workers": args.workers,
-            "proxy_headers": bool(trusted), "forwarded_allow_ips": trusted or None}
+            "proxy_headers": bool(trusted), "forwarded_allow_ips": trusted or None, "http": HTTP}
 
 
 def main() -> None:
