@@ -232,3 +232,24 @@ def test_the_measurements_page_is_a_page_of_the_app(lang):
     assert interface_texts(lang)["measurements_title"] in page.text
     assert "<table>" in page.text and 'src="/bench-results/wp_steady_cycle.png"' in page.text
     assert client.get("/bench-results/wp_steady_cycle.png").status_code == 200
+
+
+@pytest.mark.parametrize("lang", LANGUAGES)
+def test_the_measurements_page_speaks_the_readers_language(lang):
+    """/measurements in ru/uk: its headings, references, figure captions, the fastest-method sentences, the
+    tables' heads and our methods' names in the reader's words (content/i18n, measurements_*), no English
+    sentence of the app's own, numbers with a decimal comma; only solver names (SciPy's RK45 …) stay."""
+    html = client.get(f"/measurements?lang={lang}").text
+    article = html.split('<article class="measurements"', 1)[1].split("</article>", 1)[0]
+    text = re.sub(r"<[^>]+>", " ", article)
+    texts = interface_texts(lang)
+    assert english_in(text, lang) == []
+    for english in ("Reference", "Fastest", "ours", "interactive", "run time", "tolerance", "Elastic", "Flywheel",
+                    "method", "error", "seed", "solve_ivp"):
+        assert english not in text, english
+    for key in ("steady_cycle", "flywheel", "elastic_belt", "elastic_stiff", "elastic_linkage", "elastic_four_bar"):
+        assert str(notation(texts[f"measurements_study_{key}"])) in article, key
+    assert texts["measurements_figure"] in article and texts["numerics_rtol"] != "Допуск rtol"
+    assert "<th>" + texts["measurements_column_run_time"] + "</th>" in article
+    assert not re.search(r"\d\.\d", text.replace("RK45", ""))         # a decimal comma in every number
+    assert english_in(html, lang) == []

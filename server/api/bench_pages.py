@@ -12,8 +12,10 @@ import hashlib
 import re
 from functools import lru_cache
 
+from markupsafe import Markup, escape
 from starlette.staticfiles import StaticFiles
 
+from .messages import signed
 from .security import policy_with_script_hashes
 
 INLINE_SCRIPT = re.compile(r"<script(?![^>]*\bsrc=)[^>]*>(.*?)</script>", re.S | re.I)
@@ -40,3 +42,105 @@ class BenchResults(StaticFiles):
             response.headers["content-security-policy"] = _page_policy(
                 str(full_path), stat_result.st_mtime_ns, stat_result.st_size)
         return response
+
+
+# --- the measurements page: bench/results/work_precision.md in the reader's language ---------------------------
+# The bench writes its tables in English; the page's own words (headings, references, figure captions, the
+# fastest-method sentence, the table's head and the method names) are said in ru, uk or en from content/i18n
+# (keys measurements_*), the numbers written the reader's way. A line the page does not know stays as written.
+
+PICTURE = re.compile(r"!\[[^\]]*\]\(([^)\s]+)\)")
+INTERACTIVE = re.compile(r"\(interactive: (\S+)\)")
+FASTEST = re.compile(r"(?:Fastest to error|error) ≤ (\S+): (.+?) in ([\d.]+) ms")
+PICKED = re.compile(r"ours \(picked by stiffness ratio ([^)]+)\): (\w+)")
+REFERENCES = {"DOP853 at rtol 1e-13 in time, cycles until periodic": "measurements_reference_dop853",
+              "ours on 32768 steps per turn": "measurements_reference_fine_grid",
+              "rtol 1e-11 by another method than ours": "measurements_reference_other_method"}
+METHODS = {"ours (Newton shooting, RK4 in φ)": "measurements_method_shooting",
+           "ours (Simpson on the cycle grid)": "measurements_method_simpson"}
+
+
+def _number(text: str, lang: str) -> str:
+    """A number of the bench's tables written the reader's way (decimal comma in ru/uk, a true minus, powers of
+    ten written out: "1e-03" → "10⁻³"), as the pages' decimal filter writes it."""
+    try:
+        value = float(text)
+    except ValueError:
+        return text
+    written = f"{value:.6g}"
+    return signed(written if lang == "en" else written.replace(".", ","))
+
+
+def _method(text: str, t: dict, lang: str) -> str:
+    """A method's name in the reader's language: ours by what it does, SciPy's by its own name."""
+    if text in METHODS:
+        return t[METHODS[text]]
+    if picked := PICKED.fullmatch(text):
+        return t["measurements_method_picked"].format(ratio=_number(picked.group(1), lang), method=picked.group(2))
+    return text.replace("solve_ivp ", "SciPy ")
+
+
+def _fastest(line: str, t: dict, lang: str) -> str:
+    """'Fastest to error ≤ 1e-04: ours (…) in 3.2 ms; …' as one sentence in the reader's language."""
+    parts = [t["measurements_fastest_item"].format(error=_number(error, lang), method=_method(method, t, lang),
+                                                    ms=_number(ms, lang))
+             for error, method, ms in FASTEST.findall(line)]
+    return t["measurements_fastest"].format(items="; ".join(parts)) + "."
+
+
+def _table(rows: list[str], t: dict, lang: str, notation) -> str:
+    cells = [[cell.strip() for cell in row.strip().strip("|").split("|")] for row in rows]
+    head = [t["measurements_column_method"], t["measurements_column_tolerance"], t["measurements_column_error"],
+            t["measurements_column_run_time"]]
+    if cells[0] != ["method", "tolerance", "error", "run time, ms"]:
+        head = cells[0]
+    body = []
+    for row in cells[2:]:
+        shown = [_method(row[0], t, lang)] + [_number(cell, lang) for cell in row[1:]]
+        body.append("<tr>" + "".join(f"<td>{notation(cell)}</td>" for cell in shown) + "</tr>")
+    return ("<table><thead><tr>" + "".join(f"<th>{escape(cell)}</th>" for cell in head) + "</tr></thead><tbody>"
+            + "".join(body) + "</tbody></table>")
+
+
+def measurements_html(markdown: str, t: dict, lang: str, notation, notation_parts) -> Markup:
+    """The work–precision tables as HTML in lang: the first heading left to the page, each study's heading,
+    reference, figure (its caption and the link to the interactive figure), sentence of the fastest method and
+    table in the reader's words. notation is the pages' filter (subscripts as <sub>, all else escaped),
+    notation_parts its reading of the markup (for the picture's alt text, plain)."""
+    html, lines, i, title = [], markdown.splitlines(), 0, ""
+    while i < len(lines):
+        line = lines[i]
+        if line.startswith("# "):
+            i += 1
+            continue
+        if line.startswith("## "):
+            section = "\n".join(lines[i + 1:i + 4])
+            found = re.search(r"wp_(\w+)\.png", section)
+            title = t.get(f"measurements_study_{found.group(1)}" if found else "", line[3:])
+            html.append(f"<h2>{notation(title)}</h2>")
+        elif line.startswith("Reference: "):
+            reference = line[len("Reference: "):].split(". ![", 1)[0].rstrip(".")
+            said = t[REFERENCES[reference]] if reference in REFERENCES else reference
+            html.append(f"<p>{escape(t['measurements_reference'])}: {notation(said)}.</p>")
+            if picture := PICTURE.search(line):
+                source = picture.group(1) if picture.group(1).startswith("/") else f"/bench-results/{picture.group(1)}"
+                caption = t["measurements_figure"]
+                alt = "".join(run for run, _ in notation_parts(f"{title} — {caption}"))
+                link = INTERACTIVE.search(line)
+                more = (f' <a href="{escape(link.group(1))}">{escape(t["measurements_interactive"])}</a>'
+                        if link else "")
+                html.append(f'<figure><img src="{escape(source)}" alt="{escape(alt)}" loading="lazy">'
+                            f"<figcaption>{notation(caption)}{more}</figcaption></figure>")
+        elif line.startswith("Fastest to error"):
+            html.append(f"<p>{notation(_fastest(line, t, lang))}</p>")
+        elif line.startswith("|"):
+            end = i
+            while end < len(lines) and lines[end].startswith("|"):
+                end += 1
+            html.append(_table(lines[i:end], t, lang, notation))
+            i = end
+            continue
+        elif line.strip():
+            html.append(f'<p lang="en">{escape(line)}</p>')
+        i += 1
+    return Markup("\n".join(html))

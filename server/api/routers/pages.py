@@ -1,16 +1,15 @@
 """HTML pages: the start page listing the scenes, one page per scene, and the measurements page (the
 work–precision tables of bench/results)."""
-import re
 import unicodedata
 
 from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.templating import Jinja2Templates
-from markdown_it import MarkdownIt
 from markupsafe import Markup, escape
 
 from ...lessons.scenes import LANGUAGES, interface_texts, language, scenes
 from ...paths import BENCH_RESULTS, WEB
+from ..bench_pages import measurements_html
 from ..scene_urls import renamed
 from ..messages import signed
 
@@ -107,15 +106,10 @@ def scene_context(request: Request, context: dict, scene) -> dict:
                       "assignment": None}
 
 
-def measurements_html() -> Markup:
-    """bench/results/work_precision.md as HTML (raw HTML in it escaped), its pictures from /bench-results/."""
-    text = MEASUREMENTS.read_text(encoding="utf-8")
-    text = re.sub(r"\]\((?!/|https?:)([^)]+)\)", r"](/bench-results/\1)", text)
-    return Markup(MarkdownIt("commonmark", {"html": False}).enable("table").render(text))
-
-
 @router.get("/measurements", response_class=HTMLResponse)
 def measurements(request: Request, lang: str | None = None):
-    """The full work–precision tables that the scenes' small live studies point to."""
-    return templates.TemplateResponse(request, "measurements.html",
-                                      _context(request, lang) | {"tables": measurements_html()})
+    """The full work–precision tables that the scenes' small live studies point to, in the reader's words."""
+    context = _context(request, lang)
+    tables = measurements_html(MEASUREMENTS.read_text(encoding="utf-8"), context["t"], context["lang"], notation,
+                                notation_parts)
+    return templates.TemplateResponse(request, "measurements.html", context | {"tables": tables})
