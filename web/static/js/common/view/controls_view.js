@@ -3,8 +3,9 @@
  * and the English one beside it, the toggles, the overlay switch (kinematics), and the variant's
  * description. The model is a SceneSettings that also tells the length a ratio slider sets (setting).
  * Sliders report on every `input` event, and when the reader takes hold of one (pointer down, keyboard
- * focus), it comes to rest (`change`, pointer up) and it is let go (blur): dragging is drawn from the
- * slider's family (family_preview.js) or, before that arrives, kept cheap by the coalescing client.
+ * focus), it comes to rest (`change`, pointer up; keys: once they rest, slider_keys.js) and it is let go
+ * (blur): dragging, with the pointer or the keys, is drawn from the slider's family (family_preview.js) or,
+ * before that arrives, kept cheap by the coalescing client.
  * Every slider tells a screen reader its value as the page writes it (aria-valuetext "δ = 0,02", not the
  * thumb's position); a logarithmic one steps from the keyboard by a fraction of a decade (slider_scale.js).
  * On a phone or tablet the controls are a sheet at the bottom of the screen (controls_sheet.js).
@@ -16,6 +17,7 @@ import {
   formatNumber, formatQuantity, labelledValue, paramSymbol, plainText, richText, setRichText, unitText,
 } from "./notation.js";
 import { LOG_DIGITS, logKeyValue, sliderScale } from "../model/slider_scale.js";
+import { SliderKeys } from "./slider_keys.js";
 
 const POWER_FROM = 1e6;     // a slider value from here on reads "4,4·10⁶", not "4400000"
 
@@ -103,15 +105,20 @@ export class ControlsView {
       this.model.setValue(slider.id, scale.value(Number(input.value)));
     });
     for (const type of ["pointerdown", "focus"]) input.addEventListener(type, () => this.model.grab(slider.id));
-    // "change" when the value moved; pointerup also when the thumb was put back where it was taken from
-    for (const type of ["change", "pointerup"]) input.addEventListener(type, () => this.model.rest());
+    const keys = new SliderKeys(input, {
+      grab: () => { if (this.model.grabbed?.id !== slider.id) this.model.grab(slider.id); },
+      rest: () => this.model.rest() });
+    // "change" when the value moved (at every key too: keys rest when they stop); pointerup also when the thumb
+    // was put back where it was taken from
+    input.addEventListener("change", () => { if (!keys.running) this.model.rest(); });
+    input.addEventListener("pointerup", () => this.model.rest());
     input.addEventListener("blur", () => this.model.letGo());
     if (slider.log) input.addEventListener("keydown", (event) => this.#logKey(slider, event));
     return element("label", { className: slider.locked ? "slider locked" : "slider", htmlFor: input.id },
       element("span", { className: "slider-text" }, main, length), input);
   }
 
-  /** A key on a logarithmic slider: the next value on its grid of fractions of a decade, at rest at once. */
+  /** A key on a logarithmic slider: the next value on its grid of fractions of a decade (at rest with the keys). */
   #logKey(slider, event) {
     const value = logKeyValue(slider, this.model.values[slider.id], event.key);
     if (value === null || event.altKey || event.ctrlKey || event.metaKey) return;
@@ -119,7 +126,6 @@ export class ControlsView {
     if (value === this.model.values[slider.id]) return;
     performance.mark("slider-input");
     this.model.setValue(slider.id, value);
-    this.model.rest();
   }
 
   #toggle(toggle) {
