@@ -9,8 +9,18 @@
  * own; a polar curve gives its angle and its radius. Empty cells where a curve has no value (a singular
  * position) or no row. UTF-8 with a byte-order mark (spreadsheets then read the Cyrillic right); the
  * decimal separator is the reader's choice: a comma with ";" between cells, or a point with ",".
+ * The abscissa (φ, °; t, s; a polar curve's angle) is written to ABSCISSA_DIGITS significant digits: the
+ * server sends angles in radians to 7, and the degrees a plot derives from them carry that rounding
+ * ("0,9999998556178845" for 1°), which one digit fewer absorbs.
  */
 import { plainText } from "./notation.js";
+
+export const ABSCISSA_DIGITS = 6;
+
+/** An abscissa value to ABSCISSA_DIGITS significant digits (not a number: as it is). */
+export function abscissa(value) {
+  return typeof value === "number" && Number.isFinite(value) ? Number(value.toPrecision(ABSCISSA_DIGITS)) : value;
+}
 
 const ENTITIES = { "&amp;": "&", "&lt;": "<", "&gt;": ">", "&quot;": "\"", "&#39;": "'" };
 
@@ -52,7 +62,7 @@ export function plotColumns(graph) {
     if (group) group.columns.push(column);
     else groups.push({ x: trace.x, header: plotPlain(layout.xaxis?.title?.text ?? "x"), columns: [column] });
   }
-  return groups.flatMap((g) => [{ header: g.header, values: g.x }, ...g.columns]);
+  return groups.flatMap((g) => [{ header: g.header, values: Array.from(g.x, abscissa) }, ...g.columns]);
 }
 
 /** The separators of a CSV file: "comma" → decimal comma, cells split by ";"; "point" → decimal point, ",". */
