@@ -163,6 +163,8 @@ class Scene(BaseModel):
     title: Text
     summary: Text
     text: Text
+    details: Text | None = Field(None, description=(
+        "the sources' details (equations, misprints, conventions), folded below the short task-oriented text"))
     outputs: list[str]
     panels: dict[str, dict]
     variants: list[Variant]
@@ -245,7 +247,7 @@ def scenes() -> Catalogue:
     for name, document in scene_documents().items():
         where = f"{name}.json"
         scene = Scene.model_validate(document)
-        for key in ("title", "summary", "text", "source"):
+        for key in ("title", "summary", "text", "source") + ("details",) * (scene.details is not None):
             _check_languages(getattr(scene, key), f"{where}: {key}")
         for variant in scene.variants:
             _check_languages(variant.label, f"{where}: {variant.id}.label")
