@@ -149,7 +149,10 @@ export function polarFigure(panel, data, texts) {
         angularaxis: { direction: "counterclockwise", rotation: 0, dtick: 45, ticksuffix: "°", gridcolor: GRID,
           hoverformat: ".1f" },
         // autorange said: under the graph's uirevision Plotly kept an earlier answer's radial range (curves clipped)
-        radialaxis: { autorange: true, rangemode: "tozero", angle: 90, tickangle: 90, gridcolor: GRID,
+        // the radial axis along 0°, its tick labels above it and its title above them: Plotly sets the title off
+        // by the axis layer's height, which is the axis's own length for an upright axis (title over the ticks),
+        // and below a level axis it leaves the title's box 3 px into the labels' (above it, 2 px clear)
+        radialaxis: { autorange: true, rangemode: "tozero", angle: 0, tickangle: 0, side: "counterclockwise", gridcolor: GRID,
           exponentformat: "power", hoverformat: ".4g", title: { text: radius } },
       },
     },
