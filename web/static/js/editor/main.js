@@ -64,7 +64,8 @@ let recorded = null;                 // the mechanism (JSON) as the last step of
 const stage = $("editor-drawing");
 
 const HANDLE_WORDS = { joint: "editor_handle_joint", guide: "editor_handle_guide", guide_angle: "editor_handle_angle" };
-const drawing = new Drawing(stage, { label: t.drawing, names: (kind, name) => messageText(t[HANDLE_WORDS[kind]], { name }) });
+const drawing = new Drawing(stage, { label: t.drawing, names: (kind, name) => messageText(t[HANDLE_WORDS[kind]],
+  { name: kind === "joint" ? name : guideLabel(name, t) }) });
 const readout = viewControls(drawing, { t, lang, onView: () => draw() });
 /** Dragging a handle: the drawing follows the pointer, the table asked as it goes (view/drag.js). */
 const direct = new DirectEdit({

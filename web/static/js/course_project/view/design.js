@@ -13,6 +13,7 @@ import { element } from "../../common/view/dom.js";
 import { formatQuantity, plainText } from "../../common/view/notation.js";
 import { decimalMessage } from "../../common/model/decimal_input.js";
 import { dimensionRows } from "../model/dimensions.js";
+import { guideLabel } from "../../editor/model/linkage.js";
 import { BOUNDS, DEGREES, GRAVITY, addLoad, diagramText, machineRows, readDiagramText, removeLoad } from "../model/design.js";
 import { checkInput, choiceInput, decimalInput, inputCell } from "./fields.js";
 
@@ -46,7 +47,8 @@ function dimensionValue(row, lang, t) {
 
 function dimensions(linkage, { t, lang, editorHref }) {
   const rows = dimensionRows(linkage).map((row) => element("tr", {},
-    rowHead(fill(t[row.element[0]], row.element[1])),
+    rowHead(fill(t[row.element[0]], row.kind.endsWith("guide")          // a preset's guide by its textbook label
+      ? { ...row.element[1], name: guideLabel(row.element[1].name, t) } : row.element[1])),
     element("td", { textContent: row.link ? String(row.link) : "0" }),
     element("td", { className: "dimension", rich: dimensionValue(row, lang, t) })));
   return [table("project-dimensions", t.project_dimensions, ["", t.project_link_number, t.project_value], rows),
