@@ -2,14 +2,16 @@
 first request, so that no student waits for the JIT: the equation of motion's RK4 in φ, the flywheel's periodic
 solution and DOP853 leaving rest (server.core.dynamics.compiled), and the elastic models' right-hand sides,
 DOP853 and Radau IIA (server.core.elastic.warm), the friction equilibrium of a general mechanism
-(server.core.kinetostatics.groups.compiled), its tables between the kinks (server.core.dynamics.kink_table) and
-what a slider family's second differences do not see (server.core.interpolation_error). The first compile on a
+(server.core.kinetostatics.groups.compiled), its tables between the kinks (server.core.dynamics.kink_table),
+what a slider family's second differences do not see (server.core.interpolation_error) and the induction motor's
+successive approximations (server.core.dynamics.approximations_compiled). The first compile on a
 fresh machine takes tens of seconds (tests/run.sh and the Dockerfile do it once, `python3 -m
 server.core.warm_up`); a process that finds the cache loads it in about a second.
 """
 from __future__ import annotations
 
 from . import interpolation_error
+from .dynamics import approximations_compiled as approximations
 from .dynamics import compiled as dynamics
 from .dynamics import kink_table
 from .elastic import warm as elastic
@@ -21,7 +23,8 @@ def warm_up() -> dict[str, float]:
     return {"equation of motion": dynamics.warm_up(), "elastic machines": elastic.warm_up(),
             "friction in a general mechanism's pairs": group_friction.warm_up(),
             "its tables between the kinks": kink_table.warm_up(),
-            "a slider family's interpolation error": interpolation_error.warm_up()}
+            "a slider family's interpolation error": interpolation_error.warm_up(),
+            "the induction motor's successive approximations": approximations.warm_up()}
 
 
 if __name__ == "__main__":

@@ -29,7 +29,9 @@ from scipy.optimize import brentq
 
 from ..mechanisms import Notice
 from ..numerics import Numerics
+from .approximations_compiled import CONVERGED, NO_BALANCE, ROOT_FAILED, ROWS, STOPS, approximation_steps
 from .machine import Machine, Tables
+from .speed_moment import speed_parameters
 
 STEPS_MAX = 200             # guard only: ρ < 1 decides convergence, the steps needed are log(tol)/log ρ
 SHOWN_DIVERGING = 6         # steps shown of a diverging sequence
@@ -76,9 +78,10 @@ def energy_law(tables: Tables, work: np.ndarray, mean: float) -> np.ndarray | No
 
 
 def successive_approximations(machine: Machine, tables: Tables, omega_operating: float, knee: float,
-                              tol: float = 1e-8) -> Approximations:
+                              tol: float = 1e-8, compiled: bool = True) -> Approximations:
     """The steps of (§10.10) on the nodes of ``tables``, from the operating point's speed; ``knee``: the speed
-    where the characteristic's stable branch begins (motor_characteristic.critical_speed)."""
+    where the characteristic's stable branch begins (motor_characteristic.critical_speed); ``compiled``: by the
+    compiled loop (the same steps to rounding) where it knows the machine's moments, else in numpy."""
     sync = machine.motor.omega_sync / machine.inertias.gear_ratio
     started = time.perf_counter()
     phi = tables.phi
@@ -87,42 +90,9 @@ def successive_approximations(machine: Machine, tables: Tables, omega_operating:
     J_mean = cycle_mean(tables.J, phi)
     slope = float(machine.speed_moment(omega_operating, sliding)[1])
     result.ratio = abs(slope) / (J_mean * omega_operating)
-
-    def moment_at(omega):
-        return machine.speed_moment(omega, tables.sliding)[0]
-
-    def balance(omega):
-        return cycle_mean(tables.net_phi + moment_at(omega), phi)
-
-    omega = np.full_like(phi, omega_operating)
     limit = STEPS_MAX if result.ratio < 1 else SHOWN_DIVERGING
-    for step in range(1, limit + 1):
-        level = cycle_mean(omega, phi)      # the shift keeps the mean speed on the stable branch, knee to ω₁с
-        low, high = knee - level, sync - level
-        if balance(omega + low) * balance(omega + high) > 0:
-            result.notices.append(Notice("motor_approximation_no_balance", f"Step {step}: no mean speed balances the "
-                                         "cycle's work on the characteristic: the motor cannot carry the load.",
-                                         {"step": step}))
-            break
-        shift = brentq(lambda c: balance(omega + c), low, high, xtol=1e-14 * omega_operating, rtol=1e-15)
-        driving = moment_at(omega + shift)
-        work = cumulative_trapezoid(tables.net_phi + driving, phi)
-        new = energy_law(tables, work, cycle_mean(omega, phi) + shift)
-        if new is None:
-            result.notices.append(Notice("motor_approximation_stops", f"Step {step}: the kinetic energy runs out "
-                                         "within the cycle: the machine stops.", {"step": step}))
-            break
-        change = float(np.max(np.abs(new - omega)) / np.mean(new))
-        w_max, w_min = float(new.max()), float(new.min())
-        result.omega.append(new)
-        result.moment.append(driving)
-        result.rows.append({"step": step, "omega_mean": 0.5 * (w_max + w_min), "omega_max": w_max,
-                            "omega_min": w_min, "delta": (w_max - w_min) / (0.5 * (w_max + w_min)),
-                            "moment_mean": cycle_mean(driving, phi), "change": change})
-        omega = new
-        if change < tol and step > 1:
-            result.converged = True
-            break
+    if not (compiled and compiled_steps(machine, tables, omega_operating, knee, sync, tol, limit, result)):
+        plain_steps(machine, tables, omega_operating, knee, sync, tol, limit, result)
     if result.ratio >= 1:
         result.notices.append(Notice("motor_approximations_diverge", f"The successive approximations diverge: ρ = "
                                      f"|k|/(Ī ω̄) = {result.ratio:.3g} ≥ 1 (the drive's time constant is shorter "
@@ -139,3 +109,83 @@ def successive_approximations(machine: Machine, tables: Tables, omega_operating:
     if result.notices:
         result.numerics.tell(result.notices[-1])
     return result
+
+
+def plain_steps(machine: Machine, tables: Tables, omega_operating: float, knee: float, sync: float, tol: float,
+                limit: int, result: Approximations) -> None:
+    """The steps in numpy, each root by scipy's brentq: the reference of the compiled loop, and the path of a
+    machine whose moments it does not know."""
+    phi = tables.phi
+
+    def moment_at(omega):
+        return machine.speed_moment(omega, tables.sliding)[0]
+
+    def balance(omega):
+        return cycle_mean(tables.net_phi + moment_at(omega), phi)
+
+    omega = np.full_like(phi, omega_operating)
+    for step in range(1, limit + 1):
+        level = cycle_mean(omega, phi)      # the shift keeps the mean speed on the stable branch, knee to ω₁с
+        low, high = knee - level, sync - level
+        if balance(omega + low) * balance(omega + high) > 0:
+            result.notices.append(no_balance(step))
+            break
+        shift = brentq(lambda c: balance(omega + c), low, high, xtol=1e-14 * omega_operating, rtol=1e-15)
+        driving = moment_at(omega + shift)
+        work = cumulative_trapezoid(tables.net_phi + driving, phi)
+        new = energy_law(tables, work, cycle_mean(omega, phi) + shift)
+        if new is None:
+            result.notices.append(stops(step))
+            break
+        change = float(np.max(np.abs(new - omega)) / np.mean(new))
+        w_max, w_min = float(new.max()), float(new.min())
+        result.omega.append(new)
+        result.moment.append(driving)
+        result.rows.append(step_row(step, w_max, w_min, cycle_mean(driving, phi), change))
+        omega = new
+        if change < tol and step > 1:
+            result.converged = True
+            break
+
+
+def step_row(step: int, w_max: float, w_min: float, moment_mean: float, change: float) -> dict:
+    """A row of the steps' table: the law's ω_max, ω_min, their mean and δ, the mean driving moment and the
+    largest change from the previous law (relative)."""
+    return {"step": step, "omega_mean": 0.5 * (w_max + w_min), "omega_max": w_max, "omega_min": w_min,
+            "delta": (w_max - w_min) / (0.5 * (w_max + w_min)), "moment_mean": moment_mean, "change": change}
+
+
+def compiled_steps(machine: Machine, tables: Tables, omega_operating: float, knee: float, sync: float, tol: float,
+                   limit: int, result: Approximations) -> bool:
+    """The steps by the compiled loop (approximations_compiled.py); False (nothing done) where it does not know
+    the machine's moments or a root search failed there (the plain loop then says why)."""
+    speed, kind, params = speed_parameters(machine)
+    if not speed:
+        return False
+    n = tables.phi.size
+    laws, moments, rows = np.empty((limit, n)), np.empty((limit, n)), np.empty((limit, ROWS))
+    arrays = [np.ascontiguousarray(a, dtype=float) for a in (tables.phi, tables.J, tables.net_phi, tables.sliding)]
+    done, ending, step = approximation_steps(*arrays, kind, params,
+                                             float(omega_operating), float(knee), float(sync), float(tol), limit,
+                                             laws, moments, rows)
+    if ending == ROOT_FAILED:
+        return False
+    result.omega = list(laws[:done])
+    result.moment = list(moments[:done])
+    result.rows = [step_row(k + 1, *map(float, rows[k])) for k in range(done)]
+    result.converged = ending == CONVERGED
+    if ending == NO_BALANCE:
+        result.notices.append(no_balance(step))
+    elif ending == STOPS:
+        result.notices.append(stops(step))
+    return True
+
+
+def no_balance(step: int) -> Notice:
+    return Notice("motor_approximation_no_balance", f"Step {step}: no mean speed balances the cycle's work on the "
+                  "characteristic: the motor cannot carry the load.", {"step": step})
+
+
+def stops(step: int) -> Notice:
+    return Notice("motor_approximation_stops", f"Step {step}: the kinetic energy runs out within the cycle: the "
+                  "machine stops.", {"step": step})
