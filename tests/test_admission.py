@@ -18,6 +18,7 @@ from event_loop import run_to_end
 from tests.test_security import assert_security_headers
 
 ID_A, ID_B, ID_C = "a" * 22, "b" * 22, "c" * 22
+WIDE = {"light_places": 64, "heavy_places": 64}   # lanes wide enough that only the limits hold requests back
 
 
 class HeldApp:
@@ -74,7 +75,7 @@ class Exchange:
 
 
 async def settle():
-    for _ in range(5):
+    for _ in range(20):
         await asyncio.sleep(0)
 
 
@@ -85,7 +86,7 @@ def run(scenario):
 def test_past_the_client_limit_429_with_retry_after_while_another_client_is_admitted():
     async def scenario():
         app = HeldApp()
-        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=2, per_address=10)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=2, per_address=10)
         held = [Exchange(middleware) for _ in range(2)]
         await settle()
         refused = Exchange(middleware)
@@ -106,7 +107,7 @@ def test_past_the_client_limit_429_with_retry_after_while_another_client_is_admi
 def test_a_place_is_given_back_on_error_and_on_disconnect():
     async def scenario():
         app = HeldApp()
-        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=1, per_address=10)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=1, per_address=10)
         gone = Exchange(middleware)
         await settle()
         gone.hang_up.set()                                     # the student closed the tab
@@ -128,7 +129,7 @@ def test_a_place_is_given_back_on_error_and_on_disconnect():
 def test_new_ids_on_one_address_count_toward_the_address_cap():
     async def scenario():
         app, time = HeldApp(), FakeTime()
-        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=2, per_address=3, clock=time.clock, sleep=time.sleep)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=2, per_address=3, clock=time.clock, sleep=time.sleep)
         held = [Exchange(middleware, client_id=ID_A), Exchange(middleware, client_id=ID_A),
                 Exchange(middleware, client_id=ID_B)]
         await settle()
@@ -151,7 +152,7 @@ def test_heavy_requests_have_a_smaller_limit_of_their_own():
     """A client's elastic runs and studies queue for the heavy process: two at most, its light requests still go."""
     async def scenario():
         app = HeldApp()
-        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=64, per_client_heavy=2)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=8, per_address=64, per_client_heavy=2)
         held = [Exchange(middleware, path=path) for path in ("/api/v1/elastic", "/api/v1/work-precision/motion")]
         await settle()
         third = Exchange(middleware, path="/api/v1/elastic")
@@ -169,7 +170,7 @@ def test_heavy_requests_have_a_smaller_limit_of_their_own():
 def test_only_computing_posts_are_counted():
     async def scenario():
         app = HeldApp()
-        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=1, per_address=1)
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=1, per_address=1)
         held = Exchange(middleware, path="/api/v1/work-precision/elastic")
         others = [Exchange(middleware, path=path) for path in ("/api/v1/assignments", "/api/v1/scenes/x")]
         await settle()
@@ -202,6 +203,7 @@ def test_an_html_page_gives_a_browser_without_one_a_random_http_only_strict_id()
 def test_through_the_app_the_429_has_the_security_headers_and_pages_hand_out_the_cookie(monkeypatch):
     """The real middleware stack with /kinematics replaced by an endpoint held on a threading.Event."""
     monkeypatch.setenv("MDL_CLIENT_CONCURRENCY", "2")
+    monkeypatch.setenv("MDL_LIGHT_PLACES", "4")          # both held requests running, not one waiting its turn
     app = create_app()
     release, entered = threading.Event(), threading.Semaphore(0)
 
@@ -249,7 +251,7 @@ class FakeTime:
 async def one_place_held():
     """A middleware with one place per client on a fake clock, and that place held by a computation."""
     app, time = HeldApp(), FakeTime()
-    middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=1, per_address=10, clock=time.clock, sleep=time.sleep)
+    middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=1, per_address=10, clock=time.clock, sleep=time.sleep)
     held = Exchange(middleware)
     await settle()
     return app, time, middleware, held

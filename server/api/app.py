@@ -98,10 +98,12 @@ def create_app() -> FastAPI:
     app.add_exception_handler(StoreUnavailable, store_unavailable)   # 503 + Retry-After: a full disk, a server down
     app.add_exception_handler(Exception, server_error)      # 500 as JSON (ServerErrorMiddleware answers it)
     app.state.response_cache = ResponseCache.from_env()  # MDL_CACHE_BYTES, default 64 MB, 0 = off
+    # a share of the computing lanes per address, in turn (429 past a cap), the cookie; inside the cache: a cached
+    # answer waits for no place
+    app.add_middleware(AdmissionMiddleware, computing=ENDPOINTS)
     app.add_middleware(ResponseCacheMiddleware, cache=app.state.response_cache, models=cache_stats.request_models(),
                        prefix=API_PREFIX)  # inside gzip
     app.add_middleware(GZipMiddleware, minimum_size=GZIP_MINIMUM_SIZE, compresslevel=GZIP_LEVEL)
-    app.add_middleware(AdmissionMiddleware, computing=ENDPOINTS)  # computations in flight per client (429), cookie
     # SecurityMiddleware (headers on every response, bodies ≤ 1 MiB and checked) wraps all of these: LabApp
     static = mount_versioned(app, "/static", STATIC_DIR, content_version(STATIC_DIR), "static")
     plotly_js = mount_versioned(app, "/vendor/plotly", PLOTLY_DIR, script_version(PLOTLY_DIR / "plotly.min.js"),

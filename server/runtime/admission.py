@@ -1,16 +1,28 @@
-"""Admission to the computing endpoints: each client has a few computations in flight at most; past that, 429.
+"""Admission to the computing endpoints: a share of each lane per person, served in turn; past a cap, 429.
 
-A pure ASGI middleware (no numerics, no routes). A client is its address (uvicorn sets ``scope["client"]``
-from ``X-Forwarded-For`` for a trusted proxy) together with the random id of the ``mdl_client`` cookie that
-every HTML page gives a browser that has none — a class of 30 behind one NAT address is 30 clients, not one.
-Each client may hold ``MDL_CLIENT_CONCURRENCY`` computing requests in flight (default 8: the busiest page asks
-for a main answer, three overlays and a slider's family at once), of them ``MDL_CLIENT_HEAVY_CONCURRENCY``
-(default 2: an elastic scene's answer and its work–precision study) of the heavy kind that queue for the heavy
-process one after another, so that one client's heavy requests do not stand before every other client's; and
-one address ``MDL_ADDRESS_CONCURRENCY`` (default 64), so that minting ids does not escape the limit; 0 switches
-a limit off. A request past a limit is answered at once with 429, ``Retry-After: 1`` and a body in FastAPI's
-error format; the page waits and resends. A request without the cookie (a script) counts as the address's
-anonymous client. The counts are per worker (with two workers a client may hold twice as many).
+A pure ASGI middleware (no numerics, no routes). Who asks is its address (uvicorn sets ``scope["client"]`` from
+``X-Forwarded-For`` only for a proxy named in ``MDL_FORWARDED_ALLOW_IPS``, server/__main__.py) and, within the
+address, the random id of the ``mdl_client`` cookie that every HTML page gives a browser that has none. The
+client chooses its cookie, so the cookie only divides its address's share among the address's browsers (a class
+behind one NAT address is one address of many students): however many ids an address invents, it gets one share.
+
+Lanes. A computing request is light (computed in the worker, whose interpreter runs one at a time) or heavy (an
+elastic machine, a live work–precision study, the course project: one heavy process per worker computes them,
+server/runtime/heavy.py). Each of these lanes has a few places per worker (light ``MDL_LIGHT_PLACES``, default 2;
+heavy one more than ``MDL_HEAVY_PROCESSES``), and one address may hold all but one of them (at least one), so that
+a request from another address always finds a place or is next. The requests past that wait in the lane, which
+takes them in turn: address after address, and within an address client (cookie) after client, each client's own
+in the order asked. A slider's family is not held in a lane (heavy.LaneQueue puts its coarse stage before the full
+families); it counts towards the limits below.
+
+Limits (per worker; 0 switches one off). A client may have ``MDL_CLIENT_CONCURRENCY`` computing requests in
+flight, running or waiting (default 8: the busiest page asks for a main answer, three overlays and a slider's
+family at once), of them ``MDL_CLIENT_HEAVY_CONCURRENCY`` heavy ones or families (default 2); an address
+``MDL_ADDRESS_CONCURRENCY`` (default 32: its waiting requests cost no CPU, only a place in a queue; raise it for a
+large class behind one NAT address). With the address cap off each cookie counts as an address of its own (a load
+test of many students from one machine). A request past a limit is answered at once with 429, ``Retry-After: 1``
+and a body in FastAPI's error format; the page waits and resends. A request without the cookie (a script) counts
+as the address's anonymous client.
 
 A client that asks again before the Retry-After it was given has run out (a script resending at once; the
 page never does) is not refused at once: its request waits out the rest of that second and is then admitted
@@ -18,18 +30,21 @@ if a place has come free, else refused again. So a client that ignores Retry-Aft
 than one that honours it, and its resends cost the server one sleeping coroutine each instead of a busy loop
 of 429s that would take the event loop from everyone else (bench/results/fairness.md).
 
-A client that goes away while its computation waits has the computation cancelled (a heavy one leaves the
-process pool's queue) and its place released; a light one already running in a thread finishes unseen.
+A client that goes away while its request waits in a lane leaves the lane; one that goes away while its
+computation runs has it cancelled (a heavy one leaves the process pool's queue) and its place released; a light
+one already running in a thread finishes unseen. ``CLIENT`` holds (address, cookie id) while a request is served,
+for a queue further in that wants to serve clients in turn too.
 """
 from __future__ import annotations
 
 import asyncio
+import contextvars
 import json
 import os
 import re
 import secrets
 import time
-from collections import Counter
+from collections import Counter, OrderedDict, deque
 from collections.abc import Iterable
 
 COOKIE = "mdl_client"
@@ -39,8 +54,10 @@ RETRY_AFTER_S = 1
 # course project
 HEAVY_NAMES = ("elastic", "family", r"work-precision/[a-z-]+", "course-project")
 HEAVY = re.compile(rf"/api/v1/({'|'.join(HEAVY_NAMES)})")
+FAMILY = re.compile(r"/api/v1/family")       # heavy, but in no lane of admission's (heavy.LaneQueue orders them)
 _ID = re.compile(r"[A-Za-z0-9_-]{16,64}")
 TOLD_TO_WAIT_KEPT = 4096        # past this many clients told to wait, those whose wait is over are forgotten
+CLIENT: contextvars.ContextVar[tuple[str, str | None]] = contextvars.ContextVar("mdl_admitted_client")
 
 
 def _env_limit(name: str, default: int) -> int:
@@ -68,13 +85,76 @@ def client_id(scope) -> str | None:
     return None
 
 
+class Lane:
+    """A lane's places, of which one group (an address) holds at most `share` at once, and its waiting requests,
+    given the places in turn: group after group, within a group client after client, a client's own in order."""
+
+    def __init__(self, places: int, share: int | None = None):
+        self.places = max(places, 1)
+        self.share = max(self.places - 1, 1) if share is None else share
+        self.running: Counter = Counter()            # group → places it holds
+        # group → client → its waiting requests' futures; both dicts in turn order (the next to serve first)
+        self.waiting: OrderedDict[object, OrderedDict[object, deque]] = OrderedDict()
+
+    def __len__(self) -> int:
+        return sum(self.running.values())
+
+    async def enter(self, group, client) -> None:
+        """Wait for a place (in turn); cancelled while waiting, the request leaves the queue."""
+        place = asyncio.get_running_loop().create_future()
+        self.waiting.setdefault(group, OrderedDict()).setdefault(client, deque()).append(place)
+        self._hand_over()
+        try:
+            await place
+        except asyncio.CancelledError:
+            if place.done() and not place.cancelled():
+                self.leave(group)                    # given a place as it was cancelled: pass it on
+            else:
+                self._forget(group, client, place)
+            raise
+
+    def leave(self, group) -> None:
+        self.running[group] -= 1
+        if not self.running[group]:
+            del self.running[group]
+        self._hand_over()
+
+    def _hand_over(self) -> None:
+        """Give the free places to the waiting requests in turn."""
+        while len(self) < self.places:
+            group = next((g for g in self.waiting if self.running[g] < self.share), None)
+            if group is None:
+                return
+            clients = self.waiting[group]
+            client, places = next(iter(clients.items()))
+            place = places.popleft()
+            clients.move_to_end(client)                  # its next request after the other clients'
+            if not places:
+                del clients[client]
+            self.waiting.move_to_end(group)              # the group's next after the other groups'
+            if not clients:
+                del self.waiting[group]
+            if not place.done():                         # (one cancelled already is leaving the queue)
+                self.running[group] += 1
+                place.set_result(None)
+
+    def _forget(self, group, client, place) -> None:
+        places = self.waiting.get(group, {}).get(client)
+        if places is not None and place in places:
+            places.remove(place)
+            if not places:
+                del self.waiting[group][client]
+                if not self.waiting[group]:
+                    del self.waiting[group]
+
+
 class AdmissionMiddleware:
     """At most `per_client` computing requests in flight per (address, mdl_client id) and `per_address` per
-    address; the cookie handed to HTML pages that arrive without one."""
+    address, waiting in turn for a place in their lane; the cookie handed to HTML pages that arrive without one."""
 
     def __init__(self, app, per_client: int | None = None, per_address: int | None = None,
                  per_client_heavy: int | None = None, clock=time.monotonic, sleep=asyncio.sleep,
-                 computing: Iterable[str] = ()):
+                 computing: Iterable[str] = (), light_places: int | None = None, heavy_places: int | None = None):
         self.app = app
         # the computing endpoints (`computing`: their names under /api/v1, the app's registry) and the heavy ones
         self.computing = re.compile(rf"/api/v1/({'|'.join([*map(re.escape, computing), *HEAVY_NAMES])})")
@@ -83,7 +163,11 @@ class AdmissionMiddleware:
         self.per_client = _env_limit("MDL_CLIENT_CONCURRENCY", 8) if per_client is None else per_client
         self.per_client_heavy = (_env_limit("MDL_CLIENT_HEAVY_CONCURRENCY", 2) if per_client_heavy is None
                                  else per_client_heavy)
-        self.per_address = _env_limit("MDL_ADDRESS_CONCURRENCY", 64) if per_address is None else per_address
+        self.per_address = _env_limit("MDL_ADDRESS_CONCURRENCY", 32) if per_address is None else per_address
+        self.lanes = {
+            "light": Lane(_env_limit("MDL_LIGHT_PLACES", 2) if light_places is None else light_places),
+            "heavy": Lane(max(_env_limit("MDL_HEAVY_PROCESSES", 1), 1) + 1 if heavy_places is None
+                          else heavy_places)}
         self.in_flight: Counter = Counter()   # ("address", host), ("client"|"heavy", host, id) → requests in flight
 
     async def __call__(self, scope, receive, send):
@@ -95,6 +179,11 @@ class AdmissionMiddleware:
             await self.app(scope, receive, _with_cookie(send, scope.get("scheme") == "https"))
         else:
             await self.app(scope, receive, send)
+
+    def lane_of(self, path: str) -> Lane | None:
+        if FAMILY.fullmatch(path):
+            return None
+        return self.lanes["heavy" if HEAVY.fullmatch(path) else "light"]
 
     async def _admit(self, scope, receive, send) -> None:
         host, who = (scope.get("client") or ("",))[0], client_id(scope)
@@ -113,13 +202,34 @@ class AdmissionMiddleware:
         for key in keys:
             self.in_flight[key] += 1
         try:
-            await _run_until_disconnect(self.app, scope, receive, send)
+            await self._serve(scope, receive, send, host, who)
         finally:
             for key in keys:
                 self.in_flight[key] -= 1
                 if not self.in_flight[key]:
                     del self.in_flight[key]
 
+    async def _serve(self, scope, receive, send, host: str, who: str | None) -> None:
+        """The request waits for its place in its lane (leaving if its client goes away), then is computed."""
+        lane, group = self.lane_of(scope["path"]), host if self.per_address else (host, who)
+        token = CLIENT.set((host, who))
+        try:
+            if lane is None:
+                await _run_until_disconnect(self.app, scope, receive, send)
+                return
+            body, listening = await _read_body(receive)
+            if listening is None:
+                return                                   # gone before its body was in
+            try:
+                if await _entered(lane, group, who, listening):
+                    try:
+                        await _run_until_disconnect(self.app, scope, _replay(body, listening), send)
+                    finally:
+                        lane.leave(group)
+            finally:
+                listening.cancel()
+        finally:
+            CLIENT.reset(token)
 
     def _full(self, limits: dict) -> tuple | None:
         """(key, limit) of the first limit the client has reached, or None."""
@@ -131,6 +241,52 @@ class AdmissionMiddleware:
         if len(self.told_to_wait) >= TOLD_TO_WAIT_KEPT:
             self.told_to_wait = {known: until for known, until in self.told_to_wait.items() if until > now}
         self.told_to_wait[key] = now + RETRY_AFTER_S
+
+
+async def _entered(lane: Lane, group, who, listening: asyncio.Future) -> bool:
+    """Whether the request got its place in the lane before `listening` heard its client go away."""
+    entering = asyncio.ensure_future(lane.enter(group, who))
+    try:
+        await asyncio.wait((entering, listening), return_when=asyncio.FIRST_COMPLETED)
+    except BaseException:                            # we are cancelled ourselves
+        await _give_up(entering, lane, group)
+        raise
+    if entering.done():
+        return True
+    await _give_up(entering, lane, group)            # gone while waiting: leaves the queue
+    return False
+
+
+async def _give_up(entering: asyncio.Task, lane: Lane, group) -> None:
+    """Cancel a wait for a place; a place given meanwhile is passed on."""
+    entering.cancel()
+    await asyncio.gather(entering, return_exceptions=True)
+    if not entering.cancelled() and entering.exception() is None:
+        lane.leave(group)
+
+
+async def _read_body(receive) -> tuple[list[dict], asyncio.Future | None]:
+    """The request's body messages, and a pending receive() that will hear of a disconnect (None: the client went
+    away before its body was in)."""
+    messages = []
+    while True:
+        message = await receive()
+        if message["type"] != "http.request":
+            return messages, None
+        messages.append(message)
+        if not message.get("more_body", False):
+            return messages, asyncio.ensure_future(receive())
+
+
+def _replay(messages: list[dict], listening: asyncio.Future):
+    """A receive() that gives the body read already, then what `listening` hears."""
+    pending = deque(messages)
+
+    async def receive():
+        if pending:
+            return pending.popleft()
+        return await asyncio.shield(listening)
+    return receive
 
 
 async def _run_until_disconnect(app, scope, receive, send) -> None:

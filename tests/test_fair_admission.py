@@ -1,0 +1,181 @@
+"""Fairness per person in admission: an address gets one share of a lane however many cookie ids it invents, and
+the waiting requests are served in turn (address after address, within an address cookie after cookie).
+
+Behaviour only: each request is held in flight by an event of its own that the test sets, never timed."""
+from __future__ import annotations
+
+import asyncio
+import json
+
+from server.api.endpoints import ENDPOINTS
+from server.runtime.admission import CLIENT, COOKIE, AdmissionMiddleware
+from event_loop import run_to_end
+
+
+class HeldApp:
+    """An ASGI app that reads its body, notes who it serves (admission's CLIENT) and its label, and answers when
+    the test releases that label."""
+
+    def __init__(self):
+        self.order: list[str] = []
+        self.clients: list[tuple] = []
+        self.releases: dict[str, asyncio.Event] = {}
+
+    async def __call__(self, scope, receive, send):
+        await receive()
+        label = dict(scope["headers"])[b"x-label"].decode()
+        self.order.append(label)
+        self.clients.append(CLIENT.get())
+        await self.releases.setdefault(label, asyncio.Event()).wait()
+        await send({"type": "http.response.start", "status": 200, "headers": []})
+        await send({"type": "http.response.body", "body": b"{}"})
+
+    def release(self, label: str) -> None:
+        self.releases.setdefault(label, asyncio.Event()).set()
+
+
+class Exchange:
+    """One request: label, address, cookie id, path; its answer's messages; its client can hang up."""
+
+    def __init__(self, middleware, label, host, client_id, path="/api/v1/kinematics"):
+        self.sent: list[dict] = []
+        self.hang_up = asyncio.Event()
+        self.body_read = False
+        headers = [(b"x-label", label.encode())] + ([(b"cookie", f"{COOKIE}={client_id}".encode())]
+                                                    if client_id else [])
+        scope = {"type": "http", "method": "POST", "path": path, "headers": headers, "client": (host, 5000),
+                 "scheme": "http"}
+        self.task = asyncio.ensure_future(middleware(scope, self._receive, self._send))
+
+    async def _receive(self):
+        if not self.body_read:
+            self.body_read = True
+            return {"type": "http.request", "body": b"{}", "more_body": False}
+        await self.hang_up.wait()
+        return {"type": "http.disconnect"}
+
+    async def _send(self, message):
+        self.sent.append(message)
+
+    @property
+    def status(self):
+        return self.sent[0]["status"] if self.sent else None
+
+
+def cookie(n: int) -> str:
+    return f"{n:022d}"
+
+
+async def settle():
+    for _ in range(30):
+        await asyncio.sleep(0)
+
+
+def test_invented_cookies_get_an_address_no_more_than_its_share_and_another_address_is_served_at_once():
+    async def scenario():
+        app = HeldApp()
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=12, per_client_heavy=2,
+                                         light_places=2, heavy_places=2)
+        flood = [Exchange(middleware, f"f{n}", "10.0.0.9", cookie(n)) for n in range(12)]
+        await settle()
+        minted = Exchange(middleware, "h", "10.0.0.9", cookie(100), path="/api/v1/elastic")
+        await settle()
+        assert app.order == ["f0"]                   # one of two light places: the other is kept for another address
+        assert minted.status == 429                  # 12 in flight: the address's cap, whatever the cookies
+        detail = json.loads(minted.sent[1]["body"])["detail"][0]
+        assert detail["ctx"]["scope"] == "address" and detail["ctx"]["limit"] == 12
+        student = Exchange(middleware, "s", "10.0.0.2", cookie(999))
+        await settle()
+        assert app.order == ["f0", "s"]              # another student's request finds its place free
+        assert app.clients[-1] == ("10.0.0.2", cookie(999))
+        app.release("s")
+        await student.task
+        app.release("f0")
+        await settle()
+        assert app.order == ["f0", "s", "f1"] and student.status == 200
+        for n in range(12):
+            app.release(f"f{n}")
+        await asyncio.gather(*(e.task for e in flood))
+        assert app.order[2:] == [f"f{n}" for n in range(1, 12)] and not middleware.in_flight
+    run_to_end(scenario())
+
+
+def test_waiting_requests_are_served_address_after_address_then_cookie_after_cookie():
+    async def scenario():
+        app = HeldApp()
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
+        blocker = Exchange(middleware, "x", "10.0.0.7", cookie(7))
+        await settle()
+        asked = [("a1", "10.0.0.1", 1), ("a2", "10.0.0.1", 1), ("a3", "10.0.0.1", 2),   # address 1: cookies 1, 2
+                 ("b1", "10.0.0.2", 3), ("b2", "10.0.0.2", 3),
+                 ("c1", "10.0.0.3", 4), ("c2", "10.0.0.3", 4)]
+        waiting = []
+        for label, host, n in asked:                 # in this order: first come would serve them so
+            waiting.append(Exchange(middleware, label, host, cookie(n)))
+            await settle()
+        assert app.order == ["x"]
+        served = ["x"]
+        while len(app.order) < 1 + len(asked):
+            app.release(served[-1])                  # one place: the next goes when the one before is answered
+            await settle()
+            served = list(app.order)
+        assert served == ["x", "a1", "b1", "c1", "a3", "b2", "c2", "a2"]
+        app.release(served[-1])
+        await asyncio.gather(blocker.task, *(e.task for e in waiting))
+        assert all(e.status == 200 for e in waiting) and not middleware.in_flight
+    run_to_end(scenario())
+
+
+def test_a_heavy_lane_serves_addresses_in_turn_too():
+    async def scenario():
+        app = HeldApp()
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_client_heavy=8,
+                                         per_address=32, heavy_places=2)
+        asked = [("a1", "10.0.0.1", 1), ("a2", "10.0.0.1", 2), ("a3", "10.0.0.1", 3),
+                 ("b1", "10.0.0.2", 4), ("b2", "10.0.0.2", 4)]
+        exchanges = []
+        for label, host, n in asked:
+            exchanges.append(Exchange(middleware, label, host, cookie(n), path="/api/v1/elastic"))
+            await settle()
+        assert app.order == ["a1", "b1"]             # each address one of the two places
+        for label in ("a1", "b1", "a2"):
+            app.release(label)
+            await settle()
+        assert app.order == ["a1", "b1", "a2", "b2", "a3"]
+        for label in ("b2", "a3"):
+            app.release(label)
+        await asyncio.gather(*(e.task for e in exchanges))
+        assert not middleware.in_flight
+    run_to_end(scenario())
+
+
+def test_a_request_whose_client_goes_away_while_it_waits_leaves_its_lane_unrun():
+    async def scenario():
+        app = HeldApp()
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
+        held = Exchange(middleware, "x", "10.0.0.1", cookie(1))
+        gone = Exchange(middleware, "gone", "10.0.0.2", cookie(2))
+        later = Exchange(middleware, "later", "10.0.0.3", cookie(3))
+        await settle()
+        gone.hang_up.set()
+        await settle()
+        assert gone.task.done() and gone.status is None and middleware.in_flight[("address", "10.0.0.2")] == 0
+        app.release("x")
+        app.release("later")
+        await asyncio.gather(held.task, later.task)
+        assert app.order == ["x", "later"] and not middleware.lanes["light"].waiting
+    run_to_end(scenario())
+
+
+def test_with_the_address_cap_off_each_cookie_is_served_as_an_address_of_its_own():
+    """A load test of many students from one machine (MDL_ADDRESS_CONCURRENCY=0)."""
+    async def scenario():
+        app = HeldApp()
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=0, light_places=3)
+        exchanges = [Exchange(middleware, f"s{n}", "127.0.0.1", cookie(n)) for n in range(3)]
+        await settle()
+        assert app.order == ["s0", "s1", "s2"]
+        for n in range(3):
+            app.release(f"s{n}")
+        await asyncio.gather(*(e.task for e in exchanges))
+    run_to_end(scenario())
