@@ -170,6 +170,31 @@ def test_the_piston_wear_is_the_books_formula_with_the_frictionless_wear_coeffic
     assert study.figures(1, Flywheel(0.02), study.grids[0])[0]["wear_piston"] == pytest.approx(expected, rel=1e-12)
 
 
+def test_the_wear_figures_are_the_wear_reports_maxima_at_the_frictionless_pressures():
+    """wear_of (the pin's and bush's cosine pressure by the angle-addition formula, the trapezoid sums as one
+    matrix product) against report.wear_report, the book's formulas over every surface point, made at each f's
+    own p_m and scaled by p_m(f)/p_m(0): every f of a sweep into self-locking, both grids, to 1e-12."""
+    from server.core.kinetostatics.friction_influence import thinned, wear_of
+    from server.core.kinetostatics.report import wear_report
+    setup = machine()
+    study = Study(setup, np.linspace(0.0, 0.6, 13))
+    checked = 0
+    for k, analysis in enumerate(study.analyses):
+        if study.locked[k].any():
+            continue
+        for grid in study.grids:
+            coarse = thinned(analysis, grid.every)
+            report, frictionless = wear_report(coarse, setup.wear.__dict__, study.cycles), grid.reference
+            revolute = report["mean_pressure_23"] / frictionless["mean_pressure_23"]
+            prismatic = report["mean_pressure_34"] / frictionless["mean_pressure_34"]
+            expected = {"wear_bush": np.max(report["bush"]) * revolute, "wear_pin": np.max(report["pin"]) * revolute,
+                        "wear_piston": report["piston"] * prismatic,
+                        "wear_cylinder": np.max(report["cylinder"]) * prismatic}
+            found = wear_of(coarse, grid.reference, setup.wear, study.cycles)
+            assert found == pytest.approx(expected, rel=1e-12)
+            checked += 1
+    assert checked >= 10
+
 @pytest.mark.parametrize("params, force", [({"l1": 0.1, "l2": 0.4, "a2": 0.3}, 1000.0),
                                            ({"l1": 0.1, "l2": 0.25, "a2": 0.1, "e": 0.03}, 2500.0)])
 def test_the_error_estimate_holds_against_a_finer_grid(params, force):

@@ -34,17 +34,22 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..dynamics import flywheel as fw
+from ..dynamics.compiled import speed_extremes
 from ..dynamics.reduction import Inertias, reduced_inertia
 from ..mechanisms import GeometryError, Notice
 from . import equilibrium
 from .crank_slider import Approximation, ForceAnalysis, Loads, Pairs, cross, friction_loads, motion, solve_dyad
-from .report import efficiency, wear_report
+from .report import efficiency
+from .wear import mean_pressure, piston_wear
 from .virtual_work import reduced_moment
 
 PAIRS = ("R12", "R23", "R34", "R41")
 WEAR_PARTS = ("bush", "pin", "piston", "cylinder")
 F_CEILING = 2.0          # the largest f the API takes: the onset of self-locking is sought below it
 LOCKING_SCAN = 64        # f values on [0, F_CEILING] scanned for the first where the locking ratio reaches 1
+BETA = np.radians(np.arange(0, 361, 5))       # the pin's and bush's surface points of report.wear_report
+COS_BETA, SIN_BETA = np.cos(BETA), np.sin(BETA)
+CYLINDER_POINTS = 121                          # points along the cylinder, as report.wear_report
 
 
 @dataclass(frozen=True)
@@ -194,7 +199,10 @@ def speed_and_flywheel(machine: MachineSetup, flywheel: Flywheel, phi: np.ndarra
     omega_mean = machine.loads.omega
     omega = fw.periodic_speed(cycle, group_one + flywheel.inertia, omega_mean)
     runs = bool(np.isfinite(omega).all())
-    delta = fw.achieved_delta(cycle, group_one + flywheel.inertia, omega_mean) if runs else None
+    delta = None
+    if runs:                                        # flywheel.achieved_delta of the same ω(φ)
+        w_max, w_min = speed_extremes(omega)
+        delta = (w_max - w_min) / (0.5 * (w_max + w_min))
     guess = fw.merzalov(cycle, omega_mean, flywheel.delta).inertia
     if guess <= 0:                                  # A and J constant: ω is, whatever the inertia
         return (omega if runs else None), delta, 0.0
@@ -204,14 +212,79 @@ def speed_and_flywheel(machine: MachineSetup, flywheel: Flywheel, phi: np.ndarra
 
 def wear_of(analysis: ForceAnalysis, reference: dict, parts: WearParts, cycles: float) -> dict:
     """The largest wear of the bush and pin over their surfaces, of the piston and along the cylinder (µm), with
-    the frictionless machine's k = I_s/p_m (``reference``: its wear_report on the same grid): wear_report's
-    answer, made with this f's own p_m, times p_m(f)/p_m(0)."""
-    report = wear_report(analysis, parts.__dict__, cycles)
-    revolute = report["mean_pressure_23"] / reference["mean_pressure_23"]
-    prismatic = report["mean_pressure_34"] / reference["mean_pressure_34"]
-    return {"wear_bush": float(np.max(report["bush"])) * revolute, "wear_pin": float(np.max(report["pin"])) * revolute,
-            "wear_piston": float(report["piston"]) * prismatic,
-            "wear_cylinder": float(np.max(report["cylinder"])) * prismatic}
+    the frictionless machine's k = I_s/p_m (``reference``: its mean_pressures on the same grid): wear_report's
+    figures (4.12)–(4.19) with p_m(0) for p_m (wear_report's answer at this f's own p_m, times p_m(f)/p_m(0),
+    to rounding: tested), the pin's and bush's cosine pressure by the angle-addition formula
+    (revolute_peak)."""
+    final, applied, phi = analysis.final, analysis.applied, analysis.phi
+    r23 = final.R23                                   # rod on the pin (link 3), as wear_report
+    relative = np.abs(applied["u21"])
+    rod = analysis.points["B"] - analysis.points["A"]
+    revolute = 1.0 / reference["mean_pressure_23"]
+    pin = revolute_peak(phi, r23, relative, np.zeros_like(phi), parts.I_pin * revolute, cycles, parts.pin_length,
+                        journal=True)
+    bush = revolute_peak(phi, -r23, relative, np.arctan2(rod[:, 1], rod[:, 0]), parts.I_bush * revolute, cycles,
+                         parts.pin_length, journal=False)
+    normal = final.N
+    side = pressed_side(normal)
+    prismatic = 1.0 / reference["mean_pressure_34"]
+    x_b = analysis.points["B"][:, 0]
+    travel = x_b.max() - x_b                          # piston crown from top dead centre
+    along = np.linspace(0.0, float(travel.max()) + parts.piston_length, CYLINDER_POINTS)
+    return {"wear_bush": bush, "wear_pin": pin,
+            "wear_piston": piston_wear(phi, normal, applied["u31"], parts.I_piston * prismatic, cycles,
+                                       parts.piston_length, parts.piston_diameter, side),
+            "wear_cylinder": cylinder_peak(phi, normal, applied["u31"], travel, along, parts.I_cylinder * prismatic,
+                                           cycles, parts.piston_length, parts.piston_diameter, side)}
+
+
+def pressed_side(normal: np.ndarray) -> int:
+    """The piston's side pressed the more over the cycle (+1 or −1), as report.wear_report."""
+    return 1 if np.nansum(np.clip(normal, 0, None)) >= np.nansum(np.clip(-normal, 0, None)) else -1
+
+
+def mean_pressures(analysis: ForceAnalysis, parts: WearParts) -> dict:
+    """report.wear_report's p_m of the pin (pair 2–3) and of the piston's pressed side (4.23); GeometryError
+    where either is zero (k = I_s/p_m (4.24) needs a pressure)."""
+    p23 = mean_pressure(np.linalg.norm(analysis.final.R23, axis=1), parts.pin_length, parts.pin_diameter)
+    normal = analysis.final.N
+    pressed = np.where(np.sign(normal) == pressed_side(normal), np.abs(normal), 0.0)
+    p34 = mean_pressure(pressed, parts.piston_length, parts.piston_diameter)
+    if p23 == 0 or p34 == 0:
+        raise GeometryError("loads", "nothing presses the piston pin or the piston: wear needs a load")
+    return {"mean_pressure_23": p23, "mean_pressure_34": p34}
+
+
+def revolute_peak(phi: np.ndarray, reaction: np.ndarray, rate: np.ndarray, link_angle: np.ndarray, k: float,
+                  cycles: float, length: float, journal: bool) -> float:
+    """max over the surface's points β of wear.revolute_wear's δ(β) (4.12)–(4.13), cos(θ + β − γ) written
+    cos β cos(θ − γ) − sin β sin(θ − γ): two cosines per angle instead of one per (β, angle), the trapezoid
+    sums over φ one matrix product (trapezoid_weights)."""
+    gamma = np.arctan2(reaction[:, 1], reaction[:, 0]) + (np.pi if journal else 0.0)
+    angle = link_angle - gamma
+    contact = np.maximum(np.outer(COS_BETA, np.cos(angle)) - np.outer(SIN_BETA, np.sin(angle)), 0.0)
+    load = trapezoid_weights(phi) * np.linalg.norm(reaction, axis=1) * rate
+    return float(np.max(2e6 * k * cycles / (np.pi * length) * (contact @ load)))
+
+
+def cylinder_peak(phi: np.ndarray, normal: np.ndarray, velocity_analog: np.ndarray, travel: np.ndarray,
+                  points: np.ndarray, k: float, cycles: float, length: float, diameter: float, side: int) -> float:
+    """max along the cylinder of wear.cylinder_wear's δ₄(X) (4.18): its trapezoid sum over φ, linear in the
+    integrand, as the weights' product with the pressed load, one matrix product over the points X."""
+    pressed = np.where(np.sign(normal) == side, np.abs(normal * velocity_analog), 0.0)
+    covered = (points[:, None] >= travel[None, :]) & (points[:, None] <= travel[None, :] + length)
+    a = 1e6 * (4 / np.pi) * k * cycles / (length * diameter)
+    return float(np.max(a * (covered @ (trapezoid_weights(phi) * pressed))))
+
+
+def trapezoid_weights(phi: np.ndarray) -> np.ndarray:
+    """w with Σ w_j y_j = np.trapezoid(y, phi): the trapezoid rule as weights, so that a rule applied to many
+    integrands at once is one matrix product."""
+    weights = np.zeros_like(phi)
+    steps = 0.5 * np.diff(phi)
+    weights[:-1] += steps
+    weights[1:] += steps
+    return weights
 
 
 @dataclass
@@ -261,11 +334,12 @@ class Study:
         self.seconds = time.perf_counter() - started              # the shared part's run time
 
     def reference(self, every: int) -> dict | None:
-        """The frictionless machine's wear (one cycle per turn), or None with the reason said (nothing presses)."""
+        """The frictionless machine's mean pressures p_m of the pin and the piston (4.23), those of its
+        wear_report, or None with the reason said (nothing presses)."""
         if self.cycles is None:
             return None
         try:
-            return wear_report(thinned(self.analyses[0], every), self.machine.wear.__dict__, self.cycles)
+            return mean_pressures(thinned(self.analyses[0], every), self.machine.wear)
         except GeometryError:                 # k = I_s/p_m (4.24) needs a pressure
             if every == 1:
                 self.notices.append(Notice("friction_influence_no_wear", "No wear: nothing presses the piston pin "
