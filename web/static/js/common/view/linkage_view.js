@@ -2,17 +2,20 @@
  * The linkage drawn to scale from the joints table of the current answer (DRAWINGS says how for each
  * mechanism): frame pivots and guides, links as bars, blocks, joint letters; the crank circle with the
  * special positions marked on it and the linkage shown faintly in each of them; an arc giving the
- * sense in which φ grows. Animation frames move the parts to positions interpolated in the table.
+ * sense in which φ grows; below, a scale bar of a round length. Animation frames move the parts to positions
+ * interpolated in the table; the letters then move off each other, the parts and the edges (label_placement.js).
  */
+import { DRAWN_PARTS, placeLabels } from "./label_placement.js";
 import { bar, drawing, framePivot, label, pin } from "./linkage_parts.js";
 import { DRAWINGS } from "./linkage_drawings.js";
 import { geometryMessage } from "./messages.js";
-import { degrees, formatNumber } from "./notation.js";
+import { degrees, formatNumber, unitText } from "./notation.js";
 import { jointsAt, specialPositions } from "../model/positions_table.js";
-import { fitScale, svgElement } from "./svg.js";
+import { fitScale, roundDown, svgElement } from "./svg.js";
 
 const WIDTH = 560;
-const HEIGHT = 320;
+const HEIGHT = 340;
+const LEGEND = 24;                 // drawing units at the bottom for the scale bar
 const PAD = 40;
 const SENSE_ARC = Math.PI / 3;     // rad of crank angle spanned by the arc that shows the sense of φ
 
@@ -57,12 +60,14 @@ export class LinkageView {
   #build(drawing, table) {
     const joints = table.outputs.joints;
     const params = table.params;
-    const scale = fitScale([...Object.values(joints).flat(), ...drawing.extent(params, table)], WIDTH, HEIGHT, PAD);
+    const scale = fitScale([...Object.values(joints).flat(), ...drawing.extent(params, table)], WIDTH, HEIGHT - LEGEND, PAD);
     const frame = svgElement("g", { class: "frame" });
     const ghosts = svgElement("g", { class: "ghosts" });
     const marks = svgElement("g", { class: "special-marks" });
     const moving = svgElement("g", { class: "moving" });
-    this.picture.replaceChildren(frame, ghosts, marks, moving);
+    const legend = svgElement("g", { class: "scale-legend", transform: `translate(12 ${HEIGHT - LEGEND / 2})` });
+    this.picture.replaceChildren(frame, ghosts, marks, moving, legend);
+    this.#scaleBar(legend, scale.k);
 
     drawing.frame?.(frame, scale, params, table);
     for (const name of drawing.pivots) framePivot(frame, scale.point(joints[name][0]));
@@ -87,7 +92,20 @@ export class LinkageView {
       drawing.links.forEach(([a, b], i) => bars[i].update(points[a], points[b]));
       pinned.forEach((name, i) => pins[i].update(points[name]));
       for (const [name, letter] of letters) letter.update(points[name]);
+      if (labelled) {
+        placeLabels(this.svg, [...this.svg.querySelectorAll(".moving .joint-label, .sense-label")],
+          [...this.svg.querySelectorAll(`.moving :is(${DRAWN_PARTS}), .frame :is(${DRAWN_PARTS}), .sense-arc, .scale-legend`)]);
+      }
     };
+  }
+
+  /** A bar of a round length about a quarter of the drawing's width, and that length in metres. */
+  #scaleBar(layer, k) {
+    const length = roundDown(0.25 * (WIDTH - 2 * PAD) / k);
+    const units = length * k;
+    svgElement("path", { class: "scale-bar", d: `M0 -4 V4 M0 0 H${units} M${units} -4 V4` }, layer);
+    svgElement("text", { class: "scale-label", x: units + 8, y: 0 }, layer).textContent =
+      `${formatNumber(length, this.lang)} ${unitText("m", this.t)}`;
   }
 
   /** Circle of the crank pin, a mark at each special position, and an arc showing the sense of φ. */

@@ -1,4 +1,4 @@
-/** SVG elements for the linkage drawing, and the metres → drawing-units mapping. */
+/** SVG elements for the linkage drawing, the metres → drawing-units mapping and the round lengths of scale bars. */
 const SVG_NS = "http://www.w3.org/2000/svg";
 
 export function setAttributes(node, attributes) {
@@ -24,4 +24,10 @@ export function fitScale(points, width, height, pad) {
   const ox = (width - (x1 - x0) * k) / 2 - x0 * k;
   const oy = (height + (y1 - y0) * k) / 2 + y0 * k;
   return { k, point: ([x, y]) => [ox + x * k, oy - y * k] };
+}
+
+/** The largest of 1, 2, 5 × 10ᵏ not above value (> 0): the length of a scale bar. */
+export function roundDown(value) {
+  const power = 10 ** Math.floor(Math.log10(value));
+  return [5, 2, 1].map((m) => m * power).find((candidate) => candidate <= value);
 }

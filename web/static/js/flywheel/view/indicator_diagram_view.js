@@ -57,7 +57,8 @@ export class IndicatorDiagramView {
       svgElement("line", { x1: PLOT.left, x2: WIDTH - PLOT.right, y1: y(tick), y2: y(tick), class: "grid" }, grid);
       svgElement("text", { x: PLOT.left - 6, y: y(tick), class: "tick y" }, grid).textContent = formatNumber(tick, this.lang, 1);
       const tx = x(tick * 10, 11);
-      svgElement("text", { x: tx, y: HEIGHT - PLOT.bottom + 14, class: "tick x" }, grid).textContent = formatNumber(tick, this.lang, 1);
+      // 17 units down: the first one's box clear of the y axis's "0,0"
+      svgElement("text", { x: tx, y: HEIGHT - PLOT.bottom + 17, class: "tick x" }, grid).textContent = formatNumber(tick, this.lang, 1);
     }
     svgElement("text", { x: (PLOT.left + WIDTH - PLOT.right) / 2, y: HEIGHT - 4, class: "axis-title" }, grid)
       .textContent = this.t.indicator_x;

@@ -72,8 +72,5 @@ export function momentArc(layer, className, symbol, radius) {
   };
 }
 
-/** The largest of 1, 2, 5 × 10ᵏ not above value (> 0): the length of a scale bar. */
-export function roundDown(value) {
-  const power = 10 ** Math.floor(Math.log10(value));
-  return [5, 2, 1].map((m) => m * power).find((candidate) => candidate <= value);
-}
+/** The round lengths of scale bars (common to every drawing). */
+export { roundDown } from "../../common/view/svg.js";

@@ -8,20 +8,20 @@
  *   slider  R₂₃ at B, the guide's normal reaction R₃₄ and friction F₃₄ at the contact, the force P₃ on
  *           the piston, its weight G₃ and inertia force Φ₃
  * Forces share one scale (set by the 90th percentile over the cycle, so a reaction that grows without
- * bound near self-locking does not shrink the others to nothing; longer arrows are cut to 1.6 times it
- * and drawn dashed). The friction circles of radius ρ = f·r are drawn magnified, and each reaction in a
+ * bound near self-locking does not shrink the others to nothing; longer arrows are cut to 1.6 times it,
+ * or where they would leave the picture, and drawn dashed). The friction circles of radius ρ = f·r are drawn magnified, and each reaction in a
  * revolute pair touches its circle on the side where its moment opposes the relative rotation (3.3):
  * the sense of rotation of crank and rod is read from the answer's joint paths. Below the drawing the
  * values at φ; where the successive approximations diverge (self-locking) the answer has no reactions
  * and the panel says so.
  * On a narrow screen (a phone) the links are drawn one below the other, the drawing's units being CSS
- * pixels, so that the symbols keep their size; in every layout the symbols are moved apart where they
- * would cover each other (label_placement.js).
+ * pixels, so that the symbols keep their size; in every layout the symbols are moved where they would
+ * cover each other, a pin, the block, a bar or an arrow, or leave the drawing (label_placement.js).
  */
 import { crankPlace } from "../../common/view/crank_drag.js";
+import { DRAWN_PARTS, placeLabels } from "../../common/view/label_placement.js";
 import { element } from "../../common/view/dom.js";
 import { forceArrow, momentArc, roundDown } from "./force_parts.js";
-import { separateLabels } from "./label_placement.js";
 import { bar, block, drawing, framePivot, guide, label, pin } from "../../common/view/linkage_parts.js";
 import { degrees, formatNumber, formatQuantity, setRichText, unitText } from "../../common/view/notation.js";
 import { gridPosition, sampleAt } from "../../common/model/phi_samples.js";
@@ -31,6 +31,7 @@ const WIDTH = 960;
 const PAD = [80, 80];              // drawing units around the links: room for the arrows
 const GAP = 64;                    // drawing units between the links' regions
 const LEGEND = 34;                 // drawing units below the picture for the scale bars
+const EDGE = 16;                   // drawing units an arrow's far end keeps from the picture's edge (its symbol)
 const SLIDER = [56, 30];           // slider block, drawing units
 const REFERENCE_ARROW = 90;        // drawing units of the force at the 90th percentile
 const LONGEST_ARROW = 1.6 * REFERENCE_ARROW;
@@ -160,12 +161,15 @@ export class FreeBodyView {
     for (const [cell, text] of this.rows) setRichText(cell, text(state));
   }
 
-  /** The symbols shown move apart where they would cover each other: links' names, letters, moments, forces. */
+  /**
+   * The symbols shown move off each other, off the parts and arrows and inside the drawing: links' names,
+   * letters, moments, forces, in that order.
+   */
   #separateLabels() {
     const shown = (node) => node.style.display !== "none" && node.closest(".force")?.style.display !== "none";
     const all = (selector) => this.layers.flatMap((layer) => [...layer.querySelectorAll(selector)]).filter(shown);
-    separateLabels([...all(".link-name"), ...all(".joint-label"), ...all(".moment .force-label"),
-      ...all(".force:not(.moment) .force-label")], { x: 0, y: 0, width: this.width, height: this.height });
+    placeLabels(this.svg, [...all(".link-name"), ...all(".joint-label"), ...all(".moment .force-label"),
+      ...all(".force:not(.moment) .force-label")], all(DRAWN_PARTS));
   }
 
   /**
@@ -245,7 +249,9 @@ export class FreeBodyView {
         const [x, y] = map[body](point);
         const [vector, beyondScale] = this.#vector(force);
         const pushes = Boolean(vector && outward) && vector[0] * outward[0] + vector[1] * outward[1] < 0;
-        parts[name].update([x + offset[0], y + offset[1]], vector, { pushes, beyondScale });
+        const at = [x + offset[0], y + offset[1]];
+        const [inside, cut] = this.#inside(at, vector, pushes);
+        parts[name].update(at, inside, { pushes, beyondScale: beyondScale || cut });
       };
       /**
        * A reaction in a revolute pair: its line touches the friction circle, its moment against the relative
@@ -276,7 +282,8 @@ export class FreeBodyView {
       drawn("G3", "slider", state.B, state.G3);
       const [pushing, beyondScale] = this.#vector(state.P);
       const face = pushing ? [bx - Math.sign(pushing[0]) * SLIDER[0] / 2, by + SLIDER[1] / 4] : [bx, by];
-      parts.P.update(face, pushing, { pushes: true, beyondScale });
+      const [inside, cut] = this.#inside(face, pushing, true);
+      parts.P.update(face, inside, { pushes: true, beyondScale: beyondScale || cut });
     };
   }
 
@@ -286,6 +293,19 @@ export class FreeBodyView {
     const length = Math.hypot(force[0], force[1]) * this.forceScale;
     const cut = Math.min(1, (LONGEST_ARROW / REFERENCE_ARROW) * this.reference / Math.max(length, 1e-300));
     return [[force[0] * this.forceScale * cut, -force[1] * this.forceScale * cut], cut < 1];
+  }
+
+  /**
+   * The arrow of vector (drawing units) at point, pulling from it or pushing into it, shortened if needed so
+   * that its far end stays EDGE inside the picture (above the scale bars): [vector, shortened].
+   */
+  #inside(point, vector, pushes) {
+    if (!vector) return [vector, false];
+    const [dx, dy] = pushes ? [-vector[0], -vector[1]] : vector;
+    const limit = (p, d, low, high) => (d > 0 ? (high - EDGE - p) / d : d < 0 ? (low + EDGE - p) / d : Infinity);
+    const share = Math.min(1, limit(point[0], dx, 0, this.width), limit(point[1], dy, 0,
+      this.height - (this.stacked ? 3 * STACKED.legendRow : LEGEND)));
+    return share < 1 ? [[vector[0] * Math.max(share, 0), vector[1] * Math.max(share, 0)], true] : [vector, false];
   }
 
   /** Scale bars: a round length, a round force, and the magnification of the friction circles. */

@@ -9,6 +9,7 @@
  */
 import { element } from "../../common/view/dom.js";
 import { forceArrow, momentArc } from "./force_parts.js";
+import { DRAWN_PARTS, placeLabels } from "../../common/view/label_placement.js";
 import { drawing, label, pin } from "../../common/view/linkage_parts.js";
 import { degrees, formatNumber, formatQuantity, setRichText } from "../../common/view/notation.js";
 import { fitScale, setAttributes, svgElement } from "../../common/view/svg.js";
@@ -20,6 +21,10 @@ const PAD = 90;                 // drawing units around a body's joints: room fo
 const REFERENCE_ARROW = 100;     // drawing units of the largest force of the picture
 const CIRCLE = 9;               // drawing units of the largest friction circle (magnified)
 const MOMENT_RADIUS = 16;
+const ARC_STEP = 9;             // drawing units between concentric moment arcs about one point
+const CAPTION = 30;             // drawing units above a cell's picture for its caption
+const SHORTEST = 0.4;           // the force scale is not cut below this share of the reference
+const ROOM = 18;                // drawing units kept between an arrow's end and its cell's edge (its symbol)
 const NARROW = 620;             // CSS px: a narrower panel draws the bodies one below the other
 const STACKED = [480, 300];     // drawing units of one body's cell in that layout
 const CLASS_OF = { useful: "load" };   // the crank-slider's diagram's colours (app.css): reaction, load, inertia, …
@@ -69,15 +74,23 @@ export class GroupFreeBodyView {
     const parts = bodies.map(bodyParts);
     const largest = Math.max(1e-12, ...parts.flatMap((p) => p.forces.map((f) => Math.hypot(...f.force))));
     const largestCircle = Math.max(1e-12, ...parts.flatMap((p) => p.circles.map((c) => c.radius)));
+    const cells = bodies.map((body) => {
+      const scale = fitScale(Object.values(body.points), cell, height - CAPTION, Math.min(PAD, cell / 4));
+      return (p) => { const [x, y] = scale.point(p); return [x, y + CAPTION]; };
+    });
+    // one force scale (drawing units per N) for every body, the largest force REFERENCE_ARROW long unless an
+    // arrow would then leave its cell: then all are shortened alike (down to SHORTEST of it at most), so that
+    // every arrow and its symbol stay in the drawing
+    const arrowScale = Math.max(SHORTEST * REFERENCE_ARROW / largest, Math.min(REFERENCE_ARROW / largest,
+      ...parts.flatMap((p, i) => p.forces.map((f) =>
+        room(cells[i](f.at), [f.force[0], -f.force[1]], f.kind === "reaction", [cell, height])))));
     bodies.forEach((body, i) => {
       const layer = svgElement("g", { class: "free-body-cell", "data-group": String(body.group),
         transform: this.stacked ? `translate(0 ${i * height})` : `translate(${i * cell} 0)` }, this.svg);
       const caption = body.group === "crank" ? t.fb_group_crank
         : t.fb_group_named.replace("{kind}", body.kind).replace("{links}", body.links.join(", "));
       setRichText(svgElement("text", { class: "free-body-caption", x: cell / 2, y: 22, "text-anchor": "middle" }, layer), caption);
-      const points = Object.values(body.points);
-      const scale = fitScale(points, cell, height - 30, Math.min(PAD, cell / 4));
-      const at = (p) => { const [x, y] = scale.point(p); return [x, y + 30]; };
+      const at = cells[i];
       const joints = Object.entries(body.points);
       for (let k = 1; k < joints.length; k += 1) {
         const [a, b] = [at(joints[k - 1][1]), at(joints[k][1])];
@@ -92,15 +105,22 @@ export class GroupFreeBodyView {
           cx: at(c.at)[0], cy: at(c.at)[1] }, layer);
       }
       for (const f of parts[i].forces) {
-        const v = [f.force[0] / largest * REFERENCE_ARROW, -f.force[1] / largest * REFERENCE_ARROW];
+        const v = [f.force[0] * arrowScale, -f.force[1] * arrowScale];
         forceArrow(layer, classOf(f.kind), f.symbol).update(at(f.at), v, { pushes: f.kind === "reaction" });
       }
+      const arcsAt = new Map();           // moments about one point drawn as concentric arcs, not one over another
       for (const m of parts[i].moments) {
         const symbol = m.kind === "balancing" ? t.symbol_balancing_moment : m.symbol;
-        momentArc(layer, classOf(m.kind), symbol, m.kind === "balancing" ? 1.6 * MOMENT_RADIUS : MOMENT_RADIUS)
-          .update(at(m.at), m.moment);
+        const key = at(m.at).map((v) => v.toFixed(1)).join(" ");
+        const k = arcsAt.get(key) ?? 0;
+        arcsAt.set(key, k + 1);
+        const radius = (m.kind === "balancing" ? 1.6 * MOMENT_RADIUS : MOMENT_RADIUS) + ARC_STEP * k;
+        momentArc(layer, classOf(m.kind), symbol, radius).update(at(m.at), m.moment);
       }
     });
+    const all = (selector) => [...this.svg.querySelectorAll(selector)].filter((node) => node.closest(".force")?.style.display !== "none");
+    placeLabels(this.svg, [...all(".free-body-caption"), ...all(".joint-label"), ...all(".moment .force-label"),
+      ...all(".force:not(.moment) .force-label")], all(DRAWN_PARTS));
     this.angle.textContent = t.fb_group_angle.replace("{phi}", formatNumber(degrees(freeBody.phi), lang, 1));
     const rows = parts.flatMap((p, i) => [
       ...p.reactions.map((r) => [symbolOf(r.name),
@@ -111,4 +131,14 @@ export class GroupFreeBodyView {
     this.list.replaceChildren(...rows.flatMap(([symbol, value, unit]) => [
       element("dt", { rich: symbol }), element("dd", { textContent: `${value} ${unit}` })]));
   }
+}
+
+/**
+ * The largest length (drawing units per N) a force [fx, fy] (N, y down) may be drawn at from point (in a cell of
+ * [width, height]) so that the arrow, pulling from the point or pushing into it, ends ROOM inside the cell.
+ */
+function room(point, force, pushes, [width, height]) {
+  const direction = pushes ? [-force[0], -force[1]] : force;
+  const limit = (p, d, low, high) => (d > 0 ? (high - ROOM - p) / d : d < 0 ? (low + ROOM - p) / d : Infinity);
+  return Math.max(0, Math.min(limit(point[0], direction[0], 0, width), limit(point[1], direction[1], CAPTION, height)));
 }
