@@ -2,7 +2,9 @@
  * Plotly figures of a dynamics scene's panels, built from an answer of /reduction or /motion; no DOM.
  *   plot   series against x: the crank angle in degrees (x_unit "deg", x in rad) or the time in s;
  *          a scalar series (style "hline", e.g. the mean M_c0) is a dashed level line labelled with its value;
- *          a series with axis 2 is read on a right-hand axis (panel.y2_title), one with `gaps` (a path) has
+ *          a series with axis 2 is read on a right-hand axis (panel.y2_title), as is the second of two series
+ *          whose y_title gives one unit each ("рад; рад/с"); a fast oscillating curve is drawn thin and solid
+ *          (dashed it reads as a hatch); a series with `gaps` (a path) has
  *          gaps where the answer's values there are null (ζ where the compliance is infinite); x_unit ""
  *          plots against another series (a phase portrait of the twist), and the nearest point is read;
  *          `series_each: {path, label}` adds one series per key of the answer's object at path (the reactions
@@ -81,15 +83,62 @@ export function heldCurves(panel, data) {
   return panel.series.filter((series) => holds(data, series.theta) && holds(data, series.r));
 }
 
+const UNITS_APART = /\s*;\s*/;     // a y_title "рад; рад/с": one unit per series
+const FAST_TURNS = 30;             // a curve turning more often than this across the plot is a fast oscillation
+
+/**
+ * The panel with each series on its own axis when its y_title lists one unit per series ("рад; рад/с", two
+ * series and no right-hand axis of their own): the first on the left, the second on the right, each axis
+ * titled by its series' symbol and unit; otherwise the panel itself.
+ */
+function unitsApart(panel, held, lang) {
+  const units = panel.y_title[lang].split(UNITS_APART);
+  if (units.length !== 2 || held.length !== 2 || panel.y2_title || held.some((series) => series.axis)) return panel;
+  const title = (series, unit) => Object.fromEntries(LANGUAGES.map((l) =>
+    [l, `${series.label[l]}, ${panel.y_title[l].split(UNITS_APART)[held.indexOf(series)] ?? unit}`]));
+  const series = [held[0], { ...held[1], axis: 2 }];
+  return { ...panel, series, y_title: title(held[0], units[0]), y2_title: title(held[1], units[1]) };
+}
+
+/** How many times a curve turns (its slope changes sign): a measure of how fast it oscillates. */
+function turns(values) {
+  let count = 0;
+  let last = 0;
+  for (let i = 1; i < values.length; i += 1) {
+    const step = Math.sign((values[i] ?? 0) - (values[i - 1] ?? 0));
+    if (step && last && step !== last) count += 1;
+    if (step) last = step;
+  }
+  return count;
+}
+
+/**
+ * The dashes of the held series: as asked, the others told apart by traceDashes; a fast oscillating curve
+ * (more than FAST_TURNS turns) asked for no dash is drawn solid, a dash on it would read as a hatch.
+ */
+function seriesDashes(held, data) {
+  const asked = held.map((series) => (series.style === "hline" ? LEVEL_DASH : DASHES[series.style] ?? null));
+  const dashes = traceDashes(asked);
+  const counts = held.map((series, i) => (asked[i] === null && Array.isArray(pathValue(data, series.y))
+    ? turns(pathValue(data, series.y)) : -1));
+  const fast = counts.indexOf(Math.max(...counts));
+  const solid = dashes.indexOf("solid");
+  if (counts[fast] > FAST_TURNS && solid >= 0 && solid !== fast && asked[solid] === null) {
+    [dashes[solid], dashes[fast]] = [dashes[fast], dashes[solid]];
+  }
+  return { dashes, fast: counts[fast] > FAST_TURNS ? fast : -1 };
+}
+
 /** Plotly figure {data, layout} of a plot panel (content/scenes "panels" entry) for the answer's data. */
-export function plotFigure(panel, data, texts) {
+export function plotFigure(shownPanel, data, texts) {
   const { lang } = texts;
+  const panel = unitsApart(shownPanel, heldSeries(shownPanel, data), lang);
   const xValues = pathValue(data, panel.x);
   const inDegrees = panel.x_unit === "deg";
   const x = inDegrees ? toDegrees(xValues) : xValues;
   const ends = [x[0], x[x.length - 1]];
-  const held = heldSeries(panel, data);
-  const dashes = traceDashes(held.map((series) => (series.style === "hline" ? LEVEL_DASH : DASHES[series.style] ?? null)));
+  const held = panel === shownPanel ? heldSeries(panel, data) : panel.series;
+  const { dashes, fast } = seriesDashes(held, data);
   const traces = held.map((series, i) => {
     const label = plotText(series.label[lang]);
     const y = pathValue(data, series.y);
@@ -102,7 +151,7 @@ export function plotFigure(panel, data, texts) {
     return { type: "scatter", mode: series.style === "markers" ? "markers" : "lines",
       x, y: gaps ? y.map((v, i) => (gaps[i] === null ? null : v)) : y,
       name: label, connectgaps: false, yaxis: series.axis === 2 ? "y2" : "y", marker: { size: 10 },
-      line: { color: seriesColor(panel, series), width: 2, dash: dashes[i] },
+      line: { color: seriesColor(panel, series), width: i === fast ? 1.2 : 2, dash: dashes[i] },
       hovertemplate: `${label} = %{y}<extra></extra>` };
   });
   const layout = {
