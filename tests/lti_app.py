@@ -99,9 +99,12 @@ def results(base: str, created: dict) -> dict:
 
 
 def right_answer(variant: dict, question: str, spec: dict = SPEC) -> float:
-    """The exact answer to `question` for a student's variant (`GET …/me`), computed here as the server does."""
-    from server.classroom.answers import correct_answer
+    """The exact answer to `question` for a student's variant (`GET …/me`), computed here as the server does (through
+    the endpoints the app gives the classroom)."""
+    from server.api.endpoints import parsed_answer
+    from server.classroom.answers import correct_answer, use_endpoints
     from server.classroom.spec import AssignmentSpec
     from server.classroom.variants import plan
     from server.lessons.scenes import scenes
+    use_endpoints(parsed_answer)
     return correct_answer(plan(AssignmentSpec.model_validate(spec), scenes()), variant["values"], question)

@@ -3,7 +3,7 @@ printed beside corrected, and the harmonics of u′₃₁ with Eremyants (2.17)'
 import numpy as np
 import pytest
 
-from server.classroom.answers import compute
+from server.api.endpoints import compute
 from server.core.elastic.compliance import Dimensions, compliance_report, rod_compliance, shaft_compliance
 from server.core.kinematics import compute_kinematics
 

@@ -3,7 +3,7 @@ the notes' values or a computation by another route (tolerances stated per test)
 import numpy as np
 import pytest
 
-from server.classroom.answers import compute
+from server.api.endpoints import compute
 from server.core import errata
 from server.core.dynamics import flywheel as fw
 from server.core.mechanisms import MECHANISMS

@@ -11,10 +11,9 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
-from fastapi import HTTPException
-
 from server.classroom import assignment_answers
 from server.classroom import answers
+from server.classroom.refusals import Busy, TooOften
 from server.runtime import heavy
 from server.classroom.spec import AssignmentSpec
 from server.classroom.variants import SpecError, plan
@@ -106,9 +105,9 @@ def test_the_stored_answer_is_the_answer_computed_directly(memory, computed):
 
 def test_a_variant_whose_budget_runs_out_answers_503_and_keeps_nothing(memory, computed, monkeypatch):
     monkeypatch.setattr(assignment_answers, "VARIANT_BUDGET_S", -1.0)     # already spent when it starts
-    with pytest.raises(HTTPException) as refused:
+    with pytest.raises(Busy) as refused:
         assignment_answers.correct_value("A1", crank_plan(), 2, "u31_max")
-    assert refused.value.status_code == 503 and int(refused.value.headers["Retry-After"]) > 0
+    assert refused.value.code == "answers_not_ready" and refused.value.retry_after > 0
     assert memory.answers == {} and not [c for c in computed if isinstance(c, tuple)]
 
 
@@ -123,9 +122,9 @@ def test_an_answer_cut_short_by_its_endpoints_bound_is_never_kept_as_correct(mem
     real = answers.compute_answer
     monkeypatch.setattr(answers, "compute_answer", lambda *args: replace(real(*args), partial=True))
     assert assignment_answers.answers_of_variants(crank_plan(), [4], 60.0) == {}
-    with pytest.raises(HTTPException) as refused:
+    with pytest.raises(Busy) as refused:
         assignment_answers.correct_value("A1", crank_plan(), 4, "u31_max")
-    assert refused.value.status_code == 503 and memory.answers == {}
+    assert refused.value.code == "answers_not_ready" and memory.answers == {}
 
 
 def test_an_answer_the_variant_has_not_is_a_422_in_words(memory):
@@ -141,10 +140,10 @@ def test_one_address_makes_a_bounded_number_of_assignments_an_hour(memory, monke
     memory.created = [("10.0.0.1", now - 3000), ("10.0.0.1", now - 1200), ("10.0.0.2", now - 10)]
     assignment_answers.limit_creation("10.0.0.1", now)          # two in the hour: a third is allowed
     memory.created.append(("10.0.0.1", now - 5))
-    with pytest.raises(HTTPException) as refused:
+    with pytest.raises(TooOften) as refused:
         assignment_answers.limit_creation("10.0.0.1", now)
-    assert refused.value.status_code == 429
-    wait = int(refused.value.headers["Retry-After"])
+    assert refused.value.code == "rate_limited" and refused.value.limit == 3
+    wait = refused.value.retry_after
     assert 600 <= wait <= 600 + assignment_answers.RETRY_STEP_S   # the oldest (now − 3000 s) leaves after 600 s
     assignment_answers.limit_creation("10.0.0.2", now)          # another address is not affected
     assignment_answers.limit_creation("10.0.0.1", now + wait)     # and after Retry-After, a place is free
@@ -241,9 +240,9 @@ def test_answers_wait_in_a_bounded_number_of_threads_and_refuse_at_once_past_it(
     places = [assignment_answers._computing.acquire(blocking=False) for _ in range(assignment_answers.ANSWER_COMPUTATIONS)]
     try:
         assert all(places)
-        with pytest.raises(HTTPException) as busy:
+        with pytest.raises(Busy) as busy:
             assignment_answers.correct_value("A1", resolved, 2, "u31_max")
-        assert busy.value.status_code == 503 and busy.value.headers["Retry-After"] == "2"
+        assert busy.value.code == "answers_busy" and busy.value.retry_after == 2
         assert assignment_answers.correct_value("A1", resolved, 1, "u31_max") == kept
     finally:
         for _ in places:

@@ -13,12 +13,12 @@ from ..paths import BENCH_RESULTS, WEB
 from ..core.mechanisms import GeometryError
 from ..core.warm_up import warm_up
 from . import access_log
-from ..classroom import assignment_store
+from ..classroom import answers as classroom_answers, assignment_store
 from ..runtime import heavy
-from .errors import geometry_error, server_error, store_unavailable, validation_error
+from .errors import busy, geometry_error, not_found, server_error, store_unavailable, too_often, validation_error
 from ..runtime.admission import AdmissionMiddleware
 from .bench_pages import BenchResults
-from .endpoints import ENDPOINTS
+from .endpoints import ENDPOINTS, parsed_answer
 from .head_requests import HeadAsGet
 from .security import SecurityMiddleware
 from .static_files import content_version, mount_versioned, script_version
@@ -28,6 +28,7 @@ from .routers import cache as cache_stats
 from .routers import lti
 from .routers import friction_influence
 from .routers import project as course_project
+from ..classroom.refusals import Busy, NotFound, TooOften
 from ..classroom.store import StoreUnavailable
 from ..classroom.variants import SpecError
 from .routers import (angular, assignment_pages, assignments, bearings, dynamics, editor_pages, elastic, family, motor,
@@ -68,6 +69,7 @@ class LabApp(FastAPI):
 
 def create_app() -> FastAPI:
     access_log.install()                       # the access log never holds a student's secret
+    classroom_answers.use_endpoints(parsed_answer)   # an assignment's answers are the endpoints' (and its heavy work's)
     app = LabApp(title="Mechanism Dynamics Lab API", version="1.0.0",
                   description="Kinematics and dynamics of planar linkages for the theory of machines and "
                               "mechanisms. SI units throughout; angles in radians.\n\n"
@@ -96,6 +98,9 @@ def create_app() -> FastAPI:
     app.add_exception_handler(GeometryError, geometry_error)
     app.add_exception_handler(SpecError, assignments.spec_error)
     app.add_exception_handler(StoreUnavailable, store_unavailable)   # 503 + Retry-After: a full disk, a server down
+    app.add_exception_handler(NotFound, not_found)          # the classroom's refusals: 404,
+    app.add_exception_handler(Busy, busy)                   # 503 + Retry-After (answers not to be had now),
+    app.add_exception_handler(TooOften, too_often)          # 429 + Retry-After
     app.add_exception_handler(Exception, server_error)      # 500 as JSON (ServerErrorMiddleware answers it)
     app.state.response_cache = ResponseCache.from_env()  # MDL_CACHE_BYTES, default 64 MB, 0 = off
     # a share of the computing lanes per address, in turn (429 past a cap), the cookie; inside the cache: a cached

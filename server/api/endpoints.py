@@ -2,11 +2,11 @@
 
 A body function takes the endpoint's request model and the reader's language and returns an Answer: the
 payload (numpy arrays as they are, warnings translated, numerics localised) and whether a time or work bound
-cut it short. The routers only parse, call and serialise (server/api/serialise.py); the assignments call
-``compute``, the family endpoint ``compute_answers``: a family's members at once, through an endpoint's batch
-body (BATCHES: the kinematics over a (member, φ) grid, machines shared by members of motion and flywheel) or
-one by one. Nothing is computed that the request did not ask for: each output is computed only when it is in
-``outputs``, or when what is asked is made from it.
+cut it short. The routers only parse, call and serialise (server/api/serialise.py); the classroom computes with
+``parsed_answer`` (given to it when the app is made), the family endpoint with ``compute_answers``: a family's
+members at once, through an endpoint's batch body (BATCHES: the kinematics over a (member, φ) grid, machines
+shared by members of motion and flywheel) or one by one. Nothing is computed that the request did not ask for:
+each output is computed only when it is in ``outputs``, or when what is asked is made from it.
 """
 from __future__ import annotations
 
@@ -430,10 +430,17 @@ def machine_batch(endpoint: str):
 BATCHES = {"kinematics": kinematics_batch, "motion": machine_batch("motion"), "flywheel": machine_batch("flywheel")}
 
 
+def parsed_answer(endpoint: str, body: dict, lang: str = "en") -> Answer:
+    """compute_answer's Answer with its payload as a client parses the JSON of POST
+    /api/v1/<endpoint>?precision=full: lists and numbers, null (None) for every non-finite number. What the
+    classroom computes its answers with (server/classroom/answers.py, given when the app is made)."""
+    answer = compute_answer(endpoint, body, lang)
+    return Answer(orjson.loads(serialise(answer.payload, digits=None)), answer.partial)
+
+
 def compute(endpoint: str, body: dict, lang: str = "en") -> dict:
-    """The JSON answer of POST /api/v1/<endpoint>?precision=full as Python data: lists and numbers,
-    null (None) for every non-finite number, as a client parses it."""
-    return orjson.loads(serialise(compute_answer(endpoint, body, lang).payload, digits=None))
+    """The JSON answer of POST /api/v1/<endpoint>?precision=full as Python data (parsed_answer's payload)."""
+    return parsed_answer(endpoint, body, lang).payload
 
 
 # POST /api/v1/friction-influence: friction swept in every pair of the crank-slider machine (Chaika–Vasylenko §3.4,

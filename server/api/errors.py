@@ -1,6 +1,8 @@
 """Error answers: HTTP 422 in FastAPI's own error format for errors the numeric core or validation reports, 503
-with Retry-After when the classroom's database cannot be used now (a full disk, a server down), and a JSON 500
-for anything the app did not expect (the security headers are added around them all by security.py).
+with Retry-After when the classroom's database cannot be used now (a full disk, a server down), the classroom's
+refusals (server/classroom/refusals.py: 404, 503 or 429 with Retry-After; a refused name's status, NAME_STATUS),
+and a JSON 500 for anything the app did not expect (the security headers are added around them all by
+security.py).
 
 Whatever a request held is echoed back safely: the echo of a validation error is rebuilt without recursion
 (``plain``), with bytes and strings made valid UTF-8, integers beyond 64 bits as floats, and objects as their
@@ -10,8 +12,9 @@ import logging
 
 from fastapi import Request
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import Response
+from fastapi.responses import JSONResponse, Response
 
+from ..classroom.refusals import Busy, NotFound, TooOften
 from ..classroom.store import StoreUnavailable
 from ..core.mechanisms import GeometryError
 from .serialise import serialise
@@ -24,6 +27,9 @@ STORE_RETRY_AFTER_S = 5
 STORE_UNAVAILABLE = ("the classroom's database cannot be used just now (its disk is full, or its server is down or "
                      "restarting): nothing was saved by this request, or it was saved without the answer coming back; "
                      "try again in a few seconds")
+NAME_STATUS = {"name_empty": 422, "name_too_long": 422, "name_mixed_scripts": 422,    # HTTP status of a refused name
+               "name_confusable": 409, "name_taken": 409, "roster_locked": 403, "roster_name_needs_link": 403,
+               "too_many_registrations": 429}
 
 
 def unprocessable(content: dict) -> Response:
@@ -118,3 +124,20 @@ async def store_unavailable(request: Request, error: StoreUnavailable) -> Respon
     content = {"detail": [{"loc": [], "msg": STORE_UNAVAILABLE, "type": "store_unavailable"}]}
     return Response(serialise(content, digits=None), status_code=503, media_type="application/json",
                     headers={"Retry-After": str(STORE_RETRY_AFTER_S), "Cache-Control": "no-store"})
+
+
+async def not_found(request: Request, error: NotFound) -> Response:
+    """HTTP 404 with the classroom's words for what is not there (``{"detail": "no such assignment"}``)."""
+    return JSONResponse({"detail": error.what}, status_code=404)
+
+
+async def busy(request: Request, error: Busy) -> Response:
+    """HTTP 503 with Retry-After: the answers cannot be had now, nothing was counted."""
+    return JSONResponse({"detail": [{"loc": [], "type": error.code, "msg": error.reason}]}, status_code=503,
+                        headers={"Retry-After": str(error.retry_after)})
+
+
+async def too_often(request: Request, error: TooOften) -> Response:
+    """HTTP 429 with Retry-After and the limit: the client has done this too often in the window."""
+    detail = {"loc": ["body"], "type": error.code, "ctx": {"limit": error.limit}, "msg": error.reason}
+    return JSONResponse({"detail": [detail]}, status_code=429, headers={"Retry-After": str(error.retry_after)})

@@ -1,20 +1,25 @@
 """An assignment's correct answers, computed on the server from the student's variant, and what the
-student's page may show without giving them away."""
+student's page may show without giving them away.
+
+The answers are the computing endpoints' answers to the requests the student's page would send
+(server/lessons/requests.py). The endpoints, their request models and the serialiser live in server/api; the API
+gives the classroom the one function it computes with (``use_endpoints``, when the app is made), and
+assignment_answers hands the same function to the heavy process that computes a variant's answers.
+"""
 from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 from functools import lru_cache
 
 import numpy as np
-import orjson
 
 from ..lessons.expression import ExpressionError, evaluate, parse
 from .variants import Plan, SpecError
 from .visibility import shows_any
+from ..core.answer import Answer
 from ..core.numerics import parabola_extremum
-from ..api.endpoints import compute_answer
-from ..api.serialise import serialise
 from ..lessons.scenes import AngleGrid, Question, Readout, Scene, Slider, Toggle, scenes
 from ..lessons.dotted_paths import path_value
 from ..lessons.requests import scene_request, scene_variant
@@ -23,18 +28,43 @@ ANSWER_POINTS_PER_TURN = 3600    # kinematics answers: 0.1° grid, extremum refi
 POSITION_INDEX = re.compile(r"\{([A-Za-z0-9_.]+)\}")     # "kinematics.{positions.chosen}.points.E.v.value"
 
 
+# What the classroom computes with: POST /api/v1/<endpoint> in-process, the body validated as the route validates
+# it (pydantic's ValidationError; the core's GeometryError where the route answers 422), the answer's payload as a
+# client parses it (full precision, null for every non-finite number) and whether a bound cut it short.
+Endpoints = Callable[[str, dict], Answer]
+
+
 class AnswerCutShort(Exception):
     """The endpoint's answer was cut short by a work or time bound: not an answer to grade against (computing
     it again, at a quieter moment, may finish it)."""
 
 
+class NoEndpoints(RuntimeError):
+    """The classroom was asked for an answer before it was given the endpoints to compute it with."""
+
+
+def _no_endpoints(endpoint: str, body: dict) -> Answer:
+    raise NoEndpoints(f"no endpoints to compute the {endpoint} answer with: server/api gives them to the classroom "
+                      f"(answers.use_endpoints) when it makes the app")
+
+
+compute_answer: Endpoints = _no_endpoints
+
+
+def use_endpoints(endpoints: Endpoints) -> None:
+    """Compute every answer from now on with `endpoints` (the API's, given when the app is made; a heavy process
+    is handed the same function with the work it runs)."""
+    global compute_answer
+    compute_answer = endpoints
+
+
 def compute(endpoint: str, body: dict) -> dict:
     """The endpoint's whole answer as a client parses it (full precision, null for non-finite numbers);
     AnswerCutShort when a bound cut it short."""
-    answer = compute_answer(endpoint, body, "en")
+    answer = compute_answer(endpoint, body)
     if answer.partial:
         raise AnswerCutShort(f"the {endpoint} answer was cut short by its work bound")
-    return orjson.loads(serialise(answer.payload, digits=None))
+    return answer.payload
 
 
 def question(scene: Scene, question_id: str) -> Question:

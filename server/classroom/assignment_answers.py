@@ -7,18 +7,21 @@ Each variant's answers (question id → correct value, or the reason it has none
 class, not once per student, per worker, per restart.
 
 - Making an assignment checks up to CHECKED_VARIANTS variants spread over the range, within CREATE_BUDGET_S of
-  one heavy process: a question without an answer for one of them refuses the assignment (422 naming it); the
-  answers found are kept. Variants the budget did not reach are computed on their first use.
+  one heavy process: a question without an answer for one of them refuses the assignment (SpecError naming it);
+  the answers found are kept. Variants the budget did not reach are computed on their first use.
 - A submission (or a page revealing a closed question) reads the variant's answers from the store, and computes
   them first, within VARIANT_BUDGET_S, only for a variant nobody has used yet. Answers the budget did not finish
-  are not kept: the student gets 503 with Retry-After and may submit again (their attempt is not spent).
+  are not kept: Busy("answers_not_ready"), and the student may submit again (their attempt is not spent).
 - The routes that need answers run in the worker's thread pool, which also serves the light computing routes: a
   thread waiting for the heavy process is a thread they lack. So at most ANSWER_COMPUTATIONS such waits run at
-  once per worker (MDL_ANSWER_COMPUTATIONS, default 4 of the pool's 40 threads); past that the request is answered
-  at once with 503 and Retry-After: 2 instead of queueing in a thread (answers already kept need no wait).
+  once per worker (MDL_ANSWER_COMPUTATIONS, default 4 of the pool's 40 threads); past that the request is refused
+  at once, Busy("answers_busy"), instead of queueing in a thread (answers already kept need no wait).
 - One address makes at most ASSIGNMENTS_PER_HOUR assignments an hour (MDL_ASSIGNMENTS_PER_HOUR, counted in the
-  store so that every worker and server sees the same count); past it, 429 with Retry-After: the seconds until
-  the oldest of its assignments in the window leaves it.
+  store so that every worker and server sees the same count); past it, TooOften with the seconds until the oldest
+  of its assignments in the window leaves it.
+
+The refusals are the classroom's own (refusals.py); server/api/errors.py gives each its HTTP answer (503 or 429
+with Retry-After).
 """
 from __future__ import annotations
 
@@ -27,13 +30,13 @@ import threading
 import time
 from contextlib import contextmanager
 
-from fastapi import HTTPException
-
 from . import turning
+from .refusals import Busy, TooOften
 from .variants import Plan, SpecError
 from ..core.mechanisms import GeometryError
 from ..runtime import heavy
-from .answers import AnswerCutShort, answer_from, variant_answer
+from . import answers
+from .answers import AnswerCutShort, Endpoints, answer_from, variant_answer
 from .assignment_store import store
 
 heavy.preload(__name__)     # answers_of_variants runs in the answers' lane
@@ -44,19 +47,17 @@ VARIANT_BUDGET_S = 15.0         # for one variant's answers on its first use
 ASSIGNMENTS_PER_HOUR = int(os.environ.get("MDL_ASSIGNMENTS_PER_HOUR", "20"))     # per client address
 ANSWER_COMPUTATIONS = int(os.environ.get("MDL_ANSWER_COMPUTATIONS", "4"))       # threads waiting for answers
 WINDOW_S = 3600.0
-RETRY_STEP_S = 60.0             # Retry-After is found to this resolution
+RETRY_STEP_S = 60.0             # the wait a refusal names is found to this resolution
 _computing = threading.BoundedSemaphore(ANSWER_COMPUTATIONS)
 
 
 @contextmanager
 def computing_place():
-    """One of the worker's ANSWER_COMPUTATIONS places to wait for the heavy process; 503 at once when none is
+    """One of the worker's ANSWER_COMPUTATIONS places to wait for the heavy process; Busy at once when none is
     free."""
     if not _computing.acquire(blocking=False):
-        raise HTTPException(503, detail=[{"loc": [], "type": "answers_busy",
-                                          "msg": "the server is computing other variants' answers; try again in a "
-                                                 "moment (no attempt was counted)"}],
-                            headers={"Retry-After": "2"})
+        raise Busy("answers_busy", "the server is computing other variants' answers; try again in a moment (no "
+                                   "attempt was counted)", retry_after=2)
     try:
         yield
     finally:
@@ -64,25 +65,30 @@ def computing_place():
 
 
 
-def answers_of_variants(resolved: Plan, numbers: list[int], budget_s: float) -> dict[int, dict]:
+def answers_of_variants(resolved: Plan, numbers: list[int], budget_s: float,
+                        endpoints: Endpoints | None = None) -> dict[int, dict]:
     """In a heavy process: for each variant number in turn, every question's correct value (answers.variant_answer:
     a number, or an at_angle question's value at every angle offered) or the reason it has none, until
     `budget_s` has passed; a variant the budget cut, or whose answer an endpoint's own bound cut short
-    (answers.AnswerCutShort), is left out whole (never half its answers, never a partial one)."""
+    (answers.AnswerCutShort), is left out whole (never half its answers, never a partial one). `endpoints`: what
+    the worker computes with (answers.use_endpoints), handed to the heavy process with the work (None: this
+    process's own)."""
+    if endpoints is not None:
+        answers.use_endpoints(endpoints)
     deadline = time.perf_counter() + budget_s
     found: dict[int, dict] = {}
     for number in numbers:
-        values, answers = resolved.values(number), {}
+        values, correct = resolved.values(number), {}
         for pick in resolved.spec.questions:
             if time.perf_counter() > deadline:
                 return found
             try:
-                answers[pick.id] = variant_answer(resolved, values, pick.id)
+                correct[pick.id] = variant_answer(resolved, values, pick.id)
             except (SpecError, GeometryError) as error:
-                answers[pick.id] = getattr(error, "reason", None) or str(error)
+                correct[pick.id] = getattr(error, "reason", None) or str(error)
             except AnswerCutShort:          # like the budget: the variant is left out, computed again later
                 return found
-        found[number] = answers
+        found[number] = correct
     return found
 
 
@@ -98,9 +104,9 @@ def check_new(resolved: Plan) -> dict[int, dict]:
     turning.check_some_turn(resolved)
     numbers = sorted({turning.handed_out(resolved, n) for n in checked_numbers(resolved.count)})
     with computing_place():
-        found = heavy.run(answers_of_variants, resolved, numbers, CREATE_BUDGET_S)
-    for number, answers in sorted(found.items()):
-        for question_id, value in answers.items():
+        found = heavy.run(answers_of_variants, resolved, numbers, CREATE_BUDGET_S, answers.compute_answer)
+    for number, correct in sorted(found.items()):
+        for question_id, value in correct.items():
             if isinstance(value, str):
                 shown = ", ".join(f"{k} = {v}" for k, v in resolved.values(number).items())
                 raise SpecError("sliders", f"question '{question_id}' has no answer for the variant {shown}: {value}")
@@ -109,31 +115,29 @@ def check_new(resolved: Plan) -> dict[int, dict]:
 
 def keep(assignment_id: str, found: dict[int, dict]) -> None:
     """Store the answers computed while the assignment was made, for every server to read."""
-    for number, answers in found.items():
-        store().put_variant_answers(assignment_id, number, answers)
+    for number, values in found.items():
+        store().put_variant_answers(assignment_id, number, values)
 
 
 def variant_answers(assignment_id: str, resolved: Plan, number: int) -> dict:
     """The variant's answers from the store, computed (heavy process, VARIANT_BUDGET_S) and kept on first use;
-    503 with Retry-After when the budget ran out first."""
-    answers = store().variant_answers(assignment_id, number)
-    if answers is not None and all(p.id in answers for p in resolved.spec.questions):
-        return answers
+    Busy when the budget ran out first."""
+    kept = store().variant_answers(assignment_id, number)
+    if kept is not None and all(p.id in kept for p in resolved.spec.questions):
+        return kept
     with computing_place():
-        answers = heavy.run(answers_of_variants, resolved, [number], VARIANT_BUDGET_S).get(number)
-    if answers is None:
-        raise HTTPException(503, detail=[{"loc": [], "type": "answers_not_ready",
-                                          "msg": "the correct answers of this variant took longer than the time "
-                                                 "allowed; submit again in a moment (no attempt was counted)"}],
-                            headers={"Retry-After": "10"})
-    store().put_variant_answers(assignment_id, number, answers)
-    return answers
+        found = heavy.run(answers_of_variants, resolved, [number], VARIANT_BUDGET_S, answers.compute_answer)
+    if number not in found:
+        raise Busy("answers_not_ready", "the correct answers of this variant took longer than the time allowed; "
+                                        "submit again in a moment (no attempt was counted)", retry_after=10)
+    store().put_variant_answers(assignment_id, number, found[number])
+    return found[number]
 
 
 def correct_value(assignment_id: str, resolved: Plan, number: int, question_id: str,
                   angle: float | None = None) -> float:
     """The correct value of a question for variant `number` (an at_angle question: at the student's `angle`,
-    answers.answer_from); SpecError (422) when it has none."""
+    answers.answer_from); SpecError when it has none."""
     value = variant_answers(assignment_id, resolved, number)[question_id]
     if isinstance(value, str):
         raise SpecError("questions", value)
@@ -141,7 +145,8 @@ def correct_value(assignment_id: str, resolved: Plan, number: int, question_id: 
 
 
 def limit_creation(client: str, now: float | None = None) -> None:
-    """429 with Retry-After when `client` has made ASSIGNMENTS_PER_HOUR assignments in the last hour."""
+    """TooOften when `client` has made ASSIGNMENTS_PER_HOUR assignments in the last hour (retry_after: the seconds
+    until the oldest of them leaves the window, to RETRY_STEP_S)."""
     now = time.time() if now is None else now
     recent = store().recent_assignments_by_client
     if recent(client, now - WINDOW_S) < ASSIGNMENTS_PER_HOUR:
@@ -154,7 +159,5 @@ def limit_creation(client: str, now: float | None = None) -> None:
         else:
             low = middle + 1
     wait = max(int(low * RETRY_STEP_S), 1)
-    raise HTTPException(429, detail=[{"loc": ["body"], "type": "rate_limited", "ctx": {"limit": ASSIGNMENTS_PER_HOUR},
-                                      "msg": f"this address has made {ASSIGNMENTS_PER_HOUR} assignments in the last "
-                                             f"hour; the next one is possible in {wait} s"}],
-                        headers={"Retry-After": str(wait)})
+    raise TooOften("rate_limited", f"this address has made {ASSIGNMENTS_PER_HOUR} assignments in the last hour; the "
+                                   f"next one is possible in {wait} s", retry_after=wait, limit=ASSIGNMENTS_PER_HOUR)

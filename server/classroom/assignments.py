@@ -9,22 +9,18 @@ import secrets
 import time
 from datetime import datetime, timezone
 
-from fastapi import HTTPException
-
 from . import identity, turning
+from .refusals import NotFound
 from .names import NameRefused, check_new, normalise, resembles, roster_names
 from .spec import AssignmentSpec
 from .store import AssignmentRecord, StudentRecord
 from .variants import Plan, plan
 from . import assignment_answers
 from .answers import question, question_kind, tolerance
+from .assignment_models import AssignmentInfo, QuestionInfo, QuestionState, ResultRow, RosterOutcome
 from .assignment_store import store
 from ..lessons.scenes import interface_texts, scenes
-from ..api.schemas_assignments import AssignmentInfo, QuestionInfo, QuestionState, ResultRow, RosterOutcome
 
-NAME_STATUS = {"name_empty": 422, "name_too_long": 422, "name_mixed_scripts": 422,    # HTTP status of a refused name
-               "name_confusable": 409, "name_taken": 409, "roster_locked": 403, "roster_name_needs_link": 403,
-               "too_many_registrations": 429}
 REGISTRATION_WINDOW_S = 3600
 
 
@@ -58,13 +54,13 @@ def create(spec: AssignmentSpec, client: str = "") -> tuple[AssignmentRecord, Pl
 def load(assignment_id: str) -> tuple[AssignmentRecord, Plan]:
     record = store().assignment(assignment_id) if len(assignment_id) <= 40 else None
     if record is None:
-        raise HTTPException(404, "no such assignment")
+        raise NotFound("no such assignment")
     return record, plan(AssignmentSpec.model_validate(record.spec), scenes())
 
 
 def check_token(record: AssignmentRecord, token: str) -> None:
     if not secrets.compare_digest(token_hash(token), record.token_hash):
-        raise HTTPException(404, "no such results page")
+        raise NotFound("no such results page")
 
 
 def replace_token(record: AssignmentRecord, token: str) -> str:
@@ -72,7 +68,7 @@ def replace_token(record: AssignmentRecord, token: str) -> str:
     check_token(record, token)
     new = secrets.token_urlsafe(18)
     if not store().replace_token(record.id, record.token_hash, token_hash(new)):
-        raise HTTPException(404, "no such results page")             # replaced a moment ago by another request
+        raise NotFound("no such results page")             # replaced a moment ago by another request
     return new
 
 
@@ -188,10 +184,10 @@ def personal_url(base: str, record: AssignmentRecord, resolved: Plan, secret: st
 
 
 def find_student(record: AssignmentRecord, handle: str) -> StudentRecord:
-    """The student with this handle (``student_id``); 404 if there is none."""
+    """The student with this handle (``student_id``); NotFound if there is none."""
     found = next((s for s in store().students(record.id) if student_id(record.id, s.key) == handle), None)
     if found is None:
-        raise HTTPException(404, "no such student")
+        raise NotFound("no such student")
     return found
 
 
@@ -199,7 +195,7 @@ def new_link(record: AssignmentRecord, student: StudentRecord) -> str:
     """A new personal secret for the student (the old link and cookies stop working); the secret."""
     secret = identity.new_secret()
     if not store().set_secret(record.id, student.key, identity.secret_hash(secret)):
-        raise HTTPException(404, "no such student")
+        raise NotFound("no such student")
     return secret
 
 

@@ -14,6 +14,7 @@ from ...classroom.names import NameRefused
 from ...classroom import assignments
 from ...classroom.answers import student_scene, unlocked_predictions
 from ...classroom.assignment_store import store
+from ..errors import NAME_STATUS
 from ..student_secret import forget, from_another_site, hand_over, keep_private, sent_secret
 from ...classroom.visibility import public_views
 from ...lessons.scenes import scenes
@@ -124,7 +125,7 @@ def registered_page(request: Request, assignment_id: str, lang: str | None, name
     try:
         student, secret = assignments.register(record, resolved, name, assignments.identify(record, sent), client)
     except NameRefused as refused:
-        page = start_page(request, context, about, assignments.NAME_STATUS[refused.code],
+        page = start_page(request, context, about, NAME_STATUS[refused.code],
                           error=refusal_text(t, refused), name=name)
         if refused.code == "too_many_registrations":
             page.headers["Retry-After"] = str(assignments.REGISTRATION_WINDOW_S)

@@ -20,6 +20,7 @@ from ...classroom.variants import SpecError
 from ...classroom import assignment_answers, assignments, lti_classroom
 from ...classroom.answers import is_right, tolerance
 from ...classroom.assignment_store import store
+from ..errors import NAME_STATUS
 from ..csv_export import links_csv, results_csv as results_csv_file
 from ..schemas import Language
 from ..schemas_assignments import (AssignmentCreated, AssignmentInfo, PersonalLink, Registration, Results,
@@ -47,7 +48,7 @@ def spec_error(request: Request, error: SpecError) -> JSONResponse:
 
 
 def name_refused(refused: NameRefused) -> JSONResponse:
-    response = _refuse(assignments.NAME_STATUS[refused.code], ["body", "name"], refused.reason, refused.code,
+    response = _refuse(NAME_STATUS[refused.code], ["body", "name"], refused.reason, refused.code,
                        **refused.about)
     if refused.code == "too_many_registrations":
         response.headers["Retry-After"] = str(assignments.REGISTRATION_WINDOW_S)
