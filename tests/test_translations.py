@@ -222,7 +222,7 @@ def test_scene_pages_show_subscripts_and_no_raw_underscore():
     intro = page.split('<section class="intro">')[1].split("</section>")[0]
     assert "ω<sub>max</sub>" in intro and "_" not in intro
     start = client.get("/?lang=ru").text
-    assert "M<sub>с</sub>(φ)" in start
+    assert "M<sub>с</sub><sup>пр</sup>(φ)" in start          # the reduced moment with the books' superscript
 
 
 @pytest.mark.parametrize("lang", ["ru", "uk", "en"])

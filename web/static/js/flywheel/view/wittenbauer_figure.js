@@ -58,7 +58,7 @@ export function wittenbauerFigure(panel, data, texts) {
     line: { color: TANGENT_COLORS[key], width: 1.5, dash: TANGENT_DASHES[key] }, hoverinfo: "skip" });
   const traces = [
     { type: "scatter", mode: "lines", name: plotText(t.wittenbauer_curve), x, y, line: { color: CURVE_COLOR, width: 2.5 },
-      hovertemplate: `${plotText("I_II")} = %{x}, ${plotText("A_Σ")} = %{y}<extra></extra>` },
+      hovertemplate: `${plotText(t.symbol_inertia_group_II)} = %{x}, ${plotText("A_Σ")} = %{y}<extra></extra>` },
     tangent(up, slopeUp, "up", plotText(t.wittenbauer_tangent_up)),
     tangent(low, slopeLow, "low", plotText(t.wittenbauer_tangent_low)),
     { type: "scatter", mode: "markers", x: [touch.up[0], touch.low[0]], y: [touch.up[1], touch.low[1]],

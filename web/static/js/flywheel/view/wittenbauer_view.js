@@ -75,7 +75,7 @@ export class WittenbauerView {
     if (this.point.hidden) return;
     this.point.style.transform = `translate(${this.maps.x(px)}px, ${this.maps.y(py)}px)`;
     const energy = unitText("J", this.t);
-    setRichText(this.readout, `φ = ${formatNumber(degrees(phi), this.lang, 1)}°: I_II = `
+    setRichText(this.readout, `φ = ${formatNumber(degrees(phi), this.lang, 1)}°: ${this.t.symbol_inertia_group_II} = `
       + `${formatQuantity(x, this.lang, 3)} ${unitText("kg·m²", this.t)}, A_Σ = ${formatQuantity(y, this.lang, 3)} ${energy}`);
   }
 
@@ -92,11 +92,11 @@ export class WittenbauerView {
     const { origin_inertia: ox, origin_energy: oy, b_up: up, b_low: low } = this.diagram.diagram;
     const inertia = unitText("kg·m²", t);
     const energy = unitText("J", t);
-    const parts = [`${t.wittenbauer_origin} O′: I_II = ${formatQuantity(ox, lang, 4)} ${inertia}, `
+    const parts = [`${t.wittenbauer_origin} O′: ${t.symbol_inertia_group_II} = ${formatQuantity(ox, lang, 4)} ${inertia}, `
       + `A_Σ = ${formatQuantity(oy, lang, 4)} ${energy}${originInView(this.diagram) ? "" : ` (${t.wittenbauer_off_plot})`}`,
     `ab = ${formatQuantity(up - low, lang, 4)} ${energy}`];
     const wittenbauer = (data.methods ?? []).find((m) => m.method === "wittenbauer");
-    if (wittenbauer) parts.push(`I_I = ab/(${t.symbol_mean_speed}²·[δ]) = ${formatQuantity(wittenbauer.inertia, lang, 4)} ${inertia}`);
+    if (wittenbauer) parts.push(`${t.symbol_inertia_group_I} = ab/(${t.symbol_mean_speed}²·[δ]) = ${formatQuantity(wittenbauer.inertia, lang, 4)} ${inertia}`);
     return parts.join(" · ");
   }
 }

@@ -3,7 +3,7 @@
  * angle φ: the crank 1 about its frame pivot O, the rod 2 about its centre of mass S₂ and the slider 3 on
  * its guide, side by side, each turned as in the mechanism at φ and drawn to one length scale, so that
  * each link carries only the loads that act on it:
- *   crank   R₂₁ = −R₁₂ at A, R₄₁ from the frame at O, the balancing moment
+ *   crank   R₂₁ = −R₁₂ at A, R₁₄ from the frame at O, the balancing moment
  *   rod     R₁₂ at A, R₃₂ = −R₂₃ at B, its weight G₂ and inertia force Φ₂ at S₂, the inertia moment
  *   slider  R₂₃ at B, the guide's normal reaction R₃₄ and friction F₃₄ at the contact, the force P₃ on
  *           the piston, its weight G₃ and inertia force Φ₃
@@ -233,7 +233,7 @@ export class FreeBodyView {
     const arrow = (className, symbol) => forceArrow(layer, className, symbol);
     const t = this.t;
     const parts = {
-      R41: arrow("reaction", "R₄₁"), R21: arrow("reaction", "R₂₁"), Mb: momentArc(layer, "balancing", t.symbol_balancing_moment, MOMENT_RADIUS),
+      R41: arrow("reaction", "R₁₄"), R21: arrow("reaction", "R₂₁"), Mb: momentArc(layer, "balancing", t.symbol_balancing_moment, MOMENT_RADIUS),
       R12: arrow("reaction", "R₁₂"), R32: arrow("reaction", "R₃₂"), G2: arrow("gravity", "G₂"), F_in2: arrow("inertia", "Φ₂"),
       M_in2: momentArc(layer, "inertia", "M_Φ₂", MOMENT_RADIUS),
       R23: arrow("reaction", "R₂₃"), R34: arrow("reaction guide", "R₃₄"), F34: arrow("friction", "F₃₄"),
@@ -336,7 +336,7 @@ export class FreeBodyView {
       [t.crank_angle, "", (s) => `${formatNumber(degrees(s.phi), lang, 1)}°`],
       ["|R₁₂| = |R₂₁|", t.fb_joint_A, (s) => value(size(s.R12), "N")],
       ["|R₂₃| = |R₃₂|", t.fb_joint_B, (s) => value(size(s.R23), "N")],
-      ["|R₄₁|", t.fb_joint_O, (s) => value(size(s.R41), "N")],
+      ["|R₁₄|", t.fb_joint_O, (s) => value(size(s.R41), "N")],
       ["R₃₄", t.fb_guide_normal, (s) => value(s.N, "N")],
       ["F₃₄", t.fb_guide_friction, (s) => value(s.F34, "N")],
       [t.symbol_balancing_moment, t.fb_balancing_moment, (s) => value(s.balancing, "N·m")],

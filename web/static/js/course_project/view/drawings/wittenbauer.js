@@ -39,7 +39,7 @@ export function wittenbauerFigure(answer, t, lang) {
   figure.arrow([origin[0], at([0, y0])[1] + 3], [origin[0], HEAD - 4], "thin", { "data-role": "axis-energy" });
   figure.arrow(origin, [right + 4, origin[1]], "thin", { "data-role": "axis-inertia" });
   figure.text(`ΔT, ${t.units_J}`, [origin[0] + 2, HEAD - 3], { size: FONT.label });
-  figure.text(`I_II, ${t.units_kg_m2}`, [right + 5, origin[1] + 4.5], { size: FONT.label });
+  figure.text(`${t.symbol_inertia_group_II}, ${t.units_kg_m2}`, [right + 5, origin[1] + 4.5], { size: FONT.label });
   for (const value of roundTicks(y0, y1, muT, 10).ticks) {
     const y = at([0, value])[1];
     figure.line([origin[0] - TICK, y], [origin[0], y], "thin");
@@ -70,7 +70,7 @@ export function wittenbauerFigure(answer, t, lang) {
   const method = d.flywheel.methods.find((m) => m.method === "wittenbauer");
   textLines(figure, [origin[0], at([0, y0])[1] + 8], [
     `kl = ΔT_{I max} = ${formatQuantity(method.energy_swing, lang, 5)} ${t.units_J}`,
-    `I_I = kl/(δ ω_m²) = ${formatQuantity(method.inertia, lang, 5)} ${t.units_kg_m2}`,
+    `${t.symbol_inertia_group_I} = kl/(δ ${t.symbol_mean_speed}²) = ${formatQuantity(method.inertia, lang, 5)} ${t.units_kg_m2}`,
     `${t.project_dwg_symbol_flywheel} = ${formatQuantity(method.additional, lang, 5)} ${t.units_kg_m2}`], FONT.label);
   return figure;
 }
