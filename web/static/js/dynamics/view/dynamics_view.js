@@ -56,6 +56,7 @@ const PANEL_VIEWS = {
   group_free_body: { load: () => import("../../forces_friction/view/group_free_body_view.js").then((m) => m.GroupFreeBodyView), drawing: true },
   gear_train: { load: () => import("../../angular_acceleration/view/gear_train_view.js").then((m) => m.GearTrainView), drawing: true },
   indicator_diagram: { load: () => import("../../flywheel/view/indicator_diagram_view.js").then((m) => m.IndicatorDiagramView) },
+  mass_model: { load: () => import("./mass_model_view.js").then((m) => m.MassModelView) },
   reference_table: { load: () => import("./reference_table_view.js").then((m) => m.ReferenceTableView) },
   toggle_drawings: { load: () => import("./toggle_drawings_view.js").then((m) => m.ToggleDrawingsView), drawing: true },
   wittenbauer: { load: () => import("../../flywheel/view/wittenbauer_view.js").then((m) => m.WittenbauerView), drawing: true },
