@@ -20,6 +20,7 @@ from .speed_moment import KLOSS, speed_moment
 RUNNING, CONVERGED, NO_BALANCE, STOPS, ROOT_FAILED = 0, 1, 2, 3, 4   # how the loop ended
 BALANCE, ENERGY = 0, 1                                                # the two functions Brent's method solves
 ROWS = 4                                                              # ω_max, ω_min, mean M_д, change
+QUADRATIC = 0.1             # a Newton step d leaves ~d²/(the bracket's width) (f″/f′ on its scale): below xtol
 NEWTON_STEPS = 12           # more: Newton's method gives way to Brent's (never met on the scenes' machines)
 
 
@@ -92,8 +93,8 @@ def _energy_slope(T0, work, J, phi, mean):
 def _newton(which, guess, xa, xb, f_a, xtol, rtol, omega, phi, net_phi, sliding, kind, p, work, J, mean):
     """Newton's method on _value(which, ·) from ``guess``, kept inside the bracket [xa, xb] whose ends have
     values of opposite signs (f_a the value at xa < xb; a step that would leave it bisects instead); stops when
-    a step is below xtol + rtol·|x|, Brent's tolerance. (root, status): status 1 when NEWTON_STEPS did not
-    reach it."""
+    a step is below xtol + rtol·|x|, Brent's tolerance, or when the error it leaves, d² times the curvature
+    on the bracket's scale, is (QUADRATIC). (root, status): status 1 when NEWTON_STEPS did not reach it."""
     low, high, f_low = xa, xb, f_a
     x = min(max(guess, low), high)
     for _ in range(NEWTON_STEPS):
@@ -109,11 +110,12 @@ def _newton(which, guess, xa, xb, f_a, xtol, rtol, omega, phi, net_phi, sliding,
             high = x
         step = -f / slope if slope != 0.0 else np.inf
         target = x + step
-        if not (low < target < high):          # not finite, or out of the bracket: bisect
+        newton = low < target < high
+        if not newton:                          # not finite, or out of the bracket: bisect
             target = 0.5 * (low + high)
             step = target - x
         x = target
-        if abs(step) <= xtol + rtol * abs(x):
+        if abs(step) <= xtol + rtol * abs(x) or (newton and step * step <= QUADRATIC * xtol * (xb - xa)):
             return x, 0
     return x, 1
 
