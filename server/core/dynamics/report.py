@@ -17,8 +17,9 @@ from ..numerics import Numerics
 from .. import errata
 from .reduction import Inertias, reduced_inertia, textbook_inertia_approximation
 from .resistance import CONVENTIONS, Load, mean_over_cycle, resisting_moment
+from .resisting_forces import kink_bound
 
-MEAN_POINTS = 8192      # intervals for the cycle means (kinks make the trapezoid rule second order)
+MEAN_POINTS = 8192      # intervals for the cycle means (kinks make the trapezoid rule second order: kink_bound)
 DISPLAY_POINTS = 512    # curves are computed on thousands of nodes and sent on about this many
 TIME_BUDGET_S = 5.0     # wall-clock bound of one motion request (each path stops there with its partial result)
 
@@ -56,7 +57,8 @@ def reduction(mechanism: str, params: dict, inertias: Inertias, load: Load, n: i
         totals = {convention: resisting_moment(mechanism, p, Load(**{**load.__dict__, "convention": convention}),
                                                fine, omega, kinematics).total for convention in CONVENTIONS}
         means = {convention: mean_over_cycle(total) for convention, total in totals.items()}
-        error = abs(means[load.convention] - mean_over_cycle(totals[load.convention][::2]))
+        total = totals[load.convention]
+        error = max(abs(means[load.convention] - mean_over_cycle(total[::2])), kink_bound(total))
         result["numerics"] = _mean_numerics(totals[load.convention], error, started)
         locked = moment.self_locking
         result["resisting"] = {
@@ -114,7 +116,8 @@ def _mean_numerics(total: np.ndarray, error: float, started: float) -> dict:
     """How M_c0 was computed; its error relative to the cycle mean of |M_c| (M_c0 itself may be zero)."""
     numerics = Numerics(
         method="closed forms at each angle; M_c0 by the trapezoid rule on a closed uniform grid, error estimated "
-               "against the grid of half as many points, relative to the cycle mean of |M_c|",
+               "as the larger of the difference from the grid of half as many points and the rule's bound at the "
+               "corners and jumps of M_c seen in its second differences, relative to the cycle mean of |M_c|",
         code="closed_forms", steps=MEAN_POINTS, runtime_ms=1e3 * (time.perf_counter() - started))
     if not np.isfinite(total).all():
         numerics.message = "no M_c0: the moment is not finite at every angle (self-locking or a singular position)"

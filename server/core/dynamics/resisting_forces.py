@@ -159,3 +159,22 @@ def _locked(phi, mask, notice):
 def mean_over_cycle(values: np.ndarray) -> float:
     """Mean of a periodic function sampled on a closed uniform grid (trapezoid rule): M_c0, Eremyants (3.11), (3.31)."""
     return float(np.mean(values[:-1]))
+
+
+def kink_bound(values: np.ndarray) -> float:
+    """A bound on the error of ``mean_over_cycle`` from the corners and jumps of a periodic function sampled
+    on a closed uniform grid of N intervals, wherever they fall among the nodes.
+
+    By the Euler–Maclaurin formula with periodic Bernoulli functions, a corner with slope jump Δ at the fraction
+    θ of a step h adds h²Δ(θ² − θ + 1/6)/2 to the trapezoid rule's integral, at most h²|Δ|/12, and a jump J adds
+    hJ(θ − 1/2), at most h|J|/2; halving the grid moves θ, so the difference of two grids can be far smaller than
+    either error. The samples show each: their second differences d₂ carry hΔ (or ±J) in the one or two steps
+    across it, beside the smooth h²f″; the excess |d₂ᵢ − (d₂ᵢ₋₂ + d₂ᵢ₊₂)/2| sums to twice the carried amounts
+    (each is also seen, halved, by the cells two steps away) and to O(h³) elsewhere. (h/8)·Σ excess then bounds
+    both kinds of error (h²|Δ|/4 ≥ h²|Δ|/12, h|J|/2 for a jump), and divided by the cycle h·N the mean's."""
+    samples = values[:-1]
+    wrapped = np.concatenate([samples[-3:], samples, samples[:3]])         # periodic: three samples each side
+    second = wrapped[2:] - 2 * wrapped[1:-1] + wrapped[:-2]                # d₂ at the samples and two beyond
+    excess = np.abs(second[2:-2] - 0.5 * (second[:-4] + second[4:]))
+    return float(excess.sum()) / (8 * samples.size)
+
