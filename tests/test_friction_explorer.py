@@ -195,6 +195,27 @@ def test_the_wear_figures_are_the_wear_reports_maxima_at_the_frictionless_pressu
             checked += 1
     assert checked >= 10
 
+def test_the_flywheel_needed_by_the_secant_method_is_flywheel_exacts():
+    """needed_inertia (the secant method on log δ from Merzalov's guess) against flywheel.exact (Brent's method
+    on a bracket) on the sweep's cycles, for a tight, a usual and a loose [δ]: to 1e-12 (both stop at 1e-14 in
+    log I)."""
+    from server.core.dynamics import flywheel as fw
+    from server.core.kinetostatics.friction_influence import needed_inertia
+    setup = machine()
+    study = Study(setup, np.linspace(0.0, 0.3, 7))
+    grid = study.grids[0]
+    for k in range(7):
+        resisting = grid.loaded + study.forces_figures(k, grid)[1]
+        driving = np.trapezoid(resisting, grid.phi) / (2 * np.pi)
+        work = np.concatenate([[0.0], np.cumsum(np.diff(grid.phi) * (2 * driving - resisting[1:] - resisting[:-1])
+                                                / 2)])
+        cycle = fw.Cycle(grid.phi, work, grid.inertia - LOADS.J1)
+        for delta in (0.002, 0.02, 0.5):
+            guess = fw.merzalov(cycle, LOADS.omega, delta).inertia
+            expected = fw.exact(cycle, LOADS.omega, delta, guess).inertia
+            assert expected > 0
+            assert needed_inertia(cycle, LOADS.omega, delta, guess) == pytest.approx(expected, rel=1e-12, abs=0)
+
 @pytest.mark.parametrize("params, force", [({"l1": 0.1, "l2": 0.4, "a2": 0.3}, 1000.0),
                                            ({"l1": 0.1, "l2": 0.25, "a2": 0.1, "e": 0.03}, 2500.0)])
 def test_the_error_estimate_holds_against_a_finer_grid(params, force):

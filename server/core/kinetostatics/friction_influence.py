@@ -50,6 +50,7 @@ LOCKING_SCAN = 64        # f values on [0, F_CEILING] scanned for the first wher
 BETA = np.radians(np.arange(0, 361, 5))       # the pin's and bush's surface points of report.wear_report
 COS_BETA, SIN_BETA = np.cos(BETA), np.sin(BETA)
 CYLINDER_POINTS = 121                          # points along the cylinder, as report.wear_report
+SECANT_STEPS = 12                              # more: the flywheel needed by Brent's method (flywheel.exact)
 
 
 @dataclass(frozen=True)
@@ -206,8 +207,32 @@ def speed_and_flywheel(machine: MachineSetup, flywheel: Flywheel, phi: np.ndarra
     guess = fw.merzalov(cycle, omega_mean, flywheel.delta).inertia
     if guess <= 0:                                  # A and J constant: ω is, whatever the inertia
         return (omega if runs else None), delta, 0.0
-    needed = fw.exact(cycle, omega_mean, flywheel.delta, guess)
-    return (omega if runs else None), delta, max(needed.inertia - group_one, 0.0)
+    return (omega if runs else None), delta, max(needed_inertia(cycle, omega_mean, flywheel.delta, guess) - group_one,
+                                                 0.0)
+
+
+def needed_inertia(cycle: fw.Cycle, omega_mean: float, delta: float, guess: float) -> float:
+    """flywheel.exact's group-I inertia, whose periodic solution has δ = [δ], by the secant method on
+    log δ(log I) from Merzalov's ``guess`` (δ ~ 1/I: the first step takes the slope −1), stopped where a step
+    is below flywheel.exact's tolerance (1e-14); 0 where group II alone keeps δ; where it does not get there in
+    SECANT_STEPS, flywheel.exact itself (Brent's method on a bracket found around the guess)."""
+    if cycle.inertia_ii.min() > 0 and fw.achieved_delta(cycle, 0.0, omega_mean) <= delta:
+        return 0.0                                  # group II alone keeps δ (flywheel.exact's own test)
+
+    def error(log_inertia: float) -> float:
+        return float(np.log(fw.achieved_delta(cycle, float(np.exp(log_inertia)), omega_mean) / delta))
+    x0 = float(np.log(guess))
+    e0 = error(x0)
+    x1 = x0 + e0
+    for _ in range(SECANT_STEPS):
+        e1 = error(x1)
+        if not np.isfinite(e1) or e1 == e0:
+            break
+        step = -e1 * (x1 - x0) / (e1 - e0)
+        x0, e0, x1 = x1, e1, x1 + step
+        if abs(step) <= 1e-14 + 1e-14 * abs(x1):
+            return float(np.exp(x1))
+    return fw.exact(cycle, omega_mean, delta, guess).inertia
 
 
 def wear_of(analysis: ForceAnalysis, reference: dict, parts: WearParts, cycles: float) -> dict:
@@ -239,8 +264,9 @@ def wear_of(analysis: ForceAnalysis, reference: dict, parts: WearParts, cycles: 
 
 
 def pressed_side(normal: np.ndarray) -> int:
-    """The piston's side pressed the more over the cycle (+1 or −1), as report.wear_report."""
-    return 1 if np.nansum(np.clip(normal, 0, None)) >= np.nansum(np.clip(-normal, 0, None)) else -1
+    """The piston's side pressed the more over the cycle (+1 or −1), as report.wear_report (its nansum of the
+    clipped normal force: the same arrays, NaN and the other side 0)."""
+    return 1 if np.sum(np.where(normal > 0, normal, 0.0)) >= np.sum(np.where(normal < 0, -normal, 0.0)) else -1
 
 
 def mean_pressures(analysis: ForceAnalysis, parts: WearParts) -> dict:
