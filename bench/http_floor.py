@@ -13,11 +13,13 @@ request:
 * the floor: the same request to the bare app, answered with the captured bytes.
 
 Then every scene's default request (its first variant at the sliders' defaults, one slider's value scaled by
-1 + k·1e-8 against the cache) on the idle servers, old and new taking turns. Targets: kinematics computed
-≤ 2× the floor, every scene's default request ≤ 30 ms at p95.
+1 + k·1e-8 against the cache) on the idle servers, old, new and the floor taking turns request by request; the
+floor answers each scene's request with the very bytes the new app sent for it (captured once, before the floor
+starts), so each scene has a floor of its own size measured beside it under the same load. Targets: kinematics
+computed ≤ 2× the floor, every scene's default request ≤ 10× its floor at p50.
 
     python bench/http_floor.py [--old /tmp/mdl-old] [--new .] [--requests 500] [--scene-requests 30]
-                               [--elastic-requests 10] [--output bench/results/http_floor.md]
+                               [--elastic-requests 10] [--scenes ID ...] [--output bench/results/http_floor.md]
 """
 from __future__ import annotations
 
@@ -25,6 +27,7 @@ import argparse
 import copy
 import http.client
 import json
+import os
 import sys
 import tempfile
 import time
@@ -39,7 +42,7 @@ HEADERS = {"Content-Type": "application/json", "Accept-Encoding": "gzip", "Accep
 LANG = "ru"
 NUDGE = 1e-8                    # relative change per request: a new cache key (10 digits), the same physics
 FLOOR_RATIO_TARGET = 2.0
-DEFAULT_P95_TARGET_MS = 30.0
+SCENE_FLOOR_TARGET = 10.0       # every scene's default answer ≤ 10× the floor (p50)
 KINEMATICS = ("transfer-functions", "sine")
 
 
@@ -134,21 +137,42 @@ def kinematics_round_trips(ports: dict, floor_port: int, requests: int) -> tuple
     return targets, {"request": json.loads(default)}
 
 
-def scene_round_trips(ports: dict, light: int, elastic: int) -> dict:
-    """{scene: {tree: Target}} for every scene's default request, nudged against the cache."""
-    scenes = lessons()[0]()
+def chosen_scenes(only: list[str] | None) -> list:
+    return [scene for scene in lessons()[0]().values() if not only or scene.id in only]
+
+
+def capture_scenes(port: int, directory: Path, only: list[str] | None) -> dict:
+    """Each scene's default answer from the new app, stored for the floor as ``scene-<id>``; {id: bytes sent}
+    (None where the app refused it)."""
+    sizes = {}
+    for scene in chosen_scenes(only):
+        body = encoded(nudged_request(scene, variant_of(scene), 0))
+        try:
+            sizes[scene.id] = capture(port, f"/api/v1/{scene.endpoint}?lang={LANG}", body, directory,
+                                      f"scene-{scene.id}")
+        except RuntimeError:
+            sizes[scene.id] = None
+    return sizes
+
+
+def scene_round_trips(ports: dict, floor_port: int, light: int, elastic: int, sizes: dict) -> dict:
+    """{scene: (scene, variant, {tree: Target, "floor": Target})} for every scene's default request, nudged
+    against the cache; the floor answers the same request with the new app's bytes for it."""
     found = {}
-    for scene in scenes.values():
+    for scene in chosen_scenes(list(sizes)):
         variant = variant_of(scene)
         path = f"/api/v1/{scene.endpoint}?lang={LANG}"
         targets = {tree: Target(tree, port, path) for tree, port in ports.items()}
+        if sizes[scene.id] is not None:
+            targets["floor"] = Target("floor", floor_port, f"/scene-{scene.id}")
         for target in targets.values():                          # warm-up, untimed
             target.post(encoded(nudged_request(scene, variant, 0)), keep=False)
         count = elastic if scene.endpoint == "elastic" else light
         for k in range(1, count + 1):
             body = encoded(nudged_request(scene, variant, -k))
             order = list(targets.values())
-            for target in (order if k % 2 else order[::-1]):
+            shift = k % len(order)
+            for target in order[shift:] + order[:shift]:
                 target.post(body)
         found[scene.id] = (scene, variant, targets)
         print(f"{scene.id}: done", file=sys.stderr, flush=True)
@@ -167,7 +191,8 @@ def markdown(args, targets: list[Target], sizes: dict, scenes: dict, startup: di
     by_label = {t.label: t for t in targets}
     lines = ["# HTTP round trips against the floor, old beside new", "",
              f"{machine_line()}. `python bench/http_floor.py --requests {args.requests} --scene-requests "
-             f"{args.scene_requests} --elastic-requests {args.elastic_requests}`.", "",
+             f"{args.scene_requests} --elastic-requests {args.elastic_requests}"
+             f"{' --scenes ' + ' '.join(args.scenes) if args.scenes else ''}`.", "",
              f"* old: `{args.old}` ({commit_of(args.old)}), new: `{args.new}` ({commit_of(args.new)}); each "
              f"`python3 -m server --port <free port>` (1 worker) from its tree (ready after {startup['old']:.1f} s "
              f"and {startup['new']:.1f} s); the floor: `bench/floor_app.py` (bare Starlette under uvicorn) "
@@ -193,19 +218,28 @@ def markdown(args, targets: list[Target], sizes: dict, scenes: dict, startup: di
     old_c, new_c = (percentiles(by_label[f"{t} app, computed"].times) for t in ("old", "new"))
     lines += ["", f"Computed kinematics round trip, old/new: p50 {old_c[0] / new_c[0]:.1f}×, "
                   f"p95 {old_c[1] / new_c[1]:.1f}×.", "",
-              "## Every scene's default request on the idle servers", "",
+              "## Every scene's default request against its floor", "",
               f"The scene's first variant at its defaults (one value nudged by 1 + k·{NUDGE:g} so that each request "
-              f"is computed, not cached); {args.scene_requests} requests per server "
-              f"({args.elastic_requests} for the elastic scenes), old and new taking turns. Times in ms.", "",
-              "| scene | variant | endpoint | old p50 | old p95 | new p50 | new p95 | p95 old/new | new p95 ≤ 30 ms "
-              "| X-Cache new | errors old / new |",
-              "|---|---|---|---:|---:|---:|---:|---:|---|---|---|"]
-    for scene, variant, pair in scenes.values():
-        o50, o95 = percentiles(pair["old"].times)
-        n50, n95 = percentiles(pair["new"].times)
-        lines.append(f"| {scene.id} | {variant.id} | {scene.endpoint} | {fmt(o50)} | {fmt(o95)} | {fmt(n50)} | "
-                     f"{fmt(n95)} | {o95 / n95:.1f}× | {'yes' if n95 <= DEFAULT_P95_TARGET_MS else '**no**'} | "
-                     f"{counts(pair['new'].cache)} | {pair['old'].errors} / {pair['new'].errors} |")
+              f"is computed, not cached); {args.scene_requests} requests per target "
+              f"({args.elastic_requests} for the elastic scenes), old, new and the floor taking turns. The floor: "
+              "the bare app answering the same request with the bytes the new app sent for it. Times in ms; "
+              f"× floor = p50 / the floor's p50 beside it. Target: new ≤ {SCENE_FLOOR_TARGET:g}× floor. "
+              f"Load average at the end: {os.getloadavg()[0]:.1f}.", "",
+              "| scene | variant | endpoint | bytes (gzip) | floor p50 | old p50 | old p95 | old × floor | new p50 "
+              f"| new p95 | new × floor | old/new (p50) | new ≤ {SCENE_FLOOR_TARGET:g}× floor | X-Cache new "
+              "| errors old / new |",
+              "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|"]
+    for scene, variant, targets in scenes.values():
+        o50, o95 = percentiles(targets["old"].times)
+        n50, n95 = percentiles(targets["new"].times)
+        floor = targets.get("floor")
+        f50 = percentiles(floor.times)[0] if floor is not None else float("nan")
+        size = sizes.get(f"scene-{scene.id}")
+        within = "–" if f50 != f50 else ("yes" if n50 / f50 <= SCENE_FLOOR_TARGET else "**no**")
+        lines.append(f"| {scene.id} | {variant.id} | {scene.endpoint} | {size if size is not None else '–'} | "
+                     f"{fmt(f50)} | {fmt(o50)} | {fmt(o95)} | {o50 / f50:.1f}× | {fmt(n50)} | {fmt(n95)} | "
+                     f"{n50 / f50:.1f}× | {o50 / n50:.1f}× | {within} | {counts(targets['new'].cache)} | "
+                     f"{targets['old'].errors} / {targets['new'].errors} |")
     return "\n".join(lines) + "\n"
 
 
@@ -215,6 +249,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--requests", type=int, default=500, help="kinematics round trips per target")
     parser.add_argument("--scene-requests", type=int, default=30, help="default requests per light scene and server")
     parser.add_argument("--elastic-requests", type=int, default=10, help="the same for the elastic scenes")
+    parser.add_argument("--scenes", nargs="*", help="only these scene ids (default: every scene)")
     parser.add_argument("--output", type=Path, default=ROOT / "bench" / "results" / "http_floor.md")
     args = parser.parse_args(argv)
     args.old, args.new = check_tree(args.old), check_tree(args.new)
@@ -226,10 +261,14 @@ def main(argv: list[str] | None = None) -> int:
         default = encoded(nudged_request(scene, variant_of(scene, KINEMATICS[1]), 0))
         sizes = {tree: capture(port, f"/api/v1/kinematics?lang={LANG}", default, Path(directory), tree)
                  for tree, port in ports.items()}
+        sizes |= {f"scene-{name}": size for name, size in capture_scenes(new_port, Path(directory),
+                                                                         args.scenes).items()}
         floor_command = [sys.executable, str(Path(__file__).resolve().parent / "floor_app.py"), "{port}", directory]
         with running_server(tree=ROOT, command=floor_command, ready_path="/ready") as (floor_port, _):
             targets, _ = kinematics_round_trips(ports, floor_port, args.requests)
-        scenes = scene_round_trips(ports, args.scene_requests, args.elastic_requests)
+            scenes = scene_round_trips(ports, floor_port, args.scene_requests, args.elastic_requests,
+                                       {name[len("scene-"):]: size for name, size in sizes.items()
+                                        if name.startswith("scene-")})
         startup = {"old": old_process.startup_s, "new": new_process.startup_s}
     text = markdown(args, targets, sizes, scenes, startup)
     print(text)
