@@ -6,13 +6,14 @@ address, the random id of the ``mdl_client`` cookie that every HTML page gives a
 client chooses its cookie, so the cookie only divides its address's share among the address's browsers (a class
 behind one NAT address is one address of many students): however many ids an address invents, it gets one share.
 
-Lanes. A computing request is light (computed in the worker, whose interpreter runs one at a time) or heavy (an
-elastic machine, a live work–precision study, the course project: one heavy process per worker computes them,
-server/runtime/heavy.py). Each of these lanes has a few places per worker (light ``MDL_LIGHT_PLACES``, default 2;
-heavy one more than ``MDL_HEAVY_PROCESSES``), and one address may hold all but one of them (at least one), so that
-a request from another address always finds a place or is next. The requests past that wait in the lane, which
-takes them in turn: address after address, and within an address client (cookie) after client, each client's own
-in the order asked. A slider's family is not held in a lane (heavy.LaneQueue puts its coarse stage before the full
+Lanes. A computing request is light (computed in the worker) or heavy (an elastic machine, a live work–precision
+study, the course project: one heavy process per worker computes them, server/runtime/heavy.py). Each of these
+lanes has a few places per worker: light ``MDL_LIGHT_PLACES`` (default 1: the worker's interpreter computes one
+at a time anyway, and two at once only share it, a short answer waiting out a long one's time slices), heavy one
+more than ``MDL_HEAVY_PROCESSES`` (the next answer ready when the process is free). One address may hold all but
+one of a lane's places (at least one), so that a request from another address finds a place or is next. The
+requests past that wait in the lane, which takes them in turn: address after address, and within an address
+client (cookie) after client, each client's own in the order asked. A slider's family is not held in a lane (heavy.LaneQueue puts its coarse stage before the full
 families); it counts towards the limits below.
 
 Limits (per worker; 0 switches one off). A client may have ``MDL_CLIENT_CONCURRENCY`` computing requests in
@@ -165,7 +166,7 @@ class AdmissionMiddleware:
                                  else per_client_heavy)
         self.per_address = _env_limit("MDL_ADDRESS_CONCURRENCY", 32) if per_address is None else per_address
         self.lanes = {
-            "light": Lane(_env_limit("MDL_LIGHT_PLACES", 2) if light_places is None else light_places),
+            "light": Lane(_env_limit("MDL_LIGHT_PLACES", 1) if light_places is None else light_places),
             "heavy": Lane(max(_env_limit("MDL_HEAVY_PROCESSES", 1), 1) + 1 if heavy_places is None
                           else heavy_places)}
         self.in_flight: Counter = Counter()   # ("address", host), ("client"|"heavy", host, id) → requests in flight
