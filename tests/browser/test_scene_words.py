@@ -1,0 +1,136 @@
+"""The words and symbols of every scene as a reader sees them, in ru, uk and en, in a real browser:
+- a ru/uk page shows no English sentence of the app's own strings (test_translations.english_in: the en texts
+  of content/i18n that ru/uk do not write themselves), /measurements included;
+- no page names a source by its file: the word "seed" is nowhere on screen;
+- one notation per quantity: the page's text read back into markup (<sub> as _{…}, <sup> as ^{…}, the shifted
+  <tspan>s of drawings and plots alike) holds no other form of a quantity than tests/notation.json's, and the
+  table of the forms each scene shows is written to test-artifacts/scene_notation_<scene>.json;
+- the short intros fold the sources' details (wear, angular acceleration).
+Screenshots of four scenes in ru and en at desktop width and of two in ru at phone size (390 × 844) go to
+test-artifacts/ (scene_words_*.png).
+"""
+from __future__ import annotations
+
+import json
+import re
+import sys
+
+import pytest
+
+from conftest import ARTIFACTS, PHONE, REPO, read_scene, screenshot
+
+sys.path.insert(0, str(REPO / "tests"))
+from test_notation_forms import NOTATION, other_forms  # noqa: E402  (the one list, read as the API test reads it)
+from test_translations import english_in  # noqa: E402
+
+pytestmark = pytest.mark.browser
+
+SCENE_FILES = sorted(path.stem for path in (REPO / "content" / "scenes").glob("*.json"))
+LANGUAGES = ("ru", "uk", "en")
+SHOTS = {"flywheel", "resisting_moment", "bearings", "wear"}        # desktop in ru and en
+PHONE_SHOTS = ("flywheel", "wear")                                  # ru at 390 × 844
+SEED = re.compile(r"\bseeds?\b", re.IGNORECASE)
+
+# Every text on screen read back into the notation markup: <sub>/<sup> in the page, in a drawing or a plot the
+# smaller <tspan>s moved by dy (down: a subscript, up: a superscript, no dy: as the run before). The errata
+# panels (a book's printed forms quoted beside the corrected ones) are left out.
+MARKUP = r"""() => {
+  const skip = (el) => el.closest("script, style, template, .printed, [class*='printed'], [id*='errata'], [hidden]");
+  const out = [];
+  const walk = (node) => {
+    for (const child of node.childNodes) {
+      if (child.nodeType === Node.TEXT_NODE) { out.push(child.textContent); continue; }
+      if (child.nodeType !== Node.ELEMENT_NODE || skip(child)) continue;
+      const tag = child.tagName.toLowerCase();
+      if (tag === "sub" || tag === "sup") { out.push((tag === "sub" ? "_{" : "^{") + child.textContent + "}"); continue; }
+      if (tag === "text") { out.push(" " + svgText(child) + " "); continue; }
+      if (["p", "div", "li", "td", "th", "h1", "h2", "h3", "dt", "dd", "label", "summary", "figcaption", "br"].includes(tag))
+        out.push("\n");
+      walk(child);
+    }
+  };
+  const svgText = (text) => {
+    const spans = [...text.querySelectorAll("tspan")].filter((s) => !s.querySelector("tspan"));
+    if (!spans.length) return text.textContent;
+    let level = 0, shift = "";
+    return spans.map((span) => {
+      const dy = parseFloat(span.getAttribute("dy") || "0");
+      const small = /font-size/.test(span.getAttribute("style") || "") || span.hasAttribute("font-size");
+      if (!small) { level = 0; shift = ""; return span.textContent; }
+      if (dy > 0) shift = "sub"; else if (dy < 0) shift = "sup";
+      return span.textContent.trim() ? (shift === "sup" ? "^{" : "_{") + span.textContent + "}" : "";
+    }).join("");
+  };
+  walk(document.body);
+  return out.join("");
+}"""
+
+
+def settle(page) -> None:
+    page.wait_for_load_state("networkidle")
+    page.wait_for_timeout(300)
+    page.wait_for_load_state("networkidle")
+
+
+def forms_shown(markup: str, lang: str) -> list[str]:
+    """The list's quantities whose form the page shows."""
+    return sorted({entry["quantity"] for entry in NOTATION if entry["forms"][lang] in markup})
+
+
+@pytest.mark.parametrize("name", SCENE_FILES)
+def test_every_scene_speaks_the_readers_language_names_no_seed_and_writes_one_form_per_quantity(browser_page, name):
+    page = browser_page
+    scene = read_scene(name)
+    table = {}
+    for lang in LANGUAGES:
+        page.goto(f"/scenes/{scene['id']}?lang={lang}")
+        settle(page)
+        text = page.evaluate("() => document.body.innerText + '\\n' + "
+                             "[...document.querySelectorAll('svg text')].map((n) => n.textContent).join('\\n')")
+        markup = page.evaluate(MARKUP)
+        assert SEED.findall(text) == [], lang
+        if lang != "en":
+            assert english_in(text, lang) == [], lang
+        assert other_forms(markup, lang, scene["id"]) == [], lang
+        table[lang] = forms_shown(markup, lang)
+        if name in SHOTS and lang in ("ru", "en"):
+            screenshot(page, f"scene_words_{name}_{lang}")
+    (ARTIFACTS / f"scene_notation_{name}.json").write_text(json.dumps(table, ensure_ascii=False, indent=1), "utf-8")
+    assert page.problems == []
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_the_measurements_page_speaks_the_readers_language(browser_page, lang):
+    page = browser_page
+    page.goto(f"/measurements?lang={lang}")
+    settle(page)
+    text = page.evaluate("() => document.body.innerText")
+    assert english_in(text, lang) == []
+    assert SEED.findall(text) == []
+    assert not re.search(r"\b(?:Reference|Fastest|ours|interactive|tolerance|Elastic|Flywheel)\b", text)
+    assert page.locator("article.measurements figure img").count() == 6
+    screenshot(page, f"scene_words_measurements_{lang}")
+    assert page.problems == []
+
+
+@pytest.mark.parametrize("name", ["wear", "angular_acceleration"])
+def test_the_short_intro_comes_first_and_the_sources_details_open_on_demand(browser_page, name):
+    page = browser_page
+    scene = read_scene(name)
+    page.goto(f"/scenes/{scene['id']}?lang=ru")
+    settle(page)
+    folded = page.locator("#intro-details > p")
+    assert not folded.is_visible()
+    page.locator("#intro-details > summary").click()
+    assert folded.is_visible()
+    assert page.locator(".intro > p").first.inner_text().startswith(scene["text"]["ru"][:20])
+
+
+@pytest.mark.parametrize("name", PHONE_SHOTS)
+def test_phone_screenshots_of_the_words(phone, name):
+    scene = read_scene(name)
+    phone.goto(f"/scenes/{scene['id']}?lang=ru")
+    settle(phone)
+    assert phone.viewport_size == PHONE
+    screenshot(phone, f"scene_words_{name}_ru_phone")
+    assert SEED.findall(phone.evaluate("() => document.body.innerText")) == []
