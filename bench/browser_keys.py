@@ -9,7 +9,7 @@ arrived,
   single presses  PRESSES presses (down and up), each once the previous exact answer is drawn: the first key
                   after an exact answer, whose preview may leave the exact drawing's axes (a full redraw).
 For each keydown, the time from it (a capturing listener, the first to see it) to the end of the first frame in
-which a plot in view (a .graph element) or, in a scene without plots in view, a drawing changed: a
+which a panel in view (a plot, a drawing, a table: .panel elements, and the linkage's drawing) changed: a
 MutationObserver on them notes the first change after the keydown, and the end of its frame is the first task
 after it (a MessageChannel message posted from the frame's own requestAnimationFrame callbacks, which run before
 the frame's style, layout and paint; a change made outside a frame waits for the next frame). Also the held
@@ -49,7 +49,7 @@ FAMILY_WAIT_S = 120       # guards against a hang, not measures
 CHANGE_WAIT_S = 20
 ANSWER_WAIT_S = 60
 
-# Installed before the page's scripts: the keydown times, and the end of the frame that first changed a plot after each.
+# Installed before the page's scripts: the keydown times, and the end of the frame that first changed a panel after each.
 MEASURE_JS = """(() => {
   const keys = window.__benchKeys = [];
   const keyUps = window.__benchKeyUps = [];
@@ -85,8 +85,7 @@ MEASURE_JS = """(() => {
   });
   window.__benchObserve = () => {
     const inView = (e) => { const r = e.getBoundingClientRect(); return r.bottom > 0 && r.top < innerHeight && r.height > 0; };
-    let targets = [...document.querySelectorAll(".graph")].filter((g) => g.data && inView(g));
-    if (!targets.length) targets = [...document.querySelectorAll("#linkage svg, #panels .panel:not([hidden]) svg")].filter(inView);
+    const targets = [...document.querySelectorAll(".panel:not([hidden]), #linkage")].filter(inView);
     for (const target of targets) observer.observe(target, { subtree: true, childList: true, attributes: true, characterData: true });
     return targets.length;
   };
@@ -201,7 +200,7 @@ def summary(values: list[float], count: int) -> str:
 
 
 def table(rows: list[dict]) -> str:
-    lines = ["| scene (variant) | slider, key | plots observed | family before the keys "
+    lines = ["| scene (variant) | slider, key | panels in view | family before the keys "
              "| held key: key → visible change, median / max, ms (changed / keydowns) | exact asked while held "
              "| released → exact drawn, ms | single presses at rest: key → visible change, median / max, ms "
              "| exact asked per single press |",
@@ -265,8 +264,9 @@ def main() -> None:
         f"the app as the README starts it (one worker) on loopback; per scene a key held for {args.keys} keydowns "
         f"(each {KEY_GAP_S * 1000:.0f} ms after the previous one's change was shown), then {args.presses} single presses at rest.",
         "",
-        "*key → visible change*: a keydown → the end of the first frame in which a plot in view (or, without one, a "
-        "drawing) changed (MutationObserver, then the first task after that frame). *held key*: the keydowns of a held "
+        "*key → visible change*: a keydown → the end of the first frame in which a panel in view (a plot, a drawing, a "
+        "table; the linkage's drawing) changed (MutationObserver, then the first task after that frame); — where the "
+        "keys changed nothing in view (a preview redraws what the slider's family holds; numbers wait for the exact answer). *held key*: the keydowns of a held "
         "key (auto-repeat), drawn from the slider's family; *exact asked while held*: the page's exact-requested marks "
         "meanwhile (the keys ask at rest, not per key); *released → exact drawn*: includes the page's wait for the keys "
         "to rest. *single presses at rest*: a press once the previous exact answer is drawn, the first key of a run "

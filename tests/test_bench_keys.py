@@ -31,7 +31,7 @@ def test_the_keyboard_bench_writes_its_table_for_one_scene(tmp_path):
                     text, re.MULTILINE)
     assert row, text
     observed, asked_while_held, asked_per_press = map(int, row.groups())
-    assert observed >= 1                         # plots in view watched
+    assert observed >= 1                         # panels in view watched
     assert asked_while_held == 0 and asked_per_press == 1
     assert "load average" in text and "Processes outliving the server: 0." in text
     assert "Page errors" not in text, text

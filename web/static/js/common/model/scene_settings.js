@@ -7,7 +7,7 @@
  *   "variant"   the variant changed: controls and panels are rebuilt
  *   "params"    a value changed: a new request is due
  *   "grab"      the reader took hold of a slider (pointer down or keyboard focus): its slider
- *   "rest"      the held slider came to rest (released, a key press done, or let go)
+ *   "rest"      the held slider came to rest (released, its keys at rest, or let go)
  */
 import { Emitter } from "./emitter.js";
 
