@@ -27,10 +27,13 @@ python3 -m server.core.warm_up     # compile the numba kernels once into their d
 if [ "$#" -gt 0 ]; then exec python3 -m pytest -q --durations=15 -n 3 --dist loadgroup "$@"; fi
 before=$(python3 tests/leftover_processes.py --snapshot)
 # test_schemathesis_api's last test counts what the module's operation tests sent (module state): schemathesis's
-# items do not take xdist's group, so the module runs in one process after the others. Both runs run; the
-# suite fails if either did, or if a test left a process behind.
+# items do not take xdist's group, so the module runs in a process of its own, beside the others (its output
+# follows theirs). Both runs run; the suite fails if either did, or if a test left a process behind.
 status=0
+python3 -m pytest -q -p no:xdist -p no:cacheprovider tests/test_schemathesis_api.py > test-artifacts/schemathesis.log 2>&1 &
+fuzzing=$!
 python3 -m pytest -q --durations=15 -n 3 --dist loadgroup --ignore=tests/test_schemathesis_api.py || status=$?
-python3 -m pytest -q -p no:xdist tests/test_schemathesis_api.py || status=$((status ? status : $?))
+wait "$fuzzing" || status=$((status ? status : $?))
+cat test-artifacts/schemathesis.log
 python3 tests/leftover_processes.py --since "$before" || status=$((status ? status : 1))
 exit "$status"
