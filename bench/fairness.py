@@ -46,6 +46,14 @@ TARGET_RATIO = 2.0
 STARTUP_S = 400                 # two servers starting at once on a loaded machine
 DEFAULT_RETRY_AFTER_S = 1.0
 NETWORK = "network error"
+READING = ("Reading: the student sends each request as soon as the last is answered, so it wants a whole worker, and "
+           "a fair share between it and the flood is half: its request waits for the flood's one computing (the "
+           "place passes to the flood in the instant between two of the student's requests), then computes, about "
+           "2× alone. What passes 2× is the rest of the server's work for the flood: its other worker and heavy "
+           "processes and the flooding client itself take CPU beside the student's worker (each worker shares "
+           "its own lanes; no share spans the workers), and the event loop reads, checks and answers the flood's "
+           "requests. On a loaded machine every one of these waits is stretched, and the ratios move from one run "
+           "to the next.")
 STUDENT, FLOOD = "127.0.0.1", "127.0.0.2"       # two source addresses on loopback
 KINDS = {"light": ("transfer-functions", "sine", "/api/v1/kinematics"),
          "elastic": ("elastic-four-bar", None, "/api/v1/elastic")}
@@ -291,6 +299,7 @@ def markdown(args, results: dict, load_end: float) -> str:
             ratios += [f / a for f, a in zip(flooded, alone)]
         lines.append(f"| {tree} | {' | '.join(f'{r:.1f}×' for r in ratios)} | "
                      f"{'yes' if ratios[1] <= TARGET_RATIO else '**no**'} |")
+    lines += ["", READING]
     return "\n".join(lines) + "\n"
 
 
