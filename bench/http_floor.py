@@ -34,7 +34,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from trees import (ROOT, add_tree_arguments, check_tree, commit_of, lessons, machine_line,  # noqa: E402
+from trees import (ROOT, add_tree_arguments, check_tree, lessons, machine_line,  # noqa: E402
                    percentiles, running_server)
 
 sys.path.insert(0, str(ROOT))
@@ -137,6 +137,24 @@ def kinematics_round_trips(ports: dict, floor_port: int, requests: int) -> tuple
     return targets, {"request": json.loads(default)}
 
 
+def session_cpu_s(session: int) -> float:
+    """CPU seconds (user + system) of every live process in the session (a server started in a session of its
+    own: its workers and process pools included), from /proc; NaN where /proc is not there."""
+    if not os.path.isdir("/proc"):
+        return float("nan")
+    total, tick = 0.0, os.sysconf("SC_CLK_TCK")
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            fields = Path(f"/proc/{entry}/stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[3]) == session:                # field 6 of stat: the session id
+            total += (int(fields[11]) + int(fields[12])) / tick
+    return total
+
+
 def chosen_scenes(only: list[str] | None) -> list:
     return [scene for scene in lessons()[0]().values() if not only or scene.id in only]
 
@@ -155,9 +173,12 @@ def capture_scenes(port: int, directory: Path, only: list[str] | None) -> dict:
     return sizes
 
 
-def scene_round_trips(ports: dict, floor_port: int, light: int, elastic: int, sizes: dict) -> dict:
+def scene_round_trips(ports: dict, floor_port: int, light: int, elastic: int, sizes: dict,
+                      sessions: dict) -> dict:
     """{scene: (scene, variant, {tree: Target, "floor": Target})} for every scene's default request, nudged
-    against the cache; the floor answers the same request with the new app's bytes for it."""
+    against the cache; the floor answers the same request with the new app's bytes for it. Each target's
+    ``cpu_ms``: the CPU its server's session spent per timed request (``sessions``: {label: session id}),
+    which the machine's load does not inflate as it does the wall-clock times."""
     found = {}
     for scene in chosen_scenes(list(sizes)):
         variant = variant_of(scene)
@@ -168,15 +189,26 @@ def scene_round_trips(ports: dict, floor_port: int, light: int, elastic: int, si
         for target in targets.values():                          # warm-up, untimed
             target.post(encoded(nudged_request(scene, variant, 0)), keep=False)
         count = elastic if scene.endpoint == "elastic" else light
+        before = {label: session_cpu_s(sessions[label]) for label in targets}
         for k in range(1, count + 1):
             body = encoded(nudged_request(scene, variant, -k))
             order = list(targets.values())
             shift = k % len(order)
             for target in order[shift:] + order[:shift]:
                 target.post(body)
+        for label, target in targets.items():
+            target.cpu_ms = 1000 * (session_cpu_s(sessions[label]) - before[label]) / count
         found[scene.id] = (scene, variant, targets)
         print(f"{scene.id}: done", file=sys.stderr, flush=True)
     return found
+
+
+def cpu_cells(targets: dict, floor: float) -> str:
+    """'old / new | old× / new×': the CPU each server spent per request and its ratio to the floor's
+    (``floor``: the floor's CPU per request over the kinematics round trips, hundreds of them)."""
+    cpu = {label: getattr(target, "cpu_ms", float("nan")) for label, target in targets.items()}
+    ratio = lambda label: "–" if not floor > 0 else f"{cpu[label] / floor:.0f}×"
+    return f"{fmt(cpu['old'])} / {fmt(cpu['new'])} | {ratio('old')} / {ratio('new')}"
 
 
 def counts(cache: dict) -> str:
@@ -193,7 +225,7 @@ def markdown(args, targets: list[Target], sizes: dict, scenes: dict, startup: di
              f"{machine_line()}. `python bench/http_floor.py --requests {args.requests} --scene-requests "
              f"{args.scene_requests} --elastic-requests {args.elastic_requests}"
              f"{' --scenes ' + ' '.join(args.scenes) if args.scenes else ''}`.", "",
-             f"* old: `{args.old}` ({commit_of(args.old)}), new: `{args.new}` ({commit_of(args.new)}); each "
+             f"* old: `{args.old}` (a worktree of the baseline), new: `{args.new}`; each "
              f"`python3 -m server --port <free port>` (1 worker) from its tree (ready after {startup['old']:.1f} s "
              f"and {startup['new']:.1f} s); the floor: `bench/floor_app.py` (bare Starlette under uvicorn) "
              "answering with the bytes the app sent for the same request.",
@@ -223,12 +255,16 @@ def markdown(args, targets: list[Target], sizes: dict, scenes: dict, startup: di
               f"is computed, not cached); {args.scene_requests} requests per target "
               f"({args.elastic_requests} for the elastic scenes), old, new and the floor taking turns. The floor: "
               "the bare app answering the same request with the bytes the new app sent for it. Times in ms; "
-              f"× floor = p50 / the floor's p50 beside it. Target: new ≤ {SCENE_FLOOR_TARGET:g}× floor. "
+              f"× floor = p50 / the floor's p50 beside it. Target: new ≤ {SCENE_FLOOR_TARGET:g}× floor. CPU per "
+              "request: the CPU time of each server's processes over the scene's timed requests (from /proc, "
+              "1/100 s ticks), divided by their count; a loaded machine stretches wall-clock times but hardly "
+              "the CPU a request takes. CPU × floor: against the floor's CPU per request over the kinematics "
+              f"round trips, {args.floor_cpu_ms:.2f} ms. "
               f"Load average at the end: {os.getloadavg()[0]:.1f}.", "",
               "| scene | variant | endpoint | bytes (gzip) | floor p50 | old p50 | old p95 | old × floor | new p50 "
-              f"| new p95 | new × floor | old/new (p50) | new ≤ {SCENE_FLOOR_TARGET:g}× floor | X-Cache new "
-              "| errors old / new |",
-              "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|"]
+              f"| new p95 | new × floor | old/new (p50) | new ≤ {SCENE_FLOOR_TARGET:g}× floor | CPU ms per request: "
+              "floor / old / new | CPU × floor: old / new | X-Cache new | errors old / new |",
+              "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---|"]
     for scene, variant, targets in scenes.values():
         o50, o95 = percentiles(targets["old"].times)
         n50, n95 = percentiles(targets["new"].times)
@@ -238,8 +274,8 @@ def markdown(args, targets: list[Target], sizes: dict, scenes: dict, startup: di
         within = "–" if f50 != f50 else ("yes" if n50 / f50 <= SCENE_FLOOR_TARGET else "**no**")
         lines.append(f"| {scene.id} | {variant.id} | {scene.endpoint} | {size if size is not None else '–'} | "
                      f"{fmt(f50)} | {fmt(o50)} | {fmt(o95)} | {o50 / f50:.1f}× | {fmt(n50)} | {fmt(n95)} | "
-                     f"{n50 / f50:.1f}× | {o50 / n50:.1f}× | {within} | {counts(targets['new'].cache)} | "
-                     f"{targets['old'].errors} / {targets['new'].errors} |")
+                     f"{n50 / f50:.1f}× | {o50 / n50:.1f}× | {within} | {cpu_cells(targets, args.floor_cpu_ms)} | "
+                     f"{counts(targets['new'].cache)} | {targets['old'].errors} / {targets['new'].errors} |")
     return "\n".join(lines) + "\n"
 
 
@@ -264,11 +300,14 @@ def main(argv: list[str] | None = None) -> int:
         sizes |= {f"scene-{name}": size for name, size in capture_scenes(new_port, Path(directory),
                                                                          args.scenes).items()}
         floor_command = [sys.executable, str(Path(__file__).resolve().parent / "floor_app.py"), "{port}", directory]
-        with running_server(tree=ROOT, command=floor_command, ready_path="/ready") as (floor_port, _):
+        with running_server(tree=ROOT, command=floor_command, ready_path="/ready") as (floor_port, floor_process):
+            floor_cpu = session_cpu_s(floor_process.pid)
             targets, _ = kinematics_round_trips(ports, floor_port, args.requests)
+            args.floor_cpu_ms = 1000 * (session_cpu_s(floor_process.pid) - floor_cpu) / (2 * args.requests + 10)
+            sessions = {"old": old_process.pid, "new": new_process.pid, "floor": floor_process.pid}
             scenes = scene_round_trips(ports, floor_port, args.scene_requests, args.elastic_requests,
                                        {name[len("scene-"):]: size for name, size in sizes.items()
-                                        if name.startswith("scene-")})
+                                        if name.startswith("scene-")}, sessions)
         startup = {"old": old_process.startup_s, "new": new_process.startup_s}
     text = markdown(args, targets, sizes, scenes, startup)
     print(text)
