@@ -203,6 +203,12 @@ def cut_short(endpoint: str, raw: bytes, encoding: str | None, partial_header: s
     return any(marker in body for marker in BUDGET_MARKERS)
 
 
+def answered_coarse(raw: bytes, encoding: str | None) -> bool:
+    """Whether a family asked in full came as the coarse family (a busy server does not refine)."""
+    body = gzip.decompress(raw) if encoding == "gzip" else raw
+    return b'"stage":"coarse"' in body
+
+
 class Record:
     """Every answer: (endpoint, latency s, status or 0 for a network error, X-Cache or '', cut short, kind:
     'exact' or 'family', 'light' or 'elastic'); the 429s waited out, and the requests still waiting one out
@@ -214,6 +220,7 @@ class Record:
         self.abandoned = 0
         self.given_up: list[tuple[str, str]] = []       # (kind, light) of every family given up by a new grab
         self.resent = 0         # requests sent again on a new connection: the idle one had been closed
+        self.unrefined: list[str] = []   # light of every full family the server answered coarse (busy)
 
     def add(self, endpoint: str, seconds: float, status: int, cache: str, partial: bool = False,
             kind: str = "exact", light: str = "light") -> None:
@@ -298,6 +305,8 @@ class Connection:
                 self.record.abandoned += 1
                 return -1
             time.sleep(wait)
+        if kind == "family" and answer.status == 200 and answered_coarse(raw, answer.getheader("content-encoding")):
+            self.record.unrefined.append(student.light)
         self.record.add(student.scene.endpoint, time.perf_counter() - sent, answer.status,
                         answer.getheader("x-cache", ""),
                         cut_short(student.scene.endpoint, raw, answer.getheader("content-encoding"),
@@ -498,10 +507,12 @@ def run(workers: int, client: str, students: int, seconds: float, seed: int, pat
         wall = time.perf_counter() - wall
         server_cpu, client_cpu = server_cpu_s(process) - server_cpu, time.process_time() - client_cpu
         busy = machine_busy_cpu_s() - busy
+        load = os.getloadavg()
     after = cache_counters_at_exit(process.log_text)   # the caches start empty: their counters at exit are the run's
     return {"workers": workers, "client": client, "pattern": pattern, "students": students, "seconds": seconds,
             "wall": wall, "rows": record.rows, "throttled": record.throttled, "abandoned": record.abandoned,
-            "given_up": record.given_up, "resent": record.resent,
+            "given_up": record.given_up, "resent": record.resent, "unrefined": record.unrefined,
+            "load": load,
             "moves": sum(s.moves for s in class_), "server_cpu": server_cpu,
             "client_cpu": client_cpu, "outlived": process.outlived,
             "other_cpu": max(0.0, busy - server_cpu - client_cpu),
@@ -568,6 +579,15 @@ def given_up(result: dict) -> str:
                      for key in sorted(counts))
 
 
+def unrefined(result: dict) -> str:
+    asked = Counter(r[6] for r in result["rows"] if r[5] == "family" and r[2] == 200)
+    coarse = Counter(result.get("unrefined", []))
+    if not asked:
+        return "none asked"
+    return ", ".join(f"{coarse[light]} of {asked[light]} ({'elastic' if light == ELASTIC else 'light'} scenes)"
+                     for light in sorted(asked))
+
+
 def percent(value: float | None) -> str:
     return "–" if value is None else f"{100 * value:.0f} %"
 
@@ -608,6 +628,8 @@ def markdown_run(result: dict, title: str) -> list[str]:
               f"(uvicorn's 5-s timeout; a browser does the same): {result.get('resent', 0)}.",
               f"* Families given up by the student's next grab (aborted in flight, as the page does; not in the "
               f"latencies above): {given_up(result)}.",
+              f"* Full families the server answered with the coarse family, busy (no refinement): "
+              f"{unrefined(result)}.",
               f"* Cache, the counters each worker process logs as it stops ({cache['workers']} of "
               f"{result['workers']}): "
               f"{cache['hits']} hits, {cache['misses']} misses (hit rate {percent(cache['hits'] / looked_up if looked_up else None)}), "
@@ -618,7 +640,8 @@ def markdown_run(result: dict, title: str) -> list[str]:
               f"client CPU: {result['client_cpu']:.1f} s ({100 * result['client_cpu'] / result['wall'] / cpus:.0f} % "
               f"of the {cpus} CPUs, {1000 * result['client_cpu'] / max(requests, 1):.1f} ms per request); "
               f"other processes on the machine: {result['other_cpu']:.1f} s "
-              f"({100 * result['other_cpu'] / result['wall'] / cpus:.0f} % of the {cpus} CPUs).",
+              f"({100 * result['other_cpu'] / result['wall'] / cpus:.0f} % of the {cpus} CPUs); load average at "
+              f"the end of the run: {' / '.join(f'{x:.1f}' for x in result.get('load', ()))} (1 / 5 / 15 min).",
               f"* Processes of the server's session still running {OUTLIVE_GRACE_S:g} s after it stopped "
               f"(SIGTERM, 15 s): "
               f"{result['outlived']}{' (ended by the benchmark)' if result['outlived'] else ''}.", ""]

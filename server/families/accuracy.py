@@ -10,6 +10,7 @@ TOLERANCE = 0.005               # 0.5 % of a plotted quantity's span: below a pl
 PREVIEW_FRACTION = 1 / 50       # a member's own error, at most this fraction of TOLERANCE (see Preview accuracy)
 PREVIEW = PREVIEW_FRACTION * TOLERANCE   # … as a fraction of a drawn quantity's span: 1e-4
 START_MEMBERS = 9
+LEAN_MEMBERS = 5                # a coarse family while previews queue: the first 5 of the 9, every other one
 MAX_MEMBERS = 65                # 8 intervals halved three times over the whole range, at most
 FINEST_FRACTION = 1 / 1024      # an interval this narrow (of the range) is not halved: no slider resolves it
 SIGNIFICANT = 5                 # significant digits of every float in the family's answer

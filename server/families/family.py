@@ -16,6 +16,10 @@ w = (v − v_k)/(v_k+1 − v_k) (in log(v) when ``log``) and, leaf by leaf,
     anything else (strings, booleans, arrays of different lengths, a key in one member only)
                                            → the nearer member's leaf (a when w < 1/2, else b).
 A refused member's answer is null, so the values between it and its neighbours interpolate to null.
+Nearest intervals (``orders``[k] = 0, a coarse family's interval whose bound exceeds the tolerance): the
+nearer member's answer whole (a when w < 1/2, else b), a true answer of a nearby value; the error given for
+such an interval is the change across it, |f(b) − f(a)| / span (what the nearer member may be off by wherever
+f is monotone inside).
 Cubic intervals (``orders``[k] = 3, one rule per interval): the stencil is the 4 members k − 1 … k + 2 (moved
 inside the range at its ends: 0 … 3 for the first interval, M − 4 … M − 1 for the last), and a number that all
 4 hold at the same place (the same keys, the same array lengths, objects in arrays of the same texts; not
@@ -83,8 +87,9 @@ members compared; whole numbers (step counters), strings and booleans are not pl
 in an array (a special position) is the same quantity in two members only when its texts agree (its kind):
 otherwise the nearer member's object is drawn and nothing is compared.
 
-Stages. ``coarse`` answers the 9 start members at once, unrefined, with the estimate above as its
-interpolation error; ``full`` (the default) refines. The members are the same values in both, so a full
+Stages. ``coarse`` answers the 9 start members at once, unrefined: an interval whose bound is within the
+tolerance is interpolated (its estimate the error given), every other one drawn from its nearer member (``lean``, while previews queue on a busy server: the first LEAN_MEMBERS of them in the
+order above, every other one of the 9); ``full`` (the default) refines. The members are the same values in both, so a full
 family asked right after the coarse one reuses the coarse members (the heavy process's memo,
 server/api/family_batch.py).
 
@@ -134,8 +139,8 @@ import numpy as np
 from ..lessons.numbers import DECIMAL_COMMA, CommaFloat, ReadableFloat
 from ..lessons.scenes import interface_texts
 # the engine's parts, and the names its users read here (family.coordinate, family.PACK_QUANTUM, ...)
-from .accuracy import (COARSE_TO_FINE, CUBIC_SAFETY, FIELD, FINEST_FRACTION, MAX_FIELDS, MAX_MEMBERS, PACK_QUANTUM,
-                       PREVIEW, PREVIEW_FRACTION, SAFETY, SIGNIFICANT, STAGES, START_MEMBERS, TOLERANCE)
+from .accuracy import (COARSE_TO_FINE, CUBIC_SAFETY, FIELD, FINEST_FRACTION, LEAN_MEMBERS, MAX_FIELDS, MAX_MEMBERS,
+                       PACK_QUANTUM, PREVIEW, PREVIEW_FRACTION, SAFETY, SIGNIFICANT, STAGES, START_MEMBERS, TOLERANCE)
 from .bodies import Vary, field_trie, member_body, path_exists, pruned, shared
 from .packing import merged, packed, quanta, shared_arrays, unpacked
 from .interpolation import (as_tree, coordinate, from_coordinate, interpolate, interpolate_family, midpoint, rounded,
@@ -270,18 +275,20 @@ def change(stack: Stack, span: dict[tuple, float], k: int) -> tuple[float, tuple
 
 
 def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = "en",
-          stage: str = "full", pack: bool = False) -> tuple[dict, bool]:
+          stage: str = "full", pack: bool = False, lean: bool = False) -> tuple[dict, bool]:
     """The family's answer (see the module) and whether it is partial. members(values, deadline) gives the
     members at values, in order, stopping early (a shorter list) once the deadline has passed. ``pack``:
-    sent packed (see the module: shared arrays once, arrays as integer steps)."""
+    sent packed (see the module: shared arrays once, arrays as integer steps). ``lean`` (the coarse stage
+    only): LEAN_MEMBERS start members instead of START_MEMBERS, every other one of them (see Stages)."""
     started = time.perf_counter()
     deadline = started + TIME_BUDGET_S
     family = Family(log, (coordinate(high, log) - coordinate(low, log)) * FINEST_FRACTION)
     first = spaced(low, high, START_MEMBERS, log)
-    order = [first[index] for index in COARSE_TO_FINE]
+    start = LEAN_MEMBERS if lean and stage == "coarse" else START_MEMBERS
+    order = [first[index] for index in COARSE_TO_FINE[:start]]
     for member in members(order[:2], math.inf) + members(order[2:], deadline):   # min and max always
         family.add(member)
-    cut = len(family.members) < START_MEMBERS
+    cut = len(family.members) < start
     assessed = family.assess()
     while stage == "full" and not cut:
         bounds = assessed[2].bounds
@@ -295,15 +302,21 @@ def build(members: MemberBatch, low: float, high: float, log: bool, lang: str = 
             family.add(member)
         cut = len(computed) < len(values)
         assessed = family.assess()
-    return _answer(family, assessed, lang, cut, started, stage, pack)
+    return _answer(family, assessed, lang, cut, started, stage, pack, start)
 
 
 def _answer(family: Family, assessed: tuple, lang: str, cut: bool, started: float, stage: str,
-            pack: bool = False) -> tuple[dict, bool]:
+            pack: bool = False, start: int = START_MEMBERS) -> tuple[dict, bool]:
     """The answer of the contract, and whether it is partial (cut at the time budget, or a member is)."""
     stack, span, assessment = assessed
     members = family.members
     orders, scores, where = list(assessment.orders), list(assessment.scores), list(assessment.where)
+    if stage == "coarse":           # an interval not shown within the tolerance: the nearer member, a true answer
+        for k in range(len(members) - 1):
+            if members[k].answer is not None and members[k + 1].answer is not None and not (
+                    assessment.bounds[k] <= TOLERANCE):
+                orders[k] = 0
+                scores[k], where[k] = change(stack, span, k)
     answered = [k for k in range(len(members) - 1)
                 if members[k].answer is not None and members[k + 1].answer is not None and math.isfinite(scores[k])]
     for k in answered:
@@ -343,7 +356,7 @@ def _answer(family: Family, assessed: tuple, lang: str, cut: bool, started: floa
         shown = ", ".join(f"{number(rounded(v)):g}" for v in partial[:8]) + (", …" if len(partial) > 8 else "")
         sentences.append(texts["family_partial_members"].format(count=len(partial), values=shown))
     method = texts[f"family_method_{stage}_{'log' if family.log else 'linear'}"].format(
-        start=START_MEMBERS, tolerance=number(100 * TOLERANCE), safety=SAFETY, cap=MAX_MEMBERS)
+        start=start, tolerance=number(100 * TOLERANCE), safety=SAFETY, cap=MAX_MEMBERS)
     method += texts["family_method_cubic"].format(safety=CUBIC_SAFETY, tolerance=number(100 * TOLERANCE))
     method += texts["family_method_steps"] + (texts["family_method_left"] if stage == "full" else "")
     answers = [m.answer for m in members]

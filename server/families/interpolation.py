@@ -102,7 +102,7 @@ def interpolate(a, b, w: float, stencil: tuple | None = None):
 
 def interpolate_family(values: list[float], answers: list, value: float, log: bool, orders: list[int] | None = None):
     """The family's answer at value by the rule (values ascending; outside the range, the end member); orders:
-    each interval's rule (1 linear, 3 cubic; None: every interval linear)."""
+    each interval's rule (0 the nearer member, 1 linear, 3 cubic; None: every interval linear)."""
     if value <= values[0]:
         return answers[0]
     if value >= values[-1]:
@@ -110,6 +110,8 @@ def interpolate_family(values: list[float], answers: list, value: float, log: bo
     k = bisect_right(values, value) - 1
     a, b = coordinate(values[k], log), coordinate(values[k + 1], log)
     x = coordinate(value, log)
+    if orders is not None and orders[k] == 0:
+        return answers[k] if (x - a) / (b - a) < 0.5 else answers[k + 1]
     stencil = None
     if orders is not None and orders[k] == 3:
         first = int(stencils(len(values))[k])

@@ -18,6 +18,9 @@ it when the student grabs another slider, or leaves) leaves the queue, and one a
 next chunk of members (``stopped``, read by family_batch.member_batch), so that its CPU goes to the families
 still wanted.
 
+The queues say how busy the worker is (``busy``, ``crowded``): a busy worker does not start a family's
+refinement (its coarse family is the answer), and while previews queue each takes fewer members.
+
 A route awaits ``submit``: the wait holds no thread, so heavy requests never take the tokens of the thread
 pool that runs the light (sync) routes — 64 waiting elastic requests cost 64 suspended coroutines, not 64 of
 anyio's 40 threads. ``run`` is the blocking form for code that is not async.
@@ -196,6 +199,22 @@ async def submit(function: Callable[..., T], *args, lane: str = "answers", newes
     return await _queues[lane].submit(function, args, newest_first)
 
 
+def busy() -> bool:
+    """Whether this worker's heavy lanes have no CPU to spare for a family's refinement: an answer or a preview
+    waits in the answers' lane (its process is taken and more is queued behind it), or the families' lane
+    holds a job (running or waiting). A refinement then is not started: the grab gets its coarse family only
+    (routers/family.py), and the CPU goes to the exact answers and the first previews. Read from the lanes'
+    queues in this worker (each worker has its own lanes), so it says the same for the same sequence of
+    requests whatever the machine's speed."""
+    return _queues["answers"].pressure() > 0 or _queues["families"].occupied() > 0
+
+
+def crowded() -> bool:
+    """Whether previews queue in the answers' lane: more jobs wait there than it has processes. A first
+    preview then takes fewer members (family.LEAN_MEMBERS), so that the queue drains sooner."""
+    return _queues["answers"].pressure() >= LaneQueue.capacity()
+
+
 def _replaced(pool: ProcessPoolExecutor, attempt: int) -> bool:
     """Whether a broken pool is replaced for one more try: not when shutdown() ended it (the server is
     stopping), nor after the second try."""
@@ -232,6 +251,16 @@ class LaneQueue:
     @staticmethod
     def capacity() -> int:
         return max(HEAVY_PROCESSES, 1)
+
+    def pressure(self) -> int:
+        """Jobs waiting for a process of this lane (not yet handed to its pool)."""
+        with self.lock:
+            return len(self.waiting)
+
+    def occupied(self) -> int:
+        """Jobs this lane holds: running and waiting."""
+        with self.lock:
+            return self.running + len(self.waiting)
 
     async def submit(self, function: Callable[..., T], args: tuple, newest_first: bool = False) -> T:
         loop = asyncio.get_running_loop()

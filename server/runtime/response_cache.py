@@ -26,13 +26,18 @@ answer alone, never on how long it took.
 
 Entries are evicted least recently used first once their total size passes ``max_bytes`` (default 64 MB,
 environment variable MDL_CACHE_BYTES; 0 turns the cache off). The cache is per process: with several
-workers each has its own. Every cached path answers with the header ``X-Cache: hit`` or ``X-Cache: miss``;
+workers each has its own; the slider families (SHARED_ENDPOINTS), the costly answers a class asks for alike,
+are also kept in a layer the workers share (server/runtime/shared_cache.py): a worker that misses its own
+cache looks there before computing (a hit, stored in its own cache too), and every family it computes goes
+there as well. An answer that says ``Cache-Control: no-store`` (a family answered coarse because the server
+was busy, routers/family.py) is passed on and never stored. Every cached path answers with the header ``X-Cache: hit`` or ``X-Cache: miss``;
 GET /api/v1/cache reports hits, misses, entries and bytes of the worker that answers; as it stops, each
 worker logs the same counters in one line (CACHE_AT_EXIT). An answer served from the cache is the stored
 bytes of the first computation, its ``numerics.runtime_ms`` included.
 """
 from __future__ import annotations
 
+import asyncio
 import hashlib
 import gzip
 import json
@@ -47,6 +52,8 @@ import pydantic_core
 from pydantic import BaseModel
 
 from ..families import family
+from . import shared_cache
+from .shared_cache import SharedStore
 
 PARTIAL_HEADER = "X-Partial"      # an answer a time or work bound cut short (the serialiser sets it)
 DEFAULT_MAX_BYTES = 64 * 1024 * 1024
@@ -60,6 +67,8 @@ CACHE_AT_EXIT = "response cache at exit:"   # each worker logs its counters (JSO
 
 # What an answer depends on, where it is less than the whole request: a family not on its slider's current value.
 KEY_FORMS = {"family": family.shared}
+SHARED_ENDPOINTS = ("family",)      # kept in the layer the workers share as well (shared_cache.py)
+NO_STORE = b"no-store"
 
 
 def canonical_json(data) -> bytes:
@@ -130,25 +139,47 @@ class CachedAnswer:
 class ResponseCache:
     """A least-recently-used store bounded by total bytes, safe to share between threads."""
 
-    def __init__(self, max_bytes: int = DEFAULT_MAX_BYTES):
+    def __init__(self, max_bytes: int = DEFAULT_MAX_BYTES, shared: SharedStore | None = None):
         if max_bytes < 0:
             raise ValueError("the cache size must be 0 (off) or a positive number of bytes")
         self.max_bytes = max_bytes
+        self.shared = shared             # the layer the workers share (SHARED_ENDPOINTS), or None
         self._entries: OrderedDict[bytes, CachedAnswer] = OrderedDict()
         self._lock = threading.Lock()
         self.bytes = self.hits = self.misses = self.bypassed = self.evictions = 0
 
     @classmethod
     def from_env(cls) -> "ResponseCache":
-        """The size from MDL_CACHE_BYTES (bytes; 0 turns the cache off), else 64 MB."""
+        """The size from MDL_CACHE_BYTES (bytes; 0 turns the cache off), else 64 MB; the shared layer as
+        shared_cache.from_env says (none with the cache off)."""
         text = os.environ.get(ENV_MAX_BYTES, "").strip()
-        if not text:
-            return cls()
         try:
-            return cls(int(text))
+            max_bytes = int(text) if text else DEFAULT_MAX_BYTES
         except ValueError:
             raise ValueError(f"{ENV_MAX_BYTES} must be a whole number of bytes (0 turns the cache off), "
                              f"not {text!r}") from None
+        if max_bytes < 0:
+            return cls(max_bytes)            # refused with its reason
+        return cls(max_bytes, shared_cache.from_env(max_bytes))
+
+    def get_shared(self, key: bytes) -> CachedAnswer | None:
+        """The answer the shared layer holds under key (then kept in this cache too, and counted a hit), or None."""
+        found = self.shared.get(key) if self.shared is not None else None
+        if found is None:
+            return None
+        headers, body, gzipped = found
+        answer = (CachedAnswer(tuple(headers), gzip.decompress(body), body) if gzipped
+                  else CachedAnswer(tuple(headers), body, None))
+        self.put(key, answer)
+        with self._lock:
+            self.hits, self.misses = self.hits + 1, self.misses - 1
+        return answer
+
+    def put_shared(self, key: bytes, answer: CachedAnswer) -> None:
+        """Keep the answer in the shared layer (any thread; a failure is skipped there)."""
+        if self.shared is not None:
+            gzipped = answer.gzipped is not None
+            self.shared.put(key, answer.headers, answer.gzipped if gzipped else answer.body, gzipped)
 
     @property
     def enabled(self) -> bool:
@@ -189,7 +220,8 @@ class ResponseCache:
             return {"enabled": self.enabled, "max_bytes": self.max_bytes, "bytes": self.bytes,
                     "entries": len(self._entries), "hits": self.hits, "misses": self.misses,
                     "hit_rate": self.hits / looked_up if looked_up else None, "bypassed": self.bypassed,
-                    "evictions": self.evictions, "pid": os.getpid()}
+                    "evictions": self.evictions, "pid": os.getpid(),
+                    "shared": self.shared.stats() if self.shared is not None else None}
 
 
 def compressed(body: bytes) -> bytes | None:
@@ -219,6 +251,7 @@ class ResponseCacheMiddleware:
         self.cache = cache
         self.models = {f"{prefix}/{name}": model for name, model in models.items()}
         self.forms = {f"{prefix}/{name}": form for name, form in KEY_FORMS.items()}
+        self.shared_paths = {f"{prefix}/{name}" for name in SHARED_ENDPOINTS}
 
     async def __call__(self, scope, receive, send):
         if (scope["type"] != "http" or scope["method"] != "POST" or scope["path"] not in self.models
@@ -252,14 +285,18 @@ class ResponseCacheMiddleware:
             return
         key = cache_key(path, scope.get("query_string", b"").decode("latin-1"), canonical)
         gzip_accepted = b"gzip" in _header(scope["headers"], b"accept-encoding")
+        shared = path in self.shared_paths
         cached = self.cache.get(key)
+        if cached is None and shared:
+            cached = self.cache.get_shared(key)
         if cached is not None:
             await send(cached.message_start(gzip_accepted, b"hit"))
             await send({"type": "http.response.body", "body": cached.body_for(gzip_accepted)})
             return
-        await self._compute_and_store(scope, replay, send, key, gzip_accepted)
+        await self._compute_and_store(scope, replay, send, key, gzip_accepted, shared)
 
-    async def _compute_and_store(self, scope, receive, send, key: bytes, gzip_accepted: bool) -> None:
+    async def _compute_and_store(self, scope, receive, send, key: bytes, gzip_accepted: bool,
+                                 shared: bool = False) -> None:
         """Compute; a complete 200 answer in one body message (every computing endpoint's) is stored and sent
         in the client's encoding from the stored entry; anything else passes as it comes, marked a miss."""
         start: dict | None = None
@@ -269,7 +306,7 @@ class ResponseCacheMiddleware:
             if message["type"] == "http.response.start":
                 headers = list(message.get("headers", []))
                 if (message["status"] == 200 and not _header(headers, b"set-cookie")
-                        and not _header(headers, PARTIAL)):
+                        and not _header(headers, PARTIAL) and NO_STORE not in _header(headers, b"cache-control")):
                     start = {**message, "headers": headers}      # held until the body shows it complete
                     return
                 message = {**message, "headers": [*headers, (b"x-cache", b"miss")]}
@@ -279,6 +316,8 @@ class ResponseCacheMiddleware:
                 if not message.get("more_body", False) and len(body) <= self.cache.max_bytes:
                     answer = CachedAnswer.of(held["headers"], body)
                     self.cache.put(key, answer)
+                    if shared and self.cache.shared is not None:       # written beside, not waited for
+                        asyncio.get_running_loop().run_in_executor(None, self.cache.put_shared, key, answer)
                     await send(answer.message_start(gzip_accepted, b"miss"))
                     await send({"type": "http.response.body", "body": answer.body_for(gzip_accepted)})
                     return

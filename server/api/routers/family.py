@@ -1,9 +1,11 @@
 """POST /api/v1/family: a slider's family of answers (server/families/family.py), computed in the heavy process."""
 from __future__ import annotations
 
+import asyncio
 import math
 from typing import Any, Literal
 
+import orjson
 from fastapi import APIRouter, Request
 from fastapi.responses import Response
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator
@@ -12,7 +14,7 @@ from ...runtime import heavy
 from ...families import family
 from ..endpoints import ENDPOINTS
 from ..family_batch import member_batch
-from ...runtime.response_cache import compressed
+from ...runtime.response_cache import cache_key, canonical_json, compressed
 from ..schemas import Language
 from ..serialise import PARTIAL_HEADER, serialise
 from .query import LANG
@@ -107,7 +109,9 @@ class FamilyResponse(BaseModel):
     values: list[float] = Field(description="the members' slider values, ascending, min and max included")
     orders: list[int] = Field(description="each interval's rule (len(values) − 1 of them): 1 linear between "
                               "its two members, 3 Lagrange's cubic through the 4 members k − 1 … k + 2 (moved "
-                              "inside the range at its ends) for the numbers all 4 hold (server/families/family.py)")
+                              "inside the range at its ends) for the numbers all 4 hold, 0 the nearer member's "
+                              "answer whole (a coarse family's interval not shown within the tolerance) "
+                              "(server/families/family.py)")
     shared: dict | None = Field(None, description="only when `packed`: the arrays equal in every "
                                 "answered member, sent once; each member's answer is `shared` merged with its own, "
                                 "object by object")
@@ -136,32 +140,104 @@ async def family_route(request: FamilyRequest, http: Request, lang: Language = L
     # in another process). In either lane a family goes after the answers waiting there, and the newest family
     # first (heavy.LaneQueue). It comes back as bytes, gzip-compressed when the client takes it: a family is up
     # to 2 MB of JSON, whose serialising and compressing (tens of ms) would hold the worker's event loop.
-    lane = "answers" if request.stage == "coarse" else "families"
+    # When the worker is busy (heavy.busy: previews wait in the answers' lane, or a refinement is under way) a
+    # full family is not refined: the answer is the coarse family (numerics.stage "coarse", marked no-store so
+    # that the cache keeps it apart from the full family the same question gets on spare CPU). While previews
+    # queue (heavy.crowded) a coarse family takes the lean start (family.LEAN_MEMBERS).
     gzip_accepted = "gzip" in http.headers.get("accept-encoding", "")
-    body, encoded, partial = await heavy.submit(family_body, request.model_dump(), lang, gzip_accepted, lane=lane,
-                                                newest_first=True)
+    body = request.model_dump()
+    unrefined = request.stage == "full" and heavy.busy()
+    if unrefined:
+        body["stage"] = "coarse"
+        kept = coarse_in_cache(http, body, gzip_accepted)
+        if kept is not None:
+            return kept
+    lane = "answers" if body["stage"] == "coarse" else "families"
+    lean = body["stage"] == "coarse" and heavy.crowded()
+    work = (family_body, body, lang, gzip_accepted, lean)
+    encoded_body, encoded, partial = await _in_flight.join(work, lambda: heavy.submit(*work, lane=lane,
+                                                                                        newest_first=True))
     headers = ({PARTIAL_HEADER: "1"} if partial else {}) | (
-        {"Content-Encoding": "gzip", "Vary": "Accept-Encoding"} if encoded else {})
-    return Response(body, media_type="application/json", headers=headers)
+        {"Content-Encoding": "gzip", "Vary": "Accept-Encoding"} if encoded else {}) | (
+        {"Cache-Control": "no-store"} if unrefined else {})
+    return Response(encoded_body, media_type="application/json", headers=headers)
 
 
-def family_body(body: dict, lang: str, gzip_accepted: bool) -> tuple[bytes, bool, bool]:
+def coarse_in_cache(http: Request, body: dict, gzip_accepted: bool) -> Response | None:
+    """The coarse family of the same question from the response cache (this worker's, or the shared layer), as
+    the answer to a full one the busy worker does not refine (no-store: not kept as the full family); or None."""
+    cache = getattr(http.app.state, "response_cache", None)
+    if cache is None or not cache.enabled:
+        return None
+    key = cache_key(http.scope["path"], http.scope.get("query_string", b"").decode("latin-1"),
+                    canonical_json(family.shared(body)))
+    found = cache.get(key) or cache.get_shared(key)
+    if found is None:
+        return None
+    start = found.message_start(gzip_accepted, b"hit")
+    headers = {name.decode("latin-1"): value.decode("latin-1") for name, value in start["headers"]
+               if name.lower() not in (b"content-length", b"x-cache")}
+    return Response(found.body_for(gzip_accepted), headers=headers | {"Cache-Control": "no-store"})
+
+
+class InFlight:
+    """The families being computed in this worker, by question: a second student asking the same family while
+    it is computed waits for the same computation instead of starting another (a class grabs the same slider at
+    the same defaults). The computation is cancelled (and so leaves its lane, or stops: heavy.LaneQueue) only
+    when every student waiting for it has gone."""
+
+    def __init__(self):
+        self.running: dict[bytes, tuple[asyncio.Future, list[int]]] = {}
+
+    async def join(self, work: tuple, start):
+        _, body, lang, gzip_accepted, _ = work
+        key = orjson.dumps([family.shared(body), lang, gzip_accepted], option=orjson.OPT_SORT_KEYS)
+        if key not in self.running:
+            task = asyncio.ensure_future(start())
+            self.running[key] = (task, [0])
+            task.add_done_callback(lambda _, key=key, task=task: self._forget(key, task))
+        task, waiting = self.running[key]
+        waiting[0] += 1
+        try:
+            return await asyncio.shield(task)
+        except asyncio.CancelledError:
+            if task.done() or waiting[0] > 1:
+                raise
+            if self.running.get(key, (None,))[0] is task:
+                del self.running[key]          # a student asking again now starts it anew
+            task.cancel()
+            raise
+        finally:
+            waiting[0] -= 1
+
+    def _forget(self, key: bytes, task: asyncio.Future) -> None:
+        if self.running.get(key, (None,))[0] is task:
+            del self.running[key]
+        if not task.cancelled():
+            task.exception()            # retrieved: an error reaches every waiting route, not the loop's log
+
+
+_in_flight = InFlight()
+
+
+def family_body(body: dict, lang: str, gzip_accepted: bool, lean: bool = False) -> tuple[bytes, bool, bool]:
     """The family's answer as sent (run in the heavy process): its JSON (the family rounds its floats to
     family.SIGNIFICANT digits itself: serialised as they are), gzip-compressed when the client takes it and it
-    gains (response_cache.compressed, as the cache would keep it); whether compressed; whether partial."""
-    answer, partial = family_answer(body, lang)
+    gains (response_cache.compressed, as the cache would keep it); whether compressed; whether partial.
+    ``lean``: a coarse family of family.LEAN_MEMBERS start members."""
+    answer, partial = family_answer(body, lang, lean)
     raw = serialise(answer, None)
     packed = compressed(raw) if gzip_accepted else None
     return (raw, False, partial) if packed is None else (packed, True, partial)
 
 
-def family_answer(body: dict, lang: str) -> tuple[dict, bool]:
+def family_answer(body: dict, lang: str, lean: bool = False) -> tuple[dict, bool]:
     """The family's answer and whether it is partial (run in the heavy process)."""
     vary = [family.Vary(item["path"], item["factor"]) for item in body["vary"]]
     counts = {"computed": 0}
     fields = body.get("fields")
     members = member_batch(body["endpoint"], body["request"], vary, lang, counts, fields)
     answer, partial = family.build(members, body["min"], body["max"], body["log"], lang, body.get("stage", "full"),
-                                   pack=body.get("packed", False))
+                                   pack=body.get("packed", False), lean=lean)
     answer["numerics"]["computed"] = counts["computed"]
     return answer, partial

@@ -15,7 +15,8 @@
  * A cubic interval (the family's orders[k] = 3) draws each number that the 4 members of its stencil
  * (k − 1 … k + 2, moved inside the range at its ends) all hold, at the same place of the same structure, as
  * Lagrange's cubic through them, Σ ℓᵢ·fᵢ (in the same coordinate as w); where one of the 4 lacks it or holds
- * null, the number is linear as above.
+ * null, the number is linear as above. A nearest interval (orders[k] = 0: a coarse family's interval not shown
+ * within the tolerance) gives the nearer member's answer whole: a true answer of a nearby value.
  * A value equal to a member's gives that member's answer as it is; an array the two members share (the same
  * object: a family's "shared" arrays, withShared) is passed through as it is.
  *
@@ -107,7 +108,8 @@ export function memberInterval(family, value) {
   while (k < values.length - 2 && value > values[k + 1]) k++;
   if (values.length === 1) return answers[0] ? { k: 0, w: 0 } : null;
   const [low, high] = [position(values[k]), position(values[k + 1])];
-  const w = Math.min(1, Math.max(0, (position(value) - low) / (high - low)));
+  const along = Math.min(1, Math.max(0, (position(value) - low) / (high - low)));
+  const w = family.orders?.[k] === 0 ? Math.round(along) : along;     // 0: the nearer member, a true answer
   const needed = w === 0 ? [k] : w === 1 ? [k + 1] : [k, k + 1];
   if (!needed.every((i) => answers[i])) return null;
   if (w > 0 && w < 1 && family.orders?.[k] === 3) {

@@ -36,6 +36,7 @@
  */
 import { ApiClient } from "../model/api.js";
 import { element } from "./dom.js";
+import { messageText } from "./messages.js";
 import { Emitter } from "../model/emitter.js";
 import { previewFields } from "../model/family_fields.js";
 import { familyKey, interpolate, memberInterval, received } from "../model/family_model.js";
@@ -151,17 +152,28 @@ export class FamilyPreview extends Emitter {
     if (!this.showing || !this.#due) return;
     const { family, value } = this.#due;
     performance.mark(family.coarse ? "preview-coarse" : "preview-full");
+    for (const describe of badges) describe(family);
     this.emit("preview", { ok: true, data: interpolate(family, value), preview: true });
   };
 }
 
+const badges = new Set();    // the page's preview badges: each says how coarse the family drawn from is
+
 /**
  * The mark that says the page shows a preview: a badge in container and the class "preview" on the scene
- * layout, which dims the numbers kept from the last exact answer (app.css).
+ * layout, which dims the numbers kept from the last exact answer (app.css). Drawn from a coarse family (the
+ * server's numerics.stage: its first members, unrefined, as a busy server sends) the badge says so, and its
+ * title gives the family's stated error in % of a quantity's span.
  */
 export function previewMark(container, { t }) {
   const layout = container.closest(".scene-layout") ?? container;
   const badge = element("p", { className: "preview-note", role: "status", textContent: t.preview, title: t.preview_hint });
   container.append(badge);
+  badges.add((family) => {
+    const error = family.interpolation_error;
+    badge.textContent = family.coarse ? t.preview_coarse : t.preview;
+    badge.title = !family.coarse ? t.preview_hint : Number.isFinite(error)
+      ? `${t.preview_hint} ${messageText(t.preview_coarse_error, { error: 100 * error })}` : t.preview_hint;
+  });
   return (on) => layout.classList.toggle("preview", on);
 }

@@ -1,0 +1,145 @@
+"""A layer of the response cache that the workers of one server share: the slider families.
+
+A class opens the same scene at the same defaults and grabs the same slider, so most of its families are the same
+question (the response cache keys a family without its slider's own value: family.shared). With several workers
+each has its own response cache, and a family that one worker has computed (0.05–1 CPU-s) would be computed
+again by the other. This store keeps the complete family answers in one SQLite file beside the workers: a worker
+that misses its own cache looks there before computing, and every family it computes goes there as well.
+
+The file: ``MDL_SHARED_CACHE`` names it (two app servers on one host may name the same file; ``0`` turns the
+layer off). Unset, the workers of a server started with ``--workers N`` (N ≥ 2) share a file of their own in the
+temporary folder, named after the process that started them; a single worker (or an app in a test) has no
+shared layer, since its own response cache is the whole of it. Files of servers no longer running are removed.
+
+Entries are the answer's raw headers and its gzip-compressed body, keyed by the response cache's key (SHA-256 of
+the path, the query and the validated body); the oldest go first once their total passes the response cache's
+size. A write or a read that fails (the disk full, the file locked for longer than the timeout) is skipped:
+the layer only saves work, it never answers wrongly or fails a request.
+"""
+from __future__ import annotations
+
+import json
+import logging
+import multiprocessing
+import os
+import sqlite3
+import tempfile
+import threading
+from pathlib import Path
+
+ENV_PATH = "MDL_SHARED_CACHE"
+PREFIX = "mdl-shared-cache-"
+TIMEOUT_S = 0.5                 # how long a read or a write waits for the file's lock before giving up
+SCHEMA = ("CREATE TABLE IF NOT EXISTS answers (key BLOB PRIMARY KEY, headers TEXT NOT NULL, body BLOB NOT NULL,"
+          " size INTEGER NOT NULL)")
+log = logging.getLogger("uvicorn.error")
+
+
+def default_path() -> Path | None:
+    """MDL_SHARED_CACHE, else a file of this server's workers when it has several (this process is a worker its
+    supervisor started), else None."""
+    named = os.environ.get(ENV_PATH, "").strip()
+    if named:
+        return None if named == "0" else Path(named)
+    parent = multiprocessing.parent_process()
+    if parent is None or parent.pid is None:
+        return None
+    folder = Path(tempfile.gettempdir())
+    _remove_orphans(folder)
+    return folder / f"{PREFIX}{parent.pid}.sqlite"
+
+
+def _remove_orphans(folder: Path) -> None:
+    """Remove the files of supervisors that no longer run."""
+    for path in folder.glob(f"{PREFIX}*.sqlite*"):
+        pid = path.name[len(PREFIX):].split(".")[0]
+        if pid.isdigit() and not _alive(int(pid)):
+            try:
+                path.unlink()
+            except OSError:
+                pass
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+class SharedStore:
+    """Complete answers by key in one SQLite file, bounded by total bytes (oldest out first)."""
+
+    def __init__(self, path: Path, max_bytes: int):
+        self.path, self.max_bytes = Path(path), max_bytes
+        self._local = threading.local()
+        self.hits = self.misses = self.writes = self.failures = 0
+        self._connection().execute(SCHEMA)
+
+    def _connection(self) -> sqlite3.Connection:
+        connection = getattr(self._local, "connection", None)
+        if connection is None:
+            connection = sqlite3.connect(self.path, timeout=TIMEOUT_S, isolation_level=None)
+            connection.execute("PRAGMA journal_mode=WAL")
+            connection.execute("PRAGMA synchronous=OFF")      # a cache: a lost write after a crash costs nothing
+            self._local.connection = connection
+        return connection
+
+    def get(self, key: bytes) -> tuple[list[tuple[bytes, bytes]], bytes, bool] | None:
+        """(raw headers, body, whether the body is gzip-compressed) stored under key, or None."""
+        try:
+            row = self._connection().execute("SELECT headers, body FROM answers WHERE key = ?", (key,)).fetchone()
+        except sqlite3.Error as error:
+            self._failed("read", error)
+            return None
+        if row is None:
+            self.misses += 1
+            return None
+        self.hits += 1
+        stored = json.loads(row[0])
+        return ([(name.encode("latin-1"), value.encode("latin-1")) for name, value in stored["headers"]], row[1],
+                stored["gzip"])
+
+    def put(self, key: bytes, headers, body: bytes, gzipped: bool) -> None:
+        """Store (headers, body, whether gzip-compressed) under key; drop the oldest entries beyond max_bytes."""
+        text = json.dumps({"headers": [(name.decode("latin-1"), value.decode("latin-1")) for name, value in headers],
+                           "gzip": gzipped})
+        size = len(body) + len(text) + len(key)
+        if size > self.max_bytes:
+            return
+        try:
+            connection = self._connection()
+            connection.execute("INSERT OR REPLACE INTO answers (key, headers, body, size) VALUES (?, ?, ?, ?)",
+                               (key, text, body, size))
+            total = connection.execute("SELECT COALESCE(SUM(size), 0) FROM answers").fetchone()[0]
+            if total > self.max_bytes:
+                connection.execute(
+                    "DELETE FROM answers WHERE rowid IN (SELECT rowid FROM answers ORDER BY rowid LIMIT "
+                    "(SELECT COUNT(*) FROM answers) / 4 + 1)")
+            self.writes += 1
+        except sqlite3.Error as error:
+            self._failed("write", error)
+
+    def _failed(self, what: str, error: Exception) -> None:
+        self.failures += 1
+        if self.failures <= 3:
+            log.warning("shared response cache %s: %s skipped (%s)", self.path, what, error)
+
+    def stats(self) -> dict:
+        return {"path": str(self.path), "hits": self.hits, "misses": self.misses, "writes": self.writes,
+                "failures": self.failures}
+
+
+def from_env(max_bytes: int) -> SharedStore | None:
+    """The shared store this process should use (default_path), or None; None as well when it cannot be opened."""
+    path = default_path()
+    if path is None or max_bytes <= 0:
+        return None
+    try:
+        return SharedStore(path, max_bytes)
+    except (sqlite3.Error, OSError) as error:
+        log.warning("shared response cache %s not opened (%s): each worker keeps its own", path, error)
+        return None
