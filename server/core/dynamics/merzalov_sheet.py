@@ -79,4 +79,17 @@ def merzalov_sheet(phi: np.ndarray, moment: np.ndarray, work_driving: np.ndarray
                   "y_A_d": float(a_d[k] * mu_a), "y_A_c": float((a_d[k] - a[k]) * -mu_a), "y_A": float(a[k] * mu_a),
                   "y_I": float(y_tii[k]), "y_TII_star": float(y_tii[k] * mu_a / mu_t),      # (L21)
                   "y_dTI": float(dt[k] * mu_a)} for k in range(POSITIONS + 1)]
-    return {"scales": rows, "ordinates": ordinates}
+    return {"scales": rows, "ordinates": ordinates, "drawing": sheet_drawing(ordinates, mu_phi)}
+
+
+def sheet_drawing(ordinates: list[dict], mu_phi: float) -> dict:
+    """What the sheet's drawing needs beyond the ordinates, in mm: the abscissa of each position (x = μ_φ φ),
+    the pole P at (−k₁, 0) and the graphical integration's rays (Lecture 10 §10.6, (L19)): over each interval
+    between two positions the mean ordinate of M_д, y_Mср = k₁ Δy_Aд/Δx (the integral's chord is parallel to
+    the ray from P to (0, y_Mср)), drawn at the interval's middle and carried to the ordinate axis."""
+    x = [float(mu_phi * np.radians(row["phi"])) for row in ordinates]
+    rays = [{"interval": k + 1, "x_from": x[k], "x_to": x[k + 1],
+             "y_mean": POLE_MM * (ordinates[k + 1]["y_A_d"] - ordinates[k]["y_A_d"]) / (x[k + 1] - x[k])}
+            for k in range(len(ordinates) - 1)]
+    return {"base": BASE_MM, "pole": POLE_MM, "x": x, "rays": rays,
+            "heights": {"moment": MOMENT_MM, "inertia": INERTIA_MM}}

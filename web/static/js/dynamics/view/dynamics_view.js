@@ -57,6 +57,7 @@ const PANEL_VIEWS = {
   gear_train: { load: () => import("../../angular_acceleration/view/gear_train_view.js").then((m) => m.GearTrainView), drawing: true },
   indicator_diagram: { load: () => import("../../flywheel/view/indicator_diagram_view.js").then((m) => m.IndicatorDiagramView) },
   mass_model: { load: () => import("./mass_model_view.js").then((m) => m.MassModelView) },
+  merzalov_sheet: { load: () => import("../../flywheel/view/merzalov_sheet_view.js").then((m) => m.MerzalovSheetView) },
   reference_table: { load: () => import("./reference_table_view.js").then((m) => m.ReferenceTableView) },
   toggle_drawings: { load: () => import("./toggle_drawings_view.js").then((m) => m.ToggleDrawingsView), drawing: true },
   wittenbauer: { load: () => import("../../flywheel/view/wittenbauer_view.js").then((m) => m.WittenbauerView), drawing: true },
