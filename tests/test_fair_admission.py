@@ -37,8 +37,9 @@ class HeldApp:
 class Exchange:
     """One request: label, address, cookie id, path; its answer's messages; its client can hang up."""
 
-    def __init__(self, middleware, label, host, client_id, path="/api/v1/kinematics"):
+    def __init__(self, middleware, label, host, client_id, path="/api/v1/kinematics", reading=None):
         self.sent: list[dict] = []
+        self.reading = reading              # an event: the client reads its answer's body only once it is set
         self.hang_up = asyncio.Event()
         self.body_read = False
         headers = [(b"x-label", label.encode())] + ([(b"cookie", f"{COOKIE}={client_id}".encode())]
@@ -56,6 +57,8 @@ class Exchange:
 
     async def _send(self, message):
         self.sent.append(message)
+        if self.reading is not None and message["type"] == "http.response.body":
+            await self.reading.wait()
 
     @property
     def status(self):
@@ -178,4 +181,29 @@ def test_with_the_address_cap_off_each_cookie_is_served_as_an_address_of_its_own
         for n in range(3):
             app.release(f"s{n}")
         await asyncio.gather(*(e.task for e in exchanges))
+    run_to_end(scenario())
+
+
+def test_a_client_reading_its_answer_slowly_holds_no_place():
+    """The place is the computation's: once the answer starts, the next request is computed, however slowly the
+    first client reads (a send that does not return stands for a reader that does not drain its socket)."""
+    async def scenario():
+        app = HeldApp()
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
+        reading = asyncio.Event()
+        slow = Exchange(middleware, "slow", "10.0.0.1", cookie(1), reading=reading)
+        await settle()
+        other = Exchange(middleware, "other", "10.0.0.2", cookie(2))
+        await settle()
+        assert app.order == ["slow"]
+        app.release("slow")
+        await settle()
+        assert slow.status == 200 and not slow.task.done()          # its answer still being read
+        assert app.order == ["slow", "other"]                       # computed meanwhile
+        app.release("other")
+        await other.task
+        assert other.status == 200
+        reading.set()
+        await slow.task
+        assert not middleware.in_flight and len(middleware.lanes["light"]) == 0
     run_to_end(scenario())

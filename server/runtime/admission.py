@@ -33,7 +33,8 @@ of 429s that would take the event loop from everyone else (bench/results/fairnes
 
 A client that goes away while its request waits in a lane leaves the lane; one that goes away while its
 computation runs has it cancelled (a heavy one leaves the process pool's queue) and its place released; a light
-one already running in a thread finishes unseen. ``CLIENT`` holds (address, cookie id) while a request is served,
+one already running in a thread finishes unseen. A place is held while the answer is computed, not while it is
+sent: a client that reads its answer slowly holds no place of anyone's. ``CLIENT`` holds (address, cookie id) while a request is served,
 for a queue further in that wants to serve clients in turn too.
 """
 from __future__ import annotations
@@ -223,10 +224,18 @@ class AdmissionMiddleware:
                 return                                   # gone before its body was in
             try:
                 if await _entered(lane, group, who, listening):
+                    held = [True]
+
+                    async def send_freeing_the_place(message):
+                        if held[0] and message["type"] == "http.response.start":
+                            held[0] = False                  # computed: a slow reader holds no place
+                            lane.leave(group)
+                        await send(message)
                     try:
-                        await _run_until_disconnect(self.app, scope, _replay(body, listening), send)
+                        await _run_until_disconnect(self.app, scope, _replay(body, listening), send_freeing_the_place)
                     finally:
-                        lane.leave(group)
+                        if held[0]:
+                            lane.leave(group)
             finally:
                 listening.cancel()
         finally:
