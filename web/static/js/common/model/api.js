@@ -6,7 +6,7 @@
  * that has been superseded is dropped. A slider drag therefore costs one request per server round
  * trip, and the screen always ends on the latest parameters.
  *
- * An answer is {ok: true, data} with the response body, or {ok: false, error: {code, message}} where
+ * An answer is {ok: true, data} with the response body, or {ok: false, error: {code, message, field}} where
  * code is the error code of the 422 answer (content/i18n has err_<code>; null when the answer names none,
  * and its message is shown), "network" or "server".
  *
@@ -115,7 +115,8 @@ export class ApiClient {
       if (response.ok && payload) return { ok: true, data: payload };
       const detail = Array.isArray(payload?.detail) ? payload.detail[0] : null;
       if (!detail) return { ok: false, error: { code: "server", message: `HTTP ${response.status}` } };
-      return { ok: false, error: { code: detail.ctx?.code ?? null, message: detail.msg, ctx: detail.ctx ?? {} } };
+      const field = Array.isArray(detail.loc) && detail.loc[0] === "body" ? detail.loc.slice(1).join(".") : null;
+      return { ok: false, error: { code: detail.ctx?.code ?? null, message: detail.msg, ctx: detail.ctx ?? {}, field } };
     } catch (error) {
       return { ok: false, error: { code: "network", message: String(error) } };
     }

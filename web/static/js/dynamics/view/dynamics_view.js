@@ -54,6 +54,7 @@ const PANEL_VIEWS = {
   flywheel_drawing: { load: () => import("../../flywheel/view/flywheel_drawing_view.js").then((m) => m.FlywheelDrawingView), drawing: true },
   free_body: { load: () => import("../../forces_friction/view/free_body_view.js").then((m) => m.FreeBodyView), drawing: true },
   group_free_body: { load: () => import("../../forces_friction/view/group_free_body_view.js").then((m) => m.GroupFreeBodyView), drawing: true },
+  free_law_table: { load: () => import("./free_law_editor_view.js").then((m) => m.FreeLawEditorView) },
   gear_train: { load: () => import("../../angular_acceleration/view/gear_train_view.js").then((m) => m.GearTrainView), drawing: true },
   indicator_diagram: { load: () => import("../../flywheel/view/indicator_diagram_view.js").then((m) => m.IndicatorDiagramView) },
   mass_model: { load: () => import("./mass_model_view.js").then((m) => m.MassModelView) },
