@@ -218,6 +218,10 @@ def search(holds: Callable[[int], bool], sizes: list[int], resolution: float, bi
     return {"held": held, "failed": failed, "bounded": failed is not None}
 
 
+def plural(count: int, noun: str) -> str:
+    return f"{count} {noun}{'' if count == 1 else 's'}"
+
+
 def fmt_ms(value: float) -> str:
     return "∞ (given up)" if value == math.inf else f"{value:,.0f}"
 
@@ -278,15 +282,21 @@ def markdown(args, argv: list[str], runs: dict[str, list[dict]], found: dict[str
     ]
     lines += ["Scene mix (share of the class, by largest remainders): " + ", ".join(
         f"{scene} {share:g} %" for scene, share in classroom.SCENE_MIX.items()) + ".", ""]
+    loaded = max((r["load_before"][0] for results in runs.values() for r in results), default=0.0)
+    if loaded > (os.cpu_count() or 1):
+        lines += [f"**Not the measurement: the machine was busy with other jobs** (load average up to {loaded:.1f} "
+                  f"on {os.cpu_count()} CPUs before a class): they took CPU from the servers and the class, so the "
+                  "classes held below understate what the deployments hold. Run it again on a quiet machine.", ""]
     base = found.get("one-cpu")
-    lines += ["| deployment | CPUs | students held | students per CPU | × one CPU | runs |",
-              "|---|---:|---:|---:|---|---:|"]
+    lines += ["| deployment | CPUs | students held | students per CPU | × one CPU | runs | minutes |",
+              "|---|---:|---:|---:|---|---:|---:|"]
     for name, result in found.items():
         deployment = DEPLOYMENTS[name]
         per_cpu = f"{'≥ ' if not result['bounded'] else ''}{result['held'] / deployment.cpus:.1f}"
         times = "1" if name == "one-cpu" else ratio_text(result, base, TARGET_RATIO if name == "two-servers" else None)
+        minutes = sum(r.get("duration", 0.0) for r in runs[name]) / 60
         lines.append(f"| {name}: {deployment.title} | {deployment.cpus} | {held_text(result)} | {per_cpu} | {times} | "
-                     f"{len(runs[name])} |")
+                     f"{len(runs[name])} | {minutes:.0f} |")
     lines.append("")
     for name, results in runs.items():
         deployment = DEPLOYMENTS[name]
@@ -314,7 +324,7 @@ def markdown(args, argv: list[str], runs: dict[str, list[dict]], found: dict[str
     if details:
         lines += ["## Details: the largest class held and the smallest that failed", ""]
         for name, result in details:
-            lines += classroom.markdown_run(result, f"{name}, {result['students']} students")
+            lines += classroom.markdown_run(result, f"{name}, {plural(result['students'], 'student')}")
     return "\n".join(lines) + "\n"
 
 
@@ -376,11 +386,13 @@ def main(argv: list[str] | None = None) -> int:
         deployment = DEPLOYMENTS[name]
 
         def holds(students: int) -> bool:
+            started = time.monotonic()
             result = run_class(deployment, students, args.seconds, args.seed, args.tree)
+            result["duration"] = time.monotonic() - started        # start-up, settling and stop included
             runs[name].append(result)
             judged = verdict(result)
-            print(f"{name}: {students} students, load before {loads(result['load_before'])}, servers settled in "
-                  f"{result['settled']:.0f} s: "
+            print(f"{name}: {plural(students, 'student')}, load before {loads(result['load_before'])}, servers "
+                  f"settled in {result['settled']:.0f} s: "
                   + ("held" if judged["held"] else "failed (" + "; ".join(judged["reasons"]) + ")"), flush=True)
             write(False)
             return judged["held"]

@@ -101,7 +101,7 @@ def test_a_quick_run_writes_its_tables_and_stops_every_server_and_nginx(tmp_path
     assert run.returncode == 0, run.stderr[-3000:]
     text = output.read_text(encoding="utf-8")
     for name in ("one-cpu", "two-servers"):
-        assert re.search(rf"^\| {name}: .+ \| \d \| \d+ \| [\d.]+ \| .+ \| 1 \|$", text, re.M), text
+        assert re.search(rf"^\| {name}: .+ \| \d \| \d+ \| [\d.]+ \| .+ \| 1 \| \d+ \|$", text, re.M), text
         assert f"## {name}: " in text and f"## {name}, 2 students" in text, text
     assert "taskset -c 0 python3 -m server --port P1" in text and "taskset -c 1 python3 -m server --port P2" in text
     runs = re.findall(r"^\| 2 \| [\d.]+ / [\d.]+ / [\d.]+ \| .*\| (yes|\*\*no\*\*.*) \|$", text, re.M)
