@@ -257,13 +257,13 @@ def markdown(args, targets: list[Target], sizes: dict, scenes: dict, startup: di
               "the bare app answering the same request with the bytes the new app sent for it. Times in ms; "
               f"× floor = p50 / the floor's p50 beside it. Target: new ≤ {SCENE_FLOOR_TARGET:g}× floor. CPU per "
               "request: the CPU time of each server's processes over the scene's timed requests (from /proc, "
-              "1/100 s ticks), divided by their count; a loaded machine stretches wall-clock times but hardly "
+              "1/100 s ticks), divided by their count; a loaded machine stretches wall-clock times far more than "
               "the CPU a request takes. CPU × floor: against the floor's CPU per request over the kinematics "
               f"round trips, {args.floor_cpu_ms:.2f} ms. "
               f"Load average at the end: {os.getloadavg()[0]:.1f}.", "",
               "| scene | variant | endpoint | bytes (gzip) | floor p50 | old p50 | old p95 | old × floor | new p50 "
               f"| new p95 | new × floor | old/new (p50) | new ≤ {SCENE_FLOOR_TARGET:g}× floor | CPU ms per request: "
-              "floor / old / new | CPU × floor: old / new | X-Cache new | errors old / new |",
+              "old / new | CPU × floor: old / new | X-Cache new | errors old / new |",
               "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---|"]
     for scene, variant, targets in scenes.values():
         o50, o95 = percentiles(targets["old"].times)
