@@ -140,6 +140,17 @@ def test_the_compiled_steps_are_the_plain_steps(built):
         assert compiled.numerics.error_estimate == pytest.approx(plain.numerics.error_estimate, rel=1e-6)
 
 
+
+def test_after_warm_up_no_approximation_compiles_anything():
+    """warm_up compiles the loop's one signature: the steps of every machine above (kloss, linearised, a viscous
+    load) add none, so no request waits for the compiler."""
+    from server.core.dynamics import approximations_compiled
+    approximations_compiled.warm_up()
+    before = len(approximations_compiled.approximation_steps.signatures)
+    steps_both_ways(machine(5.0))
+    steps_both_ways(machine(2.0, LINEARISED))
+    assert len(approximations_compiled.approximation_steps.signatures) == before == 1
+
 BODY = {"mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3, "e": 0, "a2": 0.5},
         "inertias": {"J1": 5, "m2": 5, "J_S2": 0.05, "m3": 10, "J_rotor": 0.01, "gear_ratio": 5},
         "load": {"force": 2000, "return_factor": 0.2, "f": 0.1},
