@@ -41,3 +41,13 @@ def test_the_angle_column_carries_no_float_noise_and_the_values_every_digit():
     assert [row[1] for row in rows[1:]] == ["0,1234567", "-1,5e-7", "2", "3,25", "", "7,654321", "0,001", "8", "9,5"]
     rows = [line.split(",") for line in csv_of(graph, "point").lstrip("\ufeff").splitlines() if line]
     assert rows[2] == ["45", "-1.5e-7"]
+
+
+def test_a_letter_superscript_keeps_its_caret_in_the_header():
+    """The reduced moment's column reads "Mд^пр, Н·м" (not "Mдпр"); a digit superscript is a glyph (R^{1/3} → R¹/³
+    as notation.js writes it), a subscript digit too ("Mс₀")."""
+    graph = {"data": [{"x": [0, 1], "y": [1.5, 2.5], "hovertemplate": "M<sub>д</sub><sup>пр</sup> = %{y} Н·м<extra></extra>"},
+                      {"x": [0, 1], "y": [3, 4], "hovertemplate": "M<sub>с0</sub><sup>2</sup> = %{y} Н·м<extra></extra>"}],
+             "layout": {"xaxis": {"title": {"text": "φ, °"}}}}
+    header = csv_of(graph, "comma").lstrip("\ufeff").splitlines()[0].split(";")
+    assert header == ["φ, °", "Mд^пр, Н·м", "Mс₀², Н·м"]

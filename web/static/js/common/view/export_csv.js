@@ -24,10 +24,12 @@ export function abscissa(value) {
 
 const ENTITIES = { "&amp;": "&", "&lt;": "<", "&gt;": ">", "&quot;": "\"", "&#39;": "'" };
 
-/** Plotly's pseudo-HTML ("M<sub>с0</sub>") as plain text in the app's notation ("Mс₀"). */
+/** Plotly's pseudo-HTML ("M<sub>с0</sub>") as plain text in the app's notation ("Mс₀"); a superscript of
+ * letters keeps its caret, which no glyph can stand for ("M<sub>д</sub><sup>пр</sup>" → "Mд^пр", not "Mдпр"). */
 export function plotPlain(html) {
   const markup = String(html ?? "")
-    .replace(/<sub>(.*?)<\/sub>/g, "_{$1}").replace(/<sup>(.*?)<\/sup>/g, "^{$1}")
+    .replace(/<sub>(.*?)<\/sub>/g, "_{$1}")
+    .replace(/<sup>(.*?)<\/sup>/g, (whole, run) => (/^[\d+\-−=()/]*$/.test(run) ? `^{${run}}` : `\\^${run}`))
     .replace(/<br\s*\/?>/g, " ").replace(/<[^>]+>/g, "")
     .replace(/&(amp|lt|gt|quot|#39);/g, (entity) => ENTITIES[entity]);
   return plainText(markup).trim();
