@@ -48,7 +48,7 @@ export class FreeLawEditorView {
         element("th", { scope: "col", textContent: "№" }),
         element("th", { scope: "col", rich: this.words.phi }),
         element("th", { scope: "col", rich: this.words.moment }),
-        element("th", { scope: "col", textContent: "" }))),
+        element("td", {}))),               // the remove buttons' column: no heading of its own
       this.rows), element("p", { className: "free-law-actions" }, add, reset), this.message, ...note);
     this.#fill();
     model.on("result", (answer) => this.#answered(answer));

@@ -152,7 +152,7 @@ export class MerzalovSheetView {
       let y = labelAt(key) + 1.2;
       while (placed.some((other) => Math.abs(other - y) < FONT)) y += FONT;
       placed.push(y);
-      this.#text(frame.group, frame.X(this.drawing.base) + 1.5, y, names[key], { size: FONT * 0.85 });
+      this.#text(frame.group, frame.X(this.drawing.base) + 5, y, names[key], { size: FONT * 0.85 });   // beyond "12"
     }
     return frame.bottom;
   }
