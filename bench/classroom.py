@@ -261,6 +261,7 @@ class Connection:
             answer = self.connection.getresponse()
             answer.read()
             self.student.keep_cookies(answer.getheaders())
+            self.reused = True        # the server may close it while idle before the first post: sent again then
         except (OSError, http.client.HTTPException):
             self._reopen()
 
