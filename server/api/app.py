@@ -14,7 +14,7 @@ from ..core.mechanisms import GeometryError
 from ..core.warm_up import warm_up
 from . import access_log
 from ..classroom import answers as classroom_answers, assignment_store
-from ..runtime import heavy
+from ..runtime import default_answers, heavy
 from .errors import busy, geometry_error, not_found, server_error, store_unavailable, too_often, validation_error
 from ..runtime.admission import AdmissionMiddleware
 from .bench_pages import BenchResults
@@ -51,7 +51,9 @@ async def lifespan(app: FastAPI):
     logging.getLogger("uvicorn.error").info("compiled code ready in %.2f s (%s)", time.perf_counter() - started,
                                             ", ".join(f"{part} {seconds:.2f} s" for part, seconds in parts.items()))
     heavy.frozen_after_start()
+    app.state.default_answers = default_answers.start(app)   # MDL_WARM_DEFAULTS: on spare CPU, after the start
     yield
+    await default_answers.stop(app.state.default_answers)
     heavy.shutdown()                   # the heavy processes end with the worker
     cache = getattr(app.state, "response_cache", None)
     if cache is not None:              # one line per worker: its counters, as GET /api/v1/cache gives them
