@@ -5,7 +5,8 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic_core import InitErrorDetails, PydanticCustomError
 
 from ..core.dynamics.motors import INDICATOR_POINTS, TABLE_POINTS, polytropic_diagram
 from ..core.structure.masses import (DIAGRAM_POINTS, FARTHEST, LinkMass, LinkMoment, LoadDiagram, MassModel,
@@ -16,6 +17,34 @@ from .schemas_cycle import CycleInput
 Positive = Field(ge=0.0, le=1e6)
 DynamicsMechanism = Literal["sine", "slider_crank", "slotted_link", "four_bar", "general"]
 LinkNumber = Field(ge=1, le=99, description="the link's number in the linkage (1 = the input crank)")
+TABLE_MOMENT = 1e7              # a free law's moments lie within ±TABLE_MOMENT, N·m
+TABLE_GAP = 1e-6                # a free law's angles increase by at least this, rad
+BOUNDS = {"greater_than_equal", "less_than", "less_than_equal"}
+
+
+def _table_refusal(error: dict, code: str, degrees: bool) -> InitErrorDetails:
+    """A refusal of a free law's table (pydantic's error, its type, field path and words kept) with what the page
+    needs to say it in the reader's language (content/i18n err_<code>): ctx.code; a point's bound refused: point
+    (its row, from 1), min and max (degrees for an angle, N·m for a moment); a length refused: min and max points."""
+    ctx = dict(error.get("ctx") or {})
+    loc = error["loc"]
+    if error["type"] in BOUNDS and len(loc) == 1 and isinstance(loc[0], int):
+        low, high = (0.0, 2 * math.pi) if degrees else (-TABLE_MOMENT, TABLE_MOMENT)
+        scale = 180 / math.pi if degrees else 1.0
+        ctx |= {"code": code, "point": loc[0] + 1, "min": low * scale, "max": high * scale}
+    elif error["type"] in {"too_short", "too_long"}:
+        ctx |= {"code": "free_law_points", "min": TABLE_POINTS[0], "max": TABLE_POINTS[1]}
+    return InitErrorDetails(type=PydanticCustomError(error["type"], error["msg"], ctx or None), loc=loc,
+                            input=error["input"])
+
+
+def coded_table(value, handler, code: str, degrees: bool):
+    """Validate a free law's list (handler: pydantic's own checks), its refusals coded for translation."""
+    try:
+        return handler(value)
+    except ValidationError as refused:
+        raise ValidationError.from_exception_data(
+            refused.title, [_table_refusal(error, code, degrees) for error in refused.errors()]) from None
 
 
 class InertiaInput(BaseModel):
@@ -71,16 +100,27 @@ class MotorInput(BaseModel):
     table_phi: list[Annotated[float, Field(ge=0, lt=2 * math.pi)]] | None = Field(
         None, min_length=TABLE_POINTS[0], max_length=TABLE_POINTS[1],
         description="table: crank angles φ_j of the free law, rad, increasing within one turn [0, 2π)")
-    table_moment: list[Annotated[float, Field(ge=-1e7, le=1e7)]] | None = Field(
+    table_moment: list[Annotated[float, Field(ge=-TABLE_MOMENT, le=TABLE_MOMENT)]] | None = Field(
         None, min_length=TABLE_POINTS[0], max_length=TABLE_POINTS[1],
         description="table: the driving moment M_P(φ_j) at the crank shaft, N·m, one per angle")
 
-    @field_validator("table_phi")
+    @field_validator("table_phi", mode="wrap")
     @classmethod
-    def increasing(cls, phi):
-        if phi is not None and any(b - a < 1e-6 for a, b in zip(phi, phi[1:])):
-            raise ValueError("the angles of a free law must increase, at least 1e-6 rad apart")
+    def increasing(cls, value, handler):
+        """Angles within the turn and increasing; a refusal names the point (err_free_law_angle, _increasing)."""
+        phi = coded_table(value, handler, "free_law_angle", degrees=True)
+        for k in range(1, len(phi or ())):
+            if phi[k] - phi[k - 1] < TABLE_GAP:
+                raise PydanticCustomError(
+                    "value_error", "Value error, the angles of a free law must increase, at least 1e-6 rad apart",
+                    {"code": "free_law_increasing", "point": k + 1, "previous": k, "bound": math.degrees(phi[k - 1])})
         return phi
+
+    @field_validator("table_moment", mode="wrap")
+    @classmethod
+    def bounded(cls, value, handler):
+        """Moments within ±TABLE_MOMENT; a refusal names the point (err_free_law_moment)."""
+        return coded_table(value, handler, "free_law_moment", degrees=False)
 
     @model_validator(mode="after")
     def consistent(self):
