@@ -6,8 +6,8 @@
  * dotted path (toggle.param, e.g. "load.convention"); each slider puts value × to_si × (the value at
  * slider.scale, if given) at slider.param and at each of its slider.also paths, e.g. λ sets
  * params.l2 = λ·params.l1 in metres, a slider in degrees has to_si = π/180, and one f sets the friction
- * coefficient of every pair; values the reader edited in a panel (the indicator diagram's points) go to
- * their paths; outputs are whatever the variant's panels need.
+ * coefficient of every pair; values the reader edited in a panel (the indicator diagram's points, a free
+ * law's table) go to their paths; outputs are whatever the variant's panels need.
  *
  * The chosen preset of a slider (presets_view.js) is kept here as its index in the scene's presets, so that
  * the page address holds it (url_state.js).
@@ -18,12 +18,14 @@
  */
 import { pathValue, setPath } from "../../common/model/dotted_paths.js";
 import { SceneSettings } from "../../common/model/scene_settings.js";
+import { isFreeLaw } from "./free_law_table.js";
 
 export class DynamicsModel extends SceneSettings {
   /** initial: as SceneSettings', plus the edits (Map path → list) and the preset's index from the address. */
   constructor(scene, initial = {}) {
     super(scene, initial);
-    for (const [path, values] of initial.edits ?? []) if (this.#editable(path, values)) this.edits.set(path, values);
+    const edits = new Map(initial.edits ?? []);
+    for (const [path, values] of edits) if (this.#editable(path, values, edits)) this.edits.set(path, values);
     this.choosePreset(initial.preset ?? null);
   }
 
@@ -76,11 +78,19 @@ export class DynamicsModel extends SceneSettings {
     this.preset = null;
   }
 
-  /** A list a panel of the variant edits (spec.paths), of as many finite numbers as the variant's own. */
-  #editable(path, values) {
-    const paths = this.variant.panels.flatMap((id) => Object.values(this.scene.panels[id]?.paths ?? {}));
+  /**
+   * Whether a list of the address (edits: all of them) is one a panel of the variant edits (spec.paths): finite
+   * numbers, as many as the variant's own list; a free law's table (a panel of kind "free_law_table": its angles
+   * and moments, the variant's own list where the address has none) of any length the server accepts.
+   */
+  #editable(path, values, edits) {
+    const panel = this.variant.panels.map((id) => this.scene.panels[id])
+      .find((spec) => Object.values(spec?.paths ?? {}).includes(path));
     const own = pathValue(this.variant.request, path);
-    return paths.includes(path) && Array.isArray(own) && values.length === own.length && values.every(Number.isFinite);
+    if (!panel || !Array.isArray(own) || !values.every(Number.isFinite)) return false;
+    if (panel.kind !== "free_law_table") return values.length === own.length;
+    const list = (key) => edits.get(panel.paths[key]) ?? pathValue(this.variant.request, panel.paths[key]);
+    return isFreeLaw(list("phi"), list("moment"));
   }
 
   /** Take the answer to the latest request. */

@@ -3,12 +3,14 @@
  * table of points, φ₁ in degrees and M_P in N·m, one row each (spec.paths.phi and spec.paths.moment, dotted paths
  * into the request such as "motor.table_phi", in rad and N·m). A value typed (a decimal comma or point, a true
  * minus or a hyphen), a row added after the last or removed: the whole table goes to the model as a new request.
- * The server checks the table; a refused one (HTTP 422) is said beside it, the field the server names first
- * ("motor.table_phi: …"), and the table stays as typed for the student to mend. The scene's points come back
- * with a button.
+ * The server checks the table; a refused one (HTTP 422) is said below it in the page's language, by the
+ * server's code and context (content/i18n err_free_law_*: the row and the bound, messages.js errorReason), and
+ * the table stays as typed for the student to mend; a refusal the app has no text for is said by the field and
+ * the server's words. From 2 to 361 rows (free_law_table.js). The scene's points come back with a button.
  */
 import { pathValue } from "../../common/model/dotted_paths.js";
 import { errorReason } from "../../common/view/messages.js";
+import { TABLE_POINTS } from "../model/free_law_table.js";
 import { element } from "../../common/view/dom.js";
 
 const DEGREE = Math.PI / 180;
@@ -40,6 +42,7 @@ export class FreeLawEditorView {
     this.message = element("p", { className: "free-law-refusal", role: "alert", hidden: true });
     const add = element("button", { type: "button", className: "add-point", textContent: this.words.add });
     add.addEventListener("click", () => this.#add());
+    this.addButton = add;
     const reset = element("button", { type: "button", className: "reset", textContent: this.words.reset });
     reset.addEventListener("click", () => this.#send(this.initial.map((point) => ({ ...point }))));
     const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] })] : [];
@@ -76,6 +79,7 @@ export class FreeLawEditorView {
       return element("tr", {}, element("th", { scope: "row", textContent: String(i + 1) }),
         input("phi", this.words.phi_plain), input("moment", this.words.moment_plain), element("td", {}, remove));
     }));
+    this.addButton.disabled = this.points.length >= TABLE_POINTS[1];
   }
 
   #typed(i, key, field) {
@@ -103,14 +107,17 @@ export class FreeLawEditorView {
     this.model.edit(this.spec.paths.moment, points.map((point) => point.moment));
   }
 
+  /** An answer: a refusal said in the page's language (a sentence of its own), else by the field and its words. */
   #answered(answer) {
+    const { error } = answer;
     if (answer.ok) this.#say(null);
-    else this.#say(answer.error.field ? `${answer.error.field}: ${errorReason(answer.error, this.t)}`
-      : errorReason(answer.error, this.t));
+    else if (error.code && this.t[`err_${error.code}`]) this.#say(errorReason(error, this.t, { lang: this.lang }), ". ");
+    else this.#say(error.field ? `${error.field}: ${error.message}` : error.message);
   }
 
-  #say(text) {
+  /** Say text after the words of a refusal (joined by ": ", or ". " before a sentence), or nothing. */
+  #say(text, join = ": ") {
     this.message.hidden = !text;
-    this.message.textContent = text ? `${this.words.refused}: ${text}` : "";
+    this.message.textContent = text ? `${this.words.refused}${join}${text}` : "";
   }
 }
