@@ -133,3 +133,24 @@ def test_the_results_csv_is_headed_in_words_of_the_assignments_language(client, 
         assert 2.5 <= float(row[lam].replace(decimal, ".")) <= 5.0
         if decimal == ",":
             assert "." not in row[lam]
+
+
+# the questions whose labels carry the page's markup (I_м, M_с0^пр, ω_{1ср}): a spreadsheet shows none of it
+MARKED_UP = [("flywheel", "rig", "flywheel_inertia", {"ru": "Iм", "uk": "Iм", "en": "I"}),
+             ("resisting-moment", "sine", "mc0", {"ru": "Mс₀пр", "uk": "Mс₀", "en": "M"}),
+             ("equation-of-motion", "linear", "omega_mean", {"ru": "ω₁ср", "uk": "ω₁ср", "en": "ω₁"})]
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk", "en"])
+@pytest.mark.parametrize("scene, variant, question, plain", MARKED_UP, ids=[m[0] for m in MARKED_UP])
+def test_the_results_csv_writes_the_labels_as_plain_text(client, lang, scene, variant, question, plain):
+    """No header cell holds the page's markup ("_x", "^x", "_{…}"): a label reads as the page's plain text
+    (aria-labels), the digits of a subscript or superscript as Unicode glyphs, its letters as they are."""
+    spec = {"scene": scene, "variant": variant, "questions": [{"id": question}], "lang": lang}
+    created = client.post(API, json=spec)
+    assert created.status_code == 201, created.text
+    created = created.json()
+    text = client.get(f"{API}/{created['id']}/results/{created['results_token']}/csv").text.lstrip("\ufeff")
+    header = next(csv.reader(io.StringIO(text), delimiter=";" if lang in ("ru", "uk") else ","))
+    assert [cell for cell in header if "_" in cell or "^" in cell] == [], header
+    assert any(plain[lang] in cell for cell in header), header

@@ -12,7 +12,8 @@ answer, -1.5) stay numbers: never prefixed.
 
 Conventions by language: ru and uk write ";" between cells and a decimal comma (1,5), as their spreadsheets
 read them; en writes "," and a decimal point. The results' columns are headed in words of the assignment's
-language: the students, the sliders by their labels (λ = l₂/l₁), the questions by theirs.
+language: the students, the sliders by their labels (λ = l₂/l₁), the questions by theirs, as plain text
+(plain_label): a spreadsheet shows no subscript, so the page's markup must not reach it.
 """
 from __future__ import annotations
 
@@ -26,6 +27,8 @@ from fastapi.responses import Response
 from ..classroom.variants import Plan
 from ..lessons.scenes import interface_texts
 from ..classroom.answers import question
+from ..lessons.numbers import SUBSCRIPTS, SUPERSCRIPTS
+from .routers.pages import notation_parts
 from .schemas_assignments import ResultRow
 
 FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
@@ -72,11 +75,22 @@ def csv_attachment(header: list[str], rows: Iterable[list], filename: str, lang:
                     headers={"Content-Disposition": f'attachment; filename="{filename}"'})
 
 
+def plain_label(text: str) -> str:
+    """A label of the page's notation as plain text, the way the page names things where only plain text can
+    stand (plainText of web/static/js/common/view/notation.js, its aria-labels): the markup dropped, the digits
+    of a subscript or superscript written as Unicode glyphs, its letters as they are, for Unicode has no
+    subscript of most letters (Cyrillic none): "u_31" → "u₃₁", "I_м" → "Iм", "M_с0^пр" → "Mс₀пр",
+    "R^{1/3}" → "R¹/³", "solve\\_ivp" → "solve_ivp"."""
+    return "".join(run.translate(SUBSCRIPTS if shift == "sub" else SUPERSCRIPTS) if shift else run
+                   for run, shift in notation_parts(text))
+
+
 def parameter_label(resolved: Plan, key: str, lang: str) -> str:
-    """A slider's or a toggle's label in the language; the key itself for a value no control shows."""
+    """A slider's or a toggle's label in the language, as plain text; the key itself for a value no control
+    shows."""
     for control in [*resolved.variant.sliders, *resolved.variant.toggles]:
         if control.id == key:
-            return control.label.get(lang) or control.label.get("en") or key
+            return plain_label(control.label.get(lang) or control.label.get("en") or key)
     return key
 
 
@@ -85,7 +99,7 @@ def results_table(resolved: Plan, rows: Iterable[ResultRow], lang: str) -> tuple
     words = interface_texts(lang)
     word = {name: words.get(key, name) for name, key in WORDS.items()}
     questions = [pick.id for pick in resolved.spec.questions]
-    labels = {q: question(resolved.scene, q).label.get(lang, q) for q in questions}
+    labels = {q: plain_label(question(resolved.scene, q).label.get(lang, q)) for q in questions}
     parameters = list(resolved.values(0))
     header = [word["student"], word["variant"], *[parameter_label(resolved, p, lang) for p in parameters],
               *[f"{labels[q]}: {part}" for q in questions
