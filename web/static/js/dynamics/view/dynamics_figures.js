@@ -30,6 +30,7 @@ import {
 
 const DASHES = { solid: "solid", dotted: "dot", dashed: "dash" };
 const STARTUP_COLOR = COLORS[2];
+const RADIAL_TICKS = 5;      // the most tick labels along a polar plot's radius (Plotly picks a round step)
 
 /** True where the answer holds a value, or a curve with at least one defined point, at path. */
 export function holds(data, path) {
@@ -200,9 +201,11 @@ export function polarFigure(panel, data, texts) {
         // autorange said: under the graph's uirevision Plotly kept an earlier answer's radial range (curves clipped)
         // the radial axis along 0°, its tick labels above it and its title above them: Plotly sets the title off
         // by the axis layer's height, which is the axis's own length for an upright axis (title over the ticks),
-        // and below a level axis it leaves the title's box 3 px into the labels' (above it, 2 px clear)
+        // and below a level axis it leaves the title's box 3 px into the labels' (above it, 2 px clear);
+        // at most RADIAL_TICKS ticks: the labels lie side by side along the radius, whose length on a phone
+        // (some 150 px) left Plotly's own choice of eight 3-digit labels running together ("100120140")
         radialaxis: { autorange: true, rangemode: "tozero", angle: 0, tickangle: 0, side: "counterclockwise", gridcolor: GRID,
-          exponentformat: "power", hoverformat: ".4g", title: { text: radius } },
+          nticks: RADIAL_TICKS, exponentformat: "power", hoverformat: ".4g", title: { text: radius } },
       },
     },
   };
