@@ -11,7 +11,9 @@ from server.api.app import app
 from server.lessons.scenes import interface_texts, scenes
 
 client = TestClient(app)
-FOLDED = {"wear": ("ISNKPKPM", "(4.24)"), "angular-acceleration": ("−0,0565", "(4)")}
+FOLDED = {"wear": ("ISNKPKPM", "(4.24)"), "angular-acceleration": ("−0,0565", "(4)"),
+          "bearings": ("(2.11)", "(2.19)"), "elastic-four-bar": ("(8)", "10⁷"),
+          "induction-motor": ("b₁*", "§10.10"), "friction-influence": ("(3.30)", "(4.24)")}
 SHORT = 420        # characters: two or three lines of the intro's width
 
 
