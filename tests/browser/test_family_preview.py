@@ -279,7 +279,7 @@ def test_grabbing_another_slider_aborts_the_family_on_its_way_and_keeps_the_coar
     assert page.problems == []
 
 
-def test_keyboard_focus_asks_for_the_family_and_each_key_press_ends_exact(family_page):
+def test_keyboard_focus_asks_for_the_family_and_a_key_press_shows_the_exact_answer_at_rest(family_page):
     page = family_page
     page.goto("/scenes/transfer-functions?lang=uk&variant=slider_crank")
     page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="u31")

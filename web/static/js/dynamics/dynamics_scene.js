@@ -94,10 +94,12 @@ previews.on("preview", (answer) => {
   markPreview(true);
   view.preview(answer.data).then(() => performance.mark("plots-drawn"));
 });
+previews.on("family", () => view.useFamily(previews.held()));
 model.on("result", (answer) => {
   previews.end();
   markPreview(false);
   if (view.animated && answer.ok && Array.isArray(answer.data.phi)) animation.setCycle(wholeTurns(answer.data.phi.at(-1)));
+  view.family = previews.held();        // its axes hold the family's members: the next preview fits them
   view.show(answer);
   view.drawn().then(() => performance.mark("exact-drawn"));
 });

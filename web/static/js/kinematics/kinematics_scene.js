@@ -84,12 +84,14 @@ previews.on("preview", (answer) => {
   linkage.show(answer, animation.phi);
   plots.preview(answer, model.overlays).then(() => performance.mark("plots-drawn"));
 });
+previews.on("family", () => plots.useFamily(previews.held()));
 model.on("result", (answer) => {
   previews.end();
   previewed = null;
   markPreview(false);
   if (answer.ok) animation.setCycle(answer.data.cycle);
   linkage.show(answer, animation.phi);
+  plots.family = previews.held();        // its axes hold the family's members: the next preview fits them
   plots.show(answer, model.overlays);
   status.show(answer, model.overlays);
   plots.drawn().then(() => performance.mark("exact-drawn"));

@@ -7,9 +7,16 @@
  * of the last drawing until the next Plotly.react (the exact answer). Where that would mislead or cannot
  * be done — a curve leaving the drawn axes' range, a trace of another kind or mode, a different number
  * of traces, gaps or points — it answers false and the caller draws with Plotly.react.
+ * So that the first preview after an exact answer fits too, a view holding the family of the slider the reader
+ * holds draws the exact answer with axes that hold every member of the family (familyExtents, withFamily).
  */
 
-const within = (value, range) => value >= Math.min(...range) && value <= Math.max(...range);
+const SLACK = 1e-3;      // a point this fraction of its axis's span beyond it is in (under a pixel: a φ grid
+                        // interpolated between members may end a rounding error past the cycle)
+const within = (value, [a, b]) => {
+  const slack = SLACK * Math.abs(b - a);
+  return value >= Math.min(a, b) - slack && value <= Math.max(a, b) + slack;
+};
 const linear = (...axes) => axes.every((axis) => axis?.range && axis.type === "linear");
 
 /**
@@ -110,19 +117,18 @@ export function moveCurves(graph, data) {
 }
 
 const ROOM = 0.2;     // a preview drawn by Plotly.react leaves this fraction of its data's span free each side
+const FAMILY_ROOM = 0.05;     // a family's ranges: this fraction of the members' span free each side (interpolation's swing)
 
-/**
- * The figure for a preview that Plotly.react must draw (a curve left the axes): every axis Plotly would
- * range automatically gets a fixed range with ROOM around the data, so the next preview frames fit and are
- * moved in place again. The exact answer's figure ranges its axes as usual.
- */
-export function roomy({ data, layout }) {
-  const extents = new Map();      // layout key → [low, high] of the data on it
+/** The extent [low, high] of the data on each axis Plotly would range itself: Map layout key → [low, high]. */
+function extents({ data, layout }, into = new Map()) {
   const widen = (key, values) => {
-    const numbers = values.filter(Number.isFinite);
-    if (!numbers.length) return;
-    const [low, high] = extents.get(key) ?? [Infinity, -Infinity];
-    extents.set(key, [Math.min(low, ...numbers), Math.max(high, ...numbers)]);
+    let [low, high] = into.get(key) ?? [Infinity, -Infinity];
+    for (const value of values ?? []) {
+      if (!Number.isFinite(value)) continue;
+      if (value < low) low = value;
+      if (value > high) high = value;
+    }
+    if (low <= high) into.set(key, [low, high]);
   };
   for (const trace of data) {
     if (trace.type === "scatter") {
@@ -132,17 +138,68 @@ export function roomy({ data, layout }) {
       widen("polar", trace.r);
     }
   }
-  const roomier = { ...layout };
-  for (const [key, [low, high]] of extents) {
-    const room = (high - low) * ROOM || Math.abs(high) * ROOM || 1;
+  for (const [key, axis] of Object.entries(layout)) {       // an axis the figure ranges itself: its range
+    if (/^[xy]axis\d*$/.test(key) && Array.isArray(axis?.range)) widen(`fixed ${key}`, axis.range);
+  }
+  return into;
+}
+
+/** A round step of a tenth to a twentieth of span: ranges rounded out to it stay the same for slightly different data. */
+function roundStep(span) {
+  const power = 10 ** Math.floor(Math.log10(span));
+  return [1, 2, 5, 10].map((m) => m * power / 10).find((step) => span / step <= 20) ?? power;
+}
+
+/**
+ * The figure with every axis Plotly would range itself fixed to its extent (Map layout key → [low, high]) with
+ * room (a fraction of the span) each side, rounded out to a round step; an axis the figure ranges itself (φ,
+ * Wittenbauer's diagram) gets the union of the ranges in spans ("fixed xaxis"), without room.
+ */
+function ranged({ data, layout }, spans, room) {
+  const fixed = { ...layout };
+  for (const [key, [low, high]] of spans) {
+    if (key.startsWith("fixed ")) {         // ranged by the figure: the union of its ranges as it is
+      const name = key.slice(6);
+      const reversed = layout[name]?.range[0] > layout[name]?.range[1];
+      if (layout[name]) fixed[name] = { ...layout[name], range: reversed ? [high, low] : [low, high], autorange: false };
+      continue;
+    }
+    const extra = (high - low) * room || Math.abs(high) * room || 1;
+    const step = roundStep(high - low + 2 * extra);
+    const [from, to] = [Math.floor((low - extra) / step) * step, Math.ceil((high + extra) / step) * step];
     if (key === "polar") {
-      roomier.polar = { ...layout.polar, radialaxis: { ...layout.polar.radialaxis, range: [0, high + room], autorange: false } };
+      fixed.polar = { ...layout.polar, radialaxis: { ...layout.polar.radialaxis, range: [0, to], autorange: false } };
       continue;
     }
     const axis = layout[key] ?? {};
     if (axis.autorange === false || axis.range) continue;         // a fixed axis (φ) stays as it is
-    const from = axis.rangemode === "tozero" ? Math.min(0, low) : low - room;
-    roomier[key] = { ...axis, range: [from, high + room], autorange: false };
+    fixed[key] = { ...axis, range: [axis.rangemode === "tozero" ? Math.min(0, from) : from, to], autorange: false };
   }
-  return { data, layout: roomier };
+  return { data, layout: fixed };
+}
+
+/**
+ * The figure for a preview that Plotly.react must draw (a curve left the axes) without a family's ranges:
+ * every axis Plotly would range automatically gets a fixed range with ROOM around the data, so the next
+ * preview frames fit and are moved in place again.
+ */
+export function roomy(figure) {
+  return ranged(figure, extents(figure), ROOM);
+}
+
+/**
+ * The extents of a slider's family in one plot: figureOf(answer) → the plot's figure for a member's answer,
+ * over every answered member (Map layout key → [low, high]). Drawn with these (withFamily), the exact answer's
+ * axes already hold every preview the family gives, so that a preview only moves the curves (moveCurves).
+ */
+export function familyExtents(family, figureOf) {
+  const spans = new Map();
+  for (const answer of family.answers) if (answer) extents(figureOf(answer), spans);
+  return spans;
+}
+
+/** The figure with its free axes fixed to the family's extents (familyExtents) and its own data, with room. */
+export function withFamily(figure, spans) {
+  const both = extents(figure, new Map([...spans].map(([key, span]) => [key, [...span]])));
+  return ranged(figure, both, FAMILY_ROOM);
 }

@@ -29,6 +29,7 @@
  * Events:
  *   "preview"  {ok: true, data, preview: true}: draw this interpolated answer (plots, drawings, cursors);
  *              numbers in tables and readouts stay those of the last exact answer
+ *   "family"   the family of the slider held, at the values shown, has arrived (or a better one): held()
  *
  * Performance marks (bench/browser.py): family-requested (the grab), family-arrived (the first family the
  * preview can draw from), family-coarse-arrived, family-full-arrived, family-given-up (aborted by the next
@@ -81,6 +82,12 @@ export class FamilyPreview extends Emitter {
       requestAnimationFrame(this.#draw);
     }
     return true;
+  }
+
+  /** The family of the slider the reader holds at the other values shown (coarse or full), or null. */
+  held() {
+    const slider = this.model.grabbed;
+    return slider && !slider.locked ? this.#families.get(this.#question(slider).key) ?? null : null;
   }
 
   /** The exact answer is shown: the preview is over. */
@@ -144,6 +151,7 @@ export class FamilyPreview extends Emitter {
       performance.mark(coarse ? "family-coarse-arrived" : "family-full-arrived");
       this.#families.set(key, { ...received(answer.data), log: body.log, coarse });
       if (this.showing) this.preview();                            // the better family redraws the preview
+      this.emit("family", this.#families.get(key));
     });
   }
 

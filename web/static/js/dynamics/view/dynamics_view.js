@@ -13,6 +13,9 @@
  * A panel that needs nothing from the answer ("needs": [], e.g. a calculator) is always shown. A panel
  * of a kind this page has no view for is left out, so new content never breaks an older page.
  *
+ * While the reader holds a slider whose family is here, an exact answer's graphs are drawn with axes that hold
+ * every member of the family (family_plot.js), so that a preview moves their curves only.
+ *
  * Every graph has its toolbar (plot_tools.js: zoom, export) and is drawn explorable (plot_explore.js: hover
  * readouts with units, zoom, the pinned ghost curves of ghost_curves.js under its own).
  *
@@ -23,7 +26,7 @@ import { drawFigure } from "../../common/view/plot_style.js";
 import { element } from "../../common/view/dom.js";
 import { pathValue } from "../../common/model/dotted_paths.js";
 import { heldCurves, heldSeries, holds, plotFigure, polarFigure } from "./dynamics_figures.js";
-import { moveCurves, roomy } from "../../common/view/family_plot.js";
+import { familyExtents, moveCurves, roomy, withFamily } from "../../common/view/family_plot.js";
 import { refusalMessage } from "../../common/view/messages.js";
 import { formatQuantity } from "../../common/view/notation.js";
 import { PanelScheduler } from "../../common/view/panel_scheduler.js";
@@ -47,6 +50,8 @@ const READING_KINDS = ["figures", "table", "numerics"];
  *   paramsChanged()  optional: a value changed (a view with results of its own marks them as earlier)
  *   turnable      optional, a drawing view's: the drawing whose crank turns by hand, {svg, crank(), name?}
  *                 (crank_drag.js), handed to the page's turn(turnable) once the view is made
+ *   useFamily(family)  optional: the family of the slider the reader holds (or null), for a diagram whose axes
+ *                 should hold every member's (family_plot.js); the view redraws itself if it must
  * A view without holds needs nothing from the answer (as a panel with "needs": []): always shown, never given show.
  */
 const PANEL_VIEWS = {
@@ -85,6 +90,11 @@ function holdsPanel(panel, data) {
 }
 
 export class DynamicsView {
+  /** The family of the slider the reader holds (family_preview.js held()), or null: set before show(). */
+  family = null;
+  #spans = new Map();      // panel id → the family's extents in its graph (familyExtents), of #spansOf
+  #spansOf = null;
+
   /**
    * ghosts: the pinned curves (GhostCurves), drawn under each graph's own; turn(turnable): makes a drawing's
    * crank turn by hand with the page's clock.
@@ -105,6 +115,7 @@ export class DynamicsView {
       for (const panel of this.panels) panel.view?.paramsChanged?.();
     });
     ghosts.on("change", () => {
+      this.#spans.clear();
       for (const panel of this.panels) if (panel.graph && panel.graph.data) panel.stale = true;
       this.scheduler.refresh();
     });
@@ -157,6 +168,7 @@ export class DynamicsView {
     }
     this.data = this.plotted = data;
     this.answered = true;
+    for (const panel of this.panels) panel.view?.useFamily?.(this.family);
     this.drawAt(this.phi);
     this.scheduler.refresh();
   }
@@ -175,6 +187,26 @@ export class DynamicsView {
       else if (panel.view?.drawAt && panel.view.holds?.(data)) drawn.push(panel.view.preview ? panel.view.preview(data) : panel.view.show(data));
     }
     return Promise.all([...drawn, this.scheduler.drawNow()]);
+  }
+
+  /**
+   * The family of the slider held has arrived (or null: none): the exact answer's graphs are drawn again where
+   * their axes do not yet hold the family's members (those in view first, the others when idle).
+   */
+  useFamily(family) {
+    if (family === this.family) return;
+    this.family = family;
+    if (!this.data || this.plotted !== this.data) return;       // a preview on the screen: the next exact answer
+    for (const panel of this.panels) if (!panel.figure.hidden) panel.view?.useFamily?.(family);
+    for (const panel of this.panels) {
+      const drawn = panel.graph?.layout;
+      if (!drawn || panel.figure.hidden) continue;
+      const { layout } = this.#figure(panel);
+      panel.stale ||= Object.keys(layout).some((key) => /^([xy]axis|polar)/.test(key)
+        && JSON.stringify(layout[key].range ?? layout[key].radialaxis?.range)
+          !== JSON.stringify(drawn[key]?.range ?? drawn[key]?.radialaxis?.range));
+    }
+    this.scheduler.refresh();
   }
 
   /** Resolves once every graph in view shows what it was last given. */
@@ -256,13 +288,29 @@ export class DynamicsView {
     }).join("\n");
   }
 
+  /** The graph's figure for what is plotted, its axes holding the family's members if one is held. */
+  #figure(panel) {
+    const figureOf = (data) => explorable(panel.spec.kind === "polar" ? polarFigure(panel.spec, data, this.texts)
+      : plotFigure(panel.spec, data, this.texts), this.ghosts.traces(panel.id));
+    const figure = figureOf(this.plotted);
+    if (!this.family) return figure;
+    if (this.#spansOf !== this.family) {
+      this.#spans.clear();
+      this.#spansOf = this.family;
+    }
+    const held = (data) => holdsPanel(panel, data);
+    if (!this.#spans.has(panel.id)) {
+      this.#spans.set(panel.id, familyExtents({ answers: this.family.answers.filter((a) => a && held(a)) }, figureOf));
+    }
+    return withFamily(figure, this.#spans.get(panel.id));
+  }
+
   #draw(panel) {
     if (!this.plotted) return null;
-    let figure = explorable(panel.spec.kind === "polar" ? polarFigure(panel.spec, this.plotted, this.texts)
-      : plotFigure(panel.spec, this.plotted, this.texts), this.ghosts.traces(panel.id));
+    let figure = this.#figure(panel);
     if (this.plotted !== this.data) {             // a preview
       if (moveCurves(panel.graph, figure.data)) return Promise.resolve();
-      figure = roomy(figure);
+      if (!this.family) figure = roomy(figure);     // the family's ranges hold its own data too
     }
     return drawFigure(panel.graph, figure).then(() => panel.cursor?.follow(panel.graph));
   }

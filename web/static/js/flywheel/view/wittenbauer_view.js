@@ -3,14 +3,16 @@
  * runs round the closed curve with the crank angle of the animation, and below it where the tangents
  * meet and what the segment ab gives: I_I = ab/(ω²_mean [δ]), Wittenbauer's flywheel inertia.
  * The point is a positioned element moved with a CSS transform, placed through Plotly's axis maps
- * measured after every redraw, so animation frames never ask Plotly to lay out again.
+ * measured after every redraw, so animation frames never ask Plotly to lay out again. While the reader holds a
+ * slider whose family is here (useFamily), the axes hold the diagram of every member, so that a preview only
+ * moves the curves.
  */
 import { drawFigure } from "../../common/view/plot_style.js";
 import { pathValue } from "../../common/model/dotted_paths.js";
 import { element } from "../../common/view/dom.js";
 import { degrees, formatNumber, formatQuantity, setRichText, unitText } from "../../common/view/notation.js";
 import { sampleAt } from "../../common/model/phi_samples.js";
-import { moveCurves } from "../../common/view/family_plot.js";
+import { familyExtents, moveCurves, withFamily } from "../../common/view/family_plot.js";
 import { energyMass, originInView, wittenbauerFigure } from "./wittenbauer_figure.js";
 
 
@@ -27,6 +29,25 @@ export class WittenbauerView {
     this.maps = null;
     this.listening = false;
     this.phi = 0;
+    this.family = null;
+    this.spans = null;        // the family's extents in the diagram (familyExtents)
+  }
+
+  /** The family of the slider the reader holds (or null): the next drawing's axes hold its members. */
+  useFamily(family) {
+    if (family === this.family) return;
+    this.family = family;
+    this.spans = null;
+    if (this.data && this.drawn === this.diagram) this.show(this.data);
+  }
+
+  /** The diagram's figure for data, its axes holding the family's members if one is held. */
+  #figure(data) {
+    const figureOf = (answer) => wittenbauerFigure(this.spec, answer, { t: this.t, lang: this.lang });
+    const figure = figureOf(data);
+    if (!this.family) return figure;
+    this.spans ??= familyExtents({ answers: this.family.answers.filter((a) => a && this.holds(a)) }, figureOf);
+    return withFamily(figure, this.spans);
   }
 
   holds(data) {
@@ -38,7 +59,7 @@ export class WittenbauerView {
     this.data = data;
     this.diagram = energyMass(this.spec, data);
     this.drawn = this.diagram;
-    const figure = wittenbauerFigure(this.spec, data, { t: this.t, lang: this.lang });
+    const figure = this.#figure(data);
     setRichText(this.caption, this.#caption(data));
     drawFigure(this.graph, figure).then(() => {
       if (!this.listening) {
@@ -56,7 +77,7 @@ export class WittenbauerView {
    */
   preview(data) {
     this.drawn = energyMass(this.spec, data);
-    const figure = wittenbauerFigure(this.spec, data, { t: this.t, lang: this.lang });
+    const figure = this.#figure(data);
     if (moveCurves(this.graph, figure.data)) {
       this.drawAt(this.phi);
       return Promise.resolve();

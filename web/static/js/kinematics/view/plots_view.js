@@ -3,14 +3,16 @@
  * approximation) and note. A cursor line (PlotCursor) over each φ-plot follows the animation.
  * Plots are redrawn by a PanelScheduler: one per animation frame, only those in view; a preview (an answer
  * interpolated from a slider's family) redraws every plot in view at once, moving the curves in place where
- * it can (family_plot.js). Captions and the cursors'
+ * it can (family_plot.js): while the reader holds a slider whose family is here, the exact answer too is drawn
+ * with axes that hold every member of the family, so that the first preview after it moves the curves only.
+ * Captions and the cursors'
  * values are numbers: they always come from the last exact answer.
  * Every plot has its toolbar (plot_tools.js: zoom, export) and is drawn explorable (plot_explore.js: hover
  * readouts with units, zoom, the pinned ghost curves of ghost_curves.js under its own).
  */
 import { drawFigure } from "../../common/view/plot_style.js";
 import { element } from "../../common/view/dom.js";
-import { moveCurves, roomy } from "../../common/view/family_plot.js";
+import { familyExtents, moveCurves, roomy, withFamily } from "../../common/view/family_plot.js";
 import { approximationErrors, exactOutputs, harmonicClaim, isSpectrum, panelFigure } from "./figures.js";
 import { geometryMessage } from "../../common/view/messages.js";
 import { formatNumber, symbol } from "../../common/view/notation.js";
@@ -22,6 +24,11 @@ import { valueAt } from "../../common/model/positions_table.js";
 
 
 export class PlotsView {
+  /** The family of the slider the reader holds (family_preview.js held()), or null: set before show(). */
+  family = null;
+  #spans = new Map();      // panel id → the family's extents in its plot (familyExtents), of #spansOf
+  #spansOf = null;
+
   /** ghosts: the pinned curves (GhostCurves), drawn under each plot's own. */
   constructor(container, { scene, t, lang }, ghosts) {
     this.container = container;
@@ -32,6 +39,7 @@ export class PlotsView {
     this.ghosts = ghosts;
     this.scheduler = new PanelScheduler((panel) => this.#render(panel));
     ghosts.on("change", () => {
+      this.#spans.clear();
       if (!this.table) return;
       for (const panel of this.panels) panel.stale = true;
       this.scheduler.refresh();
@@ -63,6 +71,24 @@ export class PlotsView {
       panel.overlays = overlays;
       panel.stale = answer.ok;
       panel.captioned = false;
+    }
+    this.scheduler.refresh();
+  }
+
+  /**
+   * The family of the slider held has arrived (or null: none): the exact answer shown is drawn again where its
+   * axes do not yet hold the family's members (panels in view first, the others when idle).
+   */
+  useFamily(family) {
+    if (family === this.family) return;
+    this.family = family;
+    if (!this.table || this.plotted !== this.table) return;       // a preview on the screen: the next exact answer
+    for (const panel of this.panels) {
+      const drawn = panel.graph.layout;
+      if (!drawn) continue;
+      const { layout } = this.#figure(panel);
+      panel.stale ||= Object.keys(layout).some((key) => /^[xy]axis/.test(key)
+        && JSON.stringify(layout[key].range) !== JSON.stringify(drawn[key]?.range));
     }
     this.scheduler.refresh();
   }
@@ -112,9 +138,22 @@ export class PlotsView {
       hasCursor: !spec.outputs.some(isSpectrum) };
   }
 
-  #render(panel) {
-    let { data, layout } = explorable(panelFigure(panel.spec, this.plotted, panel.overlays, this.texts),
+  /** The panel's figure for what is plotted, its axes holding the family's members if one is held. */
+  #figure(panel) {
+    const figureOf = (answer) => explorable(panelFigure(panel.spec, answer, panel.overlays, this.texts),
       this.ghosts.traces(panel.id));
+    const figure = figureOf(this.plotted);
+    if (!this.family) return figure;
+    if (this.#spansOf !== this.family) {
+      this.#spans.clear();
+      this.#spansOf = this.family;
+    }
+    if (!this.#spans.has(panel.id)) this.#spans.set(panel.id, familyExtents(this.family, figureOf));
+    return withFamily(figure, this.#spans.get(panel.id));
+  }
+
+  #render(panel) {
+    let { data, layout } = this.#figure(panel);
     if (!panel.captioned) {
       panel.caption.textContent = approximationErrors(panel.spec, this.table, this.texts)
         || harmonicClaim(panel.spec, this.table, this.texts);
@@ -122,7 +161,7 @@ export class PlotsView {
     panel.captioned = true;
     if (this.plotted !== this.table) {            // a preview
       if (moveCurves(panel.graph, data)) return Promise.resolve();
-      ({ layout } = roomy({ data, layout }));
+      if (!this.family) ({ layout } = roomy({ data, layout }));     // the family's ranges hold its own data too
     }
     return drawFigure(panel.graph, { data, layout }).then(() => {
       if (panel.hasCursor) panel.cursor.follow(panel.graph);
