@@ -5,7 +5,11 @@
  * free (rings of CANDIDATE_ANGLES directions at growing distances), or, with no free place within reach,
  * to the place where it covers least, a label counting far more than a part and an edge most.
  * Boxes are measured on the screen (client pixels), so that labels of layers moved by a transform (the cells
- * of a group drawing) are compared as they are seen; a move is written back in the text's own units.
+ * of a group drawing) are compared as they are seen; a move is written back in the text's own units. Every box
+ * is measured before any label moves (one layout of the page, not one per label), and each label is compared
+ * only with the boxes of the cells of a grid it reaches.
+ * A drawing that moves many times a second (a preview while a slider moves) may instead keep each label at the
+ * offset from where its part put it that the last placement gave it (keepPlaces), measuring nothing.
  */
 const RINGS = [4, 8, 13, 19, 26, 34, 43, 53];           // drawing units from where the part put the label
 const CANDIDATE_ANGLES = 16;
@@ -53,6 +57,36 @@ function obstacleBoxes(node) {
   });
 }
 
+/** Boxes filed by the cells (CELL px squares) they touch, to find those near a box without looking at all. */
+class BoxGrid {
+  #cells = new Map();
+
+  #keys(b, each) {
+    for (let i = Math.floor(b.left / CELL); i <= Math.floor(b.right / CELL); i += 1) {
+      for (let j = Math.floor(b.top / CELL); j <= Math.floor(b.bottom / CELL); j += 1) each(`${i} ${j}`);
+    }
+  }
+
+  add(b) {
+    this.#keys(b, (key) => {
+      if (!this.#cells.has(key)) this.#cells.set(key, []);
+      this.#cells.get(key).push(b);
+    });
+  }
+
+  /** The boxes in the cells that region touches (each once). */
+  near(region) {
+    const found = new Set();
+    this.#keys(region, (key) => this.#cells.get(key)?.forEach((b) => found.add(b)));
+    return [...found];
+  }
+}
+
+const CELL = 48;                                        // px: the grid's cells
+const REACH = RINGS.at(-1);                             // drawing units a label may move
+
+const where = new WeakMap();        // text → {from: [x, y] where its part put it, to: [x, y] where it was placed}
+
 /**
  * Place texts (SVG <text>s with x and y attributes, most important first; hidden ones are left alone) inside
  * the svg's box, off each other and off the obstacles (SVG elements). Returns nothing; moves the texts.
@@ -63,16 +97,20 @@ export function placeLabels(svg, texts, obstacles = []) {
   if (!frameRect.width || !ctm) return;
   const frame = box(frameRect);
   const unit = Math.hypot(ctm.a, ctm.b) || 1;           // px per drawing unit
-  const parts = obstacles.flatMap(obstacleBoxes);
-  const placed = [];
-  for (const text of texts) {
-    const start = text.getBoundingClientRect();
-    if (!start.width) continue;
+  const parts = new BoxGrid();
+  for (const part of obstacles.flatMap(obstacleBoxes)) parts.add(part);
+  const starts = texts.map((text) => text.getBoundingClientRect());     // measured before anything moves
+  const placed = new BoxGrid();
+  const moves = [];
+  texts.forEach((text, index) => {
+    const start = starts[index];
+    if (!start.width) return;
     const own = box(start);
-    const near = parts.filter((p) => p.right > own.left - 60 * unit && p.left < own.right + 60 * unit
-      && p.bottom > own.top - 60 * unit && p.top < own.bottom + 60 * unit);
+    const reach = REACH * unit + MARGIN + 2;            // px: every candidate place and its margin
+    const region = { left: own.left - reach, top: own.top - reach, right: own.right + reach, bottom: own.bottom + reach };
+    const [near, others] = [parts.near(region), placed.near(region)];
     const cost = (b) => EDGE_WEIGHT * beyond(b, frame)
-      + LABEL_WEIGHT * placed.reduce((sum, other) => sum + shared(b, other, MARGIN), 0)
+      + LABEL_WEIGHT * others.reduce((sum, other) => sum + shared(b, other, MARGIN), 0)
       + near.reduce((sum, part) => sum + shared(b, part, 0), 0);
     let best = { dx: 0, dy: 0, cost: cost(own) };
     for (const radius of RINGS) {
@@ -85,11 +123,34 @@ export function placeLabels(svg, texts, obstacles = []) {
         if (best.cost === 0) break;
       }
     }
-    if (best.dx || best.dy) {
-      text.setAttribute("x", Number(text.getAttribute("x")) + best.dx / unit);
-      text.setAttribute("y", Number(text.getAttribute("y")) + best.dy / unit);
+    moves.push([text, best.dx / unit, best.dy / unit]);
+    placed.add(moved(own, best.dx, best.dy));
+  });
+  for (const [text, dx, dy] of moves) {
+    const from = [Number(text.getAttribute("x")), Number(text.getAttribute("y"))];
+    const to = [from[0] + dx, from[1] + dy];
+    if (dx || dy) {
+      text.setAttribute("x", to[0]);
+      text.setAttribute("y", to[1]);
     }
-    placed.push(moved(own, best.dx, best.dy));
+    where.set(text, { from, to });
+  }
+}
+
+/**
+ * Each text placed before (placeLabels) and put by its part somewhere else since is moved by the offset its
+ * last placement gave it; a text its part has not moved since stays; a text never placed stays where it is.
+ */
+export function keepPlaces(texts) {
+  for (const text of texts) {
+    const last = where.get(text);
+    if (!last) continue;
+    const [x, y] = [Number(text.getAttribute("x")), Number(text.getAttribute("y"))];
+    if (x === last.to[0] && y === last.to[1]) continue;
+    const to = [x + last.to[0] - last.from[0], y + last.to[1] - last.from[1]];
+    text.setAttribute("x", to[0]);
+    text.setAttribute("y", to[1]);
+    where.set(text, { from: [x, y], to });
   }
 }
 

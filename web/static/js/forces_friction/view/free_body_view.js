@@ -16,10 +16,11 @@
  * and the panel says so.
  * On a narrow screen (a phone) the links are drawn one below the other, the drawing's units being CSS
  * pixels, so that the symbols keep their size; in every layout the symbols are moved where they would
- * cover each other, a pin, the block, a bar or an arrow, or leave the drawing (label_placement.js).
+ * cover each other, a pin, the block, a bar or an arrow, or leave the drawing (label_placement.js); a preview
+ * (while a slider moves) keeps each symbol's offset from its part, and the exact answer places them anew.
  */
 import { crankPlace } from "../../common/view/crank_drag.js";
-import { DRAWN_PARTS, placeLabels } from "../../common/view/label_placement.js";
+import { DRAWN_PARTS, keepPlaces, placeLabels } from "../../common/view/label_placement.js";
 import { element } from "../../common/view/dom.js";
 import { forceArrow, momentArc, roundDown } from "./force_parts.js";
 import { bar, block, drawing, framePivot, guide, label, pin } from "../../common/view/linkage_parts.js";
@@ -63,7 +64,7 @@ export class FreeBodyView {
     this.phi = 0;
     this.stacked = null;
     new ResizeObserver(() => {            // a phone turned, a window narrowed: lay out again if it changes
-      if (!this.data) return;
+      if (!this.data || this.body.clientWidth === this.shownWidth) return;       // only its height changed
       if (this.#narrow() !== this.stacked) this.show(this.data);
       else this.#scaleLabels();
       this.drawAt(this.phi);
@@ -111,8 +112,9 @@ export class FreeBodyView {
 
   /** Lay the links out for the answer's cycle, set the force scale, build the parts. */
   show(data) {
-    this.data = data;
+    this.data = this.exact = data;
     const { points } = data;
+    this.shownWidth = this.body.clientWidth;
     this.stacked = this.#narrow();
     this.width = this.stacked ? Math.max(280, Math.floor(this.body.clientWidth)) : WIDTH;
     const layout = this.stacked ? layOutStacked(points, this.width) : layOut(points);
@@ -147,37 +149,66 @@ export class FreeBodyView {
     this.rows = this.#readings();
   }
 
+  /**
+   * Draw a preview's answer (interpolated from a slider's family) in the layout of the exact answer shown: the
+   * same anchors and scales, the friction circles resized; the symbols keep the places the last placement gave
+   * them beside their parts (placed anew with the exact answer), and the readings the exact answer's numbers.
+   * With no exact drawing, another layout (a phone turned) or friction circles where it has none: drawn whole.
+   */
+  preview(data) {
+    const circles = data.friction_circles ?? { O: 0, A: 0, B: 0 };
+    if (!this.exact || this.#narrow() !== this.stacked || (!this.magnify && Math.max(circles.O, circles.A, circles.B) > 0)) {
+      const exact = this.exact;
+      this.show(data);
+      this.exact = exact ?? data;
+      this.drawAt(this.phi);
+      return Promise.resolve();
+    }
+    this.data = data;
+    this.rho = Object.fromEntries(Object.entries(circles).map(([name, r]) => [name, r * this.k * this.magnify]));
+    this.#drawState(this.#state(this.phi), false);
+    return Promise.resolve();
+  }
+
   drawAt(phi) {
     this.phi = phi;
     const state = this.#state(phi);
-    const place = (anchor, origin) => ([x, y]) =>
+    const exact = this.data === this.exact;
+    this.#drawState(state, exact);
+    const shown = exact ? state : this.#state(phi, this.exact);        // numbers: the exact answer's
+    this.locked.hidden = !shown.locked;
+    for (const [cell, text] of this.rows) setRichText(cell, text(shown));
+  }
+
+  /** Links, friction circles and loads at state; their symbols placed (place) or kept beside their parts. */
+  #drawState(state, place) {
+    const at = (anchor, origin) => ([x, y]) =>
       [anchor[0] + (x - origin[0]) * this.k, anchor[1] - (y - origin[1]) * this.k];
-    const map = { crank: place(this.anchors.crank, state.O), rod: place(this.anchors.rod, state.S2),
-      slider: place(this.anchors.slider, state.B) };
+    const map = { crank: at(this.anchors.crank, state.O), rod: at(this.anchors.rod, state.S2),
+      slider: at(this.anchors.slider, state.B) };
     this.parts(state, map);
     this.arrows(state, map);
-    this.#separateLabels();
-    this.locked.hidden = !state.locked;
-    for (const [cell, text] of this.rows) setRichText(cell, text(state));
+    this.#separateLabels(place);
   }
 
   /**
    * The symbols shown move off each other, off the parts and arrows and inside the drawing: links' names,
-   * letters, moments, forces, in that order.
+   * letters, moments, forces, in that order; or (place false) each keeps its last offset from its part.
    */
-  #separateLabels() {
+  #separateLabels(place) {
     const shown = (node) => node.style.display !== "none" && node.closest(".force")?.style.display !== "none";
     const all = (selector) => this.layers.flatMap((layer) => [...layer.querySelectorAll(selector)]).filter(shown);
-    placeLabels(this.svg, [...all(".link-name"), ...all(".joint-label"), ...all(".moment .force-label"),
-      ...all(".force:not(.moment) .force-label")], all(DRAWN_PARTS));
+    const texts = [...all(".link-name"), ...all(".joint-label"), ...all(".moment .force-label"),
+      ...all(".force:not(.moment) .force-label")];
+    if (place) placeLabels(this.svg, texts, all(DRAWN_PARTS));
+    else keepPlaces(texts);
   }
 
   /**
    * Everything drawn at phi: positions (m), forces (N), moments (N·m, counter-clockwise +), and the turning
    * of crank (w1) and rod (w2) over the grid step there (rad, counter-clockwise +: their senses of rotation).
    */
-  #state(phi) {
-    const { data } = this;
+  #state(phi, data = this.data) {
     const at = (values) => sampleAt(data.phi, values, phi);
     const [O, A, B, S2] = ["O", "A", "B", "S2"].map((name) => at(data.points[name]));
     const R12 = at(data.reactions.R12);
@@ -198,13 +229,12 @@ export class FreeBodyView {
 
   /** Bars, the slider block, pins, letters and friction circles; returns their update(state, map). */
   #links(layer) {
-    const { rho } = this;
     const circles = svgElement("g", { class: "friction-circles" }, layer);
     const circle = (body, joint) => {
-      const node = svgElement("circle", { class: "friction-circle", r: rho[joint] }, circles);
+      const node = svgElement("circle", { class: "friction-circle" }, circles);
       return (state, map) => {
         const [cx, cy] = map[body](state[joint]);
-        setAttributes(node, { cx, cy });
+        setAttributes(node, { cx, cy, r: this.rho[joint] });      // a preview's f resizes it
       };
     };
     const frictionCircles = this.magnify ? [circle("crank", "O"), circle("crank", "A"), circle("rod", "A"),
