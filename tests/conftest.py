@@ -1,4 +1,4 @@
-"""The whole suite: run in parallel worker processes by pytest-xdist (`tests/run.sh`: `-n 3 --dist loadgroup`).
+"""The whole suite: run in parallel worker processes by pytest-xdist (`tests/run.sh`: `-n 4 --dist loadgroup`).
 
 What the workers must not share, and how they don't:
 - a module's own fixtures (its servers, nginx, a PostgreSQL) start once per module: every test of a module that

@@ -22,9 +22,9 @@ if ! command -v nginx >/dev/null 2>&1 && [ ! -x /usr/sbin/nginx ]; then     # te
 fi
 mkdir -p test-artifacts
 python3 -m server.core.warm_up     # compile the numba kernels once into their disk cache (tens of seconds when new)
-# three worker processes on two CPUs: the browser and server tests mostly wait, the numeric ones fill the gaps;
-# the tests sharing a module's own fixture stay on one worker (tests/conftest.py)
-if [ "$#" -gt 0 ]; then exec python3 -m pytest -q --durations=15 -n 3 --dist loadgroup "$@"; fi
+# four worker processes on two CPUs: the browser and server tests mostly wait (pages settling, servers starting),
+# the numeric ones fill the gaps; the tests sharing a module's own fixture stay on one worker (tests/conftest.py)
+if [ "$#" -gt 0 ]; then exec python3 -m pytest -q --durations=15 -n 4 --dist loadgroup "$@"; fi
 before=$(python3 tests/leftover_processes.py --snapshot)
 # test_schemathesis_api's last test counts what the module's operation tests sent (module state): schemathesis's
 # items do not take xdist's group, so the module runs in a process of its own, beside the others (its output
@@ -32,7 +32,7 @@ before=$(python3 tests/leftover_processes.py --snapshot)
 status=0
 python3 -m pytest -q -p no:xdist -p no:cacheprovider tests/test_schemathesis_api.py > test-artifacts/schemathesis.log 2>&1 &
 fuzzing=$!
-python3 -m pytest -q --durations=15 -n 3 --dist loadgroup --ignore=tests/test_schemathesis_api.py || status=$?
+python3 -m pytest -q --durations=15 -n 4 --dist loadgroup --ignore=tests/test_schemathesis_api.py || status=$?
 wait "$fuzzing" || status=$((status ? status : $?))
 cat test-artifacts/schemathesis.log
 python3 tests/leftover_processes.py --since "$before" || status=$((status ? status : 1))

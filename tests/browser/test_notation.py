@@ -1,6 +1,8 @@
 """Say it right (notation and translation) in a real browser, on every scene:
-- a page in ru or uk shows no English sentence of the app's own strings (content/i18n/en.json, the server's
-  templates), its default computation included, and in ru its live study, where there is one, too;
+- a page in ru shows no English sentence of the app's own strings (content/i18n/en.json, the server's
+  templates), its default computation and its live study, where there is one, included (uk and en: every scene
+  in test_scene_words);
+- every variant's drawings in ru keep their labels apart and inside (the check of test_label_overlaps);
 - the labels show real subscripts (<sub>, or shifted <tspan>s in drawings), no "_" anywhere on screen;
 - numbers carry a true minus sign (U+2212) and a decimal comma, in the page and in Plotly's tick labels and
   hover, and never read "−0";
@@ -18,6 +20,8 @@ from conftest import ARTIFACTS, REPO, read_scene, screenshot
 
 sys.path.insert(0, str(REPO / "tests"))
 from test_translations import STRINGS, english_in  # noqa: E402  (the same collection as the API test)
+from test_label_overlaps import DRAWN_LABELS, PICTURES, label_problems  # noqa: E402
+from test_label_overlaps import settle as drawn  # noqa: E402
 
 from server.api.routers.pages import notation_parts  # noqa: E402
 
@@ -75,19 +79,6 @@ def english_on_the_page_after_its_studies(page, lang: str) -> list[str]:
     return english_in(page.evaluate(SCREEN_TEXT), lang)
 
 
-@pytest.mark.parametrize("name", SCENE_FILES)
-def test_no_english_sentence_of_the_app_on_the_ukrainian_scene(browser_page, name):
-    """The page as it opens, its default computation drawn. (The Russian pages are checked in the same way by the
-    next test, their live studies run too; a study's sentences in uk are checked at the API,
-    test_translations.test_a_stall_and_a_study_are_told_in_the_readers_language.) One test per scene, so that the
-    suite's workers share the scenes."""
-    page = browser_page
-    scene = read_scene(name)
-    open_scene(page, scene, "uk")
-    assert english_in(page.evaluate(SCREEN_TEXT), "uk") == []
-    assert page.problems == []
-
-
 def test_the_russian_texts_write_subscripts_on_most_scenes():
     """The check below that subscripts show as <sub> has something to check: most scenes' Russian texts write one."""
     assert len(WITH_SUBSCRIPTS) >= 8
@@ -96,11 +87,13 @@ def test_the_russian_texts_write_subscripts_on_most_scenes():
 @pytest.mark.parametrize("name", SCENE_FILES)
 def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_every_variant(browser_page, name):
     """Every variant of the scene opened once in ru: no "_" on the screen and the subscripts as <sub>; numbers
-    with a true minus, a decimal comma (plots' tick labels included) and no signed zero. On the scene's default
-    (first) variant its live studies are then run, and no English sentence of the app may show."""
+    with a true minus, a decimal comma (plots' tick labels included) and no signed zero; the labels of its
+    drawings apart and inside them (test_label_overlaps.label_problems; the English pages are checked there).
+    On the scene's default (first) variant its live studies are then run, and no English sentence of the app may
+    show. (The Ukrainian and English pages' words: test_scene_words.)"""
     page = browser_page
     scene = read_scene(name)
-    underscores, problems, english = {}, {}, []
+    underscores, problems, english, unreadable = {}, {}, [], {}
     subscripts = plots = checked_ticks = 0
     for variant in scene["variants"]:
         open_scene(page, scene, "ru", variant["id"])
@@ -120,10 +113,19 @@ def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_ever
                  + [f"zero {m.group(0)!r}" for m in SIGNED_ZERO.finditer(text)])
         if found:
             problems[where] = found[:6]
+        drawn(page)
+        labels = label_problems(page.evaluate(DRAWN_LABELS))
+        if labels:
+            unreadable[where] = labels
+        for _, _, panel, picture in (p for p in PICTURES if p[:2] == (name, variant["id"])):
+            target = page.locator(f"#{panel}")
+            target.scroll_into_view_if_needed()
+            target.screenshot(path=ARTIFACTS / f"labels-{picture}.png")
         if variant is scene["variants"][0]:
             english = english_on_the_page_after_its_studies(page, "ru")
     assert english == []
     assert underscores == {}
+    assert unreadable == {}
     if scene["id"] in WITH_SUBSCRIPTS:               # its Russian texts write a subscript: shown as <sub>
         assert subscripts > 0
     assert problems == {}
