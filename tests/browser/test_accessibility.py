@@ -1,8 +1,9 @@
 """Every student (accessibility) in a real browser.
 
 Every scene is loaded once, on a phone (390 × 844, ru), and that one load serves all its checks:
-- the page is no wider than the screen (tables scroll inside their box; point 9, measured here so that each
-  scene loads once);
+- the page is no wider than the screen, and every table fits or scrolls sideways in a box of its own that the
+  keyboard reaches and a screen reader names (test_screen_fit.table_problems); the bearings, wear and flywheel
+  pages are photographed (test-artifacts/phone-*.png);
 - axe-core (vendored from the npm registry in tests/browser/vendor/, injected by the test, never served by the
   app) finds no violation of any impact (the panels are headed h2 under the page's h1, so the headings do not
   skip a level);
@@ -23,7 +24,8 @@ import re
 
 import pytest
 
-from conftest import REPO, read_scene
+from conftest import ARTIFACTS, REPO, read_scene
+from test_screen_fit import PHOTOGRAPHED, TABLES, fold_sheet, table_problems
 
 pytestmark = pytest.mark.browser
 
@@ -101,11 +103,15 @@ def test_scene_on_a_phone_fits_and_reads_without_sight(phone, name):
     settle(phone)
     assert phone.evaluate("document.documentElement.scrollWidth <= innerWidth"), \
         f"{name}: the page is {phone.evaluate('document.documentElement.scrollWidth')} px wide on a 390 px screen"
+    assert table_problems(phone.evaluate(TABLES)) == [], name
 
     phone.add_script_tag(path=str(AXE))
     violations = phone.evaluate("""() => axe.run(document, { resultTypes: ["violations"] }).then((r) =>
         r.violations.map((v) => `${v.id} (${v.impact}): ${v.nodes.map((n) => n.target.join(" ")).slice(0, 3).join(", ")}`))""")
     assert violations == [], f"{name}: axe-core finds {violations}"
+    if name in PHOTOGRAPHED:
+        fold_sheet(phone)
+        phone.screenshot(path=ARTIFACTS / f"phone-{name}.png", full_page=True)
 
     if scene.get("kind") == "project":
         cards = phone.evaluate(PROJECT_CARDS)

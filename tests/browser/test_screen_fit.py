@@ -1,23 +1,23 @@
 """A scene fits a phone (390 × 844, ru):
 - the page never scrolls sideways (its scrollWidth is the window's width), and every table either fits or sits in a
   box that scrolls sideways itself, which the keyboard can reach (tabindex) and a screen reader names (axe-core's
-  scrollable-region-focusable);
+  scrollable-region-focusable): TABLES and table_problems, checked on every scene by test_accessibility's phone
+  walk (one load of each scene serves all its phone checks);
 - the wear scene's polar plot writes its radial tick labels apart;
 - the flywheel scene's drawing of the machine keeps its letters (A, φ, O at the crank, B, D, the scale) apart
   and inside it at every crank angle the animation shows.
 Label boxes are collected and compared as tests/browser/test_label_overlaps.py does (its helpers, imported).
-Phone screenshots of the bearings, wear and flywheel scenes go to test-artifacts/phone-*.png to be looked at.
+Phone screenshots of the bearings, wear and flywheel scenes (test_accessibility) go to test-artifacts/phone-*.png.
 """
 from __future__ import annotations
 
 import pytest
 
-from conftest import ARTIFACTS, REPO, read_scene
+from conftest import ARTIFACTS
 from test_label_overlaps import DRAWN_LABELS, label_problems, overlap, settle
 
 pytestmark = pytest.mark.browser
 
-SCENE_FILES = sorted(path.stem for path in (REPO / "content" / "scenes").glob("*.json"))
 PHOTOGRAPHED = {"bearings", "wear", "flywheel"}
 CRANK_ANGLES = range(0, 360, 15)        # degrees: the animation's crank angle set on the scrub slider
 
@@ -64,19 +64,6 @@ def table_problems(found: dict) -> list[str]:
             if frame["tabindex"] < 0 or not frame["name"]:
                 problems.append(f"{table['table']}: its scrolling box is not focusable and named")
     return problems
-
-
-@pytest.mark.parametrize("name", SCENE_FILES)
-def test_the_page_never_scrolls_sideways_and_a_wide_table_scrolls_in_its_box(phone, name):
-    scene = read_scene(name)
-    page = phone
-    page.goto(f"/scenes/{scene['id']}?lang=ru")
-    settle(page)
-    assert table_problems(page.evaluate(TABLES)) == []
-    if name in PHOTOGRAPHED:
-        fold_sheet(page)
-        page.screenshot(path=ARTIFACTS / f"phone-{name}.png", full_page=True)
-    assert page.problems == []
 
 
 def test_the_wear_polar_plot_writes_its_radial_ticks_apart(phone):
