@@ -81,6 +81,17 @@ def test_a_material_and_the_books_table_drive_the_wear(browser_page):
     peak_reaches(page, "joint", 1, "r", hours / 1000 * peak(joint_before))
     radial = page.evaluate(f"id => {GRAPH}._fullLayout.polar.radialaxis.range[1]", "joint")
     assert radial >= peak(series(page, "joint", 1, "r"))         # the whole distribution is drawn
+    frame = page.locator("#panel-wear_classes .table-frame")    # the book's reference table: named in plain text
+    assert frame.get_attribute("role") == "region" and frame.get_attribute("tabindex") == "0"
+    assert frame.get_attribute("aria-label") and not set("_^") & set(frame.get_attribute("aria-label"))
+    marked = page.evaluate("""async () => {                    // a title with markup, as a scene may write one
+        const src = document.querySelector('script[type=module][src*="_scene.js"]').src;
+        const { ReferenceTableView } = await import(new URL("../dynamics/view/reference_table_view.js", src));
+        const body = document.createElement("div");
+        new ReferenceTableView(body, { title: { ru: "I_м и M_{с0}^пр" }, columns: [], rows: [] }, { lang: "ru" });
+        return body.querySelector(".table-frame").getAttribute("aria-label");
+    }""")
+    assert marked == "Iм и Mс₀пр"
     body = page.inner_text("body")
     assert "NaN" not in body and english_in(body, "ru") == []
     screenshot(page, "wear_table_4_3_ru")

@@ -4,7 +4,7 @@
  * number format, texts in the page's language, the note under it. It needs nothing from the answer.
  */
 import { element } from "../../common/view/dom.js";
-import { formatQuantity } from "../../common/view/notation.js";
+import { formatQuantity, plainText } from "../../common/view/notation.js";
 
 const cellText = (value, column, lang) => {
   if (column.range && Array.isArray(value)) return value.map((v) => formatQuantity(v, lang, 3)).join(" … ");
@@ -22,6 +22,6 @@ export class ReferenceTableView {
         element("td", { rich: cellText(row[column.key], column, lang) }))))));
     const note = spec.note ? [element("p", { className: "note", rich: spec.note[lang] })] : [];
     body.append(element("div", { className: "table-frame", tabIndex: 0, role: "region",
-      "aria-label": spec.title?.[lang] ?? "" }, table), ...note);
+      "aria-label": plainText(spec.title?.[lang] ?? "") }, table), ...note);
   }
 }
