@@ -63,9 +63,14 @@ function segments(us, vs, toPixels) {
   return pieces;
 }
 
-/** The points of (us, vs) in pixels, or null if one is missing or leaves the range. */
+/**
+ * The points of (us, vs) that have both values, in pixels (Plotly draws no marker for a point without one: an
+ * operating point among nulls), or null if one of them leaves the range.
+ */
 function points(us, vs, toPixels) {
-  const placed = vs.map((v, i) => (v === null || us[i] === null ? null : toPixels(us[i], v)));
+  const given = (x) => x !== null && x !== undefined;
+  const placed = [];
+  for (let i = 0; i < vs.length; i++) if (given(us[i]) && given(vs[i])) placed.push(toPixels(us[i], vs[i]));
   return placed.every(Boolean) ? placed : null;
 }
 
