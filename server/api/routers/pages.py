@@ -58,6 +58,13 @@ def notation(text) -> Markup:
                            for run, shift in notation_parts(str(text)))
 
 
+def plain(text) -> str:
+    """Jinja filter: an interface text where only plain text can stand (a title attribute), as the page's
+    aria-labels write it (csv_export.plain_label: "I_м" → "Iм", "u_31" → "u₃₁")."""
+    from ..csv_export import plain_label                       # imported here: csv_export imports this module
+    return plain_label(str(text))
+
+
 def decimal(value, lang: str, digits: int = 6) -> str:
     """A number for a table in the reader's language: 6 significant digits, a decimal comma in ru/uk, a true
     minus sign and a power of ten written out ("−1,5·10⁻⁷", messages.signed)."""
@@ -69,6 +76,7 @@ def decimal(value, lang: str, digits: int = 6) -> str:
 
 templates.env.filters["decimal"] = decimal
 templates.env.filters["notation"] = notation
+templates.env.filters["plain"] = plain
 router = APIRouter(include_in_schema=False)
 
 
