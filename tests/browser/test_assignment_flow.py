@@ -23,6 +23,7 @@ from server.classroom.answers import question
 from server.classroom.spec import AssignmentSpec
 from server.classroom.names import normalise
 from server.classroom.variants import plan
+from server.api.csv_export import plain_label
 
 from conftest import drag_slider, screenshot, server_log_tail
 
@@ -207,11 +208,14 @@ def test_assignment_from_making_to_results(chromium, app_url, browser_page):
     assert f"Correct answer: {students[wrong_name][2]:.6g}" in table[wrong_name]     # the instructor sees it
     assert "Correct answer" not in table[right_name]
     screenshot(instructor, "assignment_results")
+    header = instructor.locator("#results thead th", has_text="Moment of inertia")    # "I_fl" as the scene writes it
+    assert header.locator("sub").inner_text() == "fl" and "_" not in header.inner_text()
+    assert "_" not in header.get_attribute("title")
     assert "lang=en" in results_url                               # the assignment's language: its CSV's words
     exported = httpx.get(app_url + instructor.locator("#csv").get_attribute("href")).text
     exported_rows = {row["Student"]: row for row in spreadsheet(exported, "en")}
     assert set(exported_rows) == {right_name, wrong_name}
-    inertia = question(scenes()["flywheel"], "flywheel_inertia").label["en"]
+    inertia = plain_label(question(scenes()["flywheel"], "flywheel_inertia").label["en"])   # the CSV's plain text
     for name, (_, variant, _) in students.items():
         row = exported_rows[name]
         assert int(row["Variant"]) == variant["variant"] and float(row["[δ]"]) == variant["values"]["delta"]
