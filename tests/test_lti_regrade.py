@@ -51,6 +51,9 @@ def test_a_reset_on_the_lti_results_page_posts_the_grade_again(lms):
     teacher = Browser(platform)
     page = teacher.launch(platform.launch(TEACHER, [INSTRUCTOR], resource_link_id=link))
     assert page.status_code == 200 and DANA.name in page.text, page.text[:800]
+    scroll_box = re.search(r'<div class="table-wrap"([^>]*)>', page.text).group(1)   # the wide table: reached, named
+    assert 'tabindex="0"' in scroll_box and 'role="region"' in scroll_box
+    assert re.search(r'aria-label="(Results|Результаты|Результати)"', scroll_box), scroll_box
     row = re.search(r'data-student="([0-9a-f]{16})" data-name="' + DANA.name, page.text)
     reset = teacher.http.post(f"{base}/lti/results/{created['id']}/students/{row.group(1)}/reset")
     assert reset.status_code == 303, reset.text[:500]

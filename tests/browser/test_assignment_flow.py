@@ -211,6 +211,9 @@ def test_assignment_from_making_to_results(chromium, app_url, browser_page):
     header = instructor.locator("#results thead th", has_text="Moment of inertia")    # "I_fl" as the scene writes it
     assert header.locator("sub").inner_text() == "fl" and "_" not in header.inner_text()
     assert "_" not in header.get_attribute("title")
+    scroll_box = instructor.locator(".table-wrap")                 # the wide table's scroll box: reached and named
+    assert scroll_box.get_attribute("tabindex") == "0" and scroll_box.get_attribute("role") == "region"
+    assert scroll_box.get_attribute("aria-label") == "Results"
     assert "lang=en" in results_url                               # the assignment's language: its CSV's words
     exported = httpx.get(app_url + instructor.locator("#csv").get_attribute("href")).text
     exported_rows = {row["Student"]: row for row in spreadsheet(exported, "en")}
