@@ -63,7 +63,7 @@ def test_a_scenes_default_answer_is_a_cache_hit_after_warming(monkeypatch):
     monkeypatch.setattr(default_answers, "QUIET_S", 0.05)
     app = create_app()
     original = default_answers.start
-    monkeypatch.setattr(default_answers, "start", lambda a: original(a, cached=LIGHT))
+    monkeypatch.setattr(default_answers, "start", lambda a, cached: original(a, cached=LIGHT))
     with TestClient(app) as client:
         warming = _wait_warmed(client, app)
         assert warming.refused == 0 and warming.answered == len(warming.requests) > 0

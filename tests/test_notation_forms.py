@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from server.api.routers.pages import notation_parts
+from server.lessons.markup import notation_parts
 from server.lessons.scenes import interface_texts, scene_documents
 
 REPO = Path(__file__).resolve().parents[1]

@@ -19,7 +19,8 @@ from fastapi.testclient import TestClient
 
 from server.api.app import app
 from server.api.messages import from_english, localise_study, signed, skipped_run
-from server.api.routers.pages import decimal, notation, notation_parts
+from server.api.routers.pages import decimal, notation
+from server.lessons.markup import notation_parts
 from server.core.elastic.simulate import work_bound_message
 from server.lessons.requests import scene_request
 from server.lessons.scenes import interface_texts, scene_documents, scenes

@@ -27,8 +27,7 @@ from fastapi.responses import Response
 from ..classroom.variants import Plan
 from ..lessons.scenes import interface_texts
 from ..classroom.answers import question
-from ..lessons.numbers import SUBSCRIPTS, SUPERSCRIPTS
-from .routers.pages import notation_parts
+from ..lessons.markup import plain_label
 from .schemas_assignments import ResultRow
 
 FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
@@ -73,16 +72,6 @@ def csv_attachment(header: list[str], rows: Iterable[list], filename: str, lang:
         writer.writerow([safe_cell(cell, lang) for cell in row])
     return Response("\ufeff" + out.getvalue(), media_type="text/csv; charset=utf-8",
                     headers={"Content-Disposition": f'attachment; filename="{filename}"'})
-
-
-def plain_label(text: str) -> str:
-    """A label of the page's notation as plain text, the way the page names things where only plain text can
-    stand (plainText of web/static/js/common/view/notation.js, its aria-labels): the markup dropped, the digits
-    of a subscript or superscript written as Unicode glyphs, its letters as they are, for Unicode has no
-    subscript of most letters (Cyrillic none): "u_31" → "u₃₁", "I_м" → "Iм", "M_с0^пр" → "Mс₀пр",
-    "R^{1/3}" → "R¹/³", "solve\\_ivp" → "solve_ivp"."""
-    return "".join(run.translate(SUBSCRIPTS if shift == "sub" else SUPERSCRIPTS) if shift else run
-                   for run, shift in notation_parts(text))
 
 
 def parameter_label(resolved: Plan, key: str, lang: str) -> str:

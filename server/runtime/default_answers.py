@@ -89,16 +89,13 @@ class Warming:
     cpu_s: float = 0.0           # this process's CPU time while the requests were answered (all threads)
 
 
-def start(app, cached: set[str] | None = None, languages: tuple[str, ...] | None = None) -> Warming | None:
+def start(app, cached: set[str], languages: tuple[str, ...] | None = None) -> Warming | None:
     """Start warming the app's response cache (None when MDL_WARM_DEFAULTS is off or the cache is off).
-    ``cached``: the endpoints the cache keeps (default: those of the app's cache middleware)."""
+    ``cached``: the endpoints the cache keeps (the app's cache middleware's, less the families)."""
     languages = languages_from_env() if languages is None else languages
     cache = getattr(app.state, "response_cache", None)
     if not languages or cache is None or not cache.enabled:
         return None
-    if cached is None:
-        from ..api.routers.cache import request_models
-        cached = set(request_models()) - {"family"}
     warming = Warming(default_requests(cached, languages))
     warming.task = asyncio.get_running_loop().create_task(_warm(app, warming), name="default answers")
     return warming

@@ -43,7 +43,7 @@ def interface_texts(lang: str) -> dict[str, str]:
 def shown(text: str) -> str:
     """An interface text as the page's innerText reads it: its notation markup gone ("M_с0" → "Mс0"), the
     subscripts being <sub> elements (web/static/js/common/view/notation.js)."""
-    from server.api.routers.pages import notation_parts
+    from server.lessons.markup import notation_parts
     return "".join(run for run, _ in notation_parts(text))
 
 

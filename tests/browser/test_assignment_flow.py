@@ -23,7 +23,7 @@ from server.classroom.answers import question
 from server.classroom.spec import AssignmentSpec
 from server.classroom.names import normalise
 from server.classroom.variants import plan
-from server.api.csv_export import plain_label
+from server.lessons.markup import plain_label
 
 from conftest import drag_slider, screenshot, server_log_tail
 

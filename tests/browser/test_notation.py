@@ -23,7 +23,7 @@ from test_translations import STRINGS, english_in  # noqa: E402  (the same colle
 from test_label_overlaps import DRAWN_LABELS, PICTURES, label_problems  # noqa: E402
 from test_label_overlaps import settle as drawn  # noqa: E402
 
-from server.api.routers.pages import notation_parts  # noqa: E402
+from server.lessons.markup import notation_parts  # noqa: E402
 
 pytestmark = pytest.mark.browser
 

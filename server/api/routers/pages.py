@@ -1,12 +1,11 @@
 """HTML pages: the start page listing the scenes, one page per scene, and the measurements page (the
 work–precision tables of bench/results)."""
-import unicodedata
-
 from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.templating import Jinja2Templates
 from markupsafe import Markup, escape
 
+from ...lessons.markup import notation_parts, plain_label
 from ...lessons.scenes import LANGUAGES, interface_texts, language, scenes
 from ...paths import BENCH_RESULTS, WEB
 from ..bench_pages import measurements_html
@@ -15,40 +14,6 @@ from ..messages import signed
 
 templates = Jinja2Templates(directory=WEB / "templates")
 MEASUREMENTS = BENCH_RESULTS / "work_precision.md"
-
-
-def _lowers(char: str) -> bool:
-    """A character of a run after "_" or "^": a letter, a decimal digit or a combining mark (\\p{L}, \\p{Nd},
-    \\p{M} in web/static/js/common/view/notation.js)."""
-    category = unicodedata.category(char)
-    return category[0] in "LM" or category == "Nd"
-
-
-def notation_parts(text: str) -> list[tuple[str, str]]:
-    """text split into (run, shift) with shift "", "sub" or "sup": the markup of web/static/js/common/view/notation.js
-    ("M_c0", "A_{P,k}", "R^{1/3}", "\\_" a plain underscore), read the same way."""
-    parts, plain, i = [], "", 0
-    while i < len(text):
-        char = text[i]
-        if char == "\\" and text[i + 1:i + 2] in ("_", "^"):
-            plain, i = plain + text[i + 1], i + 2
-            continue
-        if char in "_^" and i > 0:
-            if text[i + 1:i + 2] == "{" and "}" in text[i + 2:] and "{" not in text[i + 2:text.index("}", i + 2)]:
-                end = text.index("}", i + 2)
-                run, after = text[i + 2:end], end + 1
-            else:
-                end = i + 1
-                while end < len(text) and _lowers(text[end]):
-                    end += 1
-                run, after = text[i + 1:end], end
-            if run or after > i + 1:
-                parts += [(plain, "")] if plain else []
-                parts.append((run, "sub" if char == "_" else "sup"))
-                plain, i = "", after
-                continue
-        plain, i = plain + char, i + 1
-    return parts + ([(plain, "")] if plain else [])
 
 
 def notation(text) -> Markup:
@@ -60,8 +25,7 @@ def notation(text) -> Markup:
 
 def plain(text) -> str:
     """Jinja filter: an interface text where only plain text can stand (a title attribute), as the page's
-    aria-labels write it (csv_export.plain_label: "I_м" → "Iм", "u_31" → "u₃₁")."""
-    from ..csv_export import plain_label                       # imported here: csv_export imports this module
+    aria-labels write it (lessons.markup.plain_label: "I_м" → "Iм", "u_31" → "u₃₁")."""
     return plain_label(str(text))
 
 
