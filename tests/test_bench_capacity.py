@@ -7,6 +7,8 @@ from __future__ import annotations
 import importlib.util
 import math
 import os
+import tempfile
+import shutil
 import re
 import subprocess
 import sys
@@ -87,9 +89,12 @@ def started_by_the_run(tag: str, folder: Path) -> dict[int, str]:
     return found
 
 
-def test_a_quick_run_writes_its_tables_and_stops_every_server_and_nginx(tmp_path):
-    output, folder = tmp_path / "capacity.md", tmp_path / "tmp"
-    folder.mkdir()
+def test_a_quick_run_writes_its_tables_and_stops_every_server_and_nginx(tmp_path, request):
+    output = tmp_path / "capacity.md"
+    # the run's temporary folder, short: the heavy processes' forkserver binds a Unix socket in it (108 bytes at
+    # most), and pytest's tmp_path under xdist is too deep for that
+    folder = Path(tempfile.mkdtemp(prefix="mdl-cap-", dir="/tmp"))
+    request.addfinalizer(lambda: shutil.rmtree(folder, ignore_errors=True))
     tag = uuid.uuid4().hex
     run = subprocess.run([sys.executable, "bench/capacity.py", "--quick", "--output", str(output)], cwd=REPO,
                          env={**os.environ, "MDL_CAPACITY_TEST": tag, "TMPDIR": str(folder)}, capture_output=True,
@@ -101,10 +106,11 @@ def test_a_quick_run_writes_its_tables_and_stops_every_server_and_nginx(tmp_path
     assert run.returncode == 0, run.stderr[-3000:]
     text = output.read_text(encoding="utf-8")
     for name in ("one-cpu", "two-servers"):
-        assert re.search(rf"^\| {name}: .+ \| \d \| \d+ \| [\d.]+ \| .+ \| 1 \| \d+ \|$", text, re.M), text
+        # students held: a number, or "≥ n (every class tried held)" on a machine fast enough for every class
+        assert re.search(rf"^\| {name}: .+ \| \d \| (≥ )?\d+[^|]* \| (≥ )?[\d.]+ \| .+ \| 1 \| \d+ \|$", text, re.M), text
         assert f"## {name}: " in text and f"## {name}, 2 students" in text, text
     assert "taskset -c 0 python3 -m server --port P1" in text and "taskset -c 1 python3 -m server --port P2" in text
-    runs = re.findall(r"^\| 2 \| [\d.]+ / [\d.]+ / [\d.]+ \| .*\| (yes|\*\*no\*\*.*) \|$", text, re.M)
+    runs = re.findall(r"^\| 2 \| [\d.]+ / [\d.]+ / [\d.]+ \| .*\| (yes.*|\*\*no\*\*.*) \|$", text, re.M)   # held or not
     assert len(runs) == 2, text
     balanced = re.search(r"requests per app server: (\d+), (\d+) \|$", text, re.M)    # nginx used both servers
     assert balanced and int(balanced[1]) > 0 and int(balanced[2]) > 0, text

@@ -3,7 +3,6 @@ over HTTP exactly as FastAPI answers the HTTPException that stands for it: the s
 (404 {"detail": "no such assignment"}; 503 and 429 with the error list and Retry-After)."""
 from __future__ import annotations
 
-import asyncio
 
 import pytest
 from fastapi import HTTPException
@@ -17,6 +16,7 @@ from server.api.security import SECURITY_HEADERS
 from server.classroom import assignment_answers, assignment_store
 from server.classroom.refusals import Busy, NotFound, TooOften
 from server.runtime import heavy
+from event_loop import run_to_end
 
 API = "/api/v1/assignments"
 REQUEST = Request({"type": "http", "method": "GET", "path": "/", "headers": [], "query_string": b""})
@@ -24,7 +24,7 @@ SPEC = {"scene": "transfer-functions", "variant": "slider_crank", "questions": [
 
 
 def answered(handler, error):
-    response = asyncio.run(handler(REQUEST, error))
+    response = run_to_end(handler(REQUEST, error))
     return response.status_code, bytes(response.body), dict(response.headers)
 
 

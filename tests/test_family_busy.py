@@ -28,6 +28,7 @@ from server.families import family
 from server.lessons.requests import path_value, scene_request
 from server.lessons.scenes import scenes
 from server.runtime import heavy
+from event_loop import run_to_end
 
 API = "/api/v1"
 WAIT_S = 60             # a guard against a hang, never a measurement
@@ -91,7 +92,7 @@ def test_the_busy_signal_reads_the_lanes_queues(monkeypatch):
         await asyncio.wait_for(asyncio.gather(running, waiting), WAIT_S)
         assert not heavy.busy() and not heavy.crowded()
 
-    asyncio.run(scenario())
+    run_to_end(scenario())
 
 
 def test_under_a_busy_signal_a_full_family_is_answered_coarse_and_nothing_is_refined(in_worker, monkeypatch):

@@ -129,10 +129,11 @@ def test_the_api_answers_the_table_and_refuses_loads_beside_it():
 
 
 def test_the_scenes_text_states_the_numbers_of_its_default_answer():
-    """The wear scene's text quotes the Table 4.3 variant's default answer: piston 71, bush and pin at β = 190°
+    """The wear scene's text (its intro or the sources' details folded below it) quotes the Table 4.3 variant's default answer: piston 71, bush and pin at β = 190°
     about 133 and 76, cylinder at D₄ 91 µm (whole micrometres), the book's k giving 107…115."""
     from server.lessons.scenes import scenes
-    text = scenes()["wear"].text["en"]
+    scene = scenes()["wear"]
+    text = scene.text["en"] + "\n" + (scene.details or {}).get("en", "")    # the intro and its folded details
     points = book_table_report(PARTS, CYCLES)["points"]
     for key, quoted in (("piston", "71 µm"), ("bush_23", "133"), ("pin_23", "76 µm"), ("cylinder", "91 µm")):
         assert f"{round(points[key])}" == quoted.split()[0] and quoted in text

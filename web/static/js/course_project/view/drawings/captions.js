@@ -43,12 +43,17 @@ export function heading(figure, [x, top], title, lines = []) {
   return y + 3;
 }
 
+const SHIFT_ROOM = 0.45;       // of the font size: the extra room between lines that a sub- or superscript needs
+
 /** Lines of text (a list beside a drawing) from top at left x, font size size; returns the y below them. */
 export function textLines(figure, [x, top], lines, size = FONT.label) {
   let y = top;
+  let lowered = false;            // the line above has a subscript, which reaches below its baseline
   for (const line of lines) {
-    y += size + 1.6;
+    const raised = /\^/.test(line);    // a superscript reaches above the line's capitals
+    y += size + 1.6 + (raised || lowered ? SHIFT_ROOM * size : 0);
     figure.text(line, [x, y], { size, attrs: { class: "cp-list" } });
+    lowered = /_/.test(line);
   }
   return y + 2;
 }
