@@ -12,6 +12,7 @@ import os
 
 import uvicorn
 
+from .runtime import shared_cache
 from .runtime.nodelay import HTTP
 
 
@@ -31,7 +32,10 @@ def uvicorn_options(argv: list[str] | None = None) -> dict:
 
 
 def main() -> None:
-    uvicorn.run("server.api.app:app", **uvicorn_options())
+    try:
+        uvicorn.run("server.api.app:app", **uvicorn_options())
+    finally:
+        shared_cache.remove_own()          # the workers' shared families, once they have all stopped
 
 
 if __name__ == "__main__":

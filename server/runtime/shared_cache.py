@@ -9,7 +9,8 @@ that misses its own cache looks there before computing, and every family it comp
 The file: ``MDL_SHARED_CACHE`` names it (two app servers on one host may name the same file; ``0`` turns the
 layer off). Unset, the workers of a server started with ``--workers N`` (N ≥ 2) share a file of their own in the
 temporary folder, named after the process that started them; a single worker (or an app in a test) has no
-shared layer, since its own response cache is the whole of it. Files of servers no longer running are removed.
+shared layer, since its own response cache is the whole of it. The server removes its file as it stops (and a
+server starting removes the files of servers no longer running, killed ones included).
 
 Entries are the answer's raw headers and its gzip-compressed body, keyed by the response cache's key (SHA-256 of
 the path, the query and the validated body); the oldest go first once their total passes the response cache's
@@ -47,6 +48,15 @@ def default_path() -> Path | None:
     folder = Path(tempfile.gettempdir())
     _remove_orphans(folder)
     return folder / f"{PREFIX}{parent.pid}.sqlite"
+
+
+def remove_own() -> None:
+    """Remove the file of this supervisor's workers (called by it once they have all stopped)."""
+    for path in Path(tempfile.gettempdir()).glob(f"{PREFIX}{os.getpid()}.sqlite*"):
+        try:
+            path.unlink()
+        except OSError:
+            pass
 
 
 def _remove_orphans(folder: Path) -> None:
