@@ -103,7 +103,11 @@ def test_a_table_of_another_length_is_kept_by_a_reload(browser_page, change, row
         before = page.evaluate(CURVE)
         page.click(f"{PANEL} button.{'remove-point' if change == 'remove' else 'add-point'} >> nth=0")
         page.wait_for_function(CHANGED, arg=before, timeout=60000)
-    type_into(page, "moment", 1, "42,25")
+    before = page.evaluate(CURVE)
+    with page.expect_response(lambda answer: answer.request.method == "POST"
+                              and "42.25" in (answer.request.post_data or ""), timeout=60000):
+        type_into(page, "moment", 1, "42,25")
+    page.wait_for_function(CHANGED, arg=before, timeout=60000)   # the exact answer of the typed table drawn
     page.wait_for_function("() => new URLSearchParams(location.search).get('edit.motor.table_moment')"
                            "?.split(',').includes('42.25')", timeout=60000)
     table, curve = page.evaluate(TABLE), page.evaluate(CURVE)
