@@ -32,7 +32,7 @@ before=$(python3 tests/leftover_processes.py --snapshot)
 status=0
 python3 -m pytest -q -p no:xdist -p no:cacheprovider tests/test_schemathesis_api.py > test-artifacts/schemathesis.log 2>&1 &
 fuzzing=$!
-python3 -m pytest -q --durations=15 -n 4 --dist loadgroup --ignore=tests/test_schemathesis_api.py || status=$?
+python3 -m pytest -q --durations=15 -n 4 --dist loadgroup --junitxml=test-artifacts/junit.xml --ignore=tests/test_schemathesis_api.py || status=$?
 wait "$fuzzing" || status=$((status ? status : $?))
 cat test-artifacts/schemathesis.log
 python3 tests/leftover_processes.py --since "$before" || status=$((status ? status : 1))
