@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import base64
 import hashlib
+import json
+import math
 import re
 from functools import lru_cache
 
@@ -48,11 +50,14 @@ class BenchResults(StaticFiles):
 # The bench writes its tables in English; the page's own words (headings, references, figure captions, the
 # fastest-method sentence, the table's head and the method names) are said in ru, uk or en from content/i18n
 # (keys measurements_*), the numbers written the reader's way. A line the page does not know stays as written.
+# Each study's figure is drawn in the browser (web/static/js/measurements) from the points of its own table,
+# handed over in the page with every word already in the reader's language; the bench's own pictures
+# (wp_<key>.png, .html) stay for the readers of work_precision.md.
 
-PICTURE = re.compile(r"!\[[^\]]*\]\(([^)\s]+)\)")
-INTERACTIVE = re.compile(r"\(interactive: (\S+)\)")
 FASTEST = re.compile(r"(?:Fastest to error|error) ≤ (\S+): (.+?) in ([\d.]+) ms")
 PICKED = re.compile(r"ours \(picked by stiffness ratio ([^)]+)\): (\w+)")
+STUDY = re.compile(r"wp_(\w+)\.png")
+COLUMNS = ["method", "tolerance", "error", "run time, ms"]
 REFERENCES = {"DOP853 at rtol 1e-13 in time, cycles until periodic": "measurements_reference_dop853",
               "ours on 32768 steps per turn": "measurements_reference_fine_grid",
               "rtol 1e-11 by another method than ours": "measurements_reference_other_method"}
@@ -69,6 +74,15 @@ def _number(text: str, lang: str) -> str:
         return text
     written = f"{value:.6g}"
     return signed(written if lang == "en" else written.replace(".", ","))
+
+
+def _value(text: str) -> float | None:
+    """A number of a table as the figure plots it; None (a gap) for a cell that is no finite number."""
+    try:
+        value = float(text)
+    except ValueError:
+        return None
+    return value if math.isfinite(value) else None
 
 
 def _method(text: str, t: dict, lang: str) -> str:
@@ -88,25 +102,70 @@ def _fastest(line: str, t: dict, lang: str) -> str:
     return t["measurements_fastest"].format(items="; ".join(parts)) + "."
 
 
-def _table(rows: list[str], t: dict, lang: str, notation) -> str:
+def _cells(rows: list[str]) -> list[list[str]]:
+    """A Markdown table's rows as lists of cells, its head first (the line under the head left out)."""
     cells = [[cell.strip() for cell in row.strip().strip("|").split("|")] for row in rows]
+    return cells[:1] + cells[2:]
+
+
+def _table(cells: list[list[str]], t: dict, lang: str, notation) -> str:
     head = [t["measurements_column_method"], t["measurements_column_tolerance"], t["measurements_column_error"],
-            t["measurements_column_run_time"]]
-    if cells[0] != ["method", "tolerance", "error", "run time, ms"]:
-        head = cells[0]
+            t["measurements_column_run_time"]] if cells[0] == COLUMNS else cells[0]
     body = []
-    for row in cells[2:]:
+    for row in cells[1:]:
         shown = [_method(row[0], t, lang)] + [_number(cell, lang) for cell in row[1:]]
         body.append("<tr>" + "".join(f"<td>{notation(cell)}</td>" for cell in shown) + "</tr>")
     return ("<table><thead><tr>" + "".join(f"<th>{escape(cell)}</th>" for cell in head) + "</tr></thead><tbody>"
             + "".join(body) + "</tbody></table>")
 
 
+def study_figure(cells: list[list[str]], t: dict, lang: str) -> dict:
+    """The figure of a study's table (head method, tolerance, error, run time in ms) as the page draws it:
+    one trace per method in the table's order, named as the table names it (ours: the app's own method); x the
+    run time (ms) and y the error of each of its rows, as the table writes them (None: no finite number); each
+    point's hover text its tolerance, error and run time in the reader's words; the axes' titles. Every word
+    and every written number is the reader's: the browser only draws (web/static/js/measurements)."""
+    traces: dict[str, dict] = {}
+    for method, tolerance, error, run_time in (row[:4] for row in cells[1:]):
+        trace = traces.setdefault(method, {"name": _method(method, t, lang), "ours": method.startswith("ours"),
+                                           "x": [], "y": [], "hover": []})
+        trace["x"].append(_value(run_time))
+        trace["y"].append(_value(error))
+        trace["hover"].append("<br>".join(f"{t[key]}: {_number(cell, lang)}" for key, cell in (
+            ("measurements_column_tolerance", tolerance), ("measurements_column_error", error),
+            ("measurements_column_run_time", run_time))))
+    return {"traces": list(traces.values()), "x_title": t["measurements_axis_run_time"],
+            "y_title": t["measurements_axis_error"]}
+
+
+def _figure(cells: list[list[str]], title: str, t: dict, lang: str, notation, notation_parts) -> str:
+    """A study's figure: the graph the page draws from data-figure (its text alternative the caption said
+    after the study's title), and the caption."""
+    caption = t["measurements_figure"]
+    alt = "".join(run for run, _ in notation_parts(f"{title} — {caption}"))
+    data = json.dumps(study_figure(cells, t, lang), ensure_ascii=False, allow_nan=False, separators=(",", ":"))
+    return (f'<figure class="study-figure"><div class="graph" role="img" aria-label="{escape(alt)}" '
+            f'data-figure="{escape(data)}"></div><figcaption>{notation(caption)}</figcaption></figure>')
+
+
+def _next_table(lines: list[str], i: int) -> list[list[str]] | None:
+    """The cells of the first table after line i within its study (before the next heading), if any."""
+    for j in range(i + 1, len(lines)):
+        if lines[j].startswith("#"):
+            return None
+        if lines[j].startswith("|"):
+            end = j
+            while end < len(lines) and lines[end].startswith("|"):
+                end += 1
+            return _cells(lines[j:end])
+    return None
+
+
 def measurements_html(markdown: str, t: dict, lang: str, notation, notation_parts) -> Markup:
     """The work–precision tables as HTML in lang: the first heading left to the page, each study's heading,
-    reference, figure (its caption and the link to the interactive figure), sentence of the fastest method and
-    table in the reader's words. notation is the pages' filter (subscripts as <sub>, all else escaped),
-    notation_parts its reading of the markup (for the picture's alt text, plain)."""
+    reference, figure (drawn by the page from the points of the study's table, with its caption), sentence of
+    the fastest method and table in the reader's words. notation is the pages' filter (subscripts as <sub>,
+    all else escaped), notation_parts its reading of the markup (for the figure's text alternative, plain)."""
     html, lines, i, title = [], markdown.splitlines(), 0, ""
     while i < len(lines):
         line = lines[i]
@@ -114,30 +173,22 @@ def measurements_html(markdown: str, t: dict, lang: str, notation, notation_part
             i += 1
             continue
         if line.startswith("## "):
-            section = "\n".join(lines[i + 1:i + 4])
-            found = re.search(r"wp_(\w+)\.png", section)
+            found = STUDY.search("\n".join(lines[i + 1:i + 4]))
             title = t.get(f"measurements_study_{found.group(1)}" if found else "", line[3:])
             html.append(f"<h2>{notation(title)}</h2>")
         elif line.startswith("Reference: "):
             reference = line[len("Reference: "):].split(". ![", 1)[0].rstrip(".")
             said = t[REFERENCES[reference]] if reference in REFERENCES else reference
             html.append(f"<p>{escape(t['measurements_reference'])}: {notation(said)}.</p>")
-            if picture := PICTURE.search(line):
-                source = picture.group(1) if picture.group(1).startswith("/") else f"/bench-results/{picture.group(1)}"
-                caption = t["measurements_figure"]
-                alt = "".join(run for run, _ in notation_parts(f"{title} — {caption}"))
-                link = INTERACTIVE.search(line)
-                more = (f' <a href="{escape(link.group(1))}">{escape(t["measurements_interactive"])}</a>'
-                        if link else "")
-                html.append(f'<figure><img src="{escape(source)}" alt="{escape(alt)}" loading="lazy">'
-                            f"<figcaption>{notation(caption)}{more}</figcaption></figure>")
+            if (cells := _next_table(lines, i)) and cells[0] == COLUMNS:
+                html.append(_figure(cells, title, t, lang, notation, notation_parts))
         elif line.startswith("Fastest to error"):
             html.append(f"<p>{notation(_fastest(line, t, lang))}</p>")
         elif line.startswith("|"):
             end = i
             while end < len(lines) and lines[end].startswith("|"):
                 end += 1
-            html.append(_table(lines[i:end], t, lang, notation))
+            html.append(_table(_cells(lines[i:end]), t, lang, notation))
             i = end
             continue
         elif line.strip():

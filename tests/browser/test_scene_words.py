@@ -1,13 +1,14 @@
 """The words and symbols of every scene as a reader sees them, in ru, uk and en, in a real browser:
 - a ru/uk page shows no English sentence of the app's own strings (test_translations.english_in: the en texts
-  of content/i18n that ru/uk do not write themselves), /measurements included;
+  of content/i18n that ru/uk do not write themselves), /measurements included, whose study plots (drawn by the
+  page from their tables' points) say no Latin word but the solvers' names and write a decimal comma;
 - no page names a source by its file: the word "seed" is nowhere on screen;
 - one notation per quantity: the page's text read back into markup (<sub> as _{…}, <sup> as ^{…}, the shifted
   <tspan>s of drawings and plots alike) holds no other form of a quantity than tests/notation.json's, and the
   table of the forms each scene shows is written to test-artifacts/scene_notation_<scene>.json;
 - the short intros fold the sources' details (wear, angular acceleration).
 Screenshots of four scenes in ru and en at desktop width and of two in ru at phone size (390 × 844) go to
-test-artifacts/ (scene_words_*.png).
+test-artifacts/ (scene_words_*.png), /measurements in ru, uk and en to measurements_<lang>.png.
 """
 from __future__ import annotations
 
@@ -17,7 +18,7 @@ import sys
 
 import pytest
 
-from conftest import ARTIFACTS, PHONE, REPO, read_scene, screenshot
+from conftest import ARTIFACTS, PHONE, REPO, interface_texts, read_scene, screenshot
 
 sys.path.insert(0, str(REPO / "tests"))
 from test_notation_forms import NOTATION, other_forms  # noqa: E402  (the one list, read as the API test reads it)
@@ -99,17 +100,59 @@ def test_every_scene_speaks_the_readers_language_names_no_seed_and_writes_one_fo
     assert page.problems == []
 
 
-@pytest.mark.parametrize("lang", ["ru", "uk"])
+# Each study's plot on /measurements as drawn: its SVG texts (legend, axis titles, ticks), and per trace the
+# method's name as the legend writes it and the markers drawn, beside the rows of the study's table.
+STUDY_PLOTS = r"""() => [...document.querySelectorAll('.measurements [data-figure]')].map((graph) => {
+  let table = graph.closest('figure');
+  while (table && table.tagName !== 'TABLE') table = table.nextElementSibling;
+  const traces = [...graph.querySelectorAll('.scatterlayer .trace')];
+  return {
+    texts: [...graph.querySelectorAll('.main-svg text')].map((node) => node.textContent),
+    legend: [...graph.querySelectorAll('.legend .legendtext')].map((node) => node.textContent),
+    x_title: graph.querySelector('.xtitle')?.textContent, y_title: graph.querySelector('.ytitle')?.textContent,
+    points: traces.map((trace) => trace.querySelectorAll('.points .point').length),
+    rows: table ? [...table.querySelectorAll('tbody tr')].map((row) => row.cells[0].textContent) : [],
+  };
+})"""
+PROPER_NAMES = {"RK45", "DOP853", "Radau", "LSODA", "SciPy", "BDF"}     # the solvers' own names, said as is
+
+
+def latin_words(text: str) -> list[str]:
+    """Runs of Latin letters and digits with two letters or more ("RK4", "ms"), the solvers' names left out."""
+    return [run for run in re.findall(r"[A-Za-z0-9]+", text)
+            if len(re.findall(r"[A-Za-z]", run)) >= 2 and run not in PROPER_NAMES]
+
+
+@pytest.mark.parametrize("lang", LANGUAGES)
 def test_the_measurements_page_speaks_the_readers_language(browser_page, lang):
+    """/measurements in the reader's words, its six studies' plots drawn by the page (plotly.js) from the points
+    of their tables: legend and axis titles in lang (in ru/uk no Latin word but the solvers' names, a decimal
+    comma), every method one trace with a marker per row of the table. Screenshot measurements_<lang>.png."""
     page = browser_page
+    texts = interface_texts(lang)
     page.goto(f"/measurements?lang={lang}")
+    assert page.locator(".measurements [data-figure]").count() == 6
+    page.wait_for_function("() => document.querySelectorAll('.measurements [data-figure][data-drawn]').length === 6")
     settle(page)
     text = page.evaluate("() => document.body.innerText")
-    assert english_in(text, lang) == []
+    if lang != "en":
+        assert english_in(text, lang) == []
+        assert not re.search(r"\b(?:Reference|Fastest|ours|interactive|tolerance|Elastic|Flywheel)\b", text)
     assert SEED.findall(text) == []
-    assert not re.search(r"\b(?:Reference|Fastest|ours|interactive|tolerance|Elastic|Flywheel)\b", text)
-    assert page.locator("article.measurements figure img").count() == 6
-    screenshot(page, f"scene_words_measurements_{lang}")
+    assert page.locator("article.measurements img").count() == 0
+    plots = page.evaluate(STUDY_PLOTS)
+    for plot in plots:
+        assert (plot["x_title"], plot["y_title"]) == (texts["measurements_axis_run_time"], texts["measurements_axis_error"])
+        methods = list(dict.fromkeys(plot["rows"]))
+        assert plot["legend"] == methods and len(methods) >= 4
+        assert plot["points"] == [plot["rows"].count(method) for method in methods]
+    said = "\n".join(text for plot in plots for text in plot["texts"])
+    if lang == "en":
+        assert texts["measurements_method_shooting"] in said and re.search(r"\d\.\d", said)
+    else:
+        assert latin_words(said) == []
+        assert not re.search(r"\d\.\d", said) and re.search(r"\d,\d", said)   # "2,5" in a method's name
+    screenshot(page, f"measurements_{lang}")
     assert page.problems == []
 
 
