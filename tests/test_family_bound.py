@@ -1,5 +1,6 @@
 """The family's bound against the endpoints' exact answers on every scene (server/families/family.py): for
-every slider of every variant, at the defaults or with the other sliders at random values (the scene's sliders,
+every slider of the scene (in each variant that brings it, and one in turn of each variant that brings none:
+sliders_checked), at the defaults or with the other sliders at random values (the scene's sliders,
 variant after variant, take the two in turn), the family the page
 asks for (its drawn ``fields``, packed) is interpolated by the contract's rule (linear or cubic by interval)
 at random values between members, and every drawn quantity is within TOLERANCE of its span of the endpoint's
@@ -168,15 +169,30 @@ def random_values(variant, rng: random.Random) -> dict:
 
 
 
+def sliders_checked(scene):
+    """(variant, the sliders whose families are checked there): every slider of the scene in the first variant
+    that has it, and in a variant whose sliders all came before, one of them in turn (each variant is another
+    model: its solver and its curves). A slider shared by nine variants of the equation of motion is one family
+    computation per variant otherwise: 40 families against 15 on that scene, 193 against 115 on all."""
+    seen, chosen = set(), []
+    for variant in scene.variants:
+        new = [slider for slider in variant.sliders if slider.id not in seen]
+        if not new and variant.sliders:
+            new = [variant.sliders[len(chosen) % len(variant.sliders)]]
+        seen |= {slider.id for slider in variant.sliders}
+        chosen.append((variant, new))
+    return chosen
+
+
 @pytest.mark.parametrize("scene_id", [s.id for s in scenes().values() if s.endpoint not in WITHOUT_FAMILY])
 def test_every_slider_family_of_the_scene_is_within_the_bound_of_the_exact_answers(client, scene_id):
     scene = scenes()[scene_id]
     rng = random.Random(scene_id)
     checked = 0
     others = []                     # each slider in the setting not taken
-    for variant in scene.variants:
+    for variant, sliders in sliders_checked(scene):
         settings = (None, random_values(variant, rng))     # the scene's sliders take the two in turn
-        for slider in variant.sliders:
+        for slider in sliders:
             taken = len(others) % 2
             checked += check(client, page_body(scene, variant, slider, settings[taken]), rng)
             others.append(page_body(scene, variant, slider, settings[1 - taken]))

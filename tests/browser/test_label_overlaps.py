@@ -1,5 +1,6 @@
-"""The words of a drawing can be read: on every scene (each variant as it opens, in en here; in ru the same check
-runs in test_notation's walk of every variant, which opens those pages anyway)
+"""The words of a drawing can be read: on every scene (each variant as it opens in ru, in test_notation's walk of
+every variant; the default state in ru, uk and en, in test_scene_words' walk: those walks open the pages anyway,
+and call label_problems here)
 - no two text labels of a drawing (the SVG <text>s of linkages, free bodies, models and diagrams) cover each
   other, and none is cut by the edge of its drawing;
 - on a polar plot, the radial axis's title covers no tick label and no tick label another;
@@ -13,12 +14,10 @@ from __future__ import annotations
 
 import pytest
 
-from conftest import ARTIFACTS, REPO, families_arrived, read_scene
+from conftest import ARTIFACTS, families_arrived
 
 pytestmark = pytest.mark.browser
 
-SCENE_FILES = sorted(path.stem for path in (REPO / "content" / "scenes").glob("*.json"))
-LANGS = ["en"]
 TOUCH = 1.0             # px: boxes that meet within this much touch
 # the drawings looked at by a person (photographed in ru by test_notation): (scene file, variant, element id,
 # picture name); the own-mechanism variant draws its group free bodies as the shaping machine's (its example) does
@@ -114,24 +113,6 @@ def test_overlap_and_cut_say_what_they_mean():
     assert overlap(a, {"left": 8, "top": 2, "right": 20, "bottom": 10})
     assert not cut(a, {"left": 0.5, "top": -1, "right": 10, "bottom": 11})
     assert cut(a, {"left": 2, "top": 0, "right": 10, "bottom": 10})
-
-
-@pytest.mark.parametrize("lang", LANGS)
-@pytest.mark.parametrize("name", SCENE_FILES)
-def test_no_label_of_a_drawing_covers_another_or_is_cut(browser_page, name, lang):
-    """Every variant of the scene as it opens: its drawings' labels apart and inside, its polar plots' titles
-    off their tick labels. (The Russian pages: test_notation.)"""
-    page = browser_page
-    scene = read_scene(name)
-    problems = {}
-    for variant in scene["variants"]:
-        page.goto(f"/scenes/{scene['id']}?lang={lang}&variant={variant['id']}")
-        settle(page)
-        found = label_problems(page.evaluate(DRAWN_LABELS))
-        if found:
-            problems[variant["id"]] = found
-    assert problems == {}
-    assert page.problems == []
 
 
 def test_the_preview_badge_covers_no_tool_button_while_a_slider_is_dragged(browser_page):

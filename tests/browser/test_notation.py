@@ -88,7 +88,7 @@ def test_the_russian_texts_write_subscripts_on_most_scenes():
 def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_every_variant(browser_page, name):
     """Every variant of the scene opened once in ru: no "_" on the screen and the subscripts as <sub>; numbers
     with a true minus, a decimal comma (plots' tick labels included) and no signed zero; the labels of its
-    drawings apart and inside them (test_label_overlaps.label_problems; the English pages are checked there).
+    drawings apart and inside them (test_label_overlaps.label_problems; uk and en at the default state: test_scene_words).
     On the scene's default (first) variant its live studies are then run, and no English sentence of the app may
     show. (The Ukrainian and English pages' words: test_scene_words.)"""
     page = browser_page

@@ -3,6 +3,8 @@
   of content/i18n that ru/uk do not write themselves), /measurements included, whose study plots (drawn by the
   page from their tables' points) say no Latin word but the solvers' names and write a decimal comma;
 - no page names a source by its file: the word "seed" is nowhere on screen;
+- the labels of its drawings apart and inside them at the scene's default state (test_label_overlaps'
+  label_problems; every variant in ru: test_notation);
 - one notation per quantity: the page's text read back into markup (<sub> as _{…}, <sup> as ^{…}, the shifted
   <tspan>s of drawings and plots alike) holds no other form of a quantity than tests/notation.json's, and the
   table of the forms each scene shows is written to test-artifacts/scene_notation_<scene>.json;
@@ -23,6 +25,8 @@ from conftest import ARTIFACTS, PHONE, REPO, interface_texts, read_scene, screen
 sys.path.insert(0, str(REPO / "tests"))
 from test_notation_forms import NOTATION, other_forms  # noqa: E402  (the one list, read as the API test reads it)
 from test_translations import english_in  # noqa: E402
+from test_label_overlaps import DRAWN_LABELS, label_problems  # noqa: E402
+from test_label_overlaps import settle as drawn  # noqa: E402
 
 pytestmark = pytest.mark.browser
 
@@ -85,7 +89,8 @@ def test_every_scene_speaks_the_readers_language_names_no_seed_and_writes_one_fo
     table = {}
     for lang in LANGUAGES:
         page.goto(f"/scenes/{scene['id']}?lang={lang}")
-        settle(page)
+        drawn(page)
+        assert label_problems(page.evaluate(DRAWN_LABELS)) == [], lang
         text = page.evaluate("() => document.body.innerText + '\\n' + "
                              "[...document.querySelectorAll('svg text')].map((n) => n.textContent).join('\\n')")
         markup = page.evaluate(MARKUP)
