@@ -1,6 +1,6 @@
 """The steps of Lecture 10 §10.10 (successive_approximations.py) compiled with numba: the same loop, the same
 sums in the same order (the trapezoid rule summed node after node, as numpy's cumsum does) and Brent's method
-as scipy's brentq (compiled.periodic_level's port), so the laws agree with the plain loop to rounding.
+as scipy's brentq (brent.brentq, its port), so the laws agree with the plain loop to rounding.
 
 Each step costs two root searches over the cycle's 2049 nodes: the shift c of the mean speed that makes the
 cycle's work zero and the level T₀ of the energy equation (L4) whose cycle mean of ω is the one asked for.
@@ -15,6 +15,7 @@ from functools import lru_cache
 import numpy as np
 from numba import njit
 
+from .brent import brentq
 from .speed_moment import KLOSS, speed_moment
 
 RUNNING, CONVERGED, NO_BALANCE, STOPS, ROOT_FAILED = 0, 1, 2, 3, 4   # how the loop ended
@@ -22,6 +23,7 @@ BALANCE, ENERGY = 0, 1                                                # the two 
 ROWS = 4                                                              # ω_max, ω_min, mean M_д, change
 QUADRATIC = 0.1             # a Newton step d leaves ~d²/(the bracket's width) (f″/f′ on its scale): below xtol
 NEWTON_STEPS = 12           # more: Newton's method gives way to Brent's (never met on the scenes' machines)
+BRENT_ITERATIONS = 100      # scipy's brentq default
 
 
 @njit(cache=True)
@@ -121,70 +123,11 @@ def _newton(which, guess, xa, xb, f_a, xtol, rtol, omega, phi, net_phi, sliding,
 
 
 @njit(cache=True)
-def _value(which, x, omega, phi, net_phi, sliding, kind, p, work, J, mean):
+def _value(x, which, omega, phi, net_phi, sliding, kind, p, work, J, mean):
+    """_balance at the shift x (BALANCE) or _energy_excess at the level x (ENERGY): what Brent's method solves."""
     if which == BALANCE:
         return _balance(x, omega, phi, net_phi, sliding, kind, p)
     return _energy_excess(x, work, J, phi, mean)
-
-
-@njit(cache=True)
-def _brent(which, xa, xb, xtol, rtol, omega, phi, net_phi, sliding, kind, p, work, J, mean):
-    """scipy's brentq (compiled.periodic_level) on _value(which, ·); (root, status): 0 converged, else failed."""
-    iterations = 100
-    xpre, xcur = xa, xb
-    xblk, fblk, spre, scur = 0.0, 0.0, 0.0, 0.0
-    fpre = _value(which, xpre, omega, phi, net_phi, sliding, kind, p, work, J, mean)
-    fcur = _value(which, xcur, omega, phi, net_phi, sliding, kind, p, work, J, mean)
-    if math.isnan(fpre) or math.isnan(fcur):
-        return xcur, 2
-    if fpre == 0:
-        return xpre, 0
-    if fcur == 0:
-        return xcur, 0
-    if (fpre < 0) == (fcur < 0):
-        return xcur, 3
-    for _ in range(iterations):
-        if fpre != 0 and fcur != 0 and (fpre < 0) != (fcur < 0):
-            xblk = xpre
-            fblk = fpre
-            spre = scur = xcur - xpre
-        if abs(fblk) < abs(fcur):
-            xpre = xcur
-            xcur = xblk
-            xblk = xpre
-            fpre = fcur
-            fcur = fblk
-            fblk = fpre
-        delta = (xtol + rtol * abs(xcur)) / 2
-        sbis = (xblk - xcur) / 2
-        if fcur == 0 or abs(sbis) < delta:
-            return xcur, 0
-        if abs(spre) > delta and abs(fcur) < abs(fpre):
-            if xpre == xblk:
-                stry = -fcur * (xcur - xpre) / (fcur - fpre)
-            else:
-                dpre = (fpre - fcur) / (xpre - xcur)
-                dblk = (fblk - fcur) / (xblk - xcur)
-                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
-            if 2 * abs(stry) < min(abs(spre), 3 * abs(sbis) - delta):
-                spre = scur
-                scur = stry
-            else:
-                spre = sbis
-                scur = sbis
-        else:
-            spre = sbis
-            scur = sbis
-        xpre = xcur
-        fpre = fcur
-        if abs(scur) > delta:
-            xcur += scur
-        else:
-            xcur += delta if sbis > 0 else -delta
-        fcur = _value(which, xcur, omega, phi, net_phi, sliding, kind, p, work, J, mean)
-        if math.isnan(fcur):
-            return xcur, 2
-    return xcur, 1
 
 
 @njit(cache=True)
@@ -209,8 +152,8 @@ def approximation_steps(phi, J, net_phi, sliding, kind, p, omega_operating, knee
         shift, status = _newton(BALANCE, 0.0, low, high, f_low, 1e-14 * omega_operating, 1e-15, omega, phi, net_phi,
                                 sliding, kind, p, work, J, 0.0)
         if status != 0:
-            shift, status = _brent(BALANCE, low, high, 1e-14 * omega_operating, 1e-15, omega, phi, net_phi, sliding,
-                                   kind, p, work, J, 0.0)
+            shift, status = brentq(_value, (BALANCE, omega, phi, net_phi, sliding, kind, p, work, J, 0.0), low, high,
+                                   1e-14 * omega_operating, 1e-15, BRENT_ITERATIONS)
         if status != 0:
             return step - 1, ROOT_FAILED, step
         for j in range(n):
@@ -233,8 +176,8 @@ def approximation_steps(phi, J, net_phi, sliding, kind, p, omega_operating, knee
         T0, status = _newton(ENERGY, guess, lowest, top, f_low, 1e-15 * top, 1e-15, omega, phi, net_phi, sliding,
                              kind, p, work, J, mean)
         if status != 0:
-            T0, status = _brent(ENERGY, lowest, top, 1e-15 * top, 1e-15, omega, phi, net_phi, sliding, kind, p, work,
-                                J, mean)
+            T0, status = brentq(_value, (ENERGY, omega, phi, net_phi, sliding, kind, p, work, J, mean), lowest, top,
+                                1e-15 * top, 1e-15, BRENT_ITERATIONS)
         if status != 0:
             return step - 1, ROOT_FAILED, step
         new = laws[step - 1]

@@ -17,6 +17,7 @@ import numpy as np
 from numba import njit
 
 from . import dop853
+from .brent import brentq
 from .speed_moment import (BETA, GEAR, INDUCTION, KLOSS, LINEAR, M0, M_MAX, M_NOMINAL,  # noqa: F401  (re-exported)
                            MOTOR_KINDS, NO_MOTOR, OMEGA_NOMINAL, OMEGA_SYNC, S_CRITICAL, SLOPE_B, speed_moment,
                            speed_parameters)
@@ -146,72 +147,17 @@ def mean_of_extremes(work, total, T0):
 
 
 @njit(cache=True, error_model="numpy")
-def _mean_error(work, total, T0, omega_mean):
+def _mean_error(T0, work, total, omega_mean):
     return mean_of_extremes(work, total, T0) - omega_mean
 
 
 @njit(cache=True, error_model="numpy")
 def periodic_level(work, total, omega_mean, xa, xb, xtol, rtol, iterations):
     """T₀ with ½(ω_max + ω_min) = ω_m on [xa, xb] (flywheel.periodic_speed): Brent's method, scipy's brentq
-    (scipy/optimize/Zeros/brentq.c) ported line for line, so that the root is the very double scipy finds.
+    ported line for line (brent.brentq), so that the root is the very double scipy finds.
     Returns (root, status): status 0 converged, 1 no convergence within ``iterations`` (scipy's RuntimeError),
     2 a NaN value of the function (scipy's ValueError), 3 no sign change on the bracket (scipy's ValueError)."""
-    xpre, xcur = xa, xb
-    xblk, fblk, spre, scur = 0.0, 0.0, 0.0, 0.0
-    fpre = _mean_error(work, total, xpre, omega_mean)
-    if math.isnan(fpre):
-        return xpre, 2
-    fcur = _mean_error(work, total, xcur, omega_mean)
-    if math.isnan(fcur):
-        return xcur, 2
-    if fpre == 0:
-        return xpre, 0
-    if fcur == 0:
-        return xcur, 0
-    if (fpre < 0) == (fcur < 0):
-        return xcur, 3
-    for _ in range(iterations):
-        if fpre != 0 and fcur != 0 and (fpre < 0) != (fcur < 0):
-            xblk = xpre
-            fblk = fpre
-            spre = scur = xcur - xpre
-        if abs(fblk) < abs(fcur):
-            xpre = xcur
-            xcur = xblk
-            xblk = xpre
-            fpre = fcur
-            fcur = fblk
-            fblk = fpre
-        delta = (xtol + rtol * abs(xcur)) / 2
-        sbis = (xblk - xcur) / 2
-        if fcur == 0 or abs(sbis) < delta:
-            return xcur, 0
-        if abs(spre) > delta and abs(fcur) < abs(fpre):
-            if xpre == xblk:            # interpolate
-                stry = -fcur * (xcur - xpre) / (fcur - fpre)
-            else:                       # extrapolate
-                dpre = (fpre - fcur) / (xpre - xcur)
-                dblk = (fblk - fcur) / (xblk - xcur)
-                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
-            if 2 * abs(stry) < min(abs(spre), 3 * abs(sbis) - delta):
-                spre = scur             # good short step
-                scur = stry
-            else:
-                spre = sbis             # bisect
-                scur = sbis
-        else:
-            spre = sbis                 # bisect
-            scur = sbis
-        xpre = xcur
-        fpre = fcur
-        if abs(scur) > delta:
-            xcur += scur
-        else:
-            xcur += delta if sbis > 0 else -delta
-        fcur = _mean_error(work, total, xcur, omega_mean)
-        if math.isnan(fcur):
-            return xcur, 2
-    return xcur, 1
+    return brentq(_mean_error, (work, total, omega_mean), xa, xb, xtol, rtol, iterations)
 
 
 @njit(cache=True, error_model="numpy")
