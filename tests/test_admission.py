@@ -14,6 +14,7 @@ from fastapi.testclient import TestClient
 from server.api.endpoints import ENDPOINTS
 from server.runtime.admission import COOKIE, AdmissionMiddleware
 from server.api.app import create_app
+from admission_exchange import KINEMATICS, Exchange, settle
 from event_loop import run_to_end
 from tests.test_security import assert_security_headers
 
@@ -44,39 +45,9 @@ class HeldApp:
         await send({"type": "http.response.body", "body": b"{}"})
 
 
-class Exchange:
-    """One request to the middleware: its answer's messages, and a way for its client to hang up."""
-
-    def __init__(self, middleware, path="/api/v1/kinematics", host="10.0.0.1", client_id=ID_A, method="POST"):
-        self.sent: list[dict] = []
-        self.hang_up = asyncio.Event()
-        self.body_read = False
-        headers = [(b"cookie", f"theme=dark; {COOKIE}={client_id}".encode())] if client_id else []
-        scope = {"type": "http", "method": method, "path": path, "headers": headers, "client": (host, 5000),
-                 "scheme": "http"}
-        self.task = asyncio.ensure_future(middleware(scope, self._receive, self._send))
-
-    async def _receive(self):
-        if not self.body_read:
-            self.body_read = True
-            return {"type": "http.request", "body": b"{}", "more_body": False}
-        await self.hang_up.wait()
-        return {"type": "http.disconnect"}
-
-    async def _send(self, message):
-        self.sent.append(message)
-
-    @property
-    def status(self):
-        return self.sent[0]["status"] if self.sent else None
-
-    def header(self, name: bytes):
-        return dict(self.sent[0]["headers"]).get(name)
-
-
-async def settle():
-    for _ in range(20):
-        await asyncio.sleep(0)
+def exchange(middleware, path=KINEMATICS, host="10.0.0.1", client_id=ID_A, method="POST") -> Exchange:
+    """One request from a classroom browser, whose cookie header holds another cookie before the admission one."""
+    return Exchange(middleware, path, host, client_id, method, other_cookies="theme=dark; ")
 
 
 def run(scenario):
@@ -87,10 +58,10 @@ def test_past_the_client_limit_429_with_retry_after_while_another_client_is_admi
     async def scenario():
         app = HeldApp()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=2, per_address=10)
-        held = [Exchange(middleware) for _ in range(2)]
+        held = [exchange(middleware) for _ in range(2)]
         await settle()
-        refused = Exchange(middleware)
-        other = Exchange(middleware, client_id=ID_B)           # same classroom address, another browser
+        refused = exchange(middleware)
+        other = exchange(middleware, client_id=ID_B)           # same classroom address, another browser
         await settle()
         assert app.started == 3 and refused.status == 429 and refused.task.done()
         assert refused.header(b"retry-after") == b"1"
@@ -108,19 +79,19 @@ def test_a_place_is_given_back_on_error_and_on_disconnect():
     async def scenario():
         app = HeldApp()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=1, per_address=10)
-        gone = Exchange(middleware)
+        gone = exchange(middleware)
         await settle()
         gone.hang_up.set()                                     # the student closed the tab
         await settle()
         assert gone.task.done() and app.cancelled == 1 and not middleware.in_flight
-        failing = Exchange(middleware)
+        failing = exchange(middleware)
         await settle()
         app.fail = True
         app.release.set()
         await asyncio.gather(failing.task, return_exceptions=True)
         assert not middleware.in_flight
         app.fail = False
-        again = Exchange(middleware)
+        again = exchange(middleware)
         await again.task
         assert again.status == 200
     run(scenario)
@@ -130,16 +101,16 @@ def test_new_ids_on_one_address_count_toward_the_address_cap():
     async def scenario():
         app, time = HeldApp(), FakeTime()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=2, per_address=3, clock=time.clock, sleep=time.sleep)
-        held = [Exchange(middleware, client_id=ID_A), Exchange(middleware, client_id=ID_A),
-                Exchange(middleware, client_id=ID_B)]
+        held = [exchange(middleware, client_id=ID_A), exchange(middleware, client_id=ID_A),
+                exchange(middleware, client_id=ID_B)]
         await settle()
-        minted = Exchange(middleware, client_id=ID_C)
-        elsewhere = Exchange(middleware, host="10.0.0.2", client_id=ID_C)
+        minted = exchange(middleware, client_id=ID_C)
+        elsewhere = exchange(middleware, host="10.0.0.2", client_id=ID_C)
         await settle()
         assert minted.status == 429
         assert json.loads(minted.sent[1]["body"])["detail"][0]["ctx"]["scope"] == "address"
         assert elsewhere.status is None and app.started == 4   # another address is admitted
-        anonymous = Exchange(middleware, client_id=None)       # the address was told to wait: so does it
+        anonymous = exchange(middleware, client_id=None)       # the address was told to wait: so does it
         time.wake.set()
         await anonymous.task
         assert time.asked == [1.0] and anonymous.status == 429
@@ -153,11 +124,11 @@ def test_heavy_requests_have_a_smaller_limit_of_their_own():
     async def scenario():
         app = HeldApp()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=8, per_address=64, per_client_heavy=2)
-        held = [Exchange(middleware, path=path) for path in ("/api/v1/elastic", "/api/v1/work-precision/motion")]
+        held = [exchange(middleware, path=path) for path in ("/api/v1/elastic", "/api/v1/work-precision/motion")]
         await settle()
-        third = Exchange(middleware, path="/api/v1/elastic")
-        light = Exchange(middleware, path="/api/v1/kinematics")
-        other = Exchange(middleware, path="/api/v1/elastic", client_id=ID_B)
+        third = exchange(middleware, path="/api/v1/elastic")
+        light = exchange(middleware, path="/api/v1/kinematics")
+        other = exchange(middleware, path="/api/v1/elastic", client_id=ID_B)
         await settle()
         assert third.status == 429 and json.loads(third.sent[1]["body"])["detail"][0]["ctx"]["scope"] == "heavy"
         assert light.status is None and other.status is None and app.started == 4
@@ -171,11 +142,11 @@ def test_only_computing_posts_are_counted():
     async def scenario():
         app = HeldApp()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=1, per_address=1)
-        held = Exchange(middleware, path="/api/v1/work-precision/elastic")
-        others = [Exchange(middleware, path=path) for path in ("/api/v1/assignments", "/api/v1/scenes/x")]
+        held = exchange(middleware, path="/api/v1/work-precision/elastic")
+        others = [exchange(middleware, path=path) for path in ("/api/v1/assignments", "/api/v1/scenes/x")]
         await settle()
         assert app.started == 3 and all(e.status is None for e in (held, *others))
-        family = Exchange(middleware, path="/api/v1/family")
+        family = exchange(middleware, path="/api/v1/family")
         await settle()
         assert family.status == 429                            # the work-precision study holds the one place
         app.release.set()
@@ -188,8 +159,8 @@ def test_an_html_page_gives_a_browser_without_one_a_random_http_only_strict_id()
         app = HeldApp()
         app.release.set()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS)
-        first, second = (Exchange(middleware, path="/scenes/x", method="GET", client_id=None) for _ in range(2))
-        known = Exchange(middleware, path="/scenes/x", method="GET", client_id=ID_A)
+        first, second = (exchange(middleware, path="/scenes/x", method="GET", client_id=None) for _ in range(2))
+        known = exchange(middleware, path="/scenes/x", method="GET", client_id=ID_A)
         await asyncio.gather(first.task, second.task, known.task)
         cookies = [e.header(b"set-cookie").decode() for e in (first, second)]
         assert cookies[0] != cookies[1] and known.header(b"set-cookie") is None
@@ -252,7 +223,7 @@ async def one_place_held():
     """A middleware with one place per client on a fake clock, and that place held by a computation."""
     app, time = HeldApp(), FakeTime()
     middleware = AdmissionMiddleware(app, computing=ENDPOINTS, **WIDE, per_client=1, per_address=10, clock=time.clock, sleep=time.sleep)
-    held = Exchange(middleware)
+    held = exchange(middleware)
     await settle()
     return app, time, middleware, held
 
@@ -260,11 +231,11 @@ async def one_place_held():
 def test_a_client_that_asks_again_before_its_retry_after_waits_it_out_and_then_is_admitted_if_a_place_is_free():
     async def scenario():
         app, time, middleware, held = await one_place_held()
-        first = Exchange(middleware)                            # refused at once, told to wait 1 s
+        first = exchange(middleware)                            # refused at once, told to wait 1 s
         await settle()
         assert first.status == 429 and time.asked == []
         time.now += 0.25
-        again = Exchange(middleware)                            # ignores Retry-After: waits the remaining 0.75 s
+        again = exchange(middleware)                            # ignores Retry-After: waits the remaining 0.75 s
         await settle()
         assert again.status is None and not again.task.done() and time.asked == [0.75]
         app.release.set()                                       # meanwhile the held computation ends
@@ -279,17 +250,17 @@ def test_a_client_that_asks_again_before_its_retry_after_waits_it_out_and_then_i
 def test_a_client_that_waited_its_retry_after_is_answered_at_once_and_a_still_full_one_is_refused_after_the_wait():
     async def scenario():
         app, time, middleware, held = await one_place_held()
-        assert Exchange(middleware).task is not None
+        assert exchange(middleware).task is not None
         await settle()
         time.now += 1.0                                         # honoured Retry-After: 1
-        honest = Exchange(middleware)
+        honest = exchange(middleware)
         await settle()
         assert honest.status == 429 and time.asked == []        # refused at once, no waiting imposed
-        impatient = Exchange(middleware)                        # at once again: waits out the new second
+        impatient = exchange(middleware)                        # at once again: waits out the new second
         time.wake.set()
         await impatient.task
         assert time.asked == [1.0] and impatient.status == 429  # still full after the wait: refused
-        other = Exchange(middleware, client_id=ID_B)            # another student on the address: not slowed
+        other = exchange(middleware, client_id=ID_B)            # another student on the address: not slowed
         await settle()
         assert other.status is None and app.started == 2
         app.release.set()

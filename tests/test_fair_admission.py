@@ -8,7 +8,8 @@ import asyncio
 import json
 
 from server.api.endpoints import ENDPOINTS
-from server.runtime.admission import CLIENT, COOKIE, AdmissionMiddleware
+from server.runtime.admission import CLIENT, AdmissionMiddleware
+from admission_exchange import KINEMATICS, Exchange, settle
 from event_loop import run_to_end
 
 
@@ -34,44 +35,13 @@ class HeldApp:
         self.releases.setdefault(label, asyncio.Event()).set()
 
 
-class Exchange:
-    """One request: label, address, cookie id, path; its answer's messages; its client can hang up."""
-
-    def __init__(self, middleware, label, host, client_id, path="/api/v1/kinematics", reading=None):
-        self.sent: list[dict] = []
-        self.reading = reading              # an event: the client reads its answer's body only once it is set
-        self.hang_up = asyncio.Event()
-        self.body_read = False
-        headers = [(b"x-label", label.encode())] + ([(b"cookie", f"{COOKIE}={client_id}".encode())]
-                                                    if client_id else [])
-        scope = {"type": "http", "method": "POST", "path": path, "headers": headers, "client": (host, 5000),
-                 "scheme": "http"}
-        self.task = asyncio.ensure_future(middleware(scope, self._receive, self._send))
-
-    async def _receive(self):
-        if not self.body_read:
-            self.body_read = True
-            return {"type": "http.request", "body": b"{}", "more_body": False}
-        await self.hang_up.wait()
-        return {"type": "http.disconnect"}
-
-    async def _send(self, message):
-        self.sent.append(message)
-        if self.reading is not None and message["type"] == "http.response.body":
-            await self.reading.wait()
-
-    @property
-    def status(self):
-        return self.sent[0]["status"] if self.sent else None
+def exchange(middleware, label, host, client_id, path=KINEMATICS, reading=None) -> Exchange:
+    """The request `label` from `host` with the cookie id `client_id`."""
+    return Exchange(middleware, path, host, client_id, label=label, reading=reading)
 
 
 def cookie(n: int) -> str:
     return f"{n:022d}"
-
-
-async def settle():
-    for _ in range(30):
-        await asyncio.sleep(0)
 
 
 def test_invented_cookies_get_an_address_no_more_than_its_share_and_another_address_is_served_at_once():
@@ -79,15 +49,15 @@ def test_invented_cookies_get_an_address_no_more_than_its_share_and_another_addr
         app = HeldApp()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=12, per_client_heavy=2,
                                          light_places=2, heavy_places=2)
-        flood = [Exchange(middleware, f"f{n}", "10.0.0.9", cookie(n)) for n in range(12)]
+        flood = [exchange(middleware, f"f{n}", "10.0.0.9", cookie(n)) for n in range(12)]
         await settle()
-        minted = Exchange(middleware, "h", "10.0.0.9", cookie(100), path="/api/v1/elastic")
+        minted = exchange(middleware, "h", "10.0.0.9", cookie(100), path="/api/v1/elastic")
         await settle()
         assert app.order == ["f0"]                   # one of two light places: the other is kept for another address
         assert minted.status == 429                  # 12 in flight: the address's cap, whatever the cookies
         detail = json.loads(minted.sent[1]["body"])["detail"][0]
         assert detail["ctx"]["scope"] == "address" and detail["ctx"]["limit"] == 12
-        student = Exchange(middleware, "s", "10.0.0.2", cookie(999))
+        student = exchange(middleware, "s", "10.0.0.2", cookie(999))
         await settle()
         assert app.order == ["f0", "s"]              # another student's request finds its place free
         assert app.clients[-1] == ("10.0.0.2", cookie(999))
@@ -107,14 +77,14 @@ def test_waiting_requests_are_served_address_after_address_then_cookie_after_coo
     async def scenario():
         app = HeldApp()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
-        blocker = Exchange(middleware, "x", "10.0.0.7", cookie(7))
+        blocker = exchange(middleware, "x", "10.0.0.7", cookie(7))
         await settle()
         asked = [("a1", "10.0.0.1", 1), ("a2", "10.0.0.1", 1), ("a3", "10.0.0.1", 2),   # address 1: cookies 1, 2
                  ("b1", "10.0.0.2", 3), ("b2", "10.0.0.2", 3),
                  ("c1", "10.0.0.3", 4), ("c2", "10.0.0.3", 4)]
         waiting = []
         for label, host, n in asked:                 # in this order: first come would serve them so
-            waiting.append(Exchange(middleware, label, host, cookie(n)))
+            waiting.append(exchange(middleware, label, host, cookie(n)))
             await settle()
         assert app.order == ["x"]
         served = ["x"]
@@ -138,7 +108,7 @@ def test_a_heavy_lane_serves_addresses_in_turn_too():
                  ("b1", "10.0.0.2", 4), ("b2", "10.0.0.2", 4)]
         exchanges = []
         for label, host, n in asked:
-            exchanges.append(Exchange(middleware, label, host, cookie(n), path="/api/v1/elastic"))
+            exchanges.append(exchange(middleware, label, host, cookie(n), path="/api/v1/elastic"))
             await settle()
         assert app.order == ["a1", "b1"]             # each address one of the two places
         for label in ("a1", "b1", "a2"):
@@ -156,9 +126,9 @@ def test_a_request_whose_client_goes_away_while_it_waits_leaves_its_lane_unrun()
     async def scenario():
         app = HeldApp()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
-        held = Exchange(middleware, "x", "10.0.0.1", cookie(1))
-        gone = Exchange(middleware, "gone", "10.0.0.2", cookie(2))
-        later = Exchange(middleware, "later", "10.0.0.3", cookie(3))
+        held = exchange(middleware, "x", "10.0.0.1", cookie(1))
+        gone = exchange(middleware, "gone", "10.0.0.2", cookie(2))
+        later = exchange(middleware, "later", "10.0.0.3", cookie(3))
         await settle()
         gone.hang_up.set()
         await settle()
@@ -175,7 +145,7 @@ def test_with_the_address_cap_off_each_cookie_is_served_as_an_address_of_its_own
     async def scenario():
         app = HeldApp()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=0, light_places=3)
-        exchanges = [Exchange(middleware, f"s{n}", "127.0.0.1", cookie(n)) for n in range(3)]
+        exchanges = [exchange(middleware, f"s{n}", "127.0.0.1", cookie(n)) for n in range(3)]
         await settle()
         assert app.order == ["s0", "s1", "s2"]
         for n in range(3):
@@ -191,9 +161,9 @@ def test_a_client_reading_its_answer_slowly_holds_no_place():
         app = HeldApp()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
         reading = asyncio.Event()
-        slow = Exchange(middleware, "slow", "10.0.0.1", cookie(1), reading=reading)
+        slow = exchange(middleware, "slow", "10.0.0.1", cookie(1), reading=reading)
         await settle()
-        other = Exchange(middleware, "other", "10.0.0.2", cookie(2))
+        other = exchange(middleware, "other", "10.0.0.2", cookie(2))
         await settle()
         assert app.order == ["slow"]
         app.release("slow")
