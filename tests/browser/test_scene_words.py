@@ -132,7 +132,8 @@ def latin_words(text: str) -> list[str]:
 def test_the_measurements_page_speaks_the_readers_language(browser_page, lang):
     """/measurements in the reader's words, its six studies' plots drawn by the page (plotly.js) from the points
     of their tables: legend and axis titles in lang (in ru/uk no Latin word but the solvers' names, a decimal
-    comma), every method one trace with a marker per row of the table. Screenshot measurements_<lang>.png."""
+    comma), every method one trace with a marker per row of the table; a marker's hover text says its row's method
+    and tolerance as the table writes them. Screenshot measurements_<lang>.png."""
     page = browser_page
     texts = interface_texts(lang)
     page.goto(f"/measurements?lang={lang}")
@@ -157,6 +158,18 @@ def test_the_measurements_page_speaks_the_readers_language(browser_page, lang):
     else:
         assert latin_words(said) == []
         assert not re.search(r"\d\.\d", said) and re.search(r"\d,\d", said)   # "2,5" in a method's name
+    first = page.locator(".measurements [data-figure]").first
+    first.scroll_into_view_if_needed()
+    marker = first.locator(".scatterlayer .trace .points .point").first.bounding_box()
+    page.mouse.move(marker["x"] + marker["width"] / 2, marker["y"] + marker["height"] / 2)
+    page.wait_for_function("() => document.querySelector('.measurements .hoverlayer .hovertext')")
+    hover = first.locator(".hoverlayer .hovertext").first.text_content()
+    row = page.locator(".measurements table").first.locator("tbody tr").first.locator("td")
+    assert f"{texts['measurements_column_tolerance']}: {row.nth(1).text_content()}" in hover   # "Допуск: 0,001"
+    assert row.nth(0).text_content() in hover
+    if lang != "en":
+        assert latin_words(hover) == [] and not re.search(r"\d\.\d", hover)
+    page.mouse.move(0, 0)
     screenshot(page, f"measurements_{lang}")
     assert page.problems == []
 
