@@ -173,29 +173,37 @@ def desktop(chromium, app_url):
 @pytest.fixture
 def browser_page(desktop):
     """A fresh page at 1400 × 900 whose console errors and uncaught exceptions are kept in page.problems."""
+    yield from _page_of(desktop)
+
+
+def _page_of(context):
+    """A new page of a shared context, its problems kept; then the test's pages (any it opened too), cookies and
+    permissions removed from the context."""
     ARTIFACTS.mkdir(exist_ok=True)
-    page = desktop.new_page()
-    page.problems = []
-    page.on("console", lambda message: message.type == "error" and page.problems.append(message.text))
-    page.on("pageerror", lambda error: page.problems.append(str(error)))
-    yield page
-    for opened in desktop.pages:        # the test's page and any it opened in its context
-        opened.close()
-    desktop.clear_cookies()
-    desktop.clear_permissions()
-
-
-PHONE = {"width": 390, "height": 844}
-
-
-@pytest.fixture
-def phone(chromium, app_url):
-    """A page at phone size whose problems are kept as browser_page's; CSP bypassed only so that a test may inject
-    axe-core (the app never serves it)."""
-    context = chromium.new_context(base_url=app_url, viewport=PHONE, bypass_csp=True, device_scale_factor=1)
     page = context.new_page()
     page.problems = []
     page.on("console", lambda message: message.type == "error" and page.problems.append(message.text))
     page.on("pageerror", lambda error: page.problems.append(str(error)))
     yield page
+    for opened in context.pages:
+        opened.close()
+    context.clear_cookies()
+    context.clear_permissions()
+
+
+PHONE = {"width": 390, "height": 844}
+
+
+@pytest.fixture(scope="session")
+def phone_context(chromium, app_url):
+    """The phone-sized context of a test process, shared as desktop is; CSP bypassed only so that a test may
+    inject axe-core (the app never serves it)."""
+    context = chromium.new_context(base_url=app_url, viewport=PHONE, bypass_csp=True, device_scale_factor=1)
+    yield context
     context.close()
+
+
+@pytest.fixture
+def phone(phone_context):
+    """A page at phone size whose problems are kept as browser_page's."""
+    yield from _page_of(phone_context)
