@@ -3,14 +3,13 @@ the server runs and is removed when it stops: `python3 -m server --workers 2`, o
 from __future__ import annotations
 
 import os
-import signal
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 from test_crash_safety import free_port
-from test_tcp_nodelay import GUARD_S, REPO, _connected
+from test_tcp_nodelay import REPO, _connected, stop
 
 from server.runtime.shared_cache import PREFIX
 
@@ -25,11 +24,6 @@ def test_a_server_of_two_workers_removes_its_shared_file_as_it_stops(tmp_path):
         _connected(port).close()                 # answered: a worker has started, and opened the file
         running = files()
     finally:
-        server.send_signal(signal.SIGTERM)
-        try:
-            server.wait(timeout=GUARD_S)
-        except subprocess.TimeoutExpired:
-            os.killpg(server.pid, signal.SIGKILL)
-            server.wait()
+        stop(server)
     assert any(path.name == f"{PREFIX}{server.pid}.sqlite" for path in running), running
     assert files() == []

@@ -86,6 +86,16 @@ def _nodelay_of(pid: int, fd: int) -> int:
         sock.close()
 
 
+def stop(server: subprocess.Popen) -> None:
+    """SIGTERM to the server as systemd stops it; its session killed only if it has not ended within GUARD_S."""
+    server.send_signal(signal.SIGTERM)
+    try:
+        server.wait(timeout=GUARD_S)
+    except subprocess.TimeoutExpired:
+        os.killpg(server.pid, signal.SIGKILL)
+        server.wait()
+
+
 @pytest.mark.parametrize("workers", [1, 2])
 def test_the_server_sets_nodelay_on_the_connections_it_accepts(tmp_path, workers):
     port = free_port()
@@ -101,12 +111,7 @@ def test_the_server_sets_nodelay_on_the_connections_it_accepts(tmp_path, workers
         finally:
             connection.close()
     finally:
-        server.send_signal(signal.SIGTERM)
-        try:
-            server.wait(timeout=GUARD_S)
-        except subprocess.TimeoutExpired:
-            os.killpg(server.pid, signal.SIGKILL)
-            server.wait()
+        stop(server)
         deadline = time.monotonic() + 30
         while _session(server.pid) and time.monotonic() < deadline:
             time.sleep(0.5)
