@@ -57,7 +57,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from family_request import page_family_body  # noqa: E402
-from trees import OUTLIVE_GRACE_S, ROOT, check_tree, commit_of, lessons, running_server, server_cpu_s  # noqa: E402
+from trees import (OUTLIVE_GRACE_S, ROOT, check_tree, commit_of, lessons, running_server,  # noqa: E402
+                   server_cpu_s, write_result)
 
 sys.path.insert(0, str(ROOT))
 PAGE_TREE = ROOT          # the tree whose page's family request the students send (main sets --tree)
@@ -720,9 +721,7 @@ def main(argv: list[str] | None = None) -> int:
                for workers in args.workers for pattern in args.pattern]
     text = markdown(results, comparison, args)
     print(text)
-    args.output.parent.mkdir(parents=True, exist_ok=True)
-    args.output.write_text(text, encoding="utf-8")
-    print(f"written to {args.output}")
+    write_result(text, args.output)
     return 0
 
 

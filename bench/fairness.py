@@ -37,7 +37,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from http_floor import encoded, nudged_request, variant_of  # noqa: E402
 from trees import (ROOT, add_tree_arguments, check_tree, commit_of, lessons, machine_line,  # noqa: E402
-                   percentiles, running_server, server_cpu_s)
+                   percentiles, running_server, server_cpu_s, write_result)
 
 HEADERS = {"Content-Type": "application/json", "Accept-Encoding": "gzip", "Accept": "*/*"}
 LANG = "ru"
@@ -324,9 +324,7 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     text = markdown(args, results, os.getloadavg()[0])
     print(text)
-    args.output.parent.mkdir(parents=True, exist_ok=True)
-    args.output.write_text(text, encoding="utf-8")
-    print(f"written to {args.output}")
+    write_result(text, args.output)
     return 0
 
 

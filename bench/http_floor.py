@@ -35,7 +35,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from trees import (ROOT, add_tree_arguments, check_tree, lessons, machine_line,  # noqa: E402
-                   percentiles, running_server)
+                   percentiles, running_server, write_result)
 
 sys.path.insert(0, str(ROOT))
 HEADERS = {"Content-Type": "application/json", "Accept-Encoding": "gzip", "Accept": "*/*"}
@@ -311,9 +311,7 @@ def main(argv: list[str] | None = None) -> int:
         startup = {"old": old_process.startup_s, "new": new_process.startup_s}
     text = markdown(args, targets, sizes, scenes, startup)
     print(text)
-    args.output.parent.mkdir(parents=True, exist_ok=True)
-    args.output.write_text(text, encoding="utf-8")
-    print(f"written to {args.output}")
+    write_result(text, args.output)
     return 0
 
 

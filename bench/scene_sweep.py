@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from trees import ROOT, add_tree_arguments, check_tree, commit_of, lessons, machine_line  # noqa: E402
+from trees import ROOT, add_tree_arguments, check_tree, commit_of, lessons, machine_line, write_result  # noqa: E402
 
 sys.path.insert(0, str(ROOT))
 TARGET_MS = 20.0
@@ -267,9 +267,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     text = markdown(run(args), args)
     print(text)
-    args.output.parent.mkdir(parents=True, exist_ok=True)
-    args.output.write_text(text, encoding="utf-8")
-    print(f"written to {args.output}")
+    write_result(text, args.output)
     return 0
 
 

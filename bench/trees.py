@@ -202,6 +202,13 @@ def percentiles(values, qs=(50, 95)) -> list[float]:
     return [float("nan")] * len(qs) if len(values) == 0 else [float(v) for v in np.percentile(values, qs)]
 
 
+def write_result(text: str, path: Path) -> None:
+    """Write a bench's Markdown result to path (its folder made if needed) and say where."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+    print(f"written to {path}")
+
+
 def machine_line() -> str:
     import platform
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")

@@ -25,7 +25,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from http_floor import (LANG, SCENE_FLOOR_TARGET, Target, capture_scenes, chosen_scenes, encoded, fmt,  # noqa: E402
                         nudged_request, session_cpu_s, variant_of)
-from trees import ROOT, machine_line, percentiles, running_server  # noqa: E402
+from trees import ROOT, machine_line, percentiles, running_server, write_result  # noqa: E402
 
 WARMED = re.compile(r"default answers in the cache: (\d+) of (\d+) requests \(([\d.]+) s, ([\d.]+) CPU-s\)")
 GUARD_S = 900
@@ -109,9 +109,7 @@ def main(argv: list[str] | None = None) -> int:
         startup_s = process.startup_s
     text = markdown(args, rows, warmed, startup_s)
     print(text)
-    args.output.parent.mkdir(parents=True, exist_ok=True)
-    args.output.write_text(text, encoding="utf-8")
-    print(f"written to {args.output}")
+    write_result(text, args.output)
     return 0
 
 
