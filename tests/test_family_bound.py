@@ -168,7 +168,6 @@ def random_values(variant, rng: random.Random) -> dict:
 
 
 
-
 def sliders_checked(scene):
     """(variant, the sliders whose families are checked there): every slider of the scene in the first variant
     that has it, and in a variant whose sliders all came before, one of them in turn (each variant is another
