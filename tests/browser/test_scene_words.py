@@ -107,18 +107,24 @@ def test_every_scene_speaks_the_readers_language_names_no_seed_and_writes_one_fo
 
 # Each study's plot on /measurements as drawn: its SVG texts (legend, axis titles, ticks), and per trace the
 # method's name as the legend writes it and the markers drawn, beside the rows of the study's table.
-STUDY_PLOTS = r"""() => [...document.querySelectorAll('.measurements [data-figure]')].map((graph) => {
+STUDY_PLOTS = r"""() => {
+const read = (node) => {                     // a text as read: the lines of a long legend name joined by a space
+  const lines = [...node.querySelectorAll('tspan.line')].map((line) => line.textContent);
+  return lines.length ? lines.join(' ') : node.textContent;
+};
+return [...document.querySelectorAll('.measurements [data-figure]')].map((graph) => {
   let table = graph.closest('figure');
   while (table && table.tagName !== 'TABLE') table = table.nextElementSibling;
   const traces = [...graph.querySelectorAll('.scatterlayer .trace')];
   return {
-    texts: [...graph.querySelectorAll('.main-svg text')].map((node) => node.textContent),
-    legend: [...graph.querySelectorAll('.legend .legendtext')].map((node) => node.textContent),
+    texts: [...graph.querySelectorAll('.main-svg text')].map(read),
+    legend: [...graph.querySelectorAll('.legend .legendtext')].map(read),
     x_title: graph.querySelector('.xtitle')?.textContent, y_title: graph.querySelector('.ytitle')?.textContent,
     points: traces.map((trace) => trace.querySelectorAll('.points .point').length),
     rows: table ? [...table.querySelectorAll('tbody tr')].map((row) => row.cells[0].textContent) : [],
   };
-})"""
+});
+}"""
 PROPER_NAMES = {"RK45", "DOP853", "Radau", "LSODA", "SciPy", "BDF"}     # the solvers' own names, said as is
 
 

@@ -11,6 +11,12 @@ const OURS_COLOR = TRACE_COLORS[1];
 const COLORS = [TRACE_COLORS[0], TRACE_COLORS[3], TRACE_COLORS[2], TRACE_COLORS[4], LEVEL_COLOR];   // 3:1 and more
 const SYMBOLS = ["circle", "square", "diamond", "triangle-up", "cross", "x", "star", "hexagon"];
 const HEIGHT = 480;
+const LINE = 30;       // characters: a longer legend name is written on several lines (a phone shows it whole)
+
+/** A method's name as the legend writes it: a long one broken before its parenthesis and after its commas. */
+function legendName(name) {
+  return name.length > LINE ? name.replace(" (", "<br>(").replaceAll(", ", ",<br>") : name;
+}
 
 /** Plotly figure {data, layout} of a study's figure in lang. */
 export function studyPlot({ traces, x_title: xTitle, y_title: yTitle }, lang) {
@@ -19,8 +25,8 @@ export function studyPlot({ traces, x_title: xTitle, y_title: yTitle }, lang) {
   const data = traces.map((trace, i) => {
     const color = trace.ours ? OURS_COLOR : COLORS[others++ % COLORS.length];
     return {
-      type: "scatter", mode: "lines+markers", name: trace.ours ? `<b>${trace.name}</b>` : trace.name,
-      x: trace.x, y: trace.y, text: trace.hover, hovertemplate: "%{fullData.name}<br>%{text}<extra></extra>",
+      type: "scatter", mode: "lines+markers", name: trace.ours ? `<b>${legendName(trace.name)}</b>` : legendName(trace.name),
+      x: trace.x, y: trace.y, text: trace.hover, hovertemplate: `${trace.name}<br>%{text}<extra></extra>`,     // the name on one line
       line: { color, width: trace.ours ? 4 : 1.6, dash: dashes[i] },
       marker: { color, size: trace.ours ? 10 : 7, symbol: SYMBOLS[i % SYMBOLS.length] },
     };
