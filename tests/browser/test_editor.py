@@ -118,6 +118,9 @@ def test_build_a_shaping_machine_with_the_mouse(browser_page):
     page.wait_for_function("() => document.querySelector('#editor-phi').value !== '0'")
     page.wait_for_function("html => document.querySelector('#editor-drawing .links').innerHTML !== html", arg=frame)
     page.click("#editor-play")
+    page.focus("#editor-phi")
+    page.keyboard.press("Home")                             # back to φ = 0: B where it was put, clear of the
+    page.wait_for_function("() => document.querySelector('#editor-phi').value === '0'")   # guide's angle handle
     plans_ready(page)
     page.click('[data-joint="B"]')                          # in "Look", a click on a joint traces its path
     assert page.locator("#editor-drawing polyline.trace").count() == 1

@@ -306,7 +306,7 @@ export class DynamicsView {
   }
 
   #draw(panel) {
-    if (!this.plotted) return null;
+    if (!this.plotted || !holdsPanel(panel, this.plotted)) return null;   // e.g. a preview of a stalled motor
     let figure = this.#figure(panel);
     if (this.plotted !== this.data) {             // a preview
       if (moveCurves(panel.graph, figure.data)) return Promise.resolve();
