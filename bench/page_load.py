@@ -17,9 +17,9 @@ from __future__ import annotations
 import argparse
 import statistics
 import subprocess
-import sys
 from pathlib import Path
 
+from browser import scenes
 from trees import ROOT, machine_line, running_server, write_result
 
 PLOTLY = ROOT / "web" / "vendor" / "plotly" / "plotly.min.js"
@@ -132,11 +132,7 @@ def main() -> None:
     args = parser.parse_args()
     if args.loads < 2:
         parser.error("--loads must be at least 2 (a first visit and a returning one)")
-    if str(ROOT) not in sys.path:
-        sys.path.insert(0, str(ROOT))
-    from server.lessons.scenes import scene_documents
-    documents = sorted(scene_documents().values(), key=lambda s: s["order"])
-    scene_ids = args.scenes.split(",") if args.scenes else [s["id"] for s in documents]
+    scene_ids = args.scenes.split(",") if args.scenes else [s["id"] for s in scenes()]
     base, base_name = ((args.baseline.read_bytes(), str(args.baseline)) if args.baseline else previous_bundle())
     bundles = {"baseline": base, "ours": PLOTLY.read_bytes()}
     names = {"baseline": base_name, "ours": "ours"}
