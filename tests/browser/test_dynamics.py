@@ -204,7 +204,8 @@ def test_language_switch_keeps_the_settings_and_translates_the_warnings(browser_
     page.keyboard.press("End")
     page.wait_for_selector("#notices .warnings")
     assert prefix(interface_texts("ru")["warn_iteration_diverges"]) in warnings(page)
-    page.click("a[data-lang='uk']")
+    with page.expect_navigation():                       # the old page holds the same plots
+        page.click("a[data-lang='uk']")
     page.wait_for_selector("#panel-iteration", state="visible")
     t = interface_texts("uk")
     assert page.inner_text("h1") == FRICTION["title"]["uk"]

@@ -215,8 +215,9 @@ def test_the_editor_opens_the_project_and_says_why_it_cannot(browser_page):
     assert page.problems == []                           # (the server refuses one for this crank: 422)
     page.goto(f"/editor?lang=en&m={address(preset['linkage'])}&d={address(preset['dynamics'])}")
     page.wait_for_function("() => document.querySelector('#editor-course-project').getAttribute('aria-disabled') === 'false'")
-    page.click("#editor-course-project")
-    page.wait_for_function("() => document.querySelector('#project-status').dataset.state === 'ready'")
+    with page.expect_navigation():
+        page.click("#editor-course-project")
+    page.wait_for_function("() => document.querySelector('#project-status')?.dataset.state === 'ready'")  # (null while parsed)
     assert page.inner_text("[data-q='output']") == t["project_output_slide"].replace("{name}", "E/ram")
     assert float(page.input_value("[data-path='masses.forces.0.working']")) == preset["dynamics"]["masses"]["forces"][0]["working"]
     assert page.problems == []

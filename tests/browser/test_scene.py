@@ -116,7 +116,8 @@ def test_language_switch_keeps_the_scene_and_its_settings(browser_page):
     page.focus("#slider-lambda0")
     page.keyboard.press("ArrowLeft")
     wait_for_new_plot(page, "u31", before)
-    page.click("a[data-lang='uk']")
+    with page.expect_navigation():                       # the old page holds the same plots
+        page.click("a[data-lang='uk']")
     wait_for_plot(page, "u31")
     t = interface_texts("uk")
     assert page.inner_text("h1") == SCENE["title"]["uk"]
