@@ -4,7 +4,10 @@ invalid requests), with a real assignment, its instructor token, a registered st
 401s and 404s: no answer may be a 5xx, and every answer carries the security headers. (The instructor operations
 may reset or delete the second student, never the first: their secret stays valid throughout.)
 
-The suite runs MDL_SCHEMATHESIS_CASES cases (default 250: part of the default suite, about six per operation); the acceptance run is 5,000:
+Each operation gets schemathesis's coverage phase (every boundary and wrong-type case its schema defines: about
+20,000 in all, the same on every run) and its random cases: MDL_SCHEMATHESIS_CASES of them (default 250, about six
+per operation; the acceptance run, below, is 5,000). One in-process session serves every case (its cookies cleared before
+each, the environment's proxy settings not read): a session per case took half of the run's CPU.
 
     MDL_SCHEMATHESIS_CASES=5000 python3 -m pytest -q tests/test_schemathesis_api.py
 
@@ -25,6 +28,7 @@ import schemathesis
 from fastapi.testclient import TestClient
 from hypothesis import HealthCheck, settings
 from schemathesis.config import SchemathesisConfig
+from schemathesis.python import asgi
 
 from server.classroom import assignment_store
 from server.api.app import create_app
@@ -66,7 +70,9 @@ def world(tmp_path_factory):
         registered = [client.post(students, json={"name": name}) for name in (STUDENT, OTHER)]
         assert [r.status_code for r in registered] == [201, 201], [r.text for r in registered]
         rows = client.get(f"/api/v1/assignments/{made['id']}/results/{made['results_token']}").json()["students"]
-        yield {"app": app, "assignment_id": made["id"], "token": made["results_token"],
+        session = asgi.get_client(app)    # one for every case (cookies cleared before each)
+        session.trust_env = False           # nothing of this process's environment applies in-process
+        yield {"app": app, "session": session, "assignment_id": made["id"], "token": made["results_token"],
                "secret": registered[0].json()["secret"],
                "student_id": next(row["id"] for row in rows if row["student"] == OTHER)}
         assignment_store.store.cache_clear()
@@ -107,7 +113,8 @@ def test_no_answer_is_a_server_error_and_every_answer_carries_the_security_heade
     sent["cases"] += 1
     # a guard against a hang, not a measure of speed: a submission for a variant nobody has used yet computes its
     # answers in a heavy process, which a loaded machine may take tens of seconds to start and run
-    response = case.call(app=world["app"], base_url="http://testserver", timeout=300)
+    world["session"].cookies.clear()
+    response = case.call(session=world["session"], base_url="http://testserver", timeout=300)
     answered[f"{case.method} {case.path}"][response.status_code] += 1
     if case.path.endswith("/results/{token}/token") and response.status_code == 200:
         world["token"] = response.json()["results_token"]      # the instructor replaced the token: the old one ended
