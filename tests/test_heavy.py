@@ -6,6 +6,7 @@ import gc
 import json
 import os
 import signal
+import sys
 import threading
 import time
 from concurrent.futures import CancelledError
@@ -61,6 +62,19 @@ def test_a_heavy_process_has_the_modules_of_its_work_loaded_before_its_first_job
         for lane in heavy.LANES:
             assert heavy.run(eval, "[name in __import__('sys').modules for name in ('server.api.routers.family', "
                                    "'server.api.endpoints', 'server.classroom.assignment_answers')]", lane=lane) == [True] * 3
+    finally:
+        heavy.shutdown()
+
+
+def test_a_heavy_process_is_forked_from_a_forkserver_that_loaded_the_kernels():
+    """The forkserver imports the lanes' modules and loads the compiled kernels once (forkserver_preload, a module
+    that only the forkserver imports): a heavy process holds it as it was forked, and its own start then finds
+    everything loaded. The worker never imports it."""
+    heavy.shutdown()
+    try:
+        for lane in heavy.LANES:
+            assert heavy.run(eval, "'server.runtime.forkserver_preload' in __import__('sys').modules", lane=lane)
+        assert "server.runtime.forkserver_preload" not in sys.modules
     finally:
         heavy.shutdown()
 

@@ -68,8 +68,10 @@ _preload: list[str] = []       # the modules a new heavy process imports (``prel
 
 
 def preload(module: str) -> None:
-    """A module whose functions are given to the lanes, imported by each new heavy process as it starts (as
-    multiprocessing's forkserver preload): the module that submits them names itself, ``preload(__name__)``."""
+    """A module whose functions are given to the lanes, imported by the forkserver before it forks the heavy
+    processes (multiprocessing's forkserver preload, with forkserver_preload, which loads the compiled kernels),
+    and again by each new heavy process, where it is then already there: the module that submits them names
+    itself, ``preload(__name__)``."""
     if module not in _preload:
         _preload.append(module)
 
@@ -77,7 +79,9 @@ def preload(module: str) -> None:
 def _current_pool(lane: str) -> ProcessPoolExecutor:
     with _lock:
         if lane not in _pools:                # forkserver: no fork of a process that runs threads
-            _pools[lane] = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=multiprocessing.get_context("forkserver"),
+            context = multiprocessing.get_context("forkserver")
+            context.set_forkserver_preload([*_preload, f"{__package__}.forkserver_preload"])
+            _pools[lane] = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=context,
                                                initializer=_start_heavy_process,
                                                initargs=(LANES[lane] if NICE else 0, _stops, tuple(_preload)))
         return _pools[lane]

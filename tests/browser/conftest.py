@@ -95,7 +95,7 @@ def app_url(tmp_path_factory):
     # loaded machine a family cut short would fail what the tests compare with its contract, which holds for
     # the complete family
     env = os.environ | {"MDL_DATA_DIR": str(tmp_path_factory.mktemp("data")), "MDL_FAMILY_BUDGET_S": "60",
-                        "MDL_HEAVY_NICE": "0",
+                        "MDL_HEAVY_NICE": "0", "MDL_SHARED_CACHE": str(suite_families(tmp_path_factory)),
                         "MDL_REGISTRATIONS_PER_HOUR": "100000"}    # every browser test registers from 127.0.0.1
     ARTIFACTS.mkdir(exist_ok=True)
     url = f"http://127.0.0.1:{port}"
@@ -118,6 +118,15 @@ def app_url(tmp_path_factory):
     server.terminate()
     server.wait(timeout=10)
     log.close()
+
+
+def suite_families(tmp_path_factory) -> Path:
+    """The slider families' file that the app servers of the test processes share, as two app servers on one
+    host may (server/runtime/shared_cache.py, MDL_SHARED_CACHE): the pages of every process grab the same
+    sliders at the same defaults, and a family one server has computed is not computed again by the others.
+    In the run's temporary folder (that of all the processes under xdist), which pytest removes in time."""
+    base = tmp_path_factory.getbasetemp()
+    return (base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base) / "families.sqlite"
 
 
 def server_log(app_url: str) -> Path:
