@@ -91,7 +91,9 @@ def _start_heavy_process(niceness: int, stops, modules: tuple[str, ...] = ()) ->
     """A new heavy process yields the CPU (nice `niceness`) and loads the compiled kernels: a student's 5-ms
     answer is not made to wait behind seconds of an elastic run, nor an elastic answer behind a family. It reads
     its worker's stops from `stops` (shared memory), and imports the modules of the work it will be given
-    (`modules`: those named to ``preload``). What it
+    (`modules`: those named to ``preload``). Forked by a forkserver that has loaded both (forkserver_preload), it
+    finds them there and this takes milliseconds; the forkserver skips a preload that fails, and then it is here
+    that they are loaded. What it
     holds then (modules, compiled code: ~185 000 objects) is frozen out of the garbage collector's reach
     (``frozen_after_start``)."""
     global _stop_flags
