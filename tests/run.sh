@@ -21,6 +21,10 @@ if ! command -v nginx >/dev/null 2>&1 && [ ! -x /usr/sbin/nginx ]; then     # te
     else sudo apt-get update -qq && sudo apt-get install -y -qq nginx >/dev/null; fi
 fi
 mkdir -p test-artifacts
+# the suite starts about a hundred servers and many more Python processes: each would compile the app's modules
+# from source again (~0.5 CPU-s) where the environment forbids writing bytecode, so it is written here, once
+unset PYTHONDONTWRITEBYTECODE
+python3 -m compileall -q -j 0 server tests bench
 python3 -m server.core.warm_up     # compile the numba kernels once into their disk cache (tens of seconds when new)
 # four worker processes on two CPUs: the browser and server tests mostly wait (pages settling, servers starting),
 # the numeric ones fill the gaps; the tests sharing a module's own fixture stay on one worker (tests/conftest.py)

@@ -6,11 +6,13 @@ import gc
 import json
 import os
 import signal
+import subprocess
 import sys
 import threading
 import time
 from concurrent.futures import CancelledError
 from concurrent.futures.process import BrokenProcessPool
+from pathlib import Path
 
 import pytest
 from fastapi.testclient import TestClient
@@ -21,6 +23,8 @@ from server.lessons.scenes import scenes
 from server.lessons.requests import scene_request
 from server.core.mechanisms import GeometryError
 from event_loop import run_to_end
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_it_runs_elsewhere_and_a_refusal_comes_back_whole():
@@ -136,22 +140,50 @@ def test_a_computation_waiting_at_shutdown_starts_no_new_process():
     assert heavy.run(os.getpid) != os.getpid()
 
 
-def test_a_server_started_again_at_once_after_shutdown_gets_a_new_forkserver():
-    """shutdown() ends the forkserver and forgets it (waits for it, drops its address), so the next start in
-    the same process (the tests start app after app) begins a new one at once, instead of asking the dying
-    one for a process (EOFError from multiprocessing when the old one is still on its way out)."""
+def test_a_server_started_again_after_shutdown_forks_from_the_same_forkserver():
+    """shutdown() ends the heavy processes and leaves the forkserver, which has loaded the kernels: the next start
+    in the same process (the tests start app after app) forks new heavy processes from it at once, start, stop,
+    start again without a pause."""
     import multiprocessing.forkserver
-    heavy.run(os.getpid)
+    first = heavy.run(os.getpid)
     server = multiprocessing.forkserver._forkserver
-    old = server._forkserver_pid
-    assert old is not None
+    forkserver = server._forkserver_pid
+    assert forkserver is not None
     heavy.shutdown()
-    assert server._forkserver_pid is None and server._forkserver_address is None
-    for _ in range(3):                                # start, stop, start again without a pause
+    assert not _alive(first)
+    for _ in range(3):
         heavy.start()
-        assert heavy.run(os.getpid) != os.getpid()
+        again = heavy.run(os.getpid)
+        assert again not in (os.getpid(), first)
         heavy.shutdown()
-    assert heavy.run(os.getpid) != os.getpid() and server._forkserver_pid not in (None, old)
+        assert not _alive(again)
+    assert heavy.run(os.getpid) != os.getpid() and server._forkserver_pid == forkserver
+
+
+def test_the_forkserver_ends_with_the_process_that_started_it():
+    """Left running by shutdown(), the forkserver still never outlives its server: it ends when the process that
+    started it does (whether it stops cleanly or is killed), as multiprocessing's forkserver reads the end of the
+    pipe that process held open."""
+    script = ("import os, sys; from server.runtime import heavy; pid = heavy.run(os.getpid); "
+              "import multiprocessing.forkserver as f; print(f._forkserver._forkserver_pid, pid, flush=True); "
+              "heavy.shutdown(); os._exit(0) if sys.argv[1] == 'exit' else os.kill(os.getpid(), 9)")
+    for how in ("exit", "kill"):
+        done = subprocess.run([sys.executable, "-c", script, how], capture_output=True, text=True, timeout=300,
+                              cwd=ROOT)
+        forkserver, child = map(int, done.stdout.split())
+        deadline = time.monotonic() + 60                   # a guard: it ends as soon as it reads the pipe's end
+        while (_alive(forkserver) or _alive(child)) and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert not _alive(forkserver) and not _alive(child), (how, done.stderr[-2000:])
+
+
+def _alive(pid: int) -> bool:
+    """Whether process `pid` runs (a zombie, ended but not yet reaped by its parent, does not)."""
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
 
 
 def test_submit_answers_brings_refusals_back_and_replaces_a_dead_child():

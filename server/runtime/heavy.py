@@ -32,9 +32,7 @@ import gc
 import importlib
 import itertools
 import multiprocessing
-import multiprocessing.forkserver
 import os
-import signal
 import threading
 import weakref
 from concurrent.futures import Future, ProcessPoolExecutor, ThreadPoolExecutor
@@ -155,9 +153,12 @@ def _local_threads() -> ThreadPoolExecutor:
 
 
 def shutdown() -> None:
-    """End the heavy processes and their forkserver (the server is stopping): they are not our children
-    once the forkserver has started them, so they would outlive the worker. A computation still waiting
-    for its answer (its client gone) then fails instead of starting a new pool that nobody would end."""
+    """End the heavy processes (the server is stopping): they are not our children once the forkserver has
+    started them, so they would outlive the worker. A computation still waiting for its answer (its client gone)
+    then fails instead of starting a new pool that nobody would end. The forkserver is left running: it ends with
+    this process (it reads the end of the pipe that this process holds open), so it never outlives the worker,
+    and an app started again in the same process (the tests start app after app) forks its heavy processes from
+    it without loading the compiled kernels again (~3 CPU-s)."""
     with _lock:
         pools = list(_pools.values())
         _pools.clear()
@@ -168,18 +169,6 @@ def shutdown() -> None:
         # with its processes gone the pool's manager ends at once; waiting for it lets the pool close its queues,
         # whose named semaphores are then released (else: "resource_tracker: … leaked semaphore objects")
         pool.shutdown(wait=True, cancel_futures=True)
-    server = getattr(multiprocessing.forkserver, "_forkserver", None)
-    pid = getattr(server, "_forkserver_pid", None)
-    if pid:
-        try:
-            os.kill(pid, signal.SIGTERM)
-        except ProcessLookupError:
-            pass
-        # wait for it and forget its address: a server started again in this process (the tests start many)
-        # then starts a new forkserver instead of asking the dying one for a process (EOFError)
-        forget = getattr(server, "_stop", None)
-        if forget is not None:
-            forget()
 
 
 def run(function: Callable[..., T], *args, lane: str = "answers") -> T:

@@ -94,6 +94,9 @@ export class DynamicsView {
   family = null;
   #spans = new Map();      // panel id → the family's extents in its graph (familyExtents), of #spansOf
   #spansOf = null;
+  // exact answers shown: the container's data-answers; a graph's data-answer is the one it has drawn (a panel out
+  // of view is drawn in an idle period, so a page captured, printed or read by a test waits for it)
+  #shown = 0;
 
   /**
    * ghosts: the pinned curves (GhostCurves), drawn under each graph's own; turn(turnable): makes a drawing's
@@ -168,6 +171,7 @@ export class DynamicsView {
     }
     this.data = this.plotted = data;
     this.answered = true;
+    this.container.dataset.answers = String(++this.#shown);
     for (const panel of this.panels) panel.view?.useFamily?.(this.family);
     this.drawAt(this.phi);
     this.scheduler.refresh();
@@ -312,6 +316,10 @@ export class DynamicsView {
       if (moveCurves(panel.graph, figure.data)) return Promise.resolve();
       if (!this.family) figure = roomy(figure);     // the family's ranges hold its own data too
     }
-    return drawFigure(panel.graph, figure).then(() => panel.cursor?.follow(panel.graph));
+    const shown = this.plotted === this.data ? this.#shown : null;
+    return drawFigure(panel.graph, figure).then(() => {
+      panel.cursor?.follow(panel.graph);
+      if (shown !== null) panel.figure.dataset.answer = String(shown);
+    });
   }
 }
