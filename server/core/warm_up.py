@@ -23,20 +23,16 @@ from .elastic import warm as elastic
 from .kinetostatics.groups import compiled as group_friction
 
 
-def warm_up() -> dict[str, float]:
-    """Seconds each part took: {"equation of motion": …, "elastic machines": …}."""
-    return {"equation of motion": dynamics.warm_up(), "elastic machines": elastic.warm_up(),
-            "friction in a general mechanism's pairs": group_friction.warm_up(),
-            "its tables between the kinks": kink_table.warm_up(),
-            "a slider family's interpolation error": interpolation_error.warm_up(),
-            "the induction motor's successive approximations": approximations.warm_up()}
-
-
 PARTS = {"elastic machines": elastic.warm_up, "equation of motion": dynamics.warm_up,
          "friction in a general mechanism's pairs": group_friction.warm_up,
          "a slider family's interpolation error": interpolation_error.warm_up,
          "the induction motor's successive approximations": approximations.warm_up,
          "its tables between the kinks": kink_table.warm_up}   # the longest to compile first
+
+
+def warm_up() -> dict[str, float]:
+    """Seconds each part took: {"elastic machines": …, "equation of motion": …}."""
+    return {name: part() for name, part in PARTS.items()}
 
 
 def _part(name: str) -> float:
