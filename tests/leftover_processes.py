@@ -30,6 +30,27 @@ def processes() -> dict[int, str]:
     return found
 
 
+def alive(pids: set[int]) -> set[int]:
+    """Those of `pids` still running (a zombie, dead but not yet reaped, is not running)."""
+    running = set()
+    for pid in pids:
+        try:
+            state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        except OSError:
+            continue
+        if state != "Z":
+            running.add(pid)
+    return running
+
+
+def wait_gone(pids: set[int], what: str, guard_s: float = 300.0) -> None:
+    """Wait until none of `pids` runs; fail naming `what` after `guard_s` (a guard against a hang, not a limit)."""
+    deadline = time.monotonic() + guard_s
+    while alive(pids):
+        assert time.monotonic() < deadline, f"{what}: processes {sorted(alive(pids))} still running"
+        time.sleep(0.1)
+
+
 def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("--snapshot", action="store_true")

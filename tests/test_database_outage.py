@@ -27,6 +27,7 @@ import httpx
 import psycopg
 import pytest
 
+from leftover_processes import wait_gone
 from postgres import _owner, _run_as, _wait_ready, postgres_bin, start_postgres
 from test_deployment import API, QUESTIONS, SPEC, Student, deployment_on, stored_submissions
 
@@ -50,26 +51,6 @@ def cluster_processes(postmaster: int) -> set[int]:
             if int(stat.rsplit(")", 1)[1].split()[1]) == postmaster:
                 children.add(int(entry.name))
     return children | {postmaster}
-
-
-def alive(pids: set[int]) -> set[int]:
-    """Those of `pids` still running (a zombie, dead but not yet reaped, is not running)."""
-    running = set()
-    for pid in pids:
-        try:
-            state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
-        except OSError:
-            continue
-        if state != "Z":
-            running.add(pid)
-    return running
-
-
-def wait_gone(pids: set[int], what: str) -> None:
-    deadline = time.monotonic() + GUARD_S
-    while alive(pids):
-        assert time.monotonic() < deadline, f"{what}: processes {sorted(alive(pids))} still running"
-        time.sleep(0.1)
 
 
 class Cluster:

@@ -23,6 +23,7 @@ from server.lessons.scenes import scenes
 from server.lessons.requests import scene_request
 from server.core.mechanisms import GeometryError
 from event_loop import run_to_end
+from leftover_processes import alive, wait_gone
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -150,13 +151,13 @@ def test_a_server_started_again_after_shutdown_forks_from_the_same_forkserver():
     forkserver = server._forkserver_pid
     assert forkserver is not None
     heavy.shutdown()
-    assert not _alive(first)
+    assert not alive({first})
     for _ in range(3):
         heavy.start()
         again = heavy.run(os.getpid)
         assert again not in (os.getpid(), first)
         heavy.shutdown()
-        assert not _alive(again)
+        assert not alive({again})
     assert heavy.run(os.getpid) != os.getpid() and server._forkserver_pid == forkserver
 
 
@@ -171,19 +172,7 @@ def test_the_forkserver_ends_with_the_process_that_started_it():
         done = subprocess.run([sys.executable, "-c", script, how], capture_output=True, text=True, timeout=300,
                               cwd=ROOT)
         forkserver, child = map(int, done.stdout.split())
-        deadline = time.monotonic() + 60                   # a guard: it ends as soon as it reads the pipe's end
-        while (_alive(forkserver) or _alive(child)) and time.monotonic() < deadline:
-            time.sleep(0.1)
-        assert not _alive(forkserver) and not _alive(child), (how, done.stderr[-2000:])
-
-
-def _alive(pid: int) -> bool:
-    """Whether process `pid` runs (a zombie, ended but not yet reaped by its parent, does not)."""
-    try:
-        with open(f"/proc/{pid}/stat") as stat:
-            return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except FileNotFoundError:
-        return False
+        wait_gone({forkserver, child}, f"the forkserver after its process's {how} ({done.stderr[-2000:]})")
 
 
 def test_submit_answers_brings_refusals_back_and_replaces_a_dead_child():
