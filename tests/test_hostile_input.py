@@ -17,6 +17,8 @@ from server.api.app import create_app
 from server.api.errors import plain
 from server.api.security import MAX_JSON_DEPTH, SECURITY_HEADERS, json_depth
 
+from openapi_document import openapi_document
+
 
 @pytest.fixture(scope="module")
 def app(tmp_path_factory):
@@ -32,14 +34,14 @@ def client(app) -> TestClient:
 
 def post_paths() -> list[str]:
     """Every POST operation of the app's OpenAPI document, path parameters filled with a harmless word."""
-    paths = create_app().openapi()["paths"]
+    paths = openapi_document()["paths"]
     return sorted({re.sub(r"\{[^}]+\}", "x", path) for path, operations in paths.items() if "post" in operations})
 
 
 def admin_paths() -> set[str]:
     """The POST operations secured by the administrator's token (MDL_ADMIN_TOKEN; 403 while it is unset, 401
     without it), as filled in post_paths."""
-    paths = create_app().openapi()["paths"]
+    paths = openapi_document()["paths"]
     return {re.sub(r"\{[^}]+\}", "x", path) for path, operations in paths.items() if "post" in operations
             and any("admin_token" in requirement for requirement in operations["post"].get("security", []))}
 
