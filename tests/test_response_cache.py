@@ -4,6 +4,7 @@ evicted first; the cached answer is the one the server computes afresh.
 """
 from __future__ import annotations
 
+import dataclasses
 import functools
 import gzip
 import json
@@ -22,7 +23,10 @@ from pydantic import BaseModel, ConfigDict
 from server.api.routers.cache import CACHED_ENDPOINTS, request_models
 from server.runtime.response_cache import (CachedAnswer, ResponseCache, ResponseCacheMiddleware, canonical_json,
                                            validated_body)
-from server.core.dynamics import report
+from server.api import answering
+from server.core.dynamics import motion, report
+from server.core.numerics import Numerics
+from server.lessons.scenes import interface_texts
 from server.lessons.requests import scene_request
 from server.lessons.scenes import scenes
 
@@ -274,6 +278,38 @@ def test_a_motion_answer_cut_short_by_its_time_budget_says_so_and_is_not_stored(
     assert all(a.headers["x-partial"] == "1" for a in answers)
     assert "по лимиту времени" in answers[0].json()["numerics"]["message"]     # said in the reader's language
     assert stats(client)["entries"] == 0
+
+
+def test_a_start_up_above_rtol_at_the_finest_level_is_whole_and_stored(client):
+    """A start-up refined to the finest level (STARTUP_MAX_PER_2PI) whose estimate is still above rtol is a full
+    answer, said so: no X-Partial, kept by the cache (its words named 'the time budget' too, and a busy class's
+    every such answer was computed again and counted as cut short)."""
+    scene = scenes()["equation-of-motion"]
+    variant = next(v for v in scene.variants if v.id == "linear")
+    body = scene_request(scene, variant, {"M0": 60.0, "b": 0.05, "omega0": 0.5, "f": 0.1})
+    answers = [client.post(f"{API}/motion?lang=ru", json=body) for _ in range(2)]
+    assert [a.status_code for a in answers] == [200, 200]
+    numerics = answers[0].json()["startup"]["numerics"]
+    assert numerics["message"].endswith(f"при {motion.STARTUP_MAX_PER_2PI} шагах на 2π (самый мелкий уровень)")
+    assert "лимит" not in numerics["message"]
+    assert ["x-partial" in a.headers for a in answers] == [False, False]
+    assert [a.headers["x-cache"] for a in answers] == ["miss", "hit"]
+
+
+@pytest.mark.parametrize("code", ["settled", "startup_not_periodic", "startup_time_budget"])
+@pytest.mark.parametrize("bound_stopped", [False, True])
+def test_a_start_up_is_partial_exactly_when_a_bound_stopped_it(code, bound_stopped):
+    """The estimate above rtol: a bound that stopped the next level (or the cycles) makes the answer partial in
+    its words, the finest level does not; each ending has its words in every language."""
+    said = {"settled": "settled after 3 cycles", "startup_not_periodic": "not yet periodic after 3 cycles",
+            "startup_time_budget": "stopped at the time budget after 3 cycles, not yet periodic"}[code]
+    numerics = Numerics(method="RK4", rtol=1e-8, message=said, message_code=code, message_context={"cycles": 3})
+    motion.above_rtol(numerics, 2e-5, 1024, bound_stopped)
+    partial = answering.cut_short({"startup": {"numerics": dataclasses.asdict(numerics)}}, [])
+    assert partial == (bound_stopped or code == "startup_time_budget")
+    for lang in ("en", "ru", "uk"):
+        assert interface_texts(lang)[f"num_message_{numerics.message_code}"].format(
+            **numerics.message_context).count("1024") == 1
 
 
 def test_an_elastic_answer_cut_short_by_its_work_bound_says_so_and_is_not_stored(client, monkeypatch):

@@ -452,6 +452,7 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
         motion.notices.append(notice)
         return motion
     per_2pi, done = STARTUP_PER_2PI, None
+    bound_stopped = False          # a time or work bound stopped a finer level (else: met rtol, or the finest)
     while True:                    # halve the step until the estimate meets rtol (rtol = 0: one fixed run)
         try:
             pieces, settled = _cycles(machine, tables, T0, max_cycles, rtol, deadline)
@@ -462,11 +463,14 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
                 numerics.tell(notice)
                 motion.notices.append(notice)
                 return motion
+            bound_stopped = True
             break
         done = pieces, settled, startup_error(machine, kinks, pieces, balance, per_2pi), per_2pi
         estimate = done[2]
-        if (rtol <= 0 or estimate is None or estimate <= rtol or 2 * per_2pi > STARTUP_MAX_PER_2PI
-                or time.perf_counter() > deadline):
+        if rtol <= 0 or estimate is None or estimate <= rtol or 2 * per_2pi > STARTUP_MAX_PER_2PI:
+            break
+        if time.perf_counter() > deadline:
+            bound_stopped = True
             break
         per_2pi *= 2
         tables = cycle_tables(machine, kinks, per_2pi, balance)
@@ -495,13 +499,26 @@ def startup(machine: Machine, omega0: float = 0.0, rtol: float = 1e-6, max_cycle
     numerics.steps = sum(p.phi.size - 1 for p in pieces)
     numerics.error_estimate = estimate
     if rtol > 0 and estimate is not None and estimate > rtol:
-        numerics.message += (f"; the error estimate {estimate:.2g} is above rtol = {rtol:g} at {per_2pi} steps per "
-                             "2π (the finest level, or the time budget)")
-        numerics.message_code += "_above_rtol"          # the same ending, and the estimate said with it
-        numerics.message_context = {**numerics.message_context, "estimate": estimate, "rtol": rtol,
-                                    "per_2pi": per_2pi}
+        above_rtol(numerics, estimate, per_2pi, bound_stopped)
     numerics.runtime_ms = 1e3 * (time.perf_counter() - started)
     return motion
+
+
+def above_rtol(numerics: Numerics, estimate: float, per_2pi: int, bound_stopped: bool) -> None:
+    """The start-up's message ends with its estimate above rtol and why no finer level was run: the finest level
+    (STARTUP_MAX_PER_2PI, a result in full) or a time or work bound that stopped the next one (a partial result,
+    as its words say: server/api/answering.py reads them). A start-up stopped at the time budget within its
+    cycles says so already."""
+    rtol = numerics.rtol
+    numerics.message += f"; the error estimate {estimate:.2g} is above rtol = {rtol:g} at {per_2pi} steps per 2π"
+    code = f"{numerics.message_code}_above_rtol"
+    if numerics.message_code != "startup_time_budget":
+        numerics.message += (" (a finer level was stopped by the time budget or the work bound)" if bound_stopped
+                             else " (the finest level)")
+        code += "_bound" if bound_stopped else ""
+    numerics.message_code = code
+    numerics.message_context = {**numerics.message_context, "estimate": estimate, "rtol": rtol,
+                                "per_2pi": per_2pi}
 
 
 def _cycles(machine: Machine, tables: Tables, T0: float, max_cycles: int, rtol: float | None,
