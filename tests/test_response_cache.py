@@ -26,9 +26,8 @@ from server.runtime.response_cache import (CachedAnswer, ResponseCache, Response
 from server.api import answering
 from server.core.dynamics import motion, report
 from server.core.numerics import Numerics
-from server.lessons.scenes import interface_texts
 from server.lessons.requests import scene_request
-from server.lessons.scenes import scenes
+from server.lessons.scenes import interface_texts, scenes
 
 API = "/api/v1"
 SLIDER_CRANK = {"mechanism": "slider_crank", "params": {"l1": 0.1, "l2": 0.3, "e": 0.0}, "n": 361,
