@@ -14,7 +14,11 @@ estimate against the true error, measured against reference runs.
 - The start-up over its whole run (refined until its estimate meets rtol = 1e-9) against the same start with
   16× its steps per turn (nested nodes): within 3× the estimate and 2× rtol; a run
   that stalls has no estimate (towards the stop ω ∝ √(φ_s − φ) is not smooth in φ) and says why it stops.
+- The start-up's skipped levels (motion.next_level): the same answer as halving one level at a time, to the
+  last bit, because every level skipped is one whose estimate the halving saw above rtol.
 """
+import math
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -27,6 +31,8 @@ from server.core.dynamics.motion import cycle_tables, startup, steady_cycle
 from server.core.dynamics.reduction import reduced_inertia
 from server.core.dynamics.resistance import resisting_moment
 from server.core.mechanisms import MECHANISMS, GeometryError
+from server.lessons.requests import scene_request
+from server.lessons.scenes import scenes
 
 MACHINES = 60            # with a steady cycle; the acceptance asks for ≥ 50 compared
 ROUNDING = 1e-13
@@ -220,6 +226,61 @@ def test_the_start_ups_estimate_covers_the_whole_run(seed):
                     np.max(np.abs(run.t[tested][:k] - piece.t[::16][:k])) / duration)
     assert error <= 3 * result.numerics.error_estimate + ROUNDING, (error, result.numerics.error_estimate)
     assert error <= 2e-9 or "above rtol" in result.numerics.message        # refined until the estimate meets rtol
+
+
+def start_up_cases():
+    """(name, machine, ω₀, rtol, cycles): random machines of the test above and the equation-of-motion scene's
+    linear motor with a flat characteristic (b = 0.05), whose estimate falls only 2.5–4.5× per level."""
+    cases = []
+    for seed in range(0, 40, 5):
+        body = random_body(seed)
+        cases.append((f"seed {seed}", endpoints.machine(MotionRequest(**body)), 0.0 if seed % 2 else 5.0, 1e-9, 12))
+    scene = scenes()["equation-of-motion"]
+    variant = next(v for v in scene.variants if v.id == "linear")
+    body = scene_request(scene, variant, {"M0": 60.0, "b": 0.05, "omega0": 0.5, "f": 0.1})
+    request = MotionRequest(**body)
+    cases.append(("linear b = 0.05", endpoints.machine(request), request.omega0, request.rtol, request.max_cycles))
+    return cases
+
+
+def test_a_start_up_skips_only_levels_that_could_not_meet_rtol(monkeypatch):
+    """Each case twice: levels skipped (FASTEST_FALL = 32) and halved one at a time (FASTEST_FALL = ∞). The
+    answers are equal bit for bit, the halving's estimates fall less than 32× per level (the premise of a skip),
+    and the flat linear motor runs 2 levels instead of 5."""
+    original, levels = motion.startup_error, []
+
+    def seen(machine, kinks, pieces, balance, per_2pi):
+        estimate = original(machine, kinks, pieces, balance, per_2pi)
+        levels.append((per_2pi, estimate))
+        return estimate
+    monkeypatch.setattr(motion, "startup_error", seen)
+    skipped_any = False
+    for name, machine, omega0, rtol, cycles in start_up_cases():
+        answers = {}
+        for fall in (math.inf, motion.FASTEST_FALL):
+            monkeypatch.setattr(motion, "FASTEST_FALL", fall)
+            levels.clear()
+            answers[fall] = startup(machine, omega0, rtol, cycles), list(levels)
+        (halved, halving), (skipping, skips) = answers[math.inf], answers[motion.FASTEST_FALL]
+        falls = [coarse / fine for (_, coarse), (_, fine) in zip(halving, halving[1:])]
+        assert all(fall < 32 for fall in falls), (name, falls)
+        assert halving[-1:] == skips[-1:] and {level for level, _ in skips} <= {level for level, _ in halving}, name
+        assert halved.numerics.message == skipping.numerics.message, name
+        if halved.transient is not None:
+            for field in ("phi", "omega", "t", "T"):
+                assert np.array_equal(getattr(halved.transient, field), getattr(skipping.transient, field)), name
+        skipped_any |= len(skips) < len(halving)
+        if name == "linear b = 0.05":
+            assert [level for level, _ in halving] == [256, 512, 1024, 2048, 4096]
+            assert [level for level, _ in skips] == [256, 4096]
+    assert skipped_any
+
+
+def test_the_next_start_up_level():
+    assert motion.next_level(256, 1e-8, 1e-8) == 512            # met already: the caller stops before
+    assert motion.next_level(256, 3.3e-7, 1e-8) == 1024         # 3.3e-7/32 > 1e-8: 512 skipped
+    assert motion.next_level(256, 1.5e-3, 1e-8) == 4096         # never past the finest level
+    assert motion.next_level(2048, 1.0, 1e-8) == 4096
 
 
 @pytest.mark.parametrize("seed", range(24))
