@@ -93,10 +93,10 @@ MEASURE_JS = """(() => {
 
 MARKS_JS = """() => Object.fromEntries(["exact-requested", "exact-drawn", "family-requested", "family-coarse-arrived",
   "family-full-arrived", "preview-coarse", "preview-full"].map((n) => [n, performance.getEntriesByName(n).map((e) => e.startTime)]))"""
-FAMILIES_ARRIVED_JS = ("() => performance.getEntriesByName('family-arrived').length > 0"
-                       " && performance.getEntriesByName('family-full-arrived').length"
-                       " + performance.getEntriesByName('family-given-up').length"
-                       " >= performance.getEntriesByName('family-requested').length")
+FAMILIES_ARRIVED_JS = ("() => performance.getEntriesByName('family-arrived').length > 0 && "
+                       + " + ".join(f"performance.getEntriesByName('{end}').length" for end in
+                                    ("family-full-arrived", "family-unrefined", "family-failed", "family-given-up"))
+                       + " >= performance.getEntriesByName('family-requested').length")
 
 
 def scenes() -> list[dict]:

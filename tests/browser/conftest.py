@@ -53,13 +53,15 @@ def plot_text(text: str) -> str:
     return str(notation(text))
 
 
+FAMILY_ENDS = ("family-full-arrived", "family-unrefined", "family-failed", "family-given-up")
+
+
 def families_arrived(page) -> None:
-    """Every slider family the page asked for has arrived or been given up by a later grab (family_preview.js
-    marks each): a family is a heavy computation, and a client with two of them in flight is answered 429
-    (retried, but said on the console)."""
-    page.wait_for_function("() => performance.getEntriesByName('family-full-arrived').length + "
-                           "performance.getEntriesByName('family-given-up').length >= "
-                           "performance.getEntriesByName('family-requested').length")
+    """Every slider family the page asked for has ended: arrived in full, answered coarse by a busy server
+    (unrefined), failed, or given up by a later grab (family_preview.js marks each): a family is a heavy
+    computation, and a client with two of them in flight is answered 429 (retried, but said on the console)."""
+    ended = " + ".join(f"performance.getEntriesByName('{name}').length" for name in FAMILY_ENDS)
+    page.wait_for_function(f"() => {ended} >= performance.getEntriesByName('family-requested').length")
 
 
 def drag_slider(page, selector: str, fraction: float) -> None:

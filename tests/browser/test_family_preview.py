@@ -21,7 +21,7 @@ import httpx
 import numpy as np
 import pytest
 
-from conftest import PHONE, interface_texts, screenshot
+from conftest import PHONE, families_arrived, interface_texts, screenshot
 
 pytestmark = pytest.mark.browser
 
@@ -276,6 +276,78 @@ def test_grabbing_another_slider_aborts_the_family_on_its_way_and_keeps_the_coar
     assert len(again) == 1 and again[0].get("stage") is None      # the full one, asked anew
     assert again[0]["vary"][0]["path"] == "params.l2"
     release_and_wait_for_exact(page, "kinematics")
+    assert page.problems == []
+
+
+def test_a_full_family_a_busy_server_did_not_refine_is_asked_again_at_the_next_grab(family_page):
+    """A busy server answers the full stage with the coarse family (server/api/routers/family.py: unrefined): the
+    route here does what it does, once. The page ends that family as unrefined (the helpers that wait for the
+    page's families see it end), previews from the coarse family, and the next grab of the slider asks for the
+    full family again, which then arrives."""
+    page = family_page
+    busy = []
+
+    def unrefined_once(route):
+        body = json.loads(route.request.post_data)
+        if "stage" in body or busy:
+            route.fallback()
+            return
+        busy.append(body)
+        route.fulfill(response=route.fetch(post_data=json.dumps(body | {"stage": "coarse"})))
+
+    page.route("**/api/v1/family?*", unrefined_once)
+    page.goto("/scenes/transfer-functions?lang=en&variant=slider_crank")
+    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="u31")
+    page.wait_for_load_state("networkidle")
+    x, y = grab(page, "#slider-lambda")
+    families_arrived(page)
+    assert (marks(page, "family-unrefined"), marks(page, "family-full-arrived")) == (1, 0) and len(busy) == 1
+    drag_through(page, x, y, [0.4])
+    assert preview_shown(page) and marks(page, "preview-coarse") > 0 and marks(page, "preview-full") == 0
+    release_and_wait_for_exact(page, "kinematics")
+
+    before = len(page.sent)
+    page.focus("#slider-offset")                       # another slider, then λ again at the same other values
+    families_arrived(page)
+    page.focus("#slider-lambda")
+    families_arrived(page)
+    assert [body.get("stage") for body in sent(page, "family", before) if body["vary"][0]["path"] == "params.l2"] \
+        == [None]                                      # λ's full family, asked again
+    assert page.problems == []
+
+
+def test_a_family_the_page_let_go_is_asked_again(family_page):
+    """The page keeps the last four families; a fifth pushes out the first, and grabbing that slider again at
+    the same values asks the server again (the page does not send a question it has answered: the family's
+    answered questions go with it) and previews from the new family."""
+    page = family_page
+    page.goto("/scenes/transfer-functions?lang=en&variant=four_bar")
+    page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="u31")
+    page.wait_for_load_state("networkidle")
+
+    def focus(slider: str) -> None:
+        page.focus(f"#slider-{slider}")
+        families_arrived(page)
+
+    def press(key: str) -> None:
+        drawn = marks(page, "exact-drawn")
+        page.keyboard.press(key)
+        page.wait_for_function("n => performance.getEntriesByName('exact-drawn').length > n", arg=drawn)
+
+    first = len(page.sent)
+    focus("lambda0")
+    asked = sent(page, "family", first)[0]
+    for slider in ("lambda2", "lambda3"):
+        focus(slider)
+    press("ArrowRight")                                  # λ₃ moved: λ₀'s and λ₂'s families at other values
+    focus("lambda0")
+    focus("lambda2")                                     # the fifth: λ₀'s first family is let go
+    focus("lambda3")
+    press("ArrowLeft")                                   # λ₃ back where it was
+    before = len(page.sent)
+    focus("lambda0")
+    again = sent(page, "family", before)
+    assert again and again[0]["request"] == asked["request"] and again[0]["vary"] == asked["vary"]
     assert page.problems == []
 
 

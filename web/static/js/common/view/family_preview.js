@@ -32,8 +32,10 @@
  *   "family"   the family of the slider held, at the values shown, has arrived (or a better one): held()
  *
  * Performance marks (bench/browser.py): family-requested (the grab), family-arrived (the first family the
- * preview can draw from), family-coarse-arrived, family-full-arrived, family-given-up (aborted by the next
- * grab); preview-coarse or preview-full for each preview frame, by the family it is drawn from.
+ * preview can draw from), family-coarse-arrived, family-full-arrived; a family asked for ends with exactly one of
+ * family-full-arrived, family-unrefined (the busy server answered the full stage with its coarse family),
+ * family-failed (no family: the page drags without one) and family-given-up (aborted by the next grab);
+ * preview-coarse or preview-full for each preview frame, by the family it is drawn from.
  */
 import { ApiClient } from "../model/api.js";
 import { element } from "./dom.js";
@@ -115,7 +117,7 @@ export class FamilyPreview extends Emitter {
     if (this.#pending.has(key) || held?.coarse === false) return;       // on its way, or there in full
     if (!held) {
       this.#families.set(key, null);
-      for (const old of [...this.#families.keys()].slice(0, -KEPT)) this.#families.delete(old);
+      for (const old of [...this.#families.keys()].slice(0, -KEPT)) this.#drop(old);
     }
     performance.mark("family-requested");
     this.#pending.add(key);
@@ -133,6 +135,13 @@ export class FamilyPreview extends Emitter {
     }
   }
 
+  /** Forget the family under key and its answered questions: the same grab later asks the server again (the
+   * client does not send a question it has answered already, see ApiClient.submit). */
+  #drop(key) {
+    this.#families.delete(key);
+    for (const stage of STAGES) this.client.forget(`${stage} ${key}`);
+  }
+
   /** Ask for one stage of the family under key (body without "stage"); a coarse one asks next for the full one. */
   #send(key, body, stage) {
     const asked = stage === "coarse" ? { ...body, stage } : body;      // "full" is the server's default
@@ -143,10 +152,17 @@ export class FamilyPreview extends Emitter {
       if (stage === "coarse" && !answer.ok && !NOT_REFUSED.has(answer.error.code)) this.#staged = false;   // a 422
       if (stage === "coarse" && !(answer.ok && !coarse)) this.#send(key, body, "full");
       if (!answer.ok) {            // no family: dragging stays as without one, the next grab asks again
-        if (stage === "full" && !this.#families.get(key)) this.#families.delete(key);
+        if (stage === "full") {
+          performance.mark("family-failed");
+          if (!this.#families.get(key)) this.#drop(key);
+        }
         return;
       }
-      if (coarse && this.#families.get(key)) return;                 // the full family came first
+      if (stage === "full" && coarse) {          // the busy server did not refine it: the next grab asks again
+        performance.mark("family-unrefined");
+        this.client.forget(`full ${key}`);
+      }
+      if (coarse && this.#families.get(key)) return;                 // the full family came first, or is held
       if (!this.#families.get(key)) performance.mark("family-arrived");
       performance.mark(coarse ? "family-coarse-arrived" : "family-full-arrived");
       this.#families.set(key, { ...received(answer.data), log: body.log, coarse });
