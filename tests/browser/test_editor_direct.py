@@ -15,6 +15,7 @@ from __future__ import annotations
 import json
 import math
 import re
+from urllib.parse import parse_qs, urlparse
 
 import pytest
 
@@ -215,7 +216,7 @@ def test_a_six_bar_in_twelve_actions_dragged_undone_zoomed_and_opened_in_dynamic
     scene_link = page.locator("#editor-open-dynamics a[data-scene]").first
     scene_id = scene_link.get_attribute("data-scene")
     shown_linkage = linkage(page)
-    with page.expect_navigation():
+    with page.expect_navigation(url=re.compile(r"/scenes/")):       # not the editor's own address rewritten meanwhile
         scene_link.click()
     scene = next(s for s in scene_documents().values() if s["id"] == scene_id)
     wait_for_panels(page, scene, next(v for v in scene["variants"] if v["id"] == "own"))
@@ -258,6 +259,29 @@ def test_a_joint_dragged_past_where_the_mechanism_closes_stops_there(browser_pag
     text = page.evaluate(VISIBLE_TEXT)
     assert "{" not in text, re.findall(r".{30}\{.{30}", text)
     screenshot(page, "editor_direct_stopped_ru")
+    assert [p for p in page.problems if not REFUSED.search(p)] == []
+
+
+def test_the_links_to_the_scenes_stay_under_the_pointer_and_the_focus_as_the_mechanism_changes(browser_page):
+    """Every edit and answer gives the links to the dynamics scenes new addresses: the links are rewritten in
+    place, so a link pressed as an answer arrives is still the one released (it was replaced before, and the click
+    was lost), and one focused from the keyboard keeps the focus through an undo (Ctrl+Z) and points at the
+    mechanism now shown."""
+    page = browser_page
+    page.goto(six_bar_address("ru"))
+    page.wait_for_function("() => document.querySelector('#editor-drawing')?.dataset.state === 'ready'")
+    page.wait_for_function("() => document.querySelector('#editor-open-dynamics a[data-scene]') !== null")
+    before = answers(page)
+    drag(page, SUPPORT, (0.36, 0))                             # O₁ 10 mm to the right: the crank still turns
+    settled(page, before)
+    page.focus("#editor-open-dynamics a[data-scene]")
+    moved = page.evaluate("() => { window.focusedLink = document.activeElement; return focusedLink.href; }")
+    act(page, lambda: page.keyboard.press("Control+z"))
+    assert linkage(page)["frame"]["joints"]["O1"] == [0.35, 0]
+    kept, focused, href = page.evaluate("() => [focusedLink.isConnected, document.activeElement === focusedLink, "
+                                        "focusedLink.href]")
+    assert kept and focused
+    assert href != moved and parse_qs(urlparse(href).query)["m"] == parse_qs(urlparse(page.url).query)["m"]
     assert [p for p in page.problems if not REFUSED.search(p)] == []
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import base64
 import json
 import math
+import re
 from pathlib import Path
 
 import pytest
@@ -44,7 +45,7 @@ def estimated(page) -> int:
 
 
 def open_from_editor(page, scene: dict) -> None:
-    with page.expect_navigation():
+    with page.expect_navigation(url=re.compile(r"/scenes/")):       # not the editor's own address rewritten meanwhile
         page.click(f'#editor-open-dynamics a[data-scene="{scene["id"]}"]')
     wait_for_panels(page, scene, own(scene))
 

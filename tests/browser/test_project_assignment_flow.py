@@ -147,7 +147,7 @@ def test_the_editors_mechanism_becomes_a_course_project_assignment(chromium, app
     page.wait_for_function("() => document.querySelector('#editor-drawing')?.dataset.state !== undefined")
     act(page, lambda: page.select_option("#editor-preset", "shaping_machine"))
     page.wait_for_function("() => document.querySelector('#editor-open-dynamics a[data-scene=\"course-project\"]')")
-    with page.expect_navigation():
+    with page.expect_navigation(url=re.compile(r"/scenes/course-project")):    # not the editor rewriting its address
         page.click('#editor-open-dynamics a[data-scene="course-project"]')
     page.wait_for_selector("#project-variant-own a")
     editor_linkage = read_base64url(re.search(r"[?&]m=([\w-]+)", page.url).group(1))

@@ -154,7 +154,8 @@ export class FamilyPreview extends Emitter {
       if (!answer.ok) {            // no family: dragging stays as without one, the next grab asks again
         if (stage === "full") {
           performance.mark("family-failed");
-          if (!this.#families.get(key)) this.#drop(key);
+          if (this.#families.get(key)) this.client.forget(`full ${key}`);   // the coarse one stays
+          else this.#drop(key);
         }
         return;
       }

@@ -252,8 +252,19 @@ export function renderMasses(container, dynamics, options) {
   giveBack(container, was);
 }
 
-/** The links to the dynamics scenes (hrefs: scene id → address, or null while there is nothing to open). */
+/**
+ * The links to the dynamics scenes (hrefs: scene id → address, or null while there is nothing to open). Links
+ * already there get their new addresses in place: every edit and answer rewrites them, and a link replaced under
+ * the pointer between its press and release is never clicked, one replaced under the keyboard loses the focus.
+ */
 export function renderOpenLinks(container, hrefs, scenes) {
+  const links = [...container.children];
+  const kept = hrefs && links.length === scenes.length
+    && links.every((link, k) => link.tagName === "A" && link.dataset.scene === scenes[k].scene);
+  if (kept) {
+    for (const link of links) link.href = hrefs[link.dataset.scene];
+    return;
+  }
   container.replaceChildren(...scenes.map(({ scene, title }) => hrefs
     ? element("a", { className: "button secondary", href: hrefs[scene], "data-scene": scene, textContent: title })
     : element("span", { className: "button secondary disabled", "aria-disabled": "true", textContent: title })));
