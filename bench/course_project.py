@@ -108,11 +108,8 @@ def single(repeats: int) -> str:
 def compared(old: str, repeats: int) -> str:
     times = side_by_side.in_turn(__file__, old, repeats)
     rows = ["| machine | case | old, ms | new, ms | new/old |", "|---|---|---:|---:|---:|"]
-    for label, values in times["new"].items():
+    for label, old_ms, new_ms in side_by_side.medians_ms(times):
         name, case = label.split("|")
-        if label not in times["old"]:
-            continue
-        old_ms, new_ms = 1e3 * statistics.median(times["old"][label]), 1e3 * statistics.median(values)
         rows.append(f"| {name} | {case} | {old_ms:.0f} | {new_ms:.0f} | {new_ms / old_ms:.2f} |")
     return head(repeats, f", old ({old}) and new (this tree) in two processes in turn") + "\n".join(rows) + "\n"
 

@@ -122,10 +122,9 @@ def compared(old: str, repeats: int) -> str:
     times = side_by_side.in_turn(__file__, old, repeats)
     rows = ["| mechanism | request | old, ms | new, ms | new/old | new p95, ms | new ratio to slider_crank |",
             "|---|---|---:|---:|---:|---:|---:|"]
-    for label, values in times["new"].items():
+    for label, old_ms, new_ms in side_by_side.medians_ms(times):
         mech, kind = label.split("|")
-        old_ms, new_ms = 1e3 * statistics.median(times["old"][label]), 1e3 * statistics.median(values)
-        p95 = 1e3 * statistics.quantiles(values, n=20)[-1]
+        p95 = 1e3 * statistics.quantiles(times["new"][label], n=20)[-1]
         base = 1e3 * statistics.median(times["new"][f"slider_crank|{kind}"])
         rows.append(f"| {mech} | {kind} | {old_ms:.1f} | {new_ms:.1f} | {new_ms / old_ms:.2f} | {p95:.1f} | "
                     f"{new_ms / base:.2f} |")

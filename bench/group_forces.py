@@ -64,8 +64,7 @@ def compared(old: str, repeats: int) -> str:
     lines = [header(), "", f"Old: {old}; new: this tree; {repeats} rounds each, in turn.", "",
              "| request (361 angles) | old median ms | new median ms | new/old | new ratio to baseline |",
              "|---|---|---|---|---|"]
-    for label, values in times["new"].items():
-        old_ms, new_ms = 1e3 * statistics.median(times["old"][label]), 1e3 * statistics.median(values)
+    for label, old_ms, new_ms in side_by_side.medians_ms(times):
         lines.append(f"| {label} | {old_ms:.1f} | {new_ms:.1f} | {new_ms / old_ms:.2f} | {new_ms / 1e3 / base:.2f} |")
     return "\n".join(lines) + "\n"
 

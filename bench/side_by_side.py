@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import statistics
 import subprocess
 import sys
 from pathlib import Path
@@ -49,6 +50,13 @@ def in_turn(script: str, old: str, repeats: int) -> dict[str, dict[str, list[flo
         worker.stdin.close()
         worker.wait()
     return times
+
+
+def medians_ms(times: dict[str, dict[str, list[float]]]) -> list[tuple[str, float, float]]:
+    """(label, old median ms, new median ms) of every label both trees timed (``in_turn``), in the new tree's
+    order."""
+    return [(label, 1e3 * statistics.median(times["old"][label]), 1e3 * statistics.median(values))
+            for label, values in times["new"].items() if label in times["old"]]
 
 
 def alone(one_round: Round, repeats: int) -> dict[str, list[float]]:

@@ -54,8 +54,7 @@ def compared(old: str, repeats: int) -> str:
     times = side_by_side.in_turn(__file__, old, repeats)
     lines = [header(), "", f"Old: {old}; new: this tree; {repeats} rounds each, in turn.", "",
              "| request | old median ms | new median ms | new/old |", "|---|---|---|---|"]
-    for label, values in times["new"].items():
-        old_ms, new_ms = 1e3 * statistics.median(times["old"][label]), 1e3 * statistics.median(values)
+    for label, old_ms, new_ms in side_by_side.medians_ms(times):
         lines.append(f"| {label} | {old_ms:.1f} | {new_ms:.1f} | {new_ms / old_ms:.2f} |")
     return "\n".join(lines) + "\n"
 
