@@ -69,18 +69,13 @@ def separate(name: str, by: float) -> list[tuple[str, dict]]:
 
 def one_round(repeat: int) -> dict[str, float]:
     """Seconds of each case, labelled "machine|case"."""
-    from server.api.endpoints import compute_answer
-    times = {}
+    requests = {}
     for k, name in enumerate(MACHINES):
         by = 1e-9 * (repeat * len(MACHINES) + k + 1)
-        cases = {"project": [project(name, by)], "project, another [δ]": [project(name, 0.0, by * 1e3)],
-                 "separate requests": separate(name, by)}
-        for case, requests in cases.items():
-            start = time.perf_counter()
-            for endpoint, body in requests:
-                compute_answer(endpoint, body)
-            times[f"{name}|{case}"] = time.perf_counter() - start
-    return times
+        requests |= {f"{name}|project": [project(name, by)],
+                     f"{name}|project, another [δ]": [project(name, 0.0, by * 1e3)],
+                     f"{name}|separate requests": separate(name, by)}
+    return side_by_side.timed(requests)
 
 
 def head(repeats: int, how: str) -> str:

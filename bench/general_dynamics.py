@@ -87,14 +87,8 @@ def moved_mass(request: tuple[str, dict], by: float) -> tuple[str, dict]:
 
 def one_round(repeat: int) -> dict[str, float]:
     """Seconds of each request, in order, labelled "mechanism|request"."""
-    from server.api.endpoints import compute_answer
-    times = {}
-    for mech, reqs in cases(repeat).items():
-        for kind, (endpoint, body) in reqs.items():
-            start = time.perf_counter()
-            compute_answer(endpoint, body)
-            times[f"{mech}|{kind}"] = time.perf_counter() - start
-    return times
+    return side_by_side.timed({f"{mech}|{kind}": [request] for mech, reqs in cases(repeat).items()
+                               for kind, request in reqs.items()})
 
 
 def head(repeats: int, how: str) -> str:

@@ -44,13 +44,7 @@ def cases() -> dict[str, dict]:
 
 def one_round(_repeat: int) -> dict[str, float]:
     """Seconds of each request, in order, by label (every round the same requests)."""
-    from server.api.endpoints import compute_answer
-    times = {}
-    for label, body in cases().items():
-        start = time.perf_counter()
-        compute_answer("forces", body, "en")
-        times[label] = time.perf_counter() - start
-    return times
+    return side_by_side.timed({label: [("forces", body)] for label, body in cases().items()})
 
 
 def header() -> str:

@@ -11,6 +11,7 @@ import json
 import statistics
 import subprocess
 import sys
+import time
 from pathlib import Path
 from typing import Callable
 
@@ -49,6 +50,19 @@ def in_turn(script: str, old: str, repeats: int) -> dict[str, dict[str, list[flo
     for worker in workers.values():
         worker.stdin.close()
         worker.wait()
+    return times
+
+
+def timed(requests: dict[str, list[tuple[str, dict]]]) -> dict[str, float]:
+    """Seconds by label of its requests (endpoint, body), computed in this process one after another through the
+    endpoints' bodies (validation included, no HTTP, no cache): what each worker's round times."""
+    from server.api.endpoints import compute_answer
+    times = {}
+    for label, asked in requests.items():
+        start = time.perf_counter()
+        for endpoint, body in asked:
+            compute_answer(endpoint, body)
+        times[label] = time.perf_counter() - start
     return times
 
 
