@@ -59,9 +59,11 @@ def _inode(local_port: int, remote_port: int) -> int:
 def _holder(session: int, inode: int) -> tuple[int, int]:
     """(pid, fd) of the server's process that holds the socket `inode`."""
     for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit() or os.getsid(int(entry.name)) != session:
+        if not entry.name.isdigit():
             continue
-        try:
+        try:                   # a process of the machine's may end meanwhile (ProcessLookupError is an OSError)
+            if os.getsid(int(entry.name)) != session:
+                continue
             for fd in (entry / "fd").iterdir():
                 if os.readlink(fd) == f"socket:[{inode}]":
                     return int(entry.name), int(fd.name)
