@@ -41,6 +41,9 @@ from pathlib import Path
 import httpx
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "bench"))
+from trees import tree_label  # noqa: E402  (bench/ is not a package)
+
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                  "--disable-background-networking", "--disable-component-update", "--disable-sync"]
@@ -264,13 +267,6 @@ def table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
-def commit() -> str:
-    try:
-        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
-    except OSError:
-        return "?"
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--scenes", help="comma-separated scene file names (content/scenes/<name>.json); all by default")
@@ -306,7 +302,7 @@ def main() -> None:
     report = "\n".join([
         "# Browser: dragging a slider drawn from its family",
         "",
-        f"`python bench/browser.py` at commit {commit()}, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; "
+        f"`python bench/browser.py` on {tree_label(ROOT)}, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; "
         f"{platform.processor() or platform.machine()}, {os.cpu_count()} CPUs; Chromium headless at "
         f"{VIEWPORT['width']} × {VIEWPORT['height']}; one uvicorn worker on loopback; a drag of {STEPS} moves "
         f"{MOVE_PAUSE_S * 1000:.0f} ms apart over {DRAG_FRACTION:.0%} of the slider's track.",

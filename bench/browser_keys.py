@@ -29,14 +29,13 @@ import argparse
 import os
 import platform
 import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "bench"))
-from trees import running_server  # noqa: E402  (bench/ is not a package)
+from trees import running_server, tree_label  # noqa: E402  (bench/ is not a package)
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -213,13 +212,6 @@ def table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
-def commit(tree: Path) -> str:
-    try:
-        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=tree, capture_output=True, text=True).stdout.strip()
-    except OSError:
-        return "?"
-
-
 def load() -> str:
     return " / ".join(f"{x:.2f}" for x in os.getloadavg())
 
@@ -258,7 +250,7 @@ def main() -> None:
     report = "\n".join([
         "# Browser: a slider's keys, key → visible change",
         "",
-        f"`python bench/browser_keys.py` at commit {commit(args.tree)}, {started}; {platform.processor() or platform.machine()}, "
+        f"`python bench/browser_keys.py` on {tree_label(args.tree)}, {started}; {platform.processor() or platform.machine()}, "
         f"{os.cpu_count()} CPUs, load average (1 / 5 / 15 min) {load_before} before and {load_after} after (the machine "
         f"shared with other work: the times depend on it); Chromium headless at {VIEWPORT['width']} × {VIEWPORT['height']}; "
         f"the app as the README starts it (one worker) on loopback; per scene a key held for {args.keys} keydowns "

@@ -53,7 +53,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import classroom  # noqa: E402
 from nginx_proxy import nginx_binary, nginx_proxy  # noqa: E402
-from trees import ROOT, commit_of, running_server, server_cpu_s, session_processes  # noqa: E402
+from trees import ROOT, running_server, server_cpu_s, session_processes, tree_label  # noqa: E402
 
 PATTERN = "new"
 # The class targets, p95 in ms: exact answers, and the first preview of a grab (the coarse family).
@@ -268,7 +268,7 @@ def markdown(args, argv: list[str], runs: dict[str, list[dict]], found: dict[str
               else "on every CPU, beside the servers (the same 2 CPUs: the class's own CPU use is given per run)")
     lines = [
         "# Capacity: the class a deployment holds at the targets", "",
-        f"{time.strftime('%Y-%m-%d %H:%M %Z')}; {machine()}; server tree `{args.tree}` ({commit_of(args.tree)}).",
+        f"{time.strftime('%Y-%m-%d %H:%M %Z')}; {machine()}; server tree: {tree_label(args.tree)}.",
         f"`python3 bench/capacity.py {' '.join(argv)}`" + ("" if done else " — **in progress**: the search has "
                                                              "not finished"), "",
         f"The simulated class (bench/classroom.py, new page pattern, threads client, seed {args.seed}, "

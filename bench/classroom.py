@@ -57,8 +57,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from family_request import page_family_body  # noqa: E402
-from trees import (OUTLIVE_GRACE_S, ROOT, check_tree, commit_of, lessons, running_server,  # noqa: E402
-                   server_cpu_s, write_result)
+from trees import (OUTLIVE_GRACE_S, ROOT, check_tree, lessons, running_server,  # noqa: E402
+                   server_cpu_s, tree_label, write_result)
 
 sys.path.insert(0, str(ROOT))
 PAGE_TREE = ROOT          # the tree whose page's family request the students send (main sets --tree)
@@ -660,7 +660,7 @@ def markdown(results: list[dict], comparison: list[dict], args) -> str:
         f"**{os.cpu_count()} CPUs shared by the server and the client** (the simulated class runs on the same "
         f"machine, over loopback; its CPU use is reported below). `python bench/classroom.py --students "
         f"{args.students} --seconds {args.seconds:g} --pattern {' '.join(args.pattern)}`, seed {args.seed}; "
-        f"server tree `{args.tree}` ({commit_of(args.tree)}).",
+        f"server tree: {tree_label(args.tree)}.",
         "",
         f"Each student keeps to one scene (share of the class, students): {mix}. Every student opens its scene's page before the clock starts (threads client). *Old page pattern*: a student "
         "drags one slider of one variant for 3–8 s, then another: a random walk over the slider's values, 1–3 "

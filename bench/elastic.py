@@ -237,7 +237,7 @@ def versus(old: Path) -> list[str]:
                                     check=True).stdout
             for key, values in json.loads(output.splitlines()[-1]).items():
                 best[name][key] = [min(a, b) for a, b in zip(best[name].get(key, values), values)]
-    lines = ["## Old beside new: CPU time per answer (compute + serialisation), ms\n",
+    lines = ["## Old beside new — CPU time per answer (compute + serialisation), ms\n",
              f"`python bench/elastic.py --versus {old}` on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
              f"load average {os.getloadavg()[0]:.1f}; least of {ROUNDS} rounds per request, each tree in its own "
              "processes taking turns, each round a fresh process (empty caches) computing the requests in order. "

@@ -36,8 +36,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from http_floor import encoded, nudged_request, variant_of  # noqa: E402
-from trees import (ROOT, add_tree_arguments, check_tree, commit_of, lessons, machine_line,  # noqa: E402
-                   percentiles, running_server, server_cpu_s, write_result)
+from trees import (ROOT, add_tree_arguments, check_tree, lessons, machine_line,  # noqa: E402
+                   percentiles, running_server, server_cpu_s, tree_label, write_result)
 
 HEADERS = {"Content-Type": "application/json", "Accept-Encoding": "gzip", "Accept": "*/*"}
 LANG = "ru"
@@ -259,13 +259,14 @@ def fmt(ms: float) -> str:
 
 
 def markdown(args, results: dict, load_end: float) -> str:
+    old_tree = f"`{args.old}` ({args.old_label})" if args.old_label else tree_label(args.old)
     lines = ["# Fairness per person: another student's answers under one address's flood", "",
              f"{machine_line()}, {load_end:.1f} at the end"
              + (": **the machine was loaded** (other work on its CPUs; every time longer than on a quiet machine)"
                 if load_end > (os.cpu_count() or 1) else "")
              + f". `python bench/fairness.py --flood {args.flood} "
              f"--seconds {args.seconds:g} --ramp {args.ramp:g} --slices {args.slices} --workers {args.workers}`.", "",
-             f"* old: `{args.old}` ({args.old_label or commit_of(args.old)}), new: `{args.new}` ({commit_of(args.new)}); a fresh "
+             f"* old tree: {old_tree}, new tree: {tree_label(args.new)}; a fresh "
              f"`python3 -m server --port <free port> --workers {args.workers}` for each.",
              f"* Flood: one address ({FLOOD}), {args.flood} threads in a process of their own, each with its own "
              "random `mdl_client` id; half send the kinematics default request, half the elastic four-bar's, one "

@@ -149,17 +149,16 @@ def main() -> None:
     for process in (old, new):
         process.stdin.close()
         process.wait()
-    commit = subprocess.run(["git", "-C", str(old_path), "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip()
-    write(rows, f"{old_path} at {commit or OLD_COMMIT}", args.out)
+    from trees import tree_label
+    write(rows, tree_label(old_path), tree_label(ROOT), args.out)
 
 
 def ratio(a: float, b: float) -> str:
     return f"{a / b:.1f}×" if b else "—"
 
 
-def write(rows, old_label: str, out: Path) -> None:
-    lines = [f"# Family cost, old ({old_label}) beside new (this tree), each with its own page's request",
+def write(rows, old_label: str, new_label: str, out: Path) -> None:
+    lines = [f"# Family cost, old ({old_label}) beside new ({new_label}), each with its own page's request",
              "", f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, Python {platform.python_version()}, "
              f"{os.cpu_count()} CPUs shared with other work (compare the ratios, not the figures). `python3 "
              "bench/family_cost.py`: each family answered in-process by each tree, the two in processes of their "
@@ -167,7 +166,7 @@ def write(rows, old_label: str, out: Path) -> None:
              f"{COLD_RUNS} runs (cold) or {WARM_RUNS} (warm). cold: "
              "empty memo, the page's grab sequence (coarse stage, then the full family reusing its members); "
              "warm: the full family again with every member in the memo. Bytes and error: the full family. err: "
-             "the reported interpolation error / span (target 0.005; new: over the drawn fields, plus 5e-5 for "
+             "the reported interpolation error / span (target 0.005; in the new tree over the drawn fields, plus 5e-5 for "
              "packing).", "", "## Per scene (sums over its sliders)", "",
              "| scene | families | members old → new | fewer | JSON MB old → new | gzip kB old → new | smaller (gzip) "
              "| cold ms old → new | cheaper (cold) | warm ms old → new | cheaper (warm) | computed old → new |",
@@ -204,9 +203,9 @@ def write(rows, old_label: str, out: Path) -> None:
               f"{sum(1 for r in rows if (r[3]['full']['error'] or 0) > 0.005)}); their messages:", ""]
     lines += [f"- {r[0]} / {r[1]} / {r[2]}: {r[4]['full']['message']}" for r in above if r[4]["full"]["message"]]
     p95 = lambda xs: sorted(xs)[min(len(xs) - 1, int(0.95 * len(xs)))]
-    lines += ["", "p95 over families, new: cold " f"{p95([r[4]['cold_ms'] for r in rows]):.0f} ms, warm "
+    lines += ["", "p95 over families, new tree: cold " f"{p95([r[4]['cold_ms'] for r in rows]):.0f} ms, warm "
               f"{p95([r[4]['warm']['ms'] for r in rows]):.0f} ms, gzip {p95([r[4]['full']['gzip'] for r in rows]) / 1e3:.0f} kB"
-              f"; old: cold {p95([r[3]['cold_ms'] for r in rows]):.0f} ms, warm {p95([r[3]['warm']['ms'] for r in rows]):.0f} ms, "
+              f"; old tree: cold {p95([r[3]['cold_ms'] for r in rows]):.0f} ms, warm {p95([r[3]['warm']['ms'] for r in rows]):.0f} ms, "
               f"gzip {p95([r[3]['full']['gzip'] for r in rows]) / 1e3:.0f} kB. Median old/new warm: "
               f"{statistics.median(r[3]['warm']['ms'] / r[4]['warm']['ms'] for r in rows):.1f}×. The family's own work "
               "per member (warm build ms / members, the members from the memo: the engine), median over families: "

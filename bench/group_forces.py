@@ -55,7 +55,7 @@ def header() -> str:
 def compared(old: str, repeats: int) -> str:
     times = side_by_side.in_turn(__file__, old, repeats)
     base = statistics.median(times["new"][BASELINE_LABEL])
-    lines = [header(), "", f"Old: {old}; new: this tree; {repeats} rounds each, in turn.", "",
+    lines = [header(), "", f"Old tree: {old}; new tree: this checkout; {repeats} rounds each, in turn.", "",
              "| request (361 angles) | old median ms | new median ms | new/old | new ratio to baseline |",
              "|---|---|---|---|---|"]
     for label, old_ms, new_ms in side_by_side.medians_ms(times):

@@ -225,7 +225,7 @@ def markdown(args, targets: list[Target], sizes: dict, scenes: dict, startup: di
              f"{machine_line()}. `python bench/http_floor.py --requests {args.requests} --scene-requests "
              f"{args.scene_requests} --elastic-requests {args.elastic_requests}"
              f"{' --scenes ' + ' '.join(args.scenes) if args.scenes else ''}`.", "",
-             f"* old: `{args.old}` (a worktree of the baseline), new: `{args.new}`; each "
+             f"* old tree: `{args.old}` (a worktree of the baseline), new tree: `{args.new}`; each "
              f"`python3 -m server --port <free port>` (1 worker) from its tree (ready after {startup['old']:.1f} s "
              f"and {startup['new']:.1f} s); the floor: `bench/floor_app.py` (bare Starlette under uvicorn) "
              "answering with the bytes the app sent for the same request.",

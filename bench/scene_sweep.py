@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from trees import ROOT, add_tree_arguments, check_tree, commit_of, lessons, machine_line, write_result  # noqa: E402
+from trees import ROOT, add_tree_arguments, check_tree, lessons, machine_line, tree_label, write_result  # noqa: E402
 
 sys.path.insert(0, str(ROOT))
 TARGET_MS = 20.0
@@ -176,7 +176,7 @@ def run(args) -> dict:
             tree.close()
     return {"infos": infos, "warm": warm, "rows": rows, "differences": differences, "points": args.points,
             "rounds": args.rounds,
-            "commits": {"old": commit_of(args.old), "new": commit_of(args.new)}}
+            "labels": {"old": tree_label(args.old), "new": tree_label(args.new)}}
 
 
 def group_stats(rows: list, key) -> dict:
@@ -203,10 +203,10 @@ def markdown(result: dict, args) -> str:
     lines = [
         "# Server compute over slider sweeps, old beside new", "",
         f"{machine_line()}. `python bench/scene_sweep.py --points {args.points} --rounds {args.rounds}`.", "",
-        f"* old: `{result['infos']['old']['tree']}` ({result['commits']['old']}), timed: "
+        f"* old tree: {result['labels']['old']}, timed: "
         f"{result['infos']['old']['compute']}; warm-up (every scene's default request once) "
         f"{result['warm']['old'] / 1000:.1f} s.",
-        f"* new: `{result['infos']['new']['tree']}` ({result['commits']['new']}), timed: "
+        f"* new tree: {result['labels']['new']}, timed: "
         f"{result['infos']['new']['compute']}; warm-up {result['warm']['new'] / 1000:.1f} s.",
         f"* Each slider swept over {args.points} of the values it can express (log steps on log sliders), the "
         "other sliders at their defaults, the page's request (`scene_request`); both trees in their own process, "

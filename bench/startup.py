@@ -46,7 +46,7 @@ def header() -> str:
 
 def compared(old: str, repeats: int) -> str:
     times = side_by_side.in_turn(__file__, old, repeats)
-    lines = [header(), "", f"Old: {old}; new: this tree; {repeats} rounds each, in turn.", "",
+    lines = [header(), "", f"Old tree: {old}; new tree: this checkout; {repeats} rounds each, in turn.", "",
              "| request | old median ms | new median ms | new/old |", "|---|---|---|---|"]
     for label, old_ms, new_ms in side_by_side.medians_ms(times):
         lines.append(f"| {label} | {old_ms:.1f} | {new_ms:.1f} | {new_ms / old_ms:.2f} |")

@@ -64,16 +64,18 @@ def check_tree(tree: Path) -> Path:
     return tree
 
 
-def commit_of(tree: Path) -> str:
-    """The tree's commit (short hash), '+ changes' when its working tree differs from it."""
+def tree_label(tree: Path) -> str:
+    """How a result names a tree: "this checkout" for the repository these scripts belong to, "the checkout at
+    `PATH`" for another, with " (uncommitted changes)" when its tracked files differ from its commit. No commit
+    hash: a result is read beside the code it describes, not against the repository's history."""
+    tree = Path(tree).resolve()
+    label = "this checkout" if tree == ROOT else f"the checkout at `{tree}`"
     try:
-        head = subprocess.run(["git", "-C", str(tree), "rev-parse", "--short", "HEAD"], capture_output=True,
-                              text=True, check=True).stdout.strip()
         dirty = subprocess.run(["git", "-C", str(tree), "status", "--porcelain", "--untracked-files=no"],
-                               capture_output=True, text=True).stdout.strip()
-        return head + (" + uncommitted changes" if dirty else "")
+                               capture_output=True, text=True, check=True).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
-        return "unknown commit"
+        dirty = ""                      # not a git checkout (a copy): nothing to compare it with
+    return label + (" (uncommitted changes)" if dirty else "")
 
 
 def free_port() -> int:

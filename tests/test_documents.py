@@ -1,4 +1,4 @@
-"""The user documentation: README.md, docs/*.md and bench/README.md.
+"""The user documentation: README.md, docs/*.md and bench/README.md, and the measured results in bench/results/*.md.
 
 - The README is short (at most 250 lines) and its lessons table lists every scene of content/scenes by id, with
   the scene's English title.
@@ -6,7 +6,9 @@
   document names in backticks (`server/core/…`, `deploy/nginx/mdl.conf`, `bench/results/…`).
 - Every environment variable the server reads (MDL_…) is in docs/deployment.md's settings.
 - No document carries the development's history: issue numbers, work sessions, stops, commit hashes, "today",
-  "new:". Exact text checks: nothing to tolerate.
+  "new:". Exact text checks: nothing to tolerate. The results in bench/results/*.md are documents too (a
+  comparison names its trees by what they are, "the tree before the compiled family engine", "old tree" / "new
+  tree", never by a commit); the other checks cover the documentation only.
 """
 from __future__ import annotations
 
@@ -19,6 +21,7 @@ import pytest
 REPO = Path(__file__).resolve().parents[1]
 README = REPO / "README.md"
 DOCUMENTS = [README, *sorted((REPO / "docs").glob("*.md")), REPO / "bench" / "README.md"]
+RESULTS = sorted((REPO / "bench" / "results").glob("*.md"))
 TOP_LEVEL = ("server", "web", "content", "tests", "bench", "deploy", "docs", ".ci")
 ROOT_FILES = ("Dockerfile", "pyproject.toml", "LICENSE", ".dockerignore", "README.md")
 
@@ -97,7 +100,7 @@ def test_the_readmes_images_exist():
     assert images and all((REPO / image).is_file() for image in images)
 
 
-@pytest.mark.parametrize("document", DOCUMENTS, ids=relative)
+@pytest.mark.parametrize("document", DOCUMENTS + RESULTS, ids=relative)
 def test_no_document_carries_the_development_history(document):
     text = prose(document)
     found = [f"{what}: {match.group(0)!r}" for what, pattern in HISTORY.items() for match in pattern.finditer(text)]
