@@ -42,7 +42,8 @@ from ..structure.masses import MassModel, centre_points, check_model, with_strok
 from ..structure.reduction import reduced_inertia, reduced_loads
 from .kink_table import KinkTable, build as build_table
 from .kept import Kept
-from .machine import KINK_ITERATIONS, KINK_MERGE, KINK_SCAN, KINKS_KEPT, Machine, Tables, read_only
+from .brackets import refine_zeros
+from .machine import KINK_MERGE, KINK_SCAN, KINKS_KEPT, Machine, Tables, own_rows, read_only
 from .motors import Motor, table_moment
 from .reduction import Inertias
 from .resistance import Load
@@ -65,6 +66,7 @@ SMOOTH_TOLERANCE = 1e-13    # of each function's largest magnitude: the estimate
 SMOOTH_ORDERS = (32, 64, 128, 256)   # degrees tried on each segment of their table
 SMOOTH_KEPT = 64            # machines whose table of J, J′, M_useful, S is kept (≲ 40 kB each)
 _smooth_tables = Kept(SMOOTH_KEPT)                  # (linkage, masses but f and r, inertias, loads, β) → KinkTable
+NORMAL_SECTIONS = 8      # points per bracket and pass refining a normal force's zero (~9 µs each, ~1 ms a call)
 SCAN_KEPT = 4            # setups of the normal forces' kink scan kept (GeneralMachine.scan_normals; ~12 MB each)
 _scan_setups = Kept(SCAN_KEPT)                      # (linkage, masses but f and r, rough pairs, scan) → Setup
 
@@ -269,8 +271,8 @@ class GeneralMachine(Machine):
     def find_kinks(self) -> np.ndarray:
         """The kinks of ``Machine.find_kinks`` (the kinematic switches, ``kinematic_kinks``), and the zeros of the
         rough prismatic pairs' normal forces (|N| has a corner there): bracketed on the same scan (their signs
-        proved without the friction solve where they can be, ``scan_normals``) and refined by the Illinois
-        method as there from the solved values at the brackets' ends; a bracket that holds a kinematic kink is that kink (the normal force jumps there, with
+        proved without the friction solve where they can be, ``scan_normals``) and refined as there
+        (brackets.refine_zeros) from the solved values at the brackets' ends; a bracket that holds a kinematic kink is that kink (the normal force jumps there, with
         the load's or a friction's sense: no zero of its own to refine)."""
         kinks = self.kinematic_kinks()
         cycle = self.cycle()
@@ -285,8 +287,8 @@ class GeneralMachine(Machine):
             return kinks
         ends = self.normals(np.concatenate([low, high]))           # the brackets' ends with friction, solved
         count = np.arange(rows.size)
-        found = illinois(lambda guess: self.normals(guess)[rows, count], low, high, ends[rows, count],
-                         ends[rows, rows.size + count])
+        found = refine_zeros(lambda index, at: own_rows(self.normals(at.ravel()), rows[index], at.shape),
+                             low, high, ends[rows, count], ends[rows, rows.size + count], sections=NORMAL_SECTIONS)
         found = np.where((found <= KINK_MERGE) | (found >= cycle - KINK_MERGE), 0.0, found)
         found = np.sort(np.concatenate([kinks, found]))
         return found[np.append(True, np.diff(found) > KINK_MERGE)]
@@ -321,34 +323,6 @@ def dry_notices(phi: np.ndarray, locked: np.ndarray, unsettled: np.ndarray) -> l
                               "friction moment is unknown there, no motion is computed.",
                               {"budget": DRY_BUDGET_S, "ranges": ranges}))
     return notices
-
-
-def illinois(f, low: np.ndarray, high: np.ndarray, f_low: np.ndarray, f_high: np.ndarray) -> np.ndarray:
-    """Zeros of f, one per bracket [low, high] with f of opposite signs at its ends, all brackets at once: the
-    Illinois variant of regula falsi (Dahlquist & Björck, Numerical Methods, §6.2.3), as Machine.find_kinks,
-    until a bracket or the step between two guesses is a few doubles wide (at most KINK_ITERATIONS steps)."""
-    high = np.where(f_low == 0, low, high)
-    previous, moved = np.full(low.size, np.inf), np.zeros(low.size)
-    for _ in range(KINK_ITERATIONS):
-        ulps = 4 * np.spacing(np.maximum(np.abs(low), np.abs(high)))
-        open_ = (high - low > ulps) & (f_low != f_high) & np.isfinite(f_low) & np.isfinite(f_high)
-        if not open_.any():
-            break
-        guess = np.where(open_, (low * f_high - high * f_low) / np.where(open_, f_high - f_low, 1.0), low)
-        guess = np.where((guess > low) & (guess < high), guess, 0.5 * (low + high))
-        settled = open_ & (np.abs(guess - previous) <= ulps)
-        low, high = np.where(settled, guess, low), np.where(settled, guess, high)
-        open_ &= ~settled
-        previous = guess
-        f_guess = f(guess)
-        left = open_ & (np.sign(f_guess) == np.sign(f_low))
-        right = open_ & ~left
-        f_high = np.where(left & (moved > 0), 0.5 * f_high, f_high)
-        f_low = np.where(right & (moved < 0), 0.5 * f_low, f_low)
-        moved = np.where(left, 1.0, np.where(right, -1.0, moved))
-        low, f_low = np.where(left, guess, low), np.where(left, f_guess, f_low)
-        high, f_high = np.where(right, guess, high), np.where(right, f_guess, f_high)
-    return 0.5 * (low + high)
 
 
 def pair_motions(mechanism: GeneralMechanism, comp: Composition) -> list[tuple[str, np.ndarray]]:

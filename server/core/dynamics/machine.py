@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..mechanisms import MECHANISMS, Notice
+from .brackets import refine_zeros
 from .kept import Kept
 from .motors import Motor, driving_moment, indicator_switches, table_moment, table_switches
 from .reduction import Inertias, reduced_inertia
@@ -32,9 +33,15 @@ from .resistance import Load, resisting_moment
 
 KINK_SCAN = 4096      # samples per turn on which the switching functions are scanned for sign changes
 KINK_MERGE = 1e-12    # rad: kinks closer than this are one (the refinement leaves them ~1e-15 apart)
-KINK_ITERATIONS = 100  # of the refinement at most: Illinois converges superlinearly, ~10 are used
 KINKS_KEPT = 512       # machines' kinks kept per process (a slider's family shares them: see Machine.kinks)
 _kinks_found = Kept(KINKS_KEPT)
+
+
+def own_rows(values: np.ndarray, rows: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
+    """Each bracket's own function at its points: ``values`` (functions × brackets·points, bracket k's points
+    in columns k·points … (k+1)·points − 1, ``shape`` (brackets, points)) read at its function ``rows[k]``."""
+    count, points = shape
+    return values.reshape(values.shape[0], count, points)[rows, np.arange(count), :]
 
 
 def read_only(array: np.ndarray) -> np.ndarray:
@@ -153,38 +160,16 @@ class Machine:
 
     def find_kinks(self) -> np.ndarray:
         """The kinks in [0, Φ), sorted: the mechanism's jumps and every sign change of ``switching`` over the
-        cycle, bracketed on KINK_SCAN samples per turn and refined, all brackets at once, by the Illinois
-        variant of regula falsi (Dahlquist & Björck, Numerical Methods, §6.2.3) until the bracket, or the step
-        between two guesses, is a few doubles wide. A kink within KINK_MERGE of another or of the cycle's ends is that one."""
+        cycle, bracketed on KINK_SCAN samples per turn and refined, all brackets at once, to a few doubles
+        (brackets.refine_zeros). A kink within KINK_MERGE of another or of the cycle's ends is that one."""
         cycle = self.cycle()
         phi = np.linspace(0.0, cycle, KINK_SCAN * math.ceil(cycle / (2 * np.pi) - 1e-9) + 1)
         values = self.switching(phi)
         with np.errstate(invalid="ignore"):
             rows, cols = np.nonzero((values[:, :-1] * values[:, 1:] < 0) | (values[:, :-1] == 0))
-        low, high = phi[cols], phi[cols + 1]
-        f_low, f_high = values[rows, cols], values[rows, cols + 1]
-        high = np.where(f_low == 0, low, high)
-        index, previous, moved = np.arange(rows.size), np.full(rows.size, np.inf), np.zeros(rows.size)
-        for _ in range(KINK_ITERATIONS):
-            ulps = 4 * np.spacing(np.maximum(np.abs(low), np.abs(high)))
-            open_ = (high - low > ulps) & (f_low != f_high)
-            if not open_.any():
-                break
-            guess = np.where(open_, (low * f_high - high * f_low) / np.where(open_, f_high - f_low, 1.0), low)
-            guess = np.where((guess > low) & (guess < high), guess, 0.5 * (low + high))   # rounding: bisect
-            settled = open_ & (np.abs(guess - previous) <= ulps)      # two guesses a few doubles apart: converged
-            low, high = np.where(settled, guess, low), np.where(settled, guess, high)
-            open_ &= ~settled
-            previous = guess
-            f_guess = self.switching(guess)[rows, index]
-            left = open_ & (np.sign(f_guess) == np.sign(f_low))        # the root lies in [guess, high]
-            right = open_ & ~left
-            f_high = np.where(left & (moved > 0), 0.5 * f_high, f_high)  # Illinois: an end kept twice in a row
-            f_low = np.where(right & (moved < 0), 0.5 * f_low, f_low)    # has its value halved
-            moved = np.where(left, 1.0, np.where(right, -1.0, moved))
-            low, f_low = np.where(left, guess, low), np.where(left, f_guess, f_low)
-            high, f_high = np.where(right, guess, high), np.where(right, f_guess, f_high)
-        found = np.concatenate([0.5 * (low + high), self.jumps()])
+        found = refine_zeros(lambda index, at: own_rows(self.switching(at.ravel()), rows[index], at.shape),
+                             phi[cols], phi[cols + 1], values[rows, cols], values[rows, cols + 1])
+        found = np.concatenate([found, self.jumps()])
         found = np.sort(np.where((found <= KINK_MERGE) | (found >= cycle - KINK_MERGE), 0.0, found))
         return found[np.append(True, np.diff(found) > KINK_MERGE)] if found.size else found
 
