@@ -156,7 +156,9 @@ def end_session(session: int) -> int:
 @contextmanager
 def running_server(workers: int = 1, tree: Path = ROOT, env: dict | None = None, command: list[str] | None = None,
                    ready_path: str = "/api/v1/cache", startup_s: float = 120):
-    """The app of `tree` on a free loopback port with MDL_DATA_DIR in a temporary folder; yields (port, process).
+    """The app of `tree` on a free loopback port with MDL_DATA_DIR in a temporary folder and, unless the
+    environment or ``env`` says otherwise, no warming of its cache (MDL_WARM_DEFAULTS=0: an older tree does not
+    warm, and a benchmark times what it asks for); yields (port, process).
     Ready once every worker has started and one of them answers GET ready_path; once stopped,
     ``process.log_text`` holds its log and ``process.outlived`` the processes that outlived it. `command`
     (with ``{port}``) replaces the README's command, e.g. for the bare floor app."""
@@ -166,7 +168,8 @@ def running_server(workers: int = 1, tree: Path = ROOT, env: dict | None = None,
         log = open(log_path, "wb")
         argv = [part.format(port=port) for part in command] if command else server_command(port, workers)
         process = subprocess.Popen(argv, cwd=tree, stdout=log, stderr=subprocess.STDOUT,
-                                   env={**os.environ, "MDL_DATA_DIR": data_dir, **(env or {})},
+                                   env={"MDL_WARM_DEFAULTS": "0", **os.environ, "MDL_DATA_DIR": data_dir,
+                                        **(env or {})},
                                    start_new_session=True)
         try:
             deadline = time.monotonic() + startup_s

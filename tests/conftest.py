@@ -6,6 +6,7 @@ What the workers must not share, and how they don't:
   schemathesis's items do not take it: tests/run.sh runs test_schemathesis_api.py in a process of its own);
 - the session fixtures (the browser tests' app server and Chromium, tests/postgres.py's server) start at most
   once per worker, each on a free port, with their data in a temporary directory of their own;
+- the warming of the response cache after a start (MDL_WARM_DEFAULTS, on by default): off unless a test asks;
 - the app's SQLite store: a test that builds the app without naming `MDL_DATA_DIR` would use the repository's
   `data/`, shared by every worker and every earlier run; here it gets a temporary directory per process.
 The numba disk cache is filled by `python3 -m server.core.warm_up` before pytest starts, so the workers only
@@ -30,6 +31,9 @@ _DATA_DIR: str | None = None
 
 def pytest_configure(config):
     global _DATA_DIR
+    # the app warms its cache with every scene's default answers after each start unless told not to: the suite
+    # starts about a hundred servers, and only tests/test_default_answers_warming.py wants that work done
+    os.environ.setdefault("MDL_WARM_DEFAULTS", "0")
     if not os.environ.get("MDL_DATA_DIR"):
         _DATA_DIR = tempfile.mkdtemp(prefix="mdl-tests-data-")
         os.environ["MDL_DATA_DIR"] = _DATA_DIR

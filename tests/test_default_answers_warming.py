@@ -35,7 +35,9 @@ def _wait_warmed(client, app) -> default_answers.Warming:
     return warming
 
 
-def test_languages_from_the_environment():
+def test_languages_from_the_environment(monkeypatch):
+    monkeypatch.delenv("MDL_WARM_DEFAULTS", raising=False)
+    assert default_answers.languages_from_env() == ("ru", "uk", "en")        # unset: on, every language
     assert default_answers.languages_from_env("") == ()
     assert default_answers.languages_from_env("0") == ()
     assert default_answers.languages_from_env("1") == ("ru", "uk", "en")
@@ -75,8 +77,8 @@ def test_a_scenes_default_answer_is_a_cache_hit_after_warming(monkeypatch):
         assert _page_request(client, "bearings").headers["x-cache"] == "miss"      # only the endpoints given
 
 
-def test_off_by_default_nothing_is_warmed(monkeypatch):
-    monkeypatch.delenv("MDL_WARM_DEFAULTS", raising=False)
+def test_off_when_set_to_0_nothing_is_warmed(monkeypatch):
+    monkeypatch.setenv("MDL_WARM_DEFAULTS", "0")
     app = create_app()
     with TestClient(app) as client:
         assert app.state.default_answers is None

@@ -3,7 +3,7 @@ cache hits.
 
 In a lesson the students open the same scene at the same defaults: each page's first request is the scene's
 default request (server.lessons.requests.scene_request: the variant at its sliders' defaults, in the page's
-language). With ``MDL_WARM_DEFAULTS`` set, each worker, once it has started, sends every scene's default request
+language). Unless ``MDL_WARM_DEFAULTS`` is 0, each worker, once it has started, sends every scene's default request
 of every variant (the first variant of every scene before the others) in each language named, through its own
 app as a page would (``POST /api/v1/<endpoint>?lang=…``: the same validation, cache key and stored bytes), so
 that the response cache holds the answers before the students ask. Only the cached endpoints
@@ -15,7 +15,7 @@ IDLE_SHARE of a CPU over QUIET_S) and no heavy lane is busy (heavy.busy), one re
 one client of its own (CLIENT: admission serves it in turn with the students). It stops with the worker: ``stop``
 cancels the task and waits for it, so no thread or task of it outlives the app.
 
-    MDL_WARM_DEFAULTS=ru,uk,en   # the languages, in this order; "1" or "on": ru, uk, en; unset, "" or "0": off
+    MDL_WARM_DEFAULTS=ru,uk,en   # the languages, in this order; unset, "1" or "on": ru, uk, en; "" or "0": off
 """
 from __future__ import annotations
 
@@ -40,8 +40,12 @@ log = logging.getLogger("uvicorn.error")
 
 
 def languages_from_env(text: str | None = None) -> tuple[str, ...]:
-    """The languages MDL_WARM_DEFAULTS names, in its order (none: warming off); ValueError names an unknown one."""
-    text = (os.environ.get(ENV, "") if text is None else text).strip().lower()
+    """The languages MDL_WARM_DEFAULTS names, in its order (none: warming off; unset: every language);
+    ValueError names an unknown one."""
+    text = os.environ.get(ENV) if text is None else text
+    if text is None:
+        return LANGUAGES
+    text = text.strip().lower()
     if text in ("", "0", "off", "no", "false"):
         return ()
     if text in ("1", "on", "yes", "true"):
