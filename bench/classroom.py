@@ -45,6 +45,7 @@ import math
 import os
 import platform
 import random
+import re
 import socket
 import sys
 import threading
@@ -224,8 +225,15 @@ class Record:
         self.unrefined: list[str] = []   # light of every full family the server answered coarse (busy)
 
     def add(self, endpoint: str, seconds: float, status: int, cache: str, partial: bool = False,
-            kind: str = "exact", light: str = "light") -> None:
-        self.rows.append((endpoint, seconds, status, cache, partial, kind, light))  # list.append is atomic
+            kind: str = "exact", light: str = "light", timing: str = "") -> None:
+        self.rows.append((endpoint, seconds, status, cache, partial, kind, light, server_timing(timing)))
+
+
+def server_timing(header: str) -> tuple[float, float] | None:
+    """(s waited for a place in admission's lane, s from the place to the answer's first byte) from the answer's
+    Server-Timing header (server/runtime/admission.py), None without one."""
+    found = dict(re.findall(r"(lane|compute);dur=([0-9.]+)", header or ""))
+    return (float(found["lane"]) / 1e3, float(found["compute"]) / 1e3) if len(found) == 2 else None
 
 
 # What a request on a keep-alive connection the server closed while it was idle fails with, before any answer
@@ -313,7 +321,7 @@ class Connection:
                         answer.getheader("x-cache", ""),
                         cut_short(student.scene.endpoint, raw, answer.getheader("content-encoding"),
                                   answer.getheader("x-partial")), kind,
-                        student.light)
+                        student.light, answer.getheader("server-timing", ""))
         return answer.status
 
     def abort(self) -> None:
@@ -350,7 +358,7 @@ async def drive_asyncio(port: int, students: list[Student], start: float, end: f
                     record.add(student.scene.endpoint, time.perf_counter() - sent, answer.status_code,
                                answer.headers.get("x-cache", ""),
                                cut_short(student.scene.endpoint, raw, answer.headers.get("content-encoding")),
-                               "exact", student.light)
+                               "exact", student.light, answer.headers.get("server-timing", ""))
                 except httpx.HTTPError:
                     record.add(student.scene.endpoint, time.perf_counter() - sent, 0, "", False, "exact",
                                student.light)
@@ -598,6 +606,28 @@ def ms(value: float) -> str:
     return "–" if value != value else f"{value:.0f}"
 
 
+def where_the_time_goes(result: dict) -> list[str]:
+    """The exact answers' latency split by the Server-Timing header: waiting for a place in admission's lane,
+    from the place to the first byte (computing), and the rest (the worker's event loop and the CPU queues before
+    and after, the network, the client): at the median and over the slowest 5 %."""
+    lines = ["", "Where an exact answer's time goes (Server-Timing: *lane* the wait for a place in admission's "
+             "lane, *compute* from the place to the first byte, *rest* the latency less both: the event loop, "
+             "waiting for a CPU, sending and reading; medians, and means over the answers slower than the "
+             "kind's p95):", "", "| answers | with timing | lane p50 | compute p50 | rest p50 | slowest 5 %: "
+             "latency | lane | compute | rest |", "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for light in ("light", "elastic"):
+        rows = [r for r in result["rows"] if r[5] == "exact" and r[6] == light and r[2] == 200
+                and len(r) > 7 and r[7] is not None]
+        if not rows:
+            continue
+        parts = 1000 * np.array([(r[1], r[7][0], r[7][1], r[1] - r[7][0] - r[7][1]) for r in rows])
+        slow = parts[parts[:, 0] >= np.percentile(parts[:, 0], 95)]
+        p50 = np.median(parts, axis=0)
+        lines.append(f"| exact, {light} scenes | {len(rows)} | {p50[1]:.1f} | {p50[2]:.1f} | {p50[3]:.1f} | "
+                     + " | ".join(f"{x:.0f}" for x in slow.mean(axis=0)) + " |")
+    return lines if len(lines) > 5 else []
+
+
 def markdown_run(result: dict, title: str) -> list[str]:
     cpus = os.cpu_count() or 1
     requests = len(result["rows"])
@@ -621,6 +651,7 @@ def markdown_run(result: dict, title: str) -> list[str]:
         lines.append(f"| {row['endpoint']} | {row['requests']} | {ms(row['p50'])} | {ms(row['p95'])} | "
                      f"{ms(row['p99'])} | {failed} | {row['throttled']} | {row['partial']} | {row['target']} | "
                      f"{'yes' if met else '**no**'} |")
+    lines += where_the_time_goes(result)
     lines += ["", f"* Slider moves: {result['moves']}; requests sent: {requests} "
                   f"({percent(1 - requests / result['moves']) if result['moves'] else '–'} of the moves coalesced "
                   "into a later request while an answer was awaited, or previewed from a family).",

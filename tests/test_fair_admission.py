@@ -5,6 +5,7 @@ Behaviour only: each request is held in flight by an event of its own that the t
 from __future__ import annotations
 
 import asyncio
+import re
 import json
 
 from server.api.endpoints import ENDPOINTS
@@ -176,4 +177,32 @@ def test_a_client_reading_its_answer_slowly_holds_no_place():
         reading.set()
         await slow.task
         assert not middleware.in_flight and len(middleware.lanes["light"]) == 0
+    run_to_end(scenario())
+
+
+def test_an_answer_tells_how_long_it_waited_in_its_lane_and_how_long_it_was_computed():
+    """Server-Timing: lane (waiting for a place) and compute (from the place to the first byte). The request
+    behind one held for at least HELD_S waited at least that long; the one held computed at least that long.
+    Lower bounds only: a slow machine makes both longer, never shorter."""
+    held_s = 0.05
+
+    async def scenario():
+        app = HeldApp()
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
+        first = exchange(middleware, "first", "10.0.0.1", cookie(1))
+        await settle()
+        second = exchange(middleware, "second", "10.0.0.2", cookie(2))
+        await settle()
+        assert app.order == ["first"]
+        await asyncio.sleep(held_s)
+        app.release("first")
+        await first.task
+        app.release("second")
+        await second.task
+        timings = {}
+        for name, done in (("first", first), ("second", second)):
+            header = done.header(b"server-timing").decode()
+            timings[name] = {key: float(value) for key, value in re.findall(r"(lane|compute);dur=([0-9.]+)", header)}
+        assert timings["first"]["compute"] >= 1e3 * held_s and timings["first"]["lane"] >= 0
+        assert timings["second"]["lane"] >= 1e3 * held_s
     run_to_end(scenario())

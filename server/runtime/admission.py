@@ -223,13 +223,15 @@ class AdmissionMiddleware:
             if listening is None:
                 return                                   # gone before its body was in
             try:
+                arrived = time.perf_counter()
                 if await _entered(lane, group, who, listening):
-                    held = [True]
+                    held, entered = [True], time.perf_counter()
 
                     async def send_freeing_the_place(message):
                         if held[0] and message["type"] == "http.response.start":
                             held[0] = False                  # computed: a slow reader holds no place
                             lane.leave(group)
+                            message = with_timing(message, entered - arrived, time.perf_counter() - entered)
                         await send(message)
                     try:
                         await _run_until_disconnect(self.app, scope, _replay(body, listening), send_freeing_the_place)
@@ -251,6 +253,14 @@ class AdmissionMiddleware:
         if len(self.told_to_wait) >= TOLD_TO_WAIT_KEPT:
             self.told_to_wait = {known: until for known, until in self.told_to_wait.items() if until > now}
         self.told_to_wait[key] = now + RETRY_AFTER_S
+
+
+def with_timing(message: dict, waited_s: float, computed_s: float) -> dict:
+    """The response's start with a Server-Timing header (W3C Server Timing; the browser's developer tools show
+    it, bench/classroom.py reads it): the time the request waited for its place in the lane and the time from
+    its place to its answer's first byte (the computation, a cache's lookup, the serialisation)."""
+    timing = f"lane;dur={1e3 * waited_s:.1f}, compute;dur={1e3 * computed_s:.1f}".encode()
+    return {**message, "headers": [*message.get("headers", []), (b"server-timing", timing)]}
 
 
 async def _entered(lane: Lane, group, who, listening: asyncio.Future) -> bool:
