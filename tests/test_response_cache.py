@@ -8,6 +8,7 @@ import dataclasses
 import functools
 import gzip
 import json
+import re
 import threading
 import time
 
@@ -74,6 +75,14 @@ def test_an_identical_request_is_a_hit_with_the_same_bytes(client):
     assert second.content == first.content
     assert second.headers["content-type"] == first.headers["content-type"]
     assert {k: stats(client)[k] for k in ("hits", "misses", "entries")} == {"hits": 1, "misses": 1, "entries": 1}
+
+
+def test_a_computed_answer_tells_its_timing_and_a_hit_none(client):
+    """Server-Timing (admission.with_timing) is the computation's: a miss carries it, a hit was not computed."""
+    first, second = kinematics(client), kinematics(client)
+    assert first.headers["x-cache"] == "miss" and re.fullmatch(r"lane;dur=[0-9.]+, compute;dur=[0-9.]+",
+                                                                first.headers["server-timing"])
+    assert second.headers["x-cache"] == "hit" and "server-timing" not in second.headers
 
 
 def test_the_cache_keeps_both_encodings_and_each_client_gets_its_own(client):

@@ -111,7 +111,9 @@ class CachedAnswer:
     def of(cls, headers, body: bytes) -> "CachedAnswer":
         """The answer with its compressed body made once (mtime 0: the same bytes for the same body). An answer
         the route sent gzip-compressed already (a family, compressed in the heavy process: routers/family.py) is
-        kept as it came, with its plain body (for a client without gzip) decompressed from it."""
+        kept as it came, with its plain body (for a client without gzip) decompressed from it. Its Server-Timing
+        (the computation's, admission.with_timing) is not kept: a hit was not computed."""
+        headers = [(n, v) for n, v in headers if n.lower() != b"server-timing"]
         if _header(headers, b"content-encoding") == b"gzip":
             plain = gzip.decompress(body)
             kept = [(n, v) for n, v in headers if n.lower() not in (b"content-encoding", b"content-length", b"vary")]
@@ -318,7 +320,10 @@ class ResponseCacheMiddleware:
                     self.cache.put(key, answer)
                     if shared and self.cache.shared is not None:       # written beside, not waited for
                         asyncio.get_running_loop().run_in_executor(None, self.cache.put_shared, key, answer)
-                    await send(answer.message_start(gzip_accepted, b"miss"))
+                    start_message = answer.message_start(gzip_accepted, b"miss")
+                    if timing := _header(held["headers"], b"server-timing"):    # this computation's, not kept
+                        start_message["headers"].append((b"server-timing", timing))
+                    await send(start_message)
                     await send({"type": "http.response.body", "body": answer.body_for(gzip_accepted)})
                     return
                 await send({**held, "headers": [*held["headers"], (b"x-cache", b"miss")]})
