@@ -69,6 +69,11 @@ TICK_S = 0.1                    # a slider move every 100 ms while dragging
 DRAG_TICKS = (30, 80)           # old pattern: one drag lasts 3–8 s, no pauses
 GRAB_DRAG_S = (1.0, 3.0)        # new pattern: one drag lasts 1–3 s …
 LOOK_S = (1.0, 2.0)             # … then the student looks 1–2 s
+# new pattern: when each student first grabs, after the clock starts. together: all within one slider tick (the
+# whole class grabs at once: a burst of 30 families and their exact requests in the first second); staggered: after
+# a look of 0–2 s, as a class some way into its work is spread over its students' cycles of drag and look
+STARTS = {"together": TICK_S, "staggered": LOOK_S[1]}
+START_SPREAD_S = STARTS["together"]
 STEP_POSITIONS = (1, 3)         # positions per move
 TURN_PROBABILITY = 0.2          # the hand changes direction
 LANG = "ru"
@@ -429,7 +434,7 @@ def new_page(exact: Connection, start: float, end: float) -> None:
     one exact request → look 1–2 s → grab again."""
     student = exact.student
     families = FamilyFetcher(exact.port, student, exact.record, end)
-    time.sleep(max(0.0, start + student.rng.uniform(0, TICK_S) - time.monotonic()))
+    time.sleep(max(0.0, start + student.rng.uniform(0, START_SPREAD_S) - time.monotonic()))
     grab = 0
     while time.monotonic() < end:
         grab += 1
@@ -701,10 +706,13 @@ def markdown(results: list[dict], comparison: list[dict], args) -> str:
         f"{time.strftime('%Y-%m-%d %H:%M')}, Python {platform.python_version()}, {platform.machine()}, "
         f"**{os.cpu_count()} CPUs shared by the server and the client** (the simulated class runs on the same "
         f"machine, over loopback; its CPU use is reported below). `python bench/classroom.py --students "
-        f"{args.students} --seconds {args.seconds:g} --pattern {' '.join(args.pattern)}`, seed {args.seed}; "
+        f"{args.students} --seconds {args.seconds:g} --pattern {' '.join(args.pattern)} --start {args.start}`, "
+        f"seed {args.seed}; "
         f"server tree: {tree_label(args.tree)}.",
         "",
-        f"Each student keeps to one scene (share of the class, students): {mix}. Every student opens its scene's page before the clock starts (threads client). *Old page pattern*: a student "
+        f"Each student keeps to one scene (share of the class, students): {mix}. Every student opens its scene's page before the clock starts (threads client); "
+        f"{'the whole class grabs at once when it starts' if args.start == 'together' else 'each student first grabs after a look of 0–2 s'} "
+        "(`--start`). *Old page pattern*: a student "
         "drags one slider of one variant for 3–8 s, then another: a random walk over the slider's values, 1–3 "
         "positions every 100 ms, no pauses; the page's request (`scene_request`) with at most one in flight, the "
         "latest values sent when the answer arrives (`web/static/js/common/model/api.js`). *New page pattern*: grab a slider → "
@@ -748,12 +756,16 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--client", choices=sorted(CLIENTS), default="threads", help="the client of the runs")
     parser.add_argument("--compare-clients", type=float, default=15, metavar="SECONDS",
                         help="also run both clients for SECONDS against one worker, old pattern (0: skip)")
+    parser.add_argument("--start", choices=sorted(STARTS), default="together",
+                        help="new pattern: the whole class grabs at once when the clock starts (together), or each "
+                             "student after a look of 0–2 s (staggered)")
     parser.add_argument("--seed", type=int, default=2026)
     parser.add_argument("--output", type=Path, default=ROOT / "bench" / "results" / "classroom.md")
     args = parser.parse_args(argv)
     args.tree = check_tree(args.tree)
-    global PAGE_TREE
+    global PAGE_TREE, START_SPREAD_S
     PAGE_TREE = args.tree.resolve()
+    START_SPREAD_S = STARTS[args.start]
     if args.client != "threads" and "new" in args.pattern:
         parser.error("the new page pattern runs on the threads client")
 
