@@ -345,6 +345,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--no-bisect", action="store_true", help="only the sizes given, in turn")
     parser.add_argument("--client-cpus", type=int, nargs="+", default=None,
                         help="pin the simulated class to these CPUs (on a machine with more than two)")
+    parser.add_argument("--start", choices=sorted(classroom.STARTS), default="together",
+                        help="the class grabs at once when the clock starts (together), or each student after a "
+                             "look of 0–2 s (staggered): bench/classroom.py --start")
     parser.add_argument("--seed", type=int, default=2026)
     parser.add_argument("--tree", type=Path, default=ROOT, help="the source tree whose server runs")
     parser.add_argument("--quick", action="store_true",
@@ -353,6 +356,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--output", type=Path, default=None, help="default bench/results/capacity.md")
     parser.add_argument("--no-write", action="store_true", help="print only")
     args = parser.parse_args(argv)
+    classroom.START_SPREAD_S = classroom.STARTS[args.start]
     if args.quick:
         args.sizes = args.sizes or QUICK["sizes"]
         args.seconds = args.seconds or QUICK["seconds"]
