@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from server.core.dynamics.brackets import SECTIONS, refine_zeros, ulps
+from server.core.dynamics.brackets import SECTIONS, own_rows, refine_zeros, ulps
 
 ROOT = 1.2345678
 WIDTH = 2 * np.pi / 4096            # a scan's interval (machine.KINK_SCAN per turn)
@@ -91,3 +91,8 @@ def test_no_brackets_no_calls():
     found = refine_zeros(lambda index, at: pytest.fail("called"), np.zeros(0), np.zeros(0), np.zeros(0),
                          np.zeros(0))
     assert found.shape == (0,)
+
+
+def test_each_bracket_reads_its_own_function_at_its_points():
+    values = np.arange(2 * 6, dtype=float).reshape(2, 6)       # two functions at 3 brackets × 2 points
+    assert own_rows(values, np.array([1, 0, 1]), (3, 2)).tolist() == [[6.0, 7.0], [2.0, 3.0], [10.0, 11.0]]

@@ -33,6 +33,13 @@ def ulps(low: np.ndarray, high: np.ndarray) -> np.ndarray:
     return 4 * np.spacing(np.maximum(np.abs(low), np.abs(high)))
 
 
+def own_rows(values: np.ndarray, rows: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
+    """Each bracket's own function at its points: ``values`` (functions × brackets·points, bracket k's points
+    in columns k·points … (k+1)·points − 1, ``shape`` (brackets, points)) read at its function ``rows[k]``."""
+    count, points = shape
+    return values.reshape(values.shape[0], count, points)[rows, np.arange(count), :]
+
+
 def refine_zeros(f: Callable[[np.ndarray, np.ndarray], np.ndarray], low: np.ndarray, high: np.ndarray,
                  f_low: np.ndarray, f_high: np.ndarray, sections: int = SECTIONS) -> np.ndarray:
     """One zero (or a jump through zero) of f per bracket [low, high], f of opposite signs (or zero) at its ends.

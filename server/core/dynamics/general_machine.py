@@ -42,8 +42,8 @@ from ..structure.masses import MassModel, centre_points, check_model, with_strok
 from ..structure.reduction import reduced_inertia, reduced_loads
 from .kink_table import KinkTable, build as build_table
 from .kept import Kept
-from .brackets import refine_zeros
-from .machine import KINK_MERGE, KINK_SCAN, KINKS_KEPT, Machine, Tables, own_rows, read_only
+from .brackets import own_rows, refine_zeros
+from .machine import KINK_MERGE, KINK_SCAN, KINKS_KEPT, Machine, Tables, read_only
 from .motors import Motor, table_moment
 from .reduction import Inertias
 from .resistance import Load

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..mechanisms import MECHANISMS, Notice
-from .brackets import refine_zeros
+from .brackets import own_rows, refine_zeros
 from .kept import Kept
 from .motors import Motor, driving_moment, indicator_switches, table_moment, table_switches
 from .reduction import Inertias, reduced_inertia
@@ -35,13 +35,6 @@ KINK_SCAN = 4096      # samples per turn on which the switching functions are sc
 KINK_MERGE = 1e-12    # rad: kinks closer than this are one (the refinement leaves them ~1e-15 apart)
 KINKS_KEPT = 512       # machines' kinks kept per process (a slider's family shares them: see Machine.kinks)
 _kinks_found = Kept(KINKS_KEPT)
-
-
-def own_rows(values: np.ndarray, rows: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
-    """Each bracket's own function at its points: ``values`` (functions × brackets·points, bracket k's points
-    in columns k·points … (k+1)·points − 1, ``shape`` (brackets, points)) read at its function ``rows[k]``."""
-    count, points = shape
-    return values.reshape(values.shape[0], count, points)[rows, np.arange(count), :]
 
 
 def read_only(array: np.ndarray) -> np.ndarray:
