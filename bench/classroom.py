@@ -622,7 +622,7 @@ def where_the_time_goes(result: dict) -> list[str]:
              "latency | lane | compute | rest |", "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for light in ("light", "elastic"):
         rows = [r for r in result["rows"] if r[5] == "exact" and r[6] == light and r[2] == 200
-                and len(r) > 7 and r[7] is not None]
+                and r[7] is not None]
         if not rows:
             continue
         parts = 1000 * np.array([(r[1], r[7][0], r[7][1], r[1] - r[7][0] - r[7][1]) for r in rows])
@@ -634,7 +634,7 @@ def where_the_time_goes(result: dict) -> list[str]:
         return []
     computed = defaultdict(list)
     for r in result["rows"]:
-        if r[5] == "exact" and r[2] == 200 and len(r) > 7 and r[7] is not None:
+        if r[5] == "exact" and r[2] == 200 and r[7] is not None:
             computed[r[0]].append(1000 * r[7][1])
     lines += ["", "The exact answers' *compute* by endpoint (ms): the long ones hold the worker's light place "
               "(or a heavy process) while the others wait:", "", "| endpoint | answers | p50 | p95 | max |",

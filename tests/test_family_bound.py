@@ -26,17 +26,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from fastapi.testclient import TestClient
 
-from server.api.app import app
 from server.api.endpoints import compute_answer
-from server.core.dynamics import report
 from server.families import family
-from server.runtime import heavy
 from server.api.routers.family import WITHOUT_FAMILY
 from server.lessons.requests import path_value, scene_request, slider_values
 from server.lessons.scenes import scenes
 from test_family import SENT, TOLERANCE
+from test_family_engine import unbudgeted_client
 from test_family_fields import whole_members
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -55,11 +52,8 @@ CHECKS = 2              # random values per family
 def client():
     """In-process, no time budgets; one per test (a scene's test is a minute of work: no fixture of the module's
     keeps the scenes on one worker of the suite, tests/conftest.py)."""
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(heavy, "HEAVY_PROCESSES", 0)
-        patch.setattr(family, "TIME_BUDGET_S", 1e9)
-        patch.setattr(report, "TIME_BUDGET_S", 1e9)
-        yield TestClient(app)
+    with unbudgeted_client() as made:
+        yield made
 
 
 @cache

@@ -8,6 +8,7 @@ Families here run in this process with the time budgets lifted, so that nothing 
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
 import random
 
 import numpy as np
@@ -27,13 +28,20 @@ from test_family import API, SENT, TOLERANCE, family_body, post_family
 FINEST = family.FINEST_FRACTION
 
 
-@pytest.fixture(scope="module")
-def client():
+@contextmanager
+def unbudgeted_client():
+    """The app in this process (no heavy processes) with the families' and reports' time budgets lifted."""
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(heavy, "HEAVY_PROCESSES", 0)
         patch.setattr(family, "TIME_BUDGET_S", 1e9)
         patch.setattr(report, "TIME_BUDGET_S", 1e9)
         yield TestClient(app)
+
+
+@pytest.fixture(scope="module")
+def client():
+    with unbudgeted_client() as made:
+        yield made
 
 
 def synthetic(f, calls: list | None = None):
