@@ -251,8 +251,8 @@ def main() -> None:
         "# Browser: a slider's keys, key → visible change",
         "",
         f"`python bench/browser_keys.py` on {tree_label(args.tree)}, {started}; {platform.processor() or platform.machine()}, "
-        f"{os.cpu_count()} CPUs, load average (1 / 5 / 15 min) {load_before} before and {load_after} after (the machine "
-        f"shared with other work: the times depend on it); Chromium headless at {VIEWPORT['width']} × {VIEWPORT['height']}; "
+        f"{os.cpu_count()} CPUs, load average (1 / 5 / 15 min) {load_before} before and {load_after} after (the times "
+        f"depend on the machine's load); Chromium headless at {VIEWPORT['width']} × {VIEWPORT['height']}; "
         f"the app as the README starts it (one worker) on loopback; per scene a key held for {args.keys} keydowns "
         f"(each {KEY_GAP_S * 1000:.0f} ms after the previous one's change was shown), then {args.presses} single presses at rest.",
         "",
