@@ -1,4 +1,4 @@
-"""The dynamics scenes in a real browser: every variant's panels, the friction drag and self-locking,
+"""The dynamics scenes in a real browser: every variant's panels (checked on test_notation's walk), the friction drag and self-locking,
 the two conventions of M_c0, the phase portrait under a λ drag, the stalling Kloss motor, and the
 language switch keeping the settings."""
 from __future__ import annotations
@@ -68,27 +68,24 @@ def prefix(text: str) -> str:
     return text.split("{")[0]
 
 
-def test_every_dynamics_scene_and_variant_shows_all_its_panels(browser_page):
-    page = browser_page
-    for scene in SCENES.values():
-        open_scene(page, scene, "ru")
-        assert page.inner_text("h1") == scene["title"]["ru"]
-        assert page.locator("#linkage").count() == 0 and page.locator(".animation").count() == 0
-        for variant in scene["variants"]:
-            if page.input_value("#variant") != variant["id"]:
-                page.select_option("#variant", variant["id"])
-            if variant.get("address"):              # the reader's own mechanism: none in this address, said so
-                page.wait_for_selector(".own-mechanism-missing")
-                assert page.get_attribute(".own-mechanism-missing a", "href") == "/editor?lang=ru"
-                continue
-            wait_for_panels(page, scene, variant)
-            titles = page.locator(".panel:visible h2").all_inner_texts()
-            assert titles == [shown(scene["panels"][p]["title"]["ru"]) for p in variant["panels"] if "title" in scene["panels"][p]]
-            assert page.inner_text(".variant-text") == shown(variant["text"]["ru"])
-            assert page.locator(".refusal, .no-motion").count() == 0
-            assert "NaN" not in page.inner_text("body")
-            screenshot(page, f"dynamics_{scene['id']}_{variant['id']}")
-    assert page.problems == []
+def assert_variant_shows_all_its_panels(page, scene: dict, variant: dict) -> None:
+    """The open page of a dynamics scene in ru at `variant` shows every panel of it, titled as the scene says,
+    with the variant's text, no refusal and no NaN (or, for the reader's own mechanism absent from the address,
+    the link to the editor). test_notation walks every variant of every scene in ru and calls this on the
+    dynamics scenes' pages, so that each page is opened once for both checks."""
+    assert page.inner_text("h1") == scene["title"]["ru"]
+    assert page.locator("#linkage").count() == 0 and page.locator(".animation").count() == 0
+    if variant.get("address"):              # the reader's own mechanism: none in this address, said so
+        page.wait_for_selector(".own-mechanism-missing")
+        assert page.get_attribute(".own-mechanism-missing a", "href") == "/editor?lang=ru"
+        return
+    wait_for_panels(page, scene, variant)
+    titles = page.locator(".panel:visible h2").all_inner_texts()
+    assert titles == [shown(scene["panels"][p]["title"]["ru"]) for p in variant["panels"] if "title" in scene["panels"][p]]
+    assert page.inner_text(".variant-text") == shown(variant["text"]["ru"])
+    assert page.locator(".refusal, .no-motion").count() == 0
+    assert "NaN" not in page.inner_text("body")
+    screenshot(page, f"dynamics_{scene['id']}_{variant['id']}")
 
 
 def test_friction_drag_changes_the_moment_and_its_mean(browser_page):

@@ -22,6 +22,7 @@ sys.path.insert(0, str(REPO / "tests"))
 from test_translations import STRINGS, english_in  # noqa: E402  (the same collection as the API test)
 from test_label_overlaps import DRAWN_LABELS, PICTURES, label_problems  # noqa: E402
 from test_label_overlaps import settle as drawn  # noqa: E402
+from test_dynamics import SCENES as DYNAMICS_SCENES, assert_variant_shows_all_its_panels  # noqa: E402
 
 from server.lessons.markup import notation_parts  # noqa: E402
 
@@ -88,7 +89,8 @@ def test_the_russian_texts_write_subscripts_on_most_scenes():
 def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_every_variant(browser_page, name):
     """Every variant of the scene in ru (the first opened, the others picked from its list where it has one): no "_" on the screen and the subscripts as <sub>; numbers
     with a true minus, a decimal comma (plots' tick labels included) and no signed zero; the labels of its
-    drawings apart and inside them (test_label_overlaps.label_problems; uk and en at the default state: test_scene_words).
+    drawings apart and inside them (test_label_overlaps.label_problems; uk and en at the default state: test_scene_words);
+    on the dynamics scenes every panel of the variant (test_dynamics.assert_variant_shows_all_its_panels).
     On the scene's default (first) variant its live studies are then run, and no English sentence of the app may
     show. (The Ukrainian and English pages' words: test_scene_words.)"""
     page = browser_page
@@ -119,6 +121,8 @@ def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_ever
         if found:
             problems[where] = found[:6]
         drawn(page)
+        if scene["id"] in DYNAMICS_SCENES:          # the same page: every panel of the variant shown (test_dynamics)
+            assert_variant_shows_all_its_panels(page, scene, variant)
         labels = label_problems(page.evaluate(DRAWN_LABELS))
         if labels:
             unreadable[where] = labels
