@@ -77,6 +77,7 @@ START_SPREAD_S = STARTS["together"]
 STEP_POSITIONS = (1, 3)         # positions per move
 TURN_PROBABILITY = 0.2          # the hand changes direction
 LANG = "ru"
+WARM_GUARD_S = 1800          # the longest a server's warming may take before the run gives up (--warm)
 HEADERS = {"Content-Type": "application/json", "Accept-Encoding": "gzip", "Accept": "*/*"}
 REQUEST_TIMEOUT_S = 60
 DEFAULT_RETRY_AFTER_S = 1.0     # a 429 without a readable Retry-After
@@ -228,6 +229,7 @@ class Record:
         self.given_up: list[tuple[str, str]] = []       # (kind, light) of every family given up by a new grab
         self.resent = 0         # requests sent again on a new connection: the idle one had been closed
         self.unrefined: list[str] = []   # light of every full family the server answered coarse (busy)
+        self.first_previews: list[tuple[float, str]] = []   # (s, X-Cache) of each student's first coarse family
 
     def add(self, endpoint: str, seconds: float, status: int, cache: str, partial: bool = False,
             kind: str = "exact", light: str = "light", timing: str = "") -> None:
@@ -322,6 +324,7 @@ class Connection:
             time.sleep(wait)
         if kind == "family" and answer.status == 200 and answered_coarse(raw, answer.getheader("content-encoding")):
             self.record.unrefined.append(student.light)
+        self.last = (time.perf_counter() - sent, answer.getheader("x-cache", ""))
         self.record.add(student.scene.endpoint, time.perf_counter() - sent, answer.status,
                         answer.getheader("x-cache", ""),
                         cut_short(student.scene.endpoint, raw, answer.getheader("content-encoding"),
@@ -425,6 +428,8 @@ class FamilyFetcher:
                 (grab, coarse, full), self.wanted = self.wanted, None
             if self.connection.post(Student.family_path, coarse, kind="coarse") == 200:
                 self.arrived_grab = grab
+                if grab == 1:                    # the student's first grab: the lesson's first preview
+                    self.connection.record.first_previews.append(self.connection.last)
                 self.connection.post(Student.family_path, full, kind="family")
         self.connection.close()
 
@@ -500,9 +505,22 @@ def machine_busy_cpu_s() -> float:
     return (sum(fields[:8]) - idle) / os.sysconf("SC_CLK_TCK")       # guest time is already in user time
 
 
+def warmed(process, workers: int) -> float:
+    """Wait until every worker of the server has logged the end of its warming (MDL_WARM_DEFAULTS: the scenes'
+    default answers, and the families of their first variants' sliders: server/runtime/default_answers.py);
+    the seconds waited. A guard against a warming that never ends, not a measure."""
+    started = time.monotonic()
+    while process.log_path.read_text(errors="replace").count("default answers in the cache:") < workers:
+        if time.monotonic() - started > WARM_GUARD_S or process.poll() is not None:
+            raise RuntimeError(f"the server's warming did not end within {WARM_GUARD_S} s")
+        time.sleep(1)
+    return time.monotonic() - started
+
+
 def run(workers: int, client: str, students: int, seconds: float, seed: int, pattern: str = "old",
-        tree: Path = ROOT) -> dict:
-    """One configuration: start the server, let the class work for `seconds`, collect the numbers."""
+        tree: Path = ROOT, warm: bool = False) -> dict:
+    """One configuration: start the server (warmed first in the class's language when `warm`), let the class
+    work for `seconds`, collect the numbers."""
     all_scenes = scenes()
     rng = random.Random(seed)
     class_ = [Student(all_scenes[scene_id], random.Random(rng.random())) for scene_id in apportion(students, SCENE_MIX)]
@@ -510,7 +528,9 @@ def run(workers: int, client: str, students: int, seconds: float, seed: int, pat
     # A real class comes from many addresses (or raises the cap behind one NAT address, as the README says); on
     # loopback every simulated student shares 127.0.0.1, so the per-address cap is off and each student's own
     # per-client limit (its mdl_client cookie) applies.
-    with running_server(workers, tree=tree, env={"MDL_ADDRESS_CONCURRENCY": "0"}) as (port, process):
+    env = {"MDL_ADDRESS_CONCURRENCY": "0", "MDL_WARM_DEFAULTS": LANG if warm else "0"}
+    with running_server(workers, tree=tree, env=env) as (port, process):
+        warming_s = warmed(process, workers) if warm else None
         connections = open_pages(port, class_, record) if client == "threads" else []
         server_cpu, client_cpu, busy = server_cpu_s(process), time.process_time(), machine_busy_cpu_s()
         start = time.monotonic() + 0.2
@@ -525,8 +545,8 @@ def run(workers: int, client: str, students: int, seconds: float, seed: int, pat
         load = os.getloadavg()
     after = cache_counters_at_exit(process.log_text)   # the caches start empty: their counters at exit are the run's
     return {"workers": workers, "client": client, "pattern": pattern, "students": students, "seconds": seconds,
-            "wall": wall, "rows": record.rows, "throttled": record.throttled, "abandoned": record.abandoned,
-            "given_up": record.given_up, "resent": record.resent, "unrefined": record.unrefined,
+            "wall": wall, "warming_s": warming_s, "rows": record.rows, "throttled": record.throttled, "abandoned": record.abandoned,
+            "given_up": record.given_up, "first_previews": record.first_previews, "resent": record.resent, "unrefined": record.unrefined,
             "load": load,
             "moves": sum(s.moves for s in class_), "server_cpu": server_cpu,
             "client_cpu": client_cpu, "outlived": process.outlived,
@@ -536,6 +556,17 @@ def run(workers: int, client: str, students: int, seconds: float, seed: int, pat
                       "bytes": sum(s["bytes"] for s in after)},
             "command": "python3 -m server --port <free port>" + (f" --workers {workers}" if workers > 1 else ""),
             "scenes": {scene: sum(1 for s in class_ if s.scene.id == scene) for scene in SCENE_MIX}}
+
+
+def first_previews(result: dict) -> str:
+    """A sentence: the students' first grabs' coarse families (the lesson's first previews), p50 / p95 and hits."""
+    first = result.get("first_previews", [])
+    if not first:
+        return "First grabs: none answered (old page pattern, or the run too short)."
+    p50, p95 = np.percentile(1000 * np.array([seconds for seconds, _ in first]), [50, 95])
+    hits = sum(1 for _, cache in first if cache == "hit")
+    return (f"Each student's first grab (its coarse family, the lesson's first preview): {len(first)} answered, "
+            f"p50 {p50:.0f} ms, p95 {p95:.0f} ms, {hits} of them cache hits.")
 
 
 def row_name(row: tuple) -> str:
@@ -677,13 +708,16 @@ def markdown_run(result: dict, title: str) -> list[str]:
               f"(uvicorn's 5-s timeout; a browser does the same): {result.get('resent', 0)}.",
               f"* Families given up by the student's next grab (aborted in flight, as the page does; not in the "
               f"latencies above): {given_up(result)}.",
+              f"* {first_previews(result)}",
               f"* Full families the server answered with the coarse family, busy (no refinement): "
               f"{unrefined(result)}.",
               f"* Cache, the counters each worker process logs as it stops ({cache['workers']} of "
               f"{result['workers']}): "
               f"{cache['hits']} hits, {cache['misses']} misses (hit rate {percent(cache['hits'] / looked_up if looked_up else None)}), "
               f"{cache['entries']} entries, {cache['bytes'] / 1e6:.1f} MB at the end; the clients saw "
-              f"{sum(1 for r in result['rows'] if r[3] == 'hit')} answers with X-Cache: hit.",
+              f"{sum(1 for r in result['rows'] if r[3] == 'hit')} answers with X-Cache: hit."
+              + (f" The warming before the class took {result['warming_s']:.0f} s."
+                 if result.get("warming_s") is not None else ""),
               f"* Server CPU: {result['server_cpu']:.1f} s in {result['wall']:.1f} s "
               f"({100 * result['server_cpu'] / result['wall'] / cpus:.0f} % of the {cpus} CPUs); "
               f"client CPU: {result['client_cpu']:.1f} s ({100 * result['client_cpu'] / result['wall'] / cpus:.0f} % "
@@ -706,7 +740,8 @@ def markdown(results: list[dict], comparison: list[dict], args) -> str:
         f"{time.strftime('%Y-%m-%d %H:%M')}, Python {platform.python_version()}, {platform.machine()}, "
         f"**{os.cpu_count()} CPUs shared by the server and the client** (the simulated class runs on the same "
         f"machine, over loopback; its CPU use is reported below). `python bench/classroom.py --students "
-        f"{args.students} --seconds {args.seconds:g} --pattern {' '.join(args.pattern)} --start {args.start}`, "
+        f"{args.students} --seconds {args.seconds:g} --pattern {' '.join(args.pattern)} --start {args.start}"
+        f"{' --warm' if args.warm else ''}`, "
         f"seed {args.seed}; "
         f"server tree: {tree_label(args.tree)}.",
         "",
@@ -719,7 +754,12 @@ def markdown(results: list[dict], comparison: list[dict], args) -> str:
         "one `POST /api/v1/family` (bench/family_request.py) → drag 1–3 s (the old pattern's exact requests only "
         "until the family has arrived) → release: one exact request → look 1–2 s → grab again. A 429 is waited "
         "out (Retry-After) and sent again; its answer's latency counts from the first send. Latency: from "
-        "sending to the last byte of the gzip answer. The cache starts empty, at its default size "
+        "sending to the last byte of the gzip answer. "
+        + ("The server is started with `MDL_WARM_DEFAULTS=ru` and the class begins once every worker has warmed "
+           "its cache (every scene's default answers, and the family of every slider of every variant at its defaults, "
+           "as a server started before the lesson has; `--warm`): the cache counters below include the "
+           "warming's own requests. " if args.warm else "The cache starts empty. ")
+        + "The cache is at its default size "
         "(MDL_CACHE_BYTES). *Cut short*: answers marked `X-Partial: 1`, or answers of /motion and /elastic (or "
         "families of them) that say they stopped at their wall-clock time budget with a partial result. Targets (at 100 students): "
         "p95 ≤ 150 ms for exact answers on the light scenes, ≤ 500 ms on the elastic ones; families ≤ 500 ms "
@@ -759,6 +799,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--start", choices=sorted(STARTS), default="together",
                         help="new pattern: the whole class grabs at once when the clock starts (together), or each "
                              "student after a look of 0–2 s (staggered)")
+    parser.add_argument("--warm", action="store_true",
+                        help="start the server with its cache warming on (MDL_WARM_DEFAULTS, in the class's language) "
+                             "and the class once it has ended, as for a server started before the lesson")
     parser.add_argument("--seed", type=int, default=2026)
     parser.add_argument("--output", type=Path, default=ROOT / "bench" / "results" / "classroom.md")
     args = parser.parse_args(argv)
@@ -771,7 +814,7 @@ def main(argv: list[str] | None = None) -> int:
 
     comparison = [run(1, client, args.students, args.compare_clients, args.seed, "old", args.tree)
                   for client in sorted(CLIENTS)] if args.compare_clients > 0 else []
-    results = [run(workers, args.client, args.students, args.seconds, args.seed, pattern, args.tree)
+    results = [run(workers, args.client, args.students, args.seconds, args.seed, pattern, args.tree, args.warm)
                for workers in args.workers for pattern in args.pattern]
     text = markdown(results, comparison, args)
     print(text)

@@ -160,7 +160,7 @@ def running_server(workers: int = 1, tree: Path = ROOT, env: dict | None = None,
     environment or ``env`` says otherwise, no warming of its cache (MDL_WARM_DEFAULTS=0: an older tree does not
     warm, and a benchmark times what it asks for); yields (port, process).
     Ready once every worker has started and one of them answers GET ready_path; once stopped,
-    ``process.log_text`` holds its log and ``process.outlived`` the processes that outlived it. `command`
+    ``process.log_path`` names its log while it runs, ``process.log_text`` holds it and ``process.outlived`` the processes that outlived it. `command`
     (with ``{port}``) replaces the README's command, e.g. for the bare floor app."""
     with tempfile.TemporaryDirectory(prefix="mdl-bench-") as data_dir:
         port = free_port()
@@ -171,6 +171,7 @@ def running_server(workers: int = 1, tree: Path = ROOT, env: dict | None = None,
                                    env={"MDL_WARM_DEFAULTS": "0", **os.environ, "MDL_DATA_DIR": data_dir,
                                         **(env or {})},
                                    start_new_session=True)
+        process.log_path = log_path
         try:
             deadline = time.monotonic() + startup_s
             while True:

@@ -194,3 +194,29 @@ def test_a_request_on_a_connection_the_server_closed_while_idle_is_sent_again_on
     finally:
         server.shutdown()
         server.server_close()
+
+
+class _Server:
+    """What classroom.warmed reads of a running server: its log's path and whether it has exited."""
+
+    def __init__(self, log_path: Path, exited: bool = False):
+        self.log_path, self.exited = log_path, exited
+
+    def poll(self):
+        return 1 if self.exited else None
+
+
+def test_a_warm_run_waits_for_every_workers_warming_and_gives_up_on_a_server_that_exited(tmp_path):
+    """--warm: the class starts once each worker has logged the end of its warming
+    (server/runtime/default_answers.py's line); a server that has stopped before is an error, not a wait."""
+    log = tmp_path / "server.log"
+    line = "INFO:     default answers in the cache: 535 of 535 requests (230.1 s, 21.4 CPU-s)\n"
+    log.write_text(line + line)
+    assert classroom.warmed(_Server(log), 2) >= 0
+    log.write_text(line)                                  # one worker of two has warmed; the server has exited
+    try:
+        classroom.warmed(_Server(log, exited=True), 2)
+    except RuntimeError as error:
+        assert "warming did not end" in str(error)
+    else:
+        raise AssertionError("a server that exited before warming was waited for")

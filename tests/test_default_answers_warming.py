@@ -106,3 +106,34 @@ def test_the_warming_stops_with_the_app(monkeypatch):
             time.monotonic() < deadline:
         time.sleep(0.1)
     assert left == [], left
+
+
+def test_the_first_variants_families_are_cache_hits_after_warming_wherever_the_slider_stands(monkeypatch):
+    """With the families cached, the warming asks each first variant's slider families as the page does on a
+    grab (server/lessons/family_requests.py, the page's body: tests/browser/test_request_body_parity.py), the
+    coarse stage and the full one: a student's first grab, the slider anywhere and the others at their defaults,
+    is a hit in both stages; a grab after another slider has moved is not (another question)."""
+    from server.lessons.family_requests import family_request
+    from server.lessons.requests import defaults
+
+    monkeypatch.setenv("MDL_WARM_DEFAULTS", "ru")
+    monkeypatch.setattr(default_answers, "QUIET_S", 0.05)
+    app = create_app()
+    original = default_answers.start
+    monkeypatch.setattr(default_answers, "start", lambda a, cached: original(a, cached={"reduction", "family"}))
+    scene = scenes()["reduced-inertia"]
+    variant = scene.variants[0]
+    with TestClient(app) as client:
+        warming = _wait_warmed(client, app)
+        families = [body for path, _, body in warming.requests if path.endswith("/family")]
+        assert warming.refused == 0 and len(families) >= 2 * len(variant.sliders)
+        first, second = variant.sliders[:2]
+        moved = {first.id: first.max}                        # the grabbed slider at its end: the same family
+        for stage in ({"stage": "coarse"}, {}):
+            answer = client.post("/api/v1/family?lang=ru", json=family_request(scene, variant, first, moved) | stage,
+                                 headers={"Accept-Encoding": "gzip"})
+            assert answer.status_code == 200 and answer.headers["x-cache"] == "hit", stage
+            assert answer.json()["numerics"]["stage"] == (stage.get("stage") or "full")
+        other = family_request(scene, variant, second, moved) | {"stage": "coarse"}   # another slider moved first
+        assert defaults(variant)[first.id] != first.max
+        assert client.post("/api/v1/family?lang=ru", json=other).headers["x-cache"] == "miss"

@@ -2,7 +2,7 @@
 every slider of the scene (in each variant that brings it, and one in turn of each variant that brings none:
 sliders_checked), at the defaults or with the other sliders at random values (the scene's sliders,
 variant after variant, take the two in turn), the family the page
-asks for (its drawn ``fields``, packed) is interpolated by the contract's rule (linear or cubic by interval)
+asks for (server/lessons/family_requests.py: its drawn ``fields``, packed) is interpolated by the contract's rule (linear or cubic by interval)
 at random values between members, and every drawn quantity is within TOLERANCE of its span of the endpoint's
 exact answer there, plus the 5 digits sent (SENT × |value|) and what packing may move a value (PACK_QUANTUM / 2
 of the span). Every leaf the preview draws is checked as the page draws it (family_model.js): element by
@@ -17,12 +17,7 @@ the time budgets lifted, so nothing depends on the machine's speed.
 """
 from __future__ import annotations
 
-import json
 import random
-import shutil
-import subprocess
-from functools import cache
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -30,21 +25,13 @@ import pytest
 from server.api.endpoints import compute_answer
 from server.families import family
 from server.api.routers.family import WITHOUT_FAMILY
-from server.lessons.requests import path_value, scene_request, slider_values
+from server.lessons.family_requests import family_request
+from server.lessons.requests import slider_values
 from server.lessons.scenes import scenes
 from test_family import SENT, TOLERANCE
 from test_family_engine import unbudgeted_client
 from test_family_fields import whole_members
 
-ROOT = Path(__file__).resolve().parents[1]
-FIELDS_SCRIPT = """
-const scenes = JSON.parse(require("fs").readFileSync(0, "utf8"));
-import(process.argv[1]).then(({ previewFields }) => {
-  const out = {};
-  for (const scene of scenes) for (const variant of scene.variants) out[`${scene.id}/${variant.id}`] = previewFields(scene, variant);
-  process.stdout.write(JSON.stringify(out));
-});
-"""
 CHECKS = 2              # random values per family
 
 
@@ -54,34 +41,6 @@ def client():
     keeps the scenes on one worker of the suite, tests/conftest.py)."""
     with unbudgeted_client() as made:
         yield made
-
-
-@cache
-def page_fields() -> dict[str, list[str]]:
-    """"scene/variant" → the fields the page asks for (web/static/js/common/model/family_fields.js run in Node), or {} (the
-    whole answers) where Node is not installed."""
-    node = shutil.which("node") or shutil.which("nodejs")
-    if node is None:
-        return {}
-    module = ROOT / "web" / "static" / "js" / "common" / "model" / "family_fields.js"
-    listed = [json.loads(scene.model_dump_json()) for scene in scenes().values()]
-    done = subprocess.run([node, "-e", FIELDS_SCRIPT, module.as_uri()], input=json.dumps(listed), text=True,
-                          capture_output=True, check=True, timeout=120)
-    return json.loads(done.stdout)
-
-
-def page_body(scene, variant, slider, values: dict | None) -> dict:
-    """The family request the page sends on a grab (bench/family_request.py does the same)."""
-    request = scene_request(scene, variant, values)
-    if scene.kind == "kinematics":
-        factor = request["params"][slider.scale] if slider.scale else 1.0
-        vary = [{"path": f"params.{slider.param}", "factor": float(factor)}]
-    else:
-        scale = path_value(request, slider.scale) if slider.scale else 1.0
-        vary = [{"path": path, "factor": float(slider.to_si * scale)} for path in (slider.param, *slider.also)]
-    fields = page_fields().get(f"{scene.id}/{variant.id}")
-    return {"endpoint": scene.endpoint, "request": request, "vary": vary, "min": slider.min, "max": slider.max,
-            "log": slider.log} | ({"fields": fields, "packed": True} if fields else {})
 
 
 def check(client, body: dict, rng: random.Random) -> int:
@@ -201,8 +160,8 @@ def test_every_slider_family_of_the_scene_is_within_the_bound_of_the_exact_answe
         settings = (None, random_values(variant, rng))     # the scene's sliders take the two in turn
         for slider in sliders:
             taken = len(others) % 2
-            checked += check(client, page_body(scene, variant, slider, settings[taken]), rng)
-            others.append(page_body(scene, variant, slider, settings[1 - taken]))
+            checked += check(client, family_request(scene, variant, slider, settings[taken]), rng)
+            others.append(family_request(scene, variant, slider, settings[1 - taken]))
     for body in others:             # none of those claimed: the other setting, until one does
         if checked:
             break

@@ -4,7 +4,7 @@ answer, decisions (stall, self-locking, refusals) the same, and exact answers un
 
 For every scene's variants, at the defaults and at seeded random values of every slider, the endpoint's answer
 with ``preview=family.PREVIEW`` is compared with the exact answer (no preview), leaf by leaf over the leaves the
-page draws (its ``fields``, test_family_bound.page_fields; the whole answer where Node is missing), checked leaves
+page draws (its ``fields``, server/lessons/family_requests.preview_fields), checked leaves
 as the family checks them (family.checked_leaves):
 
 - an array: |preview − exact| ≤ PREVIEW × the exact array's span (max − min), elementwise, NaN (null: a locked
@@ -34,7 +34,7 @@ from server.core.dynamics import report
 from server.core.mechanisms import GeometryError
 from server.lessons.requests import scene_request, slider_values
 from server.lessons.scenes import scenes
-from test_family_bound import page_fields
+from server.lessons.family_requests import preview_fields
 
 DRAWS = 2               # random slider settings per variant, beside its defaults
 ROUND_OFF = 1e-12       # relative: what summing the same numbers in another order may move
@@ -56,7 +56,7 @@ def settings(scene):
 
 
 def drawn(scene, variant, payload: dict) -> dict:
-    fields = page_fields().get(f"{scene.id}/{variant.id}")
+    fields = preview_fields(scene, variant)
     return payload if not fields else family.pruned(payload, family.field_trie(fields))
 
 

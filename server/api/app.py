@@ -52,7 +52,7 @@ async def lifespan(app: FastAPI):
                                             ", ".join(f"{part} {seconds:.2f} s" for part, seconds in parts.items()))
     heavy.frozen_after_start()
     app.state.default_answers = default_answers.start(       # MDL_WARM_DEFAULTS: on spare CPU, after the start
-        app, set(cache_stats.request_models()) - {"family"})
+        app, set(cache_stats.request_models()))
     yield
     await default_answers.stop(app.state.default_answers)
     heavy.shutdown()                   # the heavy processes end with the worker

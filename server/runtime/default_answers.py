@@ -1,13 +1,16 @@
-"""Every scene's default answers computed once after the server starts, so that a class's first page loads are
-cache hits.
+"""Every scene's default answers, and the families of its sliders at the defaults, computed once after the server
+starts, so that a class's first page loads and first grabs are cache hits.
 
 In a lesson the students open the same scene at the same defaults: each page's first request is the scene's
 default request (server.lessons.requests.scene_request: the variant at its sliders' defaults, in the page's
-language). Unless ``MDL_WARM_DEFAULTS`` is 0, each worker, once it has started, sends every scene's default request
-of every variant (the first variant of every scene before the others) in each language named, through its own
-app as a page would (``POST /api/v1/<endpoint>?lang=…``: the same validation, cache key and stored bytes), so
-that the response cache holds the answers before the students ask. Only the cached endpoints
-(ResponseCacheMiddleware's paths) are asked; with the cache off nothing is.
+language), and its first grab of a slider asks for that slider's family at the others' defaults
+(server.lessons.family_requests: the coarse stage, then the full one; the cache keys a family without the
+slider's own value, so the warmed family answers a grab wherever the slider stands). Unless
+``MDL_WARM_DEFAULTS`` is 0, each worker, once it has started, sends every variant's default request (the first
+variant of every scene before the others) in each language named and, in the first language named, each
+variant's families after its answer, through its own app as a page would (``POST /api/v1/<endpoint>?lang=…``:
+the same validation, cache key and stored bytes), so that the response cache holds the answers before the
+students ask. Only the cached endpoints (ResponseCacheMiddleware's paths) are asked; with the cache off nothing is.
 
 It never delays the server: the task starts after the start-up and the server answers meanwhile. It takes only
 spare CPU: before each request it waits until the worker has been quiet (this process used less than
@@ -35,6 +38,7 @@ LANGUAGES = ("ru", "uk", "en")
 QUIET_S = 0.25                 # the window in which the worker must have been quiet before the next request
 IDLE_SHARE = 0.2               # quiet: this process used less than this share of one CPU over the window
 CLIENT = ("default-answers", 0)   # the address admission sees for these requests
+FAMILY = "family"                  # the families' endpoint
 API_PREFIX = "/api/v1"
 log = logging.getLogger("uvicorn.error")
 
@@ -60,8 +64,11 @@ def languages_from_env(text: str | None = None) -> tuple[str, ...]:
 
 def default_requests(cached: set[str], languages: tuple[str, ...]) -> list[tuple[str, str, bytes]]:
     """(path, query, body) of every scene's default request of a cached endpoint: each language in turn, and in
-    each the first variant of every scene, then the scenes' other variants. A variant whose request cannot be made
-    here (one that needs an address's documents) is left out."""
+    each the first variant of every scene, then the second, and so on; in the first language (the families are
+    the cache's largest answers: three languages' would not fit its default size), when the families are cached,
+    each variant's answer is followed by the family of each of its sliders as the page asks for it on a grab,
+    coarse stage and full. A variant whose
+    request cannot be made here (one that needs an address's documents) is left out."""
     from ..lessons.requests import scene_request
     from ..lessons.scenes import scenes
 
@@ -69,6 +76,7 @@ def default_requests(cached: set[str], languages: tuple[str, ...]) -> list[tuple
     rounds = max(len(scene.variants) for scene in catalogue.values())
     found = []
     for lang in languages:
+        query = urlencode({"lang": lang})
         for k in range(rounds):
             for scene in catalogue.values():
                 if k >= len(scene.variants) or scene.endpoint not in cached:
@@ -77,8 +85,29 @@ def default_requests(cached: set[str], languages: tuple[str, ...]) -> list[tuple
                     body = orjson.dumps(scene_request(scene, scene.variants[k]))
                 except Exception:          # noqa: BLE001 — a variant that needs documents: not a default page load
                     continue
-                found.append((f"{API_PREFIX}/{scene.endpoint}", urlencode({"lang": lang}), body))
+                found.append((f"{API_PREFIX}/{scene.endpoint}", query, body))
+            if FAMILY in cached and lang == languages[0]:
+                found += [(f"{API_PREFIX}/{FAMILY}", query, body) for body in _families(catalogue, cached, k)]
     return found
+
+
+def _families(catalogue, cached: set[str], k: int) -> list[bytes]:
+    """The bodies of the families a class grabs first on the scenes' k-th variants: every slider at its
+    variant's defaults, the coarse stage (the page's first question) then the full one. The cache keys a family
+    without its slider's own value (families.bodies.shared): each answers a grab wherever that slider stands."""
+    from ..lessons.family_requests import family_request
+
+    bodies = []
+    for scene in catalogue.values():
+        variant = scene.variants[k] if k < len(scene.variants) else None
+        if variant is None or scene.kind == "project" or scene.endpoint not in cached or variant.address:
+            continue
+        for slider in variant.sliders:
+            body = family_request(scene, variant, slider)
+            if body["request"].get("outputs") == []:        # the page asks no family for a page of tables
+                continue
+            bodies += [orjson.dumps(body | {"stage": "coarse"}), orjson.dumps(body)]
+    return bodies
 
 
 @dataclass
@@ -95,7 +124,7 @@ class Warming:
 
 def start(app, cached: set[str], languages: tuple[str, ...] | None = None) -> Warming | None:
     """Start warming the app's response cache (None when MDL_WARM_DEFAULTS is off or the cache is off).
-    ``cached``: the endpoints the cache keeps (the app's cache middleware's, less the families)."""
+    ``cached``: the endpoints the cache keeps (the app's cache middleware's; "family" for the families)."""
     languages = languages_from_env() if languages is None else languages
     cache = getattr(app.state, "response_cache", None)
     if not languages or cache is None or not cache.enabled:

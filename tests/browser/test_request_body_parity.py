@@ -74,3 +74,45 @@ def test_the_page_and_the_server_build_the_same_request_body_from_every_scene(br
     assert differ == []
     assert len(every) == sum(len(s.variants) * (1 if s.kind == "project" else 5) for s in scenes().values())
     assert page.problems == []
+
+
+BUILD_FAMILY_REQUESTS_JS = """async ({ scenes, cases }) => {
+  const entry = document.querySelector('script[type="module"][src*="_scene.js"]').src;
+  const { SceneModel } = await import(new URL("../kinematics/model/scene_model.js", entry));
+  const { DynamicsModel } = await import(new URL("../dynamics/model/dynamics_model.js", entry));
+  const { previewFields } = await import(new URL("../common/model/family_fields.js", entry));
+  return cases.map(({ scene, variant, slider }) => {        // family_preview.js: the question of a grab
+    const data = scenes[scene];
+    const model = new (data.kind === "kinematics" ? SceneModel : DynamicsModel)(data, { variant, values: {} });
+    const grabbed = model.variant.sliders.find((s) => s.id === slider);
+    const fields = previewFields(model.scene ?? data, model.variant);
+    return { endpoint: data.endpoint, request: model.request(), vary: model.familyVary(grabbed), min: grabbed.min,
+             max: grabbed.max, log: grabbed.log, ...(fields.length ? { fields } : {}), packed: true };
+  });
+}"""
+
+
+def test_the_page_and_the_server_build_the_same_family_request_for_every_slider(browser_page):
+    """server/lessons/family_requests.py (with which the server computes the families of the scenes' default
+    states before a class grabs them) builds the body the page sends on a grab, for every slider of every variant
+    at the defaults: the same request, varied paths and factors, range and preview fields."""
+    from server.lessons.family_requests import family_request
+
+    page = browser_page
+    page.goto("/scenes/transfer-functions?lang=en")
+    page.locator(".main-svg").first.wait_for(state="visible")
+    every = [{"scene": scene.id, "variant": variant.id, "slider": slider.id}
+             for scene in scenes().values() if scene.kind != "project"
+             for variant in scene.variants if not variant.address for slider in variant.sliders]
+    built = page.evaluate(BUILD_FAMILY_REQUESTS_JS, {
+        "scenes": {s.id: json.loads(s.model_dump_json()) for s in scenes().values()}, "cases": every})
+    differ = []
+    for case, body in zip(every, built, strict=True):
+        scene = scenes()[case["scene"]]
+        variant = next(v for v in scene.variants if v.id == case["variant"])
+        slider = next(s for s in variant.sliders if s.id == case["slider"])
+        if body != family_request(scene, variant, slider):
+            differ.append(case)
+    assert differ == []
+    assert len(every) > 150 and sum("fields" in body for body in built) > 100, (len(every), built[:1])
+    assert page.problems == []
