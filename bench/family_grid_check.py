@@ -34,7 +34,7 @@ from server.api.routers import family as route  # noqa: E402
 from server.core.dynamics import report  # noqa: E402
 from server.lessons.scenes import scenes  # noqa: E402
 from test_family import SENT, TOLERANCE  # noqa: E402
-from test_family_bound import page_body  # noqa: E402
+from server.lessons.family_requests import family_request  # noqa: E402
 from test_family_fields import whole_members  # noqa: E402
 
 VALUES = 3              # random values per family
@@ -88,7 +88,7 @@ def main() -> None:
     for variant in scene.variants:
         rng = random.Random(f"grid-{variant.id}")
         for slider in variant.sliders:
-            body = page_body(scene, variant, slider, None)
+            body = family_request(scene, variant, slider, None)
             claim, share, where = worst(body, rng)
             if claim is None or claim > TOLERANCE + family.PACK_QUANTUM / 2:
                 continue

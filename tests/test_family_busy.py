@@ -199,14 +199,15 @@ def test_a_coarse_preview_is_a_member_or_within_the_tolerance(in_worker, monkeyp
     bound is within the tolerance, and there the drawn preview is within it of the exact answer; every other
     interval (orders 0) draws its nearer member: a true answer of a nearby value. The error it states covers
     both (the change across a nearest interval)."""
-    from test_family_bound import assert_drawn_within, page_body
+    from server.lessons.family_requests import family_request as grab_request
+    from test_family_bound import assert_drawn_within
     from test_family_fields import whole_members
 
     monkeypatch.setattr(heavy, "crowded", lambda: lean)
     scene = scenes()[scene_id]
     variant = next(v for v in scene.variants if v.id == variant_id)
     slider = next(s for s in variant.sliders if s.id == slider_id)
-    body = page_body(scene, variant, slider, None) | {"stage": "coarse"}
+    body = grab_request(scene, variant, slider, None) | {"stage": "coarse"}
     _, answer = post(TestClient(create_app()), body)
     values, log, orders = answer["values"], body["log"], answer["orders"]
     assert len(values) == (family.LEAN_MEMBERS if lean else family.START_MEMBERS)

@@ -19,9 +19,10 @@ import pytest
 
 from server.families import family
 from server.api.serialise import Answer
+from server.lessons.family_requests import family_request
 from server.lessons.scenes import scenes
 from test_family import SENT, TOLERANCE
-from test_family_bound import assert_drawn_within, page_body
+from test_family_bound import assert_drawn_within
 from test_family_engine import client  # noqa: F401  the fixture: in-process, no time budgets
 from test_family_fields import whole_members
 
@@ -99,7 +100,7 @@ def test_the_shaping_machines_tangent_point_is_within_the_family_claim(client):
     scene = scenes()["flywheel"]
     variant = next(v for v in scene.variants if v.id == "shaping")
     slider = next(s for s in variant.sliders if s.id == "f")
-    body = page_body(scene, variant, slider, {"delta": 0.166, "omega_mean": 15.6, "width_ratio": 0.2,
+    body = family_request(scene, variant, slider, {"delta": 0.166, "omega_mean": 15.6, "width_ratio": 0.2,
                                               "density": 4600})
     response = client.post("/api/v1/family", json=body)
     assert response.status_code == 200, response.text[:500]

@@ -64,11 +64,9 @@ def languages_from_env(text: str | None = None) -> tuple[str, ...]:
 
 def default_requests(cached: set[str], languages: tuple[str, ...]) -> list[tuple[str, str, bytes]]:
     """(path, query, body) of every scene's default request of a cached endpoint: each language in turn, and in
-    each the first variant of every scene, then the second, and so on; in the first language (the families are
-    the cache's largest answers: three languages' would not fit its default size), when the families are cached,
-    each variant's answer is followed by the family of each of its sliders as the page asks for it on a grab,
-    coarse stage and full. A variant whose
-    request cannot be made here (one that needs an address's documents) is left out."""
+    each the first variant of every scene, then the second, and so on. In the first language, when the families
+    are cached, each round of variants is followed by their families (_families). A variant whose request cannot
+    be made here (one that needs an address's documents) is left out, its families too."""
     from ..lessons.requests import scene_request
     from ..lessons.scenes import scenes
 
@@ -78,6 +76,7 @@ def default_requests(cached: set[str], languages: tuple[str, ...]) -> list[tuple
     for lang in languages:
         query = urlencode({"lang": lang})
         for k in range(rounds):
+            made = []
             for scene in catalogue.values():
                 if k >= len(scene.variants) or scene.endpoint not in cached:
                     continue
@@ -86,22 +85,24 @@ def default_requests(cached: set[str], languages: tuple[str, ...]) -> list[tuple
                 except Exception:          # noqa: BLE001 — a variant that needs documents: not a default page load
                     continue
                 found.append((f"{API_PREFIX}/{scene.endpoint}", query, body))
+                made.append((scene, scene.variants[k]))
             if FAMILY in cached and lang == languages[0]:
-                found += [(f"{API_PREFIX}/{FAMILY}", query, body) for body in _families(catalogue, cached, k)]
+                found += [(f"{API_PREFIX}/{FAMILY}", query, body) for body in _families(made)]
     return found
 
 
-def _families(catalogue, cached: set[str], k: int) -> list[bytes]:
-    """The bodies of the families a class grabs first on the scenes' k-th variants: every slider at its
-    variant's defaults, the coarse stage (the page's first question) then the full one. The cache keys a family
-    without its slider's own value (families.bodies.shared): each answers a grab wherever that slider stands."""
+def _families(variants) -> list[bytes]:
+    """The bodies of the families a class grabs first on these (scene, variant)s: every slider at its variant's
+    defaults, the coarse stage (the page's first question) then the full one; in the first language only (the
+    families are the cache's largest answers: three languages' would not fit its default size). The cache keys a
+    family without its slider's own value (families.bodies.shared): each answers a grab wherever that slider
+    stands."""
     from ..lessons.family_requests import family_request
 
     bodies = []
-    for scene in catalogue.values():
-        variant = scene.variants[k] if k < len(scene.variants) else None
-        if variant is None or scene.kind == "project" or scene.endpoint not in cached or variant.address:
-            continue
+    for scene, variant in variants:
+        if scene.kind == "project" or variant.address:    # a course project's page drags no slider; a variant
+            continue                                     # of the reader's own mechanism has none at its defaults
         for slider in variant.sliders:
             body = family_request(scene, variant, slider)
             if body["request"].get("outputs") == []:        # the page asks no family for a page of tables
