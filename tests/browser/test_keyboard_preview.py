@@ -49,6 +49,15 @@ def preview_shown(page) -> bool:
     return page.is_visible(".preview-note") and page.locator(".scene-layout.preview").count() == 1
 
 
+def quiet(page) -> None:
+    """Until the page has nothing on its way and no request waiting to be sent again (a 429's Retry-After: the
+    page shows its "busy, retrying" note meanwhile, api.js), so that what it sends next is the keys' doing."""
+    page.wait_for_load_state("networkidle")
+    page.wait_for_function("() => !document.getElementById('busy-retrying') || "
+                           "document.getElementById('busy-retrying').hidden")
+    page.wait_for_load_state("networkidle")
+
+
 def focus_and_wait_for_the_family(page, slider: str) -> None:
     """Focus the slider (a grab: its family is asked for) and wait until the full family has arrived."""
     page.focus(slider)
@@ -89,7 +98,7 @@ def test_transfer_functions_keys_preview_from_the_family_and_ask_the_exact_answe
     page = keyed_page
     page.goto("/scenes/transfer-functions?lang=ru&variant=slider_crank")
     page.wait_for_function(f"id => {GRAPH}?.data?.length > 0", arg="u31")
-    page.wait_for_load_state("networkidle")
+    quiet(page)
     before = len(page.sent)
     focus_and_wait_for_the_family(page, "#slider-lambda")
     assert [body.get("stage") for body in sent(page, "family", before)] == ["coarse", None]
@@ -134,7 +143,7 @@ def test_flywheel_log_slider_keys_preview_from_the_family_and_ask_the_exact_answ
     page = keyed_page
     page.goto("/scenes/flywheel?lang=en&variant=rig")
     page.wait_for_selector("#panel-wittenbauer .graph path.js-line", state="attached")
-    page.wait_for_load_state("networkidle")
+    quiet(page)
     before = len(page.sent)
     focus_and_wait_for_the_family(page, "#slider-delta")
     family, full = sent(page, "family", before)
