@@ -428,3 +428,15 @@ def test_a_family_compressed_in_the_heavy_process_is_kept_and_served_in_either_e
     with client.stream("POST", f"{API}/family", json=other, headers=raw_headers) as again:
         assert gzip.decompress(b"".join(again.iter_raw())) == plain_first.content
         assert again.headers["content-encoding"] == "gzip" and again.headers["x-cache"] == "hit"
+
+
+def test_a_whole_number_is_one_key_however_it_is_spelled():
+    """A browser's JSON.stringify writes 2 where Python writes 2.0: in a field the models leave untyped (a family's
+    ``request``) both reach the key as they came, and must be one question. Whole floats are keyed as ints below
+    2**53 (exact there); other floats, booleans and non-finite numbers are kept apart as before."""
+    page = {"request": {"m": 2, "l": 0.25, "on": True, "n": [1, 3]}, "far": 2.0 ** 60}
+    script = {"request": {"m": 2.0, "l": 0.25, "on": True, "n": [1.0, 3.0]}, "far": 2.0 ** 60}
+    assert canonical_json(page) == canonical_json(script) == \
+        b'{"far":1.152921504606847e18,"request":{"l":0.25,"m":2,"n":[1,3],"on":true}}'
+    assert canonical_json({"x": 1.0}) != canonical_json({"x": True})
+    assert canonical_json({"x": float("nan")}) != canonical_json({"x": None})

@@ -71,14 +71,30 @@ SHARED_ENDPOINTS = ("family",)      # kept in the layer the workers share as wel
 NO_STORE = b"no-store"
 
 
+WHOLE_LIMIT = 2.0 ** 53           # below it every whole float is exactly an int
+
+
 def canonical_json(data) -> bytes:
     """`data` (a validated model's dump) as one JSON text: keys sorted, no spaces, every float in its shortest
-    round-trip form. orjson writes a non-finite float as null, so data that holds one (pydantic_core spells
+    round-trip form and a whole one as an int (1.0 as 1, as a browser's JSON.stringify writes it: a field the
+    models leave untyped, a family's ``request``, keeps the spelling it came with, and the page's 1 and a script's
+    1.0 are one question). orjson writes a non-finite float as null, so data that holds one (pydantic_core spells
     them NaN and Infinity) is written by the standard library instead, which keeps NaN, None and ±inf apart."""
+    data = _whole_floats_as_ints(data)
     probe = pydantic_core.to_json(data, inf_nan_mode="constants")
     if b"NaN" in probe or b"Infinity" in probe:
         return json.dumps(data, sort_keys=True, allow_nan=True, separators=(",", ":")).encode()
     return orjson.dumps(data, option=orjson.OPT_SORT_KEYS | orjson.OPT_NON_STR_KEYS)
+
+
+def _whole_floats_as_ints(data):
+    if isinstance(data, float):
+        return int(data) if data.is_integer() and abs(data) < WHOLE_LIMIT else data
+    if isinstance(data, dict):
+        return {key: _whole_floats_as_ints(value) for key, value in data.items()}
+    if isinstance(data, (list, tuple)):
+        return [_whole_floats_as_ints(value) for value in data]
+    return data
 
 
 def validated_body(raw: bytes, model: type[BaseModel], form=None) -> bytes | None:

@@ -86,17 +86,28 @@ BUILD_FAMILY_REQUESTS_JS = """async ({ scenes, cases }) => {
     const model = new (data.kind === "kinematics" ? SceneModel : DynamicsModel)(data, { variant, values: {} });
     const grabbed = model.variant.sliders.find((s) => s.id === slider);
     const fields = previewFields(model.scene ?? data, model.variant);
-    return { endpoint: data.endpoint, request: model.request(), vary: model.familyVary(grabbed), min: grabbed.min,
-             max: grabbed.max, log: grabbed.log, ...(fields.length ? { fields } : {}), packed: true };
+    return JSON.stringify({ endpoint: data.endpoint, request: model.request(), vary: model.familyVary(grabbed),
+      min: grabbed.min, max: grabbed.max, log: grabbed.log, ...(fields.length ? { fields } : {}), packed: true });
   });
 }"""
+
+
+def _variant_and_slider(case: dict):
+    variant = next(v for v in scenes()[case["scene"]].variants if v.id == case["variant"])
+    return variant, next(s for s in variant.sliders if s.id == case["slider"])
 
 
 def test_the_page_and_the_server_build_the_same_family_request_for_every_slider(browser_page):
     """server/lessons/family_requests.py (with which the server computes the families of the scenes' default
     states before a class grabs them) builds the body the page sends on a grab, for every slider of every variant
-    at the defaults: the same request, varied paths and factors, range and preview fields."""
+    at the defaults: the same request, varied paths and factors, range and preview fields; and the response
+    cache files both under one key, the page's JSON text (JSON.stringify writes 2, not 2.0) and the twin's."""
+    import orjson
+
+    from server.api.routers.family import FamilyRequest
+    from server.families.bodies import shared
     from server.lessons.family_requests import family_request
+    from server.runtime.response_cache import validated_body
 
     page = browser_page
     page.goto("/scenes/transfer-functions?lang=en")
@@ -106,13 +117,19 @@ def test_the_page_and_the_server_build_the_same_family_request_for_every_slider(
              for variant in scene.variants if not variant.address for slider in variant.sliders]
     built = page.evaluate(BUILD_FAMILY_REQUESTS_JS, {
         "scenes": {s.id: json.loads(s.model_dump_json()) for s in scenes().values()}, "cases": every})
-    differ = []
-    for case, body in zip(every, built, strict=True):
+    differ, keyed_apart = [], []
+    for case, text in zip(every, built, strict=True):
         scene = scenes()[case["scene"]]
         variant = next(v for v in scene.variants if v.id == case["variant"])
         slider = next(s for s in variant.sliders if s.id == case["slider"])
-        if body != family_request(scene, variant, slider):
+        twin = family_request(scene, variant, slider)
+        if json.loads(text) != twin:
             differ.append(case)
-    assert differ == []
-    assert len(every) > 150 and sum("fields" in body for body in built) > 100, (len(every), built[:1])
+        key = validated_body(text.encode(), FamilyRequest, shared)
+        if key is None or key != validated_body(orjson.dumps(twin), FamilyRequest, shared):
+            keyed_apart.append(case)
+    assert differ == [] and keyed_apart == []
+    assert len(every) > 150 and sum('"fields"' in text for text in built) > 100, (len(every), built[:1])
+    assert any('.0,' in orjson.dumps(family_request(scenes()[c["scene"]], *_variant_and_slider(c))).decode()
+               and '.0,' not in text for c, text in zip(every, built))     # the spellings differ, the keys do not
     assert page.problems == []
