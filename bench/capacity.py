@@ -9,7 +9,9 @@ the servers, over loopback, on every CPU unless ``--client-cpus`` pins it. Three
 * **one-cpu**: ``taskset -c 0 python3 -m server --port P`` (one worker, and the heavy processes it starts, on CPU 0);
 * **two-workers**: ``taskset -c 0,1 python3 -m server --port P --workers 2``;
 * **two-servers**: two app servers of one worker each, ``taskset -c 0`` and ``taskset -c 1``, behind a real nginx
-  running the shipped site deploy/nginx/mdl.conf (bench/nginx_proxy.py), the class talking to nginx.
+  running the shipped site deploy/nginx/mdl.conf (bench/nginx_proxy.py), the class talking to nginx; the two
+  servers name one file for the slider families they share (``MDL_SHARED_CACHE``, as docs/deployment.md says for
+  servers on one host), so that a family one of them computed is not computed by the other.
 
 Every server starts afresh for each class (its caches empty) and is left to settle (its processes idle, the heavy
 processes warm) before the students open their pages, with MDL_DATA_DIR in a temporary folder,
@@ -74,6 +76,7 @@ class Deployment:
     title: str
     servers: tuple[tuple[str, int], ...]
     behind_nginx: bool
+    shared_families: bool = False   # the servers name one MDL_SHARED_CACHE file
 
     @property
     def cpus(self) -> int:
@@ -84,7 +87,8 @@ class Deployment:
                 *(["--workers", str(workers)] if workers > 1 else [])]
 
     def commands(self) -> list[str]:
-        shown = [" ".join(["taskset", "-c", cpus, "python3", "-m", "server", "--port", f"P{k + 1}",
+        shared = ["MDL_SHARED_CACHE=DIR/families.sqlite"] if self.shared_families else []
+        shown = [" ".join([*shared, "taskset", "-c", cpus, "python3", "-m", "server", "--port", f"P{k + 1}",
                            *(["--workers", str(workers)] if workers > 1 else [])])
                  for k, (cpus, workers) in enumerate(self.servers)]
         if self.behind_nginx:
@@ -96,7 +100,8 @@ class Deployment:
 DEPLOYMENTS = {d.name: d for d in (
     Deployment("one-cpu", "one server, 1 worker, on CPU 0", (("0", 1),), False),
     Deployment("two-workers", "one server, 2 workers, on CPUs 0–1", (("0,1", 2),), False),
-    Deployment("two-servers", "two servers of 1 worker (CPU 0, CPU 1) behind nginx", (("0", 1), ("1", 1)), True),
+    Deployment("two-servers", "two servers of 1 worker (CPU 0, CPU 1) behind nginx, sharing the families' file",
+               (("0", 1), ("1", 1)), True, shared_families=True),
 )}
 
 
@@ -105,12 +110,14 @@ def deployed(deployment: Deployment, tree: Path = ROOT):
     """Start the deployment's servers (and nginx); yield (the port the class talks to, the server processes,
     the Nginx or None). Everything started is stopped on the way out, nginx first."""
     with ExitStack() as stack:
-        servers = [stack.enter_context(running_server(workers, tree=tree, env=SERVER_ENV,
+        folder = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="mdl-deployed-")))
+        env = SERVER_ENV | ({"MDL_SHARED_CACHE": str(folder / "families.sqlite")} if deployment.shared_families
+                            else {})
+        servers = [stack.enter_context(running_server(workers, tree=tree, env=env,
                                                       command=deployment.server_command(cpus, workers)))
                    for cpus, workers in deployment.servers]
         proxy = None
         if deployment.behind_nginx:
-            folder = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="mdl-nginx-")))
             proxy = stack.enter_context(nginx_proxy(folder, [port for port, _ in servers]))
         yield (proxy.port if proxy else servers[0][0]), [process for _, process in servers], proxy
 

@@ -11,7 +11,7 @@ from pathlib import Path
 from test_crash_safety import free_port
 from test_tcp_nodelay import REPO, _connected, stop
 
-from server.runtime.shared_cache import PREFIX
+from server.runtime.shared_cache import PREFIX, SharedStore, code_version
 
 
 def test_a_server_of_two_workers_removes_its_shared_file_as_it_stops(tmp_path):
@@ -27,3 +27,15 @@ def test_a_server_of_two_workers_removes_its_shared_file_as_it_stops(tmp_path):
         stop(server)
     assert any(path.name == f"{PREFIX}{server.pid}.sqlite" for path in running), running
     assert files() == []
+
+
+def test_a_named_file_serves_an_answer_only_to_the_code_that_computed_it(tmp_path):
+    """Servers of one host name one file (MDL_SHARED_CACHE), which outlives them: an answer stored by one
+    version of the code is seen by every server of that version and by no other (an update, or a server not yet
+    updated beside it)."""
+    path, key = tmp_path / "families.sqlite", bytes(range(32))
+    old, same, updated = (SharedStore(path, 1 << 20, version=v) for v in (b"v1" * 8, b"v1" * 8, b"v2" * 8))
+    old.put(key, [(b"content-type", b"application/json")], b"{}", False)
+    assert same.get(key) == ([(b"content-type", b"application/json")], b"{}", False)
+    assert updated.get(key) is None
+    assert SharedStore(path, 1 << 20).version == code_version() and len(code_version()) == 16

@@ -6,19 +6,23 @@ each has its own response cache, and a family that one worker has computed (0.05
 again by the other. This store keeps the complete family answers in one SQLite file beside the workers: a worker
 that misses its own cache looks there before computing, and every family it computes goes there as well.
 
-The file: ``MDL_SHARED_CACHE`` names it (two app servers on one host may name the same file; ``0`` turns the
-layer off). Unset, the workers of a server started with ``--workers N`` (N ≥ 2) share a file of their own in the
+The file: ``MDL_SHARED_CACHE`` names it (the app servers of one host should name the same file: a family one
+server computed is then not computed by another, bench/results/capacity_staggered.md; ``0`` turns the layer off). Unset, the workers of a server started with ``--workers N`` (N ≥ 2) share a file of their own in the
 temporary folder, named after the process that started them; a single worker (or an app in a test) has no
 shared layer, since its own response cache is the whole of it. The server removes its file as it stops (and a
 server starting removes the files of servers no longer running, killed ones included).
 
 Entries are the answer's raw headers and its gzip-compressed body, keyed by the response cache's key (SHA-256 of
-the path, the query and the validated body); the oldest go first once their total passes the response cache's
+the path, the query and the validated body) after the version of the code that computed it (``code_version``:
+a named file outlives its servers, and after an update, or beside a server not yet updated, an answer of other
+code is never served); the oldest go first once their total passes the response cache's
 size. A write or a read that fails (the disk full, the file locked for longer than the timeout) is skipped:
 the layer only saves work, it never answers wrongly or fails a request.
 """
 from __future__ import annotations
 
+import functools
+import hashlib
 import json
 import logging
 import multiprocessing
@@ -27,6 +31,8 @@ import sqlite3
 import tempfile
 import threading
 from pathlib import Path
+
+from ..paths import CONTENT, PACKAGE
 
 ENV_PATH = "MDL_SHARED_CACHE"
 PREFIX = "mdl-shared-cache-"
@@ -80,11 +86,25 @@ def _alive(pid: int) -> bool:
     return True
 
 
-class SharedStore:
-    """Complete answers by key in one SQLite file, bounded by total bytes (oldest out first)."""
+@functools.cache
+def code_version() -> bytes:
+    """16 bytes of SHA-256 over the app's code and lessons (every server/**/*.py and content/** file: its path and
+    bytes, in path order): what an answer depends on besides its request."""
+    digest = hashlib.sha256()
+    files = [*((f"server/{p.relative_to(PACKAGE).as_posix()}", p) for p in PACKAGE.rglob("*.py")),
+             *((f"content/{p.relative_to(CONTENT).as_posix()}", p) for p in CONTENT.rglob("*") if p.is_file())]
+    for name, path in sorted(files):
+        digest.update(name.encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.digest()[:16]
 
-    def __init__(self, path: Path, max_bytes: int):
+
+class SharedStore:
+    """Complete answers by key in one SQLite file, bounded by total bytes (oldest out first); each key is stored
+    after `version` (default code_version()), and an entry of another version is not seen."""
+
+    def __init__(self, path: Path, max_bytes: int, version: bytes | None = None):
         self.path, self.max_bytes = Path(path), max_bytes
+        self.version = code_version() if version is None else version
         self._local = threading.local()
         self.hits = self.misses = self.writes = self.failures = 0
         self._connection().execute(SCHEMA)
@@ -101,7 +121,8 @@ class SharedStore:
     def get(self, key: bytes) -> tuple[list[tuple[bytes, bytes]], bytes, bool] | None:
         """(raw headers, body, whether the body is gzip-compressed) stored under key, or None."""
         try:
-            row = self._connection().execute("SELECT headers, body FROM answers WHERE key = ?", (key,)).fetchone()
+            row = self._connection().execute("SELECT headers, body FROM answers WHERE key = ?",
+                                             (self.version + key,)).fetchone()
         except sqlite3.Error as error:
             self._failed("read", error)
             return None
@@ -117,6 +138,7 @@ class SharedStore:
         """Store (headers, body, whether gzip-compressed) under key; drop the oldest entries beyond max_bytes."""
         text = json.dumps({"headers": [(name.decode("latin-1"), value.decode("latin-1")) for name, value in headers],
                            "gzip": gzipped})
+        key = self.version + key
         size = len(body) + len(text) + len(key)
         if size > self.max_bytes:
             return
