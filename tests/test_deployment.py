@@ -37,6 +37,8 @@ from server.classroom.assignment_store import DATABASE_FILE
 from server.classroom.names import normalise
 from server.classroom.store import SQLiteStore
 from server.classroom.store.postgres import PostgresStore
+from server.lessons.family_requests import family_request
+from server.lessons.scenes import scenes
 from nginx import SITE, free_port, nginx_proxy
 from postgres import fresh_database, postgres_url  # noqa: F401 (postgres_url is a fixture)
 
@@ -160,6 +162,7 @@ def deployment_on(tmp: Path, database: dict):
     env = os.environ | {"MDL_DATA_DIR": str(tmp)} | database | {
         "MDL_SUBMISSIONS_PER_MINUTE": str(PER_MINUTE),
         "MDL_FORWARDED_ALLOW_IPS": "127.0.0.1",      # nginx's address, as deploy/mdl.env.example sets it
+        "MDL_SHARED_CACHE": str(tmp / "families.sqlite"),   # one file for the host's servers, as it says too
         "MDL_HEAVY_PROCESSES": "0"}                   # light scenes only: no process pools beside the servers
     servers = [AppServer(env, tmp) for _ in range(2)]
     with ExitStack() as stack:
@@ -207,6 +210,19 @@ def test_nginx_passes_the_apps_compression_and_caching_through(deployment):
     stylesheet = re.search(r'href="(/static/[^"]+\.css)"', page.text).group(1)
     assert httpx.get(f"{deployment.proxy.url}{stylesheet}").headers["cache-control"] == \
         "public, max-age=31536000, immutable"
+
+
+def test_a_family_one_server_computed_is_answered_by_the_other_from_their_shared_file(deployment):
+    """The host's servers name one MDL_SHARED_CACHE file (deploy/mdl.env.example): a slider's family asked of
+    one server and then of the other is computed once, and the second answer is the first's, byte for byte."""
+    scene = scenes()["wear"]
+    variant = scene.variants[0]
+    body = family_request(scene, variant, variant.sliders[0]) | {"stage": "coarse"}
+    first, second = (httpx.post(f"{server.url}{API}/family?lang=en", json=body, timeout=120,
+                                headers={"Accept-Encoding": "gzip"}) for server in deployment.servers)
+    assert (first.status_code, second.status_code) == (200, 200), (first.text[:300], second.text[:300])
+    assert (first.headers["x-cache"], second.headers["x-cache"]) == ("miss", "hit")
+    assert second.content == first.content
 
 
 def test_an_assignment_made_through_nginx_links_back_to_nginx(deployment):
