@@ -63,7 +63,9 @@ TARGETS_MS = {("exact", "light"): 150, ("exact", "elastic"): 500, ("coarse", "li
 TARGET_RATIO = 1.8              # capacity of two servers / one server on one CPU
 DEFAULT_SIZES = [10, 20, 30, 45, 60, 80, 100, 130, 160, 200]
 QUICK = {"sizes": [2], "seconds": 3.0, "configurations": ["one-cpu", "two-servers"]}
-SETTLE = (0.05, 1.0, 120.0)     # servers idle: < 0.05 CPU-s in 1 s (their heavy processes warm), waited ≤ 120 s
+# servers idle: < 0.08 CPU-s in 1 s per worker (their heavy processes warm; an idle worker and its supervisor take
+# about 0.04 each: uvicorn's tick every 0.1 s and its ping every 0.5 s), waited ≤ 120 s
+SETTLE = (0.08, 1.0, 120.0)
 SERVER_ENV = {"MDL_ADDRESS_CONCURRENCY": "0", "MDL_FORWARDED_ALLOW_IPS": "127.0.0.1"}
 NAMES = {("exact", "light"): "exact, light", ("exact", "elastic"): "exact, elastic",
          ("coarse", "light"): "first preview, light", ("coarse", "elastic"): "first preview, elastic"}
@@ -122,10 +124,12 @@ def deployed(deployment: Deployment, tree: Path = ROOT):
         yield (proxy.port if proxy else servers[0][0]), [process for _, process in servers], proxy
 
 
-def settle(processes: list[subprocess.Popen]) -> float:
-    """Wait until the servers' sessions are idle (the heavy processes each worker starts have loaded their
-    compiled kernels, which the readiness check does not wait for); returns the seconds waited."""
-    quiet, window, longest = SETTLE
+def settle(processes: list[subprocess.Popen], workers: int) -> float:
+    """Wait until the servers' sessions, of `workers` workers in all, are idle (the heavy processes each worker
+    starts have loaded their compiled kernels, which the readiness check does not wait for); returns the seconds
+    waited."""
+    per_worker, window, longest = SETTLE
+    quiet = per_worker * workers
     started = time.monotonic()
     before = sum(server_cpu_s(p) for p in processes)
     while time.monotonic() - started < longest:
@@ -147,7 +151,7 @@ def run_class(deployment: Deployment, students: int, seconds: float, seed: int, 
     record = classroom.Record()
     load_before = os.getloadavg()
     with deployed(deployment, tree) as (port, processes, proxy):
-        settled = settle(processes)
+        settled = settle(processes, sum(workers for _, workers in deployment.servers))
         connections = classroom.open_pages(port, class_, record)
         nginx_cpu = (lambda: sum(session_processes(proxy.process.pid).values())) if proxy else (lambda: 0.0)
         server_cpu, proxy_cpu = sum(server_cpu_s(p) for p in processes), nginx_cpu()
