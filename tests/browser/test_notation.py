@@ -23,6 +23,7 @@ from test_translations import STRINGS, english_in  # noqa: E402  (the same colle
 from test_label_overlaps import DRAWN_LABELS, PICTURES, label_problems  # noqa: E402
 from test_label_overlaps import settle as drawn  # noqa: E402
 from test_dynamics import SCENES as DYNAMICS_SCENES, assert_variant_shows_all_its_panels  # noqa: E402
+from test_scene_words import assert_speaks  # noqa: E402
 
 from server.lessons.markup import notation_parts  # noqa: E402
 
@@ -90,6 +91,7 @@ def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_ever
     """Every variant of the scene in ru (the first opened, the others picked from its list where it has one): no "_" on the screen and the subscripts as <sub>; numbers
     with a true minus, a decimal comma (plots' tick labels included) and no signed zero; the labels of its
     drawings apart and inside them (test_label_overlaps.label_problems; uk and en at the default state: test_scene_words);
+    on the default variant's page the scene words' checks in ru as well (test_scene_words.assert_speaks);
     on the dynamics scenes every panel of the variant (test_dynamics.assert_variant_shows_all_its_panels).
     On the scene's default (first) variant its live studies are then run, and no English sentence of the app may
     show. (The Ukrainian and English pages' words: test_scene_words.)"""
@@ -131,6 +133,7 @@ def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_ever
             target.scroll_into_view_if_needed()
             target.screenshot(path=ARTIFACTS / f"labels-{picture}.png")
         if variant is scene["variants"][0]:
+            assert_speaks(page, name, scene, "ru")        # the scene words' checks, on this page (test_scene_words)
             english = english_on_the_page_after_its_studies(page, "ru")
     assert english == []
     assert underscores == {}

@@ -1,4 +1,5 @@
-"""The words and symbols of every scene as a reader sees them, in ru, uk and en, in a real browser:
+"""The words and symbols of every scene as a reader sees them, in ru, uk and en, in a real browser (the ru pages
+of the scenes are checked on test_notation's walk, which opens them anyway: assert_speaks):
 - a ru/uk page shows no English sentence of the app's own strings (test_translations.english_in: the en texts
   of content/i18n that ru/uk do not write themselves), /measurements included, whose study plots (drawn by the
   page from their tables' points) say no Latin word but the solvers' names and write a decimal comma;
@@ -7,7 +8,7 @@
   label_problems; every variant in ru: test_notation);
 - one notation per quantity: the page's text read back into markup (<sub> as _{…}, <sup> as ^{…}, the shifted
   <tspan>s of drawings and plots alike) holds no other form of a quantity than tests/notation.json's, and the
-  table of the forms each scene shows is written to test-artifacts/scene_notation_<scene>.json;
+  list of the forms each scene shows is written to test-artifacts/scene_notation_<scene>_<lang>.json;
 - the short intros fold the sources' details (wear, angular acceleration).
 Screenshots of four scenes in ru and en at desktop width and of two in ru at phone size (390 × 844) go to
 test-artifacts/ (scene_words_*.png), /measurements in ru, uk and en to measurements_<lang>.png.
@@ -32,6 +33,7 @@ pytestmark = pytest.mark.browser
 
 SCENE_FILES = sorted(path.stem for path in (REPO / "content" / "scenes").glob("*.json"))
 LANGUAGES = ("ru", "uk", "en")
+SCENE_LANGUAGES = ("uk", "en")      # ru: test_notation's walk calls assert_speaks on its default variant's page
 SHOTS = {"flywheel", "resisting_moment", "bearings", "wear"}        # desktop in ru and en
 PHONE_SHOTS = ("flywheel", "wear")                                  # ru at 390 × 844
 SEED = re.compile(r"\bseeds?\b", re.IGNORECASE)
@@ -82,26 +84,34 @@ def forms_shown(markup: str, lang: str) -> list[str]:
     return sorted({entry["quantity"] for entry in NOTATION if entry["forms"][lang] in markup})
 
 
+def assert_speaks(page, name: str, scene: dict, lang: str) -> None:
+    """The scene's page in `lang`, open and drawn at its default state: the labels of its drawings apart, no
+    "seed", no English sentence in ru/uk, one form per quantity; the forms it shows written to
+    test-artifacts/scene_notation_<scene>_<lang>.json, and a screenshot of the SHOTS in ru and en."""
+    assert label_problems(page.evaluate(DRAWN_LABELS)) == [], lang
+    text = page.evaluate("() => document.body.innerText + '\\n' + "
+                         "[...document.querySelectorAll('svg text')].map((n) => n.textContent).join('\\n')")
+    markup = page.evaluate(MARKUP)
+    assert SEED.findall(text) == [], lang
+    if lang != "en":
+        assert english_in(text, lang) == [], lang
+    assert other_forms(markup, lang, scene["id"]) == [], lang
+    (ARTIFACTS / f"scene_notation_{name}_{lang}.json").write_text(
+        json.dumps(forms_shown(markup, lang), ensure_ascii=False, indent=1), "utf-8")
+    if name in SHOTS and lang in ("ru", "en"):
+        screenshot(page, f"scene_words_{name}_{lang}")
+
+
 @pytest.mark.parametrize("name", SCENE_FILES)
 def test_every_scene_speaks_the_readers_language_names_no_seed_and_writes_one_form_per_quantity(browser_page, name):
+    """In uk and en here; in ru on the notation walk's page of the default variant (test_notation), which opens
+    that page anyway."""
     page = browser_page
     scene = read_scene(name)
-    table = {}
-    for lang in LANGUAGES:
+    for lang in SCENE_LANGUAGES:
         page.goto(f"/scenes/{scene['id']}?lang={lang}")
         drawn(page)
-        assert label_problems(page.evaluate(DRAWN_LABELS)) == [], lang
-        text = page.evaluate("() => document.body.innerText + '\\n' + "
-                             "[...document.querySelectorAll('svg text')].map((n) => n.textContent).join('\\n')")
-        markup = page.evaluate(MARKUP)
-        assert SEED.findall(text) == [], lang
-        if lang != "en":
-            assert english_in(text, lang) == [], lang
-        assert other_forms(markup, lang, scene["id"]) == [], lang
-        table[lang] = forms_shown(markup, lang)
-        if name in SHOTS and lang in ("ru", "en"):
-            screenshot(page, f"scene_words_{name}_{lang}")
-    (ARTIFACTS / f"scene_notation_{name}.json").write_text(json.dumps(table, ensure_ascii=False, indent=1), "utf-8")
+        assert_speaks(page, name, scene, lang)
     assert page.problems == []
 
 
