@@ -8,6 +8,8 @@ the package (pyproject.toml, ``[tool.setuptools.package-dir]``: ``server/web``, 
 """
 from __future__ import annotations
 
+import hashlib
+from collections.abc import Iterable
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
@@ -28,3 +30,11 @@ BENCH_RESULTS = _folder("bench_results", "bench", "results")
 def default_data_dir() -> Path:
     """data/ of the checkout, or of the working directory for an installed app."""
     return CHECKOUT / "data" if IS_CHECKOUT else Path.cwd() / "data"
+
+
+def files_digest(files: Iterable[tuple[str, Path]]) -> bytes:
+    """SHA-256 over each (name, file): its name and bytes, each followed by a NUL, in name order."""
+    digest = hashlib.sha256()
+    for name, path in sorted(files):
+        digest.update(name.encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.digest()

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import asyncio
 import gzip
-import hashlib
 import re
 from pathlib import Path
 
@@ -25,17 +24,16 @@ import anyio.to_thread
 from starlette.responses import FileResponse, Response
 from starlette.staticfiles import StaticFiles
 
+from ..paths import files_digest
+
 IMMUTABLE = "public, max-age=31536000, immutable"
 REVALIDATE = "no-cache"
 
 
 def content_version(directory: Path) -> str:
     """12 hex digits of SHA-256 over every file's path (relative, '/'-separated) and bytes, in path order."""
-    digest = hashlib.sha256()
-    for path in sorted(p for p in directory.rglob("*") if p.is_file()):
-        digest.update(path.relative_to(directory).as_posix().encode() + b"\0")
-        digest.update(path.read_bytes() + b"\0")
-    return digest.hexdigest()[:12]
+    files = ((p.relative_to(directory).as_posix(), p) for p in directory.rglob("*") if p.is_file())
+    return files_digest(files).hex()[:12]
 
 
 def script_version(path: Path) -> str:

@@ -7,7 +7,8 @@ again by the other. This store keeps the complete family answers in one SQLite f
 that misses its own cache looks there before computing, and every family it computes goes there as well.
 
 The file: ``MDL_SHARED_CACHE`` names it (the app servers of one host should name the same file: a family one
-server computed is then not computed by another, bench/results/capacity_staggered.md; ``0`` turns the layer off). Unset, the workers of a server started with ``--workers N`` (N ≥ 2) share a file of their own in the
+server computed is then not computed by another, bench/results/capacity_staggered.md; ``0`` turns the layer
+off). Unset, the workers of a server started with ``--workers N`` (N ≥ 2) share a file of their own in the
 temporary folder, named after the process that started them; a single worker (or an app in a test) has no
 shared layer, since its own response cache is the whole of it. The server removes its file as it stops (and a
 server starting removes the files of servers no longer running, killed ones included).
@@ -22,7 +23,6 @@ the layer only saves work, it never answers wrongly or fails a request.
 from __future__ import annotations
 
 import functools
-import hashlib
 import json
 import logging
 import multiprocessing
@@ -32,7 +32,7 @@ import tempfile
 import threading
 from pathlib import Path
 
-from ..paths import CONTENT, PACKAGE
+from ..paths import CONTENT, PACKAGE, files_digest
 
 ENV_PATH = "MDL_SHARED_CACHE"
 PREFIX = "mdl-shared-cache-"
@@ -90,12 +90,9 @@ def _alive(pid: int) -> bool:
 def code_version() -> bytes:
     """16 bytes of SHA-256 over the app's code and lessons (every server/**/*.py and content/** file: its path and
     bytes, in path order): what an answer depends on besides its request."""
-    digest = hashlib.sha256()
-    files = [*((f"server/{p.relative_to(PACKAGE).as_posix()}", p) for p in PACKAGE.rglob("*.py")),
-             *((f"content/{p.relative_to(CONTENT).as_posix()}", p) for p in CONTENT.rglob("*") if p.is_file())]
-    for name, path in sorted(files):
-        digest.update(name.encode() + b"\0" + path.read_bytes() + b"\0")
-    return digest.digest()[:16]
+    return files_digest([*((f"server/{p.relative_to(PACKAGE).as_posix()}", p) for p in PACKAGE.rglob("*.py")),
+                         *((f"content/{p.relative_to(CONTENT).as_posix()}", p) for p in CONTENT.rglob("*")
+                           if p.is_file())])[:16]
 
 
 class SharedStore:
