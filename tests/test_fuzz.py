@@ -254,7 +254,7 @@ def test_a_stiff_belt_stops_at_its_work_bound_with_a_partial_result_and_says_so(
                                                           "outputs": ["histories"]})
     assert response.status_code == 200
     data = response.json()
-    assert "work bound" in data["numerics"]["message"] and data["numerics"]["nfev"] <= MAX_EVALUATIONS + 16
+    assert "work bound" in data["numerics"]["message"] and data["numerics"]["nfev"] <= MAX_EVALUATIONS["compiled"] + 16
     assert any("work bound" in w for w in data["warnings"])
 
 

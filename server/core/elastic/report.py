@@ -30,7 +30,8 @@ from .compiled import MOTOR_KINDS, pack, pack_rigid
 from .warm import ready
 from .models import Drive, MechanismSide, ThreeMass, TwoMass
 from .periodic_table import PeriodicTable
-from .simulate import CHUNKS, MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio
+from .simulate import (CHUNKS, MAX_EVALUATIONS, STIFF_RATIO, TIME_BUDGET_S, integrate, stiffness_ratio,
+                       work_bound)
 from .stiffness import Compliances, bearing_stiffness, link_angles, linkage_stiffness
 
 TABLE_POINTS = 4096
@@ -176,7 +177,7 @@ def build(machine: ElasticMachine):
 
 
 def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, method: str = "auto",
-             budget_s: float = TIME_BUDGET_S, max_evaluations: int = MAX_EVALUATIONS, with_rigid: bool = True,
+             budget_s: float = TIME_BUDGET_S, max_evaluations: int | None = None, with_rigid: bool = True,
              engine: str = "compiled", check: bool = True, deadline: float = math.inf) -> tuple[dict, list]:
     """Time histories, the energy balance and the numerics; the rigid machine's start-up for comparison
     only with_rigid. engine: "compiled" or "scipy" (the reference path, see simulate.integrate). Without the
@@ -193,14 +194,15 @@ def simulate(machine: ElasticMachine, t_end: float, samples: int, rtol: float, m
     chosen = method if method != "auto" else ("Radau" if ratio > STIFF_RATIO else "DOP853")
     times = np.linspace(0.0, t_end, samples)
     atol = absolute_tolerances(machine, model, rtol)
-    run = integrate(model, y0, t_end, rtol, chosen, times, deadline, atol, max_evaluations, engine)
+    bound = max_evaluations or work_bound(model, chosen, engine)
+    run = integrate(model, y0, t_end, rtol, chosen, times, deadline, atol, bound, engine)
     result = histories(machine, model, run)
     twist_now = result["twist"]
     scale = max(float(np.max(np.abs(twist_now))) if twist_now.size else 0.0, 1e-300)
     estimate, check_notices = None, []
     if check:
         rerun = integrate(model, y0, run.t[-1] if run.t.size else t_end, rtol / 10, chosen,
-                          run.t, check_deadline, atol / 10, 2 * max_evaluations, engine, CHECK_CHUNKS)
+                          run.t, check_deadline, atol / 10, 2 * bound, engine, CHECK_CHUNKS)
         twist_check = total_twist(machine, rerun.y)
         common = min(twist_now.size, twist_check.size)
         estimate = float(np.max(np.abs(twist_now[:common] - twist_check[:common]), initial=0.0)) / scale
@@ -329,7 +331,8 @@ def rigid_start_up(machine: ElasticMachine, t: np.ndarray) -> dict:
                        machine.inertias.gear_ratio)
     states = np.full((2, t.size), np.nan)
     dop853.chunk(model.kind, model.p, model.tab, float(t[0]), float(t[-1]), np.zeros(2), RIGID_RTOL,
-                 np.full(2, RIGID_RTOL * 1e-2), np.ascontiguousarray(t, dtype=float), states, MAX_EVALUATIONS)
+                 np.full(2, RIGID_RTOL * 1e-2), np.ascontiguousarray(t, dtype=float), states,
+                 MAX_EVALUATIONS["compiled"])
     stalled = np.flatnonzero(~(states[1, 1:] > 0.0))          # NaN past a work bound counts as not moving
     if stalled.size:
         states[:, stalled[0] + 1:] = np.nan
