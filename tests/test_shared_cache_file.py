@@ -9,7 +9,7 @@ import tempfile
 from pathlib import Path
 
 from test_crash_safety import free_port
-from test_tcp_nodelay import REPO, _connected, stop
+from test_tcp_nodelay import LIGHT_ONLY, REPO, _connected, stop
 
 from server.runtime.shared_cache import PREFIX, SharedStore, code_version
 
@@ -17,7 +17,7 @@ from server.runtime.shared_cache import PREFIX, SharedStore, code_version
 def test_a_server_of_two_workers_removes_its_shared_file_as_it_stops(tmp_path):
     port = free_port()
     server = subprocess.Popen([sys.executable, "-m", "server", "--port", str(port), "--workers", "2"],
-                              cwd=REPO, env={**os.environ, "MDL_DATA_DIR": str(tmp_path)},
+                              cwd=REPO, env={**os.environ, "MDL_DATA_DIR": str(tmp_path), **LIGHT_ONLY},
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     files = lambda: sorted(Path(tempfile.gettempdir()).glob(f"{PREFIX}{server.pid}.sqlite*"))   # noqa: E731
     try:

@@ -25,6 +25,9 @@ from test_crash_safety import free_port
 REPO = Path(__file__).resolve().parents[1]
 GUARD_S = 300
 SYS_PIDFD_GETFD = 438            # x86_64 and aarch64 alike
+# a server that answers no heavy request starts no heavy processes (each worker's forkserver would load the
+# compiled kernels: seconds of CPU that the other tests of the run need)
+LIGHT_ONLY = {"MDL_HEAVY_PROCESSES": "0"}
 
 
 def _connected(port: int) -> http.client.HTTPConnection:
@@ -102,7 +105,7 @@ def stop(server: subprocess.Popen) -> None:
 def test_the_server_sets_nodelay_on_the_connections_it_accepts(tmp_path, workers):
     port = free_port()
     server = subprocess.Popen([sys.executable, "-m", "server", "--port", str(port), "--workers", str(workers)],
-                              cwd=REPO, env={**os.environ, "MDL_DATA_DIR": str(tmp_path)},
+                              cwd=REPO, env={**os.environ, "MDL_DATA_DIR": str(tmp_path), **LIGHT_ONLY},
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     try:
         connection = _connected(port)

@@ -1,6 +1,7 @@
 """Every student (accessibility) in a real browser.
 
 Every scene is loaded once, on a phone (390 × 844, ru), and that one load serves all its checks:
+- the phone screenshots in ru of test_devices and test_scene_words are taken of it;
 - the page is no wider than the screen, and every table fits or scrolls sideways in a box of its own that the
   keyboard reaches and a screen reader names (test_screen_fit.table_problems); the bearings, wear and flywheel
   pages are photographed (test-artifacts/phone-*.png);
@@ -24,8 +25,10 @@ import re
 
 import pytest
 
-from conftest import ARTIFACTS, REPO, read_scene
+from conftest import ARTIFACTS, REPO, read_scene, screenshot
 from test_screen_fit import PHOTOGRAPHED, TABLES, fold_sheet, table_problems
+from test_devices import PHONE_SCENES
+from test_scene_words import PHONE_SHOTS, SEED
 
 pytestmark = pytest.mark.browser
 
@@ -104,6 +107,12 @@ def test_scene_on_a_phone_fits_and_reads_without_sight(phone, name):
     assert phone.evaluate("document.documentElement.scrollWidth <= innerWidth"), \
         f"{name}: the page is {phone.evaluate('document.documentElement.scrollWidth')} px wide on a 390 px screen"
     assert table_problems(phone.evaluate(TABLES)) == [], name
+    if name in PHONE_SCENES:              # what the phone shows, for a person to look at (test_devices: uk, en)
+        phone.screenshot(path=ARTIFACTS / f"devices-{name}-ru-phone.png")
+        screenshot(phone, f"devices-{name}-ru-phone-full")
+    if name in PHONE_SHOTS:               # the scene's words at phone size (test_scene_words: desktop)
+        screenshot(phone, f"scene_words_{name}_ru_phone")
+        assert SEED.findall(phone.evaluate("() => document.body.innerText")) == []
 
     phone.add_script_tag(path=str(AXE))
     violations = phone.evaluate("""() => axe.run(document, { resultTypes: ["violations"] }).then((r) =>

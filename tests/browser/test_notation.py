@@ -23,6 +23,8 @@ from test_translations import STRINGS, english_in  # noqa: E402  (the same colle
 from test_label_overlaps import DRAWN_LABELS, PICTURES, label_problems  # noqa: E402
 from test_label_overlaps import settle as drawn  # noqa: E402
 from test_dynamics import SCENES as DYNAMICS_SCENES, assert_variant_shows_all_its_panels  # noqa: E402
+from test_flywheel_elastic import ELASTIC_SCENES, assert_elastic_variant_answers  # noqa: E402
+from test_scene import assert_variant_draws_its_linkage_and_plots  # noqa: E402
 from test_scene_words import assert_speaks  # noqa: E402
 
 from server.lessons.markup import notation_parts  # noqa: E402
@@ -92,7 +94,9 @@ def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_ever
     with a true minus, a decimal comma (plots' tick labels included) and no signed zero; the labels of its
     drawings apart and inside them (test_label_overlaps.label_problems; uk and en at the default state: test_scene_words);
     on the default variant's page the scene words' checks in ru as well (test_scene_words.assert_speaks);
-    on the dynamics scenes every panel of the variant (test_dynamics.assert_variant_shows_all_its_panels).
+    on the dynamics scenes every panel of the variant (test_dynamics.assert_variant_shows_all_its_panels), on
+    the elastic ones every answer without NaN (test_flywheel_elastic.assert_elastic_variant_answers), on the
+    transfer functions the linkage and plots (test_scene.assert_variant_draws_its_linkage_and_plots).
     On the scene's default (first) variant its live studies are then run, and no English sentence of the app may
     show. (The Ukrainian and English pages' words: test_scene_words.)"""
     page = browser_page
@@ -125,6 +129,10 @@ def test_russian_pages_write_subscripts_a_true_minus_and_a_decimal_comma_on_ever
         drawn(page)
         if scene["id"] in DYNAMICS_SCENES:          # the same page: every panel of the variant shown (test_dynamics)
             assert_variant_shows_all_its_panels(page, scene, variant)
+        if scene["id"] in ELASTIC_SCENES:           # the same page: its answers complete (test_flywheel_elastic)
+            assert_elastic_variant_answers(page, scene, variant, "ru")
+        if name == "transfer_functions":            # the same page: its linkage and plots drawn (test_scene)
+            assert_variant_draws_its_linkage_and_plots(page, variant)
         labels = label_problems(page.evaluate(DRAWN_LABELS))
         if labels:
             unreadable[where] = labels

@@ -1,5 +1,6 @@
-"""The start page and the transfer-functions scene in a real browser: languages, every variant, slider
-drags, the invalid-geometry message, the animation, overlays and the approximation panel."""
+"""The start page and the transfer-functions scene in a real browser: languages, slider drags, the
+invalid-geometry message, the animation, overlays and the approximation panel; every variant draws its linkage
+and plots (assert_variant_draws_its_linkage_and_plots, on test_notation's walk of every variant)."""
 from __future__ import annotations
 
 import re
@@ -64,23 +65,19 @@ def test_start_page_is_translated_and_loads_no_plotly(browser_page, lang):
     assert page.problems == []
 
 
-def test_every_variant_draws_its_linkage_and_plots(browser_page):
-    page = browser_page
-    open_scene(page, "ru")
-    for variant_id, variant in VARIANTS.items():
-        before = plot_data(page, "u31")
-        if page.input_value("#variant") != variant_id:
-            page.select_option("#variant", variant_id)
-            wait_for_new_plot(page, "u31", before)
-        assert page.locator("#linkage svg .moving line").count() >= 1
-        assert page.locator(".geometry-error").count() == 0
-        titles = page.locator(".panel h2").all_inner_texts()
-        plots = [panel for panel in variant["panels"] if SCENE["panels"][panel]["kind"] == "plot"]
-        assert titles == [SCENE["panels"][panel]["title"]["ru"] for panel in plots]
-        assert page.inner_text(".variant-text") == variant["text"]["ru"]
-        assert shows_no_nan(page)
-        screenshot(page, f"variant_{variant_id}")
-    assert page.problems == []
+def assert_variant_draws_its_linkage_and_plots(page, variant: dict) -> None:
+    """The open transfer-functions page in ru at `variant` draws its linkage and every plot panel of it, titled as
+    the scene says, with the variant's text and no NaN. test_notation walks every variant of every scene in ru
+    and calls this on this scene's pages, so that each page is opened once for both checks."""
+    wait_for_plot(page, "u31")
+    assert page.locator("#linkage svg .moving line").count() >= 1
+    assert page.locator(".geometry-error").count() == 0
+    titles = page.locator(".panel h2").all_inner_texts()
+    plots = [panel for panel in variant["panels"] if SCENE["panels"][panel]["kind"] == "plot"]
+    assert titles == [SCENE["panels"][panel]["title"]["ru"] for panel in plots]
+    assert page.inner_text(".variant-text") == variant["text"]["ru"]
+    assert shows_no_nan(page)
+    screenshot(page, f"variant_{variant['id']}")
 
 
 def test_lambda_drag_redraws_linkage_and_transfer_function(browser_page):

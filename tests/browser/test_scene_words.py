@@ -10,7 +10,8 @@ of the scenes are checked on test_notation's walk, which opens them anyway: asse
   <tspan>s of drawings and plots alike) holds no other form of a quantity than tests/notation.json's, and the
   list of the forms each scene shows is written to test-artifacts/scene_notation_<scene>_<lang>.json;
 - the short intros fold the sources' details (wear, angular acceleration).
-Screenshots of four scenes in ru and en at desktop width and of two in ru at phone size (390 × 844) go to
+Screenshots of four scenes in ru and en at desktop width and of two in ru at phone size (390 × 844, taken on
+test_accessibility's phone page) go to
 test-artifacts/ (scene_words_*.png), /measurements in ru, uk and en to measurements_<lang>.png.
 """
 from __future__ import annotations
@@ -21,7 +22,7 @@ import sys
 
 import pytest
 
-from conftest import ARTIFACTS, PHONE, REPO, interface_texts, read_scene, screenshot
+from conftest import ARTIFACTS, REPO, interface_texts, read_scene, screenshot
 
 sys.path.insert(0, str(REPO / "tests"))
 from test_notation_forms import NOTATION, other_forms  # noqa: E402  (the one list, read as the API test reads it)
@@ -35,7 +36,7 @@ SCENE_FILES = sorted(path.stem for path in (REPO / "content" / "scenes").glob("*
 LANGUAGES = ("ru", "uk", "en")
 SCENE_LANGUAGES = ("uk", "en")      # ru: test_notation's walk calls assert_speaks on its default variant's page
 SHOTS = {"flywheel", "resisting_moment", "bearings", "wear"}        # desktop in ru and en
-PHONE_SHOTS = ("flywheel", "wear")                                  # ru at 390 × 844
+PHONE_SHOTS = ("flywheel", "wear")       # ru at 390 × 844, on test_accessibility's phone page of the scene
 SEED = re.compile(r"\bseeds?\b", re.IGNORECASE)
 
 # Every text on screen read back into the notation markup: <sub>/<sup> in the page, in a drawing or a plot the
@@ -203,11 +204,3 @@ def test_the_short_intro_comes_first_and_the_sources_details_open_on_demand(brow
     assert page.locator(".intro > p").first.inner_text().startswith(scene["text"]["ru"][:20])
 
 
-@pytest.mark.parametrize("name", PHONE_SHOTS)
-def test_phone_screenshots_of_the_words(phone, name):
-    scene = read_scene(name)
-    phone.goto(f"/scenes/{scene['id']}?lang=ru")
-    settle(phone)
-    assert phone.viewport_size == PHONE
-    screenshot(phone, f"scene_words_{name}_ru_phone")
-    assert SEED.findall(phone.evaluate("() => document.body.innerText")) == []
