@@ -16,15 +16,18 @@ class Exchange:
 
     The client's id goes in the admission cookie, after `other_cookies` ("name=value; " of a browser's others);
     `label`, when given, in an x-label header for an app that tells its requests apart; `reading`, when given,
-    is an event: the client reads its answer's body only once it is set."""
+    is an event: the client reads its answer's body only once it is set; `dragging`: the request says it was asked
+while a slider is dragged (X-MDL-Drag: 1)."""
 
     def __init__(self, middleware, path=KINEMATICS, host="10.0.0.1", client_id=None, method="POST", *,
-                 label=None, other_cookies="", reading=None):
+                 label=None, other_cookies="", reading=None, dragging=False):
         self.sent: list[dict] = []
         self.reading = reading
         self.hang_up = asyncio.Event()
         self.body_read = False
         headers = [(b"x-label", label.encode())] if label is not None else []
+        if dragging:                                 # asked while a slider is dragged (api.js)
+            headers.append((b"x-mdl-drag", b"1"))
         if client_id:
             headers.append((b"cookie", f"{other_cookies}{COOKIE}={client_id}".encode()))
         scope = {"type": "http", "method": method, "path": path, "headers": headers, "client": (host, 5000),

@@ -36,9 +36,9 @@ class HeldApp:
         self.releases.setdefault(label, asyncio.Event()).set()
 
 
-def exchange(middleware, label, host, client_id, path=KINEMATICS, reading=None) -> Exchange:
+def exchange(middleware, label, host, client_id, path=KINEMATICS, reading=None, dragging=False) -> Exchange:
     """The request `label` from `host` with the cookie id `client_id`."""
-    return Exchange(middleware, path, host, client_id, label=label, reading=reading)
+    return Exchange(middleware, path, host, client_id, label=label, reading=reading, dragging=dragging)
 
 
 def cookie(n: int) -> str:
@@ -100,6 +100,53 @@ def test_waiting_requests_are_served_address_after_address_then_cookie_after_coo
     run_to_end(scenario())
 
 
+def test_a_request_at_rest_goes_before_the_drags_that_wait_and_the_drags_are_served_in_turn():
+    """The answers a page asks for while a slider is dragged (X-MDL-Drag: 1) are previews: every request at rest
+    goes before them, whenever it came; among themselves they go address after address as the others do."""
+    async def scenario():
+        app = HeldApp()
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
+        blocker = exchange(middleware, "x", "10.0.0.7", cookie(7))
+        await settle()
+        asked = [("a1", "10.0.0.1", 1, True), ("a2", "10.0.0.1", 1, True), ("b1", "10.0.0.2", 2, True),
+                 ("r1", "10.0.0.3", 3, False), ("a3", "10.0.0.1", 1, False), ("r2", "10.0.0.3", 3, False)]
+        waiting = []
+        for label, host, n, drag in asked:
+            waiting.append(exchange(middleware, label, host, cookie(n), dragging=drag))
+            await settle()
+        assert app.order == ["x"]
+        served = ["x"]
+        while len(app.order) < 1 + len(asked):
+            app.release(served[-1])
+            await settle()
+            served = list(app.order)
+        assert served == ["x", "r1", "a3", "r2", "a1", "b1", "a2"]
+        app.release(served[-1])
+        await asyncio.gather(blocker.task, *(e.task for e in waiting))
+        assert all(e.status == 200 for e in waiting) and not middleware.in_flight
+    run_to_end(scenario())
+
+
+def test_a_drag_that_waits_and_whose_page_gives_it_up_leaves_its_lane_unrun():
+    async def scenario():
+        app = HeldApp()
+        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
+        blocker = exchange(middleware, "x", "10.0.0.7", cookie(7))
+        await settle()
+        drag = exchange(middleware, "d", "10.0.0.1", cookie(1), dragging=True)
+        await settle()
+        drag.hang_up.set()                           # the slider came to rest: the page aborts it, asks at rest
+        rest = exchange(middleware, "r", "10.0.0.1", cookie(1))
+        await settle()
+        app.release("x")
+        await settle()
+        assert app.order == ["x", "r"]
+        app.release("r")
+        await asyncio.gather(blocker.task, rest.task, drag.task)
+        assert rest.status == 200 and not middleware.in_flight and not any(middleware.lanes["light"].waiting)
+    run_to_end(scenario())
+
+
 def test_a_heavy_lane_serves_addresses_in_turn_too():
     async def scenario():
         app = HeldApp()
@@ -137,7 +184,7 @@ def test_a_request_whose_client_goes_away_while_it_waits_leaves_its_lane_unrun()
         app.release("x")
         app.release("later")
         await asyncio.gather(held.task, later.task)
-        assert app.order == ["x", "later"] and not middleware.lanes["light"].waiting
+        assert app.order == ["x", "later"] and not any(middleware.lanes["light"].waiting)
     run_to_end(scenario())
 
 

@@ -13,7 +13,10 @@ at a time anyway, and two at once only share it, a short answer waiting out a lo
 more than ``MDL_HEAVY_PROCESSES`` (the next answer ready when the process is free). One address may hold all but
 one of a lane's places (at least one), so that a request from another address finds a place or is next. The
 requests past that wait in the lane, which takes them in turn: address after address, and within an address
-client (cookie) after client, each client's own in the order asked. A slider's family is not held in a lane (heavy.LaneQueue puts its coarse stage before the full
+client (cookie) after client, each client's own in the order asked. The requests a page sends while a slider is
+dragged and its family has not come (``X-MDL-Drag: 1``, web/static/js/common/model/api.js) are previews, true
+answers of values the slider passes: they wait behind every request at rest, so that the answer a student reads
+when the slider stops goes first and the drags share the time that is left. A slider's family is not held in a lane (heavy.LaneQueue puts its coarse stage before the full
 families); it counts towards the limits below.
 
 Limits (per worker; 0 switches one off). A client may have ``MDL_CLIENT_CONCURRENCY`` computing requests in
@@ -57,6 +60,7 @@ RETRY_AFTER_S = 1
 HEAVY_NAMES = ("elastic", "family", r"work-precision/[a-z-]+", "course-project")
 HEAVY = re.compile(rf"/api/v1/({'|'.join(HEAVY_NAMES)})")
 FAMILY = re.compile(r"/api/v1/family")       # heavy, but in no lane of admission's (heavy.LaneQueue orders them)
+DRAG_HEADER = b"x-mdl-drag"                    # "1": asked while a slider is dragged (api.js); waits behind the rest
 _ID = re.compile(r"[A-Za-z0-9_-]{16,64}")
 TOLD_TO_WAIT_KEPT = 4096        # past this many clients told to wait, those whose wait is over are forgotten
 CLIENT: contextvars.ContextVar[tuple[str, str | None]] = contextvars.ContextVar("mdl_admitted_client")
@@ -89,22 +93,25 @@ def client_id(scope) -> str | None:
 
 class Lane:
     """A lane's places, of which one group (an address) holds at most `share` at once, and its waiting requests,
-    given the places in turn: group after group, within a group client after client, a client's own in order."""
+    given the places in turn: group after group, within a group client after client, a client's own in order.
+    The requests of a slider being dragged (``DRAG_HEADER``) wait behind all others: an answer at rest first."""
 
     def __init__(self, places: int, share: int | None = None):
         self.places = max(places, 1)
         self.share = max(self.places - 1, 1) if share is None else share
         self.running: Counter = Counter()            # group → places it holds
-        # group → client → its waiting requests' futures; both dicts in turn order (the next to serve first)
-        self.waiting: OrderedDict[object, OrderedDict[object, deque]] = OrderedDict()
+        # per priority (0: at rest, 1: a drag's), group → client → its waiting requests' futures; both dicts in
+        # turn order (the next to serve first)
+        self.waiting: tuple[OrderedDict[object, OrderedDict[object, deque]], ...] = (OrderedDict(), OrderedDict())
 
     def __len__(self) -> int:
         return sum(self.running.values())
 
-    async def enter(self, group, client) -> None:
+    async def enter(self, group, client, dragging: bool = False) -> None:
         """Wait for a place (in turn); cancelled while waiting, the request leaves the queue."""
         place = asyncio.get_running_loop().create_future()
-        self.waiting.setdefault(group, OrderedDict()).setdefault(client, deque()).append(place)
+        waiting = self.waiting[int(dragging)]
+        waiting.setdefault(group, OrderedDict()).setdefault(client, deque()).append(place)
         self._hand_over()
         try:
             await place
@@ -112,7 +119,7 @@ class Lane:
             if place.done() and not place.cancelled():
                 self.leave(group)                    # given a place as it was cancelled: pass it on
             else:
-                self._forget(group, client, place)
+                self._forget(waiting, group, client, place)
             raise
 
     def leave(self, group) -> None:
@@ -122,32 +129,34 @@ class Lane:
         self._hand_over()
 
     def _hand_over(self) -> None:
-        """Give the free places to the waiting requests in turn."""
+        """Give the free places to the waiting requests in turn, those at rest before a drag's."""
         while len(self) < self.places:
-            group = next((g for g in self.waiting if self.running[g] < self.share), None)
-            if group is None:
+            waiting, group = next(((w, g) for w in self.waiting for g in w if self.running[g] < self.share),
+                                  (None, None))
+            if waiting is None:
                 return
-            clients = self.waiting[group]
+            clients = waiting[group]
             client, places = next(iter(clients.items()))
             place = places.popleft()
             clients.move_to_end(client)                  # its next request after the other clients'
             if not places:
                 del clients[client]
-            self.waiting.move_to_end(group)              # the group's next after the other groups'
+            waiting.move_to_end(group)                   # the group's next after the other groups'
             if not clients:
-                del self.waiting[group]
+                del waiting[group]
             if not place.done():                         # (one cancelled already is leaving the queue)
                 self.running[group] += 1
                 place.set_result(None)
 
-    def _forget(self, group, client, place) -> None:
-        places = self.waiting.get(group, {}).get(client)
+    @staticmethod
+    def _forget(waiting: OrderedDict, group, client, place) -> None:
+        places = waiting.get(group, {}).get(client)
         if places is not None and place in places:
             places.remove(place)
             if not places:
-                del self.waiting[group][client]
-                if not self.waiting[group]:
-                    del self.waiting[group]
+                del waiting[group][client]
+                if not waiting[group]:
+                    del waiting[group]
 
 
 class AdmissionMiddleware:
@@ -224,7 +233,7 @@ class AdmissionMiddleware:
                 return                                   # gone before its body was in
             try:
                 arrived = time.perf_counter()
-                if await _entered(lane, group, who, listening):
+                if await _entered(lane, group, who, listening, dragging(scope)):
                     held, entered = [True], time.perf_counter()
 
                     async def send_freeing_the_place(message):
@@ -263,9 +272,14 @@ def with_timing(message: dict, waited_s: float, computed_s: float) -> dict:
     return {**message, "headers": [*message.get("headers", []), (b"server-timing", timing)]}
 
 
-async def _entered(lane: Lane, group, who, listening: asyncio.Future) -> bool:
+def dragging(scope) -> bool:
+    """Whether the request says it was asked while a slider is dragged (DRAG_HEADER: 1)."""
+    return any(name == DRAG_HEADER and value == b"1" for name, value in scope.get("headers", []))
+
+
+async def _entered(lane: Lane, group, who, listening: asyncio.Future, drag: bool = False) -> bool:
     """Whether the request got its place in the lane before `listening` heard its client go away."""
-    entering = asyncio.ensure_future(lane.enter(group, who))
+    entering = asyncio.ensure_future(lane.enter(group, who, drag))
     try:
         await asyncio.wait((entering, listening), return_when=asyncio.FIRST_COMPLETED)
     except BaseException:                            # we are cancelled ourselves

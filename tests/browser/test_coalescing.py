@@ -1,4 +1,6 @@
 """The page's coalescing of requests (web/static/js/common/model/api.js) in a real browser, against a slow server.
+The requests sent while a slider is dragged say so (X-MDL-Drag: 1); the drag's last question, unanswered when the
+slider comes to rest, is aborted and asked again at rest.
 
 Every answer of the scene's compute endpoint is held back (Playwright's page.route) for DELAY_S, then
 fulfilled with the server's real answer. While a slider is dragged quickly through many values the page
@@ -52,10 +54,16 @@ class SlowEndpoint:
     def _arrive(self, route) -> None:
         body = json.loads(route.request.post_data)
         key = self.key(body)
+        drag = route.request.headers.get("x-mdl-drag") == "1"
+        for earlier in self.pending(key):          # a drag's question asked again at rest: the page aborted it
+            if earlier["drag"] and not drag and earlier["body"] == body:
+                earlier["aborted"] = True
+                self.in_flight[key] -= 1
         self.in_flight[key] += 1
         self.most_in_flight[key] = max(self.most_in_flight[key], self.in_flight[key])
         self.requests.append({"route": route, "body": body, "key": key, "arrived": time.monotonic(),
-                              "move": self.moves, "held": key in self.holding, "answer": None})
+                              "move": self.moves, "held": key in self.holding, "answer": None, "drag": drag,
+                              "aborted": False})
 
     def due(self, request: dict) -> bool:
         """DELAY_S has passed and, during a drag, HELD_MOVES more positions too: the drag stays quick against
@@ -64,7 +72,7 @@ class SlowEndpoint:
             (not self.dragging or self.moves >= request["move"] + HELD_MOVES)
 
     def pending(self, key: str | None = None) -> list[dict]:
-        return [r for r in self.requests if r["answer"] is None and key in (None, r["key"])]
+        return [r for r in self.requests if r["answer"] is None and not r["aborted"] and key in (None, r["key"])]
 
     def answer(self, request: dict) -> None:
         reply = request["route"].fetch()
@@ -257,6 +265,27 @@ def test_dynamics_page_keeps_one_request_in_flight_and_ends_on_the_final_value(b
     wait_until_plotted(page, "omega_phi", omega)
     assert plotted(page, "omega_phi") != sent[0]["answer"]["omega"]
     screenshot(page, "coalescing_equation_of_motion")
+    assert page.problems == []
+
+
+def test_a_drags_question_still_unanswered_at_rest_is_asked_again_at_rest(browser_page):
+    """A key press on a slider is a drag with no family here: its request says so (X-MDL-Drag: 1, the server
+    serves it after the answers at rest). When the keys rest with that answer still awaited, the page aborts it
+    and asks the same question at rest, and shows that answer."""
+    page = browser_page
+    slow = open_motion_scene(page)
+    slow.holding.add("main")
+    page.focus("#slider-M0")
+    page.keyboard.press("ArrowRight")                 # M₀ 60 → 61 N·m, held
+    slow.pump_until(lambda: slow.pending(), "61 asked")
+    dragged, = slow.pending()
+    assert dragged["drag"] and dragged["body"]["motor"]["M0"] == 61
+    slow.pump_until(lambda: dragged["aborted"], "61 asked again at rest")
+    again, = slow.pending()
+    assert not again["drag"] and again["body"] == dragged["body"]
+    slow.answer(again)
+    wait_until_plotted(page, "omega_phi", again["answer"]["omega"])
+    assert_one_in_flight_per_key(slow)
     assert page.problems == []
 
 

@@ -69,7 +69,8 @@ model.on("variant", (variant) => {
 const previews = new FamilyPreview(scene.endpoint, lang, model);
 const markPreview = previewMark(results, texts);
 
-function requestExact() {
+/** The exact answer; drag: asked while the slider is dragged with no family to draw from (api.js). */
+function requestExact(drag = false) {
   if (model.variant.addressMissing) {          // an own-mechanism variant with no mechanism in the address
     client.forget("main");
     view.showMissingMechanism();
@@ -77,7 +78,7 @@ function requestExact() {
   }
   performance.mark("exact-requested");
   const body = model.request();
-  if (body.outputs.length) client.submit("main", body, (answer) => model.receive(answer));
+  if (body.outputs.length) client.submit("main", body, (answer) => model.receive(answer), { drag });
   else model.receive({ ok: true, data: { warnings: [] } });   // an assignment hid every computed panel
 }
 
@@ -85,10 +86,13 @@ model.on("preset", () => writeState(model, lang));
 model.on("params", () => {
   writeState(model, lang);
   if (!model.variant.addressMissing && previews.preview()) client.forget("main");     // drawn from the family: an answer on its way is old
-  else requestExact();
+  else requestExact(model.grabbed !== null);
 });
 model.on("rest", () => {
   if (previews.showing) requestExact();
+  else if (!model.variant.addressMissing && model.request().outputs.length) {     // a drag's last question,
+    client.submit("main", model.request(), (answer) => model.receive(answer));     // unanswered: asked at rest
+  }
 });
 previews.on("preview", (answer) => {
   markPreview(true);

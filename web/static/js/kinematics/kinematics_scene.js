@@ -45,13 +45,13 @@ new AnimationControls(byId("animation"), animation, texts);
 
 let overlayKeys = [];
 
-function requestOverlays() {
+function requestOverlays(drag = false) {
   const requests = model.overlayRequests();
   const keys = requests.map(({ lambda }) => `overlay ${lambda}`);
   for (const key of overlayKeys) if (!keys.includes(key)) client.forget(key);
   overlayKeys = keys;
   requests.forEach(({ lambda, body }, i) =>
-    client.submit(keys[i], body, (answer) => model.receiveOverlay(lambda, answer)));
+    client.submit(keys[i], body, (answer) => model.receiveOverlay(lambda, answer), { drag }));
 }
 
 model.on("variant", (variant) => plots.build(variant));
@@ -59,20 +59,26 @@ const previews = new FamilyPreview(scene.endpoint, lang, model);
 const markPreview = previewMark(stage, texts);
 let previewed = null;      // the preview on the screen, if any
 
-function requestExact() {
+/** The exact answer and the overlays; drag: asked while the slider is dragged with no family (api.js). */
+function requestExact(drag = false) {
   performance.mark("exact-requested");
   const body = model.request();
-  client.submit("main", body, (answer) => model.receive(body, answer));
-  requestOverlays();
+  client.submit("main", body, (answer) => model.receive(body, answer), { drag });
+  requestOverlays(drag);
 }
 
 model.on("params", () => {
   writeState(model, lang);
   if (previews.preview()) client.forget("main");     // drawn from the family: an answer on its way is old
-  else requestExact();
+  else requestExact(model.grabbed !== null);
 });
 model.on("rest", () => {
   if (previews.showing) requestExact();
+  else {                                             // a drag's last questions, unanswered: asked at rest
+    const body = model.request();
+    client.submit("main", body, (answer) => model.receive(body, answer));
+    requestOverlays();
+  }
 });
 model.on("overlay", () => {
   requestOverlays();

@@ -10,6 +10,11 @@
  * code is the error code of the 422 answer (content/i18n has err_<code>; null when the answer names none,
  * and its message is shown), "network" or "server".
  *
+ * A request asked while a slider is dragged (submit's `drag`, the scene's slider held and no family to draw
+ * from) says so (X-MDL-Drag: 1): the server serves it after every answer at rest, a preview of a value the slider
+ * passes (server/runtime/admission.py). The same question asked again at rest is sent at rest: the drag's
+ * request still waiting or computing is aborted (the server drops it) and the question asked anew.
+ *
  * A server that has as many of this browser's computations in flight as it admits answers 429 with
  * Retry-After (seconds): the client waits that long (plus up to half again, so that a class does not come
  * back all at once), then sends the latest request for the key. Meanwhile the page says "busy, retrying";
@@ -55,15 +60,31 @@ export class ApiClient {
     this.onBusy = onBusy;
   }
 
-  /** Ask for body under key; onAnswer(answer) runs only if no newer request for key arrives first. */
-  submit(key, body, onAnswer) {
+  /**
+   * Ask for body under key; onAnswer(answer) runs only if no newer request for key arrives first. drag: asked
+   * while a slider is dragged (a preview; see above).
+   */
+  submit(key, body, onAnswer, { drag = false } = {}) {
     const text = JSON.stringify(body);
     const slot = this.#slots.get(key) ?? { latest: null, waiting: null, busy: false };
     this.#slots.set(key, slot);
-    if (slot.latest?.text === text) return;          // the same question is already asked
-    slot.latest = { text, onAnswer };
+    if (slot.latest?.text === text) {                // the same question is already asked
+      if (slot.latest.drag && !drag) this.#atRest(slot);
+      return;
+    }
+    slot.latest = { text, onAnswer, drag };
     slot.waiting = slot.latest;
     if (!slot.busy) this.#drain(slot);
+  }
+
+  /** The drag's latest question, still unanswered, asked again at rest. */
+  #atRest(slot) {
+    const request = slot.latest;
+    request.drag = false;
+    if (slot.flying === request) {                   // in flight as a drag's: aborted, and sent again
+      slot.waiting = request;
+      slot.controller?.abort();
+    }
   }
 
   /** Drop whatever is waiting or in flight under key. */
@@ -88,8 +109,13 @@ export class ApiClient {
       const request = slot.waiting;
       slot.waiting = null;
       slot.controller = new AbortController();
-      const answer = await this.#post(request.text, slot.controller.signal);
-      slot.controller = null;
+      slot.flying = request;
+      const answer = await this.#post(request, slot.controller.signal);
+      slot.controller = slot.flying = null;
+      if (slot.waiting === request) {                // asked again at rest meanwhile (#atRest)
+        if (answer.aborted) continue;                // and aborted: sent again
+        slot.waiting = null;                         // answered before the abort: that answer is the one
+      }
       if (answer.retryAfter !== undefined) {
         if (!slot.waiting && slot.latest === request) slot.waiting = request;   // else a newer one goes
         if (slot.waiting) {
@@ -106,10 +132,11 @@ export class ApiClient {
   }
 
   /** The answer to one POST; {retryAfter: ms} when the server is busy with this browser's requests. */
-  async #post(text, signal) {
+  async #post({ text, drag }, signal) {
+    const headers = { "Content-Type": "application/json" };
+    if (drag) headers["X-MDL-Drag"] = "1";
     try {
-      const response = await fetch(this.url, {
-        method: "POST", headers: { "Content-Type": "application/json" }, body: text, signal });
+      const response = await fetch(this.url, { method: "POST", headers, body: text, signal });
       if (response.status === 429) return { retryAfter: retryDelay(response) };
       const payload = await response.json().catch(() => null);
       if (response.ok && payload) return { ok: true, data: payload };
@@ -118,7 +145,7 @@ export class ApiClient {
       const field = Array.isArray(detail.loc) && detail.loc[0] === "body" ? detail.loc.slice(1).join(".") : null;
       return { ok: false, error: { code: detail.ctx?.code ?? null, message: detail.msg, ctx: detail.ctx ?? {}, field } };
     } catch (error) {
-      return { ok: false, error: { code: "network", message: String(error) } };
+      return { ok: false, aborted: error?.name === "AbortError", error: { code: "network", message: String(error) } };
     }
   }
 }
