@@ -135,8 +135,8 @@ def test_a_drag_that_waits_and_whose_page_gives_it_up_leaves_its_lane_unrun():
         await settle()
         drag = exchange(middleware, "d", "10.0.0.1", cookie(1), dragging=True)
         await settle()
-        drag.hang_up.set()                           # the slider came to rest: the page aborts it, asks at rest
-        rest = exchange(middleware, "r", "10.0.0.1", cookie(1))
+        drag.hang_up.set()                           # its page went away (a closed tab): the drag leaves the lane
+        rest = exchange(middleware, "r", "10.0.0.1", cookie(1))      # the same client, at rest
         await settle()
         app.release("x")
         await settle()

@@ -1,6 +1,6 @@
 """The page's coalescing of requests (web/static/js/common/model/api.js) in a real browser, against a slow server.
-The requests sent while a slider is dragged say so (X-MDL-Drag: 1); the drag's last question, unanswered when the
-slider comes to rest, is aborted and asked again at rest.
+The requests sent while a slider is dragged say so (X-MDL-Drag: 1); the drag's last question, still waiting to be
+sent when the slider comes to rest, is sent at rest (unmarked).
 
 Every answer of the scene's compute endpoint is held back (Playwright's page.route) for DELAY_S, then
 fulfilled with the server's real answer. While a slider is dragged quickly through many values the page
@@ -54,16 +54,11 @@ class SlowEndpoint:
     def _arrive(self, route) -> None:
         body = json.loads(route.request.post_data)
         key = self.key(body)
-        drag = route.request.headers.get("x-mdl-drag") == "1"
-        for earlier in self.pending(key):          # a drag's question asked again at rest: the page aborted it
-            if earlier["drag"] and not drag and earlier["body"] == body:
-                earlier["aborted"] = True
-                self.in_flight[key] -= 1
         self.in_flight[key] += 1
         self.most_in_flight[key] = max(self.most_in_flight[key], self.in_flight[key])
         self.requests.append({"route": route, "body": body, "key": key, "arrived": time.monotonic(),
-                              "move": self.moves, "held": key in self.holding, "answer": None, "drag": drag,
-                              "aborted": False})
+                              "move": self.moves, "held": key in self.holding, "answer": None,
+                              "drag": route.request.headers.get("x-mdl-drag") == "1"})
 
     def due(self, request: dict) -> bool:
         """DELAY_S has passed and, during a drag, HELD_MOVES more positions too: the drag stays quick against
@@ -72,7 +67,7 @@ class SlowEndpoint:
             (not self.dragging or self.moves >= request["move"] + HELD_MOVES)
 
     def pending(self, key: str | None = None) -> list[dict]:
-        return [r for r in self.requests if r["answer"] is None and not r["aborted"] and key in (None, r["key"])]
+        return [r for r in self.requests if r["answer"] is None and key in (None, r["key"])]
 
     def answer(self, request: dict) -> None:
         reply = request["route"].fetch()
@@ -268,23 +263,26 @@ def test_dynamics_page_keeps_one_request_in_flight_and_ends_on_the_final_value(b
     assert page.problems == []
 
 
-def test_a_drags_question_still_unanswered_at_rest_is_asked_again_at_rest(browser_page):
+def test_a_drags_last_question_still_waiting_when_the_keys_rest_is_sent_at_rest(browser_page):
     """A key press on a slider is a drag with no family here: its request says so (X-MDL-Drag: 1, the server
-    serves it after the answers at rest). When the keys rest with that answer still awaited, the page aborts it
-    and asks the same question at rest, and shows that answer."""
+    serves it after the answers at rest). The next press's question waits for that answer; when the keys have
+    come to rest meanwhile, it is sent unmarked, and its answer is shown."""
     page = browser_page
     slow = open_motion_scene(page)
     slow.holding.add("main")
     page.focus("#slider-M0")
     page.keyboard.press("ArrowRight")                 # M₀ 60 → 61 N·m, held
     slow.pump_until(lambda: slow.pending(), "61 asked")
-    dragged, = slow.pending()
-    assert dragged["drag"] and dragged["body"]["motor"]["M0"] == 61
-    slow.pump_until(lambda: dragged["aborted"], "61 asked again at rest")
-    again, = slow.pending()
-    assert not again["drag"] and again["body"] == dragged["body"]
-    slow.answer(again)
-    wait_until_plotted(page, "omega_phi", again["answer"]["omega"])
+    page.keyboard.press("ArrowRight")                 # 62 waits for 61's answer
+    slow.pump(1.0)                                    # the keys rest (250 ms)
+    first, = slow.pending()
+    assert first["drag"] and first["body"]["motor"]["M0"] == 61
+    slow.answer(first)
+    slow.pump_until(lambda: slow.pending(), "62 sent")
+    second, = slow.pending()
+    assert not second["drag"] and second["body"]["motor"]["M0"] == 62
+    slow.answer(second)
+    wait_until_plotted(page, "omega_phi", second["answer"]["omega"])
     assert_one_in_flight_per_key(slow)
     assert page.problems == []
 

@@ -90,8 +90,8 @@ model.on("params", () => {
 });
 model.on("rest", () => {
   if (previews.showing) requestExact();
-  else if (!model.variant.addressMissing && model.request().outputs.length) {     // a drag's last question,
-    client.submit("main", model.request(), (answer) => model.receive(answer));     // unanswered: asked at rest
+  else if (!model.variant.addressMissing && model.request().outputs.length) {     // a drag's last question
+    client.submit("main", model.request(), (answer) => model.receive(answer));     // still waiting: sent at rest
   }
 });
 previews.on("preview", (answer) => {

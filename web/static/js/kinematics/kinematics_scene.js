@@ -74,7 +74,7 @@ model.on("params", () => {
 });
 model.on("rest", () => {
   if (previews.showing) requestExact();
-  else {                                             // a drag's last questions, unanswered: asked at rest
+  else {                                             // a drag's last questions, still waiting: sent at rest
     const body = model.request();
     client.submit("main", body, (answer) => model.receive(body, answer));
     requestOverlays();

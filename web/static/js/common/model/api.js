@@ -12,8 +12,9 @@
  *
  * A request asked while a slider is dragged (submit's `drag`, the scene's slider held and no family to draw
  * from) says so (X-MDL-Drag: 1): the server serves it after every answer at rest, a preview of a value the slider
- * passes (server/runtime/admission.py). The same question asked again at rest is sent at rest: the drag's
- * request still waiting or computing is aborted (the server drops it) and the question asked anew.
+ * passes (server/runtime/admission.py). The same question asked again at rest and not yet sent goes unmarked;
+ * one already in flight is left to finish (aborted and sent again, it would briefly count twice against the
+ * server's limit of this browser's computations in flight, and be refused).
  *
  * A server that has as many of this browser's computations in flight as it admits answers 429 with
  * Retry-After (seconds): the client waits that long (plus up to half again, so that a class does not come
@@ -69,22 +70,12 @@ export class ApiClient {
     const slot = this.#slots.get(key) ?? { latest: null, waiting: null, busy: false };
     this.#slots.set(key, slot);
     if (slot.latest?.text === text) {                // the same question is already asked
-      if (slot.latest.drag && !drag) this.#atRest(slot);
+      if (!drag) slot.latest.drag = false;           // asked at rest: sent unmarked if still waiting
       return;
     }
     slot.latest = { text, onAnswer, drag };
     slot.waiting = slot.latest;
     if (!slot.busy) this.#drain(slot);
-  }
-
-  /** The drag's latest question, still unanswered, asked again at rest. */
-  #atRest(slot) {
-    const request = slot.latest;
-    request.drag = false;
-    if (slot.flying === request) {                   // in flight as a drag's: aborted, and sent again
-      slot.waiting = request;
-      slot.controller?.abort();
-    }
   }
 
   /** Drop whatever is waiting or in flight under key. */
@@ -109,13 +100,8 @@ export class ApiClient {
       const request = slot.waiting;
       slot.waiting = null;
       slot.controller = new AbortController();
-      slot.flying = request;
       const answer = await this.#post(request, slot.controller.signal);
-      slot.controller = slot.flying = null;
-      if (slot.waiting === request) {                // asked again at rest meanwhile (#atRest)
-        if (answer.aborted) continue;                // and aborted: sent again
-        slot.waiting = null;                         // answered before the abort: that answer is the one
-      }
+      slot.controller = null;
       if (answer.retryAfter !== undefined) {
         if (!slot.waiting && slot.latest === request) slot.waiting = request;   // else a newer one goes
         if (slot.waiting) {
@@ -145,7 +131,7 @@ export class ApiClient {
       const field = Array.isArray(detail.loc) && detail.loc[0] === "body" ? detail.loc.slice(1).join(".") : null;
       return { ok: false, error: { code: detail.ctx?.code ?? null, message: detail.msg, ctx: detail.ctx ?? {}, field } };
     } catch (error) {
-      return { ok: false, aborted: error?.name === "AbortError", error: { code: "network", message: String(error) } };
+      return { ok: false, error: { code: "network", message: String(error) } };
     }
   }
 }
