@@ -74,18 +74,17 @@ def test_invented_cookies_get_an_address_no_more_than_its_share_and_another_addr
     run_to_end(scenario())
 
 
-def test_waiting_requests_are_served_address_after_address_then_cookie_after_cookie():
+def served_in_turn(asked: list[tuple]) -> list[str]:
+    """The labels in the order one light place serves them: a blocker "x" holds it while the requests `asked`
+    ((label, host, cookie number, dragging), in this order) come and wait; then each is answered in turn."""
     async def scenario():
         app = HeldApp()
         middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
         blocker = exchange(middleware, "x", "10.0.0.7", cookie(7))
         await settle()
-        asked = [("a1", "10.0.0.1", 1), ("a2", "10.0.0.1", 1), ("a3", "10.0.0.1", 2),   # address 1: cookies 1, 2
-                 ("b1", "10.0.0.2", 3), ("b2", "10.0.0.2", 3),
-                 ("c1", "10.0.0.3", 4), ("c2", "10.0.0.3", 4)]
         waiting = []
-        for label, host, n in asked:                 # in this order: first come would serve them so
-            waiting.append(exchange(middleware, label, host, cookie(n)))
+        for label, host, n, drag in asked:           # in this order: first come would serve them so
+            waiting.append(exchange(middleware, label, host, cookie(n), dragging=drag))
             await settle()
         assert app.order == ["x"]
         served = ["x"]
@@ -93,38 +92,26 @@ def test_waiting_requests_are_served_address_after_address_then_cookie_after_coo
             app.release(served[-1])                  # one place: the next goes when the one before is answered
             await settle()
             served = list(app.order)
-        assert served == ["x", "a1", "b1", "c1", "a3", "b2", "c2", "a2"]
         app.release(served[-1])
         await asyncio.gather(blocker.task, *(e.task for e in waiting))
         assert all(e.status == 200 for e in waiting) and not middleware.in_flight
-    run_to_end(scenario())
+        return served
+    return run_to_end(scenario())
+
+
+def test_waiting_requests_are_served_address_after_address_then_cookie_after_cookie():
+    asked = [("a1", "10.0.0.1", 1), ("a2", "10.0.0.1", 1), ("a3", "10.0.0.1", 2),   # address 1: cookies 1, 2
+             ("b1", "10.0.0.2", 3), ("b2", "10.0.0.2", 3),
+             ("c1", "10.0.0.3", 4), ("c2", "10.0.0.3", 4)]
+    assert served_in_turn([(*a, False) for a in asked]) == ["x", "a1", "b1", "c1", "a3", "b2", "c2", "a2"]
 
 
 def test_a_request_at_rest_goes_before_the_drags_that_wait_and_the_drags_are_served_in_turn():
     """The answers a page asks for while a slider is dragged (X-MDL-Drag: 1) are previews: every request at rest
     goes before them, whenever it came; among themselves they go address after address as the others do."""
-    async def scenario():
-        app = HeldApp()
-        middleware = AdmissionMiddleware(app, computing=ENDPOINTS, per_client=8, per_address=32, light_places=1)
-        blocker = exchange(middleware, "x", "10.0.0.7", cookie(7))
-        await settle()
-        asked = [("a1", "10.0.0.1", 1, True), ("a2", "10.0.0.1", 1, True), ("b1", "10.0.0.2", 2, True),
-                 ("r1", "10.0.0.3", 3, False), ("a3", "10.0.0.1", 1, False), ("r2", "10.0.0.3", 3, False)]
-        waiting = []
-        for label, host, n, drag in asked:
-            waiting.append(exchange(middleware, label, host, cookie(n), dragging=drag))
-            await settle()
-        assert app.order == ["x"]
-        served = ["x"]
-        while len(app.order) < 1 + len(asked):
-            app.release(served[-1])
-            await settle()
-            served = list(app.order)
-        assert served == ["x", "r1", "a3", "r2", "a1", "b1", "a2"]
-        app.release(served[-1])
-        await asyncio.gather(blocker.task, *(e.task for e in waiting))
-        assert all(e.status == 200 for e in waiting) and not middleware.in_flight
-    run_to_end(scenario())
+    asked = [("a1", "10.0.0.1", 1, True), ("a2", "10.0.0.1", 1, True), ("b1", "10.0.0.2", 2, True),
+             ("r1", "10.0.0.3", 3, False), ("a3", "10.0.0.1", 1, False), ("r2", "10.0.0.3", 3, False)]
+    assert served_in_turn(asked) == ["x", "r1", "a3", "r2", "a1", "b1", "a2"]
 
 
 def test_a_drag_that_waits_and_whose_page_gives_it_up_leaves_its_lane_unrun():
