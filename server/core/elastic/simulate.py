@@ -12,13 +12,14 @@ run at rtol/10 may make twice as many): 300,000 for the Python model (seconds), 
 (about 0.2 s: a call costs some 0.15 µs there).  The compiled bound lets every run the sliders reach finish: the
 elastic linkage's slider-crank with little damping starts at its dead centre, where c(φ) → 0 uncouples motor and
 mechanism, and the motion the model predicts there (twists of tens of radians, which the answer flags as far beyond
-the linear spring) takes up to 862,000 calls at rtol 1e-6 and 1,108,000 at 1e-7 (b = 1 N·s/m, t_end = 1 s).  The error estimate is the largest difference of the twist against
-a run at ten times tighter tolerance (same method, chunks of other lengths), relative to the largest
-twist.  The chunks differ because each chunk restarts the step-size sequence: where the motion is
-sensitive to a sharp feature (the four-bar's load M₃|u₃₁| turns over at the dead positions, exactly
-where c(φ) → 0 uncouples motor and mechanism), two runs that restart at the same times can step
-over the feature alike and agree with each other far better than with the true motion (Drakunov–Tuleshova's
-assembly 2: 1.7e-4 between rtol 1e-6 and 1e-7 with equal chunks, 7.2e-2 from an rtol 1e-12 run).
+the linear spring) takes up to 862,000 calls at rtol 1e-6 and 1,108,000 at 1e-7 (b = 1 N·s/m, t_end = 1 s).
+The error estimate is the largest difference of the twist against a run at ten times tighter tolerance (same
+method, chunks of other lengths), relative to the largest twist.  The chunks differ because each chunk restarts
+the step-size sequence: where the motion is sensitive to a sharp feature (the four-bar's load M₃|u₃₁| turns over
+at the dead positions, exactly where c(φ) → 0 uncouples motor and mechanism), two runs that restart at the same
+times can step over the feature alike and agree with each other far better than with the true motion
+(Drakunov–Tuleshova's assembly 2: 1.7e-4 between rtol 1e-6 and 1e-7 with equal chunks, 7.2e-2 from an rtol 1e-12
+run).
 
 Engines: "compiled" (default) runs DOP853 and Radau as scipy's algorithms ported into numba loops
 (dop853.py, radau.py) on the compiled right-hand side (compiled.py), chunk by chunk exactly as

@@ -90,8 +90,9 @@ model.on("params", () => {
 });
 model.on("rest", () => {
   if (previews.showing) requestExact();
-  else if (!model.variant.addressMissing && model.request().outputs.length) {     // a drag's last question
-    client.submit("main", model.request(), (answer) => model.receive(answer));     // still waiting: sent at rest
+  else if (!model.variant.addressMissing) {    // a drag's last question still waiting: sent at rest
+    const body = model.request();
+    if (body.outputs.length) client.submit("main", body, (answer) => model.receive(answer));
   }
 });
 previews.on("preview", (answer) => {
