@@ -16,8 +16,9 @@ remainders), and behaves like a scene page in one of two request patterns (``--p
   random walk; while the family has not arrived the page sends the old pattern's coalesced exact requests,
   marked as a drag's (``X-MDL-Drag: 1``: the server serves them after the requests at rest) and reported apart
   as previews, once it is there no request at all; on release one exact request for the final value (unless
-  that very request was the last one sent and answered); looks 1–2 s; grabs again. A grab while the last grab's family is still on its
-  way aborts it (its connection shut, as the page's fetch abort does): counted as given up, not as an error.
+  that very request was the last one sent and answered); looks 1–2 s; grabs again. A grab while the last grab's
+  family is still on its way aborts it (its connection shut, as the page's fetch abort does): counted as given
+  up, not as an error.
 
 Only the main panel is simulated (the kinematics page's λ overlay is off by default). Accept-Encoding: gzip,
 like a browser; each student keeps its cookies (a client id such as ``mdl_client``), got first from its scene's
@@ -25,10 +26,9 @@ page. A 429 is waited out as its Retry-After says and the request sent again, as
 that answer counts from the first send.
 
 Reported per endpoint, and for exact answers (at rest, and during a drag) and families on the light and the
-elastic scenes: requests,
-throughput, p50/p95/p99 latency (send to last byte), errors (non-2xx other than a 429 waited out, or network),
-429s, the cache's hit rate (X-Cache headers), answers cut short by a time budget, the cache counters every
-worker logs as it stops, and the server's and the client's CPU time. The client runs on the same CPUs as the
+elastic scenes: requests, throughput, p50/p95/p99 latency (send to last byte), errors (non-2xx other than a 429
+waited out, or network), 429s, the cache's hit rate (X-Cache headers), answers cut short by a time budget, the
+cache counters every worker logs as it stops, and the server's and the client's CPU time. The client runs on the same CPUs as the
 server. A short comparison of two client implementations (asyncio + httpx, threads + http.client; old pattern)
 measures which costs the client less CPU per request; the lighter one drives the main runs.
 

@@ -28,6 +28,9 @@ CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-
                  "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 START_SECONDS = 240          # the app's start: a guard against a hang; a loaded CI machine imports slowly
 WAIT_MS = 120_000            # Playwright's waits (its own default is 30 s): guards, the tests wait for conditions
+# every text on screen: the page's words (with what <sub> holds) and the text of every SVG (drawings, plots)
+SCREEN_TEXT = """() => document.body.innerText + "\\n" +
+  [...document.querySelectorAll("svg text")].map((node) => node.textContent).join("\\n")"""
 
 
 def read_scene(name: str) -> dict:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import drag_slider, families_arrived, plot_text, read_scene, screenshot, shown
+from conftest import SCREEN_TEXT, drag_slider, families_arrived, plot_text, read_scene, screenshot, shown
 from test_dynamics import GRAPH, figure_value, open_scene, trace, wait_for_new_trace
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -24,8 +24,6 @@ INERTIA = read_scene("reduced_inertia")
 RESISTING = read_scene("resisting_moment")
 LINKS = [f"звено {k}" for k in (2, 3, 4, 5)]
 ANSWER_KEYS = re.compile(r"\b(?:link|force|gravity|constant|moment)\b")
-SCREEN_TEXT = """() => document.body.innerText + "\\n" +
-  [...document.querySelectorAll("svg text")].map((node) => node.textContent).join("\\n")"""
 
 
 def names(page, panel: str) -> list[str]:

@@ -16,7 +16,7 @@ import sys
 
 import pytest
 
-from conftest import ARTIFACTS, REPO, read_scene, screenshot
+from conftest import ARTIFACTS, REPO, SCREEN_TEXT, read_scene, screenshot
 
 sys.path.insert(0, str(REPO / "tests"))
 from test_translations import STRINGS, english_in  # noqa: E402  (the same collection as the API test)
@@ -39,9 +39,6 @@ SIGNED_ZERO = re.compile(r"(?<![\w,.])[−-]0(?:[,.]0+)?(?![\d,.])")
 POINT_NUMBER = re.compile(r"\d\.\d")
 DECIMAL_POINT = re.compile(r"(?<![(§\d.])(?<!табл\. )\d+\.\d")   # not an equation "(1.9)", a section "§3.2", a table "табл. 4.3"
 
-# every text on screen: the page's words (with what <sub> holds) and the text of every SVG (drawings, plots)
-SCREEN_TEXT = """() => document.body.innerText + "\\n" +
-  [...document.querySelectorAll("svg text")].map((node) => node.textContent).join("\\n")"""
 TICKS = """() => [...document.querySelectorAll(
   ".main-svg g.xtick text, .main-svg g.ytick text, .main-svg g.x2tick text, .main-svg g.y2tick text, " +
   ".main-svg g.radialaxistick text, .main-svg g.angularaxistick text")].map((node) => node.textContent)"""

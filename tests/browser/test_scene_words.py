@@ -22,7 +22,7 @@ import sys
 
 import pytest
 
-from conftest import ARTIFACTS, REPO, interface_texts, read_scene, screenshot
+from conftest import ARTIFACTS, REPO, SCREEN_TEXT, interface_texts, read_scene, screenshot
 
 sys.path.insert(0, str(REPO / "tests"))
 from test_notation_forms import NOTATION, other_forms  # noqa: E402  (the one list, read as the API test reads it)
@@ -90,8 +90,7 @@ def assert_speaks(page, name: str, scene: dict, lang: str) -> None:
     "seed", no English sentence in ru/uk, one form per quantity; the forms it shows written to
     test-artifacts/scene_notation_<scene>_<lang>.json, and a screenshot of the SHOTS in ru and en."""
     assert label_problems(page.evaluate(DRAWN_LABELS)) == [], lang
-    text = page.evaluate("() => document.body.innerText + '\\n' + "
-                         "[...document.querySelectorAll('svg text')].map((n) => n.textContent).join('\\n')")
+    text = page.evaluate(SCREEN_TEXT)
     markup = page.evaluate(MARKUP)
     assert SEED.findall(text) == [], lang
     if lang != "en":
