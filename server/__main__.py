@@ -12,7 +12,7 @@ import os
 
 import uvicorn
 
-from .runtime import shared_cache
+from .runtime import server_shares, shared_cache
 from .runtime.nodelay import HTTP
 
 
@@ -35,7 +35,8 @@ def main() -> None:
     try:
         uvicorn.run("server.api.app:app", **uvicorn_options())
     finally:
-        shared_cache.remove_own()          # the workers' shared families, once they have all stopped
+        shared_cache.remove_own()          # the workers' shared families and shares, once they have all stopped
+        server_shares.remove_own()
 
 
 if __name__ == "__main__":

@@ -11,7 +11,9 @@ study, the course project: one heavy process per worker computes them, server/ru
 lanes has a few places per worker: light ``MDL_LIGHT_PLACES`` (default 1: the worker's interpreter computes one
 at a time anyway, and two at once only share it, a short answer waiting out a long one's time slices), heavy one
 more than ``MDL_HEAVY_PROCESSES`` (the next answer ready when the process is free). One address may hold all but
-one of a lane's places (at least one), so that a request from another address finds a place or is next. The
+one of a lane's places (at least one), so that a request from another address finds a place or is next; and with
+several workers, while another address asks, what all the workers but one may hold, counted across them
+(server/runtime/server_shares.py): a flood from one address then leaves a worker's CPU to the others. The
 requests past that wait in the lane, which takes them in turn: address after address, and within an address
 client (cookie) after client, each client's own in the order asked. The requests a page sends while a slider is
 dragged and its family has not come (``X-MDL-Drag: 1``, web/static/js/common/model/api.js) are previews, true
@@ -52,6 +54,8 @@ import time
 from collections import Counter, OrderedDict, deque
 from collections.abc import Iterable
 
+from .server_shares import ServerShares, from_worker
+
 COOKIE = "mdl_client"
 COOKIE_MAX_AGE_S = 365 * 24 * 3600
 RETRY_AFTER_S = 1
@@ -62,6 +66,7 @@ HEAVY = re.compile(rf"/api/v1/({'|'.join(HEAVY_NAMES)})")
 FAMILY = re.compile(r"/api/v1/family")       # heavy, but in no lane of admission's (heavy.LaneQueue orders them)
 DRAG_HEADER = b"x-mdl-drag"                    # "1": asked while a slider is dragged (api.js); waits behind the rest
 _ID = re.compile(r"[A-Za-z0-9_-]{16,64}")
+RECHECK_S = 0.002              # how often a lane with a free place looks again at a group held elsewhere
 TOLD_TO_WAIT_KEPT = 4096        # past this many clients told to wait, those whose wait is over are forgotten
 CLIENT: contextvars.ContextVar[tuple[str, str | None]] = contextvars.ContextVar("mdl_admitted_client")
 
@@ -96,9 +101,13 @@ class Lane:
     given the places in turn: group after group, within a group client after client, a client's own in order.
     The requests of a slider being dragged (``DRAG_HEADER``) wait behind all others: an answer at rest first."""
 
-    def __init__(self, places: int, share: int | None = None):
+    def __init__(self, places: int, share: int | None = None, server: ServerShares | None = None,
+                 name: str = "light"):
         self.places = max(places, 1)
         self.share = max(self.places - 1, 1) if share is None else share
+        # the count of the server's workers together (server_shares): a group's places in every worker
+        self.server, self.name = server, name
+        self._recheck: asyncio.TimerHandle | None = None
         self.running: Counter = Counter()            # group → places it holds
         # per priority (0: at rest, 1: a drag's), group → client → its waiting requests' futures; both dicts in
         # turn order (the next to serve first)
@@ -110,6 +119,8 @@ class Lane:
     async def enter(self, group, client, dragging: bool = False) -> None:
         """Wait for a place (in turn); cancelled while waiting, the request leaves the queue."""
         place = asyncio.get_running_loop().create_future()
+        if self.server is not None:
+            self.server.asked(group)
         waiting = self.waiting[int(dragging)]
         waiting.setdefault(group, OrderedDict()).setdefault(client, deque()).append(place)
         self._hand_over()
@@ -126,15 +137,31 @@ class Lane:
         self.running[group] -= 1
         if not self.running[group]:
             del self.running[group]
+        if self.server is not None:
+            self.server.give_back(self.name, group)
         self._hand_over()
 
     def _hand_over(self) -> None:
-        """Give the free places to the waiting requests in turn, those at rest before a drag's."""
+        """Give the free places to the waiting requests in turn, those at rest before a drag's. A group that holds
+        its share of the server's places in the other workers waits; the lane looks again every ``RECHECK_S``
+        while it has a free place (another worker frees its places unseen)."""
+        held_elsewhere = False
         while len(self) < self.places:
-            waiting, group = next(((w, g) for w in self.waiting for g in w if self.running[g] < self.share),
-                                  (None, None))
-            if waiting is None:
-                return
+            chosen = None
+            for waiting in self.waiting:
+                for group in waiting:
+                    if self.running[group] >= self.share:
+                        continue
+                    if self.server is not None and not self.server.take(self.name, group, self.share):
+                        held_elsewhere = True
+                        continue
+                    chosen = waiting, group
+                    break
+                if chosen:
+                    break
+            if chosen is None:
+                break
+            waiting, group = chosen
             clients = waiting[group]
             client, places = next(iter(clients.items()))
             place = places.popleft()
@@ -147,6 +174,14 @@ class Lane:
             if not place.done():                         # (one cancelled already is leaving the queue)
                 self.running[group] += 1
                 place.set_result(None)
+            elif self.server is not None:
+                self.server.give_back(self.name, group)
+        if held_elsewhere and len(self) < self.places and self._recheck is None:
+            self._recheck = asyncio.get_running_loop().call_later(RECHECK_S, self._look_again)
+
+    def _look_again(self) -> None:
+        self._recheck = None
+        self._hand_over()
 
     @staticmethod
     def _forget(waiting: OrderedDict, group, client, place) -> None:
@@ -165,7 +200,8 @@ class AdmissionMiddleware:
 
     def __init__(self, app, per_client: int | None = None, per_address: int | None = None,
                  per_client_heavy: int | None = None, clock=time.monotonic, sleep=asyncio.sleep,
-                 computing: Iterable[str] = (), light_places: int | None = None, heavy_places: int | None = None):
+                 computing: Iterable[str] = (), light_places: int | None = None, heavy_places: int | None = None,
+                 shares: ServerShares | None = None):
         self.app = app
         # the computing endpoints (`computing`: their names under /api/v1, the app's registry) and the heavy ones
         self.computing = re.compile(rf"/api/v1/({'|'.join([*map(re.escape, computing), *HEAVY_NAMES])})")
@@ -175,10 +211,12 @@ class AdmissionMiddleware:
         self.per_client_heavy = (_env_limit("MDL_CLIENT_HEAVY_CONCURRENCY", 2) if per_client_heavy is None
                                  else per_client_heavy)
         self.per_address = _env_limit("MDL_ADDRESS_CONCURRENCY", 32) if per_address is None else per_address
+        server = from_worker() if shares is None else shares
         self.lanes = {
-            "light": Lane(_env_limit("MDL_LIGHT_PLACES", 1) if light_places is None else light_places),
+            "light": Lane(_env_limit("MDL_LIGHT_PLACES", 1) if light_places is None else light_places,
+                          server=server, name="light"),
             "heavy": Lane(max(_env_limit("MDL_HEAVY_PROCESSES", 1), 1) + 1 if heavy_places is None
-                          else heavy_places)}
+                          else heavy_places, server=server, name="heavy")}
         self.in_flight: Counter = Counter()   # ("address", host), ("client"|"heavy", host, id) → requests in flight
 
     async def __call__(self, scope, receive, send):

@@ -25,14 +25,13 @@ from __future__ import annotations
 import functools
 import json
 import logging
-import multiprocessing
 import os
 import sqlite3
-import tempfile
 import threading
 from pathlib import Path
 
 from ..paths import CONTENT, PACKAGE, files_digest
+from . import server_files
 
 ENV_PATH = "MDL_SHARED_CACHE"
 PREFIX = "mdl-shared-cache-"
@@ -43,47 +42,16 @@ log = logging.getLogger("uvicorn.error")
 
 
 def default_path() -> Path | None:
-    """MDL_SHARED_CACHE, else a file of this server's workers when it has several (this process is a worker its
-    supervisor started), else None."""
+    """MDL_SHARED_CACHE, else a file of this server's workers when it has several (server_files), else None."""
     named = os.environ.get(ENV_PATH, "").strip()
     if named:
         return None if named == "0" else Path(named)
-    parent = multiprocessing.parent_process()
-    if parent is None or parent.pid is None:
-        return None
-    folder = Path(tempfile.gettempdir())
-    _remove_orphans(folder)
-    return folder / f"{PREFIX}{parent.pid}.sqlite"
+    return server_files.workers_file(PREFIX, ".sqlite")
 
 
 def remove_own() -> None:
     """Remove the file of this supervisor's workers (called by it once they have all stopped)."""
-    for path in Path(tempfile.gettempdir()).glob(f"{PREFIX}{os.getpid()}.sqlite*"):
-        try:
-            path.unlink()
-        except OSError:
-            pass
-
-
-def _remove_orphans(folder: Path) -> None:
-    """Remove the files of supervisors that no longer run."""
-    for path in folder.glob(f"{PREFIX}*.sqlite*"):
-        pid = path.name[len(PREFIX):].split(".")[0]
-        if pid.isdigit() and not _alive(int(pid)):
-            try:
-                path.unlink()
-            except OSError:
-                pass
-
-
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
+    server_files.remove_own(PREFIX)
 
 
 @functools.cache
