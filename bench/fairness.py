@@ -47,13 +47,13 @@ STARTUP_S = 400                 # two servers starting at once on a loaded machi
 DEFAULT_RETRY_AFTER_S = 1.0
 NETWORK = "network error"
 READING = ("Reading: the student sends each request as soon as the last is answered, so it wants a whole worker, and "
-           "a fair share between it and the flood is half: its request waits for the flood's one computing (the "
-           "place passes to the flood in the instant between two of the student's requests), then computes, about "
-           "2× alone. What passes 2× is the rest of the server's work for the flood: its other worker and heavy "
-           "processes and the flooding client itself take CPU beside the student's worker (each worker shares "
-           "its own lanes; no share spans the workers), and the event loop reads, checks and answers the flood's "
-           "requests. On a loaded machine every one of these waits is stretched, and the ratios move from one run "
-           "to the next.")
+           "a fair share between it and the flood is half: its request waits for the flood's one computing in its "
+           "worker (the place passes to the flood in the instant between two of the student's requests), then "
+           "computes. With several workers the flood's share is counted across them (while the student asks, what "
+           "all the workers but one may hold: server/runtime/server_shares.py), so it leaves one worker's CPU to "
+           "the student; beside the student it still takes its share of the heavy processes, the flooding client's "
+           "own CPU and the event loop's reading, checking and answering of its requests. On a loaded machine "
+           "every one of these waits is stretched, and the ratios move from one run to the next.")
 STUDENT, FLOOD = "127.0.0.1", "127.0.0.2"       # two source addresses on loopback
 KINDS = {"light": ("transfer-functions", "sine", "/api/v1/kinematics"),
          "elastic": ("elastic-four-bar", None, "/api/v1/elastic")}
