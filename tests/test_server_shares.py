@@ -20,6 +20,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+import pytest
 from test_crash_safety import free_port
 from test_tcp_nodelay import GUARD_S, LIGHT_ONLY, REPO, _connected, stop
 
@@ -31,10 +32,10 @@ FLOOD, STUDENT = "127.0.0.2", "127.0.0.1"
 PAIRS_WANTED = 50               # consecutive samples with the other address active throughout
 
 
-def _worker(path: str, commands, answers) -> None:
+def _worker(path: str, cpus: int, commands, answers) -> None:
     """A process standing for a worker: its own column of the table at `path`, its clock set by each command."""
     now = [0.0]
-    shares = ServerShares(path, clock=lambda: now[0])
+    shares = ServerShares(path, clock=lambda: now[0], cpus=cpus)
     answers.put(shares.column)
     while (command := commands.get()) is not None:
         name, at, *args = command
@@ -43,10 +44,10 @@ def _worker(path: str, commands, answers) -> None:
 
 
 class Worker:
-    def __init__(self, path: Path):
+    def __init__(self, path: Path, cpus: int = 8):
         context = multiprocessing.get_context("fork")
         self.commands, self.answers = context.Queue(), context.Queue()
-        self.process = context.Process(target=_worker, args=(str(path), self.commands, self.answers))
+        self.process = context.Process(target=_worker, args=(str(path), cpus, self.commands, self.answers))
         self.process.start()
         self.column = self.answers.get(timeout=GUARD_S)
 
@@ -98,6 +99,23 @@ def test_an_address_holds_what_all_workers_but_one_may_hold_while_another_asks(t
         second.end()
 
 
+def test_on_two_cpus_an_address_computes_one_answer_light_or_heavy_while_another_asks(tmp_path):
+    path = tmp_path / "shares.table"
+    first, second = Worker(path, cpus=2), Worker(path, cpus=2)
+    try:
+        first("asked", 50.0, "B")
+        assert first("take", 50.1, "light", "A", 1)
+        assert not second("take", 50.1, "heavy", "A", 1)      # its one computation is the light one
+        assert second("take", 50.1, "heavy", "B", 1)
+        first("give_back", 50.2, "light", "A")
+        assert second("take", 50.2, "heavy", "A", 1)          # now its heavy one
+        assert not first("take", 50.2, "light", "A", 1)
+        assert first("take", 50.2 + ACTIVE_S, "light", "A", 1)   # B has not asked since 50.1: no one else asks
+    finally:
+        first.end()
+        second.end()
+
+
 def test_with_three_workers_an_address_may_hold_two_places_while_another_asks(tmp_path):
     path = tmp_path / "shares.table"
     workers = [Worker(path) for _ in range(3)]
@@ -107,6 +125,17 @@ def test_with_three_workers_an_address_may_hold_two_places_while_another_asks(tm
     finally:
         for worker in workers:
             worker.end()
+
+
+def test_a_link_planted_where_the_table_goes_is_not_followed(tmp_path):
+    """The table's name in the temporary folder is predictable: a link another user plants there is not opened
+    (the server's workers then share only their own places), and the file it names is left as it was."""
+    kept = tmp_path / "kept"
+    kept.write_bytes(b"another file")
+    (tmp_path / "shares.table").symlink_to(kept)
+    with pytest.raises(OSError):
+        ServerShares(tmp_path / "shares.table")
+    assert kept.read_bytes() == b"another file"
 
 
 class Table:

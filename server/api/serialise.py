@@ -18,10 +18,12 @@ from typing import Literal
 
 import numpy as np
 import orjson
+from fastapi import Request
 from fastapi.responses import Response
 
 from ..core.answer import POWERS_OF_TEN, Answer, significant  # noqa: F401  (re-exported: the endpoints' Answer)
-from ..runtime.response_cache import PARTIAL_HEADER  # noqa: F401  (the header the cache reads)
+from ..runtime import heavy
+from ..runtime.response_cache import PARTIAL_HEADER, compressed  # noqa: F401  (the header the cache reads)
 
 PLOT_DIGITS = 7
 Precision = Literal["plot", "full"]
@@ -104,3 +106,33 @@ def respond(answer: Answer, precision: Precision = "plot") -> Response:
     headers = {PARTIAL_HEADER: "1"} if answer.partial else None
     return Response(serialise(answer.payload, PLOT_DIGITS if precision == "plot" else None),
                     media_type="application/json", headers=headers)
+
+
+def encoded(payload, digits: int | None, gzip_accepted: bool) -> tuple[bytes, bool]:
+    """The payload's JSON, gzip-compressed when the client takes it and it gains (response_cache.compressed, as
+    the cache would keep it); whether compressed."""
+    raw = serialise(payload, digits)
+    packed = compressed(raw) if gzip_accepted else None
+    return (raw, False) if packed is None else (packed, True)
+
+
+def encoded_response(body: bytes, packed: bool, partial: bool, headers: dict | None = None) -> Response:
+    """The HTTP answer of a body `encoded` already (gzip-compressed or not), X-Partial: 1 when partial."""
+    return Response(body, media_type="application/json", headers=(headers or {}) | (
+        {PARTIAL_HEADER: "1"} if partial else {}) | ({"Content-Encoding": "gzip", "Vary": "Accept-Encoding"}
+                                                      if packed else {}))
+
+
+def answer_encoded(function, request, lang: str, precision: Precision, gzip_accepted: bool) -> tuple[bytes, bool, bool]:
+    """function(request, lang)'s answer as sent (run in a heavy process): `encoded` at `precision`; whether
+    compressed; whether partial."""
+    answer = function(request, lang)
+    return (*encoded(answer.payload, PLOT_DIGITS if precision == "plot" else None, gzip_accepted), answer.partial)
+
+
+async def respond_apart(http: Request, function, request, lang: str, precision: Precision = "plot") -> Response:
+    """The HTTP answer of function(request, lang) computed in a heavy process, and serialised and compressed
+    there as well: an elastic machine's answer is 0.2 MB of JSON whose serialising and compressing (about 5 ms)
+    would hold the worker's event loop, and every answer waiting in it, as long."""
+    gzip_accepted = "gzip" in http.headers.get("accept-encoding", "")
+    return encoded_response(*await heavy.submit(answer_encoded, function, request, lang, precision, gzip_accepted))

@@ -4,11 +4,14 @@ Each worker's lanes (admission.Lane) have their own places, and without this cou
 share in every worker: a flood from one address, one light place in each of two workers, keeps both CPUs from
 everyone else. The workers of one server (``--workers N``, N ≥ 2) therefore count in one table beside them what
 each address (a group of admission's) holds of each lane, and while another address has asked within the last
-``ACTIVE_S`` one address may hold, server-wide, what all the workers but one may hold:
+``ACTIVE_S`` one address may hold, server-wide, what all the workers but one may hold of each lane, and of both
+lanes together no more computations than the server has CPUs but one:
 
-    server share = worker share × max(W − 1, 1)        (W the workers counted in the table)
+    places of a lane ≤ worker share × max(W − 1, 1),   places of both lanes ≤ max(C − 1, 1)
 
-so one worker's places always stay for the others. An address alone (a class behind one NAT address with the
+(W the workers counted in the table, C the CPUs the server may run on), so one worker's places and one CPU always
+stay for the others: on two CPUs a flood from one address computes one answer at a time, light or heavy, however
+many workers and heavy processes the server has. An address alone (a class behind one NAT address with the
 server to itself) may hold every place: the share binds only when someone else asks.
 
 The table: a file in the temporary folder named after the supervisor (server_files), mapped into every worker's
@@ -53,11 +56,15 @@ def key_of(group) -> int:
 class ServerShares:
     """The table of one server's workers, seen from one of them (its column)."""
 
-    def __init__(self, path, clock=time.monotonic):
+    def __init__(self, path, clock=time.monotonic, cpus: int | None = None):
         self.clock = clock
-        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o600)
+        self.cpus = max(len(os.sched_getaffinity(0)) if cpus is None else cpus, 2)   # the server's CPUs (≥ 2 counted)
+        fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o600)    # not through a link planted there
         try:
-            if os.fstat(fd).st_size < SIZE:
+            status = os.fstat(fd)
+            if status.st_uid != os.getuid():
+                raise OSError(f"{path} belongs to another user")
+            if status.st_size < SIZE:
                 os.ftruncate(fd, SIZE)         # zeros: no worker, no row
             self._map = mmap.mmap(fd, SIZE)
         except OSError:
@@ -110,8 +117,9 @@ class ServerShares:
             rows, now = self._rows, self.clock()
             rows["asked"][row] = now
             lane_index = LANES.index(lane)
-            held = int(rows["held"][row, lane_index].sum())
-            if held >= worker_share * max(self.workers() - 1, 1) and self._others_asked(key, now):
+            held = rows["held"][row]
+            if (held[lane_index].sum() >= worker_share * max(self.workers() - 1, 1)
+                    or held.sum() >= self.cpus - 1) and self._others_asked(key, now):
                 return False
             rows["held"][row, lane_index, self.column] += 1
             return True
@@ -152,11 +160,6 @@ class ServerShares:
         self._rows[row] = np.zeros(1, ROW)
         keys[row] = key
         return row
-
-    def close(self) -> None:
-        self._pids = self._rows = None
-        self._map.close()
-        os.close(self._fd)
 
 
 def from_worker() -> ServerShares | None:

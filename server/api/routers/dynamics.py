@@ -1,13 +1,13 @@
 """POST /api/v1/reduction, /motion, /flywheel, /work-precision/motion: the one-mass dynamic model of the machine;
 /dynamics-estimate: a first mass model for a mechanism that has none."""
-from fastapi import APIRouter
+from fastapi import APIRouter, Request
 
 from .. import endpoints
 from ...runtime import heavy
 from ..schemas import Language
 from ..schemas_dynamics import (EstimateRequest, EstimateResponse, FlywheelRequest, FlywheelResponse, MotionRequest,
                                 MotionResponse, ReductionRequest, ReductionResponse)
-from ..serialise import Precision, respond
+from ..serialise import Precision, respond, respond_apart
 from .query import LANG, PRECISION
 
 heavy.preload(endpoints.__name__)
@@ -45,5 +45,6 @@ def dynamics_estimate(request: EstimateRequest, lang: Language = LANG, precision
              summary="Live work–precision study of the current machine's steady cycle (ours against solve_ivp "
                      "integrating cycles, small budget)")
 
-async def motion_work_precision(request: MotionRequest, lang: Language = LANG, precision: Precision = PRECISION):
-    return respond(await heavy.submit(endpoints.motion_work_precision, request, lang), precision)
+async def motion_work_precision(request: MotionRequest, http: Request, lang: Language = LANG,
+                                precision: Precision = PRECISION):
+    return await respond_apart(http, endpoints.motion_work_precision, request, lang, precision)

@@ -14,9 +14,9 @@ from ...runtime import heavy
 from ...families import family
 from ..endpoints import ENDPOINTS
 from ..family_batch import member_batch
-from ...runtime.response_cache import cache_key, canonical_json, compressed
+from ...runtime.response_cache import cache_key, canonical_json
 from ..schemas import Language
-from ..serialise import PARTIAL_HEADER, serialise
+from ..serialise import encoded, encoded_response
 from .query import LANG
 
 heavy.preload(__name__)     # family_body runs in the lanes
@@ -155,12 +155,9 @@ async def family_route(request: FamilyRequest, http: Request, lang: Language = L
     lane = "answers" if body["stage"] == "coarse" else "families"
     lean = body["stage"] == "coarse" and heavy.crowded()
     work = (family_body, body, lang, gzip_accepted, lean)
-    encoded_body, encoded, partial = await _in_flight.join(work, lambda: heavy.submit(*work, lane=lane,
+    encoded_body, packed, partial = await _in_flight.join(work, lambda: heavy.submit(*work, lane=lane,
                                                                                         newest_first=True))
-    headers = ({PARTIAL_HEADER: "1"} if partial else {}) | (
-        {"Content-Encoding": "gzip", "Vary": "Accept-Encoding"} if encoded else {}) | (
-        {"Cache-Control": "no-store"} if unrefined else {})
-    return Response(encoded_body, media_type="application/json", headers=headers)
+    return encoded_response(encoded_body, packed, partial, {"Cache-Control": "no-store"} if unrefined else None)
 
 
 def coarse_in_cache(http: Request, body: dict, gzip_accepted: bool) -> Response | None:
@@ -226,9 +223,7 @@ def family_body(body: dict, lang: str, gzip_accepted: bool, lean: bool = False) 
     gains (response_cache.compressed, as the cache would keep it); whether compressed; whether partial.
     ``lean``: a coarse family of family.LEAN_MEMBERS start members."""
     answer, partial = family_answer(body, lang, lean)
-    raw = serialise(answer, None)
-    packed = compressed(raw) if gzip_accepted else None
-    return (raw, False, partial) if packed is None else (packed, True, partial)
+    return (*encoded(answer, None, gzip_accepted), partial)
 
 
 def family_answer(body: dict, lang: str, lean: bool = False) -> tuple[dict, bool]:
