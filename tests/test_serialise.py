@@ -153,3 +153,28 @@ def test_every_computing_endpoint_documents_its_precision_parameter(client):
         precision = parameters["precision"]
         assert precision["schema"]["enum"] == ["plot", "full"] and "7 significant digits" in precision["description"]
     assert "X-Partial" in schema["info"]["description"]
+
+
+def _without_run_times(value):
+    if isinstance(value, dict):
+        return {key: _without_run_times(item) for key, item in value.items() if key != "runtime_ms"}
+    if isinstance(value, list):
+        return [_without_run_times(item) for item in value]
+    return value
+
+
+def test_a_heavy_answer_is_serialised_and_compressed_in_its_process_as_the_worker_would_send_it(client):
+    """An elastic machine's answer is computed, serialised and gzip-compressed in the heavy process
+    (serialise.respond_apart): compressed for a client that takes gzip, plain for one that does not, and in both
+    the endpoint's payload at the precision asked for (run times aside)."""
+    scene = scenes()["elastic-four-bar"]
+    body = scene_request(scene, scene.variants[0])
+    url = f"{API}/elastic"
+    packed = client.post(url, params={"lang": "en"}, json=body, headers={"Accept-Encoding": "gzip"})
+    plain = client.post(url, params={"lang": "en", "precision": "full"}, json=body,
+                        headers={"Accept-Encoding": "identity"})
+    assert packed.status_code == plain.status_code == 200
+    assert packed.headers["content-encoding"] == "gzip" and "content-encoding" not in plain.headers
+    payload = compute_answer("elastic", body, "en").payload
+    for answer, digits in ((packed, PLOT_DIGITS), (plain, None)):
+        assert _without_run_times(strict(answer.content)) == _without_run_times(strict(serialise(payload, digits)))

@@ -12,8 +12,9 @@ lanes has a few places per worker: light ``MDL_LIGHT_PLACES`` (default 1: the wo
 at a time anyway, and two at once only share it, a short answer waiting out a long one's time slices), heavy one
 more than ``MDL_HEAVY_PROCESSES`` (the next answer ready when the process is free). One address may hold all but
 one of a lane's places (at least one), so that a request from another address finds a place or is next; and with
-several workers, while another address asks, what all the workers but one may hold, counted across them
-(server/runtime/server_shares.py): a flood from one address then leaves a worker's CPU to the others. The
+several workers, while another address asks, what all the workers but one may hold, and no more computations of
+both lanes than the server's CPUs but one, counted across the workers (server/runtime/server_shares.py): a flood
+from one address then leaves a CPU to the others. The
 requests past that wait in the lane, which takes them in turn: address after address, and within an address
 client (cookie) after client, each client's own in the order asked. The requests a page sends while a slider is
 dragged and its family has not come (``X-MDL-Drag: 1``, web/static/js/common/model/api.js) are previews, true
