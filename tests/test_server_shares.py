@@ -9,6 +9,7 @@ from __future__ import annotations
 import fcntl
 import http.client
 import json
+import mmap
 import multiprocessing
 import os
 import secrets
@@ -143,24 +144,26 @@ class Table:
 
     def __init__(self, path: Path):
         self.fd = os.open(path, os.O_RDONLY)
-        self.size = HEADER_BYTES + ROWS * ROW.itemsize
+        self.map = mmap.mmap(self.fd, HEADER_BYTES + ROWS * ROW.itemsize, prot=mmap.PROT_READ)
+        self.rows = np.frombuffer(self.map, ROW, ROWS, HEADER_BYTES)
 
     def sample(self, *groups) -> tuple[float, list[tuple[int, float]]]:
         """(now, per group (its light places in all the workers, when it last asked))."""
+        found = []
         fcntl.flock(self.fd, fcntl.LOCK_EX)
         try:
             now = time.monotonic()
-            rows = np.frombuffer(os.pread(self.fd, self.size, 0), ROW, ROWS, HEADER_BYTES)
+            for group in groups:
+                row = np.flatnonzero(self.rows["key"] == key_of(group))
+                found.append((int(self.rows["held"][row[0], 0].sum()), float(self.rows["asked"][row[0]]))
+                             if row.size else (0, -np.inf))
         finally:
             fcntl.flock(self.fd, fcntl.LOCK_UN)
-        found = []
-        for group in groups:
-            row = np.flatnonzero(rows["key"] == key_of(group))
-            found.append((int(rows["held"][row[0], 0].sum()), float(rows["asked"][row[0]])) if row.size
-                         else (0, -np.inf))
         return now, found
 
     def close(self) -> None:
+        del self.rows
+        self.map.close()
         os.close(self.fd)
 
 
