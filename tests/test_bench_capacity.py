@@ -16,6 +16,9 @@ import time
 import uuid
 from pathlib import Path
 
+import numpy as np
+import pytest
+
 REPO = Path(__file__).resolve().parents[1]
 SPEC = importlib.util.spec_from_file_location("capacity", REPO / "bench" / "capacity.py")
 capacity = importlib.util.module_from_spec(SPEC)
@@ -71,6 +74,16 @@ def test_the_verdict_counts_a_preview_given_up_as_late_and_every_error_and_cut_s
     assert not cut["held"] and cut["partial"] == 1
     slow = capacity.verdict({"rows": quick + [row("exact", "elastic", 0.6)] * 3, "given_up": []})
     assert not slow["held"] and slow["reasons"] == ["exact, elastic p95 600 > 500 ms"]
+
+
+def test_the_verdicts_p95_is_the_classroom_tables_one_linear_between_the_ranks():
+    """One slow elastic answer of fifteen is not their p95: the verdict interpolates between the ranks as numpy
+    (and bench/classroom.py's tables, by which point 1's targets are read) does."""
+    seconds = [0.02 + 0.001 * k for k in range(14)] + [0.742]
+    verdict = capacity.verdict({"rows": [row("exact", "elastic", s) for s in seconds], "given_up": []})
+    p95, answered, late = verdict["cells"]["exact", "elastic"]
+    assert (answered, late) == (15, 0) and p95 == pytest.approx(float(np.percentile([1000 * s for s in seconds], 95)))
+    assert verdict["held"] and p95 < 500
 
 
 def started_by_the_run(tag: str, folder: Path) -> dict[int, str]:
