@@ -8,19 +8,19 @@ behind one NAT address is one address of many students): however many ids an add
 
 Lanes. A computing request is light (computed in the worker) or heavy (an elastic machine, a live work–precision
 study, the course project: one heavy process per worker computes them, server/runtime/heavy.py). Each of these
-lanes has a few places per worker: light ``MDL_LIGHT_PLACES`` (default 1: the worker's interpreter computes one
-at a time anyway, and two at once only share it, a short answer waiting out a long one's time slices), heavy one
-more than ``MDL_HEAVY_PROCESSES`` (the next answer ready when the process is free). One address may hold all but
-one of a lane's places (at least one), so that a request from another address finds a place or is next; and with
-several workers, while another address asks, what all the workers but one may hold, and no more computations of
-both lanes than the server's CPUs but one, counted across the workers (server/runtime/server_shares.py): a flood
-from one address then leaves a CPU to the others. The
-requests past that wait in the lane, which takes them in turn: address after address, and within an address
-client (cookie) after client, each client's own in the order asked. The requests a page sends while a slider is
-dragged and its family has not come (``X-MDL-Drag: 1``, web/static/js/common/model/api.js) are previews, true
-answers of values the slider passes: they wait behind every request at rest, so that the answer a student reads
-when the slider stops goes first and the drags share the time that is left. A slider's family is not held in a
-lane (heavy.LaneQueue puts its coarse stage before the full families); it counts towards the limits below.
+lanes has a few places per worker: light ``MDL_LIGHT_PLACES`` (default 1: the worker's interpreter computes one at
+a time anyway, and two at once only share it, a short answer waiting out a long one's time slices), heavy one more
+than ``MDL_HEAVY_PROCESSES`` (the next answer ready when the process is free). One address may hold all but one of
+a lane's places (at least one), so that a request from another address finds a place or is next; and with several
+workers, while another address asks, what all the workers but one may hold, and no more computations of both lanes
+than the server's CPUs but one, counted across the workers (server/runtime/server_shares.py): a flood from one
+address then leaves a CPU to the others. The requests past that wait in the lane, which takes them in turn: address
+after address, and within an address client (cookie) after client, each client's own in the order asked. The
+requests a page sends while a slider is dragged and its family has not come (``X-MDL-Drag: 1``,
+web/static/js/common/model/api.js) are previews, true answers of values the slider passes: they wait behind every
+request at rest, so that the answer a student reads when the slider stops goes first and the drags share the time
+that is left. A slider's family is not held in a lane (heavy.LaneQueue puts its coarse stage before the full
+families); it counts towards the limits below.
 
 Limits (per worker; 0 switches one off). A client may have ``MDL_CLIENT_CONCURRENCY`` computing requests in
 flight, running or waiting (default 8: the busiest page asks for a main answer, three overlays and a slider's
