@@ -236,14 +236,17 @@ class Record:
 
     def add(self, endpoint: str, seconds: float, status: int, cache: str, partial: bool = False,
             kind: str = "exact", light: str = "light", timing: str = "") -> None:
-        self.rows.append((endpoint, seconds, status, cache, partial, kind, light, server_timing(timing)))
+        self.rows.append((endpoint, seconds, status, cache, partial, kind, light, server_timing(timing),
+                          time.monotonic() - seconds))
 
 
-def server_timing(header: str) -> tuple[float, float] | None:
-    """(s waited for a place in admission's lane, s from the place to the answer's first byte) from the answer's
-    Server-Timing header (server/runtime/admission.py), None without one."""
-    found = dict(re.findall(r"(lane|compute);dur=([0-9.]+)", header or ""))
-    return (float(found["lane"]) / 1e3, float(found["compute"]) / 1e3) if len(found) == 2 else None
+def server_timing(header: str) -> dict[str, float] | None:
+    """The parts of the answer's Server-Timing header, in s, None without one: for an answer admitted to a lane
+    (server/runtime/admission.py) *lane*, the wait for its place, and *compute*, from the place to the answer's
+    first byte; for one computed in a heavy process (server/runtime/heavy.py; a family's has only these) *queue*,
+    its wait in the heavy lane's queue, *run* and *cpu*, its wall and CPU time there."""
+    found = {name: float(value) / 1e3 for name, value in re.findall(r"([a-z]+);dur=([0-9.]+)", header or "")}
+    return found or None
 
 
 # What a request on a keep-alive connection the server closed while it was idle fails with, before any answer
@@ -662,26 +665,50 @@ def where_the_time_goes(result: dict) -> list[str]:
              "latency | lane | compute | rest |", "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for light in ("light", "elastic"):
         rows = [r for r in result["rows"] if r[5] == "exact" and r[6] == light and r[2] == 200
-                and r[7] is not None]
+                and r[7] is not None and "lane" in r[7]]
         if not rows:
             continue
-        parts = 1000 * np.array([(r[1], r[7][0], r[7][1], r[1] - r[7][0] - r[7][1]) for r in rows])
+        parts = 1000 * np.array([(r[1], r[7]["lane"], r[7]["compute"], r[1] - r[7]["lane"] - r[7]["compute"])
+                                 for r in rows])
         slow = parts[parts[:, 0] >= np.percentile(parts[:, 0], 95)]
         p50 = np.median(parts, axis=0)
         lines.append(f"| exact, {light} scenes | {len(rows)} | {p50[1]:.1f} | {p50[2]:.1f} | {p50[3]:.1f} | "
                      + " | ".join(f"{x:.0f}" for x in slow.mean(axis=0)) + " |")
     if len(lines) == 5:
         return []
+    lines += in_the_heavy_process(result)
     computed = defaultdict(list)
     for r in result["rows"]:
-        if r[5] == "exact" and r[2] == 200 and r[7] is not None:
-            computed[r[0]].append(1000 * r[7][1])
+        if r[5] == "exact" and r[2] == 200 and r[7] is not None and "compute" in r[7]:
+            computed[r[0]].append(1000 * r[7]["compute"])
     lines += ["", "The exact answers' *compute* by endpoint (ms): the long ones hold the worker's light place "
               "(or a heavy process) while the others wait:", "", "| endpoint | answers | p50 | p95 | max |",
               "|---|---:|---:|---:|---:|"]
     lines += [f"| `{endpoint}` | {len(values)} | {np.median(values):.1f} | {np.percentile(values, 95):.1f} | "
               f"{max(values):.1f} |" for endpoint, values in sorted(computed.items())]
     return lines
+
+
+def in_the_heavy_process(result: dict) -> list[str]:
+    """The answers computed in a heavy process (exact ones, and the families: a preview is the coarse stage), by
+    the Server-Timing header's heavy parts: the wait in the heavy lane's queue (behind the job running there), the
+    job's wall time in its process and the CPU time it took (run − cpu: the process waiting for the CPU, beside
+    the worker and the other lanes)."""
+    lines = []
+    for kind, name in (("exact", "exact"), ("coarse", "first preview"), ("family", "full family")):
+        rows = [r for r in result["rows"] if r[5] == kind and r[2] == 200 and r[7] is not None and "queue" in r[7]]
+        if not rows:
+            continue
+        parts = 1000 * np.array([(r[1], r[7]["queue"], r[7]["run"], r[7]["cpu"]) for r in rows])
+        slow = parts[parts[:, 0] >= np.percentile(parts[:, 0], 95)]
+        p50 = np.median(parts, axis=0)
+        lines.append(f"| {name} | {len(rows)} | {p50[1]:.1f} | {p50[2]:.1f} | {p50[3]:.1f} | "
+                     + " | ".join(f"{x:.0f}" for x in slow.mean(axis=0)) + " |")
+    return (["", "Those computed in a heavy process (*queue* the wait in its lane's queue, *run* the job's wall time "
+             "there, *cpu* the CPU time it took; medians, and means over the slowest 5 %; families answered from a "
+             "cache or joined to one being computed carry none):", "",
+             "| answers | computed there | queue p50 | run p50 | cpu p50 | slowest 5 %: latency | queue | run | cpu |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|", *lines] if lines else [])
 
 
 def markdown_run(result: dict, title: str) -> list[str]:

@@ -1,8 +1,9 @@
 """A busy server's families (server/runtime/heavy.py busy and crowded, server/api/routers/family.py) and the
 families the workers share (server/runtime/shared_cache.py): behaviour only, no timing.
 
-- heavy.busy says whether previews wait in the answers' lane or a refinement holds the families' lane;
-  heavy.crowded whether more previews wait than the lane has processes.
+- heavy.busy says whether answers or previews wait for their lane or a refinement holds the families' lane;
+  heavy.crowded whether more previews wait than their lane has processes. An answer runs beside a preview, never
+  behind it.
 - Under a busy signal a full family is not refined: the answer is the coarse family (from the cache when it holds
   it), nothing is handed to the families' lane, and the answer is not kept as the full family.
 - While previews queue, a coarse family takes the lean start: every other one of the 9 start members, each the
@@ -82,15 +83,25 @@ def test_the_busy_signal_reads_the_lanes_queues(monkeypatch):
         await asyncio.wait_for(held, WAIT_S)
         assert not heavy.busy()
         release.clear()
-        running = asyncio.ensure_future(heavy.submit(release.wait, WAIT_S))
+        running = asyncio.ensure_future(heavy.submit(release.wait, WAIT_S, lane="previews", newest_first=True))
         await asyncio.sleep(0)
-        assert not heavy.busy()                                 # one answer running, none waiting
-        waiting = asyncio.ensure_future(heavy.submit(release.wait, WAIT_S, newest_first=True))
+        assert not heavy.busy()                                 # one preview running, none waiting
+        waiting = asyncio.ensure_future(heavy.submit(release.wait, WAIT_S, lane="previews", newest_first=True))
         await asyncio.sleep(0)
         assert heavy.busy() and heavy.crowded()                 # a preview waits behind it
+        answer = await asyncio.wait_for(heavy.submit(sum, (1, 2)), WAIT_S)   # beside them, not behind them
+        assert answer == 3 and not release.is_set() and heavy.crowded()
         release.set()
         await asyncio.wait_for(asyncio.gather(running, waiting), WAIT_S)
         assert not heavy.busy() and not heavy.crowded()
+        release.clear()
+        answering = asyncio.ensure_future(heavy.submit(release.wait, WAIT_S))
+        queued = asyncio.ensure_future(heavy.submit(release.wait, WAIT_S))
+        await asyncio.sleep(0)
+        assert heavy.busy() and not heavy.crowded()             # an answer waits for the answers' process
+        release.set()
+        await asyncio.wait_for(asyncio.gather(answering, queued), WAIT_S)
+        assert not heavy.busy()
 
     run_to_end(scenario())
 
@@ -103,24 +114,24 @@ def test_under_a_busy_signal_a_full_family_is_answered_coarse_and_nothing_is_ref
     real_submit = heavy.submit
 
     async def spied(function, *args, lane="answers", newest_first=False):
-        submitted.append(lane)
+        submitted.append((lane, newest_first))
         return await real_submit(function, *args, lane=lane, newest_first=newest_first)
 
     monkeypatch.setattr(heavy, "submit", spied)
     response, answer = post(client, body)
     assert answer["numerics"]["stage"] == "coarse" and len(answer["values"]) == family.START_MEMBERS
     assert response.headers["cache-control"] == "no-store"
-    assert submitted == ["answers"] and in_worker == [("coarse", False)]     # the families' lane: nothing
+    assert submitted == [("previews", False)] and in_worker == [("coarse", False)]  # the families' lane: nothing
 
     _, coarse = post(client, body | {"stage": "coarse"})     # the page's coarse request, computed and kept
     response, again = post(client, body)                     # busy still: the kept coarse family, not computed
     assert again == coarse and response.headers["cache-control"] == "no-store"
-    assert len(in_worker) == 2 and submitted == ["answers", "answers"]
+    assert len(in_worker) == 2 and submitted == [("previews", False)] * 2     # previews: in the order asked
 
     monkeypatch.setattr(heavy, "busy", lambda: False)        # spare CPU: refined, not the coarse answer kept
     response, full = post(client, body)
     assert full["numerics"]["stage"] == "full" and response.headers["x-cache"] == "miss"
-    assert in_worker[-1] == ("full", False) and submitted[-1] == "families"
+    assert in_worker[-1] == ("full", False) and submitted[-1] == ("families", True)   # refinements: newest first
 
 
 def test_while_previews_queue_a_coarse_family_takes_every_other_start_member(in_worker, monkeypatch):

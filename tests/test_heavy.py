@@ -5,6 +5,7 @@ import asyncio
 import gc
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -26,6 +27,7 @@ from event_loop import run_to_end
 from leftover_processes import alive, wait_gone
 
 ROOT = Path(__file__).resolve().parents[1]
+WAIT_S = 60             # a guard against a hang, never a measurement
 
 
 def test_it_runs_elsewhere_and_a_refusal_comes_back_whole():
@@ -50,7 +52,7 @@ def test_the_heavy_process_yields_the_cpu_to_the_worker():
     family."""
     for lane, niceness in heavy.LANES.items():           # 19: the lowest priority there is
         assert heavy.run(os.nice, 0, lane=lane) == min(os.nice(0) + niceness, 19)
-    assert heavy.LANES["answers"] < heavy.LANES["families"]
+    assert heavy.LANES["answers"] <= heavy.LANES["previews"] < heavy.LANES["families"]
 
 
 def test_a_heavy_process_freezes_what_it_holds_once_started():
@@ -111,6 +113,80 @@ def test_elastic_answers_and_refusals_through_the_process():
     assert answer.status_code == 200 and answer.json()["numerics"]["method"] in ("DOP853", "Radau")
     refused = client.post("/api/v1/elastic", json=body | {"motor": {"kind": "indicator"}})
     assert refused.status_code == 422
+
+
+def test_an_elastic_answer_tells_where_its_time_went_in_the_heavy_process():
+    """Server-Timing of an answer computed in a heavy process: beside its wait for a place (lane) and the whole
+    computation (compute), its wait in the heavy lane's queue, its run and its CPU there; each a part of compute."""
+    client = TestClient(app)
+    scene = scenes()["elastic-transmission"]
+    body = scene_request(scene, scene.variants[0])
+    body["t_end"] = body["t_end"] * 0.937                # not the warmed default answer: computed here
+    answer = client.post("/api/v1/elastic", json=body)
+    assert answer.status_code == 200 and answer.headers["x-cache"] == "miss"
+    timing = dict(re.findall(r"([a-z]+);dur=([0-9.]+)", answer.headers["server-timing"]))
+    assert set(timing) == {"lane", "compute", "queue", "run", "cpu"}
+    parts = {name: float(value) for name, value in timing.items()}
+    assert 0 < parts["cpu"] <= parts["run"] + 0.1 and parts["queue"] + parts["run"] <= parts["compute"]
+
+
+def _sleep_until(marker: str, then_s: float) -> None:
+    while not os.path.exists(marker):
+        time.sleep(0.005)
+    time.sleep(then_s)
+
+
+def test_a_job_knows_its_wait_in_the_queue_its_run_and_its_cpu():
+    """Causal bounds, not speed: a job queued behind one that runs until a marker appears waits at least as long
+    as the marker is held back after it was queued; a job that sleeps runs at least its sleep and takes almost no
+    CPU; one that computes takes CPU, never more than its run."""
+    marker = f"/tmp/mdl-heavy-marker-{os.getpid()}-{time.monotonic_ns()}"
+    heavy.run(os.getpid, lane="answers")                  # the process is up
+
+    async def scenario():
+        holding = asyncio.ensure_future(heavy.submit(_sleep_until, marker, 0.0))
+        await asyncio.sleep(0)
+        queued, computed = {}, {}
+        heavy.TIMING.set(queued)
+        behind = asyncio.ensure_future(heavy.submit(time.sleep, 0.1))
+        await asyncio.sleep(0.2)                        # the marker held back 0.2 s after the job was queued
+        open(marker, "w").close()
+        await asyncio.gather(holding, behind)
+        heavy.TIMING.set(computed)
+        assert await heavy.submit(sum, range(3_000_000)) == 4_499_998_500_000
+        return queued, computed
+
+    try:
+        queued, computed = run_to_end(scenario())
+    finally:
+        if os.path.exists(marker):
+            os.remove(marker)
+    assert queued["queue"] >= 0.2 and queued["run"] >= 0.1 and queued["cpu"] < 0.05
+    assert 0 < computed["cpu"] <= computed["run"] + 1e-3 and computed["queue"] < 10
+
+
+def test_a_slow_preview_holds_neither_the_next_preview_nor_an_answer():
+    """Order, not timing: while one preview runs until a marker appears, another preview (the previews' second
+    process) and an answer (the answers' own process) are computed, each in a process of its own."""
+    marker = f"/tmp/mdl-heavy-marker-{os.getpid()}-{time.monotonic_ns()}"
+
+    async def scenario():
+        slow = asyncio.ensure_future(heavy.submit(_sleep_until, marker, 0.0, lane="previews"))
+        await asyncio.sleep(0)
+        beside = await asyncio.wait_for(heavy.submit(os.getpid, lane="previews"), WAIT_S)
+        answer = await asyncio.wait_for(heavy.submit(os.getpid), WAIT_S)
+        still_running = not slow.done()
+        open(marker, "w").close()
+        await asyncio.wait_for(slow, WAIT_S)
+        return beside, answer, still_running
+
+    try:
+        beside, answer, still_running = run_to_end(scenario())
+    finally:
+        if os.path.exists(marker):
+            os.remove(marker)
+    assert still_running and heavy.processes("previews") == 2 * heavy.processes("answers")
+    assert len({beside, answer, os.getpid()}) == 3
 
 
 def test_a_dead_child_is_replaced():
@@ -264,8 +340,8 @@ def _lane_scenario(lane, first, then):
                                                    ("answers", "", "abcd")])
 def test_the_answers_waiting_go_first_oldest_first_then_the_newest_preview(lane, previews, order):
     """Order, not timing: while a job holds the lane's one process, the jobs asked meanwhile wait in the worker.
-    Next goes the oldest answer a student waits for, else the newest preview (a slider's family submitted
-    newest_first): in a class past its CPUs the newest family is the slider still held."""
+    Next goes the oldest job, else the newest refinement (a slider's full family, submitted newest_first): in a
+    class past its CPUs the newest family is the slider still held."""
     log = f"/tmp/mdl-heavy-order-{os.getpid()}-{time.monotonic_ns()}"
     heavy.run(os.getpid, lane=lane)                       # the process is up
     try:
@@ -281,7 +357,7 @@ def test_the_answers_waiting_go_first_oldest_first_then_the_newest_preview(lane,
 
 @pytest.mark.parametrize("lane", heavy.LANES)
 def test_a_running_family_given_up_by_its_client_stops(lane):
-    """A family (full, or coarse in the answers' lane) whose client goes away while it runs sees heavy.stopped()
+    """A family (full, or coarse in the previews' lane) whose client goes away while it runs sees heavy.stopped()
     turn true (between its chunks of members) and ends, so that the lane's process is free for the next; one not
     given up never sees it."""
     started = f"/tmp/mdl-heavy-started-{os.getpid()}-{time.monotonic_ns()}"

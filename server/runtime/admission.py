@@ -55,6 +55,7 @@ import time
 from collections import Counter, OrderedDict, deque
 from collections.abc import Iterable
 
+from . import heavy
 from .server_shares import ServerShares, from_worker
 
 COOKIE = "mdl_client"
@@ -273,13 +274,15 @@ class AdmissionMiddleware:
             try:
                 arrived = time.perf_counter()
                 if await _entered(lane, group, who, listening, dragging(scope)):
-                    held, entered = [True], time.perf_counter()
+                    held, entered, in_heavy = [True], time.perf_counter(), {}
+                    heavy.TIMING.set(in_heavy)
 
                     async def send_freeing_the_place(message):
                         if held[0] and message["type"] == "http.response.start":
                             held[0] = False                  # computed: a slow reader holds no place
                             lane.leave(group)
-                            message = with_timing(message, entered - arrived, time.perf_counter() - entered)
+                            message = with_timing(message, entered - arrived, time.perf_counter() - entered,
+                                                  in_heavy)
                         await send(message)
                     try:
                         await _run_until_disconnect(self.app, scope, _replay(body, listening), send_freeing_the_place)
@@ -303,12 +306,18 @@ class AdmissionMiddleware:
         self.told_to_wait[key] = now + RETRY_AFTER_S
 
 
-def with_timing(message: dict, waited_s: float, computed_s: float) -> dict:
+def with_timing(message: dict, waited_s: float, computed_s: float, in_heavy: dict | None = None) -> dict:
     """The response's start with a Server-Timing header (W3C Server Timing; the browser's developer tools show
     it, bench/classroom.py reads it): the time the request waited for its place in the lane and the time from
-    its place to its answer's first byte (the computation, a cache's lookup, the serialisation)."""
-    timing = f"lane;dur={1e3 * waited_s:.1f}, compute;dur={1e3 * computed_s:.1f}".encode()
+    its place to its answer's first byte (the computation, a cache's lookup, the serialisation); for an answer
+    computed in a heavy process, what `heavy.TIMING` recorded of that (queue, run, cpu), part of the compute."""
+    timing = server_timing({"lane": waited_s, "compute": computed_s, **(in_heavy or {})}).encode()
     return {**message, "headers": [*message.get("headers", []), (b"server-timing", timing)]}
+
+
+def server_timing(parts: dict[str, float]) -> str:
+    """A Server-Timing header's value: each part's name and its duration in ms (parts in seconds)."""
+    return ", ".join(f"{name};dur={1e3 * seconds:.1f}" for name, seconds in parts.items())
 
 
 def dragging(scope) -> bool:

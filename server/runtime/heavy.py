@@ -3,23 +3,26 @@
 An elastic time integration or a live work–precision study holds the interpreter for up to seconds
 (scipy's explicit solvers step in Python); run in the worker's thread pool, it would queue every
 other student's 5-ms kinematics request behind it for the lock. In a separate process it uses the
-other CPU and the worker stays free. Two lanes (LANES), each ``MDL_HEAVY_PROCESSES`` processes per worker
-(default 1; 0 runs them in the worker itself, in one thread of their own): the answers a student waits for,
-and the slider families at a lower priority still, so that a family never delays an answer (a family's coarse
-stage, the 9-member preview a student waits for, runs in the answers' lane). A child that dies is replaced and
-the computation is tried once more.
+other CPU and the worker stays free. Three lanes (LANES), each ``MDL_HEAVY_PROCESSES`` processes per worker
+(default 1, twice as many for the previews; 0 runs them in the worker itself, in one thread per lane):
+- the answers a student waits for (an elastic machine, a live study, the course project);
+- the previews, a slider family's coarse stage (the 9 members a student waits for while dragging);
+- the refinements, a family's full stage, at a lower priority still.
+An answer never waits for a preview to finish: in a class the previews' lane is rarely idle, and a 10-ms elastic
+answer queued behind a 9-member preview on a busy CPU took 0.4–0.7 s (bench/results/capacity_staggered.md). A
+child that dies is replaced and the computation is tried once more.
 
 Each lane's queue is kept in the worker (LaneQueue): at most one job per heavy process is handed to the pool, so
-that a job given up while it waits always leaves the queue. The answers a student waits for go first, oldest
-first; then the slider families (their coarse stage in the answers' lane, the full one in the families'),
-newest first: in a class that asks for families faster than the CPUs make them, the newest is the one a student
-still holds a slider for, the oldest the ones most likely given up. A family whose client goes away (the page aborts
-it when the student grabs another slider, or leaves) leaves the queue, and one already running stops before its
-next chunk of members (``stopped``, read by family_batch.member_batch), so that its CPU goes to the families
-still wanted.
+that a job given up while it waits always leaves the queue. Jobs go oldest first, except those submitted
+``newest_first`` (the refinements), which go newest first: in a class that asks for families faster than the
+CPUs make them, the newest is the one a student still holds a slider for, the oldest the ones most likely given
+up. A family whose client goes away (the page aborts it when the student grabs another slider, or leaves) leaves
+the queue, and one already running stops before its next chunk of members (``stopped``, read by
+family_batch.member_batch), so that its CPU goes to the families still wanted.
 
 The queues say how busy the worker is (``busy``, ``crowded``): a busy worker does not start a family's
 refinement (its coarse family is the answer), and while previews queue each takes fewer members.
+``TIMING`` tells the request that submitted a job where the job's time went (its Server-Timing header).
 
 A route awaits ``submit``: the wait holds no thread, so heavy requests never take the tokens of the thread
 pool that runs the light (sync) routes — 64 waiting elastic requests cost 64 suspended coroutines, not 64 of
@@ -28,12 +31,14 @@ anyio's 40 threads. ``run`` is the blocking form for code that is not async.
 from __future__ import annotations
 
 import asyncio
+import contextvars
 import gc
 import importlib
 import itertools
 import multiprocessing
 import os
 import threading
+import time
 import weakref
 from concurrent.futures import Future, ProcessPoolExecutor, ThreadPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -44,22 +49,31 @@ from ..core.warm_up import warm_up
 
 HEAVY_PROCESSES = int(os.environ.get("MDL_HEAVY_PROCESSES", "1"))
 # Lanes of heavy work, each in processes of its own, and their scheduling priority below the workers' (man 2 nice):
-# the answers a student waits for (an elastic machine, a live study) before the slider families, which only
-# make dragging smoother and so take the CPU that is left.
+# the answers a student waits for (an elastic machine, a live study) and the previews a dragging student waits for
+# beside each other, before the slider families' refinements, which only make dragging smoother and so take the
+# CPU that is left.
 # MDL_HEAVY_NICE=0 keeps them at the worker's own priority: on a host whose CPUs other processes keep busy (a test
 # run of several processes) a lane at nice 15 gets almost no CPU and its families never arrive.
-LANES = {"answers": 5, "families": 15}
+LANES = {"answers": 5, "previews": 5, "families": 15}
+# Processes of a lane per MDL_HEAVY_PROCESSES: two for the previews, so that one slow preview (a family whose
+# members are each a slow answer, on a CPU the worker keeps busy: 0.56 CPU-s took 2.4 s) does not hold every
+# preview asked after it; on a single CPU the two share it, and the short preview comes out first.
+LANE_PROCESSES = {"previews": 2}
 NICE = os.environ.get("MDL_HEAVY_NICE", "1") != "0"
 T = TypeVar("T")
 _pools: dict[str, ProcessPoolExecutor] = {}
 _stopped: weakref.WeakSet = weakref.WeakSet()   # pools ended by shutdown(): what broke there is not retried
 _lock = threading.Lock()
-_in_worker: ThreadPoolExecutor | None = None   # MDL_HEAVY_PROCESSES=0: one thread, not the light routes' pool
+_in_worker: dict[str, ThreadPoolExecutor] = {}   # MDL_HEAVY_PROCESSES=0: one thread per lane, not the light routes' pool
 STOP_SLOTS = 1024              # a stop is written to slot ticket % STOP_SLOTS, holding the ticket it stops
 _tickets = itertools.count(1)
 _stops = multiprocessing.RawArray("q", STOP_SLOTS)   # the worker's: what it has stopped; a heavy process gets it
 _stop_flags = _stops           # read by `stopped`: in a heavy process, the array its worker writes
-_running_ticket = 0            # in a heavy process (or the worker's heavy thread): the ticket of the job it runs
+_running = threading.local()  # .ticket: in a heavy process (or a lane's thread in the worker), the job it runs
+# Where a request's heavy job spent its time, filled in by `submit` when the request's handler set a dict here
+# (admission does, for its Server-Timing header): "queue" the wait in the lane's queue, "run" the job's wall time in
+# its process, "cpu" the CPU time it took there; seconds.
+TIMING: contextvars.ContextVar[dict | None] = contextvars.ContextVar("mdl_heavy_timing", default=None)
 
 
 _preload: list[str] = []       # the modules a new heavy process imports (``preload``)
@@ -79,10 +93,15 @@ def _current_pool(lane: str) -> ProcessPoolExecutor:
         if lane not in _pools:                # forkserver: no fork of a process that runs threads
             context = multiprocessing.get_context("forkserver")
             context.set_forkserver_preload([*_preload, f"{__package__}.forkserver_preload"])
-            _pools[lane] = ProcessPoolExecutor(HEAVY_PROCESSES, mp_context=context,
+            _pools[lane] = ProcessPoolExecutor(processes(lane), mp_context=context,
                                                initializer=_start_heavy_process,
                                                initargs=(LANES[lane] if NICE else 0, _stops, tuple(_preload)))
         return _pools[lane]
+
+
+def processes(lane: str) -> int:
+    """The heavy processes of `lane` per worker (0: its jobs run in a thread of the worker)."""
+    return HEAVY_PROCESSES * LANE_PROCESSES.get(lane, 1)
 
 
 def _start_heavy_process(niceness: int, stops, modules: tuple[str, ...] = ()) -> None:
@@ -112,20 +131,22 @@ def frozen_after_start() -> None:
     gc.freeze()
 
 
-def _run_ticketed(ticket: int, function: Callable[..., T], args: tuple) -> T:
-    """function(*args) as job `ticket`, so that `stopped` can tell whether its client has given it up."""
-    global _running_ticket
-    _running_ticket = ticket
+def _run_ticketed(ticket: int, function: Callable[..., T], args: tuple) -> tuple[T, float, float]:
+    """function(*args) as job `ticket`, so that `stopped` can tell whether its client has given it up; with the
+    wall and the CPU seconds it took (the CPU of this thread: in a heavy process, of the job alone)."""
+    _running.ticket = ticket
+    wall, cpu = time.perf_counter(), time.thread_time()
     try:
-        return function(*args)
+        return function(*args), time.perf_counter() - wall, time.thread_time() - cpu
     finally:
-        _running_ticket = 0
+        _running.ticket = 0
 
 
 def stopped() -> bool:
     """Whether the job running here has been given up by its client (read between chunks of work; always False
-    outside a job of the families' lane)."""
-    return _running_ticket != 0 and _stop_flags[_running_ticket % STOP_SLOTS] == _running_ticket
+    outside a job)."""
+    ticket = getattr(_running, "ticket", 0)
+    return ticket != 0 and _stop_flags[ticket % STOP_SLOTS] == ticket
 
 
 def start() -> None:
@@ -133,7 +154,8 @@ def start() -> None:
     fall on the first student's elastic request or family."""
     if HEAVY_PROCESSES:
         for lane in LANES:
-            _current_pool(lane).submit(int)
+            for _ in range(processes(lane)):    # submitted while none is idle yet: each starts a process
+                _current_pool(lane).submit(int)
 
 
 def _discard(pool: ProcessPoolExecutor) -> None:
@@ -144,12 +166,11 @@ def _discard(pool: ProcessPoolExecutor) -> None:
     pool.shutdown(wait=False, cancel_futures=True)
 
 
-def _local_threads() -> ThreadPoolExecutor:
-    global _in_worker
+def _local_thread(lane: str) -> ThreadPoolExecutor:
     with _lock:
-        if _in_worker is None:
-            _in_worker = ThreadPoolExecutor(1, thread_name_prefix="mdl-heavy")
-        return _in_worker
+        if lane not in _in_worker:
+            _in_worker[lane] = ThreadPoolExecutor(1, thread_name_prefix=f"mdl-heavy-{lane}")
+        return _in_worker[lane]
 
 
 def shutdown() -> None:
@@ -187,8 +208,8 @@ def run(function: Callable[..., T], *args, lane: str = "answers") -> T:
 
 async def submit(function: Callable[..., T], *args, lane: str = "answers", newest_first: bool = False) -> T:
     """function(*args) in a heavy process of `lane` (LANES), awaited without holding a thread; its exceptions
-    come back. `newest_first`: a preview (a slider's family) that waits behind the lane's answers and before the
-    previews asked before it (LaneQueue).
+    come back. `newest_first`: a refinement (a slider's full family) that waits behind the lane's other jobs and
+    before the refinements asked before it (LaneQueue).
     Cancelled while it waits (its client gone), it leaves the lane's queue (LaneQueue); one already running is
     told so by `stopped` (a family reads it between chunks of members; other work finishes unseen)."""
     return await _queues[lane].submit(function, args, newest_first)
@@ -196,18 +217,19 @@ async def submit(function: Callable[..., T], *args, lane: str = "answers", newes
 
 def busy() -> bool:
     """Whether this worker's heavy lanes have no CPU to spare for a family's refinement: an answer or a preview
-    waits in the answers' lane (its process is taken and more is queued behind it), or the families' lane
-    holds a job (running or waiting). A refinement then is not started: the grab gets its coarse family only
+    waits for its lane's process (taken, and more queued behind it), or the families' lane holds a job (running
+    or waiting). A refinement then is not started: the grab gets its coarse family only
     (routers/family.py), and the CPU goes to the exact answers and the first previews. Read from the lanes'
     queues in this worker (each worker has its own lanes), so it says the same for the same sequence of
     requests whatever the machine's speed."""
-    return _queues["answers"].pressure() > 0 or _queues["families"].occupied() > 0
+    return (_queues["answers"].pressure() > 0 or _queues["previews"].pressure() > 0
+            or _queues["families"].occupied() > 0)
 
 
 def crowded() -> bool:
-    """Whether previews queue in the answers' lane: more jobs wait there than it has processes. A first
-    preview then takes fewer members (family.LEAN_MEMBERS), so that the queue drains sooner."""
-    return _queues["answers"].pressure() >= LaneQueue.capacity()
+    """Whether previews queue in their lane: more wait there than it has processes. A first preview then takes
+    fewer members (family.LEAN_MEMBERS), so that the queue drains sooner."""
+    return _queues["previews"].pressure() >= _queues["previews"].capacity()
 
 
 def _replaced(pool: ProcessPoolExecutor, attempt: int) -> bool:
@@ -229,12 +251,14 @@ class _Job:
     ticket: int = field(default_factory=lambda: next(_tickets))
     tries: int = 0
     running: bool = False
+    queued: float = field(default_factory=time.perf_counter)   # when it joined the queue
+    queue_s: float = 0.0                                       # its wait there, once it ran
 
 
 class LaneQueue:
     """A lane's queue in the worker: at most `capacity()` jobs handed to the lane's pool (one per process, so that
-    none waits in the pool's own queue, out of reach). Next goes the oldest answer waiting, else the newest
-    preview (a job submitted `newest_first`). A job whose awaiting coroutine is cancelled leaves the queue, or,
+    none waits in the pool's own queue, out of reach). Next goes the oldest job waiting, else the newest of those
+    submitted `newest_first` (the refinements). A job whose awaiting coroutine is cancelled leaves the queue, or,
     running, has its stop written for `stopped` to read."""
 
     def __init__(self, lane: str):
@@ -243,9 +267,9 @@ class LaneQueue:
         self.running = 0
         self.lock = threading.Lock()
 
-    @staticmethod
-    def capacity() -> int:
-        return max(HEAVY_PROCESSES, 1)
+    def capacity(self) -> int:
+        """Jobs it runs at once: its processes (one thread in the worker when MDL_HEAVY_PROCESSES is 0)."""
+        return max(processes(self.lane), 1)
 
     def pressure(self) -> int:
         """Jobs waiting for a process of this lane (not yet handed to its pool)."""
@@ -264,7 +288,10 @@ class LaneQueue:
             self.waiting.append(job)
         self._dispatch()
         try:
-            return await job.done
+            result, run_s, cpu_s = await job.done
+            if (timing := TIMING.get()) is not None:
+                timing.update(queue=job.queue_s, run=run_s, cpu=cpu_s)
+            return result
         except asyncio.CancelledError:
             with self.lock:
                 if job in self.waiting:
@@ -286,10 +313,11 @@ class LaneQueue:
                 job = self.waiting.pop(self._next())
                 self.running += 1
                 job.running = True
+                job.queue_s = time.perf_counter() - job.queued
             pool = None
             try:
                 if HEAVY_PROCESSES == 0:
-                    future = _local_threads().submit(_run_ticketed, job.ticket, job.function, job.args)
+                    future = _local_thread(self.lane).submit(_run_ticketed, job.ticket, job.function, job.args)
                 else:
                     pool = _current_pool(self.lane)
                     future = pool.submit(_run_ticketed, job.ticket, job.function, job.args)

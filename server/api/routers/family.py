@@ -11,6 +11,7 @@ from fastapi.responses import Response
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator
 
 from ...runtime import heavy
+from ...runtime.admission import server_timing
 from ...families import family
 from ..endpoints import ENDPOINTS
 from ..family_batch import member_batch
@@ -136,11 +137,13 @@ class FamilyResponse(BaseModel):
                         422: {"description": "invalid input: the field and the reason"}})
 async def family_route(request: FamilyRequest, http: Request, lang: Language = LANG) -> Response:
     # The coarse stage is the preview a student is waiting for while dragging (9 members): it runs in the
-    # answers' lane, ahead of the full families queued in theirs (which then compute those 9 again: their memo is
-    # in another process). In either lane a family goes after the answers waiting there, and the newest family
-    # first (heavy.LaneQueue). It comes back as bytes, gzip-compressed when the client takes it: a family is up
-    # to 2 MB of JSON, whose serialising and compressing (tens of ms) would hold the worker's event loop.
-    # When the worker is busy (heavy.busy: previews wait in the answers' lane, or a refinement is under way) a
+    # previews' lane, ahead of the full families queued in theirs (which then compute those 9 again: their memo is
+    # in another process), and beside the answers' lane, so that an elastic answer never waits for it. Previews
+    # go in the order asked, so that none waits longer than those asked before it (the page aborts the ones its
+    # student has given up, which then leave the queue); refinements newest first (heavy.LaneQueue). A family
+    # comes back as bytes, gzip-compressed when the client takes it: it is up to 2 MB of JSON, whose serialising
+    # and compressing (tens of ms) would hold the worker's event loop.
+    # When the worker is busy (heavy.busy: answers or previews wait for their lane, or a refinement is under way) a
     # full family is not refined: the answer is the coarse family (numerics.stage "coarse", marked no-store so
     # that the cache keeps it apart from the full family the same question gets on spare CPU). While previews
     # queue (heavy.crowded) a coarse family takes the lean start (family.LEAN_MEMBERS).
@@ -152,12 +155,16 @@ async def family_route(request: FamilyRequest, http: Request, lang: Language = L
         kept = coarse_in_cache(http, body, gzip_accepted)
         if kept is not None:
             return kept
-    lane = "answers" if body["stage"] == "coarse" else "families"
+    lane = "previews" if body["stage"] == "coarse" else "families"
     lean = body["stage"] == "coarse" and heavy.crowded()
     work = (family_body, body, lang, gzip_accepted, lean)
+    heavy.TIMING.set(timing := {})           # filled when this request's own job ran (not one it joined)
+    refinement = lane == "families"
     encoded_body, packed, partial = await _in_flight.join(work, lambda: heavy.submit(*work, lane=lane,
-                                                                                        newest_first=True))
-    return encoded_response(encoded_body, packed, partial, {"Cache-Control": "no-store"} if unrefined else None)
+                                                                                        newest_first=refinement))
+    headers = ({"Cache-Control": "no-store"} if unrefined else {}) | (
+        {"Server-Timing": server_timing(timing)} if timing else {})
+    return encoded_response(encoded_body, packed, partial, headers)
 
 
 def coarse_in_cache(http: Request, body: dict, gzip_accepted: bool) -> Response | None:
