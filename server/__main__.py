@@ -16,6 +16,10 @@ from .runtime import server_shares, shared_cache
 from .runtime.nodelay import HTTP
 
 
+KEEP_ALIVE_S = 5     # an idle connection is closed after this long (uvicorn's default; nginx's upstream keeps it
+                     # shorter: deploy/nginx/mdl.conf)
+
+
 def uvicorn_options(argv: list[str] | None = None) -> dict:
     """The keyword arguments of uvicorn.run for these command-line arguments and the environment."""
     parser = argparse.ArgumentParser(prog="python3 -m server", description="Mechanism Dynamics Lab")
@@ -28,7 +32,8 @@ def uvicorn_options(argv: list[str] | None = None) -> dict:
     args = parser.parse_args(argv)
     trusted = args.forwarded_allow_ips.strip()
     return {"host": args.host, "port": args.port, "workers": args.workers,
-            "proxy_headers": bool(trusted), "forwarded_allow_ips": trusted or None, "http": HTTP}
+            "proxy_headers": bool(trusted), "forwarded_allow_ips": trusted or None, "http": HTTP,
+            "timeout_keep_alive": KEEP_ALIVE_S}
 
 
 def main() -> None:

@@ -433,6 +433,16 @@ def test_the_default_options_trust_no_proxy(monkeypatch):
 
 # --- the shipped files say the same as the deployment guide and the app ------------------------------------
 
+
+def test_nginx_drops_an_idle_upstream_connection_before_the_app_does():
+    """A POST sent on a kept-alive connection the app is closing fails (502) and is not retried: the shipped site
+    keeps its idle upstream connections for less time than the app does."""
+    conf = (REPO / "deploy" / "nginx" / "mdl.conf").read_text()
+    upstream = re.search(r"upstream mdl \{(.*?)\}", conf, re.S).group(1)
+    seconds = float(re.search(r"^\s*keepalive_timeout (\d+)s;", upstream, re.M).group(1))
+    assert re.search(r"^\s*keepalive \d+;", upstream, re.M)
+    assert 0 < seconds < uvicorn_options([])["timeout_keep_alive"]
+
 def test_the_deployment_guide_shows_the_shipped_nginx_site():
     guide = (REPO / "docs" / "deployment.md").read_text(encoding="utf-8")
     assert re.search(r"```nginx\n(.+?)```", guide, re.S).group(1) == SITE.read_text(encoding="utf-8")
