@@ -227,8 +227,8 @@ def busy() -> bool:
 
 
 def crowded() -> bool:
-    """Whether previews queue in their lane: more wait there than it has processes. A first preview then takes
-    fewer members (family.LEAN_MEMBERS), so that the queue drains sooner."""
+    """Whether previews queue in their lane: as many wait there as it has processes, or more. A first preview
+    then takes fewer members (family.LEAN_MEMBERS), so that the queue drains sooner."""
     return _queues["previews"].pressure() >= _queues["previews"].capacity()
 
 
