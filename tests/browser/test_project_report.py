@@ -56,9 +56,10 @@ def answers(page) -> int:
 
 
 def settled(page, before: int) -> None:
-    """Wait until the page has shown an answer newer than `before` (a report or a refusal)."""
+    """Wait until the page has shown an answer newer than `before` (a report or a refusal); a page still loading
+    (the editor's link to the project followed) has no status yet."""
     page.wait_for_function("""n => { const s = document.querySelector("#project-status");
-        return Number(s.dataset.answers ?? 0) > n && s.dataset.state !== "waiting"; }""", arg=before)
+        return s !== null && Number(s.dataset.answers ?? 0) > n && s.dataset.state !== "waiting"; }""", arg=before)
 
 
 def act(page, action) -> dict:
