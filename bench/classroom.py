@@ -236,8 +236,7 @@ class Record:
 
     def add(self, endpoint: str, seconds: float, status: int, cache: str, partial: bool = False,
             kind: str = "exact", light: str = "light", timing: str = "") -> None:
-        self.rows.append((endpoint, seconds, status, cache, partial, kind, light, server_timing(timing),
-                          time.monotonic() - seconds))
+        self.rows.append((endpoint, seconds, status, cache, partial, kind, light, server_timing(timing)))
 
 
 def server_timing(header: str) -> dict[str, float] | None:

@@ -19,8 +19,8 @@ after address, and within an address client (cookie) after client, each client's
 requests a page sends while a slider is dragged and its family has not come (``X-MDL-Drag: 1``,
 web/static/js/common/model/api.js) are previews, true answers of values the slider passes: they wait behind every
 request at rest, so that the answer a student reads when the slider stops goes first and the drags share the time
-that is left. A slider's family is not held in a lane (heavy.LaneQueue puts its coarse stage before the full
-families); it counts towards the limits below.
+that is left. A slider's family is not held in a lane (heavy.py runs its coarse stage in the previews' lane, its
+full one in the refinements'); it counts towards the limits below.
 
 Limits (per worker; 0 switches one off). A client may have ``MDL_CLIENT_CONCURRENCY`` computing requests in
 flight, running or waiting (default 8: the busiest page asks for a main answer, three overlays and a slider's
